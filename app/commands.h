@@ -1,0 +1,17 @@
+// The subcommands of the `strata` command line. Each returns the process exit code:
+// 0 success, 1 failure (message printed), 2 usage error, 130 cancelled.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace strata {
+
+int runEval(const std::vector<std::string>& args);
+int runBoolean(const std::vector<std::string>& args);
+
+// The bundled demo scene (assets/scenes/demo.strata.json), located from STRATA_ASSETS or the
+// source tree this binary was built from.
+std::string demoScenePath();
+
+}  // namespace strata

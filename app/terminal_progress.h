@@ -1,0 +1,24 @@
+// Progress on the terminal and Ctrl-C as cancellation, for the command line.
+#pragma once
+
+#include "engine/util/progress.h"
+
+namespace strata {
+
+// A Progress that draws a one-line bar on stderr (only when stderr is a terminal and not
+// quiet) and that SIGINT cancels: the first Ctrl-C asks the running operation to stop, a
+// second one ends the process. Only one may exist at a time.
+class TerminalProgress {
+ public:
+  explicit TerminalProgress(bool quiet);
+  ~TerminalProgress();
+  Progress& progress() { return progress_; }
+  // Clears the bar line (call before printing results).
+  void finish();
+
+ private:
+  Progress progress_;
+  bool drawn_ = false;
+};
+
+}  // namespace strata

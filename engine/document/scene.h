@@ -1,0 +1,27 @@
+// A scene: the document tree plus its settings, as stored in a *.strata.json file.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <string>
+
+#include "engine/document/node.h"
+
+namespace strata {
+
+struct SceneSettings {
+  int resolution = 256;   // cells along the longest side of the grid
+  double margin = 0.05;   // grid margin around the scene bounds, as a fraction of their size
+  std::string unit = "millimetre";  // length unit of scene coordinates (recorded in exports)
+  // Optional explicit grid box; when set (min < max on every axis), the grid covers exactly this
+  // box instead of the scene bounds plus margin.
+  bool hasBounds = false;
+  Bounds bounds;
+};
+
+struct Scene {
+  SceneSettings settings;
+  NodePtr root;  // never null for a loaded scene
+};
+
+}  // namespace strata

@@ -1,0 +1,47 @@
+// The backend interface: where LDIs are computed and kept. The CPU backend (cpu_backend.h) is
+// the reference; the CUDA backend (gpu/) implements the same interface and keeps its LDIs on
+// the device. The engine passes handles, never arrays: data stays where it was computed, and a
+// copy to the host happens only in download().
+//
+// Threads: a backend is used by one thread at a time (the evaluator's); handles are immutable
+// and may be shared with, and released on, any thread.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/geometry/mesh.h"
+#include "engine/ldi/ldi.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+// An LDI owned by a backend. Immutable once made.
+class LdiResource {
+ public:
+  virtual ~LdiResource() = default;
+  virtual const Grid& grid() const = 0;
+  virtual size_t surfelCount() const = 0;
+  virtual size_t bytes() const = 0;  // memory held, on whatever memory the backend uses
+};
+using LdiHandle = std::shared_ptr<const LdiResource>;
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  // "cpu (2 threads)", "cuda (NVIDIA H100 80GB HBM3)".
+  virtual std::string description() const = 0;
+  virtual LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld,
+                               const Grid& grid, uint32_t leafId, Progress& progress) = 0;
+  virtual LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
+                            Progress& progress) = 0;
+  virtual LdiHandle empty(const Grid& grid) = 0;
+  virtual LdiMeasure measure(const LdiHandle& ldi, Progress& progress) = 0;
+  // A host copy (or view) of the LDI.
+  virtual std::shared_ptr<const Ldi> download(const LdiHandle& ldi) = 0;
+};
+
+}  // namespace strata

@@ -1,0 +1,58 @@
+#include "engine/eval/cpu_backend.h"
+
+#include "engine/ldi/combine_ldi.h"
+#include "engine/ldi/sample_mesh.h"
+#include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
+
+namespace strata {
+namespace {
+class CpuLdi : public LdiResource {
+ public:
+  explicit CpuLdi(std::shared_ptr<const Ldi> ldi) : ldi_(std::move(ldi)) {}
+  const Grid& grid() const override { return ldi_->grid; }
+  size_t surfelCount() const override { return ldi_->surfelCount(); }
+  size_t bytes() const override { return ldi_->bytes(); }
+  const std::shared_ptr<const Ldi>& ldi() const { return ldi_; }
+
+ private:
+  std::shared_ptr<const Ldi> ldi_;
+};
+
+const std::shared_ptr<const Ldi>& hostLdi(const LdiHandle& handle) {
+  auto* cpu = dynamic_cast<const CpuLdi*>(handle.get());
+  if (!cpu) throw Error("internal: an LDI of another backend was passed to the CPU backend");
+  return cpu->ldi();
+}
+}  // namespace
+
+std::string CpuBackend::description() const {
+  int n = workerCount();
+  return "cpu (" + std::to_string(n) + (n == 1 ? " thread)" : " threads)");
+}
+
+LdiHandle CpuBackend::sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld,
+                                 const Grid& grid, uint32_t leafId, Progress& progress) {
+  return std::make_shared<CpuLdi>(strata::sampleMesh(mesh, objectToWorld, grid, leafId, &progress));
+}
+
+LdiHandle CpuBackend::combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
+                              Progress& progress) {
+  std::vector<std::shared_ptr<const Ldi>> inputs;
+  inputs.reserve(children.size());
+  for (const auto& c : children) inputs.push_back(hostLdi(c));
+  return std::make_shared<CpuLdi>(combineLdis(op, inputs, grid, &progress));
+}
+
+LdiHandle CpuBackend::empty(const Grid& grid) {
+  return std::make_shared<CpuLdi>(makeEmptyLdi(grid));
+}
+
+LdiMeasure CpuBackend::measure(const LdiHandle& ldi, Progress& progress) {
+  progress.check();
+  return measureLdi(*hostLdi(ldi));
+}
+
+std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) { return hostLdi(ldi); }
+
+}  // namespace strata

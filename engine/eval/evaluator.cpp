@@ -1,0 +1,365 @@
+#include "engine/eval/evaluator.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/geometry/primitives.h"
+#include "engine/util/error.h"
+#include "engine/util/hash.h"
+#include "engine/util/memory.h"
+#include "engine/util/timer.h"
+
+namespace strata {
+namespace {
+
+constexpr int kDepthGuard = 4096;  // recursion guard (scene files are limited far below)
+// Chordal error of automatic tessellation, in cells.
+constexpr double kAutoChordErrorCells = 0.1;
+
+enum Stage { kTessellate, kSample, kBoolean, kMeasure, kStageCount };
+const char* const kStageNames[kStageCount] = {"tessellate", "sample", "boolean", "measure"};
+
+RayOp rayOp(NodeKind kind) {
+  switch (kind) {
+    case NodeKind::Union:
+      return RayOp::Union;
+    case NodeKind::Intersection:
+      return RayOp::Intersection;
+    default:
+      return RayOp::Difference;
+  }
+}
+
+double largestScale(const glm::dmat4& m) {
+  double s = 0.0;
+  for (int c = 0; c < 3; ++c) s = std::max(s, glm::length(glm::dvec3(m[c])));
+  return s;
+}
+
+void hashGrid(Hasher& h, const Grid& grid) {
+  h.add(grid.origin.x).add(grid.origin.y).add(grid.origin.z).add(grid.h);
+  h.add(grid.cells.x).add(grid.cells.y).add(grid.cells.z);
+  h.add(grid.first.x).add(grid.first.y).add(grid.first.z);
+}
+
+Bounds transformedBox(const Bounds& local, const glm::dmat4& world) {
+  Bounds b;
+  if (local.empty()) return b;
+  for (int i = 0; i < 8; ++i) {
+    glm::dvec3 p(i & 1 ? local.max.x : local.min.x, i & 2 ? local.max.y : local.min.y,
+                 i & 4 ? local.max.z : local.min.z);
+    b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+  }
+  return b;
+}
+
+Bounds primitiveLocalBounds(const Node& n) {
+  const PrimitiveParams& p = n.params;
+  glm::dvec3 half(0.0);
+  switch (n.kind) {
+    case NodeKind::Box:
+      half = p.size * 0.5;
+      break;
+    case NodeKind::Sphere:
+      half = glm::dvec3(p.radius);
+      break;
+    case NodeKind::Cylinder:
+      half = {p.radius, p.radius, p.height / 2};
+      break;
+    case NodeKind::Cone: {
+      double r = std::max(p.radius, p.topRadius);
+      half = {r, r, p.height / 2};
+      break;
+    }
+    case NodeKind::Torus: {
+      double r = p.majorRadius + p.minorRadius;
+      half = {r, r, p.minorRadius};
+      break;
+    }
+    case NodeKind::Capsule:
+      half = {p.radius, p.radius, p.height / 2 + p.radius};
+      break;
+    default:
+      break;
+  }
+  Bounds b;
+  b.min = -half;
+  b.max = half;
+  return b;
+}
+
+Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
+                bool asInstance, int depth) {
+  Bounds b;
+  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return b;
+  glm::dmat4 world = parentWorld * node->transform.matrix();
+  if (node->kind == NodeKind::Instance)
+    return boundsOf(findNode(root, node->instanceOf), root, world, true, depth + 1);
+  if (node->kind == NodeKind::Mesh) {
+    if (node->mesh)
+      for (const auto& p : node->mesh->positions) b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+    return b;
+  }
+  if (isPrimitive(node->kind)) return transformedBox(primitiveLocalBounds(*node), world);
+  bool first = true;
+  for (const auto& child : node->children) {
+    if (!child->visible) continue;
+    Bounds cb = boundsOf(child, root, world, false, depth + 1);
+    if (node->kind == NodeKind::Union) {
+      b.include(cb);
+    } else if (node->kind == NodeKind::Intersection) {
+      b = first ? cb : b.intersected(cb);
+    } else if (first) {
+      b = cb;  // difference: the first visible child
+    }
+    first = false;
+  }
+  return b;
+}
+
+// Bounds of everything visible, whatever the operations: the fallback grid of a scene whose
+// result is empty (so that the evaluation still runs and reports an empty result).
+void allLeafBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
+                   bool asInstance, int depth, Bounds* out) {
+  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
+  glm::dmat4 world = parentWorld * node->transform.matrix();
+  if (node->kind == NodeKind::Instance) {
+    allLeafBounds(findNode(root, node->instanceOf), root, world, true, depth + 1, out);
+  } else if (isOperation(node->kind)) {
+    for (const auto& c : node->children) allLeafBounds(c, root, world, false, depth + 1, out);
+  } else {
+    out->include(boundsOf(node, root, parentWorld, true, depth));  // visibility checked above
+  }
+}
+
+int countNodes(const NodePtr& node, const NodePtr& root, bool asInstance, int depth) {
+  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return 0;
+  if (node->kind == NodeKind::Instance)
+    return countNodes(findNode(root, node->instanceOf), root, true, depth + 1);
+  int n = 1;
+  for (const auto& c : node->children) n += countNodes(c, root, false, depth + 1);
+  return n;
+}
+
+}  // namespace
+
+struct Evaluator::Context {
+  const Scene* scene = nullptr;
+  Grid grid;
+  Progress* progress = nullptr;
+  EvalResult* result = nullptr;
+  StageStats stages[kStageCount];
+  int total = 1;
+  int done = 0;
+
+  void finishStage(Stage s, double seconds, uint64_t surfels) {
+    stages[s].seconds += seconds;
+    stages[s].surfels += surfels;
+    stages[s].peakBytes = peakResidentBytes();
+    stages[s].runs += 1;
+  }
+  void nodeDone() {
+    ++done;
+    progress->report("evaluate", double(done) / double(total));
+  }
+};
+
+const char* outcomeName(NodeOutcome outcome) {
+  switch (outcome) {
+    case NodeOutcome::Computed:
+      return "computed";
+    case NodeOutcome::Cached:
+      return "cached";
+    case NodeOutcome::PassThrough:
+      return "pass-through";
+    default:
+      return "empty";
+  }
+}
+
+Evaluator::Evaluator(std::shared_ptr<Backend> backend) : backend_(std::move(backend)) {}
+
+Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld) {
+  return boundsOf(node, root, parentWorld, false, 0);
+}
+
+Grid Evaluator::gridFor(const Scene& scene, int resolution) {
+  int n = resolution > 0 ? resolution : scene.settings.resolution;
+  if (scene.settings.hasBounds) return makeGridExact(scene.settings.bounds, n);
+  Bounds b = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
+  if (b.empty()) allLeafBounds(scene.root, scene.root, glm::dmat4(1.0), true, 0, &b);
+  return makeGrid(b, n, scene.settings.margin);
+}
+
+uint64_t Evaluator::meshHash(const std::shared_ptr<const TriangleMesh>& mesh) {
+  auto it = meshHashes_.find(mesh.get());
+  if (it != meshHashes_.end() && !it->second.mesh.expired() && it->second.mesh.lock() == mesh)
+    return it->second.hash;
+  Hasher h;
+  h.bytes(mesh->positions.data(), mesh->positions.size() * sizeof(glm::dvec3));
+  h.bytes(mesh->triangles.data(), mesh->triangles.size() * sizeof(mesh->triangles[0]));
+  uint64_t digest = h.digest();
+  // Forget memos of meshes that are gone, so the table does not grow without bound.
+  for (auto m = meshHashes_.begin(); m != meshHashes_.end();)
+    m = m->second.mesh.expired() ? meshHashes_.erase(m) : std::next(m);
+  meshHashes_[mesh.get()] = MeshHashMemo{mesh, digest};
+  return digest;
+}
+
+Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& world,
+                                      Context& ctx) {
+  Hasher key;
+  key.add(uint8_t(node->kind)).add(node->id);
+  const glm::dmat4& m = world;
+  key.bytes(glm::value_ptr(m), sizeof(double) * 16);
+  hashGrid(key, ctx.grid);
+  int segments = 0;
+  if (node->kind == NodeKind::Mesh) {
+    if (!node->mesh) throw Error("mesh node '" + node->name + "' has no mesh loaded");
+    key.add(meshHash(node->mesh));
+  } else {
+    const PrimitiveParams& p = node->params;
+    segments = p.segments > 0 ? p.segments
+                              : autoSegments(primitiveRadius(node->kind, p) * largestScale(world),
+                                             kAutoChordErrorCells * ctx.grid.h);
+    key.add(p.size.x).add(p.size.y).add(p.size.z).add(p.radius).add(p.topRadius);
+    key.add(p.height).add(p.majorRadius).add(p.minorRadius).add(segments);
+  }
+  Visit v;
+  v.key = key.digest();
+  NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Computed, 0.0, 0};
+  auto hit = cache_.find(v.key);
+  if (hit != cache_.end()) {
+    hit->second.generation = generation_;
+    v.ldi = hit->second.ldi;
+    record.outcome = NodeOutcome::Cached;
+    ++ctx.result->reused;
+  } else {
+    Stopwatch watch;
+    std::shared_ptr<const TriangleMesh> mesh = node->mesh;
+    if (node->kind != NodeKind::Mesh) {
+      Stopwatch tessellate;
+      mesh = std::make_shared<TriangleMesh>(tessellatePrimitive(node->kind, node->params, segments));
+      ctx.finishStage(kTessellate, tessellate.seconds(), 0);
+    }
+    Stopwatch sample;
+    v.ldi = backend_->sampleMesh(*mesh, world, ctx.grid, node->id, *ctx.progress);
+    ctx.finishStage(kSample, sample.seconds(), v.ldi->surfelCount());
+    cache_[v.key] = CacheEntry{v.ldi, generation_};
+    record.seconds = watch.seconds();
+    ++ctx.result->computed;
+  }
+  record.surfels = v.ldi->surfelCount();
+  ctx.result->nodes.push_back(record);
+  ctx.nodeDone();
+  return v;
+}
+
+Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth,
+                                  Context& ctx) {
+  if (depth > kDepthGuard) throw Error("the tree is too deep to evaluate (instance cycle?)");
+  ctx.progress->check();
+  glm::dmat4 world = parentWorld * node->transform.matrix();
+  if (node->kind == NodeKind::Instance) {
+    NodePtr target = findNode(ctx.scene->root, node->instanceOf);
+    if (!target)
+      throw Error("instance '" + node->name + "' refers to missing node id " +
+                  std::to_string(node->instanceOf));
+    return visit(target, world, depth + 1, ctx);  // the target's own flag is ignored
+  }
+  if (!isOperation(node->kind)) return visitLeaf(node, world, ctx);
+
+  std::vector<Visit> children;
+  for (const auto& c : node->children) {
+    if (!c->visible) continue;
+    children.push_back(visit(c, world, depth + 1, ctx));
+  }
+  // Empty operands decide some results without a Boolean.
+  const RayOp op = rayOp(node->kind);
+  std::vector<Visit> operands;
+  bool resultEmpty = children.empty();
+  for (size_t i = 0; i < children.size(); ++i) {
+    bool empty = children[i].ldi->surfelCount() == 0;
+    if (op == RayOp::Intersection && empty) resultEmpty = true;
+    if (op == RayOp::Difference && i == 0 && empty) resultEmpty = true;
+    if (!empty) operands.push_back(children[i]);
+  }
+  NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Computed, 0.0, 0};
+  Visit v;
+  if (resultEmpty || operands.empty()) {
+    Hasher key;
+    key.add(uint8_t(0xEE));
+    hashGrid(key, ctx.grid);
+    v.key = key.digest();
+    v.ldi = backend_->empty(ctx.grid);
+    record.outcome = NodeOutcome::Empty;
+  } else if (operands.size() == 1) {
+    // A single operand (the others empty, or the only child) is the result itself.
+    v = operands[0];
+    record.outcome = NodeOutcome::PassThrough;
+  } else {
+    Hasher key;
+    key.add(uint8_t(node->kind));
+    hashGrid(key, ctx.grid);
+    for (const auto& c : operands) key.add(c.key);
+    v.key = key.digest();
+    auto hit = cache_.find(v.key);
+    if (hit != cache_.end()) {
+      hit->second.generation = generation_;
+      v.ldi = hit->second.ldi;
+      record.outcome = NodeOutcome::Cached;
+    } else {
+      std::vector<LdiHandle> inputs;
+      for (const auto& c : operands) inputs.push_back(c.ldi);
+      Stopwatch watch;
+      v.ldi = backend_->combine(op, inputs, ctx.grid, *ctx.progress);
+      record.seconds = watch.seconds();
+      ctx.finishStage(kBoolean, record.seconds, v.ldi->surfelCount());
+      cache_[v.key] = CacheEntry{v.ldi, generation_};
+    }
+  }
+  if (record.outcome == NodeOutcome::Cached) ++ctx.result->reused;
+  if (record.outcome == NodeOutcome::Computed) ++ctx.result->computed;
+  record.surfels = v.ldi->surfelCount();
+  ctx.result->nodes.push_back(record);
+  ctx.nodeDone();
+  return v;
+}
+
+EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options,
+                               Progress& progress) {
+  if (!scene.root) throw Error("the scene has no root node");
+  Stopwatch total;
+  EvalResult result;
+  result.backend = backend_->description();
+  ++generation_;
+  Context ctx;
+  ctx.scene = &scene;
+  ctx.grid = gridFor(scene, options.resolution);
+  ctx.progress = &progress;
+  ctx.result = &result;
+  ctx.total = std::max(1, countNodes(scene.root, scene.root, true, 0)) + 1;
+  for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];
+  result.grid = ctx.grid;
+
+  Visit root = visit(scene.root, glm::dmat4(1.0), 0, ctx);
+  result.root = root.ldi;
+  Stopwatch measure;
+  result.measure = backend_->measure(root.ldi, progress);
+  ctx.finishStage(kMeasure, measure.seconds(), 0);
+  ctx.nodeDone();
+
+  // Keep what this and the previous evaluation used (so toggling between two states, such as a
+  // coarse preview and its refinement, stays cached); drop the rest.
+  for (auto it = cache_.begin(); it != cache_.end();)
+    it = it->second.generation + 1 < generation_ ? cache_.erase(it) : std::next(it);
+  for (const auto& entry : cache_) result.cacheBytes += entry.second.ldi->bytes();
+  for (int s = 0; s < kStageCount; ++s) result.stages.push_back(ctx.stages[s]);
+  result.seconds = total.seconds();
+  result.peakBytes = peakResidentBytes();
+  return result;
+}
+
+}  // namespace strata

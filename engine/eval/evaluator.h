@@ -1,0 +1,111 @@
+// Evaluation of a scene's CSG tree into the root's LDI, with a content-keyed cache.
+//
+// Every node's LDI is cached under a key made of its content: kind and parameters, the world
+// transform (for leaves), the mesh's content hash, the grid, and the keys of its children. After
+// one leaf changes, only the nodes on its path to the root get new keys and are recomputed; the
+// result reports what was computed and what was reused.
+//
+// Threads: an Evaluator is used by one thread at a time. The Scene it reads is immutable.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/document/scene.h"
+#include "engine/eval/backend.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+struct EvalOptions {
+  int resolution = 0;  // cells along the longest side; 0 = the scene's setting
+};
+
+// Totals of one stage of the pipeline over all nodes of an evaluation.
+struct StageStats {
+  std::string name;         // "tessellate", "sample", "boolean", "measure"
+  double seconds = 0.0;     // wall time spent in the stage
+  uint64_t surfels = 0;     // surfels produced by the stage
+  uint64_t peakBytes = 0;   // process peak resident memory when the stage last ended
+  int runs = 0;             // nodes the stage ran for
+};
+
+// What happened to one node.
+enum class NodeOutcome : uint8_t {
+  Computed,     // sampled or combined now
+  Cached,       // taken from the cache
+  PassThrough,  // an operation with one non-empty operand: that operand's LDI, no work
+  Empty,        // an operation whose result is empty without work (e.g. nothing visible)
+};
+const char* outcomeName(NodeOutcome outcome);
+
+struct NodeRecord {
+  NodeId id = 0;
+  std::string name;
+  std::string kind;
+  NodeOutcome outcome = NodeOutcome::Computed;
+  double seconds = 0.0;   // time spent computing this node alone (0 unless Computed)
+  uint64_t surfels = 0;
+};
+
+struct EvalResult {
+  Grid grid;
+  LdiHandle root;
+  LdiMeasure measure;  // volume and area of the root, from its LDI
+  std::vector<StageStats> stages;
+  std::vector<NodeRecord> nodes;  // in evaluation order (children before parents)
+  int computed = 0;  // nodes with outcome Computed
+  int reused = 0;    // nodes with outcome Cached
+  double seconds = 0.0;
+  uint64_t peakBytes = 0;   // process peak resident memory after the evaluation
+  uint64_t cacheBytes = 0;  // LDI memory held by the cache after the evaluation
+  std::string backend;
+};
+
+class Evaluator {
+ public:
+  explicit Evaluator(std::shared_ptr<Backend> backend);
+
+  // Evaluates the visible tree. Throws strata::Error (e.g. an empty scene) or Cancelled.
+  EvalResult evaluate(const Scene& scene, const EvalOptions& options, Progress& progress);
+
+  // The grid an evaluation at `resolution` (0 = the scene's) would use.
+  static Grid gridFor(const Scene& scene, int resolution);
+
+  void clearCache() { cache_.clear(); }
+  size_t cacheEntries() const { return cache_.size(); }
+  Backend& backend() { return *backend_; }
+
+ private:
+  struct CacheEntry {
+    LdiHandle ldi;
+    uint64_t generation = 0;  // the last evaluation that used it
+  };
+  struct Context;
+  struct Visit {
+    LdiHandle ldi;
+    uint64_t key = 0;
+  };
+  // Visits a node whose visibility the caller has checked (instances show hidden targets).
+  Visit visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
+  Visit visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx);
+  uint64_t meshHash(const std::shared_ptr<const TriangleMesh>& mesh);
+
+  std::shared_ptr<Backend> backend_;
+  std::unordered_map<uint64_t, CacheEntry> cache_;
+  uint64_t generation_ = 0;
+  struct MeshHashMemo {
+    std::weak_ptr<const TriangleMesh> mesh;
+    uint64_t hash;
+  };
+  std::unordered_map<const TriangleMesh*, MeshHashMemo> meshHashes_;
+};
+
+// World-space bounds of a node's visible result (union: all children; intersection: the
+// overlap of the children's; difference: the first child's). Empty when nothing is visible.
+Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld);
+
+}  // namespace strata

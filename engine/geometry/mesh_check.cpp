@@ -1,0 +1,409 @@
+// checkMesh measures topology (after welding identical positions) and geometry; prepareMesh
+// makes the repairs that never move a vertex: weld, drop degenerate triangles, orient shells
+// consistently and outward (cavities inward). Edges come from sorting half-edges, so both are
+// O(n log n); the shell nesting test is O(shells * triangles), pruned by bounding boxes.
+#include "engine/geometry/mesh_check.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+namespace strata {
+namespace {
+
+constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+
+bool isFinite(const glm::dvec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+uint64_t bitsOf(double v) {
+  if (v == 0.0) v = 0.0;  // -0.0 and 0.0 are the same position
+  uint64_t bits;
+  std::memcpy(&bits, &v, sizeof(bits));
+  return bits;
+}
+
+struct PositionKey {
+  uint64_t x, y, z;
+  bool operator==(const PositionKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+struct PositionKeyHash {
+  size_t operator()(const PositionKey& k) const {
+    uint64_t h = k.x * 0x9e3779b97f4a7c15ull;
+    h ^= (h >> 29) ^ (k.y * 0xbf58476d1ce4e5b9ull);
+    h ^= (h >> 31) ^ (k.z * 0x94d049bb133111ebull);
+    return static_cast<size_t>(h ^ (h >> 32));
+  }
+};
+
+// canonical[i]: the first vertex with exactly the position of vertex i (i itself if none).
+std::vector<uint32_t> canonicalVertices(const std::vector<glm::dvec3>& positions) {
+  std::vector<uint32_t> canonical(positions.size());
+  std::unordered_map<PositionKey, uint32_t, PositionKeyHash> first;
+  first.reserve(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const glm::dvec3& p = positions[i];
+    if (!isFinite(p)) {
+      canonical[i] = static_cast<uint32_t>(i);
+      continue;
+    }
+    auto it =
+        first.emplace(PositionKey{bitsOf(p.x), bitsOf(p.y), bitsOf(p.z)}, static_cast<uint32_t>(i));
+    canonical[i] = it.first->second;
+  }
+  return canonical;
+}
+
+// One directed edge of a triangle, keyed by its undirected endpoints.
+struct HalfEdge {
+  uint32_t lo, hi;
+  uint32_t triangle;
+  uint8_t corner;  // the edge runs from corner to corner + 1
+  bool forward;    // the triangle traverses it lo -> hi
+};
+
+// Half-edges of all triangles (through `canonical` when given), sorted so that the half-edges
+// of one undirected edge are adjacent. Edges whose ends coincide are left out.
+std::vector<HalfEdge> sortedHalfEdges(const std::vector<std::array<uint32_t, 3>>& triangles,
+                                      const std::vector<uint32_t>* canonical) {
+  std::vector<HalfEdge> edges;
+  edges.reserve(triangles.size() * 3);
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    for (uint8_t k = 0; k < 3; ++k) {
+      uint32_t a = triangles[t][k];
+      uint32_t b = triangles[t][(k + 1) % 3];
+      if (canonical) {
+        a = (*canonical)[a];
+        b = (*canonical)[b];
+      }
+      if (a == b) continue;
+      edges.push_back({std::min(a, b), std::max(a, b), static_cast<uint32_t>(t), k, a < b});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    if (x.lo != y.lo) return x.lo < y.lo;
+    if (x.hi != y.hi) return x.hi < y.hi;
+    return x.triangle < y.triangle;
+  });
+  return edges;
+}
+
+// Calls visit(begin, end) for each run of half-edges sharing one undirected edge.
+template <typename Visit>
+void forEachEdge(const std::vector<HalfEdge>& edges, Visit visit) {
+  size_t i = 0;
+  while (i < edges.size()) {
+    size_t j = i + 1;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    visit(i, j);
+    i = j;
+  }
+}
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+glm::dvec3 cornerCross(const TriangleMesh& mesh, const std::array<uint32_t, 3>& t) {
+  const glm::dvec3& a = mesh.positions[t[0]];
+  return glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
+}
+
+bool isZero(const glm::dvec3& v) {
+  return v.x == 0.0 && v.y == 0.0 && v.z == 0.0;
+}
+
+// Parity of crossings of the ray p + s*dir (s > 0) with the given triangles.
+bool oddCrossings(const TriangleMesh& mesh, const std::vector<uint32_t>& triangles,
+                  const glm::dvec3& p, const glm::dvec3& dir) {
+  bool odd = false;
+  for (uint32_t t : triangles) {
+    const auto& tri = mesh.triangles[t];
+    const glm::dvec3& a = mesh.positions[tri[0]];
+    const glm::dvec3 e1 = mesh.positions[tri[1]] - a;
+    const glm::dvec3 e2 = mesh.positions[tri[2]] - a;
+    const glm::dvec3 h = glm::cross(dir, e2);
+    const double det = glm::dot(e1, h);
+    if (det == 0.0) continue;
+    const double inv = 1.0 / det;
+    const glm::dvec3 s = p - a;
+    const double u = glm::dot(s, h) * inv;
+    if (u < 0.0 || u > 1.0) continue;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double v = glm::dot(dir, q) * inv;
+    if (v < 0.0 || u + v > 1.0) continue;
+    if (glm::dot(e2, q) * inv > 0.0) odd = !odd;
+  }
+  return odd;
+}
+
+// Point-in-closed-shell by ray parity, majority of three directions with irrational-looking
+// components so that rays rarely graze an edge or vertex.
+bool insideShell(const TriangleMesh& mesh, const std::vector<uint32_t>& triangles,
+                 const glm::dvec3& p) {
+  static const glm::dvec3 kDirections[3] = {
+      glm::normalize(glm::dvec3(0.5773502691896258, 0.6180339887498949, 0.5345224838248488)),
+      glm::normalize(glm::dvec3(-0.7071067811865476, 0.3183098861837907, 0.6324555320336759)),
+      glm::normalize(glm::dvec3(0.2718281828459045, -0.8660254037844386, -0.4142135623730950)),
+  };
+  int votes = 0;
+  for (const glm::dvec3& dir : kDirections) votes += oddCrossings(mesh, triangles, p, dir);
+  return votes >= 2;
+}
+
+// Keeps only vertices some triangle uses, in their original order; returns how many went.
+size_t dropUnreferenced(TriangleMesh& mesh) {
+  std::vector<uint32_t> remap(mesh.positions.size(), kNone);
+  for (const auto& t : mesh.triangles)
+    for (uint32_t v : t) remap[v] = 0;
+  uint32_t next = 0;
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (remap[i] == kNone) continue;
+    remap[i] = next;
+    mesh.positions[next++] = mesh.positions[i];
+  }
+  const size_t dropped = mesh.positions.size() - next;
+  mesh.positions.resize(next);
+  for (auto& t : mesh.triangles)
+    for (uint32_t& v : t) v = remap[v];
+  return dropped;
+}
+
+size_t weldInPlace(TriangleMesh& mesh) {
+  const std::vector<uint32_t> canonical = canonicalVertices(mesh.positions);
+  size_t merged = 0;
+  for (size_t i = 0; i < canonical.size(); ++i) merged += canonical[i] != i;
+  for (auto& t : mesh.triangles)
+    for (uint32_t& v : t) v = canonical[v];
+  return merged;
+}
+
+}  // namespace
+
+MeshCheck checkMesh(const TriangleMesh& mesh) {
+  MeshCheck c;
+  c.vertices = mesh.positions.size();
+  c.triangles = mesh.triangles.size();
+  for (const auto& p : mesh.positions)
+    c.nonFiniteCoordinates += !std::isfinite(p.x) + !std::isfinite(p.y) + !std::isfinite(p.z);
+
+  const std::vector<uint32_t> canonical = canonicalVertices(mesh.positions);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 n = cornerCross(mesh, t);
+    const uint32_t a = canonical[t[0]], b = canonical[t[1]], d = canonical[t[2]];
+    if (a == b || b == d || a == d || isZero(n)) ++c.degenerateTriangles;
+    smallest = std::min(smallest, 0.5 * glm::length(n));
+  }
+  c.smallestTriangleArea = mesh.triangles.empty() ? 0.0 : smallest;
+  c.volume = signedVolume(mesh);
+  c.area = surfaceArea(mesh);
+
+  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh.triangles, &canonical);
+  UnionFind components(mesh.triangles.size());
+  forEachEdge(edges, [&](size_t begin, size_t end) {
+    const size_t n = end - begin;
+    if (n == 1) ++c.boundaryEdges;
+    if (n > 2) ++c.nonManifoldEdges;
+    if (n == 2 && edges[begin].forward == edges[begin + 1].forward) ++c.misorientedEdges;
+    for (size_t i = begin + 1; i < end; ++i)
+      components.unite(edges[begin].triangle, edges[i].triangle);
+  });
+
+  // Number the components densely, in order of their first triangle.
+  std::vector<uint32_t> componentOf(mesh.triangles.size());
+  std::vector<uint32_t> denseId(mesh.triangles.size(), kNone);
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const uint32_t root = components.find(t);
+    if (denseId[root] == kNone) denseId[root] = static_cast<uint32_t>(c.components++);
+    componentOf[t] = denseId[root];
+  }
+
+  if (!c.watertight() || mesh.triangles.empty()) return c;
+
+  // Euler characteristic per component: V - E + F, each vertex counted once per component.
+  std::vector<long long> chi(c.components, 0);
+  std::vector<uint32_t> byComponent(mesh.triangles.size());
+  std::iota(byComponent.begin(), byComponent.end(), 0u);
+  std::stable_sort(byComponent.begin(), byComponent.end(),
+                   [&](uint32_t x, uint32_t y) { return componentOf[x] < componentOf[y]; });
+  std::vector<uint32_t> stamp(mesh.positions.size(), kNone);
+  for (uint32_t t : byComponent) {
+    const uint32_t comp = componentOf[t];
+    chi[comp] += 1;  // F
+    for (uint32_t v : mesh.triangles[t]) {
+      const uint32_t cv = canonical[v];
+      if (stamp[cv] != comp) {
+        stamp[cv] = comp;
+        chi[comp] += 1;  // V
+      }
+    }
+  }
+  forEachEdge(edges, [&](size_t begin, size_t) { chi[componentOf[edges[begin].triangle]] -= 1; });
+  int genus = 0;
+  for (long long x : chi) {
+    const long long twiceGenus = 2 - x;
+    if (twiceGenus < 0 || twiceGenus % 2 != 0) return c;  // not a closed surface after all
+    genus += static_cast<int>(twiceGenus / 2);
+  }
+  c.genus = genus;
+  return c;
+}
+
+size_t weldIdenticalPositions(TriangleMesh& mesh) {
+  const size_t merged = weldInPlace(mesh);
+  dropUnreferenced(mesh);
+  return merged;
+}
+
+PrepareReport prepareMesh(TriangleMesh& mesh) {
+  PrepareReport report;
+  report.weldedVertices = weldInPlace(mesh);
+
+  // Degenerate triangles: a repeated index or an exactly zero cross product.
+  {
+    size_t kept = 0;
+    for (const auto& t : mesh.triangles) {
+      const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+      if (repeated || isZero(cornerCross(mesh, t))) continue;
+      mesh.triangles[kept++] = t;
+    }
+    report.removedDegenerate = mesh.triangles.size() - kept;
+    mesh.triangles.resize(kept);
+  }
+
+  // Manifold neighbours: neighbour[3t + k] is the triangle across the edge leaving corner k,
+  // sameWay[3t + k] whether it traverses that edge in the same direction.
+  const size_t triangleCount = mesh.triangles.size();
+  std::vector<uint32_t> neighbour(triangleCount * 3, kNone);
+  std::vector<uint8_t> sameWay(triangleCount * 3, 0);
+  {
+    const std::vector<HalfEdge> edges = sortedHalfEdges(mesh.triangles, nullptr);
+    forEachEdge(edges, [&](size_t begin, size_t end) {
+      if (end - begin != 2) return;
+      const HalfEdge& x = edges[begin];
+      const HalfEdge& y = edges[begin + 1];
+      const bool same = x.forward == y.forward;
+      neighbour[3 * x.triangle + x.corner] = y.triangle;
+      neighbour[3 * y.triangle + y.corner] = x.triangle;
+      sameWay[3 * x.triangle + x.corner] = same;
+      sameWay[3 * y.triangle + y.corner] = same;
+    });
+  }
+
+  // Shells by breadth-first search over manifold edges; flip[t] makes neighbours agree.
+  struct Shell {
+    std::vector<uint32_t> triangles;
+    bool orientable = true;
+    bool closed = true;
+  };
+  std::vector<Shell> shells;
+  std::vector<uint8_t> flip(triangleCount, 0);
+  std::vector<uint8_t> visited(triangleCount, 0);
+  std::vector<uint32_t> queue;
+  for (uint32_t start = 0; start < triangleCount; ++start) {
+    if (visited[start]) continue;
+    Shell shell;
+    visited[start] = 1;
+    queue.assign(1, start);
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const uint32_t t = queue[head];
+      shell.triangles.push_back(t);
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t n = neighbour[3 * t + k];
+        if (n == kNone) {
+          shell.closed = false;
+          continue;
+        }
+        const uint8_t wanted = flip[t] ^ sameWay[3 * t + k];
+        if (!visited[n]) {
+          visited[n] = 1;
+          flip[n] = wanted;
+          queue.push_back(n);
+        } else if (flip[n] != wanted) {
+          shell.orientable = false;
+        }
+      }
+    }
+    shells.push_back(std::move(shell));
+  }
+
+  // Flip the minority of each orientable shell so that it agrees with the majority.
+  for (const Shell& shell : shells) {
+    if (!shell.orientable) continue;
+    size_t flipped = 0;
+    for (uint32_t t : shell.triangles) flipped += flip[t];
+    const bool invert = 2 * flipped > shell.triangles.size();
+    report.reorientedTriangles += invert ? shell.triangles.size() - flipped : flipped;
+    for (uint32_t t : shell.triangles) {
+      if (flip[t] != invert) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+    }
+  }
+
+  // Outward: a shell nested in an even number of closed shells has positive volume, in an odd
+  // number (a cavity) negative.
+  std::vector<double> volume(shells.size(), 0.0);
+  std::vector<Bounds> bounds(shells.size());
+  std::vector<glm::dvec3> probe(shells.size());
+  for (size_t s = 0; s < shells.size(); ++s) {
+    double largest = -1.0;
+    for (uint32_t t : shells[s].triangles) {
+      const auto& tri = mesh.triangles[t];
+      const glm::dvec3& a = mesh.positions[tri[0]];
+      const glm::dvec3& b = mesh.positions[tri[1]];
+      const glm::dvec3& c = mesh.positions[tri[2]];
+      volume[s] += glm::dot(a, glm::cross(b, c)) / 6.0;
+      bounds[s].include(a);
+      bounds[s].include(b);
+      bounds[s].include(c);
+      const double area = glm::length(glm::cross(b - a, c - a));
+      if (area > largest) {
+        largest = area;
+        probe[s] = (a + b + c) / 3.0;  // a point on the shell, away from its edges
+      }
+    }
+  }
+  for (size_t s = 0; s < shells.size(); ++s) {
+    if (!shells[s].orientable || volume[s] == 0.0) continue;
+    int depth = 0;
+    for (size_t o = 0; o < shells.size() && shells.size() > 1; ++o) {
+      if (o == s || !shells[o].closed) continue;
+      const glm::dvec3& p = probe[s];
+      const Bounds& b = bounds[o];
+      if (p.x < b.min.x || p.y < b.min.y || p.z < b.min.z || p.x > b.max.x || p.y > b.max.y ||
+          p.z > b.max.z)
+        continue;
+      depth += insideShell(mesh, shells[o].triangles, p);
+    }
+    const bool wantPositive = depth % 2 == 0;
+    if ((volume[s] > 0.0) == wantPositive) continue;
+    report.flippedInsideOut = true;
+    for (uint32_t t : shells[s].triangles) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+  }
+
+  report.removedUnreferenced = dropUnreferenced(mesh);
+  report.check = checkMesh(mesh);
+  return report;
+}
+
+}  // namespace strata

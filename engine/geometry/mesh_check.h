@@ -1,0 +1,56 @@
+// Topological and geometric checks of triangle meshes, and the repairs that are safe to make.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/geometry/mesh.h"
+
+namespace strata {
+
+// What a mesh is, measured. Edges are counted after welding identical positions.
+struct MeshCheck {
+  size_t vertices = 0;
+  size_t triangles = 0;
+  size_t boundaryEdges = 0;        // edges with one incident triangle
+  size_t nonManifoldEdges = 0;     // edges with more than two incident triangles
+  size_t misorientedEdges = 0;     // manifold edges whose two triangles traverse them the same way
+  size_t degenerateTriangles = 0;  // zero area (repeated index or collinear corners)
+  size_t nonFiniteCoordinates = 0;
+  int components = 0;   // edge-connected components
+  int genus = -1;       // for a closed oriented manifold: sum over components of
+                        // (2 - chi_c) / 2; -1 when not defined
+  double volume = 0.0;  // signed
+  double area = 0.0;
+  double smallestTriangleArea = 0.0;
+
+  bool closed() const { return boundaryEdges == 0; }
+  bool manifold() const { return nonManifoldEdges == 0; }
+  bool oriented() const { return misorientedEdges == 0; }
+  bool watertight() const {
+    return closed() && manifold() && oriented() && nonFiniteCoordinates == 0;
+  }
+};
+
+MeshCheck checkMesh(const TriangleMesh& mesh);
+
+struct PrepareReport {
+  size_t weldedVertices = 0;       // vertices merged into an identical one
+  size_t removedDegenerate = 0;    // triangles removed (repeated index or zero area)
+  size_t reorientedTriangles = 0;  // triangles flipped to agree with their neighbours
+  bool flippedInsideOut = false;   // the whole mesh (or a shell) was inside out and was flipped
+  size_t removedUnreferenced = 0;  // vertices no remaining triangle used, dropped
+  MeshCheck check;                 // of the prepared mesh
+};
+
+// Welds identical positions, removes degenerate triangles, makes each connected shell's
+// orientation consistent and its normals point out of the solid (shells nested inside other
+// shells, i.e. cavities, point into the cavity). Never moves a vertex.
+PrepareReport prepareMesh(TriangleMesh& mesh);
+
+// Merges vertices with identical coordinates (-0.0 equals 0.0; non-finite positions are never
+// merged) and drops vertices no triangle uses; keeps the first occurrence's order. Returns how
+// many vertices were merged into another. Used by readers of unindexed formats (STL).
+size_t weldIdenticalPositions(TriangleMesh& mesh);
+
+}  // namespace strata

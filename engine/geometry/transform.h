@@ -1,0 +1,27 @@
+// Node transforms: scale (negative components mirror), then rotate (Euler angles in degrees,
+// applied about x, then y, then z), then translate. Units: scene units and degrees.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace strata {
+
+struct Transform {
+  glm::dvec3 translate{0.0};
+  glm::dvec3 rotateDegrees{0.0};
+  glm::dvec3 scale{1.0};
+
+  // Object-to-parent matrix: T * Rz * Ry * Rx * S.
+  glm::dmat4 matrix() const;
+  bool operator==(const Transform& o) const {
+    return translate == o.translate && rotateDegrees == o.rotateDegrees && scale == o.scale;
+  }
+  bool operator!=(const Transform& o) const { return !(*this == o); }
+};
+
+// True when the matrix mirrors (negative determinant of its linear part): sampling must then
+// reverse triangle winding to keep normals pointing outward.
+bool mirrors(const glm::dmat4& m);
+
+}  // namespace strata

@@ -1,0 +1,42 @@
+// Reading closed triangle meshes from OBJ, STL (ascii and binary), PLY (ascii and binary) and OFF.
+//
+// Every reader is strict: malformed numbers, NaN/Inf coordinates, out-of-range or negative
+// indices (OBJ's relative negative indices are resolved, then range-checked), truncated files,
+// headers whose counts disagree with the data, and empty meshes throw strata::Error with a
+// message of the form "<path>: line <n>: <what>" (text formats) or "<path>: byte <n>: <what>"
+// (binary formats). Polygons with more than three vertices are fan-triangulated.
+//
+// After parsing, the mesh is prepared for sampling (see prepareMesh in mesh_check.h):
+// vertices with identical coordinates are welded, degenerate triangles removed (counted),
+// orientation made consistent and outward (an inverted mesh is flipped with a warning), and an
+// open or non-manifold mesh is rejected unless MeshReadOptions::allowOpen is set.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/geometry/mesh.h"
+
+namespace strata {
+
+struct MeshReadOptions {
+  bool allowOpen = false;  // accept open / non-manifold meshes (sampling may then leak)
+  double unitScale = 1.0;  // multiply every coordinate (e.g. 25.4 for inch files into mm)
+};
+
+struct MeshReadReport {
+  std::vector<std::string> warnings;  // each names the file and what was repaired or suspicious
+  size_t fileVertices = 0;            // as read, before welding
+  size_t fileFaces = 0;               // polygons as read, before triangulation
+};
+
+// Reads by extension (.obj .stl .ply .off, case-insensitive). Throws strata::Error.
+TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options = {},
+                          MeshReadReport* report = nullptr);
+
+// The same from bytes already in memory; `name` is used in messages and picks the format by
+// its extension. Used by the fuzz targets and tests.
+TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
+                           const MeshReadOptions& options = {}, MeshReadReport* report = nullptr);
+
+}  // namespace strata

@@ -1,0 +1,69 @@
+// Private to engine/io: the four format parsers behind readMeshBytes, and the strict text
+// scanning they share. Each parser turns a whole file held in memory into an indexed triangle
+// mesh exactly as the file describes it (no welding across vertices, no repairs), and throws
+// strata::Error "<name>: line <n>: <what>" or "<name>: byte <n>: <what>" for anything malformed.
+// Parsers fill report->fileVertices / fileFaces and may append warnings; report is never null.
+// Synchronous, no shared state: any thread may call them.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/geometry/mesh.h"
+#include "engine/io/mesh_io.h"
+
+namespace strata {
+namespace meshio {
+
+TriangleMesh parseObj(const std::string& name, const std::string& bytes, MeshReadReport* report);
+// STL positions are unindexed in the file; identical positions are welded into shared vertices.
+TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshReadReport* report);
+TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report);
+TriangleMesh parseOff(const std::string& name, const std::string& bytes, MeshReadReport* report);
+
+// ---- Shared helpers (defined in mesh_io.cpp) ----
+
+[[noreturn]] void failAtLine(const std::string& name, size_t line, const std::string& what);
+[[noreturn]] void failAtByte(const std::string& name, size_t byte, const std::string& what);
+void addWarning(MeshReadReport* report, const std::string& name, const std::string& what);
+
+// A token quoted for a message, shortened to a readable length: 'abc'.
+std::string quoted(std::string_view token);
+
+// Walks text line by line ('\n' or "\r\n"); numbers are 1-based. `startByte` lets a reader
+// continue after a header it parsed itself, numbering from `startLine`.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text, size_t startByte = 0, size_t startLine = 0)
+      : text_(text), pos_(startByte), line_(startLine) {}
+  // The next line without its terminator; false at end of text.
+  bool next(std::string_view& line);
+  size_t lineNumber() const { return line_; }  // of the line last returned
+  size_t byteOffset() const { return pos_; }   // just past the line last returned
+
+ private:
+  std::string_view text_;
+  size_t pos_;
+  size_t line_;
+};
+
+// Splits on spaces and tabs (and other ASCII whitespace). When `hashComments` is set, '#' and
+// everything after it is dropped first.
+void splitTokens(std::string_view line, std::vector<std::string_view>& tokens, bool hashComments);
+
+// Whole-token parses: no trailing characters, a leading '+' allowed. parseNumber accepts
+// nan/inf spellings (so callers can report them precisely); false for anything unparsable.
+bool parseNumber(std::string_view token, double& value);
+bool parseInteger(std::string_view token, long long& value);
+
+// A coordinate at a text line: throws "line n: ..." when unparsable or not finite.
+double parseCoordinate(const std::string& name, size_t line, std::string_view token);
+// Throws "byte n: ..." when a binary coordinate is NaN or infinite.
+void requireFiniteAtByte(const std::string& name, size_t byte, double value);
+
+bool equalsIgnoreCase(std::string_view a, std::string_view b);
+
+}  // namespace meshio
+}  // namespace strata

@@ -1,0 +1,490 @@
+// PLY 1.0 in ascii, binary_little_endian and binary_big_endian. The `vertex` element must have
+// scalar x, y, z (any numeric type); the `face` element a list named vertex_indices (or
+// vertex_index) with integer count and index types. Every other property and element, lists
+// included, is read past by its declared type. The header's counts must match the data
+// exactly: a short body, extra data after the last element, or an ascii line with the wrong
+// number of values is an error. Ascii bodies hold one element per line.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "engine/io/mesh_readers.h"
+
+namespace strata {
+namespace meshio {
+namespace {
+
+enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+bool typeFromName(std::string_view n, Type& type) {
+  struct Entry {
+    const char* name;
+    Type type;
+  };
+  static const Entry kTypes[] = {
+      {"char", Type::Int8},      {"int8", Type::Int8},       {"uchar", Type::UInt8},
+      {"uint8", Type::UInt8},    {"short", Type::Int16},     {"int16", Type::Int16},
+      {"ushort", Type::UInt16},  {"uint16", Type::UInt16},   {"int", Type::Int32},
+      {"int32", Type::Int32},    {"uint", Type::UInt32},     {"uint32", Type::UInt32},
+      {"float", Type::Float32},  {"float32", Type::Float32}, {"double", Type::Float64},
+      {"float64", Type::Float64}};
+  for (const Entry& e : kTypes) {
+    if (n == e.name) {
+      type = e.type;
+      return true;
+    }
+  }
+  return false;
+}
+
+size_t sizeOf(Type t) {
+  switch (t) {
+    case Type::Int8:
+    case Type::UInt8:
+      return 1;
+    case Type::Int16:
+    case Type::UInt16:
+      return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32:
+      return 4;
+    case Type::Float64:
+      return 8;
+  }
+  return 1;
+}
+
+bool isInteger(Type t) {
+  return t != Type::Float32 && t != Type::Float64;
+}
+
+struct Property {
+  std::string name;
+  bool isList = false;
+  Type type = Type::Float32;     // of the value, or of each list item
+  Type countType = Type::UInt8;  // lists only
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  size_t headerLine = 0;
+  std::vector<Property> properties;
+};
+
+enum class Format { Ascii, LittleEndian, BigEndian };
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  size_t bodyStart = 0;  // byte offset just past end_header's line
+  size_t lines = 0;      // header lines, so ascii bodies number on from here
+};
+
+Header parseHeader(const std::string& name, const std::string& bytes) {
+  Header header;
+  LineReader lines(bytes);
+  std::vector<std::string_view> tokens;
+  std::string_view line;
+  if (!lines.next(line) || line != "ply") failAtLine(name, 1, "not a PLY file (expected 'ply')");
+  bool haveFormat = false;
+  while (true) {
+    if (!lines.next(line)) {
+      failAtLine(name, lines.lineNumber() + 1,
+                 "unexpected end of file in the header (no end_header)");
+    }
+    const size_t lineNo = lines.lineNumber();
+    splitTokens(line, tokens, /*hashComments=*/false);
+    if (tokens.empty()) continue;
+    const std::string_view keyword = tokens[0];
+    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "end_header") {
+      header.bodyStart = lines.byteOffset();
+      header.lines = lineNo;
+      break;
+    }
+    if (keyword == "format") {
+      if (tokens.size() != 3) failAtLine(name, lineNo, "format line needs a format and a version");
+      if (tokens[1] == "ascii") {
+        header.format = Format::Ascii;
+      } else if (tokens[1] == "binary_little_endian") {
+        header.format = Format::LittleEndian;
+      } else if (tokens[1] == "binary_big_endian") {
+        header.format = Format::BigEndian;
+      } else {
+        failAtLine(name, lineNo, "unknown format " + quoted(tokens[1]));
+      }
+      if (tokens[2] != "1.0" && tokens[2] != "1") {
+        failAtLine(name, lineNo, "unsupported PLY version " + quoted(tokens[2]));
+      }
+      haveFormat = true;
+    } else if (keyword == "element") {
+      long long count = 0;
+      if (tokens.size() != 3 || !parseInteger(tokens[2], count) || count < 0) {
+        failAtLine(name, lineNo, "element line needs a name and a non-negative count");
+      }
+      Element e;
+      e.name = std::string(tokens[1]);
+      e.count = static_cast<uint64_t>(count);
+      e.headerLine = lineNo;
+      header.elements.push_back(std::move(e));
+    } else if (keyword == "property") {
+      if (header.elements.empty()) failAtLine(name, lineNo, "property before any element");
+      Property p;
+      if (tokens.size() == 5 && tokens[1] == "list") {
+        p.isList = true;
+        if (!typeFromName(tokens[2], p.countType) || !isInteger(p.countType)) {
+          failAtLine(name, lineNo,
+                     "list count type must be an integer type, found " + quoted(tokens[2]));
+        }
+        if (!typeFromName(tokens[3], p.type)) {
+          failAtLine(name, lineNo, "unknown property type " + quoted(tokens[3]));
+        }
+        p.name = std::string(tokens[4]);
+      } else if (tokens.size() == 3) {
+        if (!typeFromName(tokens[1], p.type)) {
+          failAtLine(name, lineNo, "unknown property type " + quoted(tokens[1]));
+        }
+        p.name = std::string(tokens[2]);
+      } else {
+        failAtLine(name, lineNo, "malformed property line");
+      }
+      header.elements.back().properties.push_back(std::move(p));
+    } else {
+      failAtLine(name, lineNo, "unknown header keyword " + quoted(keyword));
+    }
+  }
+  if (!haveFormat) failAtLine(name, 2, "missing format line");
+  for (const Element& e : header.elements) {
+    if (e.count > 0 && e.properties.empty()) {
+      failAtLine(name, e.headerLine, "element '" + e.name + "' has no properties");
+    }
+  }
+  return header;
+}
+
+// Where the geometry lives in the element list.
+struct Layout {
+  const Element* vertex = nullptr;
+  int x = -1, y = -1, z = -1;
+  const Element* face = nullptr;
+  int indices = -1;
+};
+
+Layout findLayout(const std::string& name, const Header& header) {
+  Layout layout;
+  for (const Element& e : header.elements) {
+    if (e.name == "vertex") layout.vertex = &e;
+    if (e.name == "face") layout.face = &e;
+  }
+  if (!layout.vertex) failAtLine(name, header.lines, "no 'vertex' element in the header");
+  for (int i = 0; i < static_cast<int>(layout.vertex->properties.size()); ++i) {
+    const Property& p = layout.vertex->properties[i];
+    int* slot = p.name == "x"   ? &layout.x
+                : p.name == "y" ? &layout.y
+                : p.name == "z" ? &layout.z
+                                : nullptr;
+    if (!slot) continue;
+    if (p.isList)
+      failAtLine(name, layout.vertex->headerLine, "vertex property " + p.name + " is a list");
+    *slot = i;
+  }
+  if (layout.x < 0 || layout.y < 0 || layout.z < 0) {
+    failAtLine(name, layout.vertex->headerLine, "element vertex lacks an x, y or z property");
+  }
+  if (layout.vertex->count >= std::numeric_limits<uint32_t>::max()) {
+    failAtLine(name, layout.vertex->headerLine, "too many vertices");
+  }
+  if (!layout.face)
+    failAtLine(name, header.lines, "no 'face' element: the file contains no triangles");
+  for (int i = 0; i < static_cast<int>(layout.face->properties.size()); ++i) {
+    const Property& p = layout.face->properties[i];
+    if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
+    if (!p.isList || !isInteger(p.type)) {
+      failAtLine(name, layout.face->headerLine, p.name + " must be a list of integers");
+    }
+    layout.indices = i;
+  }
+  if (layout.indices < 0) {
+    failAtLine(name, layout.face->headerLine,
+               "element face has no vertex_indices (or vertex_index) list property");
+  }
+  return layout;
+}
+
+// ---- Binary ----
+
+class BinaryCursor {
+ public:
+  BinaryCursor(const std::string& name, const std::string& bytes, size_t pos, bool bigEndian)
+      : name_(name), bytes_(bytes), pos_(pos), bigEndian_(bigEndian) {}
+
+  size_t pos() const { return pos_; }
+  size_t remaining() const { return bytes_.size() - pos_; }
+
+  void need(size_t n, const Element& e, uint64_t index) const {
+    if (remaining() < n) {
+      failAtByte(name_, bytes_.size(),
+                 "unexpected end of file in element '" + e.name + "' " + std::to_string(index) +
+                     " of " + std::to_string(e.count) +
+                     " (truncated, or the header's counts are wrong)");
+    }
+  }
+
+  // Reads one value of `type` (bounds already checked) as double, exactly for all integers.
+  double read(Type type) {
+    unsigned char raw[8];
+    const size_t n = sizeOf(type);
+    std::memcpy(raw, bytes_.data() + pos_, n);
+    pos_ += n;
+    const bool hostLittle = isHostLittleEndian();
+    if (bigEndian_ == hostLittle) {
+      for (size_t i = 0; i < n / 2; ++i) std::swap(raw[i], raw[n - 1 - i]);
+    }
+    switch (type) {
+      case Type::Int8:
+        return static_cast<int8_t>(raw[0]);
+      case Type::UInt8:
+        return raw[0];
+      case Type::Int16:
+        return get<int16_t>(raw);
+      case Type::UInt16:
+        return get<uint16_t>(raw);
+      case Type::Int32:
+        return get<int32_t>(raw);
+      case Type::UInt32:
+        return get<uint32_t>(raw);
+      case Type::Float32:
+        return get<float>(raw);
+      case Type::Float64:
+        return get<double>(raw);
+    }
+    return 0.0;
+  }
+
+  void skip(size_t n) { pos_ += n; }
+
+ private:
+  template <typename T>
+  static T get(const unsigned char* raw) {
+    T v;
+    std::memcpy(&v, raw, sizeof(T));
+    return v;
+  }
+  static bool isHostLittleEndian() {
+    const uint16_t probe = 1;
+    unsigned char first;
+    std::memcpy(&first, &probe, 1);
+    return first == 1;
+  }
+
+  const std::string& name_;
+  const std::string& bytes_;
+  size_t pos_;
+  bool bigEndian_;
+};
+
+void parseBinaryBody(const std::string& name, const std::string& bytes, const Header& header,
+                     const Layout& layout, TriangleMesh& mesh) {
+  BinaryCursor in(name, bytes, header.bodyStart, header.format == Format::BigEndian);
+  for (const Element& e : header.elements) {
+    // Each instance needs at least its scalars and list counts: catch absurd counts early.
+    size_t minBytes = 0;
+    for (const Property& p : e.properties) minBytes += sizeOf(p.isList ? p.countType : p.type);
+    if (minBytes > 0 && e.count > in.remaining() / minBytes) {
+      failAtByte(name, in.pos(),
+                 "the header says " + std::to_string(e.count) + " '" + e.name +
+                     "' elements, which need at least " + std::to_string(e.count * minBytes) +
+                     " bytes, but only " + std::to_string(in.remaining()) +
+                     " remain (truncated, or the header's counts are wrong)");
+    }
+    const bool isVertex = &e == layout.vertex;
+    const bool isFace = &e == layout.face;
+    if (isVertex) mesh.positions.reserve(e.count);
+    std::vector<uint32_t> polygon;
+    for (uint64_t i = 0; i < e.count; ++i) {
+      glm::dvec3 p(0.0);
+      for (int pi = 0; pi < static_cast<int>(e.properties.size()); ++pi) {
+        const Property& prop = e.properties[pi];
+        if (!prop.isList) {
+          in.need(sizeOf(prop.type), e, i);
+          const size_t at = in.pos();
+          if (isVertex && (pi == layout.x || pi == layout.y || pi == layout.z)) {
+            const double v = in.read(prop.type);
+            requireFiniteAtByte(name, at, v);
+            p[pi == layout.x ? 0 : pi == layout.y ? 1 : 2] = v;
+          } else {
+            in.skip(sizeOf(prop.type));
+          }
+          continue;
+        }
+        in.need(sizeOf(prop.countType), e, i);
+        const size_t countAt = in.pos();
+        const double count = in.read(prop.countType);
+        if (count < 0)
+          failAtByte(name, countAt, "negative list length in element '" + e.name + "'");
+        const size_t n = static_cast<size_t>(count);
+        const size_t itemBytes = sizeOf(prop.type);
+        if (n > in.remaining() / itemBytes) in.need(n * itemBytes, e, i);
+        if (!(isFace && pi == layout.indices)) {
+          in.skip(n * itemBytes);
+          continue;
+        }
+        if (n < 3) {
+          failAtByte(name, countAt,
+                     "face " + std::to_string(i) + " has " + std::to_string(n) +
+                         " vertices, needs at least 3");
+        }
+        polygon.clear();
+        for (size_t k = 0; k < n; ++k) {
+          const size_t at = in.pos();
+          const double index = in.read(prop.type);
+          if (index < 0 || index >= static_cast<double>(layout.vertex->count)) {
+            failAtByte(name, at,
+                       "vertex index " + std::to_string(static_cast<long long>(index)) +
+                           " is out of range: the file has " +
+                           std::to_string(layout.vertex->count) + " vertices");
+          }
+          polygon.push_back(static_cast<uint32_t>(index));
+        }
+        for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+          mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        }
+      }
+      if (isVertex) mesh.positions.push_back(p);
+    }
+  }
+  if (in.remaining() > 0) {
+    failAtByte(name, in.pos(),
+               std::to_string(in.remaining()) +
+                   " bytes of data after the last element (the header's counts disagree with "
+                   "the data)");
+  }
+}
+
+// ---- Ascii ----
+
+void parseAsciiBody(const std::string& name, const std::string& bytes, const Header& header,
+                    const Layout& layout, TriangleMesh& mesh) {
+  LineReader lines(bytes, header.bodyStart, header.lines);
+  std::vector<std::string_view> tokens;
+  std::vector<uint32_t> polygon;
+  std::string_view line;
+  for (const Element& e : header.elements) {
+    const bool isVertex = &e == layout.vertex;
+    const bool isFace = &e == layout.face;
+    if (isVertex) mesh.positions.reserve(std::min<uint64_t>(e.count, bytes.size() / 6 + 1));
+    for (uint64_t i = 0; i < e.count; ++i) {
+      do {
+        if (!lines.next(line)) {
+          failAtLine(name, lines.lineNumber() + 1,
+                     "unexpected end of file: expected " + std::to_string(e.count) + " '" + e.name +
+                         "' elements, found " + std::to_string(i) +
+                         " (truncated, or the header's counts are wrong)");
+        }
+        splitTokens(line, tokens, /*hashComments=*/false);
+      } while (tokens.empty());
+      const size_t lineNo = lines.lineNumber();
+      size_t t = 0;
+      auto nextToken = [&]() -> std::string_view {
+        if (t >= tokens.size()) {
+          failAtLine(name, lineNo,
+                     "too few values for element '" + e.name + "' " + std::to_string(i) +
+                         " (the header's counts may be wrong)");
+        }
+        return tokens[t++];
+      };
+      glm::dvec3 p(0.0);
+      for (int pi = 0; pi < static_cast<int>(e.properties.size()); ++pi) {
+        const Property& prop = e.properties[pi];
+        if (!prop.isList) {
+          const std::string_view token = nextToken();
+          if (isVertex && (pi == layout.x || pi == layout.y || pi == layout.z)) {
+            p[pi == layout.x ? 0 : pi == layout.y ? 1 : 2] = parseCoordinate(name, lineNo, token);
+          } else {
+            double ignored;
+            if (!parseNumber(token, ignored)) {
+              failAtLine(name, lineNo, "not a number: " + quoted(token));
+            }
+          }
+          continue;
+        }
+        const std::string_view countToken = nextToken();
+        long long n = 0;
+        if (!parseInteger(countToken, n) || n < 0) {
+          failAtLine(name, lineNo,
+                     "bad list length " + quoted(countToken) + " in element '" + e.name + "'");
+        }
+        if (static_cast<size_t>(n) > tokens.size() - t) {
+          failAtLine(name, lineNo,
+                     "list of " + std::to_string(n) + " values has only " +
+                         std::to_string(tokens.size() - t) + " on the line");
+        }
+        const bool indices = isFace && pi == layout.indices;
+        if (indices && n < 3) {
+          failAtLine(name, lineNo,
+                     "face " + std::to_string(i) + " has " + std::to_string(n) +
+                         " vertices, needs at least 3");
+        }
+        polygon.clear();
+        for (long long k = 0; k < n; ++k) {
+          const std::string_view token = nextToken();
+          if (!indices) {
+            double ignored;
+            if (!parseNumber(token, ignored))
+              failAtLine(name, lineNo, "not a number: " + quoted(token));
+            continue;
+          }
+          long long index = 0;
+          if (!parseInteger(token, index)) {
+            failAtLine(name, lineNo, "bad vertex index " + quoted(token));
+          }
+          if (index < 0 || static_cast<uint64_t>(index) >= layout.vertex->count) {
+            failAtLine(name, lineNo,
+                       "vertex index " + std::to_string(index) + " is out of range: the file has " +
+                           std::to_string(layout.vertex->count) + " vertices");
+          }
+          polygon.push_back(static_cast<uint32_t>(index));
+        }
+        for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+          mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        }
+      }
+      if (t != tokens.size()) {
+        failAtLine(name, lineNo,
+                   "element '" + e.name + "' " + std::to_string(i) + " has " +
+                       std::to_string(tokens.size()) + " values, expected " + std::to_string(t) +
+                       " (the header's counts may be wrong)");
+      }
+      if (isVertex) mesh.positions.push_back(p);
+    }
+  }
+  while (lines.next(line)) {
+    splitTokens(line, tokens, /*hashComments=*/false);
+    if (!tokens.empty()) {
+      failAtLine(name, lines.lineNumber(),
+                 "data after the last element (the header's counts disagree with the data)");
+    }
+  }
+}
+
+}  // namespace
+
+TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report) {
+  const Header header = parseHeader(name, bytes);
+  const Layout layout = findLayout(name, header);
+  TriangleMesh mesh;
+  if (header.format == Format::Ascii) {
+    parseAsciiBody(name, bytes, header, layout, mesh);
+  } else {
+    parseBinaryBody(name, bytes, header, layout, mesh);
+  }
+  report->fileVertices = layout.vertex->count;
+  report->fileFaces = layout.face->count;
+  return mesh;
+}
+
+}  // namespace meshio
+}  // namespace strata

@@ -1,0 +1,44 @@
+// Scene files (*.strata.json): the documented, versioned JSON format described in
+// engine/io/SCENE_FORMAT.md.
+//
+// Loading validates everything: unknown fields, wrong types, values out of range, duplicate
+// ids, instance cycles and absurd depth all throw strata::Error naming the file and the JSON
+// location ("scene.strata.json: /root/children/2/transform/scale: expected 3 numbers").
+// Referenced meshes are read with readMeshFile (paths relative to the scene file's folder).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/document/scene.h"
+#include "engine/io/mesh_io.h"
+
+namespace strata {
+
+constexpr int kSceneFormatVersion = 1;
+constexpr int kMaxTreeDepth = 512;  // deeper trees are rejected as absurd
+
+struct SceneLoadReport {
+  std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving
+};
+
+// Reads and validates a scene file, loading the meshes it references.
+Scene loadScene(const std::string& path, SceneLoadReport* report = nullptr,
+                const MeshReadOptions& meshOptions = {});
+
+// Parses scene JSON text. `sourceName` is used in messages; mesh paths resolve against
+// `baseDir`.
+Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& baseDir,
+                 SceneLoadReport* report = nullptr, const MeshReadOptions& meshOptions = {});
+
+// Serialises a scene; mesh paths are written as stored in the nodes.
+std::string sceneToJson(const Scene& scene);
+
+// Writes atomically: to "<path>.tmp", then renamed over `path`. Throws strata::Error.
+void saveScene(const Scene& scene, const std::string& path);
+
+// The content hash that mesh nodes record ("fnv1a64:" + 16 hex digits, see formatContentHash)
+// of the file's bytes. Throws strata::Error naming the path when it cannot be read.
+std::string hashFile(const std::string& path);
+
+}  // namespace strata

@@ -1,0 +1,734 @@
+// parseScene: scene JSON text to a validated Scene (the format is engine/io/SCENE_FORMAT.md).
+//
+// Reading happens in four passes, cheapest first, so that a broken file fails fast:
+//   1. the raw text's bracket nesting is bounded (nlohmann's parser and our walk must not be
+//      driven into a stack overflow), then the text is parsed, rejecting duplicate keys;
+//   2. the document is walked: every field is checked for name, type and range, nodes are
+//      built and recorded in a flat table with their JSON pointers;
+//   3. ids, instance targets, instance cycles and the depth through instances are checked on
+//      that table with an iterative depth-first search;
+//   4. referenced meshes are read (each file once) and their content hashes compared.
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/io/scene_file.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr const char* kFormatName = "strata-scene";
+// A tree of kMaxTreeDepth levels nests two JSON levels per tree level (node object, children
+// array) plus a few for transforms and vectors; anything much deeper is not a scene.
+constexpr int kMaxJsonNesting = 2 * kMaxTreeDepth + 16;
+constexpr int kMinResolution = 8;
+constexpr int kMaxResolution = 16384;
+constexpr double kMaxMargin = 10.0;
+constexpr int kMaxSegments = 4096;
+constexpr size_t kMaxDescribedString = 40;
+
+// "1:5"-style location of a 0-based byte offset: 1-based line and column (columns count bytes).
+std::string lineColumn(const std::string& text, size_t offset) {
+  offset = std::min(offset, text.size());
+  size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+  size_t lineStart = text.rfind('\n', offset == 0 ? std::string::npos : offset - 1);
+  size_t column = lineStart == std::string::npos || offset == 0 ? offset + 1 : offset - lineStart;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// JSON pointer token escaping (RFC 6901): "~" -> "~0", "/" -> "~1".
+std::string pointerToken(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// Rejects text whose brackets nest deeper than kMaxJsonNesting, before any recursive code sees
+// it. Brackets inside strings do not count.
+void checkNesting(const std::string& text, const std::string& source) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
+      continue;
+    }
+    if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting)
+        throw Error(source + ": " + lineColumn(text, i) + ": JSON nested more than " +
+                    std::to_string(kMaxJsonNesting) +
+                    " levels deep (a scene tree may have at most " + std::to_string(kMaxTreeDepth) +
+                    " levels)");
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
+// Follows the parser's events to know the JSON pointer of every key, and records the first key
+// that repeats within one object (nlohmann would silently keep only one of them).
+class DuplicateKeyFinder {
+ public:
+  void onEvent(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        frames_.push_back(Frame{true, {}, {}, 0});
+        break;
+      case json::parse_event_t::array_start:
+        frames_.push_back(Frame{false, {}, {}, 0});
+        break;
+      case json::parse_event_t::key:
+        if (!frames_.empty() && parsed.is_string()) {
+          Frame& frame = frames_.back();
+          frame.key = parsed.get<std::string>();
+          if (!frame.keys.insert(frame.key).second && duplicate_.empty()) duplicate_ = pointer();
+        }
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!frames_.empty()) frames_.pop_back();
+        elementDone();
+        break;
+      case json::parse_event_t::value:
+        elementDone();
+        break;
+    }
+  }
+  // Pointer of the first repeated key; empty when there was none.
+  const std::string& duplicate() const { return duplicate_; }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;  // objects: keys seen so far
+    std::string key;             // objects: the current key
+    size_t index;                // arrays: the current element
+  };
+  void elementDone() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  std::string pointer() const {
+    std::string p;
+    for (const Frame& f : frames_)
+      p += "/" + (f.object ? pointerToken(f.key) : std::to_string(f.index));
+    return p;
+  }
+  std::vector<Frame> frames_;
+  std::string duplicate_;
+};
+
+// nlohmann's message without its "[json.exception...] parse error at line L, column C: " prefix.
+std::string parseErrorText(const json::parse_error& e) {
+  std::string what = e.what();
+  size_t start = what.find("parse error");
+  if (start != std::string::npos) {
+    size_t colon = what.find(": ", start);
+    if (colon != std::string::npos) return what.substr(colon + 2);
+  }
+  size_t bracket = what.find("] ");
+  return bracket == std::string::npos ? what : what.substr(bracket + 2);
+}
+
+json parseJson(const std::string& text, const std::string& source) {
+  checkNesting(text, source);
+  DuplicateKeyFinder finder;
+  json doc;
+  try {
+    doc = json::parse(text, [&finder](int, json::parse_event_t event, json& parsed) {
+      finder.onEvent(event, parsed);
+      return true;
+    });
+  } catch (const json::parse_error& e) {
+    size_t offset = e.byte > 0 ? e.byte - 1 : 0;
+    throw Error(source + ": " + lineColumn(text, offset) + ": invalid JSON: " + parseErrorText(e));
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double ("number overflow parsing '1e999'"); nlohmann gives no
+    // position, so point at the first occurrence of the quoted token.
+    std::string what = e.what();
+    size_t open = what.find('\'');
+    size_t close = open == std::string::npos ? open : what.find('\'', open + 1);
+    std::string where;
+    if (close != std::string::npos) {
+      size_t at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) where = lineColumn(text, at) + ": ";
+    }
+    size_t bracket = what.find("] ");
+    throw Error(source + ": " + where + "invalid JSON: " +
+                (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+  }
+  if (!finder.duplicate().empty())
+    throw Error(source + ": " + finder.duplicate() + ": duplicate key (each key may appear once)");
+  return doc;
+}
+
+// A double as people write it: 1 rather than 1.0, otherwise the shortest round-trip form.
+std::string numberText(double d) {
+  std::string text = json(d).dump();
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, ".0") == 0) text.resize(text.size() - 2);
+  return text;
+}
+
+// A short description of a JSON value for messages: numbers and short strings as written,
+// containers by kind and size.
+std::string describe(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return v.get<bool>() ? "true" : "false";
+    case json::value_t::number_float: {
+      double d = v.get<double>();
+      if (std::isnan(d)) return "NaN";
+      if (std::isinf(d)) return d > 0 ? "infinity" : "-infinity";
+      return v.dump();
+    }
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+      return v.dump();
+    case json::value_t::string: {
+      std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
+      if (s.size() > kMaxDescribedString) s = s.substr(0, kMaxDescribedString) + "...\"";
+      return s;
+    }
+    case json::value_t::array:
+      return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "a value of an unexpected kind";
+  }
+}
+
+// Fields each node type accepts besides the common ones.
+struct TypeFields {
+  NodeKind kind;
+  std::vector<const char*> fields;
+};
+const std::vector<TypeFields>& typeFields() {
+  static const std::vector<TypeFields> table = {
+      {NodeKind::Union, {"children"}},
+      {NodeKind::Intersection, {"children"}},
+      {NodeKind::Difference, {"children"}},
+      {NodeKind::Box, {"size", "segments"}},
+      {NodeKind::Sphere, {"radius", "segments"}},
+      {NodeKind::Cylinder, {"radius", "height", "segments"}},
+      {NodeKind::Cone, {"radius", "topRadius", "height", "segments"}},
+      {NodeKind::Torus, {"majorRadius", "minorRadius", "segments"}},
+      {NodeKind::Capsule, {"radius", "height", "segments"}},
+      {NodeKind::Mesh, {"path", "hash"}},
+      {NodeKind::Instance, {"of"}},
+  };
+  return table;
+}
+const char* const kCommonFields[] = {"id", "type", "name", "transform", "color", "visible"};
+
+bool typeHasField(NodeKind kind, const std::string& key) {
+  for (const TypeFields& t : typeFields()) {
+    if (t.kind != kind) continue;
+    for (const char* f : t.fields)
+      if (key == f) return true;
+  }
+  return false;
+}
+bool anyTypeHasField(const std::string& key) {
+  for (const TypeFields& t : typeFields())
+    for (const char* f : t.fields)
+      if (key == f) return true;
+  return false;
+}
+std::string typeList() {
+  std::string list;
+  for (const TypeFields& t : typeFields())
+    list += (list.empty() ? "" : ", ") + std::string(kindName(t.kind));
+  return list;
+}
+
+class SceneReader {
+ public:
+  SceneReader(const std::string& source, const std::string& baseDir, SceneLoadReport* report,
+              const MeshReadOptions& meshOptions)
+      : source_(source), baseDir_(baseDir), report_(report), meshOptions_(meshOptions) {}
+
+  Scene read(const json& doc) {
+    if (!doc.is_object()) fail("", "expected a JSON object at the top level, got " + describe(doc));
+    readFormatAndVersion(doc);
+    Scene scene;
+    for (auto it = doc.begin(); it != doc.end(); ++it) {
+      const std::string& key = it.key();
+      std::string at = "/" + pointerToken(key);
+      if (key == "format" || key == "version") continue;
+      if (key == "unit")
+        scene.settings.unit = nonEmptyString(*it, at);
+      else if (key == "settings")
+        readSettings(*it, at, &scene.settings);
+      else if (key != "root")
+        fail(at, "unknown field \"" + key + "\"");
+    }
+    auto root = doc.find("root");
+    if (root == doc.end()) fail("/root", "missing required field (the scene's root node)");
+    size_t rootEntry = readNode(*root, "/root", 1, kNoParent, 0);
+    checkGraph(rootEntry);
+    loadMeshes();
+    scene.root = entries_[rootEntry].node;
+    return scene;
+  }
+
+ private:
+  // One node as read, with what the graph checks need.
+  // Pointers are rebuilt from the parent links when a message needs one: storing each node's
+  // full pointer would cost depth x nodes memory, which a hostile file can make huge.
+  struct Entry {
+    std::shared_ptr<Node> node;
+    std::vector<size_t> children;  // entry indices
+    size_t parent;                 // entry index; kNoParent for the root
+    size_t indexInParent;          // position in the parent's children
+  };
+  static constexpr size_t kNoParent = static_cast<size_t>(-1);
+
+  std::string pointerOf(size_t entry) const {
+    std::vector<size_t> path;
+    for (size_t e = entry; entries_[e].parent != kNoParent; e = entries_[e].parent)
+      path.push_back(entries_[e].indexInParent);
+    std::string p = "/root";
+    for (auto it = path.rbegin(); it != path.rend(); ++it) p += "/children/" + std::to_string(*it);
+    return p;
+  }
+
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    throw Error(source_ + ": " + (pointer.empty() ? "" : pointer + ": ") + what);
+  }
+  void warn(const std::string& pointer, const std::string& what) const {
+    if (report_) report_->warnings.push_back(source_ + ": " + pointer + ": " + what);
+  }
+
+  // ---- values ----------------------------------------------------------------------------
+
+  const std::string& string(const json& v, const std::string& at) const {
+    if (!v.is_string()) fail(at, "expected a string, got " + describe(v));
+    return v.get_ref<const std::string&>();
+  }
+  const std::string& nonEmptyString(const json& v, const std::string& at) const {
+    const std::string& s = string(v, at);
+    if (s.empty()) fail(at, "expected a non-empty string");
+    return s;
+  }
+  bool boolean(const json& v, const std::string& at) const {
+    if (!v.is_boolean()) fail(at, "expected true or false, got " + describe(v));
+    return v.get<bool>();
+  }
+  // An integer in [lo, hi]; `expected` describes the range for the message.
+  int64_t integer(const json& v, const std::string& at, int64_t lo, int64_t hi,
+                  const std::string& expected) const {
+    if (!v.is_number_integer()) fail(at, "expected " + expected + ", got " + describe(v));
+    if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(hi))
+      fail(at, "expected " + expected + ", got " + describe(v));
+    int64_t x = v.get<int64_t>();
+    if (x < lo || x > hi) fail(at, "expected " + expected + ", got " + describe(v));
+    return x;
+  }
+  double number(const json& v, const std::string& at, const std::string& expected) const {
+    if (!v.is_number()) fail(at, "expected " + expected + ", got " + describe(v));
+    double d = v.get<double>();
+    if (!std::isfinite(d)) fail(at, "expected a finite number, got " + describe(v));
+    return d;
+  }
+  double positive(const json& v, const std::string& at) const {
+    double d = number(v, at, "a positive number");
+    if (!(d > 0)) fail(at, "expected a positive number, got " + describe(v));
+    return d;
+  }
+  double inRange(const json& v, const std::string& at, double lo, double hi) const {
+    std::string expected = "a number from " + numberText(lo) + " to " + numberText(hi);
+    double d = number(v, at, expected);
+    if (d < lo || d > hi) fail(at, "expected " + expected + ", got " + describe(v));
+    return d;
+  }
+  // Exactly three numbers, each checked by `component(value, pointer)`.
+  template <typename Check>
+  glm::dvec3 vec3(const json& v, const std::string& at, Check component) const {
+    if (!v.is_array() || v.size() != 3)
+      fail(at, "expected an array of 3 numbers, got " + describe(v));
+    glm::dvec3 out;
+    for (int i = 0; i < 3; ++i) out[i] = component(v[i], at + "/" + std::to_string(i));
+    return out;
+  }
+  glm::dvec3 anyVec3(const json& v, const std::string& at) const {
+    return vec3(v, at,
+                [this](const json& c, const std::string& p) { return number(c, p, "a number"); });
+  }
+  void requireObject(const json& v, const std::string& at) const {
+    if (!v.is_object()) fail(at, "expected an object, got " + describe(v));
+  }
+
+  // ---- document level ----------------------------------------------------------------------
+
+  void readFormatAndVersion(const json& doc) const {
+    auto format = doc.find("format");
+    if (format == doc.end())
+      fail("/format", std::string("missing required field (expected \"") + kFormatName +
+                          "\"; is this a Strata scene file?)");
+    if (!format->is_string() || format->get<std::string>() != kFormatName)
+      fail("/format", std::string("expected \"") + kFormatName + "\", got " + describe(*format) +
+                          " (is this a Strata scene file?)");
+    auto version = doc.find("version");
+    if (version == doc.end()) fail("/version", "missing required field (the format version)");
+    if (!version->is_number_integer())
+      fail("/version", "expected an integer, got " + describe(*version));
+    if (version->is_number_unsigned() &&
+        version->get<uint64_t>() > static_cast<uint64_t>(kSceneFormatVersion))
+      fail("/version",
+           "version " + version->dump() + " is newer than this build of Strata reads (" +
+               std::to_string(kSceneFormatVersion) + "); open the file with a newer Strata");
+    if (version->get<int64_t>() < 1)
+      fail("/version", "unsupported version " + version->dump() + " (versions start at 1)");
+  }
+
+  void readSettings(const json& v, const std::string& at, SceneSettings* settings) const {
+    requireObject(v, at);
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      const std::string& key = it.key();
+      std::string p = at + "/" + pointerToken(key);
+      if (key == "resolution") {
+        settings->resolution =
+            static_cast<int>(integer(*it, p, kMinResolution, kMaxResolution,
+                                     "an integer from " + std::to_string(kMinResolution) + " to " +
+                                         std::to_string(kMaxResolution)));
+      } else if (key == "margin") {
+        settings->margin = inRange(*it, p, 0.0, kMaxMargin);
+      } else if (key == "bounds") {
+        readBounds(*it, p, &settings->bounds);
+        settings->hasBounds = true;
+      } else {
+        fail(p, "unknown field \"" + key + "\"");
+      }
+    }
+  }
+
+  void readBounds(const json& v, const std::string& at, Bounds* bounds) const {
+    requireObject(v, at);
+    for (auto it = v.begin(); it != v.end(); ++it)
+      if (it.key() != "min" && it.key() != "max")
+        fail(at + "/" + pointerToken(it.key()), "unknown field \"" + it.key() + "\"");
+    auto min = v.find("min");
+    auto max = v.find("max");
+    if (min == v.end()) fail(at + "/min", "missing required field (the box's low corner)");
+    if (max == v.end()) fail(at + "/max", "missing required field (the box's high corner)");
+    bounds->min = anyVec3(*min, at + "/min");
+    bounds->max = anyVec3(*max, at + "/max");
+    for (int i = 0; i < 3; ++i)
+      if (!(bounds->max[i] > bounds->min[i]))
+        fail(at + "/max/" + std::to_string(i), "expected a number greater than min (" +
+                                                   numberText(bounds->min[i]) + "), got " +
+                                                   describe((*max)[i]));
+  }
+
+  // ---- nodes -------------------------------------------------------------------------------
+
+  // Reads the node at `at` (tree level `depth`, the root being 1) and its subtree; returns its
+  // entry index.
+  size_t readNode(const json& v, const std::string& at, int depth, size_t parent,
+                  size_t indexInParent) {
+    if (!v.is_object()) fail(at, "expected a node object, got " + describe(v));
+    if (depth > kMaxTreeDepth)
+      fail(at, "the tree is more than " + std::to_string(kMaxTreeDepth) + " levels deep");
+    auto node = std::make_shared<Node>();
+
+    auto type = v.find("type");
+    if (type == v.end()) fail(at + "/type", "missing required field (the node type)");
+    const std::string& typeName = string(*type, at + "/type");
+    if (!kindFromName(typeName, &node->kind))
+      fail(at + "/type",
+           "unknown node type " + describe(*type) + " (expected one of " + typeList() + ")");
+
+    auto id = v.find("id");
+    if (id == v.end())
+      fail(at + "/id", "missing required field (a positive integer, unique in the file)");
+    node->id = static_cast<NodeId>(
+        integer(*id, at + "/id", 1, UINT32_MAX, "a positive integer id below 2^32"));
+    auto [existing, inserted] = byId_.emplace(node->id, entries_.size());
+    if (!inserted)
+      fail(at + "/id", "duplicate id " + std::to_string(node->id) + " (also used by the node at " +
+                           pointerOf(existing->second) + ")");
+
+    for (auto it = v.begin(); it != v.end(); ++it) checkFieldApplies(node->kind, it.key(), at);
+
+    size_t self = entries_.size();
+    entries_.push_back(Entry{node, {}, parent, indexInParent});
+
+    if (auto f = v.find("name"); f != v.end()) node->name = string(*f, at + "/name");
+    if (auto f = v.find("transform"); f != v.end())
+      node->transform = readTransform(*f, at + "/transform");
+    if (auto f = v.find("color"); f != v.end()) {
+      glm::dvec3 c = vec3(*f, at + "/color", [this](const json& x, const std::string& p) {
+        return inRange(x, p, 0.0, 1.0);
+      });
+      node->color = glm::vec3(c);
+    }
+    if (auto f = v.find("visible"); f != v.end()) node->visible = boolean(*f, at + "/visible");
+
+    if (isOperation(node->kind)) {
+      if (auto f = v.find("children"); f != v.end()) {
+        if (!f->is_array())
+          fail(at + "/children", "expected an array of nodes, got " + describe(*f));
+        for (size_t i = 0; i < f->size(); ++i) {
+          size_t child =
+              readNode((*f)[i], at + "/children/" + std::to_string(i), depth + 1, self, i);
+          entries_[self].children.push_back(child);
+          node->children.push_back(entries_[child].node);
+        }
+      }
+    } else if (isPrimitive(node->kind)) {
+      readPrimitiveParams(v, at, node->kind, &node->params);
+    } else if (node->kind == NodeKind::Mesh) {
+      auto path = v.find("path");
+      if (path == v.end()) fail(at + "/path", "missing required field (the mesh file)");
+      node->meshPath = nonEmptyString(*path, at + "/path");
+      if (node->meshPath.find('\0') != std::string::npos)
+        fail(at + "/path", "the path contains a NUL character");
+      if (auto hash = v.find("hash"); hash != v.end()) {
+        node->meshHash = string(*hash, at + "/hash");
+        if (!isContentHash(node->meshHash))
+          fail(at + "/hash",
+               "expected \"fnv1a64:\" followed by 16 lowercase hex digits, got " + describe(*hash));
+      }
+      meshEntries_.push_back(self);
+    } else if (node->kind == NodeKind::Instance) {
+      auto of = v.find("of");
+      if (of == v.end()) fail(at + "/of", "missing required field (the id of the instanced node)");
+      node->instanceOf =
+          static_cast<NodeId>(integer(*of, at + "/of", 1, UINT32_MAX, "a positive integer id"));
+    }
+    return self;
+  }
+
+  void checkFieldApplies(NodeKind kind, const std::string& key, const std::string& at) const {
+    for (const char* common : kCommonFields)
+      if (key == common) return;
+    if (typeHasField(kind, key)) return;
+    std::string p = at + "/" + pointerToken(key);
+    if (key == "children")
+      fail(p, std::string("a ") + kindName(kind) +
+                  " node cannot have children (only union, intersection and difference can)");
+    if (anyTypeHasField(key))
+      fail(p, "field \"" + key + "\" does not apply to a " + kindName(kind) + " node");
+    fail(p, "unknown field \"" + key + "\"");
+  }
+
+  Transform readTransform(const json& v, const std::string& at) const {
+    requireObject(v, at);
+    Transform t;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      const std::string& key = it.key();
+      std::string p = at + "/" + pointerToken(key);
+      if (key == "translate") {
+        t.translate = anyVec3(*it, p);
+      } else if (key == "rotate") {
+        t.rotateDegrees = anyVec3(*it, p);
+      } else if (key == "scale") {
+        t.scale = vec3(*it, p, [this](const json& c, const std::string& cp) {
+          double d = number(c, cp, "a nonzero number");
+          if (d == 0) fail(cp, "expected a nonzero number, got " + describe(c));
+          return d;
+        });
+      } else {
+        fail(p, "unknown field \"" + key + "\"");
+      }
+    }
+    return t;
+  }
+
+  void readPrimitiveParams(const json& v, const std::string& at, NodeKind kind,
+                           PrimitiveParams* params) const {
+    auto positiveField = [&](const char* key, double* out) {
+      if (auto f = v.find(key); f != v.end()) *out = positive(*f, at + "/" + key);
+    };
+    if (auto f = v.find("size"); f != v.end())
+      params->size = vec3(*f, at + "/size",
+                          [this](const json& c, const std::string& p) { return positive(c, p); });
+    positiveField("radius", &params->radius);
+    positiveField("height", &params->height);
+    positiveField("majorRadius", &params->majorRadius);
+    positiveField("minorRadius", &params->minorRadius);
+    if (auto f = v.find("topRadius"); f != v.end()) {
+      params->topRadius = number(*f, at + "/topRadius", "a number >= 0");
+      if (params->topRadius < 0)
+        fail(at + "/topRadius", "expected a number >= 0, got " + describe(*f));
+    }
+    if (auto f = v.find("segments"); f != v.end()) {
+      std::string expected =
+          "0 (automatic) or an integer from 3 to " + std::to_string(kMaxSegments);
+      int64_t s = integer(*f, at + "/segments", 0, kMaxSegments, expected);
+      if (s == 1 || s == 2)
+        fail(at + "/segments", "expected " + expected + ", got " + describe(*f));
+      params->segments = static_cast<int>(s);
+    }
+    if (kind == NodeKind::Torus && !(params->minorRadius < params->majorRadius)) {
+      std::string p = at + (v.contains("minorRadius") ? "/minorRadius" : "/majorRadius");
+      fail(p, "minorRadius (" + numberText(params->minorRadius) +
+                  ") must be smaller than majorRadius (" + numberText(params->majorRadius) + ")");
+    }
+  }
+
+  static bool isContentHash(const std::string& s) {
+    const std::string prefix = "fnv1a64:";
+    if (s.size() != prefix.size() + 16 || s.compare(0, prefix.size(), prefix) != 0) return false;
+    return std::all_of(s.begin() + prefix.size(), s.end(),
+                       [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+  }
+
+  // ---- graph checks ------------------------------------------------------------------------
+
+  // Instance targets exist; no cycles through instances; depth through instances within
+  // kMaxTreeDepth. Iterative, memoised depth-first search over tree and instance edges.
+  void checkGraph(size_t rootEntry) const {
+    for (size_t i = 0; i < entries_.size(); ++i)
+      if (const Node& n = *entries_[i].node;
+          n.kind == NodeKind::Instance && !byId_.count(n.instanceOf))
+        fail(pointerOf(i) + "/of", "refers to node " + std::to_string(n.instanceOf) +
+                                       ", which does not exist in this file");
+
+    enum class State : uint8_t { Unvisited, Active, Done };
+    std::vector<State> state(entries_.size(), State::Unvisited);
+    std::vector<int> depth(entries_.size(), 0);
+    struct Step {
+      size_t entry;
+      size_t nextEdge;
+    };
+    auto edgeCount = [this](size_t e) {
+      return entries_[e].node->kind == NodeKind::Instance ? size_t{1} : entries_[e].children.size();
+    };
+    auto edge = [this](size_t e, size_t i) {
+      const Node& n = *entries_[e].node;
+      return n.kind == NodeKind::Instance ? byId_.at(n.instanceOf) : entries_[e].children[i];
+    };
+    std::vector<Step> stack{{rootEntry, 0}};
+    state[rootEntry] = State::Active;
+    while (!stack.empty()) {
+      Step& top = stack.back();
+      size_t count = edgeCount(top.entry);
+      if (top.nextEdge < count) {
+        size_t target = edge(top.entry, top.nextEdge++);
+        if (state[target] == State::Active) reportCycle(stack, target);
+        if (state[target] == State::Unvisited) {
+          state[target] = State::Active;
+          stack.push_back(Step{target, 0});
+        }
+        continue;
+      }
+      int d = entries_[top.entry].node->kind == NodeKind::Instance ? 0 : 1;
+      int deepest = 0;
+      for (size_t i = 0; i < count; ++i) deepest = std::max(deepest, depth[edge(top.entry, i)]);
+      d += deepest;
+      if (d > kMaxTreeDepth)
+        fail(pointerOf(top.entry), "the tree below this node is " + std::to_string(d) +
+                                       " levels deep counting through instances; the limit is " +
+                                       std::to_string(kMaxTreeDepth));
+      depth[top.entry] = d;
+      state[top.entry] = State::Done;
+      stack.pop_back();
+    }
+  }
+
+  // The search stack from `target` to its top, plus the edge back to `target`, is a cycle; it
+  // contains at least one instance edge (tree edges alone cannot close a cycle). Names it.
+  template <typename Step>
+  [[noreturn]] void reportCycle(const std::vector<Step>& stack, size_t target) const {
+    size_t first = 0;
+    while (stack[first].entry != target) ++first;
+    std::vector<size_t> cycle;
+    for (size_t i = first; i < stack.size(); ++i) cycle.push_back(stack[i].entry);
+    size_t start = 0;
+    while (entries_[cycle[start]].node->kind != NodeKind::Instance) ++start;
+    std::rotate(cycle.begin(), cycle.begin() + static_cast<std::ptrdiff_t>(start), cycle.end());
+    std::string path;
+    for (size_t e : cycle) path += std::to_string(entries_[e].node->id) + " -> ";
+    path += std::to_string(entries_[cycle.front()].node->id);
+    fail(pointerOf(cycle.front()) + "/of",
+         "instance cycle " + path +
+             " (an instance may not refer to itself or to a node that contains it)");
+  }
+
+  // ---- meshes ------------------------------------------------------------------------------
+
+  void loadMeshes() {
+    struct Loaded {
+      std::shared_ptr<const TriangleMesh> mesh;
+      std::string hash;
+    };
+    std::map<std::string, Loaded> cache;  // by resolved path: each file is read once
+    for (size_t index : meshEntries_) {
+      Node& node = *entries_[index].node;
+      std::string at = pointerOf(index);
+      std::filesystem::path path(node.meshPath);
+      if (path.is_relative() && !baseDir_.empty()) path = std::filesystem::path(baseDir_) / path;
+      std::string resolved = path.lexically_normal().string();
+      auto found = cache.find(resolved);
+      if (found == cache.end()) {
+        Loaded loaded;
+        try {
+          MeshReadReport meshReport;
+          loaded.mesh = std::make_shared<const TriangleMesh>(
+              readMeshFile(resolved, meshOptions_, &meshReport));
+          loaded.hash = hashFile(resolved);
+          for (const std::string& w : meshReport.warnings) warn(at + "/path", w);
+        } catch (const Error& error) {
+          fail(at + "/path", error.what());
+        }
+        found = cache.emplace(resolved, std::move(loaded)).first;
+      }
+      node.mesh = found->second.mesh;
+      std::string label = "mesh node " + std::to_string(node.id) +
+                          (node.name.empty() ? "" : " \"" + node.name + "\"");
+      if (node.meshHash.empty())
+        warn(at, label + " records no hash for \"" + node.meshPath +
+                     "\", so changes to the file cannot be detected (its hash is now " +
+                     found->second.hash + ")");
+      else if (node.meshHash != found->second.hash)
+        warn(at, label + ": \"" + node.meshPath + "\" changed since the scene was saved (hash " +
+                     found->second.hash + ", recorded " + node.meshHash + ")");
+      node.meshHash = found->second.hash;  // the node now describes the content it holds
+    }
+  }
+
+  std::string source_;
+  std::string baseDir_;
+  SceneLoadReport* report_;
+  MeshReadOptions meshOptions_;
+  std::vector<Entry> entries_;  // in document order; the root first
+  std::unordered_map<NodeId, size_t> byId_;
+  std::vector<size_t> meshEntries_;
+};
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& baseDir,
+                 SceneLoadReport* report, const MeshReadOptions& meshOptions) {
+  json doc = parseJson(text, sourceName);
+  return SceneReader(sourceName, baseDir, report, meshOptions).read(doc);
+}
+
+}  // namespace strata

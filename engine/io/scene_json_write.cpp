@@ -1,0 +1,184 @@
+// sceneToJson: a Scene to the text of a *.strata.json file (format: engine/io/SCENE_FORMAT.md).
+//
+// Output is stable: keys in a fixed, readable order, 2-space indentation (arrays of numbers on
+// one line), doubles in nlohmann's shortest round-trip form, colours (floats) in the shortest
+// decimal that reads back to the same float. Transforms, colours, names and visibility are
+// always written, defaults included.
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "engine/io/scene_file.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// What is being written, for messages ("node 3 (\"hole\")").
+std::string nodeLabel(const Node& node) {
+  return "node " + std::to_string(node.id) + (node.name.empty() ? "" : " (\"" + node.name + "\")");
+}
+
+double finite(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw Error("cannot save the scene: " + what + " is not finite");
+  return value;
+}
+
+ojson vec3(const glm::dvec3& v, const std::string& what) {
+  return ojson::array({finite(v.x, what), finite(v.y, what), finite(v.z, what)});
+}
+
+// The shortest decimal (as a double) that converts back to exactly `f`, so that 0.8f is
+// written as 0.8 and not as 0.800000011920929.
+double shortestFloat(float f, const std::string& what) {
+  finite(f, what);
+  char text[32];
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(text, sizeof(text), "%.*g", digits, static_cast<double>(f));
+    double d = std::strtod(text, nullptr);
+    if (static_cast<float>(d) == f) return d;
+  }
+  return static_cast<double>(f);  // unreachable: 9 significant digits always round-trip a float
+}
+
+std::string scalarText(const ojson& v) {
+  return v.dump(-1, ' ', false, ojson::error_handler_t::strict);
+}
+
+// Pretty printing with 2-space indentation, except that arrays of plain values (vectors,
+// colours) stay on one line: "[0.0, 0.0, 1.0]". Recursion is bounded by the tree depth check.
+void writePretty(const ojson& v, int indent, std::string* out) {
+  bool object = v.is_object();
+  if (!object && !v.is_array()) {
+    *out += scalarText(v);
+    return;
+  }
+  if (v.empty()) {
+    *out += object ? "{}" : "[]";
+    return;
+  }
+  bool flat =
+      !object && std::none_of(v.begin(), v.end(), [](const ojson& e) { return e.is_structured(); });
+  if (flat) {
+    *out += "[";
+    for (size_t i = 0; i < v.size(); ++i) *out += (i ? ", " : "") + scalarText(v[i]);
+    *out += "]";
+    return;
+  }
+  *out += object ? "{\n" : "[\n";
+  size_t i = 0;
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    out->append(static_cast<size_t>(indent) + 2, ' ');
+    if (object) *out += scalarText(ojson(it.key())) + ": ";
+    writePretty(it.value(), indent + 2, out);
+    *out += ++i < v.size() ? ",\n" : "\n";
+  }
+  out->append(static_cast<size_t>(indent), ' ');
+  *out += object ? "}" : "]";
+}
+
+ojson nodeToJson(const Node& node, int depth) {
+  std::string label = nodeLabel(node);
+  if (depth > kMaxTreeDepth)
+    throw Error("cannot save the scene: the tree is more than " + std::to_string(kMaxTreeDepth) +
+                " levels deep");
+  if (node.id == 0) throw Error("cannot save the scene: a node (\"" + node.name + "\") has id 0");
+  ojson j;
+  j["id"] = node.id;
+  j["name"] = node.name;
+  j["type"] = kindName(node.kind);
+
+  const PrimitiveParams& p = node.params;
+  auto param = [&](const char* key, double value) { j[key] = finite(value, label + " " + key); };
+  switch (node.kind) {
+    case NodeKind::Box:
+      j["size"] = vec3(p.size, label + " size");
+      break;
+    case NodeKind::Sphere:
+      param("radius", p.radius);
+      break;
+    case NodeKind::Cylinder:
+    case NodeKind::Capsule:
+      param("radius", p.radius);
+      param("height", p.height);
+      break;
+    case NodeKind::Cone:
+      param("radius", p.radius);
+      param("topRadius", p.topRadius);
+      param("height", p.height);
+      break;
+    case NodeKind::Torus:
+      param("majorRadius", p.majorRadius);
+      param("minorRadius", p.minorRadius);
+      break;
+    case NodeKind::Mesh:
+      j["path"] = node.meshPath;
+      if (!node.meshHash.empty()) j["hash"] = node.meshHash;
+      break;
+    case NodeKind::Instance:
+      j["of"] = node.instanceOf;
+      break;
+    default:
+      break;
+  }
+  if (isPrimitive(node.kind)) j["segments"] = p.segments;
+
+  ojson transform;
+  transform["translate"] = vec3(node.transform.translate, label + " translation");
+  transform["rotate"] = vec3(node.transform.rotateDegrees, label + " rotation");
+  transform["scale"] = vec3(node.transform.scale, label + " scale");
+  j["transform"] = std::move(transform);
+  j["color"] = ojson::array({shortestFloat(node.color.r, label + " colour"),
+                             shortestFloat(node.color.g, label + " colour"),
+                             shortestFloat(node.color.b, label + " colour")});
+  j["visible"] = node.visible;
+
+  if (isOperation(node.kind)) {
+    ojson children = ojson::array();
+    for (const NodePtr& child : node.children) {
+      if (!child) throw Error("cannot save the scene: " + label + " has a null child");
+      children.push_back(nodeToJson(*child, depth + 1));
+    }
+    j["children"] = std::move(children);
+  }
+  return j;
+}
+
+}  // namespace
+
+std::string sceneToJson(const Scene& scene) {
+  if (!scene.root) throw Error("cannot save the scene: it has no root node");
+  if (scene.settings.unit.empty()) throw Error("cannot save the scene: its unit is empty");
+  const SceneSettings& s = scene.settings;
+  ojson doc;
+  doc["format"] = "strata-scene";
+  doc["version"] = kSceneFormatVersion;
+  doc["unit"] = s.unit;
+  ojson settings;
+  settings["resolution"] = s.resolution;
+  settings["margin"] = finite(s.margin, "the grid margin");
+  if (s.hasBounds) {
+    ojson bounds;
+    bounds["min"] = vec3(s.bounds.min, "the grid bounds");
+    bounds["max"] = vec3(s.bounds.max, "the grid bounds");
+    settings["bounds"] = std::move(bounds);
+  }
+  doc["settings"] = std::move(settings);
+  doc["root"] = nodeToJson(*scene.root, 1);
+  try {
+    std::string text;
+    writePretty(doc, 0, &text);
+    return text + "\n";
+  } catch (const ojson::type_error& e) {
+    throw Error(std::string("cannot save the scene: a name or path is not valid UTF-8 (") +
+                e.what() + ")");
+  }
+}
+
+}  // namespace strata

@@ -1,0 +1,13 @@
+// Process memory as the operating system sees it.
+#pragma once
+
+#include <cstdint>
+
+namespace strata {
+
+// Peak resident set size of this process so far, in bytes (0 where unknown).
+uint64_t peakResidentBytes();
+// Current resident set size in bytes (0 where unknown).
+uint64_t currentResidentBytes();
+
+}  // namespace strata

@@ -1,0 +1,22 @@
+// A minimal fork-join loop over an index range on all hardware threads.
+//
+// parallelFor(begin, end, grain, body) calls body(chunkBegin, chunkEnd) on disjoint chunks of at
+// most `grain` indices, from up to workerCount() threads, and returns when all are done. The
+// first exception thrown by a body (Cancelled included) stops handing out chunks and is
+// rethrown on the calling thread.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+namespace strata {
+
+// Number of threads parallelFor uses: STRATA_THREADS if set (>= 1), else the hardware count.
+int workerCount();
+// Overrides the worker count for this process (1 = serial). 0 restores the default.
+void setWorkerCount(int threads);
+
+void parallelFor(int64_t begin, int64_t end, int64_t grain,
+                 const std::function<void(int64_t, int64_t)>& body);
+
+}  // namespace strata

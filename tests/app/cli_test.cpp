@@ -1,0 +1,123 @@
+// End-to-end tests of the `strata` command line: the same binary a user runs.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun strata(const std::string& args) {
+  std::string command = std::string(STRATA_BINARY) + " " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) run.output.append(buffer, n);
+  int status = pclose(pipe);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string temp(const std::string& name) { return testing::TempDir() + "/strata_cli_" + name; }
+
+std::string data(const std::string& name) { return std::string(STRATA_TEST_DATA) + "/" + name; }
+
+TEST(Cli, EvalPrintsReportAndWritesJson) {
+  std::string report = temp("report.json");
+  CliRun r = strata("eval " + std::string(STRATA_ASSETS) +
+                 "/scenes/demo.strata.json --resolution 96 --report " + report + " -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("sample"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("volume"), std::string::npos);
+  std::ifstream in(report);
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"volume", "area", "surfels", "peak_bytes", "stages", "seconds"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_GT(j["volume"].get<double>(), 0.0);
+  bool sawSample = false;
+  for (const auto& s : j["stages"]) {
+    EXPECT_TRUE(s.contains("seconds"));
+    if (s["name"] == "sample") sawSample = s["runs"].get<int>() > 0;
+  }
+  EXPECT_TRUE(sawSample);
+}
+
+TEST(Cli, BooleanOfMeshFilesWritesAPointCloud) {
+  std::string out = temp("union.ply");
+  std::string report = temp("union.json");
+  CliRun r = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
+                 " --resolution 64 -o " + out + " --report " + report + " -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream ply(out, std::ios::binary);
+  std::string header;
+  std::getline(ply, header);
+  EXPECT_EQ(header, "ply");
+  std::ifstream in(report);
+  nlohmann::json j = nlohmann::json::parse(in);
+  // A union with itself is the bunny: within a cell-sized tolerance of its exact volume.
+  EXPECT_NEAR(j["volume"].get<double>(), 194.288371812, 0.05 * 194.288371812);
+  EXPECT_GT(j["output"]["points"].get<int>(), 1000);
+}
+
+TEST(Cli, DifferenceOfAMeshWithItselfIsEmpty) {
+  std::string report = temp("empty.json");
+  CliRun r = strata("boolean difference " + data("eight.obj") + " " + data("eight.obj") +
+                 " --resolution 64 --report " + report + " -q");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(report);
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["surfels"].get<int>(), 0);
+  EXPECT_EQ(j["volume"].get<double>(), 0.0);
+}
+
+TEST(Cli, BadInputsGiveClearErrors) {
+  CliRun missing = strata("boolean union " + temp("nope.obj") + " " + data("bunny.obj"));
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.output.find("nope.obj"), std::string::npos) << missing.output;
+
+  CliRun op = strata("boolean xor " + data("bunny.obj") + " " + data("bunny.obj"));
+  EXPECT_EQ(op.code, 1);
+  EXPECT_NE(op.output.find("unknown operation 'xor'"), std::string::npos) << op.output;
+
+  CliRun option = strata("eval scene.strata.json --frobnicate");
+  EXPECT_EQ(option.code, 1);
+  EXPECT_NE(option.output.find("unknown option --frobnicate"), std::string::npos);
+
+  CliRun resolution = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
+                          " --resolution 3");
+  EXPECT_EQ(resolution.code, 1);
+  EXPECT_NE(resolution.output.find("--resolution"), std::string::npos) << resolution.output;
+
+  CliRun cuda = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
+                    " --backend cuda");
+  EXPECT_EQ(cuda.code, 1);
+  EXPECT_NE(cuda.output.find("cuda"), std::string::npos) << cuda.output;
+
+  std::string notPly = temp("out.stl");
+  CliRun format = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
+                      " --resolution 32 -q -o " + notPly);
+  EXPECT_EQ(format.code, 1);
+  EXPECT_NE(format.output.find("PLY"), std::string::npos) << format.output;
+  EXPECT_FALSE(std::ifstream(notPly).good());
+}
+
+TEST(Cli, HelpAndNoArgumentsRunTheDemo) {
+  CliRun help = strata("--help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.output.find("strata boolean"), std::string::npos);
+  CliRun demo = strata("");
+  EXPECT_EQ(demo.code, 0) << demo.output;
+  EXPECT_NE(demo.output.find("result"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,276 @@
+// checkMesh measurements and prepareMesh repairs on small hand-built meshes: cubes (whole,
+// open, inverted, inconsistently oriented, with a cavity), a torus for genus, a Moebius strip
+// for a surface that cannot be oriented.
+#include "engine/geometry/mesh_check.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace strata {
+namespace {
+
+// Axis-aligned cube [lo, lo+size]^3, outward (counter-clockwise seen from outside).
+TriangleMesh cube(glm::dvec3 lo = glm::dvec3(0.0), double size = 1.0) {
+  TriangleMesh m;
+  for (int i = 0; i < 8; ++i) {
+    const int x = (i == 1 || i == 2 || i == 5 || i == 6);
+    const int y = (i == 2 || i == 3 || i == 6 || i == 7);
+    const int z = i >= 4;
+    m.positions.push_back(lo + size * glm::dvec3(x, y, z));
+  }
+  m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                 {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  return m;
+}
+
+void flip(std::array<uint32_t, 3>& t) {
+  std::swap(t[1], t[2]);
+}
+
+TriangleMesh inverted(TriangleMesh m) {
+  for (auto& t : m.triangles) flip(t);
+  return m;
+}
+
+// Appends b to a (separate shells).
+void append(TriangleMesh& a, const TriangleMesh& b) {
+  const uint32_t base = static_cast<uint32_t>(a.positions.size());
+  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
+
+// Every triangle gets its own three vertices, as in STL.
+TriangleMesh unindexed(const TriangleMesh& m) {
+  TriangleMesh u;
+  for (const auto& t : m.triangles) {
+    const uint32_t base = static_cast<uint32_t>(u.positions.size());
+    for (uint32_t v : t) u.positions.push_back(m.positions[v]);
+    u.triangles.push_back({base, base + 1, base + 2});
+  }
+  return u;
+}
+
+// A torus with n x n quads (genus 1), outward.
+TriangleMesh torus(int n = 12, double major = 2.0, double minor = 0.5) {
+  TriangleMesh m;
+  const double twoPi = 6.283185307179586;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double u = twoPi * i / n, v = twoPi * j / n;
+      m.positions.push_back({(major + minor * std::cos(v)) * std::cos(u),
+                             (major + minor * std::cos(v)) * std::sin(u), minor * std::sin(v)});
+    }
+  }
+  auto id = [n](int i, int j) { return static_cast<uint32_t>((i % n) * n + (j % n)); };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  return m;
+}
+
+TEST(MeshCheck, CubeIsWatertightGenusZero) {
+  const MeshCheck c = checkMesh(cube());
+  EXPECT_TRUE(c.watertight());
+  EXPECT_EQ(c.vertices, 8u);
+  EXPECT_EQ(c.triangles, 12u);
+  EXPECT_EQ(c.components, 1);
+  EXPECT_EQ(c.genus, 0);
+  EXPECT_EQ(c.degenerateTriangles, 0u);
+  EXPECT_DOUBLE_EQ(c.volume, 1.0);
+  EXPECT_DOUBLE_EQ(c.area, 6.0);
+  EXPECT_DOUBLE_EQ(c.smallestTriangleArea, 0.5);
+}
+
+TEST(MeshCheck, TorusHasGenusOne) {
+  const MeshCheck c = checkMesh(torus());
+  EXPECT_TRUE(c.watertight());
+  EXPECT_EQ(c.genus, 1);
+  EXPECT_GT(c.volume, 0.0);
+}
+
+TEST(MeshCheck, TwoSeparateShellsAreTwoComponents) {
+  TriangleMesh m = cube();
+  append(m, torus());
+  const MeshCheck c = checkMesh(m);
+  EXPECT_TRUE(c.watertight());
+  EXPECT_EQ(c.components, 2);
+  EXPECT_EQ(c.genus, 1);
+}
+
+TEST(MeshCheck, OpenCubeHasBoundaryEdges) {
+  TriangleMesh m = cube();
+  m.triangles.pop_back();
+  const MeshCheck c = checkMesh(m);
+  EXPECT_EQ(c.boundaryEdges, 3u);
+  EXPECT_FALSE(c.closed());
+  EXPECT_FALSE(c.watertight());
+  EXPECT_EQ(c.genus, -1);
+}
+
+TEST(MeshCheck, ThreeTrianglesOnOneEdgeAreNonManifold) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const MeshCheck c = checkMesh(m);
+  EXPECT_EQ(c.nonManifoldEdges, 1u);
+  EXPECT_FALSE(c.manifold());
+}
+
+TEST(MeshCheck, OneFlippedTriangleGivesThreeMisorientedEdges) {
+  TriangleMesh m = cube();
+  flip(m.triangles[4]);
+  const MeshCheck c = checkMesh(m);
+  EXPECT_TRUE(c.closed());
+  EXPECT_EQ(c.misorientedEdges, 3u);
+  EXPECT_FALSE(c.oriented());
+}
+
+TEST(MeshCheck, EdgesAreCountedAfterWeldingIdenticalPositions) {
+  const MeshCheck c = checkMesh(unindexed(cube()));
+  EXPECT_EQ(c.vertices, 36u);
+  EXPECT_TRUE(c.watertight());
+  EXPECT_EQ(c.genus, 0);
+}
+
+TEST(MeshCheck, CountsDegenerateAndNonFinite) {
+  TriangleMesh m = cube();
+  m.positions.push_back({2, 0, 0});
+  m.positions.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
+  m.triangles.push_back({0, 0, 1});  // repeated index
+  m.triangles.push_back({0, 1, 8});  // collinear corners
+  const MeshCheck c = checkMesh(m);
+  EXPECT_EQ(c.degenerateTriangles, 2u);
+  EXPECT_EQ(c.nonFiniteCoordinates, 1u);
+  EXPECT_EQ(c.smallestTriangleArea, 0.0);
+  EXPECT_FALSE(c.watertight());
+}
+
+TEST(MeshCheckPrepare, WeldsIdenticalPositions) {
+  TriangleMesh m = unindexed(cube());
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_EQ(r.weldedVertices, 28u);
+  EXPECT_EQ(m.positions.size(), 8u);
+  EXPECT_TRUE(r.check.watertight());
+  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
+}
+
+TEST(MeshCheckPrepare, NegativeZeroWeldsWithZero) {
+  TriangleMesh m = cube();
+  m.positions.push_back({-0.0, 0.0, -0.0});
+  m.triangles[0][0] = 8;  // the same corner as vertex 0
+  EXPECT_EQ(weldIdenticalPositions(m), 1u);
+  EXPECT_EQ(m.positions.size(), 8u);
+  EXPECT_TRUE(checkMesh(m).watertight());
+}
+
+TEST(MeshCheckPrepare, RemovesDegenerateTriangles) {
+  TriangleMesh m = cube();
+  m.positions.push_back({0.5, 0, 0});  // on the edge 0-1
+  m.triangles.push_back({0, 1, 1});    // repeated index
+  m.triangles.push_back({0, 8, 1});    // zero area
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_EQ(r.removedDegenerate, 2u);
+  EXPECT_EQ(r.removedUnreferenced, 1u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_TRUE(r.check.watertight());
+}
+
+TEST(MeshCheckPrepare, FlipsInvertedMesh) {
+  TriangleMesh m = inverted(cube());
+  ASSERT_LT(signedVolume(m), 0.0);
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_EQ(r.reorientedTriangles, 0u);
+  EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
+  EXPECT_TRUE(r.check.watertight());
+}
+
+TEST(MeshCheckPrepare, RepairsInconsistentOrientation) {
+  TriangleMesh m = cube();
+  flip(m.triangles[2]);
+  flip(m.triangles[7]);
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_EQ(r.reorientedTriangles, 2u);
+  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_TRUE(r.check.watertight());
+  EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
+}
+
+TEST(MeshCheckPrepare, MostlyInvertedMeshIsRepairedOutward) {
+  TriangleMesh m = inverted(cube());
+  flip(m.triangles[5]);  // now 11 inward, 1 outward
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_EQ(r.reorientedTriangles, 1u);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
+}
+
+TEST(MeshCheckPrepare, CavityKeepsPointingInward) {
+  TriangleMesh m = cube(glm::dvec3(0.0), 4.0);
+  append(m, inverted(cube(glm::dvec3(1.0), 2.0)));
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_TRUE(r.check.watertight());
+  EXPECT_EQ(r.check.components, 2);
+  EXPECT_DOUBLE_EQ(r.check.volume, 64.0 - 8.0);
+}
+
+TEST(MeshCheckPrepare, WronglyOrientedCavityAndShellAreFixed) {
+  TriangleMesh m = inverted(cube(glm::dvec3(0.0), 4.0));  // outer shell inside out
+  append(m, cube(glm::dvec3(1.0), 2.0));                  // cavity pointing outward
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_DOUBLE_EQ(r.check.volume, 64.0 - 8.0);
+}
+
+TEST(MeshCheckPrepare, ShellInsideCavityIsSolidAgain) {
+  TriangleMesh m = cube(glm::dvec3(0.0), 6.0);
+  append(m, cube(glm::dvec3(1.0), 4.0));  // cavity, given outward: must be flipped
+  append(m, cube(glm::dvec3(2.0), 2.0));  // island inside the cavity: stays outward
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_DOUBLE_EQ(r.check.volume, 216.0 - 64.0 + 8.0);
+}
+
+TEST(MeshCheckPrepare, SeparateInvertedShellsAreEachFlipped) {
+  TriangleMesh m = inverted(cube());
+  append(m, inverted(cube(glm::dvec3(3.0), 1.0)));
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_DOUBLE_EQ(r.check.volume, 2.0);
+}
+
+TEST(MeshCheckPrepare, NonOrientableSurfaceIsLeftMisoriented) {
+  // A Moebius strip: a band of quads whose ends are joined with a half twist.
+  TriangleMesh m;
+  const int n = 12;
+  const double twoPi = 6.283185307179586;
+  for (int i = 0; i < n; ++i) {
+    const double u = twoPi * i / n;
+    for (int s = -1; s <= 1; s += 2) {
+      const double w = 0.3 * s;
+      m.positions.push_back({(1 + w * std::cos(u / 2)) * std::cos(u),
+                             (1 + w * std::cos(u / 2)) * std::sin(u), w * std::sin(u / 2)});
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const uint32_t a = 2 * i, b = 2 * i + 1;
+    uint32_t c = 2 * ((i + 1) % n), d = c + 1;
+    if (i == n - 1) std::swap(c, d);  // the twist
+    m.triangles.push_back({a, c, d});
+    m.triangles.push_back({a, d, b});
+  }
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_GT(r.check.misorientedEdges, 0u);
+  EXPECT_GT(r.check.boundaryEdges, 0u);
+  EXPECT_EQ(r.reorientedTriangles, 0u);
+}
+
+}  // namespace
+}  // namespace strata

@@ -1,0 +1,33 @@
+// Small helpers to build documents in tests without scene files.
+#pragma once
+
+#include <initializer_list>
+#include <memory>
+#include <string>
+
+#include "engine/document/scene.h"
+#include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
+
+namespace strata::test {
+
+// Leaves and operations with fresh ids (ids count up per process).
+NodePtr box(glm::dvec3 size, glm::dvec3 at = glm::dvec3(0.0));
+NodePtr sphere(double radius, glm::dvec3 at = glm::dvec3(0.0));
+NodePtr cylinder(double radius, double height, glm::dvec3 at = glm::dvec3(0.0),
+                 glm::dvec3 rotateDegrees = glm::dvec3(0.0));
+NodePtr torus(double major, double minor, glm::dvec3 at = glm::dvec3(0.0));
+NodePtr meshLeaf(std::shared_ptr<const TriangleMesh> mesh, glm::dvec3 at = glm::dvec3(0.0));
+NodePtr op(NodeKind kind, std::initializer_list<NodePtr> children);
+NodePtr withTransform(const NodePtr& node, const Transform& transform);
+
+Scene makeScene(NodePtr root, int resolution, double margin = 0.05);
+Scene makeSceneInBox(NodePtr root, int resolution, glm::dvec3 min, glm::dvec3 max);
+
+// Evaluates on a fresh CPU evaluator.
+EvalResult evaluateCpu(const Scene& scene);
+
+// Reads a mesh from tests/data (checked and prepared).
+std::shared_ptr<const TriangleMesh> dataMesh(const std::string& file);
+
+}  // namespace strata::test
