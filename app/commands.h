@@ -1,5 +1,6 @@
 // The subcommands of the `strata` command line. Each returns the process exit code:
-// 0 success, 1 failure (message printed), 2 usage error, 130 cancelled.
+// 0 success, 1 failure (message printed), 3 written but failed the watertight check,
+// 130 cancelled.
 #pragma once
 
 #include <string>
@@ -9,6 +10,7 @@ namespace strata {
 
 int runEval(const std::vector<std::string>& args);
 int runBoolean(const std::vector<std::string>& args);
+int runExport(const std::vector<std::string>& args);
 
 // The bundled demo scene (assets/scenes/demo.strata.json), located from STRATA_ASSETS or the
 // source tree this binary was built from.

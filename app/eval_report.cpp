@@ -1,5 +1,7 @@
 #include "app/eval_report.h"
 
+#include "app/cli_common.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -14,14 +16,6 @@ std::string mib(uint64_t bytes) {
   return text;
 }
 
-std::string unitAbbreviation(const std::string& unit) {
-  if (unit == "millimetre" || unit == "millimeter") return "mm";
-  if (unit == "centimetre" || unit == "centimeter") return "cm";
-  if (unit == "metre" || unit == "meter") return "m";
-  if (unit == "inch") return "in";
-  if (unit == "micron" || unit == "micrometre") return "um";
-  return unit;
-}
 }  // namespace
 
 std::string formatReportText(const EvalResult& r, const ReportContext& c, bool listNodes) {

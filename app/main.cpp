@@ -14,11 +14,17 @@ const char* kUsage =
     "  strata eval SCENE.strata.json  evaluate a scene file\n"
     "  strata boolean OP A B [C...]   apply union|intersection|difference to mesh files\n"
     "                                 (difference: A minus all the others)\n"
+    "  strata export SCENE -o FILE    write the scene's result as a watertight mesh\n"
     "\n"
-    "options (eval, boolean):\n"
+    "options:\n"
     "  --resolution N    cells along the longest side (default: the scene's, 256 for boolean)\n"
     "  --report FILE     write the report as JSON\n"
-    "  -o FILE.ply       write the result's surfels as a point cloud with normals and colours\n"
+    "  -o FILE           export (export, boolean): a closed, oriented, manifold mesh as\n"
+    "                    .stl (binary), .obj (+ .mtl, a material per leaf), .ply (vertex\n"
+    "                    colours) or .3mf (colour per leaf, the scene's unit); written\n"
+    "                    atomically, then re-read and checked\n"
+    "  --tile N          export: tile edge in cells (default 256; memory follows the tile)\n"
+    "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"
     "  --backend B       auto | cpu | cuda (default auto)\n"
     "  --threads N       worker threads (default: all cores, or STRATA_THREADS)\n"
     "  --nodes           list every node: computed or reused, time, surfels\n"
@@ -46,6 +52,7 @@ int main(int argc, char** argv) {
   }
   if (command == "eval") return strata::runEval(rest);
   if (command == "boolean") return strata::runBoolean(rest);
+  if (command == "export") return strata::runExport(rest);
   std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return 2;
 }

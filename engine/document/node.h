@@ -50,7 +50,7 @@ struct PrimitiveParams {
   double majorRadius = 1.0;
   double minorRadius = 0.25;
   // Tessellation level of detail: segments around the circumference; 0 = automatic, chosen
-  // from the grid's cell size so that the chordal error stays below a tenth of a cell.
+  // from the grid's cell size so that the chordal error stays below 1/50 of a cell.
   int segments = 0;
 
   bool operator==(const PrimitiveParams& o) const;

@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kDepthGuard = 4096;  // recursion guard (scene files are limited far below)
 // Chordal error of automatic tessellation, in cells.
-constexpr double kAutoChordErrorCells = 0.1;
+constexpr double kAutoChordErrorCells = 0.02;
 
 enum Stage { kTessellate, kSample, kBoolean, kMeasure, kStageCount };
 const char* const kStageNames[kStageCount] = {"tessellate", "sample", "boolean", "measure"};
@@ -331,13 +331,18 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
 EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options,
                                Progress& progress) {
   if (!scene.root) throw Error("the scene has no root node");
+  return evaluateOn(scene, gridFor(scene, options.resolution), progress);
+}
+
+EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress& progress) {
+  if (!scene.root) throw Error("the scene has no root node");
   Stopwatch total;
   EvalResult result;
   result.backend = backend_->description();
   ++generation_;
   Context ctx;
   ctx.scene = &scene;
-  ctx.grid = gridFor(scene, options.resolution);
+  ctx.grid = grid;
   ctx.progress = &progress;
   ctx.result = &result;
   ctx.total = std::max(1, countNodes(scene.root, scene.root, true, 0)) + 1;

@@ -71,6 +71,8 @@ class Evaluator {
 
   // Evaluates the visible tree. Throws strata::Error (e.g. an empty scene) or Cancelled.
   EvalResult evaluate(const Scene& scene, const EvalOptions& options, Progress& progress);
+  // The same on an explicit grid, e.g. one tile (a window) of the scene's grid.
+  EvalResult evaluateOn(const Scene& scene, const Grid& grid, Progress& progress);
 
   // The grid an evaluation at `resolution` (0 = the scene's) would use.
   static Grid gridFor(const Scene& scene, int resolution);

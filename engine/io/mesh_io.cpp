@@ -13,6 +13,7 @@
 
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_readers.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -139,7 +140,35 @@ std::string plural(size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+// The parser the extension names, exactly as the file describes the mesh (no repairs).
+TriangleMesh parseByExtension(const std::string& name, const std::string& bytes,
+                              MeshReadReport* report) {
+  const std::string ext = lowercaseExtension(name);
+  TriangleMesh mesh;
+  if (ext == ".obj") {
+    mesh = meshio::parseObj(name, bytes, report);
+  } else if (ext == ".stl") {
+    mesh = meshio::parseStl(name, bytes, report);
+  } else if (ext == ".ply") {
+    mesh = meshio::parsePly(name, bytes, report);
+  } else if (ext == ".off") {
+    mesh = meshio::parseOff(name, bytes, report);
+  } else if (ext == ".3mf") {
+    mesh = meshio::parse3mf(name, bytes, report);
+  } else {
+    throw Error(name + ": unknown mesh format '" + ext +
+                "' (expected .obj, .stl, .ply, .off or .3mf)");
+  }
+  if (mesh.triangles.empty()) throw Error(name + ": contains no triangles");
+  return mesh;
+}
+
 }  // namespace
+
+TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report) {
+  MeshReadReport local;
+  return parseByExtension(path, readWholeFile(path), report ? report : &local);
+}
 
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,
                           MeshReadReport* report) {
@@ -161,20 +190,7 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
                 std::to_string(options.unitScale));
   }
 
-  const std::string ext = lowercaseExtension(name);
-  TriangleMesh mesh;
-  if (ext == ".obj") {
-    mesh = meshio::parseObj(name, bytes, rep);
-  } else if (ext == ".stl") {
-    mesh = meshio::parseStl(name, bytes, rep);
-  } else if (ext == ".ply") {
-    mesh = meshio::parsePly(name, bytes, rep);
-  } else if (ext == ".off") {
-    mesh = meshio::parseOff(name, bytes, rep);
-  } else {
-    throw Error(name + ": unknown mesh format '" + ext + "' (expected .obj, .stl, .ply or .off)");
-  }
-  if (mesh.triangles.empty()) throw Error(name + ": contains no triangles");
+  TriangleMesh mesh = parseByExtension(name, bytes, rep);
 
   if (options.unitScale != 1.0) {
     for (auto& p : mesh.positions) {

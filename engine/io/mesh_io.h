@@ -1,4 +1,5 @@
-// Reading closed triangle meshes from OBJ, STL (ascii and binary), PLY (ascii and binary) and OFF.
+// Reading closed triangle meshes from OBJ, STL (ascii and binary), PLY (ascii and binary), OFF
+// and 3MF (the geometry its build places; see read_3mf.cpp).
 //
 // Every reader is strict: malformed numbers, NaN/Inf coordinates, out-of-range or negative
 // indices (OBJ's relative negative indices are resolved, then range-checked), truncated files,
@@ -30,7 +31,7 @@ struct MeshReadReport {
   size_t fileFaces = 0;               // polygons as read, before triangulation
 };
 
-// Reads by extension (.obj .stl .ply .off, case-insensitive). Throws strata::Error.
+// Reads by extension (.obj .stl .ply .off .3mf, case-insensitive). Throws strata::Error.
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options = {},
                           MeshReadReport* report = nullptr);
 
@@ -38,5 +39,12 @@ TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& option
 // its extension. Used by the fuzz targets and tests.
 TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
                            const MeshReadOptions& options = {}, MeshReadReport* report = nullptr);
+
+// Reads by extension exactly as the file describes the mesh: NO repairs (no welding beyond the
+// weld of identical positions that STL's unindexed format needs, no reorientation, no removal
+// of degenerate triangles, no unit scale, no closedness check). For verifying what a writer
+// wrote (engine/io/mesh_writers.h) with checkMesh. Throws strata::Error for a file that cannot
+// be read or parsed, or that holds no triangles.
+TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report = nullptr);
 
 }  // namespace strata

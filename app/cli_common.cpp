@@ -1,0 +1,59 @@
+#include "app/cli_common.h"
+
+#include <cctype>
+#include <new>
+
+#include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
+
+namespace strata {
+
+const std::vector<std::string> kValuedOptions = {
+    "--resolution", "--report", "-o",     "--output",     "--backend", "--threads",
+    "--margin",     "--surfels", "--tile", "--unit-scale"};
+const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open"};
+
+int runGuarded(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const Cancelled&) {
+    std::fprintf(stderr, "\nstrata: cancelled; nothing was written\n");
+    return 130;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "strata: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "strata: error: out of memory; try a lower --resolution or --tile\n");
+    return 1;
+  }
+}
+
+bool quietRequested(const CliArgs& args) { return args.has("--quiet") || args.has("-q"); }
+
+BackendChoice setUpBackend(const CliArgs& args) {
+  if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));
+  BackendChoice choice = chooseBackend(args.text("--backend", "auto"));
+  if (!quietRequested(args)) std::fprintf(stderr, "%s\n", choice.why.c_str());
+  return choice;
+}
+
+std::string unitAbbreviation(const std::string& unit) {
+  if (unit == "millimetre" || unit == "millimeter") return "mm";
+  if (unit == "centimetre" || unit == "centimeter") return "cm";
+  if (unit == "metre" || unit == "meter") return "m";
+  if (unit == "inch") return "in";
+  if (unit == "foot") return "ft";
+  if (unit == "micron" || unit == "micrometre" || unit == "micrometer") return "um";
+  return unit;
+}
+
+std::string fileExtension(const std::string& path) {
+  size_t slash = path.find_last_of('/');
+  size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace strata

@@ -1,0 +1,32 @@
+// What the subcommands share: the option lists, error handling, and setup from options.
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/backend_choice.h"
+#include "app/cli_args.h"
+
+namespace strata {
+
+extern const std::vector<std::string> kValuedOptions;
+extern const std::vector<std::string> kFlagOptions;
+
+// Runs `body`, turning errors into a message on stderr and an exit code: strata::Error and
+// bad_alloc give 1, Cancelled gives 130.
+int runGuarded(const std::function<int()>& body);
+
+// Applies --threads and picks the backend from --backend (printing the choice unless quiet).
+BackendChoice setUpBackend(const CliArgs& args);
+
+bool quietRequested(const CliArgs& args);
+
+// Lower-case extension of a path without the dot ("" when none).
+std::string fileExtension(const std::string& path);
+
+// "mm" for "millimetre" and the other units scene files name; anything else unchanged.
+std::string unitAbbreviation(const std::string& unit);
+
+}  // namespace strata

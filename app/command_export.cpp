@@ -1,0 +1,53 @@
+#include "app/command_export.h"
+
+#include "app/cli_common.h"
+#include "app/export_report.h"
+#include "app/terminal_progress.h"
+#include "engine/contour/contour_scene.h"
+#include "engine/io/mesh_io.h"
+#include "engine/io/mesh_writers.h"
+#include "engine/util/atomic_file.h"
+#include "engine/util/error.h"
+#include "engine/util/timer.h"
+
+namespace strata {
+
+int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& input,
+                    const std::vector<std::string>& warnings) {
+  const std::string output = args.text("-o", args.text("--output", ""));
+  const std::string ext = fileExtension(output);
+  if (ext != "stl" && ext != "obj" && ext != "ply" && ext != "3mf")
+    throw Error(output + ": unknown export format '" + ext +
+                "' (expected .stl, .obj, .ply or .3mf)");
+  BackendChoice choice = setUpBackend(args);
+  ContourOptions options;
+  options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
+  options.tileCells = args.integer("--tile", 256, 8, kMaxResolution);
+
+  ExportSummary summary;
+  summary.input = input;
+  summary.output = output;
+  summary.unit = scene.settings.unit;
+  summary.backend = choice.backend->description();
+  summary.warnings = warnings;
+  {
+    Evaluator evaluator(choice.backend);
+    TerminalProgress terminal(quietRequested(args));
+    ExportMesh mesh = contourScene(scene, evaluator, options, terminal.progress(), &summary.contour);
+    Stopwatch write;
+    writeMeshFile(output, mesh, &terminal.progress());
+    summary.writeSeconds = write.seconds();
+    terminal.finish();
+  }
+  Stopwatch check;
+  summary.check = checkMesh(readMeshFileRaw(output));
+  summary.checkSeconds = check.seconds();
+  std::fputs(formatExportText(summary).c_str(), stdout);
+  if (args.has("--report")) {
+    std::string json = formatExportJson(summary);
+    writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
+  }
+  return exportCheckPassed(summary.check) ? 0 : 3;
+}
+
+}  // namespace strata

@@ -1,0 +1,116 @@
+#include "app/export_report.h"
+
+#include "app/cli_common.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+namespace strata {
+namespace {
+const char* yes(bool b) { return b ? "yes" : "NO"; }
+std::string mib(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / 1048576.0);
+  return text;
+}
+}  // namespace
+
+bool exportCheckPassed(const MeshCheck& c) {
+  return c.watertight() && c.volume > 0.0 && c.degenerateTriangles == 0;
+}
+
+std::string formatExportText(const ExportSummary& summary) {
+  ExportSummary s = summary;
+  s.unit = unitAbbreviation(s.unit);
+  std::ostringstream out;
+  char line[512];
+  const ContourReport& r = s.contour;
+  out << "input     " << s.input << "\n";
+  out << "backend   " << s.backend << "\n";
+  std::snprintf(line, sizeof(line), "grid      %d x %d x %d cells, h = %.6g %s, %d tile%s\n",
+                r.grid.cells.x, r.grid.cells.y, r.grid.cells.z, r.grid.h, s.unit.c_str(), r.tiles,
+                r.tiles == 1 ? "" : "s");
+  out << line;
+  std::snprintf(line, sizeof(line),
+                "time      evaluate %.3f s, contour %.3f s, merge %.3f s, write %.3f s, check "
+                "%.3f s; peak memory %s\n",
+                r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.writeSeconds,
+                s.checkSeconds, mib(r.peakBytes).c_str());
+  out << line;
+  out << "wrote     " << s.output << "\n";
+  const MeshCheck& c = s.check;
+  std::snprintf(line, sizeof(line),
+                "check     %zu triangles, %zu vertices: closed %s, manifold %s, oriented %s, "
+                "components %d, genus %d\n",
+                c.triangles, c.vertices, yes(c.closed()), yes(c.manifold()), yes(c.oriented()),
+                c.components, c.genus);
+  out << line;
+  std::snprintf(line, sizeof(line),
+                "          volume %.9g %s^3, area %.9g %s^2, smallest triangle %.3g %s^2, "
+                "degenerate %zu\n",
+                c.volume, s.unit.c_str(), c.area, s.unit.c_str(), c.smallestTriangleArea,
+                s.unit.c_str(), c.degenerateTriangles);
+  out << line;
+  std::snprintf(line, sizeof(line),
+                "          deviation bound %.6g %s (sqrt(3) h: every vertex lies in a cell the "
+                "surface crosses); fitted-plane distance max %.3g %s\n",
+                r.deviationBound, s.unit.c_str(), r.maxPlaneDistance, s.unit.c_str());
+  out << line;
+  if (r.synthesizedCrossings || r.signDisagreements) {
+    std::snprintf(line, sizeof(line),
+                  "          %llu node signs decided by majority, %llu crossings synthesised "
+                  "(tangent rays)\n",
+                  static_cast<unsigned long long>(r.signDisagreements),
+                  static_cast<unsigned long long>(r.synthesizedCrossings));
+    out << line;
+  }
+  out << "result    " << (exportCheckPassed(c) ? "passed" : "FAILED") << " the watertight check\n";
+  for (const auto& w : s.warnings) out << "warning   " << w << "\n";
+  return out.str();
+}
+
+std::string formatExportJson(const ExportSummary& s) {
+  const ContourReport& r = s.contour;
+  const MeshCheck& c = s.check;
+  nlohmann::ordered_json j;
+  j["input"] = s.input;
+  j["output"] = s.output;
+  j["unit"] = s.unit;
+  j["backend"] = s.backend;
+  j["grid"] = {{"origin", {r.grid.origin.x, r.grid.origin.y, r.grid.origin.z}},
+               {"h", r.grid.h},
+               {"cells", {r.grid.cells.x, r.grid.cells.y, r.grid.cells.z}}};
+  j["tiles"] = r.tiles;
+  j["stages"] = nlohmann::ordered_json::array(
+      {{{"name", "evaluate"}, {"seconds", r.evaluateSeconds}},
+       {{"name", "contour"}, {"seconds", r.contourSeconds}},
+       {{"name", "merge"}, {"seconds", r.mergeSeconds}},
+       {{"name", "write"}, {"seconds", s.writeSeconds}},
+       {{"name", "check"}, {"seconds", s.checkSeconds}}});
+  j["peak_bytes"] = r.peakBytes;
+  j["surfels"] = r.surfels;
+  j["check"] = {{"passed", exportCheckPassed(c)},
+                {"triangles", c.triangles},
+                {"vertices", c.vertices},
+                {"closed", c.closed()},
+                {"manifold", c.manifold()},
+                {"oriented", c.oriented()},
+                {"components", c.components},
+                {"genus", c.genus},
+                {"volume", c.volume},
+                {"area", c.area},
+                {"smallest_triangle_area", c.smallestTriangleArea},
+                {"degenerate_triangles", c.degenerateTriangles}};
+  j["volume"] = c.volume;
+  j["area"] = c.area;
+  j["deviation_bound"] = r.deviationBound;
+  j["max_plane_distance"] = r.maxPlaneDistance;
+  j["synthesized_crossings"] = r.synthesizedCrossings;
+  j["sign_disagreements"] = r.signDisagreements;
+  j["warnings"] = s.warnings;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace strata

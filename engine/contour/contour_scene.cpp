@@ -1,0 +1,109 @@
+#include "engine/contour/contour_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/contour/contour_tile.h"
+#include "engine/util/error.h"
+#include "engine/util/memory.h"
+#include "engine/util/timer.h"
+
+namespace strata {
+namespace {
+
+void collectLeafStyles(const NodePtr& node, std::map<uint32_t, LeafStyle>* styles) {
+  if (!node) return;
+  if (!isOperation(node->kind)) (*styles)[node->id] = LeafStyle{node->name, node->color};
+  for (const auto& c : node->children) collectLeafStyles(c, styles);
+}
+
+}  // namespace
+
+ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
+                        Progress& progress, ContourReport* report) {
+  if (options.tileCells < 8) throw Error("tile size must be at least 8 cells");
+  ContourReport local;
+  ContourReport& r = report ? *report : local;
+  r = ContourReport();
+  const Grid grid = Evaluator::gridFor(scene, options.resolution);
+  r.grid = grid;
+  const glm::ivec3 tiles = (grid.cells + options.tileCells - 1) / options.tileCells;
+  r.tiles = tiles.x * tiles.y * tiles.z;
+
+  std::vector<ContourVertex> vertices;
+  std::vector<ContourTriangle> triangles;
+  int done = 0;
+  for (int tz = 0; tz < tiles.z; ++tz)
+    for (int ty = 0; ty < tiles.y; ++ty)
+      for (int tx = 0; tx < tiles.x; ++tx) {
+        const glm::ivec3 begin = glm::ivec3(tx, ty, tz) * options.tileCells;
+        const glm::ivec3 end = glm::min(begin + options.tileCells, grid.cells);
+        const TileWindow window = tileWindow(begin, end, grid.cells);
+        const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
+        const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
+
+        Stopwatch evaluate;
+        EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
+        r.evaluateSeconds += evaluate.seconds();
+        r.surfels += result.measure.surfels;
+        if (result.measure.surfels == 0) {
+          progress.report("export", double(++done) / r.tiles);
+          continue;
+        }
+        Stopwatch contour;
+        std::shared_ptr<const Ldi> ldi = evaluator.backend().download(result.root);
+        TileContour tile = contourTile(*ldi, grid.cells, begin, end, &progress);
+        r.contourSeconds += contour.seconds();
+        r.synthesizedCrossings += tile.synthesizedCrossings;
+        r.signDisagreements += tile.signDisagreements;
+        vertices.insert(vertices.end(), tile.vertices.begin(), tile.vertices.end());
+        triangles.insert(triangles.end(), tile.triangles.begin(), tile.triangles.end());
+        progress.report("export", double(++done) / r.tiles);
+      }
+
+  Stopwatch merge;
+  // Vertices: one per key (neighbouring tiles computed their shared halo cells identically),
+  // in key order; triangles in edge order. Both orders are independent of the tiling.
+  std::sort(vertices.begin(), vertices.end(),
+            [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; });
+  vertices.erase(
+      std::unique(vertices.begin(), vertices.end(),
+                  [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
+      vertices.end());
+  progress.check();
+  std::sort(triangles.begin(), triangles.end(),
+            [](const ContourTriangle& a, const ContourTriangle& b) { return a.order < b.order; });
+  progress.check();
+
+  // Keep only vertices some triangle uses (halo cells of empty edges produce none, but a cell
+  // vertex is only ever created for a cell the surface crosses, so all are used).
+  ExportMesh out;
+  out.unit = scene.settings.unit;
+  collectLeafStyles(scene.root, &out.leaves);
+  out.mesh.positions.reserve(vertices.size());
+  for (const ContourVertex& v : vertices) {
+    out.mesh.positions.push_back(grid.origin + grid.h * v.position);
+    r.maxPlaneDistance = std::max(r.maxPlaneDistance, v.planeDistance * grid.h);
+  }
+  out.mesh.triangles.reserve(triangles.size());
+  out.triangleLeaf.reserve(triangles.size());
+  auto indexOf = [&](uint64_t key) {
+    auto it = std::lower_bound(vertices.begin(), vertices.end(), key,
+                               [](const ContourVertex& v, uint64_t k) { return v.key < k; });
+    if (it == vertices.end() || it->key != key)
+      throw Error("internal: a triangle refers to a vertex no tile produced");
+    return uint32_t(it - vertices.begin());
+  };
+  for (const ContourTriangle& t : triangles) {
+    out.mesh.triangles.push_back(
+        {indexOf(t.vertex[0]), indexOf(t.vertex[1]), indexOf(t.vertex[2])});
+    out.triangleLeaf.push_back(t.leaf);
+    if (!out.leaves.count(t.leaf)) out.leaves[t.leaf] = LeafStyle{"unknown", glm::vec3(0.8f)};
+  }
+  r.mergeSeconds = merge.seconds();
+  r.deviationBound = std::sqrt(3.0) * grid.h;
+  r.peakBytes = peakResidentBytes();
+  return out;
+}
+
+}  // namespace strata

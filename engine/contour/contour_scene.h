@@ -1,0 +1,45 @@
+// Watertight export: the scene's root surface as a closed, oriented 2-manifold triangle mesh,
+// by dual contouring on the LDI, tile by tile.
+//
+// Each tile of `tileCells`^3 cells is evaluated on its own window of the grid (rays clipped to
+// the tile plus a one-cell halo), contoured, and stitched by global vertex keys; the result is
+// identical to contouring the whole grid at once, while the LDI memory follows the tile.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/document/scene.h"
+#include "engine/eval/evaluator.h"
+#include "engine/geometry/export_mesh.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+struct ContourOptions {
+  int resolution = 0;   // cells along the longest side; 0 = the scene's setting
+  int tileCells = 256;  // tile edge in cells (>= 8); tiles of the whole grid are one tile
+};
+
+struct ContourReport {
+  Grid grid;
+  int tiles = 0;
+  double evaluateSeconds = 0.0;  // sampling and Booleans, all tiles
+  double contourSeconds = 0.0;   // signs, vertices, quads, all tiles
+  double mergeSeconds = 0.0;     // stitching and indexing
+  uint64_t peakBytes = 0;        // process peak resident memory afterwards
+  uint64_t surfels = 0;          // root surfels over all tiles
+  uint64_t synthesizedCrossings = 0;
+  uint64_t signDisagreements = 0;
+  // Every vertex lies in a cell the surface crosses: the distance from any output vertex to
+  // the sampled surface is at most the cell diagonal, sqrt(3) h (scene units).
+  double deviationBound = 0.0;
+  // Measured: the largest distance of a vertex from the tangent planes of its own Hermite data
+  // (scene units); small where the QEF could fit the planes (flat parts, sharp features).
+  double maxPlaneDistance = 0.0;
+};
+
+// Contours the visible tree. Throws strata::Error or Cancelled; progress stage "export".
+ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
+                        Progress& progress, ContourReport* report = nullptr);
+
+}  // namespace strata

@@ -1,0 +1,111 @@
+// writeMeshFile: validate the ExportMesh, pick the writer by extension. Also the helpers the
+// format writers share (mesh_writer_formats.h).
+#include "engine/io/mesh_writers.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "engine/io/mesh_writer_formats.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace meshio {
+
+void reportEvery(Progress* progress, const std::string& stage, size_t index, size_t total) {
+  if (!progress || index % kProgressStride != 0) return;
+  progress->report(stage, total == 0 ? 1.0 : double(index) / double(total));
+}
+
+void appendNumber(std::string& out, double value) {
+  char buffer[32];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general, 9);
+  out.append(buffer, result.ptr);
+}
+
+double linearToSrgb(double linear) {
+  const double c = std::isnan(linear) ? 0.0 : std::min(1.0, std::max(0.0, linear));
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+std::array<uint8_t, 3> srgb8(const glm::vec3& linear) {
+  std::array<uint8_t, 3> bytes{};
+  for (int i = 0; i < 3; ++i) {
+    bytes[i] = static_cast<uint8_t>(std::lround(linearToSrgb(linear[i]) * 255.0));
+  }
+  return bytes;
+}
+
+std::string oneLine(const std::string& text) {
+  std::string line = text;
+  for (char& ch : line) {
+    if (static_cast<unsigned char>(ch) < 32 || ch == 127) ch = '?';
+  }
+  return line;
+}
+
+}  // namespace meshio
+
+namespace {
+
+std::string lowercaseExtension(const std::string& path) {
+  const size_t slash = path.find_last_of("/\\");
+  const size_t dot = path.rfind('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  for (char& ch : ext) {
+    if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
+  }
+  return ext;
+}
+
+void validate(const std::string& path, const ExportMesh& mesh) {
+  const auto& m = mesh.mesh;
+  if (m.triangles.empty()) throw Error(path + ": nothing to write (the mesh has no triangles)");
+  if (mesh.triangleLeaf.size() != m.triangles.size()) {
+    throw Error(path + ": cannot write: " + std::to_string(mesh.triangleLeaf.size()) +
+                " leaf ids for " + std::to_string(m.triangles.size()) + " triangles");
+  }
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    const glm::dvec3& p = m.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      throw Error(path + ": cannot write: vertex " + std::to_string(i) + " is not finite");
+    }
+  }
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    for (uint32_t v : m.triangles[t]) {
+      if (v >= m.positions.size()) {
+        throw Error(path + ": cannot write: triangle " + std::to_string(t) + " uses vertex " +
+                    std::to_string(v) + " of " + std::to_string(m.positions.size()));
+      }
+    }
+    if (!mesh.leaves.count(mesh.triangleLeaf[t])) {
+      throw Error(path + ": cannot write: triangle " + std::to_string(t) + " has leaf id " +
+                  std::to_string(mesh.triangleLeaf[t]) + ", which has no style");
+    }
+  }
+}
+
+}  // namespace
+
+void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress) {
+  const std::string ext = lowercaseExtension(path);
+  void (*writer)(const std::string&, const ExportMesh&, Progress*) = nullptr;
+  if (ext == ".stl") {
+    writer = meshio::writeStl;
+  } else if (ext == ".obj") {
+    writer = meshio::writeObj;
+  } else if (ext == ".ply") {
+    writer = meshio::writePly;
+  } else if (ext == ".3mf") {
+    writer = meshio::write3mf;
+  } else {
+    throw Error(path + ": cannot write mesh format '" + ext +
+                "' (supported: .stl, .obj, .ply, .3mf)");
+  }
+  if (progress) progress->check();
+  validate(path, mesh);
+  writer(path, mesh, progress);
+}
+
+}  // namespace strata

@@ -1,0 +1,44 @@
+// Writing finished surfaces (ExportMesh: triangles in scene units, each tagged with its CSG
+// leaf, and the leaves' names and colours) as STL, OBJ + MTL, PLY or 3MF.
+//
+// Formats, chosen by the extension of `path` (case-insensitive):
+//   .stl  binary STL: 80-byte header naming Strata and the unit, a unit facet normal computed
+//         from each triangle's winding, attribute 0. Coordinates as float32; no colours.
+//   .obj  OBJ with a companion "<basename>.mtl" beside it (`mtllib <basename>.mtl`): one
+//         material per leaf, named after the leaf (sanitised to [A-Za-z0-9_-], made unique),
+//         Kd its colour; faces grouped by leaf under `usemtl`. Coordinates printed with %.9g.
+//   .ply  binary little-endian PLY: double x y z and uchar red green blue per vertex (a vertex
+//         takes the colour of the leaf of the first triangle that uses it), faces as a list of
+//         uchar count and int indices.
+//   .3mf  3MF package (zip): one object whose triangles carry pid/p1 into an m:colorgroup (3MF
+//         materials extension) holding one colour per leaf; the model's unit is the scene unit
+//         (millimetre, centimetre, metre, inch, foot, micron; others are refused). %.9g.
+// Colours: LeafStyle colours are linear RGB; every format receives them sRGB-encoded, as 3MF
+// requires and as viewers show PLY bytes and MTL Kd values (8 bits per channel in PLY and 3MF).
+// The unit is recorded in every format (STL header, OBJ/PLY comments, 3MF unit attribute);
+// coordinates are never scaled.
+//
+// Every file is written atomically (engine/util/atomic_file.h): a failed or cancelled export
+// leaves neither the file nor "<path>.tmp" behind and an existing file untouched. For OBJ the
+// MTL is committed just before the OBJ, so a failure in between leaves a new MTL beside the old
+// OBJ. Synchronous; any thread; `progress` (may be null) is checked every 65536 elements and
+// before anything is written, and receives stage "write <format>" with its fraction.
+//
+// To verify a written file, read it back with readMeshFileRaw (engine/io/mesh_io.h), which
+// repairs nothing, and run checkMesh on it.
+#pragma once
+
+#include <string>
+
+#include "engine/geometry/export_mesh.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+// Throws strata::Error naming `path` for an unknown extension (listing the supported ones), a
+// malformed ExportMesh (no triangles, an index out of range, a non-finite coordinate, a leaf id
+// without a style, triangleLeaf of the wrong size), a unit 3MF cannot express, or a file that
+// cannot be written; throws Cancelled when `progress` is cancelled.
+void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress = nullptr);
+
+}  // namespace strata

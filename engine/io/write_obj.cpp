@@ -1,0 +1,131 @@
+// OBJ + MTL. The OBJ: comments naming Strata, the unit and the counts, `mtllib
+// <basename>.mtl`, every vertex as `v x y z` (%.9g), then per leaf (in leaf id order)
+// `usemtl <material>` followed by its triangles as `f a b c` (1-based). The MTL: per leaf
+// `newmtl`, a comment with the leaf's id and name, Ka 0, Kd = the colour sRGB-encoded, Ks 0,
+// d 1, illum 1.
+#include <cstdio>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "engine/io/mesh_writer_formats.h"
+#include "engine/util/atomic_file.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace meshio {
+namespace {
+
+// Material names: the leaf name with every character outside [A-Za-z0-9_-] replaced by '_'
+// ("leaf_<id>" when empty), then "_2", "_3", ... appended until unique.
+std::map<uint32_t, std::string> materialNames(const std::map<uint32_t, LeafStyle>& leaves) {
+  std::map<uint32_t, std::string> names;
+  std::set<std::string> taken;
+  for (const auto& [id, style] : leaves) {
+    std::string base;
+    for (char ch : style.name) {
+      const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                      (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
+      base += ok ? ch : '_';
+    }
+    if (base.empty()) base = "leaf_" + std::to_string(id);
+    std::string name = base;
+    for (int n = 2; taken.count(name); ++n) name = base + "_" + std::to_string(n);
+    taken.insert(name);
+    names[id] = name;
+  }
+  return names;
+}
+
+std::string stemOf(const std::string& path) {
+  const size_t slash = path.find_last_of("/\\");
+  const size_t begin = slash == std::string::npos ? 0 : slash + 1;
+  const size_t dot = path.rfind('.');
+  return path.substr(begin,
+                     dot == std::string::npos || dot < begin ? std::string::npos : dot - begin);
+}
+
+std::string mtlText(const ExportMesh& em, const std::map<uint32_t, std::string>& names) {
+  std::string text = "# Strata export: one material per CSG leaf; Kd is the leaf colour (sRGB)\n";
+  for (const auto& [id, style] : em.leaves) {
+    text += "\nnewmtl " + names.at(id) + "\n";
+    text += "# leaf " + std::to_string(id) + ": " + oneLine(style.name) + "\n";
+    text += "Ka 0 0 0\nKd ";
+    for (int k = 0; k < 3; ++k) {
+      if (k) text += ' ';
+      // 6 significant digits are finer than any display's steps.
+      char buffer[32];
+      std::snprintf(buffer, sizeof(buffer), "%.6f", linearToSrgb(style.color[k]));
+      std::string number = buffer;
+      while (number.back() == '0') number.pop_back();
+      if (number.back() == '.') number.pop_back();
+      text += number;
+    }
+    text += "\nKs 0 0 0\nd 1\nillum 1\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+void writeObj(const std::string& path, const ExportMesh& em, Progress* progress) {
+  const TriangleMesh& mesh = em.mesh;
+  const std::map<uint32_t, std::string> names = materialNames(em.leaves);
+  const size_t slash = path.find_last_of("/\\");
+  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string mtlName = stemOf(path) + ".mtl";
+  const std::string mtlPath = folder + mtlName;
+
+  // Triangles grouped by leaf, keeping their order within a leaf.
+  std::map<uint32_t, std::vector<uint32_t>> byLeaf;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    byLeaf[em.triangleLeaf[t]].push_back(static_cast<uint32_t>(t));
+  }
+
+  writeFileAtomically(path, [&](std::ostream& out) {
+    std::string text;
+    text += "# Strata export\n# unit: " + oneLine(em.unit) + "\n";
+    text += "# " + std::to_string(mesh.positions.size()) + " vertices, " +
+            std::to_string(mesh.triangles.size()) + " triangles, " + std::to_string(byLeaf.size()) +
+            " materials (one per CSG leaf)\n";
+    text += "mtllib " + mtlName + "\n";
+    const size_t total = mesh.positions.size() + mesh.triangles.size();
+    size_t done = 0;
+    auto flush = [&] {
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      text.clear();
+    };
+    for (const glm::dvec3& p : mesh.positions) {
+      if (done % kProgressStride == 0) flush();
+      reportEvery(progress, "write OBJ", done++, total);
+      text += "v ";
+      appendNumber(text, p.x);
+      text += ' ';
+      appendNumber(text, p.y);
+      text += ' ';
+      appendNumber(text, p.z);
+      text += '\n';
+    }
+    for (const auto& [leaf, triangles] : byLeaf) {
+      text += "usemtl " + names.at(leaf) + "\n";
+      for (uint32_t t : triangles) {
+        if (done % kProgressStride == 0) flush();
+        reportEvery(progress, "write OBJ", done++, total);
+        const auto& tri = mesh.triangles[t];
+        text += 'f';
+        for (uint32_t v : tri) {
+          text += ' ';
+          text += std::to_string(uint64_t(v) + 1);
+        }
+        text += '\n';
+      }
+    }
+    flush();
+    if (progress) progress->check();
+    // Committed while the OBJ is still a temporary file: a failure here leaves no new OBJ.
+    writeFileAtomically(mtlPath, [&](std::ostream& mtl) { mtl << mtlText(em, names); });
+  });
+}
+
+}  // namespace meshio
+}  // namespace strata

@@ -1,0 +1,75 @@
+// Binary STL: an 80-byte header ("Strata binary STL, unit: <unit>", zero padded; never starting
+// with "solid"), a little-endian uint32 facet count, then per facet the unit normal computed
+// from the winding (zero for a zero-area facet), three vertices as float32 and attribute 0.
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "engine/io/mesh_writer_formats.h"
+#include "engine/util/atomic_file.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace meshio {
+namespace {
+
+void putU32(std::string& out, uint32_t value) {
+  for (int i = 0; i < 4; ++i) out += static_cast<char>((value >> (8 * i)) & 0xff);
+}
+
+void putF32(std::string& out, double value) {
+  const float f = static_cast<float>(value);
+  uint32_t bits;
+  std::memcpy(&bits, &f, sizeof(bits));
+  putU32(out, bits);
+}
+
+}  // namespace
+
+void writeStl(const std::string& path, const ExportMesh& em, Progress* progress) {
+  const TriangleMesh& mesh = em.mesh;
+  if (mesh.triangles.size() > std::numeric_limits<uint32_t>::max()) {
+    throw Error(path + ": too many triangles for STL (" + std::to_string(mesh.triangles.size()) +
+                ")");
+  }
+  for (const glm::dvec3& p : mesh.positions) {
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(p[k]) > double(std::numeric_limits<float>::max())) {
+        throw Error(path + ": coordinate " + std::to_string(p[k]) +
+                    " does not fit STL's 32-bit floats");
+      }
+    }
+  }
+  writeFileAtomically(path, [&](std::ostream& out) {
+    std::string header = "Strata binary STL, unit: " + oneLine(em.unit);
+    header.resize(80, '\0');
+    std::string buffer = header;
+    putU32(buffer, static_cast<uint32_t>(mesh.triangles.size()));
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      if (t % kProgressStride == 0) {
+        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        buffer.clear();
+        reportEvery(progress, "write STL", t, mesh.triangles.size());
+      }
+      const auto& tri = mesh.triangles[t];
+      const glm::dvec3& a = mesh.positions[tri[0]];
+      const glm::dvec3& b = mesh.positions[tri[1]];
+      const glm::dvec3& c = mesh.positions[tri[2]];
+      glm::dvec3 normal = glm::cross(b - a, c - a);
+      const double length = glm::length(normal);
+      normal = length > 0.0 && std::isfinite(length) ? normal / length : glm::dvec3(0.0);
+      for (int k = 0; k < 3; ++k) putF32(buffer, normal[k]);
+      for (const glm::dvec3* p : {&a, &b, &c}) {
+        for (int k = 0; k < 3; ++k) putF32(buffer, (*p)[k]);
+      }
+      buffer += '\0';
+      buffer += '\0';
+    }
+    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+  });
+}
+
+}  // namespace meshio
+}  // namespace strata
