@@ -2,17 +2,32 @@
 
 #include "engine/eval/cpu_backend.h"
 #include "engine/util/error.h"
+#if defined(STRATA_HAS_CUDA)
+#include "gpu/cuda_backend.h"
+#endif
 
 namespace strata {
 
 BackendChoice chooseBackend(const std::string& name) {
-  if (name == "cpu") return {std::make_shared<CpuBackend>(), "backend cpu (asked for)"};
-  if (name == "auto")
-    return {std::make_shared<CpuBackend>(),
-            "backend cpu (auto: this build has no CUDA backend yet)"};
-  if (name == "cuda")
-    throw Error("--backend cuda: this build of strata has no CUDA backend; use --backend cpu");
-  throw Error("--backend: unknown backend '" + name + "' (expected auto, cpu or cuda)");
+  if (name != "auto" && name != "cpu" && name != "cuda")
+    throw Error("--backend: unknown backend '" + name + "' (expected auto, cpu or cuda)");
+  if (name == "cpu") {
+    auto cpu = std::make_shared<CpuBackend>();
+    return {cpu, "backend " + cpu->description() + " (asked for)"};
+  }
+#if defined(STRATA_HAS_CUDA)
+  std::string why;
+  if (cudaDeviceAvailable(&why)) {
+    auto cuda = makeCudaBackend();
+    return {cuda, "backend " + cuda->description() + (name == "auto" ? " (auto)" : " (asked for)")};
+  }
+  if (name == "cuda") throw Error("--backend cuda: " + why + "; use --backend cpu");
+#else
+  const std::string why = "this build has no CUDA backend (nvcc was not found when it was built)";
+  if (name == "cuda") throw Error("--backend cuda: " + why + "; use --backend cpu");
+#endif
+  auto cpu = std::make_shared<CpuBackend>();
+  return {cpu, "backend " + cpu->description() + " (auto: " + why + ")"};
 }
 
 }  // namespace strata

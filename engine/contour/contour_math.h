@@ -268,6 +268,22 @@ STRATA_HD void solveQef(const Qef& q, const int64_t cell[3], double out[3]) {
   }
 }
 
+// Two components of one cell whose minimisers both left the cell the same way are clamped to
+// the same point; distinct vertices must not share a position (the mesh would be pinched
+// there). Each such vertex is moved halfway towards its own mass point, which differ because
+// the components' crossings lie on different edges. `x` and `mass` hold `count` points.
+STRATA_HD void separateCoincidentVertices(double (*x)[3], const double (*mass)[3], int count) {
+  for (int i = 0; i < count; ++i) {
+    for (int j = i + 1; j < count; ++j) {
+      if (x[i][0] != x[j][0] || x[i][1] != x[j][1] || x[i][2] != x[j][2]) continue;
+      for (int k = 0; k < 3; ++k) {
+        x[i][k] = 0.5 * (x[i][k] + mass[i][k]);
+        x[j][k] = 0.5 * (x[j][k] + mass[j][k]);
+      }
+    }
+  }
+}
+
 // Distance (grid units) from x to the farthest of the QEF's planes: the vertex's measured
 // deviation from the Hermite data it was fitted to.
 STRATA_HD double qefPlaneDistance(const double (*points)[3], const float (*normals)[3], int n,

@@ -241,14 +241,19 @@ void placeVertices(const Tile& tile, TileContour* out, std::vector<uint32_t>* ve
       }
       const glm::ivec3 g = tile.first + c;
       const int64_t cellGlobal[3] = {g.x, g.y, g.z};
+      double x[kMaxCellComponents][3];
+      double mass[kMaxCellComponents][3];
       for (int comp = 0; comp < cc.components; ++comp) {
         Qef q = buildQef(points[comp], normals[comp], n[comp]);
-        double x[3] = {q.mass[0], q.mass[1], q.mass[2]};
-        solveQef(q, cellGlobal, x);
+        for (int k = 0; k < 3; ++k) x[comp][k] = mass[comp][k] = q.mass[k];
+        solveQef(q, cellGlobal, x[comp]);
+      }
+      separateCoincidentVertices(x, mass, cc.components);
+      for (int comp = 0; comp < cc.components; ++comp) {
         ContourVertex& vtx = out->vertices[(*vertexStart)[size_t(b)] + uint32_t(comp)];
         vtx.key = tile.globalCell(c) * 4 + uint64_t(comp);
-        vtx.position = glm::dvec3(x[0], x[1], x[2]);
-        vtx.planeDistance = qefPlaneDistance(points[comp], normals[comp], n[comp], x);
+        vtx.position = glm::dvec3(x[comp][0], x[comp][1], x[comp][2]);
+        vtx.planeDistance = qefPlaneDistance(points[comp], normals[comp], n[comp], x[comp]);
       }
     }
   });
@@ -263,8 +268,8 @@ double splitAgreement(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
   return glm::dot(n1, n2) / (l1 * l2);
 }
 
-// Key of the vertex inserted for the face segment around the inside corner `corner` (0..3,
-// a-bit + 2 * w-bit) of the face whose lowest node is `faceMin` (global) and whose normal is
+// Key of the vertex inserted for the face segment around the inside corner `corner` (0..3: its
+// offset along the face's lower in-plane axis + 2 * along the higher one) of the face whose lowest node is `faceMin` (global) and whose normal is
 // `normalAxis`. The top bit keeps these keys apart from cell vertex keys.
 uint64_t faceVertexKey(const glm::ivec3& globalCells, const glm::ivec3& faceMin, int normalAxis,
                        int corner) {
@@ -376,7 +381,10 @@ void emitPolygons(const Tile& tile, const glm::ivec3& begin, const glm::ivec3& e
           if (wBit == 1) faceMin[w] -= 1;
           glm::ivec3 wLower = insideCorner;
           if (wBit == 1) wLower[w] -= 1;
-          const int corner = (in0 ? 0 : 1) + 2 * wBit;
+          // The inside corner's offsets in the face, ordered by axis index, so that the quads
+          // around the segment's a-edge and around its w-edge compute the same key.
+          const glm::ivec3 offset = insideCorner - faceMin;
+          const int corner = offset[std::min(axis, w)] + 2 * offset[std::max(axis, w)];
           keys[m] = faceVertexKey(tile.globalCells, tile.first + faceMin, normalAxis, corner);
           pos[m] = 0.5 * (crossingPoint(axis, n) + crossingPoint(w, wLower));
           extra.push_back(ContourVertex{keys[m], pos[m], 0.0});

@@ -9,11 +9,16 @@ struct KindName {
   const char* name;
 };
 constexpr KindName kKindNames[] = {
-    {NodeKind::Union, "union"},       {NodeKind::Intersection, "intersection"},
-    {NodeKind::Difference, "difference"}, {NodeKind::Box, "box"},
-    {NodeKind::Sphere, "sphere"},     {NodeKind::Cylinder, "cylinder"},
-    {NodeKind::Cone, "cone"},         {NodeKind::Torus, "torus"},
-    {NodeKind::Capsule, "capsule"},   {NodeKind::Mesh, "mesh"},
+    {NodeKind::Union, "union"},
+    {NodeKind::Intersection, "intersection"},
+    {NodeKind::Difference, "difference"},
+    {NodeKind::Box, "box"},
+    {NodeKind::Sphere, "sphere"},
+    {NodeKind::Cylinder, "cylinder"},
+    {NodeKind::Cone, "cone"},
+    {NodeKind::Torus, "torus"},
+    {NodeKind::Capsule, "capsule"},
+    {NodeKind::Mesh, "mesh"},
     {NodeKind::Instance, "instance"},
 };
 
@@ -30,8 +35,7 @@ int depthOf(const NodePtr& node, const NodePtr& root, int guard) {
 }  // namespace
 
 bool isOperation(NodeKind kind) {
-  return kind == NodeKind::Union || kind == NodeKind::Intersection ||
-         kind == NodeKind::Difference;
+  return kind == NodeKind::Union || kind == NodeKind::Intersection || kind == NodeKind::Difference;
 }
 
 bool isPrimitive(NodeKind kind) {
@@ -59,7 +63,9 @@ bool PrimitiveParams::operator==(const PrimitiveParams& o) const {
          majorRadius == o.majorRadius && minorRadius == o.minorRadius && segments == o.segments;
 }
 
-int treeDepth(const NodePtr& root) { return depthOf(root, root, 0); }
+int treeDepth(const NodePtr& root) {
+  return depthOf(root, root, 0);
+}
 
 NodePtr findNode(const NodePtr& root, NodeId id) {
   if (!root) return nullptr;

@@ -10,8 +10,8 @@
 namespace strata {
 
 struct SceneSettings {
-  int resolution = 256;   // cells along the longest side of the grid
-  double margin = 0.05;   // grid margin around the scene bounds, as a fraction of their size
+  int resolution = 256;  // cells along the longest side of the grid
+  double margin = 0.05;  // grid margin around the scene bounds, as a fraction of their size
   std::string unit = "millimetre";  // length unit of scene coordinates (recorded in exports)
   // Optional explicit grid box; when set (min < max on every axis), the grid covers exactly this
   // box instead of the scene bounds plus margin.

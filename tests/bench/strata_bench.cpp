@@ -1,25 +1,49 @@
-// strata_bench: prints a table of sampling and Boolean times, surfels and peak memory for real
-// meshes at several resolutions, on the CPU backend. Each row runs in a forked child process,
-// so its peak resident memory is its own.
+// strata_bench: prints markdown tables of the Boolean "mesh minus a copy of itself shifted by
+// (0.3, 0.2, 0.1) of its size" on the CPU backend, for real meshes at several resolutions:
+//   1. sampling and Boolean times, surfels, LDI memory and peak memory;
+//   2. the watertight export of the same Boolean (contourScene, tiled dual contouring): stage
+//      times, triangles, whether the result is closed, manifold and oriented, peak memory;
+//   3. when built with OpenVDB: the same Boolean through OpenVDB (mesh to narrow-band level set
+//      with Strata's cell size, CSG difference, volume to mesh), the same columns.
+// Each row runs in a forked child process, so its peak resident memory is its own, and a row
+// that fails or crashes prints its error instead of ending the table.
 //
 // usage: strata_bench [--meshes bunny,armadillo] [--resolutions 256,512,1024] [--threads N]
+//                     [--tile 256] [--no-export] [--no-openvdb] [--openvdb-max-resolution 1024]
+// --resolutions applies to every table; without it table 1 uses 256,512,1024 and tables 2 and 3
+// use 256..2048 for the armadillo and 256..1024 for other meshes.
 // The results and the command that made them are recorded in tests/bench/RESULTS.md.
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <csignal>
+#include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "engine/contour/contour_scene.h"
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
+#include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
+
+#ifdef STRATA_BENCH_OPENVDB
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Composite.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/global_control.h>
+#endif
 
 namespace {
 using namespace strata;
@@ -28,13 +52,53 @@ std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream in(s);
   std::string item;
-  while (std::getline(in, item, ',')) out.push_back(item);
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(item);
   return out;
 }
 
-// The benchmark scene: the mesh minus a copy of itself shifted by (0.3, 0.2, 0.1) of its size.
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char line[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(line, sizeof(line), fmt, args);
+  va_end(args);
+  return line;
+}
+
+// Prints a markdown table header; each column is {title, width, right-aligned}. Rows print their
+// cells with the same widths.
+struct Column {
+  const char* title;
+  int width;
+  bool right;
+};
+void printHeader(const std::vector<Column>& columns) {
+  std::string titles = "|", rule = "|";
+  for (const auto& c : columns) {
+    titles += format(c.right ? " %*s |" : " %-*s |", c.width, c.title);
+    rule += std::string(size_t(c.width) + (c.right ? 1 : 2), '-') + (c.right ? ":|" : "|");
+  }
+  std::printf("%s\n%s\n", titles.c_str(), rule.c_str());
+}
+
+double mib(uint64_t bytes) {
+  return double(bytes) / 1048576.0;
+}
+
+std::shared_ptr<TriangleMesh> loadMesh(const std::string& name) {
+  return std::make_shared<TriangleMesh>(
+      readMeshFile(std::string(STRATA_TEST_DATA) + "/" + name + ".obj"));
+}
+
+// The shift of the second operand, in scene units.
+glm::dvec3 shiftOf(const TriangleMesh& mesh) {
+  return meshBounds(mesh).size() * glm::dvec3(0.3, 0.2, 0.1);
+}
+
+// The benchmark scene: the mesh minus a copy of itself shifted by shiftOf(mesh).
 Scene benchScene(const std::shared_ptr<const TriangleMesh>& mesh, int resolution) {
-  Bounds b = meshBounds(*mesh);
   auto a = std::make_shared<Node>();
   a->id = 2;
   a->kind = NodeKind::Mesh;
@@ -43,7 +107,7 @@ Scene benchScene(const std::shared_ptr<const TriangleMesh>& mesh, int resolution
   auto c = std::make_shared<Node>(*a);
   c->id = 3;
   c->name = "shifted";
-  c->transform.translate = b.size() * glm::dvec3(0.3, 0.2, 0.1);
+  c->transform.translate = shiftOf(*mesh);
   auto root = std::make_shared<Node>();
   root->id = 1;
   root->kind = NodeKind::Difference;
@@ -54,9 +118,25 @@ Scene benchScene(const std::shared_ptr<const TriangleMesh>& mesh, int resolution
   return scene;
 }
 
-std::string runRow(const std::string& name, int resolution) {
-  auto mesh = std::make_shared<TriangleMesh>(
-      readMeshFile(std::string(STRATA_TEST_DATA) + "/" + name + ".obj"));
+// "yes", or "no (...)" with what failed.
+std::string watertightText(const MeshCheck& c) {
+  if (c.watertight()) return "yes";
+  std::string why;
+  auto add = [&why](size_t n, const char* what) {
+    if (n == 0) return;
+    if (!why.empty()) why += ", ";
+    why += std::to_string(n) + " " + what;
+  };
+  add(c.boundaryEdges, "open edges");
+  add(c.nonManifoldEdges, "non-manifold edges");
+  add(c.misorientedEdges, "misoriented edges");
+  add(c.nonFiniteCoordinates, "non-finite coords");
+  return "no (" + why + ")";
+}
+
+// Table 1: sampling and Boolean.
+std::string sampleRow(const std::string& name, int resolution) {
+  auto mesh = loadMesh(name);
   Scene scene = benchScene(mesh, resolution);
   Evaluator evaluator(std::make_shared<CpuBackend>());
   Progress progress;
@@ -70,31 +150,129 @@ std::string runRow(const std::string& name, int resolution) {
     }
     if (s.name == "boolean") boolean = s.seconds;
   }
-  char line[256];
-  std::snprintf(line, sizeof(line),
-                "| %-9s | %5d | %7zu | %8.3f | %8.3f | %12llu | %12llu | %9.1f | %9.1f |", name.c_str(),
-                resolution, mesh->triangles.size(), sample, boolean,
+  return format("| %-9s | %5d | %9zu | %8.3f | %9.3f | %15llu | %14llu | %8.1f | %12.1f |",
+                name.c_str(), resolution, mesh->triangles.size(), sample, boolean,
                 static_cast<unsigned long long>(sampled),
-                static_cast<unsigned long long>(r.measure.surfels),
-                double(r.cacheBytes) / 1048576.0, double(peakResidentBytes()) / 1048576.0);
-  return line;
+                static_cast<unsigned long long>(r.measure.surfels), mib(r.cacheBytes),
+                mib(peakResidentBytes()));
 }
 
-// Runs one row in a child process and returns its line (or the failure).
-std::string forkRow(const std::string& name, int resolution) {
+// Table 2: the watertight export by tiled dual contouring.
+std::string exportRow(const std::string& name, int resolution, int tile) {
+  auto mesh = loadMesh(name);
+  Scene scene = benchScene(mesh, resolution);
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  ContourOptions options;
+  options.tileCells = tile;
+  ContourReport report;
+  ExportMesh out = contourScene(scene, evaluator, options, progress, &report);
+  // Peak memory of the export itself, before the check (which is not part of it) allocates.
+  const uint64_t peak = peakResidentBytes();
+  const MeshCheck check = checkMesh(out.mesh);
+  const double total = report.evaluateSeconds + report.contourSeconds + report.mergeSeconds;
+  return format(
+      "| %-9s | %5d | %5d | %10.3f | %9.3f | %7.3f | %7.3f | %10zu | %10.4g | %-10s | %12.1f |",
+      name.c_str(), resolution, report.tiles, report.evaluateSeconds, report.contourSeconds,
+      report.mergeSeconds, total, out.mesh.triangles.size(), check.volume,
+      watertightText(check).c_str(), mib(peak));
+}
+
+#ifdef STRATA_BENCH_OPENVDB
+// Table 3: the same Boolean through OpenVDB, on Strata's lattice (same cell size and origin).
+std::string openVdbRow(const std::string& name, int resolution) {
+  openvdb::initialize();
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(workerCount()));
+  auto mesh = loadMesh(name);
+  const Scene scene = benchScene(mesh, resolution);
+  const Grid grid = Evaluator::gridFor(scene, resolution);
+  auto xform = openvdb::math::Transform::createLinearTransform(grid.h);
+  xform->postTranslate(openvdb::Vec3d(grid.origin.x, grid.origin.y, grid.origin.z));
+  const float halfWidth = 3.0f;  // narrow band, in voxels
+
+  Stopwatch toLevelSet;
+  std::vector<openvdb::Vec3I> triangles(mesh->triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+    triangles[t] =
+        openvdb::Vec3I(mesh->triangles[t][0], mesh->triangles[t][1], mesh->triangles[t][2]);
+  std::vector<openvdb::Vec3s> points(mesh->positions.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    points[i] = openvdb::Vec3s(float(mesh->positions[i].x), float(mesh->positions[i].y),
+                               float(mesh->positions[i].z));
+  openvdb::FloatGrid::Ptr a =
+      openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, halfWidth);
+  const glm::dvec3 shift = shiftOf(*mesh);
+  for (size_t i = 0; i < points.size(); ++i)
+    points[i] =
+        openvdb::Vec3s(float(mesh->positions[i].x + shift.x), float(mesh->positions[i].y + shift.y),
+                       float(mesh->positions[i].z + shift.z));
+  openvdb::FloatGrid::Ptr b =
+      openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, halfWidth);
+  const double levelSetSeconds = toLevelSet.seconds();
+
+  Stopwatch csg;
+  openvdb::tools::csgDifference(*a, *b);  // the result in a; b is emptied
+  const double csgSeconds = csg.seconds();
+  const uint64_t voxels = a->activeVoxelCount();
+
+  Stopwatch toMesh;
+  std::vector<openvdb::Vec3s> outPoints;
+  std::vector<openvdb::Vec3I> outTriangles;
+  std::vector<openvdb::Vec4I> outQuads;
+  openvdb::tools::volumeToMesh(*a, outPoints, outTriangles, outQuads, 0.0, 0.0);
+  const double meshSeconds = toMesh.seconds();
+  const uint64_t peak = peakResidentBytes();
+
+  // The check, as for Strata's export (not timed, not in the peak): quads split in two.
+  a.reset();
+  b.reset();
+  TriangleMesh result;
+  result.positions.reserve(outPoints.size());
+  for (const auto& p : outPoints) result.positions.emplace_back(p.x(), p.y(), p.z());
+  result.triangles.reserve(outTriangles.size() + 2 * outQuads.size());
+  for (const auto& t : outTriangles) result.triangles.push_back({t.x(), t.y(), t.z()});
+  for (const auto& q : outQuads) {
+    result.triangles.push_back({q[0], q[1], q[2]});
+    result.triangles.push_back({q[0], q[2], q[3]});
+  }
+  const MeshCheck check = checkMesh(result);
+  const double total = levelSetSeconds + csgSeconds + meshSeconds;
+  return format(
+      "| %-9s | %5d | %8.3f | %7.3f | %9.3f | %7.3f | %13llu | %10zu | %10.4g | %-10s | "
+      "%12.1f |",
+      name.c_str(), resolution, levelSetSeconds, csgSeconds, meshSeconds, total,
+      static_cast<unsigned long long>(voxels), result.triangles.size(), check.volume,
+      watertightText(check).c_str(), mib(peak));
+}
+#endif
+
+// Runs `row` in a child process and returns its line, or the row's failure.
+std::string forkRow(const std::string& name, int resolution,
+                    const std::function<std::string()>& row) {
+  const std::string prefix = format("| %-9s | %5d | ", name.c_str(), resolution);
+  std::fflush(stdout);
   int fds[2];
-  if (pipe(fds) != 0) return "pipe failed";
+  if (pipe(fds) != 0) return prefix + "failed: pipe: " + std::strerror(errno) + " |";
   pid_t pid = fork();
+  if (pid < 0) return prefix + "failed: fork: " + std::strerror(errno) + " |";
   if (pid == 0) {
     close(fds[0]);
     std::string line;
     try {
-      line = runRow(name, resolution);
+      line = row();
     } catch (const std::exception& e) {
-      line = "| " + name + " | " + std::to_string(resolution) + " | failed: " + e.what();
+      line = prefix + "failed: " + e.what() + " |";
+    } catch (...) {
+      line = prefix + "failed: unknown exception |";
     }
-    ssize_t ignored = write(fds[1], line.data(), line.size());
-    (void)ignored;
+    const char* p = line.data();
+    size_t left = line.size();
+    while (left > 0) {
+      ssize_t n = write(fds[1], p, left);
+      if (n <= 0) break;
+      p += n;
+      left -= size_t(n);
+    }
     _exit(0);
   }
   close(fds[1]);
@@ -105,35 +283,160 @@ std::string forkRow(const std::string& name, int resolution) {
   close(fds[0]);
   int status = 0;
   waitpid(pid, &status, 0);
-  if (out.empty()) out = "| " + name + " | " + std::to_string(resolution) + " | crashed";
+  if (out.empty()) {
+    if (WIFSIGNALED(status))
+      out = prefix + "crashed: signal " + std::to_string(WTERMSIG(status)) + " (" +
+            strsignal(WTERMSIG(status)) + ")" +
+            (WTERMSIG(status) == SIGKILL ? ", out of memory?" : "") + " |";
+    else
+      out = prefix + "crashed: exit status " + std::to_string(WEXITSTATUS(status)) + " |";
+  }
   return out;
+}
+
+std::vector<int> toInts(const std::vector<std::string>& items) {
+  std::vector<int> out;
+  for (const auto& s : items) out.push_back(std::atoi(s.c_str()));
+  return out;
+}
+
+void usage() {
+  std::fprintf(stderr,
+               "usage: strata_bench [--meshes bunny,armadillo] [--resolutions 256,512,1024]\n"
+               "                    [--threads N] [--tile 256] [--no-export] [--no-openvdb]\n"
+               "                    [--openvdb-max-resolution 1024]\n");
 }
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> meshes = {"bunny", "armadillo"};
-  std::vector<std::string> resolutions = {"256", "512", "1024"};
-  for (int i = 1; i + 1 < argc; i += 2) {
-    std::string key = argv[i];
-    if (key == "--meshes") meshes = split(argv[i + 1]);
-    else if (key == "--resolutions") resolutions = split(argv[i + 1]);
-    else if (key == "--threads") setWorkerCount(std::atoi(argv[i + 1]));
+  std::vector<int> resolutions;  // empty: the defaults of each table
+  int tile = 256;
+  bool doExport = true;
+  bool doOpenVdb = true;
+  int openVdbMax = 1024;
+  for (int i = 1; i < argc; ++i) {
+    const std::string key = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (key == "--no-export")
+      doExport = false;
+    else if (key == "--no-openvdb")
+      doOpenVdb = false;
+    else if (key == "--help" || key == "-h") {
+      usage();
+      return 0;
+    } else if (!hasValue) {
+      std::fprintf(stderr, "option %s needs a value\n", argv[i]);
+      usage();
+      return 2;
+    } else if (key == "--meshes")
+      meshes = split(argv[++i]);
+    else if (key == "--resolutions")
+      resolutions = toInts(split(argv[++i]));
+    else if (key == "--threads")
+      setWorkerCount(std::atoi(argv[++i]));
+    else if (key == "--tile")
+      tile = std::atoi(argv[++i]);
+    else if (key == "--openvdb-max-resolution")
+      openVdbMax = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr, "unknown option %s\n", argv[i]);
+      usage();
       return 2;
     }
   }
-  std::printf("strata_bench: mesh minus a shifted copy of itself, CPU backend, %d threads, "
-              "%u hardware threads\n\n",
-              workerCount(), std::thread::hardware_concurrency());
-  std::printf("| mesh      |   res | triangles | sample s | boolean s | sampled surfels | result "
-              "surfels | LDIs MiB | peak RSS MiB |\n");
-  std::printf("|-----------|------:|----------:|---------:|----------:|----------------:|-------"
-              "-------:|---------:|-------------:|\n");
+  auto tableResolutions = [&](const std::string& mesh, bool exportTable) {
+    if (!resolutions.empty()) return resolutions;
+    if (!exportTable) return std::vector<int>{256, 512, 1024};
+    if (mesh == "armadillo") return std::vector<int>{256, 512, 1024, 2048};
+    return std::vector<int>{256, 512, 1024};
+  };
+
+  std::printf(
+      "strata_bench: mesh minus a copy of itself shifted by (0.3, 0.2, 0.1) of its size, "
+      "CPU backend, %d threads, %u hardware threads\n\n",
+      workerCount(), std::thread::hardware_concurrency());
+
+  std::printf("### 1. Sampling and Boolean (Strata)\n\n");
+  printHeader({{"mesh", 9, false},
+               {"res", 5, true},
+               {"triangles", 9, true},
+               {"sample s", 8, true},
+               {"boolean s", 9, true},
+               {"sampled surfels", 15, true},
+               {"result surfels", 14, true},
+               {"LDIs MiB", 8, true},
+               {"peak RSS MiB", 12, true}});
   for (const auto& m : meshes)
-    for (const auto& r : resolutions) {
-      std::printf("%s\n", forkRow(m, std::atoi(r.c_str())).c_str());
-      std::fflush(stdout);
-    }
+    for (int r : tableResolutions(m, false))
+      std::printf("%s\n", forkRow(m, r, [&] { return sampleRow(m, r); }).c_str());
+
+  if (doExport) {
+    std::printf("\n### 2. Watertight export (Strata: contourScene, tiles of %d cells)\n\n", tile);
+    printHeader({{"mesh", 9, false},
+                 {"res", 5, true},
+                 {"tiles", 5, true},
+                 {"evaluate s", 10, true},
+                 {"contour s", 9, true},
+                 {"merge s", 7, true},
+                 {"total s", 7, true},
+                 {"triangles", 10, true},
+                 {"volume", 10, true},
+                 {"watertight", 10, false},
+                 {"peak RSS MiB", 12, true}});
+    for (const auto& m : meshes)
+      for (int r : tableResolutions(m, true))
+        std::printf("%s\n", forkRow(m, r, [&] { return exportRow(m, r, tile); }).c_str());
+    std::printf(
+        "\nevaluate: sampling and Booleans of all tiles; contour: signs, vertices and "
+        "quads; merge: stitching. Watertight: closed, manifold and oriented "
+        "(checkMesh), not timed and not in the peak.\n");
+  }
+
+  if (doOpenVdb) {
+#ifdef STRATA_BENCH_OPENVDB
+    std::printf("\n### 3. The same Boolean through OpenVDB %s\n\n",
+                openvdb::getLibraryVersionString());
+    printHeader({{"mesh", 9, false},
+                 {"res", 5, true},
+                 {"to SDF s", 8, true},
+                 {"CSG s", 7, true},
+                 {"to mesh s", 9, true},
+                 {"total s", 7, true},
+                 {"active voxels", 13, true},
+                 {"triangles", 10, true},
+                 {"volume", 10, true},
+                 {"watertight", 10, false},
+                 {"peak RSS MiB", 12, true}});
+    bool capped = false;
+    for (const auto& m : meshes)
+      for (int r : tableResolutions(m, true)) {
+        if (r > openVdbMax) {
+          std::printf("| %-9s | %5d | skipped: above --openvdb-max-resolution %d |\n", m.c_str(), r,
+                      openVdbMax);
+          capped = true;
+          continue;
+        }
+        std::printf("%s\n", forkRow(m, r, [&] { return openVdbRow(m, r); }).c_str());
+      }
+    std::printf(
+        "\nto SDF: tools::meshToLevelSet of both operands (float grid, voxel size = "
+        "Strata's cell h, same origin, narrow band 3 voxels); CSG: "
+        "tools::csgDifference; to mesh: tools::volumeToMesh (isovalue 0, adaptivity 0), "
+        "quads counted as 2 triangles. OpenVDB threads limited to %d (TBB "
+        "global_control).\n",
+        workerCount());
+    if (capped)
+      std::printf(
+          "Resolutions above %d were not run through OpenVDB "
+          "(--openvdb-max-resolution).\n",
+          openVdbMax);
+#else
+    (void)openVdbMax;
+    std::printf(
+        "\nOpenVDB was not available when strata_bench was built: no comparison "
+        "(install libopenvdb-dev and reconfigure).\n");
+#endif
+  }
   return 0;
 }

@@ -1,6 +1,7 @@
 #include "tests/support/scene_builder.h"
 
 #include <atomic>
+#include <cstdlib>
 
 #include "engine/io/mesh_io.h"
 
@@ -85,8 +86,18 @@ EvalResult evaluateCpu(const Scene& scene) {
   return evaluator.evaluate(scene, EvalOptions{}, progress);
 }
 
+std::string testDataDir() {
+  const char* env = std::getenv("STRATA_TEST_DATA");
+  return env ? env : STRATA_TEST_DATA;
+}
+
+std::string assetsDir() {
+  const char* env = std::getenv("STRATA_ASSETS");
+  return env ? env : STRATA_ASSETS;
+}
+
 std::shared_ptr<const TriangleMesh> dataMesh(const std::string& file) {
-  return std::make_shared<TriangleMesh>(readMeshFile(std::string(STRATA_TEST_DATA) + "/" + file));
+  return std::make_shared<TriangleMesh>(readMeshFile(testDataDir() + "/" + file));
 }
 
 }  // namespace strata::test

@@ -27,6 +27,11 @@ Scene makeSceneInBox(NodePtr root, int resolution, glm::dvec3 min, glm::dvec3 ma
 // Evaluates on a fresh CPU evaluator.
 EvalResult evaluateCpu(const Scene& scene);
 
+// tests/data and assets/: the source tree's, or $STRATA_TEST_DATA / $STRATA_ASSETS when set
+// (binaries carried to another machine, such as the GPU device, find their data there).
+std::string testDataDir();
+std::string assetsDir();
+
 // Reads a mesh from tests/data (checked and prepared).
 std::shared_ptr<const TriangleMesh> dataMesh(const std::string& file);
 

@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "engine/contour/contour_scene.h"
+#include "engine/io/scene_file.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
 
@@ -228,6 +229,35 @@ TEST(ContourScene, CancelledExportThrows) {
   progress.cancel();
   EXPECT_THROW(contourScene(makeScene(sphere(1.0), 64), evaluator, ContourOptions{}, progress),
                Cancelled);
+}
+
+}  // namespace
+}  // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+// Regression: in the bone scaffold with its offset moved by a fraction of a cell, two surface
+// components of one cell had their vertices clamped to the same corner; welded by position the
+// mesh was pinched there. Every vertex must have its own position.
+TEST(ContourRegression, ScaffoldWithMovedOffsetHasNoPinchedVertices) {
+  Scene s = loadScene(assetsDir() + "/scenes/bone_scaffold.strata.json");
+  const Grid grid = Evaluator::gridFor(s, 256);
+  for (const auto& c : s.root->children) {
+    if (c->name != "cortical shell") continue;
+    auto offset = std::make_shared<Node>(*c->children[1]);
+    offset->transform.translate += glm::dvec3(0.37 * grid.h);
+    auto shell = std::make_shared<Node>(*c);
+    shell->children[1] = offset;
+    auto root = std::make_shared<Node>(*s.root);
+    for (auto& child : root->children)
+      if (child == c) child = shell;
+    s.root = root;
+  }
+  s.settings.resolution = 256;
+  Contoured r = contour(s);
+  EXPECT_TRUE(isWatertight(r.mesh.mesh));
+  EXPECT_TRUE(r.check.manifold());  // checkMesh welds identical positions first
 }
 
 }  // namespace

@@ -1,0 +1,458 @@
+#include "engine/document/commands.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "engine/geometry/primitives.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string nodeLabel(const Node& node) {
+  std::string name = node.name.empty() ? std::string(kindName(node.kind)) : "\"" + node.name + "\"";
+  return name + " (id " + std::to_string(node.id) + ")";
+}
+
+const Node& requireNode(const NodePtr& root, NodeId id) {
+  NodePtr node = findNode(root, id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  return *node;
+}
+
+// Replaces the node `id` by change(node) (nullptr removes it) and copies its ancestors. Returns
+// false when `id` is not in the subtree of `node`.
+bool rewrite(const NodePtr& node, NodeId id, const std::function<NodePtr(const NodePtr&)>& change,
+             NodePtr* out) {
+  if (node->id == id) {
+    *out = change(node);
+    return true;
+  }
+  for (size_t i = 0; i < node->children.size(); ++i) {
+    NodePtr replaced;
+    if (!rewrite(node->children[i], id, change, &replaced)) continue;
+    auto copy = std::make_shared<Node>(*node);
+    if (replaced)
+      copy->children[i] = replaced;
+    else
+      copy->children.erase(copy->children.begin() + static_cast<std::ptrdiff_t>(i));
+    *out = copy;
+    return true;
+  }
+  return false;
+}
+
+NodePtr rewriteOrThrow(const NodePtr& root, NodeId id,
+                       const std::function<NodePtr(const NodePtr&)>& change) {
+  NodePtr out;
+  if (!rewrite(root, id, change, &out))
+    throw Error("there is no node with id " + std::to_string(id));
+  return out;
+}
+
+// Removes a non-root node without checking instances (the node is being moved, not deleted).
+NodePtr detach(const NodePtr& root, NodeId id) {
+  if (root->id == id) throw Error("the root node " + nodeLabel(*root) + " cannot be moved");
+  return rewriteOrThrow(root, id, [](const NodePtr&) { return NodePtr(); });
+}
+
+void collectIds(const NodePtr& node, std::vector<NodeId>* ids) {
+  ids->push_back(node->id);
+  for (const auto& c : node->children) collectIds(c, ids);
+}
+
+void indexNodes(const NodePtr& node, std::unordered_map<NodeId, const Node*>* byId) {
+  (*byId)[node->id] = node.get();
+  for (const auto& c : node->children) indexNodes(c, byId);
+}
+
+// Instances outside the subtree of `subtree` that refer into it.
+const Node* outsideReference(const NodePtr& node, const std::unordered_set<NodeId>& inside) {
+  if (inside.count(node->id)) return nullptr;
+  if (node->kind == NodeKind::Instance && inside.count(node->instanceOf)) return node.get();
+  for (const auto& c : node->children)
+    if (const Node* found = outsideReference(c, inside)) return found;
+  return nullptr;
+}
+
+NodePtr copyWithFreshIds(const NodePtr& node, NodeId* next,
+                         std::unordered_map<NodeId, NodeId>* mapping) {
+  auto copy = std::make_shared<Node>(*node);
+  copy->id = (*next)++;
+  (*mapping)[node->id] = copy->id;
+  for (auto& c : copy->children) c = copyWithFreshIds(c, next, mapping);
+  return copy;
+}
+
+NodePtr remapInstances(const NodePtr& node, const std::unordered_map<NodeId, NodeId>& mapping) {
+  auto copy = std::make_shared<Node>(*node);
+  if (copy->kind == NodeKind::Instance) {
+    auto it = mapping.find(copy->instanceOf);
+    if (it != mapping.end()) copy->instanceOf = it->second;
+  }
+  for (auto& c : copy->children) c = remapInstances(c, mapping);
+  return copy;
+}
+
+void requirePositive(double value, const char* what) {
+  if (!(value > 0) || !std::isfinite(value))
+    throw Error(std::string(what) + " must be a positive number");
+}
+
+}  // namespace
+
+NodePtr makePrimitiveNode(NodeKind kind, NodeId id) {
+  if (!isPrimitive(kind)) throw Error(std::string("\"") + kindName(kind) + "\" is not a primitive");
+  auto node = std::make_shared<Node>();
+  node->id = id;
+  node->kind = kind;
+  node->name = std::string(kindName(kind)) + " " + std::to_string(id);
+  return node;
+}
+
+NodePtr makeOperationNode(NodeKind kind, NodeId id, std::vector<NodePtr> children) {
+  if (!isOperation(kind))
+    throw Error(std::string("\"") + kindName(kind) + "\" is not an operation");
+  auto node = std::make_shared<Node>();
+  node->id = id;
+  node->kind = kind;
+  node->name = std::string(kindName(kind)) + " " + std::to_string(id);
+  node->children = std::move(children);
+  return node;
+}
+
+NodePtr makeMeshNode(NodeId id, const std::string& name, std::shared_ptr<const TriangleMesh> mesh,
+                     const std::string& meshPath, const std::string& meshHash) {
+  auto node = std::make_shared<Node>();
+  node->id = id;
+  node->kind = NodeKind::Mesh;
+  node->name = name;
+  node->mesh = std::move(mesh);
+  node->meshPath = meshPath;
+  node->meshHash = meshHash;
+  return node;
+}
+
+NodePtr withFreshIds(const NodePtr& node, NodeId firstId) {
+  NodeId next = firstId;
+  std::unordered_map<NodeId, NodeId> mapping;
+  return remapInstances(copyWithFreshIds(node, &next, &mapping), mapping);
+}
+
+bool locateNode(const NodePtr& root, NodeId id, NodeLocation* location) {
+  if (!root) return false;
+  if (root->id == id) {
+    *location = NodeLocation{};
+    return true;
+  }
+  for (size_t i = 0; i < root->children.size(); ++i) {
+    if (root->children[i]->id == id) {
+      *location = NodeLocation{root, static_cast<int>(i)};
+      return true;
+    }
+    if (locateNode(root->children[i], id, location)) return true;
+  }
+  return false;
+}
+
+bool isInSubtree(const NodePtr& root, NodeId ancestor, NodeId id) {
+  NodePtr top = findNode(root, ancestor);
+  return top && findNode(top, id) != nullptr;
+}
+
+std::vector<NodeId> treeOrder(const NodePtr& root) {
+  std::vector<NodeId> ids;
+  if (root) collectIds(root, &ids);
+  return ids;
+}
+
+void validateParams(NodeKind kind, const PrimitiveParams& p) {
+  switch (kind) {
+    case NodeKind::Box:
+      requirePositive(p.size.x, "size x");
+      requirePositive(p.size.y, "size y");
+      requirePositive(p.size.z, "size z");
+      break;
+    case NodeKind::Sphere:
+      requirePositive(p.radius, "radius");
+      break;
+    case NodeKind::Cylinder:
+    case NodeKind::Capsule:
+      requirePositive(p.radius, "radius");
+      requirePositive(p.height, "height");
+      break;
+    case NodeKind::Cone:
+      requirePositive(p.radius, "radius");
+      requirePositive(p.height, "height");
+      if (!(p.topRadius >= 0) || !std::isfinite(p.topRadius))
+        throw Error("top radius must be a number >= 0");
+      break;
+    case NodeKind::Torus:
+      requirePositive(p.majorRadius, "major radius");
+      requirePositive(p.minorRadius, "minor radius");
+      if (!(p.minorRadius < p.majorRadius))
+        throw Error("the minor radius must be smaller than the major radius");
+      break;
+    default:
+      break;
+  }
+  if (p.segments != 0 && (p.segments < 3 || p.segments > kMaxSegments))
+    throw Error("segments must be 0 (automatic) or from 3 to " + std::to_string(kMaxSegments));
+}
+
+void validateTransform(const Transform& t) {
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(t.translate[i]) || !std::isfinite(t.rotateDegrees[i]))
+      throw Error("a transform must be finite");
+    if (!(t.scale[i] != 0) || !std::isfinite(t.scale[i]))
+      throw Error("every scale component must be a nonzero number");
+  }
+}
+
+void checkInstances(const NodePtr& root) {
+  std::unordered_map<NodeId, const Node*> byId;
+  indexNodes(root, &byId);
+  // Depth-first search over tree and instance edges; a node met again while still on the
+  // search path closes a cycle (which must pass through an instance edge).
+  enum Mark : uint8_t { Unseen, OnPath, Done };
+  std::unordered_map<const Node*, Mark> marks;
+  std::function<void(const Node*)> visit = [&](const Node* node) {
+    marks[node] = OnPath;
+    std::vector<const Node*> next;
+    for (const auto& c : node->children) next.push_back(c.get());
+    if (node->kind == NodeKind::Instance) {
+      auto it = byId.find(node->instanceOf);
+      if (it == byId.end())
+        throw Error("instance " + nodeLabel(*node) + " refers to node " +
+                    std::to_string(node->instanceOf) + ", which does not exist");
+      next.push_back(it->second);
+    }
+    for (const Node* n : next) {
+      Mark m = marks.count(n) ? marks[n] : Unseen;
+      if (m == OnPath)
+        throw Error("instance cycle through " + nodeLabel(*n) +
+                    " (an instance may not refer to a node that contains it)");
+      if (m == Unseen) visit(n);
+    }
+    marks[node] = Done;
+  };
+  visit(root.get());
+}
+
+NodePtr editNode(const NodePtr& root, NodeId id, const std::function<void(Node&)>& change) {
+  return rewriteOrThrow(root, id, [&](const NodePtr& node) {
+    auto copy = std::make_shared<Node>(*node);
+    change(*copy);
+    copy->id = node->id;  // an edit never renumbers
+    return NodePtr(copy);
+  });
+}
+
+NodePtr insertChild(const NodePtr& root, NodeId parentId, int index, const NodePtr& child) {
+  const Node& parent = requireNode(root, parentId);
+  if (!isOperation(parent.kind))
+    throw Error(nodeLabel(parent) + " is a " + kindName(parent.kind) +
+                " and cannot have children; add to an operation");
+  std::vector<NodeId> childIds;
+  collectIds(child, &childIds);
+  for (NodeId id : childIds)
+    if (id == 0 || findNode(root, id))
+      throw Error("node id " + std::to_string(id) + " is already used in the document");
+  return rewriteOrThrow(root, parentId, [&](const NodePtr& node) {
+    auto copy = std::make_shared<Node>(*node);
+    auto at = (index < 0 || index >= static_cast<int>(copy->children.size()))
+                  ? copy->children.end()
+                  : copy->children.begin() + index;
+    copy->children.insert(at, child);
+    return NodePtr(copy);
+  });
+}
+
+NodePtr removeNode(const NodePtr& root, NodeId id) {
+  const Node& node = requireNode(root, id);
+  if (root->id == id) throw Error("the root node " + nodeLabel(node) + " cannot be deleted");
+  std::vector<NodeId> ids;
+  collectIds(findNode(root, id), &ids);
+  std::unordered_set<NodeId> inside(ids.begin(), ids.end());
+  if (const Node* user = outsideReference(root, inside))
+    throw Error("cannot delete " + nodeLabel(node) + ": instance " + nodeLabel(*user) +
+                " refers to it; delete or re-point the instance first");
+  return rewriteOrThrow(root, id, [](const NodePtr&) { return NodePtr(); });
+}
+
+NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* copyId) {
+  NodePtr node = findNode(root, id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  if (root->id == id)
+    throw Error("the root node cannot be duplicated; group it first (it then has a parent)");
+  if (firstId <= maxNodeId(root)) throw Error("duplicate: new ids must be unused");
+  NodePtr copy = withFreshIds(node, firstId);
+  auto named = std::make_shared<Node>(*copy);
+  named->name = node->name.empty() ? "copy" : node->name + " copy";
+  NodeLocation where;
+  locateNode(root, id, &where);
+  if (copyId) *copyId = named->id;
+  return insertChild(root, where.parent->id, where.index + 1, named);
+}
+
+NodePtr moveNode(const NodePtr& root, NodeId id, NodeId parentId, int index) {
+  const Node& node = requireNode(root, id);
+  const Node& parent = requireNode(root, parentId);
+  if (root->id == id) throw Error("the root node " + nodeLabel(node) + " cannot be moved");
+  if (isInSubtree(root, id, parentId))
+    throw Error(
+        "cannot move " + nodeLabel(node) + " into " +
+        (parentId == id ? std::string("itself") : nodeLabel(parent) + ", which lies inside it"));
+  if (!isOperation(parent.kind))
+    throw Error(nodeLabel(parent) + " is a " + kindName(parent.kind) + " and cannot have children");
+  NodeId before = 0;
+  if (index >= 0 && index < static_cast<int>(parent.children.size()))
+    before = parent.children[static_cast<size_t>(index)]->id;
+  if (before == id) return root;  // dropped in front of itself: nothing moves
+  NodePtr moved = findNode(root, id);
+  NodePtr without = detach(root, id);
+  int at = -1;
+  if (before != 0) {
+    const Node& newParent = requireNode(without, parentId);
+    for (size_t i = 0; i < newParent.children.size(); ++i)
+      if (newParent.children[i]->id == before) at = static_cast<int>(i);
+  }
+  NodePtr result = rewriteOrThrow(without, parentId, [&](const NodePtr& p) {
+    auto copy = std::make_shared<Node>(*p);
+    auto pos = at < 0 ? copy->children.end() : copy->children.begin() + at;
+    copy->children.insert(pos, moved);
+    return NodePtr(copy);
+  });
+  checkInstances(result);
+  return result;
+}
+
+NodePtr moveNodeToTop(const NodePtr& root, NodeId id, NodeId unionId) {
+  const Node& node = requireNode(root, id);
+  if (root->id == id) throw Error(nodeLabel(node) + " is already the root");
+  if (root->kind == NodeKind::Union) return moveNode(root, id, root->id, -1);
+  if (findNode(root, unionId)) throw Error("moveNodeToTop: the new union's id is in use");
+  NodePtr moved = findNode(root, id);
+  NodePtr rest = detach(root, id);
+  NodePtr top = makeOperationNode(NodeKind::Union, unionId, {rest, moved});
+  auto named = std::make_shared<Node>(*top);
+  named->name = "scene";
+  checkInstances(named);
+  return named;
+}
+
+NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind kind,
+                   NodeId groupId) {
+  if (!isOperation(kind)) throw Error("a group must be a union, intersection or difference");
+  if (ids.empty()) throw Error("nothing selected to group");
+  if (findNode(root, groupId)) throw Error("group: the new node's id is in use");
+  std::unordered_set<NodeId> selected;
+  for (NodeId id : ids) {
+    requireNode(root, id);
+    selected.insert(id);
+  }
+  if (selected.count(root->id)) {
+    if (selected.size() != 1)
+      throw Error("the root cannot be grouped with other nodes; group its children instead");
+    return makeOperationNode(kind, groupId, {root});
+  }
+  // Tree order, dropping nodes that lie inside another selected node.
+  std::vector<NodeId> order;
+  for (NodeId id : treeOrder(root)) {
+    if (!selected.count(id)) continue;
+    bool nested = false;
+    for (NodeId other : selected)
+      if (other != id && isInSubtree(root, other, id)) nested = true;
+    if (!nested) order.push_back(id);
+  }
+  std::vector<NodePtr> members;
+  for (NodeId id : order) members.push_back(findNode(root, id));
+  NodePtr group = makeOperationNode(kind, groupId, members);
+  NodePtr result = root;
+  for (size_t i = 1; i < order.size(); ++i) result = detach(result, order[i]);
+  return rewriteOrThrow(result, order[0], [&](const NodePtr&) { return group; });
+}
+
+NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind) {
+  const Node& node = requireNode(root, id);
+  if (!isOperation(node.kind))
+    throw Error(nodeLabel(node) + " is a " + kindName(node.kind) + ", not an operation");
+  if (!isOperation(kind))
+    throw Error(std::string("\"") + kindName(kind) + "\" is not an operation");
+  if (node.kind == kind) return root;
+  return editNode(root, id, [&](Node& n) { n.kind = kind; });
+}
+
+namespace {
+// Copies the tree with every mesh path replaced by newPath(path); shares unchanged subtrees.
+NodePtr rewriteMeshPaths(const NodePtr& node,
+                         const std::function<std::string(const fs::path&)>& newPath) {
+  NodePtr out = node;
+  if (node->kind == NodeKind::Mesh && !node->meshPath.empty()) {
+    std::string rewritten = newPath(fs::path(node->meshPath));
+    if (rewritten != node->meshPath) {
+      auto copy = std::make_shared<Node>(*node);
+      copy->meshPath = rewritten;
+      out = copy;
+    }
+  }
+  std::vector<NodePtr> children;
+  bool changed = false;
+  for (const auto& c : node->children) {
+    children.push_back(rewriteMeshPaths(c, newPath));
+    changed = changed || children.back() != c;
+  }
+  if (!changed) return out;
+  auto copy = std::make_shared<Node>(*out);
+  copy->children = std::move(children);
+  return copy;
+}
+
+fs::path absoluteFolder(const std::string& dir) {
+  std::error_code ec;
+  fs::path folder =
+      fs::absolute(dir.empty() ? fs::path(".") : fs::path(dir), ec).lexically_normal();
+  return folder.has_filename() ? folder : folder.parent_path();  // no trailing separator
+}
+}  // namespace
+
+NodePtr rebaseMeshPaths(const NodePtr& root, const std::string& fromDir, const std::string& toDir) {
+  if (!root) return root;
+  fs::path from = absoluteFolder(fromDir);
+  fs::path to = absoluteFolder(toDir);
+  if (from == to) return root;
+  return rewriteMeshPaths(root, [&](const fs::path& path) {
+    if (path.is_absolute()) return path.generic_string();
+    fs::path absolute = (from / path).lexically_normal();
+    fs::path relative = absolute.lexically_relative(to);
+    bool inside = !relative.empty() && *relative.begin() != "..";
+    return inside ? relative.generic_string() : absolute.generic_string();
+  });
+}
+
+NodePtr absoluteMeshPaths(const NodePtr& root, const std::string& fromDir) {
+  if (!root) return root;
+  fs::path from = absoluteFolder(fromDir);
+  return rewriteMeshPaths(root, [&](const fs::path& path) {
+    return path.is_absolute() ? path.generic_string()
+                              : (from / path).lexically_normal().generic_string();
+  });
+}
+
+NodePtr relativeMeshPaths(const NodePtr& root, const std::string& toDir) {
+  if (!root) return root;
+  fs::path to = absoluteFolder(toDir);
+  return rewriteMeshPaths(root, [&](const fs::path& path) {
+    if (path.is_relative()) return path.generic_string();
+    fs::path relative = path.lexically_normal().lexically_relative(to);
+    bool inside = !relative.empty() && *relative.begin() != "..";
+    return inside ? relative.generic_string() : path.generic_string();
+  });
+}
+
+}  // namespace strata

@@ -1,0 +1,223 @@
+#include "engine/document/document.h"
+
+#include <filesystem>
+
+#include "engine/document/commands.h"
+#include "engine/io/mesh_io.h"
+#include "engine/io/scene_file.h"
+#include "engine/ldi/grid.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+namespace fs = std::filesystem;
+
+std::string folderOf(const std::string& path) {
+  return path.empty() ? std::string() : fs::path(path).parent_path().string();
+}
+}  // namespace
+
+Document::Document() {
+  Scene scene;
+  auto root = std::make_shared<Node>(*makeOperationNode(NodeKind::Union, 1, {}));
+  root->name = "scene";
+  scene.root = root;
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), 0};
+}
+
+Document::Document(Scene scene, std::string path) : path_(std::move(path)) {
+  if (!scene.root) throw Error("a document needs a root node");
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), 0};
+}
+
+Document Document::open(const std::string& path, std::vector<std::string>* warnings) {
+  SceneLoadReport report;
+  Scene scene = loadScene(path, &report);
+  if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
+  return Document(std::move(scene), path);
+}
+
+NodeId Document::nextId() const {
+  return maxNodeId(root()) + 1;
+}
+
+std::string Document::title() const {
+  std::string name = path_.empty() ? "untitled" : fs::path(path_).filename().string();
+  return dirty() ? name + " *" : name;
+}
+
+void Document::apply(const std::string& label, const NodePtr& newRoot) {
+  if (!newRoot) throw Error("an edit must leave a root node");
+  if (newRoot == root()) return;  // nothing changed: no undo step
+  Scene next = scene();
+  next.root = newRoot;
+  history_.record(state_, label);
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), nextRevision_++};
+}
+
+void Document::applySettings(const std::string& label, const SceneSettings& settings) {
+  Scene next = scene();
+  next.settings = settings;
+  history_.record(state_, label);
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), nextRevision_++};
+}
+
+NodeId Document::parentForAdd(NodeId parent, int* index) const {
+  if (parent == 0) parent = root()->id;
+  NodePtr target = findNode(root(), parent);
+  if (!target) throw Error("there is no node with id " + std::to_string(parent));
+  if (isOperation(target->kind) || target == root()) return parent;
+  NodeLocation where;
+  locateNode(root(), parent, &where);
+  *index = where.index + 1;
+  return where.parent->id;
+}
+
+NodeId Document::addNode(NodeKind kind, NodeId parent, int index) {
+  NodeId id = nextId();
+  NodePtr node = isOperation(kind) ? makeOperationNode(kind, id, {}) : makePrimitiveNode(kind, id);
+  return addSubtree(node, parent, index);
+}
+
+NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
+  NodeId id = nextId();
+  NodePtr fresh = withFreshIds(node, id);
+  NodeId target = parentForAdd(parent, &index);
+  std::string label =
+      "add " + (fresh->name.empty() ? std::string(kindName(fresh->kind)) : fresh->name);
+  if (!isOperation(root()->kind) && target == root()->id) {
+    // A leaf root: wrap it and the new node in a union.
+    NodeId unionId = maxNodeId(fresh) + 1;
+    auto top =
+        std::make_shared<Node>(*makeOperationNode(NodeKind::Union, unionId, {root(), fresh}));
+    top->name = "scene";
+    apply(label, top);
+    return id;
+  }
+  apply(label, insertChild(root(), target, index, fresh));
+  return id;
+}
+
+NodeId Document::addMesh(const std::string& file, NodeId parent, int index) {
+  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file));
+  std::string hash = hashFile(file);
+  fs::path absolute = fs::absolute(file).lexically_normal();
+  std::string stored = absolute.generic_string();
+  if (!path_.empty()) {
+    fs::path relative =
+        absolute.lexically_relative(fs::absolute(folderOf(path_)).lexically_normal());
+    if (!relative.empty() && *relative.begin() != "..") stored = relative.generic_string();
+  }
+  NodePtr node = makeMeshNode(1, fs::path(file).stem().string(), mesh, stored, hash);
+  return addSubtree(node, parent, index);
+}
+
+void Document::remove(NodeId id) {
+  NodePtr node = findNode(root(), id);
+  apply("delete " + (node ? node->name : std::string()), removeNode(root(), id));
+}
+
+NodeId Document::duplicate(NodeId id) {
+  NodeId copy = 0;
+  NodePtr result = duplicateNode(root(), id, nextId(), &copy);
+  apply("duplicate", result);
+  return copy;
+}
+
+void Document::rename(NodeId id, const std::string& name) {
+  apply("rename", editNode(root(), id, [&](Node& n) { n.name = name; }));
+}
+
+void Document::setTransform(NodeId id, const Transform& transform) {
+  validateTransform(transform);
+  NodePtr node = findNode(root(), id);
+  if (node && node->transform == transform) return;
+  apply("transform", editNode(root(), id, [&](Node& n) { n.transform = transform; }));
+}
+
+void Document::setColor(NodeId id, const glm::vec3& color) {
+  for (int i = 0; i < 3; ++i)
+    if (!(color[i] >= 0.0f && color[i] <= 1.0f)) throw Error("colour components must be in [0, 1]");
+  NodePtr node = findNode(root(), id);
+  if (node && node->color == color) return;
+  apply("colour", editNode(root(), id, [&](Node& n) { n.color = color; }));
+}
+
+void Document::setParams(NodeId id, const PrimitiveParams& params) {
+  NodePtr node = findNode(root(), id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  if (!isPrimitive(node->kind))
+    throw Error(std::string("a ") + kindName(node->kind) + " node has no primitive parameters");
+  validateParams(node->kind, params);
+  if (node->params == params) return;
+  apply("parameters", editNode(root(), id, [&](Node& n) { n.params = params; }));
+}
+
+void Document::setVisible(NodeId id, bool visible) {
+  apply(visible ? "show" : "hide", editNode(root(), id, [&](Node& n) { n.visible = visible; }));
+}
+
+void Document::setResolution(int resolution) {
+  if (resolution < kMinResolution || resolution > kMaxResolution)
+    throw Error("resolution must be from " + std::to_string(kMinResolution) + " to " +
+                std::to_string(kMaxResolution));
+  if (scene().settings.resolution == resolution) return;
+  SceneSettings settings = scene().settings;
+  settings.resolution = resolution;
+  applySettings("resolution", settings);
+}
+
+void Document::move(NodeId id, NodeId parent, int index) {
+  apply("move", moveNode(root(), id, parent, index));
+}
+
+void Document::moveToTop(NodeId id) {
+  apply("move", moveNodeToTop(root(), id, nextId()));
+}
+
+NodeId Document::group(const std::vector<NodeId>& ids, NodeKind kind) {
+  NodeId id = nextId();
+  apply(std::string("group as ") + kindName(kind), groupNodes(root(), ids, kind, id));
+  return id;
+}
+
+void Document::setOperation(NodeId id, NodeKind kind) {
+  apply(std::string("make ") + kindName(kind), setOperationKind(root(), id, kind));
+}
+
+bool Document::undo() {
+  if (!history_.canUndo()) return false;
+  state_ = history_.undo(state_);
+  return true;
+}
+
+bool Document::redo() {
+  if (!history_.canRedo()) return false;
+  state_ = history_.redo(state_);
+  return true;
+}
+
+void Document::save() {
+  if (path_.empty()) throw Error("the document has no file yet; use Save As");
+  saveAs(path_);
+}
+
+void Document::saveAs(const std::string& path) {
+  if (path.empty()) throw Error("no file name given");
+  Scene out = scene();
+  out.root = rebaseMeshPaths(out.root, folderOf(path_), folderOf(path));
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    fs::copy_file(path, path + ".bak", fs::copy_options::overwrite_existing, ec);
+    if (ec) throw Error(path + ".bak: cannot keep the previous version: " + ec.message());
+  }
+  saveScene(out, path);
+  if (out.root != root()) {
+    // The stored mesh paths changed with the folder: that is the document now (not an undo step).
+    state_ = DocumentState{std::make_shared<const Scene>(std::move(out)), nextRevision_++};
+  }
+  path_ = path;
+  savedRevision_ = state_.revision;
+}
+
+}  // namespace strata

@@ -1,0 +1,109 @@
+// An editable document: the current Scene (an immutable snapshot), its undo history, the file
+// it belongs to and whether it differs from that file.
+//
+// Every command builds a new tree with the pure edits of commands.h and makes it current as one
+// undo step; a command that is refused throws strata::Error and leaves the document unchanged.
+// New nodes get ids from maxNodeId + 1, so ids stay unique and are never reused while a node
+// with that id exists.
+//
+// Threads: UI thread only. snapshot() hands out the current Scene, which any thread may keep and
+// read (an evaluation in the background, an export) while the document moves on.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/document/history.h"
+#include "engine/document/scene.h"
+
+namespace strata {
+
+class Document {
+ public:
+  // A new, empty, never saved document: a union root named "scene".
+  Document();
+  // A document over an existing scene; `path` is the file it came from ("" = none).
+  explicit Document(Scene scene, std::string path = "");
+
+  // Loads a scene file (loadScene); warnings, if any, are appended to `warnings`.
+  static Document open(const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+  const Scene& scene() const { return *state_.scene; }
+  const NodePtr& root() const { return state_.scene->root; }
+  std::shared_ptr<const Scene> snapshot() const { return state_.scene; }
+  // Changes with every edit, undo and redo; equal revisions mean equal documents.
+  uint64_t revision() const { return state_.revision; }
+  NodeId nextId() const;
+
+  const std::string& path() const { return path_; }
+  bool dirty() const { return state_.revision != savedRevision_; }
+  // The file's name ("untitled" when none), with " *" when there are unsaved changes.
+  std::string title() const;
+
+  // --- commands (each one undo step) ---------------------------------------------------------
+  // Makes `root` current as one undo step named `label`. The other commands go through here.
+  void apply(const std::string& label, const NodePtr& root);
+  void applySettings(const std::string& label, const SceneSettings& settings);
+
+  // Adds a new primitive (default parameters) or operation under `parent` (0 = the root; a leaf
+  // parent adds beside it instead, after it in its own parent) at `index` (< 0 = at the end).
+  // Returns the new node's id.
+  NodeId addNode(NodeKind kind, NodeId parent = 0, int index = -1);
+  // Adds `node` (a subtree from elsewhere, e.g. a mesh leaf) with fresh ids; returns its id.
+  NodeId addSubtree(const NodePtr& node, NodeId parent = 0, int index = -1);
+  // Reads a closed mesh file and adds it as a mesh leaf named after the file. Its path is stored
+  // relative to the document's folder when the document has a file, absolute otherwise.
+  NodeId addMesh(const std::string& file, NodeId parent = 0, int index = -1);
+
+  void remove(NodeId id);
+  NodeId duplicate(NodeId id);
+  void rename(NodeId id, const std::string& name);
+  void setTransform(NodeId id, const Transform& transform);
+  void setColor(NodeId id, const glm::vec3& color);
+  void setParams(NodeId id, const PrimitiveParams& params);
+  void setVisible(NodeId id, bool visible);
+  void setResolution(int resolution);
+  // Drag and drop: under `parent` before child `index`; never into the node's own subtree.
+  void move(NodeId id, NodeId parent, int index = -1);
+  // Drag and drop on empty space (see moveNodeToTop).
+  void moveToTop(NodeId id);
+  // Returns the new operation's id.
+  NodeId group(const std::vector<NodeId>& ids, NodeKind kind);
+  void setOperation(NodeId id, NodeKind kind);
+
+  // --- history -------------------------------------------------------------------------------
+  bool canUndo() const { return history_.canUndo(); }
+  bool canRedo() const { return history_.canRedo(); }
+  std::string undoLabel() const { return history_.undoLabel(); }
+  std::string redoLabel() const { return history_.redoLabel(); }
+  bool undo();
+  bool redo();
+  // A drag or a held widget: every edit until endInteraction() is one undo step.
+  void beginInteraction() { history_.beginInteraction(); }
+  void endInteraction() { history_.endInteraction(); }
+  bool interacting() const { return history_.interacting(); }
+
+  // --- files ---------------------------------------------------------------------------------
+  // Saves to path(); throws strata::Error when the document has none.
+  void save();
+  // Saves atomically (saveScene) to `path`, first copying an existing file there to
+  // "<path>.bak". Relative mesh paths are rewritten for the new folder. The document then
+  // belongs to `path` and is clean.
+  void saveAs(const std::string& path);
+  // Makes the document belong to `path` without writing (e.g. after recovering it).
+  void setPath(const std::string& path) { path_ = path; }
+  // Marks the current state as modified (e.g. a recovered document that was never saved).
+  void markDirty() { savedRevision_ = ~uint64_t(0); }
+
+ private:
+  NodeId parentForAdd(NodeId parent, int* index) const;
+
+  DocumentState state_;
+  History history_;
+  std::string path_;
+  uint64_t nextRevision_ = 1;
+  uint64_t savedRevision_ = 0;
+};
+
+}  // namespace strata

@@ -1,0 +1,47 @@
+// The editor's files outside any document: the recent-files list and the crash-recovery copy.
+//
+//   recent files:  $XDG_CONFIG_HOME/strata/recent.txt (default ~/.config/strata/recent.txt),
+//                  one absolute path per line, most recent first, at most kMaxRecentFiles
+//   recovery file: $XDG_DATA_HOME/strata/recovery.strata.json (default
+//                  ~/.local/share/strata/recovery.strata.json), a scene file written every few
+//                  minutes while the editor runs and removed on a clean exit, so that finding
+//                  one at start means the last session ended without saving. Its companion
+//                  "<recovery>.origin" holds the path of the document it was made from ("" for an
+//                  untitled one). Mesh paths in it are absolute, so it loads from its own folder.
+//
+// Threads: any, but the files are not locked: one editor process at a time is assumed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/document/document.h"
+
+namespace strata {
+
+constexpr size_t kMaxRecentFiles = 10;
+
+// The folders, from XDG_CONFIG_HOME / XDG_DATA_HOME or HOME; "" when neither is set.
+std::string userConfigDir();
+std::string userDataDir();
+std::string defaultRecentFilesPath();
+std::string defaultRecoveryPath();
+
+// Reads the list (missing file: empty list; unreadable lines are skipped).
+std::vector<std::string> readRecentFiles(const std::string& listPath);
+// Puts `file` first (made absolute, duplicates removed), trims to kMaxRecentFiles and writes the
+// list atomically, creating its folder. Returns the new list. Throws strata::Error.
+std::vector<std::string> addRecentFile(const std::string& listPath, const std::string& file);
+
+// Writes the document's current scene and its origin atomically. Throws strata::Error.
+void writeRecoveryFile(const Document& document, const std::string& recoveryPath);
+// True when a recovery file exists.
+bool recoveryFileExists(const std::string& recoveryPath);
+// Loads it as a modified document belonging to its origin file (if it had one). Throws
+// strata::Error for a damaged file.
+Document readRecoveryFile(const std::string& recoveryPath,
+                          std::vector<std::string>* warnings = nullptr);
+// Removes the recovery file and its companion (a clean exit). Never throws.
+void removeRecoveryFile(const std::string& recoveryPath);
+
+}  // namespace strata

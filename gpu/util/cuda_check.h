@@ -1,0 +1,27 @@
+// Checking every CUDA call: failures become strata::Error naming the call's file and line;
+// out-of-memory becomes DeviceOutOfMemory so callers can fall back (smaller tiles, the CPU).
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <string>
+
+#include "engine/util/error.h"
+
+namespace strata {
+
+class DeviceOutOfMemory : public Error {
+ public:
+  explicit DeviceOutOfMemory(const std::string& message) : Error(message) {}
+};
+
+[[noreturn]] void throwCudaError(cudaError_t status, const char* call, const char* file, int line);
+
+}  // namespace strata
+
+#define STRATA_CUDA_CHECK(call)                                                    \
+  do {                                                                             \
+    cudaError_t strata_status_ = (call);                                           \
+    if (strata_status_ != cudaSuccess)                                             \
+      ::strata::throwCudaError(strata_status_, #call, __FILE__, __LINE__);          \
+  } while (0)

@@ -1,0 +1,200 @@
+// The editable document (engine/document/document.h): every command as one undo step, the
+// dirty flag, saving and loading.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/document/commands.h"
+#include "engine/document/document.h"
+#include "engine/io/scene_file.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+namespace fs = std::filesystem;
+
+std::string tempDir(const std::string& name) {
+  fs::path dir = fs::path(testing::TempDir()) / ("strata_document_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+std::vector<NodeId> childIds(const NodePtr& node) {
+  std::vector<NodeId> ids;
+  for (const auto& c : node->children) ids.push_back(c->id);
+  return ids;
+}
+
+TEST(Document, NewDocumentIsAnEmptyCleanUnion) {
+  Document doc;
+  EXPECT_EQ(doc.root()->kind, NodeKind::Union);
+  EXPECT_TRUE(doc.root()->children.empty());
+  EXPECT_FALSE(doc.dirty());
+  EXPECT_FALSE(doc.canUndo());
+  EXPECT_EQ(doc.title(), "untitled");
+  EXPECT_EQ(doc.nextId(), 2u);
+}
+
+TEST(Document, EveryCommandIsOneUndoStep) {
+  Document doc;
+  NodeId box = doc.addNode(NodeKind::Box);
+  NodeId sphere = doc.addNode(NodeKind::Sphere);
+  EXPECT_EQ(box, 2u);
+  EXPECT_EQ(sphere, 3u);
+  NodeId group = doc.group({box, sphere}, NodeKind::Difference);
+  doc.rename(box, "block");
+  Transform t;
+  t.translate = glm::dvec3(1, 2, 3);
+  doc.setTransform(sphere, t);
+  doc.setColor(box, glm::vec3(1, 0, 0));
+  PrimitiveParams p;
+  p.radius = 2.0;
+  doc.setParams(sphere, p);
+  doc.setVisible(sphere, false);
+  doc.setOperation(group, NodeKind::Intersection);
+  NodeId copy = doc.duplicate(box);
+  doc.move(copy, doc.root()->id, 0);
+  doc.setResolution(64);
+  doc.remove(copy);
+  EXPECT_TRUE(doc.dirty());
+
+  const NodePtr final = doc.root();
+  EXPECT_EQ(findNode(final, box)->name, "block");
+  EXPECT_EQ(findNode(final, group)->kind, NodeKind::Intersection);
+  EXPECT_FALSE(findNode(final, sphere)->visible);
+  EXPECT_EQ(findNode(final, sphere)->params.radius, 2.0);
+  EXPECT_EQ(findNode(final, sphere)->transform.translate, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(findNode(final, box)->color, glm::vec3(1, 0, 0));
+  EXPECT_EQ(doc.scene().settings.resolution, 64);
+
+  int steps = 0;
+  while (doc.undo()) ++steps;
+  EXPECT_EQ(steps, 13);
+  EXPECT_TRUE(doc.root()->children.empty());
+  EXPECT_FALSE(doc.dirty());  // back at the state it started from
+  while (doc.redo()) {
+  }
+  EXPECT_EQ(doc.root(), final);  // redo restores the very same snapshot
+}
+
+TEST(Document, RefusedCommandsChangeNothing) {
+  Document doc;
+  NodeId box = doc.addNode(NodeKind::Box);
+  NodeId group = doc.addNode(NodeKind::Union);
+  NodeId inner = doc.addNode(NodeKind::Sphere, group);
+  const NodePtr before = doc.root();
+  const uint64_t revision = doc.revision();
+  EXPECT_THROW(doc.move(group, inner), Error);  // a leaf
+  EXPECT_THROW(doc.move(group, group), Error);  // itself
+  EXPECT_THROW(doc.remove(doc.root()->id), Error);
+  PrimitiveParams bad;
+  bad.size.x = -1.0;
+  EXPECT_THROW(doc.setParams(box, bad), Error);
+  EXPECT_THROW(doc.setParams(group, PrimitiveParams()), Error);
+  EXPECT_THROW(doc.setColor(box, glm::vec3(2.0f)), Error);
+  EXPECT_THROW(doc.rename(99, "x"), Error);
+  EXPECT_EQ(doc.root(), before);
+  EXPECT_EQ(doc.revision(), revision);
+}
+
+TEST(Document, AddingToALeafAddsBesideIt) {
+  Document doc;
+  NodeId a = doc.addNode(NodeKind::Box);
+  NodeId b = doc.addNode(NodeKind::Box);
+  NodeId c = doc.addNode(NodeKind::Cone, a);
+  EXPECT_EQ(childIds(doc.root()), (std::vector<NodeId>{a, c, b}));
+}
+
+TEST(Document, DragIsOneUndoStep) {
+  Document doc;
+  NodeId box = doc.addNode(NodeKind::Box);
+  doc.beginInteraction();
+  for (int i = 1; i <= 20; ++i) {
+    Transform t;
+    t.translate.x = i;
+    doc.setTransform(box, t);
+  }
+  doc.endInteraction();
+  EXPECT_EQ(findNode(doc.root(), box)->transform.translate.x, 20.0);
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(findNode(doc.root(), box)->transform.translate.x, 0.0);
+  ASSERT_TRUE(doc.undo());  // the add
+  EXPECT_FALSE(doc.canUndo());
+}
+
+TEST(Document, DropOnEmptySpaceWrapsANonUnionRoot) {
+  Scene scene;
+  scene.root = makeOperationNode(
+      NodeKind::Difference, 1,
+      {makePrimitiveNode(NodeKind::Box, 2),
+       makeOperationNode(NodeKind::Union, 3, {makePrimitiveNode(NodeKind::Sphere, 4)})});
+  Document doc(scene);
+  doc.moveToTop(4);
+  EXPECT_EQ(doc.root()->kind, NodeKind::Union);
+  EXPECT_EQ(doc.root()->id, 5u);
+  EXPECT_EQ(childIds(doc.root()), (std::vector<NodeId>{1, 4}));
+  doc.undo();
+  EXPECT_EQ(doc.root()->id, 1u);
+}
+
+TEST(Document, SaveLoadRoundTripAndBackup) {
+  std::string dir = tempDir("roundtrip");
+  std::string path = dir + "/part.strata.json";
+  Document doc;
+  NodeId box = doc.addNode(NodeKind::Box);
+  NodeId hole = doc.addNode(NodeKind::Cylinder);
+  NodeId cut = doc.group({box, hole}, NodeKind::Difference);
+  doc.rename(cut, "cut");
+  Transform t;
+  t.rotateDegrees = glm::dvec3(0, 90, 0);
+  t.scale = glm::dvec3(1, 2, -1);
+  doc.setTransform(hole, t);
+  doc.setColor(box, glm::vec3(0.25f, 0.5f, 1.0f));
+  doc.setResolution(48);
+  EXPECT_THROW(doc.save(), Error);  // no file yet
+  doc.saveAs(path);
+  EXPECT_FALSE(doc.dirty());
+  EXPECT_EQ(doc.title(), "part.strata.json");
+  EXPECT_FALSE(fs::exists(path + ".bak"));
+
+  Document loaded = Document::open(path);
+  EXPECT_EQ(sceneToJson(loaded.scene()), sceneToJson(doc.scene()));
+  EXPECT_FALSE(loaded.dirty());
+
+  doc.rename(box, "block");
+  EXPECT_EQ(doc.title(), "part.strata.json *");
+  doc.save();
+  ASSERT_TRUE(fs::exists(path + ".bak"));
+  EXPECT_EQ(findNode(Document::open(path + ".bak").root(), box)->name, "box 2");
+  EXPECT_EQ(findNode(Document::open(path).root(), box)->name, "block");
+  doc.undo();
+  EXPECT_TRUE(doc.dirty());
+}
+
+TEST(Document, MeshImportAndSaveAsElsewhereKeepsTheMeshFound) {
+  std::string dir = tempDir("mesh");
+  fs::create_directories(dir + "/meshes");
+  fs::copy_file(std::string(STRATA_ASSETS) + "/meshes/bunny.obj", dir + "/meshes/bunny.obj");
+  Document doc;
+  doc.saveAs(dir + "/scene.strata.json");
+  NodeId mesh = doc.addMesh(dir + "/meshes/bunny.obj");
+  NodePtr node = findNode(doc.root(), mesh);
+  EXPECT_EQ(node->name, "bunny");
+  EXPECT_EQ(node->meshPath, "meshes/bunny.obj");
+  EXPECT_FALSE(node->meshHash.empty());
+  ASSERT_TRUE(node->mesh);
+  doc.save();
+  fs::create_directories(dir + "/other");
+  doc.saveAs(dir + "/other/copy.strata.json");
+  // Outside the new folder: written absolute.
+  EXPECT_EQ(findNode(doc.root(), mesh)->meshPath,
+            (fs::path(dir) / "meshes/bunny.obj").lexically_normal().generic_string());
+  Document again = Document::open(dir + "/other/copy.strata.json");
+  EXPECT_TRUE(findNode(again.root(), mesh)->mesh);
+  EXPECT_THROW(doc.addMesh(dir + "/missing.obj"), Error);
+}
+
+}  // namespace
+}  // namespace strata

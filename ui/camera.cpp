@@ -1,0 +1,93 @@
+#include "ui/camera.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace strata::ui {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+double radians(double degrees) { return degrees * kPi / 180.0; }
+}  // namespace
+
+glm::dvec3 Camera::toEye() const {
+  double y = radians(yawDegrees), p = radians(pitchDegrees);
+  return {std::cos(p) * std::cos(y), std::cos(p) * std::sin(y), std::sin(p)};
+}
+
+glm::dvec3 Camera::up() const {
+  // d(toEye)/d(pitch): defined at the poles too, so top and bottom views need no special case.
+  double y = radians(yawDegrees), p = radians(pitchDegrees);
+  return {-std::sin(p) * std::cos(y), -std::sin(p) * std::sin(y), std::cos(p)};
+}
+
+glm::dvec3 Camera::right() const { return glm::normalize(glm::cross(forward(), up())); }
+
+glm::dmat4 Camera::view() const { return glm::lookAt(eye(), target, up()); }
+
+glm::dmat4 Camera::projection(double aspect, double sceneRadius) const {
+  double radius = std::max(sceneRadius, 1e-9);
+  double farPlane = distance + 4.0 * radius + distance;
+  if (ortho) {
+    double halfH = distance * std::tan(radians(fovYDegrees) * 0.5);
+    double halfW = halfH * aspect;
+    return glm::ortho(-halfW, halfW, -halfH, halfH, -farPlane, farPlane);
+  }
+  double nearPlane = std::max(distance * 0.01, (distance - 2.0 * radius) * 0.5);
+  nearPlane = std::max(nearPlane, 1e-6);
+  return glm::perspective(radians(fovYDegrees), aspect, nearPlane, farPlane);
+}
+
+double Camera::unitsPerPixel(double heightPixels) const {
+  return 2.0 * distance * std::tan(radians(fovYDegrees) * 0.5) / std::max(heightPixels, 1.0);
+}
+
+void Camera::orbit(double dxPixels, double dyPixels) {
+  yawDegrees -= dxPixels * 0.4;
+  pitchDegrees = std::clamp(pitchDegrees + dyPixels * 0.4, -90.0, 90.0);
+  yawDegrees = std::fmod(yawDegrees, 360.0);
+}
+
+void Camera::pan(double dxPixels, double dyPixels, double heightPixels) {
+  double s = unitsPerPixel(heightPixels);
+  target += (-dxPixels * right() + dyPixels * up()) * s;
+}
+
+void Camera::zoom(double wheelSteps) {
+  distance = std::clamp(distance * std::pow(0.85, wheelSteps), 1e-6, 1e9);
+}
+
+void Camera::frame(const Bounds& bounds) {
+  if (bounds.empty()) return;
+  target = bounds.center();
+  double radius = std::max(glm::length(bounds.size()) * 0.5, 1e-6);
+  distance = radius / std::sin(radians(fovYDegrees) * 0.5) * 1.05;
+}
+
+void Camera::setAxisView(AxisView view) {
+  switch (view) {
+    case AxisView::Front: yawDegrees = -90.0, pitchDegrees = 0.0; break;
+    case AxisView::Back: yawDegrees = 90.0, pitchDegrees = 0.0; break;
+    case AxisView::Right: yawDegrees = 0.0, pitchDegrees = 0.0; break;
+    case AxisView::Left: yawDegrees = 180.0, pitchDegrees = 0.0; break;
+    case AxisView::Top: yawDegrees = -90.0, pitchDegrees = 90.0; break;
+    case AxisView::Bottom: yawDegrees = -90.0, pitchDegrees = -90.0; break;
+  }
+}
+
+Ray Camera::rayThrough(glm::dvec2 pixel, glm::dvec2 size) const {
+  double aspect = size.x / std::max(size.y, 1.0);
+  double nx = 2.0 * pixel.x / std::max(size.x, 1.0) - 1.0;
+  double ny = 1.0 - 2.0 * pixel.y / std::max(size.y, 1.0);
+  double t = std::tan(radians(fovYDegrees) * 0.5);
+  if (ortho) {
+    double halfH = distance * t;
+    glm::dvec3 origin = eye() + nx * halfH * aspect * right() + ny * halfH * up();
+    return {origin - forward() * distance * 4.0, forward()};
+  }
+  glm::dvec3 dir = forward() + nx * t * aspect * right() + ny * t * up();
+  return {eye(), glm::normalize(dir)};
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,53 @@
+// The viewport's orbit camera: it looks at `target` from `distance` away, z up. Plain math, no
+// GL. Angles in degrees, lengths in scene units, pixels with y down from the top-left.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "engine/geometry/mesh.h"
+
+namespace strata::ui {
+
+// Fixed views (numpad style: 1 front, 3 right, 7 top; Ctrl for the opposite side).
+enum class AxisView { Front, Back, Right, Left, Top, Bottom };
+
+struct Ray {
+  glm::dvec3 origin;
+  glm::dvec3 direction;  // unit
+};
+
+class Camera {
+ public:
+  glm::dvec3 target{0.0};
+  double distance = 10.0;
+  double yawDegrees = -60.0;   // of the eye around z, from +x
+  double pitchDegrees = 25.0;  // of the eye above the xy plane, [-90, 90]
+  double fovYDegrees = 35.0;   // perspective vertical field of view
+  bool ortho = false;
+
+  glm::dvec3 eye() const { return target + toEye() * distance; }
+  glm::dvec3 toEye() const;    // unit, from the target towards the eye
+  glm::dvec3 forward() const { return -toEye(); }
+  glm::dvec3 up() const;       // unit, screen up
+  glm::dvec3 right() const;    // unit, screen right
+
+  glm::dmat4 view() const;
+  // `sceneRadius` keeps the far plane behind the whole scene.
+  glm::dmat4 projection(double aspect, double sceneRadius) const;
+  // Scene units per pixel at the target's depth, for a viewport `heightPixels` high.
+  double unitsPerPixel(double heightPixels) const;
+
+  void orbit(double dxPixels, double dyPixels);
+  void pan(double dxPixels, double dyPixels, double heightPixels);
+  void zoom(double wheelSteps);
+  // Looks at `bounds` so that it fills most of the view (keeps the direction).
+  void frame(const Bounds& bounds);
+  void setAxisView(AxisView view);
+
+  // The ray through a pixel of a viewport of `size` pixels.
+  Ray rayThrough(glm::dvec2 pixel, glm::dvec2 size) const;
+};
+
+}  // namespace strata::ui
