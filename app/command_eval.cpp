@@ -11,6 +11,7 @@
 #include "app/scene_from_meshes.h"
 #include "app/terminal_progress.h"
 #include "engine/eval/evaluator.h"
+#include "engine/eval/fallback.h"
 #include "engine/io/point_cloud.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/atomic_file.h"
@@ -35,14 +36,22 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
 
   Evaluator evaluator(choice.backend);
   TerminalProgress terminal(quietRequested(args));
-  EvalResult result = evaluator.evaluate(scene, options, terminal.progress());
+  std::shared_ptr<Backend> used;
+  EvalResult result = evaluateWithFallback(evaluator, scene, options, terminal.progress(),
+                                           [&](const std::string& line) {
+                                             terminal.finish();
+                                             std::fprintf(stderr, "strata: %s\n", line.c_str());
+                                             context.warnings.push_back(line);
+                                           },
+                                           &used);
+  Backend& backend = used ? *used : *choice.backend;
   const std::string surfels = args.text("--surfels", "");
   if (!surfels.empty()) {
     if (fileExtension(surfels) != "ply")
       throw Error(surfels + ": --surfels writes a PLY point cloud; use a .ply file name");
     std::map<uint32_t, glm::vec3> colors;
     collectColors(scene.root, &colors);
-    auto ldi = choice.backend->download(result.root);
+    auto ldi = backend.download(result.root);
     context.outputPoints = writePointCloudPly(*ldi, surfels, [&](uint32_t leaf) {
       auto it = colors.find(leaf);
       return it == colors.end() ? glm::vec3(0.8f) : it->second;

@@ -4,6 +4,7 @@
 #include "app/export_report.h"
 #include "app/terminal_progress.h"
 #include "engine/contour/contour_scene.h"
+#include "engine/eval/fallback.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/atomic_file.h"
@@ -33,7 +34,12 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   {
     Evaluator evaluator(choice.backend);
     TerminalProgress terminal(quietRequested(args));
-    ExportMesh mesh = contourScene(scene, evaluator, options, terminal.progress(), &summary.contour);
+    ExportMesh mesh = contourWithFallback(scene, evaluator, options, terminal.progress(),
+                                          &summary.contour, [&](const std::string& line) {
+                                            terminal.finish();
+                                            std::fprintf(stderr, "strata: %s\n", line.c_str());
+                                            summary.warnings.push_back(line);
+                                          });
     Stopwatch write;
     writeMeshFile(output, mesh, &terminal.progress());
     summary.writeSeconds = write.seconds();

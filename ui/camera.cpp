@@ -8,7 +8,9 @@
 namespace strata::ui {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-double radians(double degrees) { return degrees * kPi / 180.0; }
+double radians(double degrees) {
+  return degrees * kPi / 180.0;
+}
 }  // namespace
 
 glm::dvec3 Camera::toEye() const {
@@ -22,9 +24,13 @@ glm::dvec3 Camera::up() const {
   return {-std::sin(p) * std::cos(y), -std::sin(p) * std::sin(y), std::cos(p)};
 }
 
-glm::dvec3 Camera::right() const { return glm::normalize(glm::cross(forward(), up())); }
+glm::dvec3 Camera::right() const {
+  return glm::normalize(glm::cross(forward(), up()));
+}
 
-glm::dmat4 Camera::view() const { return glm::lookAt(eye(), target, up()); }
+glm::dmat4 Camera::view() const {
+  return glm::lookAt(eye(), target, up());
+}
 
 glm::dmat4 Camera::projection(double aspect, double sceneRadius) const {
   double radius = std::max(sceneRadius, 1e-9);
@@ -67,12 +73,24 @@ void Camera::frame(const Bounds& bounds) {
 
 void Camera::setAxisView(AxisView view) {
   switch (view) {
-    case AxisView::Front: yawDegrees = -90.0, pitchDegrees = 0.0; break;
-    case AxisView::Back: yawDegrees = 90.0, pitchDegrees = 0.0; break;
-    case AxisView::Right: yawDegrees = 0.0, pitchDegrees = 0.0; break;
-    case AxisView::Left: yawDegrees = 180.0, pitchDegrees = 0.0; break;
-    case AxisView::Top: yawDegrees = -90.0, pitchDegrees = 90.0; break;
-    case AxisView::Bottom: yawDegrees = -90.0, pitchDegrees = -90.0; break;
+    case AxisView::Front:
+      yawDegrees = -90.0, pitchDegrees = 0.0;
+      break;
+    case AxisView::Back:
+      yawDegrees = 90.0, pitchDegrees = 0.0;
+      break;
+    case AxisView::Right:
+      yawDegrees = 0.0, pitchDegrees = 0.0;
+      break;
+    case AxisView::Left:
+      yawDegrees = 180.0, pitchDegrees = 0.0;
+      break;
+    case AxisView::Top:
+      yawDegrees = -90.0, pitchDegrees = 90.0;
+      break;
+    case AxisView::Bottom:
+      yawDegrees = -90.0, pitchDegrees = -90.0;
+      break;
   }
 }
 

@@ -28,10 +28,10 @@ class Camera {
   bool ortho = false;
 
   glm::dvec3 eye() const { return target + toEye() * distance; }
-  glm::dvec3 toEye() const;    // unit, from the target towards the eye
+  glm::dvec3 toEye() const;  // unit, from the target towards the eye
   glm::dvec3 forward() const { return -toEye(); }
-  glm::dvec3 up() const;       // unit, screen up
-  glm::dvec3 right() const;    // unit, screen right
+  glm::dvec3 up() const;     // unit, screen up
+  glm::dvec3 right() const;  // unit, screen right
 
   glm::dmat4 view() const;
   // `sceneRadius` keeps the far plane behind the whole scene.

@@ -60,8 +60,8 @@ GlProgram::GlProgram(const char* vertexName, const char* fragmentName) {
     glGetProgramInfoLog(program_, length, nullptr, log.data());
     glDeleteProgram(program_);
     program_ = 0;
-    throw Error(std::string("shaders/") + vertexName + " + " + fragmentName +
-                ": do not link:\n" + log.c_str());
+    throw Error(std::string("shaders/") + vertexName + " + " + fragmentName + ": do not link:\n" +
+                log.c_str());
   }
 }
 

@@ -21,7 +21,9 @@ struct Splat {
 };
 static_assert(sizeof(Splat) == 20, "tightly packed splat");
 
-inline uint32_t splatLeaf(const Splat& s) { return s.leafAxis >> 2; }
+inline uint32_t splatLeaf(const Splat& s) {
+  return s.leafAxis >> 2;
+}
 
 // The splats of `ldi` (any thread).
 std::vector<Splat> buildSplats(const Ldi& ldi);

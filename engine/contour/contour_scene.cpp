@@ -6,6 +6,7 @@
 #include "engine/contour/contour_tile.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
+#include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
 
 namespace strata {
@@ -63,30 +64,36 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
 
   Stopwatch merge;
   // Vertices: one per key (neighbouring tiles computed their shared halo cells identically),
-  // in key order; triangles in edge order. Both orders are independent of the tiling.
-  std::sort(vertices.begin(), vertices.end(),
-            [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; });
-  vertices.erase(
-      std::unique(vertices.begin(), vertices.end(),
-                  [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
-      vertices.end());
+  // in key order; triangles in edge order. Both orders are independent of the tiling. Each
+  // tile emits its cells and edges in increasing order already, so one tile needs no sort.
+  auto byKey = [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; };
+  if (!std::is_sorted(vertices.begin(), vertices.end(), byKey))
+    std::sort(vertices.begin(), vertices.end(), byKey);
+  vertices.erase(std::unique(vertices.begin(), vertices.end(),
+                             [](const ContourVertex& a, const ContourVertex& b) {
+                               return a.key == b.key;
+                             }),
+                 vertices.end());
   progress.check();
-  std::sort(triangles.begin(), triangles.end(),
-            [](const ContourTriangle& a, const ContourTriangle& b) { return a.order < b.order; });
+  auto byOrder = [](const ContourTriangle& a, const ContourTriangle& b) {
+    return a.order < b.order;
+  };
+  if (!std::is_sorted(triangles.begin(), triangles.end(), byOrder))
+    std::sort(triangles.begin(), triangles.end(), byOrder);
   progress.check();
 
-  // Keep only vertices some triangle uses (halo cells of empty edges produce none, but a cell
-  // vertex is only ever created for a cell the surface crosses, so all are used).
   ExportMesh out;
   out.unit = scene.settings.unit;
   collectLeafStyles(scene.root, &out.leaves);
-  out.mesh.positions.reserve(vertices.size());
-  for (const ContourVertex& v : vertices) {
-    out.mesh.positions.push_back(grid.origin + grid.h * v.position);
+  out.mesh.positions.resize(vertices.size());
+  parallelFor(0, int64_t(vertices.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i)
+      out.mesh.positions[size_t(i)] = grid.origin + grid.h * vertices[size_t(i)].position;
+  });
+  for (const ContourVertex& v : vertices)
     r.maxPlaneDistance = std::max(r.maxPlaneDistance, v.planeDistance * grid.h);
-  }
-  out.mesh.triangles.reserve(triangles.size());
-  out.triangleLeaf.reserve(triangles.size());
+  out.mesh.triangles.resize(triangles.size());
+  out.triangleLeaf.resize(triangles.size());
   auto indexOf = [&](uint64_t key) {
     auto it = std::lower_bound(vertices.begin(), vertices.end(), key,
                                [](const ContourVertex& v, uint64_t k) { return v.key < k; });
@@ -94,11 +101,19 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
       throw Error("internal: a triangle refers to a vertex no tile produced");
     return uint32_t(it - vertices.begin());
   };
-  for (const ContourTriangle& t : triangles) {
-    out.mesh.triangles.push_back(
-        {indexOf(t.vertex[0]), indexOf(t.vertex[1]), indexOf(t.vertex[2])});
-    out.triangleLeaf.push_back(t.leaf);
-    if (!out.leaves.count(t.leaf)) out.leaves[t.leaf] = LeafStyle{"unknown", glm::vec3(0.8f)};
+  parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) {
+      const ContourTriangle& t = triangles[size_t(i)];
+      out.mesh.triangles[size_t(i)] = {indexOf(t.vertex[0]), indexOf(t.vertex[1]),
+                                       indexOf(t.vertex[2])};
+      out.triangleLeaf[size_t(i)] = t.leaf;
+    }
+  });
+  uint32_t previous = 0xffffffffu;  // neighbouring triangles mostly share a leaf
+  for (uint32_t leaf : out.triangleLeaf) {
+    if (leaf == previous) continue;
+    previous = leaf;
+    if (!out.leaves.count(leaf)) out.leaves[leaf] = LeafStyle{"unknown", glm::vec3(0.8f)};
   }
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;

@@ -13,6 +13,13 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A backend ran out of its own memory (device memory for the CUDA backend). The caller may retry
+// with smaller tiles or on another backend; see engine/eval/fallback.h.
+class BackendOutOfMemory : public Error {
+ public:
+  explicit BackendOutOfMemory(const std::string& message) : Error(message) {}
+};
+
 // Thrown from inside long operations when the caller asked them to stop.
 class Cancelled : public std::runtime_error {
  public:

@@ -7,62 +7,86 @@
 namespace strata {
 namespace {
 
-__global__ void widenCounts(const uint32_t* counts, int64_t rays, uint64_t* wide) {
-  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r <= rays;
+__global__ void widenKernel(const uint32_t* counts, int64_t total, uint64_t* wide) {
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r <= total;
        r += int64_t(gridDim.x) * blockDim.x)
-    wide[r] = r < rays ? counts[r] : 0;
+    wide[r] = r < total ? counts[r] : 0;
 }
 
-__global__ void narrowOffsets(const uint64_t* wide, int64_t rays, uint32_t* offsets) {
+// Axis a's offsets relative to the axis's first surfel.
+__global__ void axisOffsets(const uint64_t* wide, int64_t first, int64_t rays, uint32_t* out) {
   for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r <= rays;
        r += int64_t(gridDim.x) * blockDim.x)
-    offsets[r] = uint32_t(wide[r]);
+    out[r] = uint32_t(wide[first + r] - wide[first]);
 }
 
-__global__ void copyRays(const Surfel* scratch, const uint64_t* scratchOffsets,
-                         const uint32_t* counts, int64_t rays, const uint32_t* offsets,
-                         Surfel* out) {
-  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < rays;
+struct AxisTargets {
+  Surfel* surfels[3];
+};
+
+__global__ void copyRays(RaySpace space, const uint64_t* wide, const uint32_t* counts,
+                         const Surfel* scratch, const uint64_t* scratchOffsets,
+                         AxisTargets targets) {
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < space.total();
        r += int64_t(gridDim.x) * blockDim.x) {
+    const int a = space.axisOf(r);
     const Surfel* from = scratch + scratchOffsets[r];
-    Surfel* to = out + offsets[r];
+    Surfel* to = targets.surfels[a] + (wide[r] - wide[space.base[a]]);
     for (uint32_t k = 0; k < counts[r]; ++k) to[k] = from[k];
   }
 }
 
 }  // namespace
 
-uint64_t scanCounts(const uint32_t* counts, int64_t rays, DeviceBuffer<uint32_t>* offsets,
-                    cudaStream_t stream, const char* what) {
-  // Scan in 64 bits so that an overflow of the 32-bit offsets is detected, not wrapped.
-  DeviceBuffer<uint64_t> wide(size_t(rays) + 1);
-  widenCounts<<<blocksFor(rays + 1, 256), 256, 0, stream>>>(counts, rays, wide.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
+void exclusiveScanAsync(uint64_t* data, int64_t count, cudaStream_t stream) {
   size_t tempBytes = 0;
-  STRATA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, wide.data(), wide.data(),
-                                                  rays + 1, stream));
+  STRATA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count, stream));
   DeviceBuffer<unsigned char> temp(tempBytes);
-  STRATA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, wide.data(),
-                                                  wide.data(), rays + 1, stream));
-  uint64_t total = 0;
-  STRATA_CUDA_CHECK(cudaMemcpyAsync(&total, wide.data() + rays, sizeof(uint64_t),
-                                    cudaMemcpyDeviceToHost, stream));
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
-  checkSurfelCount(total, what);
-  offsets->resize(size_t(rays) + 1);
-  narrowOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream>>>(wide.data(), rays,
-                                                              offsets->data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  return total;
+  STRATA_CUDA_CHECK(
+      cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count, stream));
 }
 
-void compactRays(const Surfel* scratch, const uint64_t* scratchOffsets, const uint32_t* counts,
-                 int64_t rays, DeviceAxisLdi* out, uint64_t total, cudaStream_t stream) {
-  out->surfels.resize(size_t(total));
-  if (total == 0) return;
-  copyRays<<<blocksFor(rays, 256), 256, 0, stream>>>(scratch, scratchOffsets, counts, rays,
-                                                     out->offsets.data(), out->surfels.data());
+void readBack(const uint64_t* const* addresses, uint64_t* values, int n, cudaStream_t stream) {
+  for (int i = 0; i < n; ++i)
+    STRATA_CUDA_CHECK(cudaMemcpyAsync(values + i, addresses[i], sizeof(uint64_t),
+                                      cudaMemcpyDeviceToHost, stream));
+  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+}
+
+void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, cudaStream_t stream) {
+  widenKernel<<<blocksFor(total + 1, 256), 256, 0, stream>>>(counts, total, wide);
   STRATA_CUDA_CHECK(cudaGetLastError());
+}
+
+void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
+               const uint64_t* scratchOffsets, DeviceLdi* out, cudaStream_t stream,
+               const char* what) {
+  const int64_t total = space.total();
+  DeviceBuffer<uint64_t> wide(static_cast<size_t>(total) + 1);
+  widenCounts(counts, total, wide.data(), stream);
+  exclusiveScanAsync(wide.data(), total + 1, stream);
+  const uint64_t* at[4] = {wide.data() + space.base[0], wide.data() + space.base[1],
+                           wide.data() + space.base[2], wide.data() + space.base[3]};
+  uint64_t starts[4];
+  readBack(at, starts, 4, stream);
+  AxisTargets targets;
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t n = starts[a + 1] - starts[a];
+    checkSurfelCount(n, what);
+    const int64_t rays = space.base[a + 1] - space.base[a];
+    DeviceAxisLdi& axis = out->axes[a];
+    axis.offsets.resize(static_cast<size_t>(rays) + 1);
+    axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream>>>(wide.data(), space.base[a], rays,
+                                                              axis.offsets.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+    axis.surfels.resize(static_cast<size_t>(n));
+    targets.surfels[a] = axis.surfels.data();
+  }
+  if (starts[3] > 0) {
+    copyRays<<<blocksFor(total, 256), 256, 0, stream>>>(space, wide.data(), counts, scratch,
+                                                        scratchOffsets, targets);
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
 }
 
 }  // namespace strata

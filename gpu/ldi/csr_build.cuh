@@ -1,24 +1,52 @@
-// Building a CSR axis on the device from per-ray lists written at padded offsets: exclusive
-// scan of the counts (CUB), then a compacting copy. Shared by sampling and Booleans.
+// Building device LDIs from per-ray lists, for all three axes at once.
+//
+// Kernels of the CUDA backend work on the concatenated rays of the three axes (global ray
+// index R in [0, rays(0) + rays(1) + rays(2))), so each step is one launch and the host waits
+// for the device only where it must learn a size. This file holds that ray space and the final
+// split of a concatenated CSR into the three axes of a DeviceLdi.
 #pragma once
 
 #include <cuda_runtime.h>
+
+#include <memory>
 
 #include "gpu/ldi/device_ldi.h"
 
 namespace strata {
 
-// Exclusive scan of `counts` (rays entries) into `offsets` (rays + 1 entries, the last = the
-// total). Returns the total. Throws strata::Error when it exceeds 2^32 - 1. Synchronises
-// `stream` to read the total.
-uint64_t scanCounts(const uint32_t* counts, int64_t rays, DeviceBuffer<uint32_t>* offsets,
-                    cudaStream_t stream, const char* what);
+// The three axes' rays, concatenated.
+struct RaySpace {
+  int64_t base[4];  // first global ray of each axis; base[3] = total rays
+  int raysU[3];
 
-// Copies ray r's counts[r] surfels from scratch + scratchOffset(r) to out.surfels at
-// out.offsets[r], after scanCounts filled out.offsets. scratchOffsets[r] is the ray's start in
-// the scratch buffer.
-void compactRays(const Surfel* scratch, const uint64_t* scratchOffsets, const uint32_t* counts,
-                 int64_t rays, DeviceAxisLdi* out, uint64_t total, cudaStream_t stream);
+  explicit RaySpace(const Grid& grid) {
+    base[0] = 0;
+    for (int a = 0; a < 3; ++a) {
+      base[a + 1] = base[a] + grid.rayCount(a);
+      raysU[a] = grid.raysU(a);
+    }
+  }
+  __host__ __device__ int64_t total() const { return base[3]; }
+  __host__ __device__ int axisOf(int64_t ray) const {
+    return ray < base[1] ? 0 : (ray < base[2] ? 1 : 2);
+  }
+};
+
+// In-place exclusive scan of `count` 64-bit values; returns nothing (no host wait).
+void exclusiveScanAsync(uint64_t* data, int64_t count, cudaStream_t stream);
+
+// Reads `n` values at the given device addresses into host memory, with one wait.
+void readBack(const uint64_t* const* addresses, uint64_t* values, int n, cudaStream_t stream);
+
+// Writes counts[R] widened to 64 bits into wide[R] (and 0 at wide[total]).
+void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, cudaStream_t stream);
+
+// Given per-ray counts (concatenated rays) and each ray's start in a scratch buffer, builds the
+// three axes of `out`: scans the counts, reads the three axis totals back (one wait), and
+// copies each ray's list to its place. Throws strata::Error when an axis exceeds 2^32 surfels.
+void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
+               const uint64_t* scratchOffsets, DeviceLdi* out, cudaStream_t stream,
+               const char* what);
 
 inline unsigned blocksFor(int64_t items, unsigned threads) {
   int64_t blocks = (items + threads - 1) / threads;

@@ -10,9 +10,9 @@
 
 namespace strata {
 
-class DeviceOutOfMemory : public Error {
+class DeviceOutOfMemory : public BackendOutOfMemory {
  public:
-  explicit DeviceOutOfMemory(const std::string& message) : Error(message) {}
+  explicit DeviceOutOfMemory(const std::string& message) : BackendOutOfMemory(message) {}
 };
 
 [[noreturn]] void throwCudaError(cudaError_t status, const char* call, const char* file, int line);

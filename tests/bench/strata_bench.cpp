@@ -390,7 +390,8 @@ int main(int argc, char** argv) {
     std::printf(
         "\nevaluate: sampling and Booleans of all tiles; contour: signs, vertices and "
         "quads; merge: stitching. Watertight: closed, manifold and oriented "
-        "(checkMesh), not timed and not in the peak.\n");
+        "(checkMesh), not timed and not in the peak. Volume: signed volume of the "
+        "output mesh.\n");
   }
 
   if (doOpenVdb) {
@@ -424,7 +425,8 @@ int main(int argc, char** argv) {
         "Strata's cell h, same origin, narrow band 3 voxels); CSG: "
         "tools::csgDifference; to mesh: tools::volumeToMesh (isovalue 0, adaptivity 0), "
         "quads counted as 2 triangles. OpenVDB threads limited to %d (TBB "
-        "global_control).\n",
+        "global_control). Volume: signed volume of the output mesh (checkMesh); "
+        "volumeToMesh winds its polygons inward, hence the sign.\n",
         workerCount());
     if (capped)
       std::printf(

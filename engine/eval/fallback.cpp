@@ -1,0 +1,51 @@
+#include "engine/eval/fallback.h"
+
+#include "engine/eval/cpu_backend.h"
+#include "engine/util/error.h"
+
+namespace strata {
+
+EvalResult evaluateWithFallback(Evaluator& evaluator, const Scene& scene,
+                                const EvalOptions& options, Progress& progress,
+                                const FallbackNotice& notice, std::shared_ptr<Backend>* used) {
+  try {
+    EvalResult r = evaluator.evaluate(scene, options, progress);
+    if (used) *used = nullptr;
+    return r;
+  } catch (const BackendOutOfMemory& e) {
+    evaluator.clearCache();
+    if (notice)
+      notice(evaluator.backend().description() + " ran out of memory (" + e.what() +
+             "); evaluating on the CPU instead");
+    auto cpu = std::make_shared<CpuBackend>();
+    Evaluator fallback(cpu);
+    EvalResult r = fallback.evaluate(scene, options, progress);
+    if (used) *used = cpu;
+    return r;
+  }
+}
+
+ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
+                               const ContourOptions& options, Progress& progress,
+                               ContourReport* report, const FallbackNotice& notice) {
+  ContourOptions attempt = options;
+  for (;;) {
+    try {
+      return contourScene(scene, evaluator, attempt, progress, report);
+    } catch (const BackendOutOfMemory& e) {
+      evaluator.clearCache();
+      if (attempt.tileCells / 2 < 64) break;
+      attempt.tileCells /= 2;
+      if (notice)
+        notice(evaluator.backend().description() + " ran out of memory; retrying with tiles of " +
+               std::to_string(attempt.tileCells) + " cells");
+    }
+  }
+  if (notice)
+    notice(evaluator.backend().description() +
+           " ran out of memory even with tiles of 64 cells; exporting on the CPU instead");
+  Evaluator cpu(std::make_shared<CpuBackend>());
+  return contourScene(scene, cpu, options, progress, report);
+}
+
+}  // namespace strata

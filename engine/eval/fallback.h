@@ -1,0 +1,30 @@
+// Running out of a backend's memory without crashing: evaluation and export retry with smaller
+// tiles, then on the CPU backend, and say what they did.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "engine/contour/contour_scene.h"
+#include "engine/eval/evaluator.h"
+
+namespace strata {
+
+// Called with one line for the user each time a fallback is taken.
+using FallbackNotice = std::function<void(const std::string&)>;
+
+// Evaluates on `evaluator`'s backend; when it runs out of memory, evaluates again on a fresh
+// CPU backend (returned in *used, which is set either way).
+EvalResult evaluateWithFallback(Evaluator& evaluator, const Scene& scene,
+                                const EvalOptions& options, Progress& progress,
+                                const FallbackNotice& notice,
+                                std::shared_ptr<Backend>* used = nullptr);
+
+// Exports with `options`; when the backend runs out of memory, retries with half the tile
+// size down to 64 cells, then on the CPU backend with the original tile size.
+ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
+                               const ContourOptions& options, Progress& progress,
+                               ContourReport* report, const FallbackNotice& notice);
+
+}  // namespace strata

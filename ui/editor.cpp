@@ -1,0 +1,312 @@
+#include "ui/editor.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <thread>
+
+#include "engine/document/commands.h"
+#include "engine/document/user_files.h"
+#include "engine/util/error.h"
+#include "engine/util/timer.h"
+#include "ui/editor_actions.h"
+#include "ui/gl_window.h"
+#include "ui/panels.h"
+#include "ui/scene_queries.h"
+#include "ui/theme.h"
+#include "ui/viewport.h"
+#include "ui/viewport_renderer.h"
+
+namespace strata::ui {
+
+// The GL side: window, ImGui context and the viewport renderer, created and destroyed in order.
+struct Editor::Gl {
+  GlWindow window;
+  ImGuiContext* imgui = nullptr;
+  std::unique_ptr<ViewportRenderer> renderer;
+  Viewport viewport;
+  Stopwatch frameClock;
+
+  Gl(const EditorOptions& o) : window(o.width, o.height, "Strata", o.visible) {
+    IMGUI_CHECKVERSION();
+    imgui = ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed; nothing to remember
+    float scale = 1.0f;
+    glfwGetWindowContentScale(window.handle(), &scale, nullptr);
+    applyTheme(scale > 0.5f ? scale : 1.0f);
+    ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    renderer = std::make_unique<ViewportRenderer>();
+  }
+  ~Gl() {
+    renderer.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext(imgui);
+  }
+};
+
+bool editorDisplayAvailable(std::string* why) {
+  return displayAvailable(why);
+}
+
+Editor::Editor(EditorOptions options) : options_(std::move(options)) {
+  if (!options_.makeBackend) throw Error("the editor needs a backend");
+  state_ = std::make_unique<EditorState>();
+  EditorState& s = *state_;
+  s.makeBackend = options_.makeBackend;
+  s.recentFilesPath = options_.recentFilesPath;
+  s.recoveryPath = options_.recoveryPath;
+  if (!s.recentFilesPath.empty()) s.recentFiles = readRecentFiles(s.recentFilesPath);
+  s.offerRecovery = recoveryFileExists(s.recoveryPath);
+
+  gl_ = std::make_unique<Gl>(options_);
+  s.glDescription = gl_->window.description() + " (context " +
+                    std::to_string(gl_->window.glMajor()) + "." +
+                    std::to_string(gl_->window.glMinor()) + " core)";
+  worker_ = std::make_unique<EngineWorker>(options_.makeBackend(), options_.coarseResolution);
+  s.backendDescription = worker_->backendDescription();
+  startTime_ = glfwGetTime();
+  if (!options_.scenePath.empty()) openDocument(s, options_.scenePath);
+  gl_->viewport.viewAll(s);
+  lastAutosave_ = 0.0;
+}
+
+Editor::~Editor() {
+  state_->exportJob.reset();  // cancel and join before the GL side goes
+  worker_.reset();
+  gl_.reset();
+}
+
+void Editor::viewAll() {
+  gl_->viewport.viewAll(*state_);
+}
+
+Camera& Editor::camera() {
+  return gl_->viewport.camera;
+}
+
+void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
+  EditorState& s = *state_;
+  s.previewError = result->error;
+  Stopwatch upload;
+  gl_->renderer->uploadSplats(result->splats, result->ldi ? result->stats.grid.h : 1.0);
+  s.uploadMs = upload.seconds() * 1000.0;
+  s.uploadedBytes = gl_->renderer->uploadedBytes();
+  s.preview = std::move(result);
+}
+
+// Nothing visible to evaluate: no request; the viewport shows a hint instead.
+static bool sceneHasVisibleLeaves(const NodePtr& node) {
+  if (!node || !node->visible) return false;
+  if (!isOperation(node->kind)) return true;
+  for (const auto& c : node->children)
+    if (sceneHasVisibleLeaves(c)) return true;
+  return false;
+}
+
+void Editor::requestPreviewIfNeeded() {
+  EditorState& s = *state_;
+  const bool interactive = s.document.interacting() || gl_->viewport.gizmoDragging();
+  const int resolution = s.document.scene().settings.resolution;
+  const uint64_t revision = s.document.revision();
+  if (revision == requestedRevision_ && resolution == requestedResolution_ &&
+      interactive == requestedInteractive_)
+    return;
+  requestedRevision_ = revision;
+  requestedResolution_ = resolution;
+  requestedInteractive_ = interactive;
+  if (!sceneHasVisibleLeaves(s.document.root())) {
+    requestedEmpty_ = true;
+    auto empty = std::make_shared<PreviewResult>();
+    empty->tag = revision;
+    empty->scene = s.document.snapshot();
+    empty->resolution = resolution;
+    applyResult(empty);
+    // Still tell the worker, so that a running evaluation of an older scene is cancelled.
+    worker_->request(s.document.snapshot(), resolution, true, revision);
+    return;
+  }
+  requestedEmpty_ = false;
+  worker_->request(s.document.snapshot(), resolution, interactive, revision);
+}
+
+void Editor::pumpPreview() {
+  EditorState& s = *state_;
+  if (auto result = worker_->takeResult()) {
+    // A result for an emptied scene arrives late: ignore it.
+    if (!(requestedEmpty_ && result->tag != s.document.revision())) applyResult(result);
+  }
+  s.worker = worker_->status();
+  requestPreviewIfNeeded();
+}
+
+bool Editor::waitForPreview(double timeoutSeconds) {
+  Stopwatch clock;
+  while (clock.seconds() < timeoutSeconds) {
+    pumpPreview();
+    const PreviewResult* p = state_->preview.get();
+    if (p && p->tag == state_->document.revision() && !p->coarse &&
+        p->resolution == state_->document.scene().settings.resolution)
+      return p->error.empty();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+void Editor::updateLeafStyles() {
+  EditorState& s = *state_;
+  if (styledRevision_ == s.document.revision() && styledSelection_ == s.selection) return;
+  styledRevision_ = s.document.revision();
+  styledSelection_ = s.selection;
+  gl_->renderer->setLeafStyles(leafStyles(s.document.root(), s.selection));
+}
+
+void Editor::autosave() {
+  EditorState& s = *state_;
+  if (s.recoveryPath.empty() || s.offerRecovery) return;
+  if (s.now - lastAutosave_ < options_.autosaveSeconds) return;
+  lastAutosave_ = s.now;
+  if (!s.document.dirty()) {
+    removeRecoveryFile(s.recoveryPath);
+    return;
+  }
+  if (s.document.revision() == autosavedRevision_) return;
+  try {
+    writeRecoveryFile(s.document, s.recoveryPath);
+    autosavedRevision_ = s.document.revision();
+  } catch (const Error& e) {
+    logWarning(s, std::string("autosave failed: ") + e.what());
+  }
+}
+
+void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height) {
+  EditorState& s = *state_;
+  GLFWwindow* window = gl_->window.handle();
+  s.frameMs = gl_->frameClock.seconds() * 1000.0;
+  gl_->frameClock.restart();
+  s.now = glfwGetTime() - startTime_;
+
+  pumpPreview();
+  handleDialogResult(s);
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+
+  PanelLayout layout;
+  layout.menuHeight = ImGui::GetFrameHeight();
+  layout.statusHeight = ImGui::GetFrameHeight() + 8.0f;
+  drawMainMenu(s);
+  drawOutliner(s, layout);
+  drawPalette(s, layout);
+  drawInspector(s, layout);
+  drawPreviewPanel(s, layout);
+  drawStatusBar(s, layout);
+  drawDiagnostics(s);
+  drawModals(s);
+  s.dialog.draw();
+  handleShortcuts(s);
+
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ViewRect rect;
+  rect.x = layout.leftWidth;
+  rect.y = layout.menuHeight;
+  rect.width = std::max(1.0, double(vp->Size.x - layout.leftWidth - layout.rightWidth));
+  rect.height = std::max(1.0, double(vp->Size.y - layout.menuHeight - layout.statusHeight));
+  gl_->viewport.handleInput(s, rect);
+  if (s.requestViewAll) gl_->viewport.viewAll(s);
+  if (s.requestFrameSelected) gl_->viewport.frameSelected(s);
+  s.requestViewAll = s.requestFrameSelected = false;
+  // A held widget that vanished (its node was deleted) must not leave the history coalescing.
+  if (s.document.interacting() && !ImGui::IsAnyItemActive() && !gl_->viewport.gizmoDragging())
+    s.document.endInteraction();
+
+  // Hints over the viewport.
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  if (s.preview && s.preview->splats.empty() && s.previewError.empty()) {
+    const char* hint = "Empty scene: add a primitive from the palette on the left.";
+    ImVec2 size = ImGui::CalcTextSize(hint);
+    draw->AddText(
+        ImVec2(float(rect.x + (rect.width - size.x) * 0.5), float(rect.y + rect.height * 0.5)),
+        IM_COL32(200, 200, 205, 200), hint);
+  }
+  {
+    char corner[160];
+    std::snprintf(corner, sizeof(corner), "%s  \u00B7  %s",
+                  gl_->viewport.camera.ortho ? "orthographic" : "perspective",
+                  s.gizmoMode == GizmoMode::Move     ? "move (W)"
+                  : s.gizmoMode == GizmoMode::Rotate ? "rotate (E)"
+                                                     : "scale (R)");
+    draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 8)), IM_COL32(210, 210, 215, 170),
+                  corner);
+  }
+  ImGui::Render();
+
+  updateLeafStyles();
+  int fbWidth = 0, fbHeight = 0, winWidth = 1, winHeight = 1;
+  glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
+  glfwGetWindowSize(window, &winWidth, &winHeight);
+  const double pixelScale = winWidth > 0 ? double(fbWidth) / winWidth : 1.0;
+  glViewport(0, 0, fbWidth, fbHeight);
+  glClearColor(0.09f, 0.095f, 0.105f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale);
+  glViewport(0, 0, fbWidth, fbHeight);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (capture) {
+    *capture = readWindowPixels(fbWidth, fbHeight);
+    *width = fbWidth;
+    *height = fbHeight;
+  }
+  if (swap) glfwSwapBuffers(window);
+
+  gl_->window.setTitle("Strata \u2014 " + s.document.title());
+  autosave();
+}
+
+bool Editor::frame() {
+  glfwPollEvents();
+  if (glfwWindowShouldClose(gl_->window.handle())) {
+    glfwSetWindowShouldClose(gl_->window.handle(), GLFW_FALSE);
+    if (state_->document.dirty())
+      state_->pendingReplace = PendingReplace{PendingReplace::Quit, ""};
+    else
+      state_->quitNow = true;
+  }
+  drawFrame(true, nullptr, nullptr, nullptr);
+  return !state_->quitNow;
+}
+
+int Editor::run() {
+  while (frame()) {
+  }
+  // A clean exit: nothing to recover next time.
+  if (!state_->offerRecovery) removeRecoveryFile(state_->recoveryPath);
+  return 0;
+}
+
+std::vector<uint8_t> Editor::renderViewport(int width, int height) {
+  RenderTarget target(width, height);
+  target.bind();
+  updateLeafStyles();
+  ViewRect rect;
+  rect.width = width;
+  rect.height = height;
+  gl_->viewport.draw(*gl_->renderer, *state_, rect, height, 1.0);
+  return target.read();
+}
+
+std::vector<uint8_t> Editor::screenshot(int* width, int* height) {
+  std::vector<uint8_t> pixels;
+  glfwPollEvents();
+  drawFrame(true, &pixels, width, height);
+  return pixels;
+}
+
+}  // namespace strata::ui

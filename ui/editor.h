@@ -1,0 +1,93 @@
+// The editor: a window with the scene tree, palette, inspector, status bar and a live surfel
+// viewport, over an engine thread that evaluates the document in the background.
+//
+// app/ constructs it (with the backend chosen there) and calls run(); tests and `strata render`
+// drive it frame by frame, wait for the preview and read pixels back.
+//
+// Threads: construct, use and destroy on the main thread (GLFW and GL). The engine worker and
+// export jobs run on their own threads and hand back finished, immutable results.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/eval/backend.h"
+#include "ui/camera.h"
+#include "ui/editor_state.h"
+
+namespace strata::ui {
+
+struct EditorOptions {
+  std::string scenePath;  // opened at start; "" = a new, empty document
+  // Makes a backend; called once for the preview worker and once per export.
+  std::function<std::shared_ptr<Backend>()> makeBackend;
+  bool visible = true;  // false: an invisible window for off-screen rendering
+  int width = 1600, height = 1000;
+  std::string recentFilesPath;  // "" = none
+  std::string recoveryPath;     // "" = no autosave and no recovery offer
+  double autosaveSeconds = 120.0;
+  int coarseResolution = 96;  // of previews while dragging
+};
+
+// True when a window can be opened (see gl_window.h); otherwise false with the reason.
+bool editorDisplayAvailable(std::string* why);
+
+class Editor {
+ public:
+  // Opens the window, GL and ImGui, starts the engine worker and opens options.scenePath (an
+  // unreadable scene is reported in the editor and a new document is shown instead). Throws
+  // strata::Error when no window can be opened.
+  explicit Editor(EditorOptions options);
+  ~Editor();
+  Editor(const Editor&) = delete;
+  Editor& operator=(const Editor&) = delete;
+
+  // Runs frames until the window is closed (asking about unsaved changes). Returns 0.
+  int run();
+  // One frame: events, preview results, panels, viewport, swap. Returns false once the editor
+  // should close.
+  bool frame();
+
+  EditorState& state() { return *state_; }
+  Camera& camera();
+  // Waits (polling the worker, no drawing) until the viewport shows the current document at its
+  // full resolution, or it failed, or `timeoutSeconds` passed. Returns whether it is shown.
+  bool waitForPreview(double timeoutSeconds);
+  // Points the camera at the whole scene.
+  void viewAll();
+  // Renders the 3D view alone (no panels) off-screen: width * height * 4 RGBA bytes, top row
+  // first.
+  std::vector<uint8_t> renderViewport(int width, int height);
+  // Draws one whole frame (panels included) and reads it back: the window's pixels.
+  std::vector<uint8_t> screenshot(int* width, int* height);
+
+ private:
+  struct Gl;
+  void pumpPreview();
+  void requestPreviewIfNeeded();
+  void applyResult(std::shared_ptr<const PreviewResult> result);
+  void updateLeafStyles();
+  void autosave();
+  void drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height);
+
+  EditorOptions options_;
+  std::unique_ptr<EditorState> state_;
+  std::unique_ptr<Gl> gl_;
+  std::unique_ptr<EngineWorker> worker_;
+  // What the worker was last asked for.
+  uint64_t requestedRevision_ = ~uint64_t(0);
+  int requestedResolution_ = 0;
+  bool requestedInteractive_ = false;
+  bool requestedEmpty_ = false;
+  // Leaf colours and selection last given to the renderer.
+  uint64_t styledRevision_ = ~uint64_t(0);
+  std::vector<NodeId> styledSelection_;
+  double lastAutosave_ = 0.0;
+  uint64_t autosavedRevision_ = 0;
+  double startTime_ = 0.0;
+};
+
+}  // namespace strata::ui

@@ -1,0 +1,289 @@
+#include "ui/editor_actions.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "engine/document/commands.h"
+#include "engine/document/user_files.h"
+#include "engine/util/error.h"
+#include "ui/scene_queries.h"
+
+namespace strata::ui {
+namespace {
+namespace fs = std::filesystem;
+
+void addLog(EditorState& state, LogLevel level, const std::string& text) {
+  state.log.push_back(LogLine{level, text, state.now});
+  while (state.log.size() > 200) state.log.pop_front();
+}
+
+void rememberRecent(EditorState& state, const std::string& path) {
+  if (state.recentFilesPath.empty()) return;
+  try {
+    state.recentFiles = addRecentFile(state.recentFilesPath, path);
+  } catch (const Error& e) {
+    logWarning(state, std::string("recent files: ") + e.what());
+  }
+}
+
+void replaceDocument(EditorState& state, Document document) {
+  state.document = std::move(document);
+  state.selection.clear();
+  state.preview.reset();
+  state.previewError.clear();
+  state.requestViewAll = true;
+}
+
+PrimitiveParams scaledParams(double s) {
+  PrimitiveParams p;
+  p.size *= s;
+  p.radius *= s;
+  p.topRadius *= s;
+  p.height *= s;
+  p.majorRadius *= s;
+  p.minorRadius *= s;
+  return p;
+}
+
+double sceneScale(const EditorState& state) {
+  Bounds b = sceneBounds(state.document.root());
+  if (b.empty()) return 1.0;
+  glm::dvec3 size = b.size();
+  return niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+}
+
+}  // namespace
+
+void logInfo(EditorState& state, const std::string& text) {
+  addLog(state, LogLevel::Info, text);
+}
+void logWarning(EditorState& state, const std::string& text) {
+  addLog(state, LogLevel::Warning, text);
+}
+void logError(EditorState& state, const std::string& text) {
+  addLog(state, LogLevel::Error, text);
+}
+
+bool guarded(EditorState& state, const std::function<void()>& body) {
+  try {
+    body();
+    return true;
+  } catch (const Error& e) {
+    logError(state, e.what());
+  } catch (const std::bad_alloc&) {
+    logError(state, "out of memory");
+  }
+  return false;
+}
+
+NodeId primarySelection(const EditorState& state) {
+  return state.selection.empty() ? 0 : state.selection.back();
+}
+
+bool isSelected(const EditorState& state, NodeId id) {
+  return std::find(state.selection.begin(), state.selection.end(), id) != state.selection.end();
+}
+
+void selectNode(EditorState& state, NodeId id, bool extend) {
+  if (!extend) {
+    state.selection.assign(1, id);
+    return;
+  }
+  auto it = std::find(state.selection.begin(), state.selection.end(), id);
+  if (it != state.selection.end())
+    state.selection.erase(it);
+  else
+    state.selection.push_back(id);
+}
+
+void clearSelection(EditorState& state) {
+  state.selection.clear();
+}
+
+void pruneSelection(EditorState& state) {
+  const NodePtr& root = state.document.root();
+  state.selection.erase(std::remove_if(state.selection.begin(), state.selection.end(),
+                                       [&](NodeId id) { return !findNode(root, id); }),
+                        state.selection.end());
+}
+
+NodeId addPrimitive(EditorState& state, NodeKind kind) {
+  NodeId id = 0;
+  guarded(state, [&] {
+    auto node = std::make_shared<Node>(*makePrimitiveNode(kind, state.document.nextId()));
+    node->params = scaledParams(sceneScale(state));
+    id = state.document.addSubtree(node, primarySelection(state));  // keeps the name: same id
+    selectNode(state, id);
+  });
+  return id;
+}
+
+NodeId addOperation(EditorState& state, NodeKind kind) {
+  NodeId id = 0;
+  guarded(state, [&] {
+    id = state.document.addNode(kind, primarySelection(state));
+    selectNode(state, id);
+  });
+  return id;
+}
+
+NodeId importMesh(EditorState& state, const std::string& path) {
+  NodeId id = 0;
+  guarded(state, [&] {
+    id = state.document.addMesh(path, primarySelection(state));
+    selectNode(state, id);
+    logInfo(state, "imported " + path);
+  });
+  return id;
+}
+
+void deleteSelection(EditorState& state) {
+  if (state.selection.empty()) return;
+  std::vector<NodeId> ids = state.selection;
+  if (ids.size() == 1) {
+    guarded(state, [&] { state.document.remove(ids[0]); });
+  } else {
+    // Several nodes: one undo step.
+    state.document.beginInteraction();
+    for (NodeId id : ids)
+      if (findNode(state.document.root(), id)) guarded(state, [&] { state.document.remove(id); });
+    state.document.endInteraction();
+  }
+  pruneSelection(state);
+}
+
+void duplicateSelection(EditorState& state) {
+  if (state.selection.empty()) return;
+  std::vector<NodeId> copies;
+  state.document.beginInteraction();
+  for (NodeId id : state.selection)
+    guarded(state, [&] { copies.push_back(state.document.duplicate(id)); });
+  state.document.endInteraction();
+  if (!copies.empty()) state.selection = copies;
+}
+
+void toggleSelectionHidden(EditorState& state) {
+  if (state.selection.empty()) return;
+  bool allHidden = true;
+  for (NodeId id : state.selection) {
+    NodePtr n = findNode(state.document.root(), id);
+    if (n && n->visible) allHidden = false;
+  }
+  state.document.beginInteraction();
+  for (NodeId id : state.selection)
+    guarded(state, [&] { state.document.setVisible(id, allHidden); });
+  state.document.endInteraction();
+}
+
+void groupSelection(EditorState& state, NodeKind kind) {
+  if (state.selection.empty()) return;
+  guarded(state, [&] {
+    NodeId id = state.document.group(state.selection, kind);
+    selectNode(state, id);
+  });
+}
+
+void setSelectionOperation(EditorState& state, NodeKind kind) {
+  state.document.beginInteraction();
+  for (NodeId id : state.selection) {
+    NodePtr n = findNode(state.document.root(), id);
+    if (n && isOperation(n->kind)) guarded(state, [&] { state.document.setOperation(id, kind); });
+  }
+  state.document.endInteraction();
+}
+
+void renameNode(EditorState& state, NodeId id, const std::string& name) {
+  guarded(state, [&] { state.document.rename(id, name); });
+}
+
+void dropNode(EditorState& state, NodeId dragged, NodeId target) {
+  guarded(state, [&] {
+    if (target == 0) {
+      state.document.moveToTop(dragged);
+      return;
+    }
+    NodePtr t = findNode(state.document.root(), target);
+    if (!t) return;
+    if (isOperation(t->kind)) {
+      state.document.move(dragged, target, -1);
+    } else {
+      NodeLocation where;
+      if (!locateNode(state.document.root(), target, &where) || !where.parent)
+        throw Error("cannot drop beside the root");
+      state.document.move(dragged, where.parent->id, where.index);
+    }
+  });
+}
+
+void setResolution(EditorState& state, int resolution) {
+  guarded(state, [&] { state.document.setResolution(resolution); });
+}
+
+void undo(EditorState& state) {
+  if (state.document.undo()) pruneSelection(state);
+}
+
+void redo(EditorState& state) {
+  if (state.document.redo()) pruneSelection(state);
+}
+
+void newDocument(EditorState& state) {
+  replaceDocument(state, Document());
+  logInfo(state, "new document");
+}
+
+bool openDocument(EditorState& state, const std::string& path) {
+  return guarded(state, [&] {
+    std::vector<std::string> warnings;
+    Document doc = Document::open(path, &warnings);
+    replaceDocument(state, std::move(doc));
+    for (const auto& w : warnings) logWarning(state, w);
+    logInfo(state, "opened " + path);
+    rememberRecent(state, path);
+  });
+}
+
+bool saveDocument(EditorState& state) {
+  if (state.document.path().empty()) return false;
+  return saveDocumentAs(state, state.document.path());
+}
+
+bool saveDocumentAs(EditorState& state, const std::string& path) {
+  return guarded(state, [&] {
+    state.document.saveAs(path);
+    logInfo(state, "saved " + path);
+    rememberRecent(state, path);
+  });
+}
+
+bool recoverDocument(EditorState& state) {
+  state.offerRecovery = false;
+  return guarded(state, [&] {
+    std::vector<std::string> warnings;
+    Document doc = readRecoveryFile(state.recoveryPath, &warnings);
+    replaceDocument(state, std::move(doc));
+    for (const auto& w : warnings) logWarning(state, w);
+    logInfo(state, "recovered the unsaved work of the last session");
+  });
+}
+
+void discardRecovery(EditorState& state) {
+  state.offerRecovery = false;
+  removeRecoveryFile(state.recoveryPath);
+}
+
+void startExport(EditorState& state, const std::string& path, int resolution) {
+  if (state.exportJob && state.exportJob->status().running) {
+    logWarning(state, "an export is already running");
+    return;
+  }
+  guarded(state, [&] {
+    if (!state.makeBackend) throw Error("no backend to export with");
+    state.exportJob = std::make_unique<ExportJob>(state.document.snapshot(), path, resolution,
+                                                  state.makeBackend());
+    state.exportPath = path;
+    logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution));
+  });
+}
+
+}  // namespace strata::ui

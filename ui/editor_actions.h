@@ -1,0 +1,57 @@
+// What the editor's menus, shortcuts, panels and tests do to the document: each action is one
+// undo step (or none), reports a refusal as an error message instead of throwing, and keeps the
+// selection meaningful. No GL; the UI thread.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ui/editor_state.h"
+
+namespace strata::ui {
+
+NodeId primarySelection(const EditorState& state);
+bool isSelected(const EditorState& state, NodeId id);
+// Selects `id` alone, or toggles it in the selection when `extend`.
+void selectNode(EditorState& state, NodeId id, bool extend = false);
+void clearSelection(EditorState& state);
+// Drops ids that are no longer in the document (after undo, delete, open).
+void pruneSelection(EditorState& state);
+
+// Adds a primitive sized to the scene (about a quarter of its extent, 1 in an empty scene)
+// under the primary selection (beside it when it is a leaf) or the root; selects it.
+NodeId addPrimitive(EditorState& state, NodeKind kind);
+// Adds an empty operation the same way.
+NodeId addOperation(EditorState& state, NodeKind kind);
+NodeId importMesh(EditorState& state, const std::string& path);
+
+void deleteSelection(EditorState& state);
+void duplicateSelection(EditorState& state);
+// Hides the selection, or shows it when every selected node is hidden.
+void toggleSelectionHidden(EditorState& state);
+void groupSelection(EditorState& state, NodeKind kind);
+void setSelectionOperation(EditorState& state, NodeKind kind);
+void renameNode(EditorState& state, NodeId id, const std::string& name);
+// Drag and drop in the outliner: onto an operation moves into it (last); onto a leaf moves
+// before it; parent 0 means empty space (to the top).
+void dropNode(EditorState& state, NodeId dragged, NodeId target);
+void setResolution(EditorState& state, int resolution);
+
+void undo(EditorState& state);
+void redo(EditorState& state);
+
+// Files. Each returns false (with a message) when it failed.
+void newDocument(EditorState& state);
+bool openDocument(EditorState& state, const std::string& path);
+// False without a message when the document has no path yet (the caller asks for one).
+bool saveDocument(EditorState& state);
+bool saveDocumentAs(EditorState& state, const std::string& path);
+bool recoverDocument(EditorState& state);
+void discardRecovery(EditorState& state);
+// Starts the background export of the current document to `path` at `resolution`.
+void startExport(EditorState& state, const std::string& path, int resolution);
+
+// Runs `body`, turning strata::Error into an error message; returns whether it succeeded.
+bool guarded(EditorState& state, const std::function<void()>& body);
+
+}  // namespace strata::ui

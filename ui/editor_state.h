@@ -1,0 +1,88 @@
+// Everything the editor's panels read and change, apart from GL objects: the document, the
+// selection, the preview shown, messages, the jobs and dialogs in progress, and requests the
+// panels leave for the frame loop (view all, quit, ...).
+//
+// Threads: the UI thread only. What other threads produce arrives as finished values
+// (PreviewResult, ExportStatus).
+#pragma once
+
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/document/document.h"
+#include "engine/eval/backend.h"
+#include "ui/engine_worker.h"
+#include "ui/export_job.h"
+#include "ui/file_dialog.h"
+#include "ui/gizmo.h"
+
+namespace strata::ui {
+
+enum class LogLevel { Info, Warning, Error };
+struct LogLine {
+  LogLevel level = LogLevel::Info;
+  std::string text;
+  double time = 0.0;  // seconds since the editor started
+};
+
+// Something that replaces the document, held back while the user decides about unsaved changes.
+struct PendingReplace {
+  enum Kind { New, Open, Recover, Quit } kind = New;
+  std::string path;
+};
+
+struct EditorState {
+  Document document;
+  std::vector<NodeId> selection;  // the primary (inspected, gizmo) node is the last
+  std::function<std::shared_ptr<Backend>()> makeBackend;  // a fresh backend per thread
+
+  // Files outside the document.
+  std::string recentFilesPath;  // "" = no recent-files list
+  std::vector<std::string> recentFiles;
+  std::string recoveryPath;  // "" = no autosave
+  bool offerRecovery = false;
+
+  // Preview.
+  std::shared_ptr<const PreviewResult> preview;  // shown in the viewport
+  std::string previewError;                      // of the newest evaluation, "" when it worked
+  WorkerStatus worker;
+  std::string backendDescription;
+  std::string glDescription;
+  double frameMs = 0.0;
+  double uploadMs = 0.0;
+  size_t uploadedBytes = 0;
+
+  // Viewport settings.
+  GizmoMode gizmoMode = GizmoMode::Move;
+  GizmoSnap snap;
+  bool showGrid = true;
+  bool showDiagnostics = false;
+  bool showDemoWindow = false;
+
+  // Jobs and dialogs.
+  std::unique_ptr<ExportJob> exportJob;
+  std::string exportPath;
+  int exportResolution = 0;
+  FileDialog dialog;
+  std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
+  NodeId renaming = 0;                           // outliner row being renamed
+
+  // Requests to the frame loop.
+  bool requestViewAll = false;
+  bool requestFrameSelected = false;
+  bool quitNow = false;
+
+  std::deque<LogLine> log;
+  double now = 0.0;  // seconds since start, set each frame
+};
+
+// --- messages ---
+void logInfo(EditorState& state, const std::string& text);
+void logWarning(EditorState& state, const std::string& text);
+void logError(EditorState& state, const std::string& text);
+
+}  // namespace strata::ui

@@ -1,0 +1,95 @@
+// The engine thread of the editor: evaluates scene snapshots in the background so that the UI
+// never waits on the engine (libfive Studio's scheduling).
+//
+//   - The UI thread hands immutable snapshots (std::shared_ptr<const Scene>) with the requested
+//     resolution; only the latest request survives, and a new one cancels the running
+//     evaluation (Progress::cancel).
+//   - An interactive request (the user is dragging) is evaluated only at a coarse resolution,
+//     min(requested, coarseResolution); the request made when the hand stops refines it. A
+//     calm request for a new scene shows the coarse result first, then the full one.
+//   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the host
+//     LDI (Backend::download, the one named copy across to the host), its splats, and the
+//     evaluation's statistics. The UI thread uploads the splats to GL.
+//   - No GL here. The worker catches everything and reports it in the result's `error`.
+//
+// Threads: request(), takeResult(), status() from the UI thread (never blocking for longer than
+// a mutex hand-over); evaluation on the worker thread, which owns the Evaluator and its cache.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "engine/document/scene.h"
+#include "engine/eval/evaluator.h"
+#include "ui/surfel_splats.h"
+
+namespace strata::ui {
+
+struct PreviewResult {
+  uint64_t tag = 0;                    // the caller's tag of the request (its document revision)
+  std::shared_ptr<const Scene> scene;  // the snapshot it shows
+  int resolution = 0;                  // cells along the longest side, as evaluated
+  bool coarse = false;                 // a coarse pass; a finer one follows unless superseded
+  std::shared_ptr<const Ldi> ldi;      // host copy of the root's LDI; null on failure
+  std::vector<Splat> splats;           // what the viewport draws
+  EvalResult stats;                    // stages, nodes, grid (its `root` handle released)
+  double downloadSeconds = 0.0;        // Backend::download plus building the splats
+  std::string error;                   // empty on success
+};
+
+struct WorkerStatus {
+  bool busy = false;
+  std::string stage;      // of the running evaluation ("sample", "boolean", ...)
+  double fraction = 0.0;  // of that stage
+  int resolution = 0;     // of the running pass
+};
+
+class EngineWorker {
+ public:
+  // `backend` is used by the worker thread alone from now on.
+  explicit EngineWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96);
+  ~EngineWorker();  // cancels the running evaluation and joins
+  EngineWorker(const EngineWorker&) = delete;
+  EngineWorker& operator=(const EngineWorker&) = delete;
+
+  // Replaces any pending request and cancels the running one.
+  void request(std::shared_ptr<const Scene> scene, int resolution, bool interactive, uint64_t tag);
+  // The newest finished result not taken yet, or null.
+  std::shared_ptr<const PreviewResult> takeResult();
+  WorkerStatus status() const;
+  const std::string& backendDescription() const { return backendDescription_; }
+  int coarseResolution() const { return coarse_; }
+
+ private:
+  struct Request {
+    std::shared_ptr<const Scene> scene;
+    int resolution = 0;
+    bool interactive = false;
+    uint64_t tag = 0;
+  };
+  void run();
+  // Evaluates one pass; returns false when cancelled.
+  bool evaluatePass(Evaluator& evaluator, const Request& request, int resolution, bool coarse);
+
+  std::shared_ptr<Backend> backend_;
+  std::string backendDescription_;
+  int coarse_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  bool hasRequest_ = false;
+  Request pending_;
+  std::shared_ptr<Progress> running_;
+  std::shared_ptr<const PreviewResult> finished_;
+  WorkerStatus status_;
+  std::shared_ptr<const Scene> lastShown_;  // worker thread only
+  std::thread thread_;
+};
+
+}  // namespace strata::ui

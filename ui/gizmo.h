@@ -1,0 +1,77 @@
+// The transform gizmo: move (W), rotate (E) and scale (R) handles on the selected node, picked by
+// screen-space distance, with grid and angle snapping. Plain math, no GL: it produces line and
+// triangle vertices for the viewport renderer and new Transforms for the document.
+//
+//   move:   arrows along the parent's axes; dragging changes translate[k]
+//   rotate: one ring per Euler angle, around the axis that angle turns about right now (z about
+//           the parent's z, y about Rz*y, x about Rz*Ry*x), so the ring under the mouse is exactly
+//           the rotation applied; dragging changes rotateDegrees[k]
+//   scale:  handles along the node's own axes; dragging changes scale[k]
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+#include "engine/geometry/transform.h"
+#include "ui/camera.h"
+#include "ui/viewport_renderer.h"
+
+namespace strata::ui {
+
+enum class GizmoMode { Move, Rotate, Scale };
+
+struct GizmoSnap {
+  bool enabled = false;
+  double step = 1.0;      // move: scene units; scale: factor step (e.g. 0.1)
+  double degrees = 15.0;  // rotate
+};
+
+// How the view maps world points to viewport pixels (y down, origin top-left of the viewport).
+struct ScreenMapping {
+  glm::dmat4 viewProjection{1.0};
+  glm::dvec2 size{1.0, 1.0};
+  glm::dvec3 eye{0.0};
+  glm::dvec3 forward{0.0, 0.0, -1.0};
+  bool ortho = false;
+  // Scene units per pixel: per unit of depth in perspective, absolute in orthographic.
+  double unitsPerPixel = 1.0;
+  // Returns false when the point is behind the camera.
+  bool toScreen(const glm::dvec3& world, glm::dvec2* pixel) const;
+};
+
+class Gizmo {
+ public:
+  // Places the gizmo on a node whose parent-to-world matrix is `parentWorld`, with `transform`.
+  void place(const glm::dmat4& parentWorld, const Transform& transform);
+  // The handle under the mouse: 0, 1, 2 for x, y, z, or -1.
+  int hover(const ScreenMapping& view, glm::dvec2 mouse) const;
+  void begin(int axis, const ScreenMapping& view, glm::dvec2 mouse);
+  bool dragging() const { return axis_ >= 0; }
+  int activeAxis() const { return axis_; }
+  // The transform for the mouse at `mouse` while dragging.
+  Transform drag(const ScreenMapping& view, glm::dvec2 mouse, const GizmoSnap& snap) const;
+  void end() { axis_ = -1; }
+
+  // Appends the gizmo's lines and filled handles, highlighting `hot` (-1: none).
+  void appendGeometry(const ScreenMapping& view, int hot, std::vector<LineVertex>* lines,
+                      std::vector<LineVertex>* triangles) const;
+
+  GizmoMode mode = GizmoMode::Move;
+
+ private:
+  glm::dvec3 handleAxis(int k) const;  // unit world direction of handle k
+  double handleLength(const ScreenMapping& view) const;
+  std::vector<glm::dvec3> ring(int k, const ScreenMapping& view) const;
+
+  glm::dmat4 parentWorld_{1.0};
+  Transform transform_;
+  glm::dvec3 origin_{0.0};
+  int axis_ = -1;
+  Transform start_;
+  glm::dvec2 startMouse_{0.0};
+};
+
+}  // namespace strata::ui

@@ -1,0 +1,106 @@
+#include "ui/gl_window.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cstdlib>
+#include <mutex>
+
+#include "engine/util/error.h"
+#include "ui/gl_program.h"
+
+namespace strata::ui {
+namespace {
+
+std::mutex g_errorMutex;
+std::string g_lastGlfwError;
+
+void onGlfwError(int code, const char* description) {
+  std::lock_guard<std::mutex> lock(g_errorMutex);
+  g_lastGlfwError = "GLFW error " + std::to_string(code) + ": " + (description ? description : "");
+}
+
+std::string lastGlfwError() {
+  std::lock_guard<std::mutex> lock(g_errorMutex);
+  return g_lastGlfwError.empty() ? "no details from GLFW" : g_lastGlfwError;
+}
+
+// glfwInit is reference-counted here so that several windows (tests) can come and go.
+int g_glfwUsers = 0;
+
+bool acquireGlfw(std::string* why) {
+  if (g_glfwUsers == 0) {
+    glfwSetErrorCallback(onGlfwError);
+    if (!glfwInit()) {
+      if (why) *why = "GLFW could not initialise (" + lastGlfwError() + ")";
+      return false;
+    }
+  }
+  ++g_glfwUsers;
+  return true;
+}
+
+void releaseGlfw() {
+  if (--g_glfwUsers == 0) glfwTerminate();
+}
+
+bool displayNamed() {
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (wayland && *wayland);
+}
+
+}  // namespace
+
+bool displayAvailable(std::string* why) {
+  if (!displayNamed()) {
+    if (why) *why = "no display (neither DISPLAY nor WAYLAND_DISPLAY is set)";
+    return false;
+  }
+  if (!acquireGlfw(why)) return false;
+  releaseGlfw();
+  return true;
+}
+
+GlWindow::GlWindow(int width, int height, const std::string& title, bool visible) {
+  if (!displayNamed())
+    throw Error("cannot open a window: no display (neither DISPLAY nor WAYLAND_DISPLAY is set)");
+  std::string why;
+  if (!acquireGlfw(&why)) throw Error("cannot open a window: " + why);
+  const int versions[][2] = {{4, 5}, {3, 3}};
+  for (const auto& v : versions) {
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, v[0]);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, v[1]);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_SAMPLES, 4);
+    window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+    if (window_) {
+      major_ = v[0];
+      minor_ = v[1];
+      break;
+    }
+  }
+  if (!window_) {
+    std::string error = lastGlfwError();
+    releaseGlfw();
+    throw Error("cannot create a window with an OpenGL 4.5 or 3.3 core context (" + error + ")");
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(1);
+  description_ = describeGlContext();
+}
+
+GlWindow::~GlWindow() {
+  if (window_) glfwDestroyWindow(window_);
+  releaseGlfw();
+}
+
+void GlWindow::setTitle(const std::string& title) {
+  glfwSetWindowTitle(window_, title.c_str());
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,39 @@
+// The editor's window: GLFW with an OpenGL 4.5 core context, falling back to 3.3 core where 4.5
+// is unavailable (older Mesa); GL functions through libepoxy.
+//
+// Threads: the UI thread (GLFW requires the main thread for window calls).
+#pragma once
+
+#include <string>
+
+struct GLFWwindow;
+
+namespace strata::ui {
+
+// True when a window can be opened: a display is named (DISPLAY or WAYLAND_DISPLAY) and GLFW
+// initialises. Otherwise false, with the reason in *why.
+bool displayAvailable(std::string* why);
+
+class GlWindow {
+ public:
+  // Opens a window of `width` x `height` screen coordinates; an invisible one for off-screen
+  // rendering when `visible` is false. Throws strata::Error saying why it could not.
+  GlWindow(int width, int height, const std::string& title, bool visible);
+  ~GlWindow();
+  GlWindow(const GlWindow&) = delete;
+  GlWindow& operator=(const GlWindow&) = delete;
+
+  GLFWwindow* handle() const { return window_; }
+  int glMajor() const { return major_; }
+  int glMinor() const { return minor_; }
+  // "OpenGL 4.5 (Core Profile) Mesa 22.3.6, llvmpipe (...)"
+  const std::string& description() const { return description_; }
+  void setTitle(const std::string& title);
+
+ private:
+  GLFWwindow* window_ = nullptr;
+  int major_ = 0, minor_ = 0;
+  std::string description_;
+};
+
+}  // namespace strata::ui

@@ -1,0 +1,175 @@
+// The menu bar, its keyboard shortcuts, and what happens once a file has been chosen.
+#include <imgui.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <filesystem>
+
+#include "engine/document/commands.h"
+#include "ui/editor_actions.h"
+#include "ui/panels.h"
+
+namespace strata::ui {
+namespace {
+
+std::string documentFolder(const EditorState& state) {
+  if (state.document.path().empty()) return "";
+  return std::filesystem::path(state.document.path()).parent_path().string() + "/";
+}
+
+std::string exportSuggestion(const EditorState& state) {
+  if (state.document.path().empty()) return "part.stl";
+  std::string name = std::filesystem::path(state.document.path()).filename().string();
+  const std::string suffix = ".strata.json";
+  if (name.size() > suffix.size() &&
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    name = name.substr(0, name.size() - suffix.size());
+  return documentFolder(state) + name + ".stl";
+}
+
+// New and Open replace the document: ask first when it has unsaved changes.
+void replaceOrAsk(EditorState& state, PendingReplace action) {
+  if (state.document.dirty()) {
+    state.pendingReplace = action;
+    return;
+  }
+  if (action.kind == PendingReplace::New) newDocument(state);
+  if (action.kind == PendingReplace::Quit) state.quitNow = true;
+  if (action.kind == PendingReplace::Open) {
+    if (action.path.empty())
+      state.dialog.open(DialogPurpose::Open, documentFolder(state));
+    else
+      openDocument(state, action.path);
+  }
+}
+
+void save(EditorState& state) {
+  if (!saveDocument(state) && state.document.path().empty())
+    state.dialog.open(DialogPurpose::SaveAs, "untitled.strata.json");
+}
+
+bool ctrl() {
+  return ImGui::GetIO().KeyCtrl;
+}
+bool pressed(int key) {
+  return ImGui::IsKeyPressed(key, false);
+}
+
+}  // namespace
+
+void drawMainMenu(EditorState& state) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("New", "Ctrl+N")) replaceOrAsk(state, {PendingReplace::New, ""});
+    if (ImGui::MenuItem("Open\u2026", "Ctrl+O")) replaceOrAsk(state, {PendingReplace::Open, ""});
+    if (ImGui::BeginMenu("Open recent", !state.recentFiles.empty())) {
+      for (const auto& f : state.recentFiles)
+        if (ImGui::MenuItem(f.c_str())) replaceOrAsk(state, {PendingReplace::Open, f});
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Save", "Ctrl+S")) save(state);
+    if (ImGui::MenuItem("Save as\u2026", "Ctrl+Shift+S"))
+      state.dialog.open(DialogPurpose::SaveAs, state.document.path());
+    ImGui::Separator();
+    if (ImGui::MenuItem("Import mesh\u2026")) state.dialog.open(DialogPurpose::ImportMesh, "");
+    if (ImGui::MenuItem("Export\u2026", "Ctrl+E"))
+      state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) replaceOrAsk(state, {PendingReplace::Quit, ""});
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    std::string undoText = "Undo " + state.document.undoLabel();
+    std::string redoText = "Redo " + state.document.redoLabel();
+    if (ImGui::MenuItem(undoText.c_str(), "Ctrl+Z", false, state.document.canUndo())) undo(state);
+    if (ImGui::MenuItem(redoText.c_str(), "Ctrl+Y", false, state.document.canRedo())) redo(state);
+    ImGui::Separator();
+    const bool any = !state.selection.empty();
+    if (ImGui::MenuItem("Duplicate", "Ctrl+D", false, any)) duplicateSelection(state);
+    if (ImGui::MenuItem("Delete", "Del", false, any)) deleteSelection(state);
+    if (ImGui::MenuItem("Hide / show", "H", false, any)) toggleSelectionHidden(state);
+    if (ImGui::MenuItem("Rename", "F2", false, any)) state.renaming = primarySelection(state);
+    if (ImGui::BeginMenu("Group as", any)) {
+      if (ImGui::MenuItem("Union", "Ctrl+G")) groupSelection(state, NodeKind::Union);
+      if (ImGui::MenuItem("Difference")) groupSelection(state, NodeKind::Difference);
+      if (ImGui::MenuItem("Intersection")) groupSelection(state, NodeKind::Intersection);
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Select none", "Esc", false, any)) clearSelection(state);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("View all", "Home")) state.requestViewAll = true;
+    if (ImGui::MenuItem("Frame selected", "F")) state.requestFrameSelected = true;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Move", "W", state.gizmoMode == GizmoMode::Move))
+      state.gizmoMode = GizmoMode::Move;
+    if (ImGui::MenuItem("Rotate", "E", state.gizmoMode == GizmoMode::Rotate))
+      state.gizmoMode = GizmoMode::Rotate;
+    if (ImGui::MenuItem("Scale", "R", state.gizmoMode == GizmoMode::Scale))
+      state.gizmoMode = GizmoMode::Scale;
+    ImGui::MenuItem("Snap", nullptr, &state.snap.enabled);
+    ImGui::Separator();
+    ImGui::MenuItem("Ground grid", nullptr, &state.showGrid);
+    ImGui::MenuItem("Diagnostics", nullptr, &state.showDiagnostics);
+    ImGui::EndMenu();
+  }
+  ImGui::SameLine(ImGui::GetWindowWidth() - 360.0f);
+  ImGui::TextDisabled("%s", state.document.title().c_str());
+  ImGui::EndMainMenuBar();
+}
+
+void handleShortcuts(EditorState& state) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput || state.dialog.isOpen() || state.pendingReplace) return;
+  if (ctrl()) {
+    if (pressed(GLFW_KEY_S)) {
+      if (io.KeyShift)
+        state.dialog.open(DialogPurpose::SaveAs, state.document.path());
+      else
+        save(state);
+    }
+    if (pressed(GLFW_KEY_N)) replaceOrAsk(state, {PendingReplace::New, ""});
+    if (pressed(GLFW_KEY_O)) replaceOrAsk(state, {PendingReplace::Open, ""});
+    if (pressed(GLFW_KEY_E)) state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
+    if (pressed(GLFW_KEY_Q)) replaceOrAsk(state, {PendingReplace::Quit, ""});
+    if (io.WantCaptureKeyboard) return;
+    if (pressed(GLFW_KEY_Z)) io.KeyShift ? redo(state) : undo(state);
+    if (pressed(GLFW_KEY_Y)) redo(state);
+    if (pressed(GLFW_KEY_D)) duplicateSelection(state);
+    if (pressed(GLFW_KEY_G)) groupSelection(state, NodeKind::Union);
+    return;
+  }
+  if (io.WantCaptureKeyboard) return;
+  if (pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_BACKSPACE)) deleteSelection(state);
+  if (pressed(GLFW_KEY_H)) toggleSelectionHidden(state);
+  if (pressed(GLFW_KEY_F2) && !state.selection.empty()) state.renaming = primarySelection(state);
+  if (pressed(GLFW_KEY_ESCAPE)) clearSelection(state);
+}
+
+void handleDialogResult(EditorState& state) {
+  std::string path;
+  if (!state.dialog.takeResult(&path)) return;
+  switch (state.dialog.purpose()) {
+    case DialogPurpose::Open:
+      openDocument(state, path);
+      break;
+    case DialogPurpose::SaveAs: {
+      const std::string suffix = ".json";
+      if (path.size() < suffix.size() ||
+          path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
+        path += ".strata.json";
+      saveDocumentAs(state, path);
+      break;
+    }
+    case DialogPurpose::Export:
+      startExport(state, path, state.document.scene().settings.resolution);
+      break;
+    case DialogPurpose::ImportMesh:
+      importMesh(state, path);
+      break;
+  }
+}
+
+}  // namespace strata::ui

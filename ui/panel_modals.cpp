@@ -1,0 +1,120 @@
+// Questions that block the document (recover the last session? discard unsaved changes?) and
+// the export progress window.
+#include <imgui.h>
+
+#include "engine/document/user_files.h"
+#include "ui/editor_actions.h"
+#include "ui/panels.h"
+
+namespace strata::ui {
+namespace {
+
+void centreNext() {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.4f),
+                          ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+}
+
+void recoveryQuestion(EditorState& state) {
+  const char* title = "Recover unsaved work?";
+  if (state.offerRecovery && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  centreNext();
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::TextUnformatted("The last session ended without saving its changes.");
+  ImGui::TextDisabled("%s", state.recoveryPath.c_str());
+  if (ImGui::Button("Recover", ImVec2(120, 0))) {
+    recoverDocument(state);
+    removeRecoveryFile(state.recoveryPath);
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Discard", ImVec2(120, 0))) {
+    discardRecovery(state);
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
+void unsavedQuestion(EditorState& state) {
+  const char* title = "Unsaved changes";
+  if (state.pendingReplace && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  centreNext();
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::Text("%s has unsaved changes.", state.document.title().c_str());
+  bool proceed = false, close = false;
+  if (ImGui::Button("Save", ImVec2(110, 0))) {
+    if (saveDocument(state)) {
+      proceed = true;
+    } else {
+      if (state.document.path().empty())
+        state.dialog.open(DialogPurpose::SaveAs, "untitled.strata.json");
+      close = true;
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Discard", ImVec2(110, 0))) proceed = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(110, 0))) close = true;
+  if (proceed && state.pendingReplace) {
+    PendingReplace action = *state.pendingReplace;
+    if (action.kind == PendingReplace::New) newDocument(state);
+    if (action.kind == PendingReplace::Quit) state.quitNow = true;
+    if (action.kind == PendingReplace::Open) {
+      if (action.path.empty())
+        state.dialog.open(DialogPurpose::Open, "");
+      else
+        openDocument(state, action.path);
+    }
+    close = true;
+  }
+  if (close) {
+    state.pendingReplace.reset();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
+void exportWindow(EditorState& state) {
+  if (!state.exportJob) return;
+  ExportStatus s = state.exportJob->status();
+  bool open = true;
+  centreNext();
+  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  ImGui::Begin("Export", s.running ? nullptr : &open, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::TextWrapped("%s", s.path.c_str());
+  ImGui::TextDisabled("resolution %d", s.resolution);
+  if (s.running) {
+    char overlay[96];
+    std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", s.stage.c_str(), s.fraction * 100.0);
+    ImGui::ProgressBar(float(s.fraction), ImVec2(-1, 0), overlay);
+    if (ImGui::Button("Cancel", ImVec2(120, 0))) state.exportJob->cancel();
+  } else if (s.succeeded) {
+    const MeshCheck& c = s.check;
+    ImGui::TextColored(
+        c.watertight() ? ImVec4(0.5f, 0.9f, 0.5f, 1.0f) : ImVec4(1.0f, 0.5f, 0.4f, 1.0f),
+        c.watertight() ? "written and checked: watertight" : "written, but NOT watertight");
+    ImGui::Text("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles, c.vertices,
+                c.components, c.genus);
+    ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
+                c.nonManifoldEdges, c.misorientedEdges);
+    ImGui::Text("volume %.6g, area %.6g, %.2f s", c.volume, c.area, s.seconds);
+  } else if (s.cancelled) {
+    ImGui::TextUnformatted("cancelled; nothing was written");
+  } else {
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "failed");
+    ImGui::TextWrapped("%s", s.error.c_str());
+  }
+  if (!s.running && ImGui::Button("Close", ImVec2(120, 0))) open = false;
+  ImGui::End();
+  if (!open) state.exportJob.reset();
+}
+
+}  // namespace
+
+void drawModals(EditorState& state) {
+  recoveryQuestion(state);
+  unsavedQuestion(state);
+  exportWindow(state);
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,217 @@
+// The scene tree (outliner) and the palette.
+#include <imgui.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "engine/document/commands.h"
+#include "ui/editor_actions.h"
+#include "ui/panels.h"
+#include "ui/theme.h"
+
+namespace strata::ui {
+namespace {
+
+constexpr const char* kPayload = "STRATA_NODE";
+
+struct PendingDrop {
+  NodeId dragged = 0;
+  NodeId target = 0;
+  bool valid = false;
+};
+
+ImVec4 kindColor(NodeKind kind) {
+  switch (kind) {
+    case NodeKind::Union:
+      return ImVec4(0.45f, 0.78f, 1.0f, 1.0f);
+    case NodeKind::Intersection:
+      return ImVec4(0.75f, 0.6f, 1.0f, 1.0f);
+    case NodeKind::Difference:
+      return ImVec4(1.0f, 0.45f, 0.42f, 1.0f);
+    default:
+      return ImVec4(0.7f, 0.72f, 0.76f, 1.0f);
+  }
+}
+
+void contextMenu(EditorState& state, const NodePtr& node) {
+  if (!ImGui::BeginPopupContextItem()) return;
+  if (!isSelected(state, node->id)) selectNode(state, node->id);
+  ImGui::TextDisabled("%s %s", kindGlyph(node->kind), node->name.c_str());
+  ImGui::Separator();
+  if (ImGui::MenuItem("Rename", "F2")) state.renaming = node->id;
+  if (ImGui::MenuItem(node->visible ? "Hide" : "Show", "H")) toggleSelectionHidden(state);
+  if (ImGui::MenuItem("Duplicate", "Ctrl+D")) duplicateSelection(state);
+  if (ImGui::MenuItem("Delete", "Del")) deleteSelection(state);
+  ImGui::Separator();
+  if (ImGui::BeginMenu("Group as")) {
+    if (ImGui::MenuItem("\u222A Union")) groupSelection(state, NodeKind::Union);
+    if (ImGui::MenuItem("\u2212 Difference")) groupSelection(state, NodeKind::Difference);
+    if (ImGui::MenuItem("\u2229 Intersection")) groupSelection(state, NodeKind::Intersection);
+    ImGui::EndMenu();
+  }
+  if (isOperation(node->kind) && ImGui::BeginMenu("Operation")) {
+    for (NodeKind k : {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection})
+      if (ImGui::MenuItem(kindName(k), nullptr, node->kind == k)) setSelectionOperation(state, k);
+    ImGui::EndMenu();
+  }
+  ImGui::Separator();
+  if (ImGui::MenuItem("Frame", "F")) state.requestFrameSelected = true;
+  ImGui::EndPopup();
+}
+
+void renameField(EditorState& state, const NodePtr& node) {
+  static char buffer[256];
+  static NodeId editing = 0;
+  if (editing != node->id) {
+    std::snprintf(buffer, sizeof(buffer), "%s", node->name.c_str());
+    editing = node->id;
+    ImGui::SetKeyboardFocusHere();
+  }
+  ImGui::SetNextItemWidth(-1);
+  bool enter =
+      ImGui::InputText("##rename", buffer, sizeof(buffer),
+                       ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  if (enter || ImGui::IsItemDeactivated()) {
+    if (!ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && node->name != buffer)
+      renameNode(state, node->id, buffer);
+    state.renaming = 0;
+    editing = 0;
+  }
+}
+
+void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* drop) {
+  ImGui::PushID(static_cast<int>(node->id));
+  const bool leaf = node->children.empty();
+  ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth |
+                             ImGuiTreeNodeFlags_DefaultOpen | ImGuiTreeNodeFlags_FramePadding;
+  if (leaf) flags |= ImGuiTreeNodeFlags_Leaf | ImGuiTreeNodeFlags_NoTreePushOnOpen;
+  if (isSelected(state, node->id)) flags |= ImGuiTreeNodeFlags_Selected;
+
+  // Visibility toggle at the right edge.
+  const float right = ImGui::GetContentRegionMax().x;
+  const ImVec2 rowStart = ImGui::GetCursorPos();
+
+  bool open;
+  if (state.renaming == node->id) {
+    open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s",
+                             kindGlyph(node->kind));
+    ImGui::SameLine();
+    renameField(state, node);
+  } else {
+    if (!node->visible) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.5f, 0.52f, 1.0f));
+    open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s  %s",
+                             kindGlyph(node->kind),
+                             node->name.empty() ? "(unnamed)" : node->name.c_str());
+    if (!node->visible) ImGui::PopStyleColor();
+    if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen())
+      selectNode(state, node->id, ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift);
+    if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) state.renaming = node->id;
+    if (!isRoot && ImGui::BeginDragDropSource()) {
+      NodeId id = node->id;
+      ImGui::SetDragDropPayload(kPayload, &id, sizeof(id));
+      ImGui::Text("%s %s", kindGlyph(node->kind), node->name.c_str());
+      ImGui::EndDragDropSource();
+    }
+    if (ImGui::BeginDragDropTarget()) {
+      if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPayload)) {
+        std::memcpy(&drop->dragged, p->Data, sizeof(NodeId));
+        drop->target = node->id;
+        drop->valid = true;
+      }
+      ImGui::EndDragDropTarget();
+    }
+    contextMenu(state, node);
+  }
+  if (isOperation(node->kind)) {
+    ImGui::SameLine();
+    ImGui::TextColored(kindColor(node->kind), "%s", kindName(node->kind));
+  }
+  ImGui::SameLine(right - ImGui::GetFrameHeight());
+  ImGui::SetCursorPosY(rowStart.y);
+  ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0, 0, 0, 0));
+  if (ImGui::Button(visibleGlyph(node->visible), ImVec2(ImGui::GetFrameHeight(), 0))) {
+    guarded(state, [&] { state.document.setVisible(node->id, !node->visible); });
+  }
+  ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip(node->visible ? "Hide" : "Show");
+
+  if (open && !leaf) {
+    for (const auto& child : node->children) nodeRow(state, child, false, drop);
+    ImGui::TreePop();
+  }
+  ImGui::PopID();
+}
+
+}  // namespace
+
+void drawOutliner(EditorState& state, const PanelLayout& layout) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  const float paletteHeight = layout.paletteHeight;
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + layout.menuHeight));
+  ImGui::SetNextWindowSize(ImVec2(
+      layout.leftWidth, vp->Size.y - layout.menuHeight - layout.statusHeight - paletteHeight));
+  ImGui::Begin("Scene", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  PendingDrop drop;
+  const NodePtr root = state.document.root();  // this frame's snapshot
+  if (root) nodeRow(state, root, true, &drop);
+  // Empty space below the tree: a drop here moves the node to the top level.
+  ImVec2 avail = ImGui::GetContentRegionAvail();
+  ImGui::InvisibleButton("##empty", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 24.0f)));
+  if (ImGui::IsItemClicked(0)) clearSelection(state);
+  if (ImGui::BeginDragDropTarget()) {
+    if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPayload)) {
+      std::memcpy(&drop.dragged, p->Data, sizeof(NodeId));
+      drop.target = 0;
+      drop.valid = true;
+    }
+    ImGui::EndDragDropTarget();
+  }
+  ImGui::End();
+  if (drop.valid) dropNode(state, drop.dragged, drop.target);
+}
+
+void drawPalette(EditorState& state, const PanelLayout& layout) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  const float height = layout.paletteHeight;
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - layout.statusHeight - height));
+  ImGui::SetNextWindowSize(ImVec2(layout.leftWidth, height));
+  ImGui::Begin("Add", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  NodeId target = primarySelection(state);
+  NodePtr targetNode = target ? findNode(state.document.root(), target) : nullptr;
+  ImGui::TextDisabled("adds %s %s", targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
+                      targetNode ? targetNode->name.c_str() : "the root");
+  const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
+  const NodeKind primitives[] = {NodeKind::Box,  NodeKind::Sphere, NodeKind::Cylinder,
+                                 NodeKind::Cone, NodeKind::Torus,  NodeKind::Capsule};
+  for (int i = 0; i < 6; ++i) {
+    if (i % 3) ImGui::SameLine();
+    char label[64];
+    std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitives[i]), kindName(primitives[i]));
+    if (ImGui::Button(label, ImVec2(w, 0))) addPrimitive(state, primitives[i]);
+  }
+  if (ImGui::Button("\u25C6 Import mesh\u2026", ImVec2(-1, 0)))
+    state.dialog.open(DialogPurpose::ImportMesh, "");
+  ImGui::Separator();
+  ImGui::TextDisabled("empty operation");
+  const NodeKind ops[] = {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection};
+  for (int i = 0; i < 3; ++i) {
+    if (i) ImGui::SameLine();
+    char label[64];
+    std::snprintf(label, sizeof(label), "%s##add%d", kindName(ops[i]), i);
+    if (ImGui::Button(label, ImVec2(w, 0))) addOperation(state, ops[i]);
+  }
+  ImGui::TextDisabled("group selection as");
+  ImGui::BeginDisabled(state.selection.empty());
+  for (int i = 0; i < 3; ++i) {
+    if (i) ImGui::SameLine();
+    char label[64];
+    std::snprintf(label, sizeof(label), "%s %s##group%d", kindGlyph(ops[i]), kindName(ops[i]), i);
+    if (ImGui::Button(label, ImVec2(w, 0))) groupSelection(state, ops[i]);
+  }
+  ImGui::EndDisabled();
+  ImGui::End();
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,256 @@
+// The preview panel (resolution), the status bar and the diagnostics window.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/eval/evaluator.h"
+#include "engine/ldi/grid.h"
+#include "engine/util/error.h"
+#include "ui/editor_actions.h"
+#include "ui/panels.h"
+
+namespace strata::ui {
+namespace {
+
+std::string bytesText(double bytes) {
+  char text[64];
+  if (bytes >= 1024.0 * 1024.0 * 1024.0)
+    std::snprintf(text, sizeof(text), "%.2f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  else if (bytes >= 1024.0 * 1024.0)
+    std::snprintf(text, sizeof(text), "%.1f MiB", bytes / (1024.0 * 1024.0));
+  else
+    std::snprintf(text, sizeof(text), "%.0f KiB", bytes / 1024.0);
+  return text;
+}
+
+std::string countText(uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+const char* unitShort(const std::string& unit) {
+  if (unit == "millimetre" || unit == "millimeter") return "mm";
+  if (unit == "centimetre" || unit == "centimeter") return "cm";
+  if (unit == "metre" || unit == "meter") return "m";
+  if (unit == "inch") return "in";
+  return unit.c_str();
+}
+
+// The grid an evaluation at `resolution` would use, remembered per document revision.
+bool gridAt(const EditorState& state, int resolution, Grid* grid) {
+  static uint64_t revision = ~uint64_t(0);
+  static int cachedResolution = 0;
+  static bool ok = false;
+  static Grid cached;
+  if (revision != state.document.revision() || cachedResolution != resolution) {
+    revision = state.document.revision();
+    cachedResolution = resolution;
+    try {
+      cached = Evaluator::gridFor(state.document.scene(), resolution);
+      ok = true;
+    } catch (const Error&) {
+      ok = false;
+    }
+  }
+  *grid = cached;
+  return ok;
+}
+
+// Root LDI bytes at `resolution`: scaled from the shown result (surfels grow with the square of
+// the resolution), or a guess of two surfels per ray when nothing is shown yet.
+double estimateBytes(const EditorState& state, const Grid& grid, int resolution) {
+  const PreviewResult* shown = state.preview.get();
+  if (shown && shown->ldi && shown->resolution > 0) {
+    double ratio = double(resolution) / shown->resolution;
+    return double(shown->ldi->bytes()) * ratio * ratio;
+  }
+  double rays = double(grid.rayCount(0) + grid.rayCount(1) + grid.rayCount(2));
+  return rays * (2.0 * sizeof(Surfel) + sizeof(uint32_t));
+}
+
+}  // namespace
+
+void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(
+      ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth,
+             vp->Pos.y + vp->Size.y - layout.statusHeight - layout.previewHeight));
+  ImGui::SetNextWindowSize(ImVec2(layout.rightWidth, layout.previewHeight));
+  ImGui::Begin("Preview", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  const Scene& scene = state.document.scene();
+  int resolution = scene.settings.resolution;
+  ImGui::TextUnformatted("resolution");
+  ImGui::SameLine(90.0f);
+  ImGui::SetNextItemWidth(-1);
+  bool changed = ImGui::SliderInt("##resolution", &resolution, 16, 1024, "%d cells",
+                                  ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemActivated()) state.document.beginInteraction();
+  if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
+  if (ImGui::IsItemDeactivated()) state.document.endInteraction();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Cells along the longest side of the grid. Dragging shows a coarse\n"
+        "preview at once; it refines when you let go.");
+  Grid grid;
+  if (gridAt(state, scene.settings.resolution, &grid)) {
+    ImGui::Text("cell h = %.4g %s", grid.h, unitShort(scene.settings.unit));
+    ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
+    ImGui::Text("root LDI \u2248 %s",
+                bytesText(estimateBytes(state, grid, scene.settings.resolution)).c_str());
+  } else {
+    ImGui::TextDisabled("(empty scene: no grid)");
+  }
+  ImGui::Separator();
+  ImGui::Checkbox("ground grid", &state.showGrid);
+  ImGui::SameLine();
+  ImGui::Checkbox("snap", &state.snap.enabled);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Gizmo snapping: move step, 15\u00B0, scale 0.1");
+  ImGui::SetNextItemWidth(100.0f);
+  ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, "%.3g");
+  state.snap.step = std::max(state.snap.step, 1e-9);
+  const char* modes[] = {"move (W)", "rotate (E)", "scale (R)"};
+  int mode = int(state.gizmoMode);
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::Combo("##gizmo", &mode, modes, 3)) state.gizmoMode = GizmoMode(mode);
+  ImGui::End();
+}
+
+void drawStatusBar(EditorState& state, const PanelLayout& layout) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - layout.statusHeight));
+  ImGui::SetNextWindowSize(ImVec2(vp->Size.x, layout.statusHeight));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 4));
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::TextDisabled("%s", state.backendDescription.c_str());
+  const PreviewResult* shown = state.preview.get();
+  if (shown && shown->ldi) {
+    const Grid& g = shown->stats.grid;
+    ImGui::SameLine();
+    ImGui::Text("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
+                unitShort(shown->scene->settings.unit));
+    ImGui::SameLine();
+    ImGui::Text(
+        "|  surfels %s (%s splats, host upload %s)", countText(shown->ldi->surfelCount()).c_str(),
+        countText(shown->splats.size()).c_str(), bytesText(double(state.uploadedBytes)).c_str());
+    ImGui::SameLine();
+    std::string stages;
+    for (const auto& s : shown->stats.stages) {
+      char part[64];
+      std::snprintf(part, sizeof(part), "%s%s %.0f ms", stages.empty() ? "" : " \u00B7 ",
+                    s.name.c_str(), s.seconds * 1000.0);
+      stages += part;
+    }
+    ImGui::Text("|  eval %.0f ms%s: %s", shown->stats.seconds * 1000.0,
+                shown->coarse ? " (coarse)" : "", stages.c_str());
+  }
+  ImGui::SameLine();
+  ImGui::Text("|  frame %.1f ms", state.frameMs);
+  if (state.worker.busy) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "|  evaluating %d: %s %.0f%%",
+                       state.worker.resolution, state.worker.stage.c_str(),
+                       state.worker.fraction * 100.0);
+  }
+  if (!state.previewError.empty()) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "|  %s", state.previewError.c_str());
+  } else if (!state.log.empty() && state.now - state.log.back().time < 6.0) {
+    const LogLine& last = state.log.back();
+    ImGui::SameLine();
+    ImVec4 color = last.level == LogLevel::Error     ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f)
+                   : last.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
+                                                     : ImVec4(0.6f, 0.85f, 0.6f, 1.0f);
+    ImGui::TextColored(color, "|  %s", last.text.c_str());
+  }
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+void drawDiagnostics(EditorState& state) {
+  if (!state.showDiagnostics) return;
+  ImGui::SetNextWindowSize(ImVec2(560, 460), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(340, 80), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Diagnostics", &state.showDiagnostics)) {
+    ImGui::End();
+    return;
+  }
+  ImGui::TextWrapped("backend: %s", state.backendDescription.c_str());
+  ImGui::TextWrapped("display: %s", state.glDescription.c_str());
+  ImGui::Text("surfels: host upload (%.2f ms for the last result, %s)", state.uploadMs,
+              bytesText(double(state.uploadedBytes)).c_str());
+  const PreviewResult* shown = state.preview.get();
+  if (shown && shown->ldi) {
+    const EvalResult& r = shown->stats;
+    ImGui::Separator();
+    ImGui::Text("resolution %d%s, %d computed, %d reused; volume %.6g, area %.6g",
+                shown->resolution, shown->coarse ? " (coarse)" : "", r.computed, r.reused,
+                r.measure.volume, r.measure.area);
+    ImGui::Text("peak memory %s, cache %s, download + splats %.1f ms",
+                bytesText(double(r.peakBytes)).c_str(), bytesText(double(r.cacheBytes)).c_str(),
+                shown->downloadSeconds * 1000.0);
+    if (ImGui::BeginTable("stages", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+      ImGui::TableSetupColumn("stage");
+      ImGui::TableSetupColumn("ms");
+      ImGui::TableSetupColumn("nodes");
+      ImGui::TableSetupColumn("surfels");
+      ImGui::TableHeadersRow();
+      for (const auto& s : r.stages) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(s.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%.1f", s.seconds * 1000.0);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", s.runs);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(countText(s.surfels).c_str());
+      }
+      ImGui::EndTable();
+    }
+    if (ImGui::CollapsingHeader("nodes")) {
+      if (ImGui::BeginTable("nodes", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
+                            ImVec2(0, 160))) {
+        ImGui::TableSetupColumn("node");
+        ImGui::TableSetupColumn("outcome");
+        ImGui::TableSetupColumn("ms");
+        ImGui::TableSetupColumn("surfels");
+        ImGui::TableHeadersRow();
+        for (const auto& n : r.nodes) {
+          ImGui::TableNextRow();
+          ImGui::TableNextColumn();
+          ImGui::Text("%s (%u)", n.name.c_str(), n.id);
+          ImGui::TableNextColumn();
+          ImGui::TextUnformatted(outcomeName(n.outcome));
+          ImGui::TableNextColumn();
+          ImGui::Text("%.1f", n.seconds * 1000.0);
+          ImGui::TableNextColumn();
+          ImGui::TextUnformatted(countText(n.surfels).c_str());
+        }
+        ImGui::EndTable();
+      }
+    }
+  }
+  ImGui::Separator();
+  ImGui::Text("messages");
+  ImGui::BeginChild("log", ImVec2(0, 0), true);
+  for (const auto& line : state.log) {
+    ImVec4 color = line.level == LogLevel::Error     ? ImVec4(1.0f, 0.45f, 0.45f, 1.0f)
+                   : line.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.35f, 1.0f)
+                                                     : ImVec4(0.8f, 0.8f, 0.8f, 1.0f);
+    ImGui::TextColored(color, "%7.1f s  %s", line.time, line.text.c_str());
+  }
+  if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,38 @@
+// The editor's ImGui panels. Each draws from and acts on EditorState; edits go through
+// editor_actions.h (one undo step each; ImGui widgets that are held down, such as drags, make one
+// step from activation to deactivation). The UI thread, between ImGui::NewFrame and Render.
+#pragma once
+
+#include "ui/editor_state.h"
+
+namespace strata::ui {
+
+struct PanelLayout {
+  float menuHeight = 0.0f;
+  float statusHeight = 0.0f;
+  float leftWidth = 300.0f;
+  float rightWidth = 330.0f;
+  float paletteHeight = 250.0f;  // the palette, under the outliner
+  float previewHeight = 250.0f;  // the preview settings, under the inspector
+};
+
+// Menu bar (File, Edit, View) and the keyboard shortcuts of its items.
+void drawMainMenu(EditorState& state);
+void handleShortcuts(EditorState& state);
+// Reacts to a chosen file (open, save as, export, import).
+void handleDialogResult(EditorState& state);
+
+// Left column: the scene tree and the palette of things to add.
+void drawOutliner(EditorState& state, const PanelLayout& layout);
+void drawPalette(EditorState& state, const PanelLayout& layout);
+// Right column: the selected node's properties and the preview settings.
+void drawInspector(EditorState& state, const PanelLayout& layout);
+void drawPreviewPanel(EditorState& state, const PanelLayout& layout);
+// Bottom: backend, grid, surfels, evaluation times, frame time.
+void drawStatusBar(EditorState& state, const PanelLayout& layout);
+// Floating: stages, nodes, memory, messages.
+void drawDiagnostics(EditorState& state);
+// Modal questions (recovery, unsaved changes) and the export progress window.
+void drawModals(EditorState& state);
+
+}  // namespace strata::ui

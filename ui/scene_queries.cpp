@@ -1,0 +1,95 @@
+#include "ui/scene_queries.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "engine/document/commands.h"
+#include "engine/eval/evaluator.h"
+
+namespace strata::ui {
+namespace {
+
+bool pathTo(const NodePtr& node, NodeId id, std::vector<const Node*>* path) {
+  path->push_back(node.get());
+  if (node->id == id) return true;
+  for (const auto& c : node->children)
+    if (pathTo(c, id, path)) return true;
+  path->pop_back();
+  return false;
+}
+
+}  // namespace
+
+glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id) {
+  std::vector<const Node*> path;
+  glm::dmat4 m(1.0);
+  if (!root || !pathTo(root, id, &path)) return m;
+  for (size_t i = 0; i + 1 < path.size(); ++i) m = m * path[i]->transform.matrix();
+  return m;
+}
+
+glm::dmat4 worldMatrix(const NodePtr& root, NodeId id) {
+  NodePtr node = findNode(root, id);
+  glm::dmat4 parent = parentWorldMatrix(root, id);
+  return node ? parent * node->transform.matrix() : parent;
+}
+
+Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection) {
+  Bounds b;
+  for (NodeId id : selection) {
+    NodePtr node = findNode(root, id);
+    if (!node) continue;
+    Bounds nb = nodeBounds(node, root, parentWorldMatrix(root, id));
+    if (nb.empty() && !node->visible) {
+      // A hidden node: show where it would be.
+      auto shown = std::make_shared<Node>(*node);
+      shown->visible = true;
+      nb = nodeBounds(shown, root, parentWorldMatrix(root, id));
+    }
+    b.include(nb);
+  }
+  return b;
+}
+
+Bounds sceneBounds(const NodePtr& root) {
+  if (!root) return Bounds();
+  Bounds b = nodeBounds(root, root, glm::dmat4(1.0));
+  if (!b.empty()) return b;
+  for (NodeId id : treeOrder(root)) {
+    NodePtr node = findNode(root, id);
+    if (node && !isOperation(node->kind) && node->visible)
+      b.include(nodeBounds(node, root, parentWorldMatrix(root, id)));
+  }
+  return b;
+}
+
+LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& selection) {
+  LeafStyleTable table;
+  if (!root) return table;
+  const size_t size = size_t(maxNodeId(root)) + 1;
+  table.color.assign(size, glm::vec3(0.8f));
+  table.selected.assign(size, 0);
+  std::function<void(const NodePtr&, bool, int)> visit = [&](const NodePtr& node, bool selected,
+                                                             int depth) {
+    if (!node || depth > 512) return;
+    selected =
+        selected || std::find(selection.begin(), selection.end(), node->id) != selection.end();
+    table.color[node->id] = node->color;
+    if (selected) table.selected[node->id] = 1;
+    if (node->kind == NodeKind::Instance && selected)
+      visit(findNode(root, node->instanceOf), true, depth + 1);
+    for (const auto& c : node->children) visit(c, selected, depth + 1);
+  };
+  visit(root, false, 0);
+  return table;
+}
+
+double niceLength(double approximate) {
+  if (!(approximate > 0) || !std::isfinite(approximate)) return 1.0;
+  double p = std::pow(10.0, std::floor(std::log10(approximate)));
+  double m = approximate / p;
+  return (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0) * p;
+}
+
+}  // namespace strata::ui

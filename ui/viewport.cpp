@@ -1,0 +1,230 @@
+#include "ui/viewport.h"
+
+#include <imgui.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ui/editor_actions.h"
+#include "ui/scene_queries.h"
+
+namespace strata::ui {
+namespace {
+
+bool keyPressed(int key) {
+  return ImGui::IsKeyPressed(key, false);
+}
+
+void appendBox(const Bounds& b, const glm::vec4& color, std::vector<LineVertex>* lines) {
+  glm::dvec3 c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] =
+        glm::dvec3(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z);
+  const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                            {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for (const auto& e : edges) {
+    lines->push_back(lineVertex(c[e[0]], color));
+    lines->push_back(lineVertex(c[e[1]], color));
+  }
+}
+
+// The ground grid in the z = 0 plane around the scene, fading out towards its rim, with the x
+// (red) and y (green) axes.
+void appendGrid(const Bounds& scene, std::vector<LineVertex>* lines) {
+  glm::dvec3 size = scene.empty() ? glm::dvec3(10.0) : scene.size();
+  double extent = std::max({size.x, size.y, size.z, 1e-9});
+  double step = niceLength(extent / 8.0);
+  glm::dvec3 centre = scene.empty() ? glm::dvec3(0.0) : scene.center();
+  double cx = std::round(centre.x / step) * step, cy = std::round(centre.y / step) * step;
+  const int n = 14;
+  for (int i = -n; i <= n; ++i) {
+    float fade = float(1.0 - std::abs(i) / double(n + 1));
+    double x = cx + i * step, y = cy + i * step;
+    bool xAxis = std::fabs(y) < step * 1e-6, yAxis = std::fabs(x) < step * 1e-6;
+    glm::vec4 grey(0.62f, 0.64f, 0.68f, 0.28f * fade);
+    glm::vec4 ex = xAxis ? glm::vec4(0.90f, 0.30f, 0.32f, 0.75f) : grey;
+    glm::vec4 ey = yAxis ? glm::vec4(0.45f, 0.80f, 0.30f, 0.75f) : grey;
+    lines->push_back(lineVertex({cx - n * step, y, 0.0}, ex));
+    lines->push_back(lineVertex({cx + n * step, y, 0.0}, ex));
+    lines->push_back(lineVertex({x, cy - n * step, 0.0}, ey));
+    lines->push_back(lineVertex({x, cy + n * step, 0.0}, ey));
+  }
+}
+
+}  // namespace
+
+double Viewport::sceneRadius(const EditorState& state) const {
+  Bounds b = sceneBounds(state.document.root());
+  if (b.empty()) return std::max(camera.distance, 1.0);
+  return std::max(glm::length(b.size()) * 0.5 + glm::length(b.center() - camera.target), 1e-6);
+}
+
+ScreenMapping Viewport::mapping(const EditorState& state, const ViewRect& rect) const {
+  ScreenMapping m;
+  double aspect = rect.width / std::max(rect.height, 1.0);
+  m.viewProjection = camera.projection(aspect, sceneRadius(state)) * camera.view();
+  m.size = glm::dvec2(rect.width, rect.height);
+  m.eye = camera.ortho ? camera.target - camera.forward() * camera.distance * 4.0 : camera.eye();
+  m.forward = camera.forward();
+  m.ortho = camera.ortho;
+  m.unitsPerPixel = camera.ortho ? camera.unitsPerPixel(rect.height)
+                                 : camera.unitsPerPixel(rect.height) / camera.distance;
+  return m;
+}
+
+bool Viewport::placeGizmo(const EditorState& state) {
+  NodeId id = primarySelection(state);
+  NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
+  if (!node) return false;
+  gizmo_.mode = state.gizmoMode;
+  gizmo_.place(parentWorldMatrix(state.document.root(), id), node->transform);
+  return true;
+}
+
+void Viewport::viewAll(const EditorState& state) {
+  Bounds b = sceneBounds(state.document.root());
+  if (b.empty()) {
+    camera.target = glm::dvec3(0.0);
+    camera.distance = 10.0;
+    return;
+  }
+  camera.frame(b);
+}
+
+void Viewport::frameSelected(const EditorState& state) {
+  Bounds b = selectionBounds(state.document.root(), state.selection);
+  if (b.empty())
+    viewAll(state);
+  else
+    camera.frame(b);
+}
+
+void Viewport::pick(EditorState& state, const ViewRect& rect, glm::dvec2 mouse, bool extend) {
+  if (!state.preview || state.preview->splats.empty()) {
+    if (!extend) clearSelection(state);
+    return;
+  }
+  Ray ray = camera.rayThrough(mouse, glm::dvec2(rect.width, rect.height));
+  SplatHit hit;
+  double radius = state.preview->stats.grid.h * 0.9;
+  if (pickSplat(state.preview->splats, ray, radius, &hit) &&
+      findNode(state.document.root(), hit.leaf)) {
+    selectNode(state, hit.leaf, extend);
+  } else if (!extend) {
+    clearSelection(state);
+  }
+}
+
+void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
+  ImGuiIO& io = ImGui::GetIO();
+  const glm::dvec2 mouse(io.MousePos.x - rect.x, io.MousePos.y - rect.y);
+  const bool inside = mouse.x >= 0 && mouse.y >= 0 && mouse.x < rect.width && mouse.y < rect.height;
+  const ScreenMapping view = mapping(state, rect);
+
+  // Keys.
+  if (!io.WantCaptureKeyboard) {
+    const bool ctrl = io.KeyCtrl;
+    if (keyPressed(GLFW_KEY_F)) frameSelected(state);
+    if (keyPressed(GLFW_KEY_HOME)) viewAll(state);
+    if (keyPressed(GLFW_KEY_1) || keyPressed(GLFW_KEY_KP_1))
+      camera.setAxisView(ctrl ? AxisView::Back : AxisView::Front);
+    if (keyPressed(GLFW_KEY_3) || keyPressed(GLFW_KEY_KP_3))
+      camera.setAxisView(ctrl ? AxisView::Left : AxisView::Right);
+    if (keyPressed(GLFW_KEY_7) || keyPressed(GLFW_KEY_KP_7))
+      camera.setAxisView(ctrl ? AxisView::Bottom : AxisView::Top);
+    if (keyPressed(GLFW_KEY_5) || keyPressed(GLFW_KEY_KP_5)) camera.ortho = !camera.ortho;
+    if (!ctrl && keyPressed(GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
+    if (!ctrl && keyPressed(GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
+    if (!ctrl && keyPressed(GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
+  }
+
+  // An ongoing gizmo drag keeps the mouse wherever it goes.
+  if (gizmo_.dragging()) {
+    if (io.MouseDown[0] && placeGizmo(state)) {
+      NodeId id = primarySelection(state);
+      Transform t = gizmo_.drag(view, mouse, state.snap);
+      guarded(state, [&] { state.document.setTransform(id, t); });
+    } else {
+      gizmo_.end();
+      state.document.endInteraction();
+    }
+    return;
+  }
+  if (navigating_) {
+    if (!io.MouseDown[2] && !io.MouseDown[0]) navigating_ = false;
+  }
+  if (io.WantCaptureMouse && !navigating_) {
+    hot_ = -1;
+    clickPending_ = false;
+    return;
+  }
+
+  const bool haveGizmo = placeGizmo(state);
+  hot_ = haveGizmo && inside && !navigating_ ? gizmo_.hover(view, mouse) : -1;
+
+  if (inside && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+
+  const bool middle = io.MouseDown[2];
+  const bool altLeft = io.MouseDown[0] && io.KeyAlt;
+  if ((ImGui::IsMouseClicked(2) || (ImGui::IsMouseClicked(0) && io.KeyAlt)) && inside)
+    navigating_ = true;
+  if (navigating_ && (middle || altLeft)) {
+    glm::dvec2 d(io.MouseDelta.x, io.MouseDelta.y);
+    if (io.KeyShift)
+      camera.pan(d.x, d.y, rect.height);
+    else
+      camera.orbit(d.x, d.y);
+    return;
+  }
+
+  if (ImGui::IsMouseClicked(0) && inside && !io.KeyAlt) {
+    if (hot_ >= 0) {
+      state.document.beginInteraction();
+      gizmo_.begin(hot_, view, mouse);
+      return;
+    }
+    clickPending_ = true;
+  }
+  if (clickPending_ && ImGui::IsMouseDragging(0, 4.0f)) clickPending_ = false;
+  if (clickPending_ && ImGui::IsMouseReleased(0)) {
+    clickPending_ = false;
+    pick(state, rect, mouse, io.KeyCtrl || io.KeyShift);
+  }
+}
+
+void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
+                    int framebufferHeight, double pixelScale) {
+  ViewportFrame frame;
+  const ScreenMapping view = mapping(state, rect);
+  frame.viewProjection = view.viewProjection;
+  frame.eye = view.eye;
+  frame.forward = camera.forward();
+  frame.up = camera.up();
+  frame.ortho = camera.ortho;
+  frame.x = int(std::lround(rect.x * pixelScale));
+  frame.width = std::max(1, int(std::lround(rect.width * pixelScale)));
+  frame.height = std::max(1, int(std::lround(rect.height * pixelScale)));
+  frame.y = framebufferHeight - int(std::lround((rect.y + rect.height) * pixelScale));
+
+  std::vector<LineVertex> lines, overlay, triangles;
+  if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &lines);
+  if (!state.selection.empty()) {
+    Bounds b = selectionBounds(state.document.root(), state.selection);
+    if (!b.empty()) appendBox(b, glm::vec4(1.0f, 0.62f, 0.2f, 0.55f), &overlay);
+  }
+  Gizmo gizmo = gizmo_;
+  if (!state.selection.empty()) {
+    NodeId id = primarySelection(state);
+    NodePtr node = findNode(state.document.root(), id);
+    if (node) {
+      gizmo.mode = state.gizmoMode;
+      gizmo.place(parentWorldMatrix(state.document.root(), id), node->transform);
+      gizmo.appendGeometry(view, hot_, &overlay, &triangles);
+    }
+  }
+  renderer.draw(frame, lines, overlay, triangles);
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,258 @@
+#include "ui/viewport_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "engine/util/error.h"
+
+namespace strata::ui {
+namespace {
+
+uint8_t toByte(float c) {
+  return uint8_t(std::lround(std::clamp(c, 0.0f, 1.0f) * 255.0f));
+}
+
+// Camera-fixed lights: key from the upper left and slightly behind the viewer, fill from the
+// lower right.
+glm::vec3 cameraLight(const ViewportFrame& f, double right, double up, double back) {
+  glm::dvec3 r = glm::normalize(glm::cross(f.forward, f.up));
+  return glm::vec3(glm::normalize(r * right + f.up * up - f.forward * back));
+}
+
+std::vector<uint8_t> flipRows(std::vector<uint8_t> pixels, int width, int height) {
+  const size_t row = size_t(width) * 4;
+  std::vector<uint8_t> tmp(row);
+  for (int y = 0; y < height / 2; ++y) {
+    uint8_t* a = pixels.data() + size_t(y) * row;
+    uint8_t* b = pixels.data() + size_t(height - 1 - y) * row;
+    std::memcpy(tmp.data(), a, row);
+    std::memcpy(a, b, row);
+    std::memcpy(b, tmp.data(), row);
+  }
+  return pixels;
+}
+
+}  // namespace
+
+LineVertex lineVertex(const glm::dvec3& p, const glm::vec4& c) {
+  return LineVertex{{float(p.x), float(p.y), float(p.z)},
+                    {toByte(c.r), toByte(c.g), toByte(c.b), toByte(c.a)}};
+}
+
+ViewportRenderer::ViewportRenderer()
+    : surfelProgram_("surfel.vert", "surfel.frag"),
+      lineProgram_("line.vert", "line.frag"),
+      backgroundProgram_("background.vert", "background.frag") {
+  // Surfels: a unit quad per instance plus the instance buffer.
+  const float corners[] = {-1.f, -1.f, 1.f, -1.f, -1.f, 1.f, 1.f, 1.f};
+  glGenVertexArrays(1, &surfelVao_);
+  glBindVertexArray(surfelVao_);
+  glGenBuffers(1, &cornerBuffer_);
+  glBindBuffer(GL_ARRAY_BUFFER, cornerBuffer_);
+  glBufferData(GL_ARRAY_BUFFER, sizeof(corners), corners, GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glGenBuffers(1, &splatBuffer_);
+  glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
+                        reinterpret_cast<void*>(offsetof(Splat, position)));
+  glVertexAttribDivisor(1, 1);
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                         reinterpret_cast<void*>(offsetof(Splat, normal)));
+  glVertexAttribDivisor(2, 1);
+  glEnableVertexAttribArray(3);
+  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                         reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
+  glVertexAttribDivisor(3, 1);
+
+  glGenVertexArrays(1, &lineVao_);
+  glBindVertexArray(lineVao_);
+  glGenBuffers(1, &lineBuffer_);
+  glBindBuffer(GL_ARRAY_BUFFER, lineBuffer_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LineVertex),
+                        reinterpret_cast<void*>(offsetof(LineVertex, position)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(LineVertex),
+                        reinterpret_cast<void*>(offsetof(LineVertex, color)));
+
+  glGenVertexArrays(1, &emptyVao_);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  glGenTextures(1, &leafTexture_);
+  glBindTexture(GL_TEXTURE_2D, leafTexture_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const uint8_t grey[4] = {204, 204, 204, 0};
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, grey);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+ViewportRenderer::~ViewportRenderer() {
+  glDeleteTextures(1, &leafTexture_);
+  GLuint buffers[] = {cornerBuffer_, splatBuffer_, lineBuffer_};
+  glDeleteBuffers(3, buffers);
+  GLuint vaos[] = {surfelVao_, lineVao_, emptyVao_};
+  glDeleteVertexArrays(3, vaos);
+}
+
+void ViewportRenderer::uploadSplats(const std::vector<Splat>& splats, double cellSize) {
+  glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
+  const size_t bytes = splats.size() * sizeof(Splat);
+  if (splats.size() > splatCapacity_ || splats.size() * 4 < splatCapacity_) {
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), splats.data(), GL_DYNAMIC_DRAW);
+    splatCapacity_ = splats.size();
+  } else if (bytes > 0) {
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(bytes), splats.data());
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  splatCount_ = splats.size();
+  cellSize_ = cellSize;
+}
+
+void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
+  const int count = std::max<int>(1, int(styles.color.size()));
+  const int width = std::min(count, 1024);
+  const int height = (count + width - 1) / width;
+  std::vector<uint8_t> texels(size_t(width) * size_t(height) * 4, 0);
+  for (size_t i = 0; i < styles.color.size(); ++i) {
+    texels[i * 4 + 0] = toByte(styles.color[i].r);
+    texels[i * 4 + 1] = toByte(styles.color[i].g);
+    texels[i * 4 + 2] = toByte(styles.color[i].b);
+    texels[i * 4 + 3] = i < styles.selected.size() && styles.selected[i] ? 255 : 0;
+  }
+  glBindTexture(GL_TEXTURE_2D, leafTexture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               texels.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  leafTextureWidth_ = width;
+}
+
+void ViewportRenderer::drawLines(const std::vector<LineVertex>& vertices, GLenum mode) {
+  if (vertices.empty()) return;
+  glBindVertexArray(lineVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, lineBuffer_);
+  if (vertices.size() > lineCapacity_) {
+    lineCapacity_ = vertices.size() * 2;
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(lineCapacity_ * sizeof(LineVertex)), nullptr,
+                 GL_STREAM_DRAW);
+  }
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(vertices.size() * sizeof(LineVertex)),
+                  vertices.data());
+  glDrawArrays(mode, 0, GLsizei(vertices.size()));
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex>& lines,
+                            const std::vector<LineVertex>& overlay,
+                            const std::vector<LineVertex>& overlayTriangles) {
+  glViewport(f.x, f.y, f.width, f.height);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(f.x, f.y, f.width, f.height);
+  glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+
+  // Background gradient (depth writes off).
+  glDisable(GL_DEPTH_TEST);
+  backgroundProgram_.use();
+  backgroundProgram_.set("bottomColor", glm::vec3(0.13f, 0.14f, 0.16f));
+  backgroundProgram_.set("topColor", glm::vec3(0.30f, 0.32f, 0.36f));
+  glBindVertexArray(emptyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glm::mat4 viewProjection(f.viewProjection);
+
+  if (splatCount_ > 0) {
+    surfelProgram_.use();
+    surfelProgram_.set("viewProjection", viewProjection);
+    surfelProgram_.set("eye", glm::vec3(f.eye));
+    surfelProgram_.set("viewForward", glm::vec3(f.forward));
+    surfelProgram_.set("ortho", f.ortho ? 1 : 0);
+    surfelProgram_.set("cellSize", float(cellSize_));
+    surfelProgram_.set("splatRadius", 0.85f);
+    surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
+    surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
+    surfelProgram_.set("leafTexture", 0);
+    surfelProgram_.set("leafTextureWidth", leafTextureWidth_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, leafTexture_);
+    glBindVertexArray(surfelVao_);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+
+  lineProgram_.use();
+  lineProgram_.set("viewProjection", viewProjection);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  drawLines(lines, GL_LINES);
+  glDisable(GL_DEPTH_TEST);
+  drawLines(overlayTriangles, GL_TRIANGLES);
+  drawLines(overlay, GL_LINES);
+  glDepthMask(GL_TRUE);
+
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+}
+
+RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
+  glGenFramebuffers(1, &framebuffer_);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glGenRenderbuffers(1, &color_);
+  glBindRenderbuffer(GL_RENDERBUFFER, color_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  glGenRenderbuffers(1, &depth_);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("cannot render off-screen at " + std::to_string(width) + " x " +
+                std::to_string(height) + " (framebuffer status " + std::to_string(status) + ")");
+}
+
+RenderTarget::~RenderTarget() {
+  glDeleteFramebuffers(1, &framebuffer_);
+  GLuint buffers[] = {color_, depth_};
+  glDeleteRenderbuffers(2, buffers);
+}
+
+void RenderTarget::bind() {
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+}
+
+std::vector<uint8_t> RenderTarget::read() {
+  std::vector<uint8_t> pixels(size_t(width_) * size_t(height_) * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return flipRows(std::move(pixels), width_, height_);
+}
+
+std::vector<uint8_t> readWindowPixels(int width, int height) {
+  std::vector<uint8_t> pixels(size_t(width) * size_t(height) * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  return flipRows(std::move(pixels), width, height);
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,102 @@
+// Draws the 3D view: background gradient, ground grid, the root's surfels as lit oriented
+// splats, and overlay lines (selection box, gizmo). Owns every GL object it uses; restores the
+// GL state it changes that ImGui's backend relies on (blend, depth, cull, viewport, program).
+//
+// Threads: the UI thread, with the GL context current. Constructing throws strata::Error when
+// a shader fails.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "ui/gl_program.h"
+#include "ui/surfel_splats.h"
+
+namespace strata::ui {
+
+struct LineVertex {
+  float position[3];
+  uint8_t color[4];  // gamma-encoded RGBA
+};
+LineVertex lineVertex(const glm::dvec3& p, const glm::vec4& color);
+
+// Per leaf id: its colour (linear RGB) and whether it is selected.
+struct LeafStyleTable {
+  std::vector<glm::vec3> color;  // indexed by leaf id
+  std::vector<uint8_t> selected;
+};
+
+struct ViewportFrame {
+  glm::dmat4 viewProjection{1.0};
+  glm::dvec3 eye{0.0};
+  glm::dvec3 forward{0.0, 0.0, -1.0};
+  glm::dvec3 up{0.0, 0.0, 1.0};
+  bool ortho = false;
+  int x = 0, y = 0, width = 1, height = 1;  // GL viewport, pixels, origin bottom-left
+};
+
+class ViewportRenderer {
+ public:
+  ViewportRenderer();
+  ~ViewportRenderer();
+  ViewportRenderer(const ViewportRenderer&) = delete;
+  ViewportRenderer& operator=(const ViewportRenderer&) = delete;
+
+  // Host upload of the splats into the instance buffer; `cellSize` is the grid's h.
+  void uploadSplats(const std::vector<Splat>& splats, double cellSize);
+  void setLeafStyles(const LeafStyleTable& styles);
+  size_t splatCount() const { return splatCount_; }
+  size_t uploadedBytes() const { return splatCount_ * sizeof(Splat); }
+
+  // `lines` are depth-tested against the surfels (grid, boxes); `overlay` is drawn on top
+  // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list.
+  void draw(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
+            const std::vector<LineVertex>& overlay,
+            const std::vector<LineVertex>& overlayTriangles);
+
+ private:
+  void drawLines(const std::vector<LineVertex>& vertices, GLenum mode);
+
+  GlProgram surfelProgram_;
+  GlProgram lineProgram_;
+  GlProgram backgroundProgram_;
+  GLuint surfelVao_ = 0, cornerBuffer_ = 0, splatBuffer_ = 0;
+  GLuint lineVao_ = 0, lineBuffer_ = 0;
+  GLuint emptyVao_ = 0;
+  GLuint leafTexture_ = 0;
+  int leafTextureWidth_ = 1;
+  size_t splatCount_ = 0;
+  size_t splatCapacity_ = 0;
+  size_t lineCapacity_ = 0;
+  double cellSize_ = 1.0;
+};
+
+// An off-screen colour + depth target for rendering the viewport alone (headless renders,
+// tests). Restores the previous framebuffer binding in read().
+class RenderTarget {
+ public:
+  RenderTarget(int width, int height);  // throws strata::Error when incomplete
+  ~RenderTarget();
+  RenderTarget(const RenderTarget&) = delete;
+  RenderTarget& operator=(const RenderTarget&) = delete;
+  void bind();
+  // RGBA8 pixels, top row first (width * height * 4 bytes). Unbinds the target.
+  std::vector<uint8_t> read();
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  int width_, height_;
+  GLuint framebuffer_ = 0, color_ = 0, depth_ = 0;
+};
+
+// Reads the default framebuffer's back buffer (the whole window), top row first.
+std::vector<uint8_t> readWindowPixels(int width, int height);
+
+}  // namespace strata::ui
