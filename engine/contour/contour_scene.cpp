@@ -69,11 +69,10 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   auto byKey = [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; };
   if (!std::is_sorted(vertices.begin(), vertices.end(), byKey))
     std::sort(vertices.begin(), vertices.end(), byKey);
-  vertices.erase(std::unique(vertices.begin(), vertices.end(),
-                             [](const ContourVertex& a, const ContourVertex& b) {
-                               return a.key == b.key;
-                             }),
-                 vertices.end());
+  vertices.erase(
+      std::unique(vertices.begin(), vertices.end(),
+                  [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
+      vertices.end());
   progress.check();
   auto byOrder = [](const ContourTriangle& a, const ContourTriangle& b) {
     return a.order < b.order;
@@ -88,7 +87,10 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   out.mesh.positions.resize(vertices.size());
   parallelFor(0, int64_t(vertices.size()), 65536, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i)
-      out.mesh.positions[size_t(i)] = grid.origin + grid.h * vertices[size_t(i)].position;
+      out.mesh.positions[size_t(i)] =
+          grid.origin + grid.h * glm::dvec3(vertices[size_t(i)].position[0],
+                                            vertices[size_t(i)].position[1],
+                                            vertices[size_t(i)].position[2]);
   });
   for (const ContourVertex& v : vertices)
     r.maxPlaneDistance = std::max(r.maxPlaneDistance, v.planeDistance * grid.h);

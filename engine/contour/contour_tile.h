@@ -13,22 +13,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/contour/contour_cells.h"
 #include "engine/ldi/ldi.h"
 #include "engine/util/progress.h"
 
 namespace strata {
 
-struct ContourVertex {
-  uint64_t key;          // global cell index * 4 + component, or a face vertex key (top bit set)
-  glm::dvec3 position;   // global grid units
-  double planeDistance;  // grid units: distance to the farthest of its Hermite planes
-};
-
-struct ContourTriangle {
-  uint64_t vertex[3];  // vertex keys, counter-clockwise seen from outside
-  uint64_t order;      // global edge key * 8 + triangle: a tiling-independent order
-  uint32_t leaf;       // leaf id of the surfel the edge's crossing came from
-};
+using ContourVertex = CellVertex;  // see contour_cells.h
+using ContourTriangle = CellTriangle;
 
 struct TileContour {
   std::vector<ContourVertex> vertices;  // may repeat vertices of neighbouring tiles (same keys)
@@ -48,6 +40,11 @@ TileWindow tileWindow(const glm::ivec3& begin, const glm::ivec3& end, const glm:
 // `globalCells` the whole grid's cells (nodes on its outer faces count as outside).
 TileContour contourTile(const Ldi& ldi, const glm::ivec3& globalCells, const glm::ivec3& begin,
                         const glm::ivec3& end, Progress* progress);
+
+// The view of a tile's window for the shared per-cell steps, without its arrays.
+TileView makeTileView(const glm::ivec3& first, const glm::ivec3& cells,
+                      const glm::ivec3& globalCells, const glm::ivec3& begin,
+                      const glm::ivec3& end);
 
 // Global key of the edge along `axis` whose lower node is `node`.
 uint64_t edgeKey(const glm::ivec3& globalCells, int axis, const glm::ivec3& node);

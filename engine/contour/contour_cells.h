@@ -1,0 +1,385 @@
+// The per-cell steps of dual contouring on one tile, shared by the CPU exporter
+// (contour_tile.cpp) and its CUDA twin (gpu/contour/contour_tile.cu): crossings on grid edges,
+// one QEF vertex per surface component of a boundary cell, and the polygons around the
+// sign-changing edges a cell owns. Plain inline functions over a plain view of the tile.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/contour/contour_math.h"
+
+namespace strata {
+
+// A vertex: a component of a boundary cell (key = global cell * 4 + component), or a vertex
+// splitting a face segment (key with the top bit set). Position in global grid units.
+struct CellVertex {
+  uint64_t key;
+  double position[3];
+  double planeDistance;  // grid units: distance to the farthest of its Hermite planes
+};
+
+struct CellTriangle {
+  uint64_t vertex[3];  // vertex keys, counter-clockwise seen from outside
+  uint64_t order;      // global edge key * 8 + triangle: a tiling-independent order
+  uint32_t leaf;       // leaf id of the surfel the edge's crossing came from
+};
+
+// At most 3 owned edges per cell, each a polygon of at most 8 vertices (4 cells and up to 4
+// face-segment vertices): 6 triangles and 4 face vertices per edge.
+constexpr int kMaxCellTriangles = 18;
+constexpr int kMaxCellFaceVertices = 12;
+
+// Everything a tile's per-cell steps read. Window coordinates: nodes [0, cells] per axis,
+// node (i, j, k) at index i + (cells.x + 1) * (j + (cells.y + 1) * k); cells likewise with
+// `cells` per axis. All pointers address memory of the side that runs the step.
+struct TileView {
+  int first[3];                // global index of the window's first node
+  int cells[3];                // window cells per axis
+  int globalCells[3];          // the whole grid's cells
+  int ownedLo[3], ownedHi[3];  // owned edges' lower nodes, window coordinates, [lo, hi)
+  const uint32_t* offsets[3];  // the root LDI of the window, per axis (CSR)
+  const Surfel* surfels[3];
+  const uint8_t* inside;     // per window node: 1 inside
+  const uint8_t* masks;      // per window cell: bit c set when corner c is inside
+  const uint32_t* boundary;  // boundary cells (mixed corners), increasing index
+  int64_t boundaryCount;
+  const uint32_t* vertexStart;  // per boundary cell: its first vertex in `vertices`
+  const CellVertex* vertices;   // the tile's cell vertices (read by the polygon step)
+};
+
+STRATA_HD int64_t tileNode(const TileView& t, int i, int j, int k) {
+  return int64_t(i) + int64_t(t.cells[0] + 1) * (int64_t(j) + int64_t(t.cells[1] + 1) * k);
+}
+STRATA_HD int64_t tileCell(const TileView& t, int i, int j, int k) {
+  return int64_t(i) + int64_t(t.cells[0]) * (int64_t(j) + int64_t(t.cells[1]) * k);
+}
+STRATA_HD void tileCellCoords(const TileView& t, uint32_t index, int c[3]) {
+  const int64_t i = index;
+  c[0] = int(i % t.cells[0]);
+  c[1] = int((i / t.cells[0]) % t.cells[1]);
+  c[2] = int(i / (int64_t(t.cells[0]) * t.cells[1]));
+}
+STRATA_HD uint64_t tileGlobalCell(const TileView& t, const int c[3]) {
+  return uint64_t(c[0] + t.first[0]) +
+         uint64_t(t.globalCells[0]) * (uint64_t(c[1] + t.first[1]) +
+                                       uint64_t(t.globalCells[1]) * uint64_t(c[2] + t.first[2]));
+}
+
+// Global key of the edge along `axis` whose lower node is `node` (global).
+STRATA_HD uint64_t globalEdgeKey(const int globalCells[3], int axis, const int node[3]) {
+  const uint64_t nx = uint64_t(globalCells[0]) + 1, ny = uint64_t(globalCells[1]) + 1;
+  return ((uint64_t(node[2]) * ny + uint64_t(node[1])) * nx + uint64_t(node[0])) * 3 +
+         uint64_t(axis);
+}
+
+// Key of the vertex splitting the face segment around inside corner `corner` (0..3: offset
+// along the face's lower in-plane axis + 2 * along the higher) of the face whose lowest node
+// is `faceMin` (global) and whose normal is `normalAxis`.
+STRATA_HD uint64_t faceSegmentKey(const int globalCells[3], const int faceMin[3], int normalAxis,
+                                  int corner) {
+  const uint64_t nx = uint64_t(globalCells[0]) + 1, ny = uint64_t(globalCells[1]) + 1;
+  const uint64_t node =
+      (uint64_t(faceMin[2]) * ny + uint64_t(faceMin[1])) * nx + uint64_t(faceMin[0]);
+  return (uint64_t(1) << 63) | ((node * 3 + uint64_t(normalAxis)) * 4 + uint64_t(corner));
+}
+
+// The node's decided side from its three votes (rays saying inside): majority, and outside on
+// the grid's outer faces.
+STRATA_HD uint8_t decideNodeSide(uint8_t votes, bool onOuterFace) {
+  return (!onOuterFace && votes >= 2) ? 1 : 0;
+}
+
+// The corner mask of window cell (i, j, k) from the node sides.
+STRATA_HD uint8_t cellMaskFromNodes(const TileView& t, int i, int j, int k) {
+  const uint8_t* n = t.inside + tileNode(t, i, j, k);
+  const int64_t dx = 1, dy = t.cells[0] + 1, dz = int64_t(t.cells[0] + 1) * (t.cells[1] + 1);
+  return uint8_t(n[0] | (n[dx] << 1) | (n[dy] << 2) | (n[dx + dy] << 3) | (n[dz] << 4) |
+                 (n[dx + dz] << 5) | (n[dy + dz] << 6) | (n[dx + dy + dz] << 7));
+}
+
+struct EdgeCrossing {
+  double t;  // global grid units along the edge's axis
+  float normal[3];
+  uint32_t leaf;
+  bool synthesized;
+};
+
+// The crossing on the edge along `axis` from window node n, whose side is `lowerInside`: the
+// first surfel in (depth(n), depth(n) + 1] that crosses in the decided direction; when the
+// ray's own parity disagreed with the decided signs (a tangent ray), one synthesised at the
+// middle facing out of the solid along the axis, with the leaf of the ray's nearest surfel.
+STRATA_HD EdgeCrossing tileCrossing(const TileView& t, int axis, const int n[3], bool lowerInside) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const int64_t ray = int64_t(n[u]) + int64_t(n[v]) * (t.cells[u] + 1);
+  const float lo = float(t.first[axis] + n[axis]), hi = lo + 1.0f;
+  const Surfel* begin = t.surfels[axis] + t.offsets[axis][ray];
+  const Surfel* end = t.surfels[axis] + t.offsets[axis][ray + 1];
+  // First surfel with depth > lo.
+  const Surfel* s = begin;
+  int64_t count = end - begin;
+  while (count > 0) {
+    const int64_t half = count / 2;
+    if (s[half].depth <= lo) {
+      s += half + 1;
+      count -= half + 1;
+    } else {
+      count = half;
+    }
+  }
+  const bool wantEnter = !lowerInside;  // moving along +axis from outside into the solid
+  EdgeCrossing c;
+  for (; s != end && s->depth <= hi; ++s) {
+    if (surfelEnters(s->tag) == wantEnter) {
+      c.t = s->depth;
+      decodeNormal(s->normal, c.normal);
+      c.leaf = surfelLeaf(s->tag);
+      c.synthesized = false;
+      return c;
+    }
+  }
+  c.t = double(lo) + 0.5;
+  c.normal[0] = c.normal[1] = c.normal[2] = 0.0f;
+  c.normal[axis] = wantEnter ? -1.0f : 1.0f;
+  c.synthesized = true;
+  c.leaf = 0;
+  float nearest = 3.4e38f;
+  for (const Surfel* x = begin; x != end; ++x) {
+    const float d = fabsf(x->depth - lo);
+    if (d < nearest) {
+      nearest = d;
+      c.leaf = surfelLeaf(x->tag);
+    }
+  }
+  return c;
+}
+
+// Writes the vertices of boundary cell number b (one per surface component, in component
+// order) to out.
+STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, int64_t b,
+                                 CellVertex* out) {
+  const uint32_t index = t.boundary[b];
+  int c[3];
+  tileCellCoords(t, index, c);
+  const uint8_t mask = t.masks[index];
+  const CellCase& cc = table.cases[mask];
+  double points[kMaxCellComponents][12][3];
+  float normals[kMaxCellComponents][12][3];
+  int n[kMaxCellComponents] = {0, 0, 0, 0};
+  for (int edge = 0; edge < 12; ++edge) {
+    const int comp = cc.edgeComponent[edge];
+    if (comp < 0) continue;
+    int c0, c1;
+    edgeCorners(edge, &c0, &c1);
+    const int axis = edge >> 2;
+    const int node[3] = {c[0] + (c0 & 1), c[1] + ((c0 >> 1) & 1), c[2] + ((c0 >> 2) & 1)};
+    const EdgeCrossing x = tileCrossing(t, axis, node, (mask >> c0) & 1);
+    double* p = points[comp][n[comp]];
+    for (int d = 0; d < 3; ++d) p[d] = double(t.first[d] + node[d]);
+    p[axis] = x.t;
+    for (int d = 0; d < 3; ++d) normals[comp][n[comp]][d] = x.normal[d];
+    ++n[comp];
+  }
+  const int64_t cellGlobal[3] = {c[0] + t.first[0], c[1] + t.first[1], c[2] + t.first[2]};
+  double x[kMaxCellComponents][3];
+  double mass[kMaxCellComponents][3];
+  for (int comp = 0; comp < cc.components; ++comp) {
+    Qef q = buildQef(points[comp], normals[comp], n[comp]);
+    for (int k = 0; k < 3; ++k) x[comp][k] = mass[comp][k] = q.mass[k];
+    solveQef(q, cellGlobal, x[comp]);
+  }
+  separateCoincidentVertices(x, mass, cc.components);
+  const uint64_t cellKey = tileGlobalCell(t, c) * 4;
+  for (int comp = 0; comp < cc.components; ++comp) {
+    out[comp].key = cellKey + uint64_t(comp);
+    for (int k = 0; k < 3; ++k) out[comp].position[k] = x[comp][k];
+    out[comp].planeDistance = qefPlaneDistance(points[comp], normals[comp], n[comp], x[comp]);
+  }
+}
+
+// The vertex of the component of window cell c that contains cell edge `edge`.
+STRATA_HD const CellVertex& vertexOfEdge(const TileView& t, const CellCaseTable& table,
+                                         const int c[3], int edge) {
+  const uint32_t index = uint32_t(tileCell(t, c[0], c[1], c[2]));
+  int64_t lo = 0, hi = t.boundaryCount;  // lower bound of index in t.boundary
+  while (lo < hi) {
+    const int64_t mid = (lo + hi) / 2;
+    if (t.boundary[mid] < index)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return t.vertices[t.vertexStart[lo] + uint32_t(table.cases[t.masks[index]].edgeComponent[edge])];
+}
+
+STRATA_HD double splitAgreement(const double* a, const double* b, const double* c,
+                                const double* d) {
+  // Triangles (a, b, c) and (a, c, d): the cosine between their normals; -2 if one is degenerate.
+  double e1[3], e2[3], e3[3], n1[3], n2[3];
+  for (int k = 0; k < 3; ++k) {
+    e1[k] = b[k] - a[k];
+    e2[k] = c[k] - a[k];
+    e3[k] = d[k] - a[k];
+  }
+  n1[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n1[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n1[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  n2[0] = e2[1] * e3[2] - e2[2] * e3[1];
+  n2[1] = e2[2] * e3[0] - e2[0] * e3[2];
+  n2[2] = e2[0] * e3[1] - e2[1] * e3[0];
+  const double l1 = sqrt(n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]);
+  const double l2 = sqrt(n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+  if (!(l1 > 0.0) || !(l2 > 0.0)) return -2.0;
+  return (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]) / (l1 * l2);
+}
+
+STRATA_HD int localEdgeIndex(int axis, const int bits[3]) {
+  return 4 * axis + bits[(axis + 1) % 3] + 2 * bits[(axis + 2) % 3];
+}
+
+// The polygons of the sign-changing edges owned by boundary cell number b (those running from
+// its corner 0), joining the vertices of the four cells around each edge. Two neighbouring
+// cells whose components both pass twice through their shared, ambiguous face would be joined
+// by the same dual edge four times; there the dual edge is split at a vertex per face segment
+// (between the segment's two crossings), so every output edge has exactly two triangles.
+// Writes up to kMaxCellTriangles triangles and kMaxCellFaceVertices face vertices; returns the
+// number of triangles (and *faceCount the face vertices).
+STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_t b,
+                           CellTriangle* tris, CellVertex* faceVertices, int* faceCount,
+                           int* synthesized) {
+  *faceCount = 0;
+  const uint32_t index = t.boundary[b];
+  int n[3];
+  tileCellCoords(t, index, n);
+  for (int k = 0; k < 3; ++k)
+    if (n[k] < t.ownedLo[k] || n[k] >= t.ownedHi[k]) return 0;
+  const uint8_t mask = t.masks[index];
+  const bool in0 = mask & 1;
+  int triangleCount = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (bool((mask >> (1 << axis)) & 1) == in0) continue;  // corner 1, 2 or 4 vs corner 0
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    // The four cells around the edge, counter-clockwise in (u, v) seen from +axis.
+    const int around[4][2] = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
+    int cells[4][3];
+    for (int q = 0; q < 4; ++q) {
+      for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
+      cells[q][u] -= around[q][0];  // >= 0: the grid's outer nodes are outside
+      cells[q][v] -= around[q][1];
+    }
+    uint64_t keys[8];
+    double pos[8][3];
+    int m = 0, firstInserted = -1;
+    for (int q = 0; q < 4; ++q) {
+      const CellVertex& vtx =
+          vertexOfEdge(t, table, cells[q], 4 * axis + around[q][0] + 2 * around[q][1]);
+      keys[m] = vtx.key;
+      for (int k = 0; k < 3; ++k) pos[m][k] = vtx.position[k];
+      ++m;
+      // The face shared by cells q and q + 1: normal along u or v, other in-plane axis w.
+      const int q1 = (q + 1) % 4;
+      const bool normalU = around[q][0] != around[q1][0];
+      const int normalAxis = normalU ? u : v, w = normalU ? v : u;
+      int bitsQ[3], bitsQ1[3];
+      bitsQ[axis] = bitsQ1[axis] = 0;
+      bitsQ[u] = around[q][0];
+      bitsQ[v] = around[q][1];
+      bitsQ1[u] = around[q1][0];
+      bitsQ1[v] = around[q1][1];
+      const int eQ = localEdgeIndex(axis, bitsQ), eQ1 = localEdgeIndex(axis, bitsQ1);
+      const int wBit = bitsQ[w];  // where the edge lies across the face (same in both cells)
+      bitsQ[w] = bitsQ1[w] = 1 - wBit;
+      const int oppQ = localEdgeIndex(axis, bitsQ), oppQ1 = localEdgeIndex(axis, bitsQ1);
+      const CellCase& caseQ =
+          table.cases[t.masks[tileCell(t, cells[q][0], cells[q][1], cells[q][2])]];
+      const CellCase& caseQ1 =
+          table.cases[t.masks[tileCell(t, cells[q1][0], cells[q1][1], cells[q1][2])]];
+      if (caseQ.edgeComponent[oppQ] != caseQ.edgeComponent[eQ] ||
+          caseQ1.edgeComponent[oppQ1] != caseQ1.edgeComponent[eQ1])
+        continue;
+      // Both a-edges in one component on each side: split only if the face is ambiguous (its
+      // two w-edges cross too; otherwise the two a-edges form the face's single segment).
+      int wBits[3];
+      wBits[normalAxis] = normalU ? around[q][0] : around[q][1];
+      wBits[w] = 0;
+      wBits[axis] = 0;
+      const int w0 = localEdgeIndex(w, wBits);
+      wBits[axis] = 1;
+      const int w1 = localEdgeIndex(w, wBits);
+      if (caseQ.edgeComponent[w0] < 0 || caseQ.edgeComponent[w1] < 0) continue;
+      // The segment around this edge's inside corner: this edge and the w-edge at that corner.
+      int insideCorner[3] = {n[0], n[1], n[2]};
+      if (!in0) insideCorner[axis] += 1;
+      int faceMin[3] = {n[0], n[1], n[2]};
+      if (wBit == 1) faceMin[w] -= 1;
+      int wLower[3] = {insideCorner[0], insideCorner[1], insideCorner[2]};
+      if (wBit == 1) wLower[w] -= 1;
+      // Corner offsets ordered by axis index, so that the polygons around the segment's a-edge
+      // and around its w-edge compute the same key.
+      const int lowAxis = axis < w ? axis : w, highAxis = axis < w ? w : axis;
+      const int corner = (insideCorner[lowAxis] - faceMin[lowAxis]) +
+                         2 * (insideCorner[highAxis] - faceMin[highAxis]);
+      const int faceMinGlobal[3] = {faceMin[0] + t.first[0], faceMin[1] + t.first[1],
+                                    faceMin[2] + t.first[2]};
+      keys[m] = faceSegmentKey(t.globalCells, faceMinGlobal, normalAxis, corner);
+      const EdgeCrossing ea = tileCrossing(t, axis, n, t.inside[tileNode(t, n[0], n[1], n[2])]);
+      const EdgeCrossing ew =
+          tileCrossing(t, w, wLower, t.inside[tileNode(t, wLower[0], wLower[1], wLower[2])]);
+      for (int k = 0; k < 3; ++k) {
+        double pa = double(t.first[k] + n[k]), pw = double(t.first[k] + wLower[k]);
+        if (k == axis) pa = ea.t;
+        if (k == w) pw = ew.t;
+        pos[m][k] = 0.5 * (pa + pw);
+      }
+      if (faceVertices) {
+        CellVertex& f = faceVertices[*faceCount];
+        f.key = keys[m];
+        for (int k = 0; k < 3; ++k) f.position[k] = pos[m][k];
+        f.planeDistance = 0.0;
+      }
+      ++*faceCount;
+      if (firstInserted < 0) firstInserted = m;
+      ++m;
+    }
+    if (!in0) {  // the solid lies after the edge: the surface faces -axis
+      for (int i = 0, j = m - 1; i < j; ++i, --j) {
+        const uint64_t tk = keys[i];
+        keys[i] = keys[j];
+        keys[j] = tk;
+        for (int k = 0; k < 3; ++k) {
+          const double tp = pos[i][k];
+          pos[i][k] = pos[j][k];
+          pos[j][k] = tp;
+        }
+      }
+      if (firstInserted >= 0) firstInserted = m - 1 - firstInserted;
+    }
+    const EdgeCrossing x = tileCrossing(t, axis, n, in0);
+    *synthesized += x.synthesized ? 1 : 0;
+    const int g[3] = {n[0] + t.first[0], n[1] + t.first[1], n[2] + t.first[2]};
+    const uint64_t order = globalEdgeKey(t.globalCells, axis, g) * 8;
+    if (firstInserted < 0) {
+      const double splitA = splitAgreement(pos[0], pos[1], pos[2], pos[3]);
+      const double splitB = splitAgreement(pos[1], pos[2], pos[3], pos[0]);
+      const int s = splitA >= splitB ? 0 : 1;
+      if (tris) {
+        tris[triangleCount] = CellTriangle{{keys[s], keys[s + 1], keys[s + 2]}, order, x.leaf};
+        tris[triangleCount + 1] =
+            CellTriangle{{keys[s], keys[s + 2], keys[(s + 3) % 4]}, order + 1, x.leaf};
+      }
+      triangleCount += 2;
+    } else {
+      // A fan from an inserted face vertex: its spokes are unique to this polygon.
+      for (int k = 1; k + 1 < m; ++k) {
+        if (tris)
+          tris[triangleCount] = CellTriangle{{keys[firstInserted], keys[(firstInserted + k) % m],
+                                              keys[(firstInserted + k + 1) % m]},
+                                             order + uint64_t(k - 1),
+                                             x.leaf};
+        ++triangleCount;
+      }
+    }
+  }
+  return triangleCount;
+}
+
+}  // namespace strata
