@@ -3,6 +3,7 @@
 #include <cuda_runtime.h>
 
 #include "engine/ldi/grid_mesh.h"
+#include "gpu/contour/contour_tile.cuh"
 #include "gpu/ldi/combine_ldi.cuh"
 #include "gpu/ldi/measure_ldi.cuh"
 #include "gpu/ldi/sample_mesh.cuh"
@@ -60,6 +61,14 @@ class CudaBackend : public Backend {
     setAllocationStream(stream_);
     progress.check();
     return measureOnDevice(deviceLdi(ldi), stream_);
+  }
+
+  TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
+                          const glm::ivec3& begin, const glm::ivec3& end,
+                          Progress& progress) override {
+    setAllocationStream(stream_);
+    progress.check();
+    return contourTileOnDevice(deviceLdi(root), globalCells, begin, end, stream_);
   }
 
   std::shared_ptr<const Ldi> download(const LdiHandle& handle) override {

@@ -52,8 +52,8 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
           continue;
         }
         Stopwatch contour;
-        std::shared_ptr<const Ldi> ldi = evaluator.backend().download(result.root);
-        TileContour tile = contourTile(*ldi, grid.cells, begin, end, &progress);
+        TileContour tile =
+            evaluator.backend().contourTile(result.root, grid.cells, begin, end, progress);
         r.contourSeconds += contour.seconds();
         r.synthesizedCrossings += tile.synthesizedCrossings;
         r.signDisagreements += tile.signDisagreements;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/contour/contour_tile.h"
 #include "engine/geometry/mesh.h"
 #include "engine/ldi/ldi.h"
 #include "engine/util/progress.h"
@@ -42,6 +43,11 @@ class Backend {
   virtual LdiMeasure measure(const LdiHandle& ldi, Progress& progress) = 0;
   // A host copy (or view) of the LDI.
   virtual std::shared_ptr<const Ldi> download(const LdiHandle& ldi) = 0;
+  // Dual contouring of one tile (see engine/contour/contour_tile.h) of `root`, an LDI on the
+  // tile's window grid. The default downloads the LDI and contours it on the CPU.
+  virtual TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
+                                  const glm::ivec3& begin, const glm::ivec3& end,
+                                  Progress& progress);
 };
 
 }  // namespace strata

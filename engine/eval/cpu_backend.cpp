@@ -55,4 +55,11 @@ LdiMeasure CpuBackend::measure(const LdiHandle& ldi, Progress& progress) {
 
 std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) { return hostLdi(ldi); }
 
+TileContour Backend::contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
+                                 const glm::ivec3& begin, const glm::ivec3& end,
+                                 Progress& progress) {
+  std::shared_ptr<const Ldi> ldi = download(root);
+  return strata::contourTile(*ldi, globalCells, begin, end, &progress);
+}
+
 }  // namespace strata

@@ -1,0 +1,247 @@
+#include <cub/device/device_scan.cuh>
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
+
+#include <mutex>
+
+#include "engine/contour/contour_cells.h"
+#include "gpu/contour/contour_tile.cuh"
+#include "gpu/ldi/csr_build.cuh"
+
+namespace strata {
+namespace {
+
+__constant__ CellCaseTable c_cellCases;
+
+void uploadCellCases() {
+  static std::once_flag once;
+  static cudaError_t status = cudaSuccess;
+  std::call_once(once, [] {
+    const CellCaseTable table = buildCellCaseTable();
+    status = cudaMemcpyToSymbol(c_cellCases, &table, sizeof(table));
+  });
+  STRATA_CUDA_CHECK(status);
+}
+
+// Votes of one axis: one thread per ray walks its surfels and its nodes together.
+__global__ void voteAxis(TileView t, int axis, uint8_t* votes) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const int nu = t.cells[u] + 1, nv = t.cells[v] + 1, na = t.cells[axis] + 1;
+  for (int64_t ray = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; ray < int64_t(nu) * nv;
+       ray += int64_t(gridDim.x) * blockDim.x) {
+    int n[3];
+    n[u] = int(ray % nu);
+    n[v] = int(ray / nu);
+    uint32_t k = t.offsets[axis][ray];
+    const uint32_t end = t.offsets[axis][ray + 1];
+    bool in = false;
+    for (int i = 0; i < na; ++i) {
+      // A node counts the surfels at or before it (as on the CPU).
+      const float depth = float(t.first[axis] + i);
+      while (k < end && t.surfels[axis][k].depth <= depth) {
+        in = !in;
+        ++k;
+      }
+      n[axis] = i;
+      votes[tileNode(t, n[0], n[1], n[2])] += in ? 1 : 0;
+    }
+  }
+}
+
+__global__ void decideSides(TileView t, const uint8_t* votes, uint8_t* inside,
+                            unsigned long long* disagreements) {
+  const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
+  const int64_t total = int64_t(nx) * ny * nz;
+  unsigned long long local = 0;
+  for (int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; i < total;
+       i += int64_t(gridDim.x) * blockDim.x) {
+    const int x = int(i % nx), y = int((i / nx) % ny), z = int(i / (int64_t(nx) * ny));
+    const int g[3] = {t.first[0] + x, t.first[1] + y, t.first[2] + z};
+    const bool face = g[0] == 0 || g[1] == 0 || g[2] == 0 || g[0] == t.globalCells[0] ||
+                      g[1] == t.globalCells[1] || g[2] == t.globalCells[2];
+    const uint8_t vote = votes[i];
+    local += (vote == 1 || vote == 2) ? 1 : 0;
+    inside[i] = decideNodeSide(vote, face);
+  }
+  if (local) atomicAdd(disagreements, local);
+}
+
+// One thread per cell; also counts the boundary cells (one atomic per block).
+__global__ void cellMasks(TileView t, uint8_t* masks, uint8_t* boundaryFlags,
+                          unsigned long long* boundaryCount) {
+  const int64_t total = int64_t(t.cells[0]) * t.cells[1] * t.cells[2];
+  const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  int flag = 0;
+  if (c < total) {
+    const int x = int(c % t.cells[0]), y = int((c / t.cells[0]) % t.cells[1]),
+              z = int(c / (int64_t(t.cells[0]) * t.cells[1]));
+    const uint8_t mask = cellMaskFromNodes(t, x, y, z);
+    masks[c] = mask;
+    flag = (mask != 0 && mask != 255) ? 1 : 0;
+    boundaryFlags[c] = uint8_t(flag);
+  }
+  const int inBlock = __syncthreads_count(flag);
+  if (threadIdx.x == 0 && inBlock) atomicAdd(boundaryCount, (unsigned long long)inBlock);
+}
+
+__global__ void componentCounts(TileView t, uint32_t* counts) {
+  for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b <= t.boundaryCount;
+       b += int64_t(gridDim.x) * blockDim.x)
+    counts[b] = b < t.boundaryCount ? uint32_t(c_cellCases.cases[t.masks[t.boundary[b]]].components)
+                                    : 0u;
+}
+
+__global__ void placeVertices(TileView t, CellVertex* vertices) {
+  for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b < t.boundaryCount;
+       b += int64_t(gridDim.x) * blockDim.x)
+    placeCellVertices(t, c_cellCases, b, vertices + t.vertexStart[b]);
+}
+
+__global__ void countPolygons(TileView t, uint32_t* triangles, uint32_t* faces) {
+  for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b <= t.boundaryCount;
+       b += int64_t(gridDim.x) * blockDim.x) {
+    if (b == t.boundaryCount) {
+      triangles[b] = faces[b] = 0;
+      continue;
+    }
+    int faceCount = 0, synthesized = 0;
+    triangles[b] = uint32_t(cellPolygons(t, c_cellCases, b, nullptr, nullptr, &faceCount,
+                                         &synthesized));
+    faces[b] = uint32_t(faceCount);
+  }
+}
+
+__global__ void writePolygons(TileView t, const uint32_t* triangleStart, const uint32_t* faceStart,
+                              CellTriangle* triangles, CellVertex* faces,
+                              unsigned long long* synthesized) {
+  unsigned long long local = 0;
+  for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b < t.boundaryCount;
+       b += int64_t(gridDim.x) * blockDim.x) {
+    int faceCount = 0, synth = 0;
+    cellPolygons(t, c_cellCases, b, triangles + triangleStart[b], faces + faceStart[b], &faceCount,
+                 &synth);
+    local += unsigned(synth);
+  }
+  if (local) atomicAdd(synthesized, local);
+}
+
+// In-place exclusive scan of count + 1 uint32 values; returns the total (one wait).
+uint32_t scan32(uint32_t* data, int64_t count, cudaStream_t stream) {
+  size_t tempBytes = 0;
+  STRATA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count + 1, stream));
+  DeviceBuffer<unsigned char> temp(tempBytes);
+  STRATA_CUDA_CHECK(
+      cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count + 1, stream));
+  uint32_t total = 0;
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(&total, data + count, sizeof(uint32_t), cudaMemcpyDeviceToHost,
+                                    stream));
+  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+  return total;
+}
+
+}  // namespace
+
+TileContour contourTileOnDevice(const DeviceLdi& ldi, const glm::ivec3& globalCells,
+                                const glm::ivec3& begin, const glm::ivec3& end,
+                                cudaStream_t stream) {
+  uploadCellCases();
+  const Grid& grid = ldi.grid();
+  TileView t = makeTileView(grid.first, grid.cells, globalCells, begin, end);
+  for (int a = 0; a < 3; ++a) {
+    t.offsets[a] = ldi.axes[a].offsets.data();
+    t.surfels[a] = ldi.axes[a].surfels.data();
+  }
+  const int64_t nodes = int64_t(grid.cells.x + 1) * (grid.cells.y + 1) * (grid.cells.z + 1);
+  const int64_t cells = int64_t(grid.cells.x) * grid.cells.y * grid.cells.z;
+  TileContour out;
+
+  // Node sides: votes of the three axes, then majority and the outer faces.
+  DeviceBuffer<uint8_t> votes(static_cast<size_t>(nodes)), inside(static_cast<size_t>(nodes));
+  DeviceBuffer<unsigned long long> counters(2);  // disagreements, synthesised crossings
+  STRATA_CUDA_CHECK(cudaMemsetAsync(votes.data(), 0, votes.bytes(), stream));
+  STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream));
+  for (int axis = 0; axis < 3; ++axis) {
+    const int64_t rays = grid.rayCount(axis);
+    voteAxis<<<blocksFor(rays, 128), 128, 0, stream>>>(t, axis, votes.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  decideSides<<<blocksFor(nodes, 256), 256, 0, stream>>>(t, votes.data(), inside.data(),
+                                                         counters.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  t.inside = inside.data();
+
+  // Cell masks and the boundary cells, in increasing index.
+  DeviceBuffer<uint8_t> masks(static_cast<size_t>(cells)), flags(static_cast<size_t>(cells));
+  DeviceBuffer<unsigned long long> flagged(1);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(flagged.data(), 0, flagged.bytes(), stream));
+  cellMasks<<<blocksFor(cells, 256), 256, 0, stream>>>(t, masks.data(), flags.data(),
+                                                       flagged.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  t.masks = masks.data();
+  unsigned long long boundaryCount = 0;
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(&boundaryCount, flagged.data(), sizeof(boundaryCount),
+                                    cudaMemcpyDeviceToHost, stream));
+  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+  // Room for exactly the boundary cells (they follow the surface, not the volume).
+  DeviceBuffer<uint32_t> boundary(static_cast<size_t>(boundaryCount));
+  DeviceBuffer<int64_t> selected(1);
+  if (boundaryCount > 0) {
+    thrust::counting_iterator<uint32_t> indices(0);
+    size_t tempBytes = 0;
+    STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, tempBytes, indices, flags.data(),
+                                                 boundary.data(), selected.data(), cells, stream));
+    DeviceBuffer<unsigned char> temp(tempBytes);
+    STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(temp.data(), tempBytes, indices, flags.data(),
+                                                 boundary.data(), selected.data(), cells, stream));
+  }
+  t.boundary = boundary.data();
+  t.boundaryCount = int64_t(boundaryCount);
+  votes = DeviceBuffer<uint8_t>();
+  flags = DeviceBuffer<uint8_t>();
+
+  // One vertex per component of each boundary cell.
+  DeviceBuffer<uint32_t> vertexStart(static_cast<size_t>(t.boundaryCount) + 1);
+  componentCounts<<<blocksFor(boundaryCount + 1, 256), 256, 0, stream>>>(t, vertexStart.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  const uint32_t vertexCount = scan32(vertexStart.data(), boundaryCount, stream);
+  t.vertexStart = vertexStart.data();
+  DeviceBuffer<CellVertex> vertices(vertexCount);
+  if (boundaryCount > 0) {
+    placeVertices<<<blocksFor(boundaryCount, 128), 128, 0, stream>>>(t, vertices.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  t.vertices = vertices.data();
+
+  // Polygons: count, scan, write.
+  DeviceBuffer<uint32_t> triangleStart(static_cast<size_t>(t.boundaryCount) + 1),
+      faceStart(static_cast<size_t>(t.boundaryCount) + 1);
+  countPolygons<<<blocksFor(boundaryCount + 1, 128), 128, 0, stream>>>(t, triangleStart.data(),
+                                                                      faceStart.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  const uint32_t triangleCount = scan32(triangleStart.data(), boundaryCount, stream);
+  const uint32_t faceCount = scan32(faceStart.data(), boundaryCount, stream);
+  DeviceBuffer<CellTriangle> triangles(triangleCount);
+  DeviceBuffer<CellVertex> faces(faceCount);
+  if (boundaryCount > 0) {
+    writePolygons<<<blocksFor(boundaryCount, 128), 128, 0, stream>>>(
+        t, triangleStart.data(), faceStart.data(), triangles.data(), faces.data(),
+        counters.data() + 1);
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+
+  // Back to the host: cell vertices then face vertices (as the CPU orders them), triangles.
+  std::vector<CellVertex> faceHost;
+  vertices.download(&out.vertices, stream);
+  faces.download(&faceHost, stream);
+  triangles.download(&out.triangles, stream);
+  unsigned long long stats[2] = {0, 0};
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(stats, counters.data(), sizeof(stats), cudaMemcpyDeviceToHost,
+                                    stream));
+  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+  out.vertices.insert(out.vertices.end(), faceHost.begin(), faceHost.end());
+  out.signDisagreements = stats[0];
+  out.synthesizedCrossings = stats[1];
+  return out;
+}
+
+}  // namespace strata
