@@ -4,17 +4,22 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/editor_commands.h"
 
 namespace {
 const char* kUsage =
     "strata: CSG Booleans of closed triangle meshes through layered depth images\n"
     "\n"
     "usage:\n"
-    "  strata                         evaluate the bundled demo scene and print its report\n"
+    "  strata                         open the editor on the bundled demo scene (without a\n"
+    "                                 display: evaluate it and print the report)\n"
+    "  strata SCENE.strata.json       open a scene in the editor (also: strata edit [SCENE])\n"
     "  strata eval SCENE.strata.json  evaluate a scene file\n"
     "  strata boolean OP A B [C...]   apply union|intersection|difference to mesh files\n"
     "                                 (difference: A minus all the others)\n"
     "  strata export SCENE -o FILE    write the scene's result as a watertight mesh\n"
+    "  strata render SCENE -o F.png   render the editor's view of the scene to a PNG\n"
+    "                                 (--width W --height H, --view iso|front|right|top...)\n"
     "\n"
     "options:\n"
     "  --resolution N    cells along the longest side (default: the scene's, 256 for boolean)\n"
@@ -39,7 +44,7 @@ const char* kUsage =
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) return strata::runEval({strata::demoScenePath()});
+  if (args.empty()) return strata::runEdit({});
   const std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (command == "--help" || command == "-h" || command == "help") {
@@ -53,6 +58,9 @@ int main(int argc, char** argv) {
   if (command == "eval") return strata::runEval(rest);
   if (command == "boolean") return strata::runBoolean(rest);
   if (command == "export") return strata::runExport(rest);
+  if (command == "edit") return strata::runEdit(rest);
+  if (command == "render") return strata::runRender(rest);
+  if (strata::looksLikeScenePath(command)) return strata::runEdit(args);
   std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return 2;
 }

@@ -30,9 +30,9 @@ float snorm16(uint bits) {
   return float(v) / 32767.0;
 }
 
-vec3 decodeOctahedral(uint packed) {
-  float x = snorm16(packed & 0xffffu);
-  float y = snorm16(packed >> 16);
+vec3 decodeOctahedral(uint bits) {
+  float x = snorm16(bits & 0xffffu);
+  float y = snorm16(bits >> 16);
   float z = 1.0 - abs(x) - abs(y);
   if (z < 0.0) {
     float ox = (1.0 - abs(y)) * (x >= 0.0 ? 1.0 : -1.0);
@@ -52,7 +52,7 @@ void main() {
 
   vec3 toEye = ortho ? -viewForward : normalize(eye - surfelPosition);
   vToEye = toEye;
-  if (dot(n, toEye) < -0.05) {  // facing away: hidden by the front of the closed surface
+  if (dot(n, toEye) < -0.25) {  // clearly facing away: hidden by the front of the closed surface
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }

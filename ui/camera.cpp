@@ -64,11 +64,27 @@ void Camera::zoom(double wheelSteps) {
   distance = std::clamp(distance * std::pow(0.85, wheelSteps), 1e-6, 1e9);
 }
 
-void Camera::frame(const Bounds& bounds) {
+void Camera::frame(const Bounds& bounds, double aspect) {
   if (bounds.empty()) return;
   target = bounds.center();
-  double radius = std::max(glm::length(bounds.size()) * 0.5, 1e-6);
-  distance = radius / std::sin(radians(fovYDegrees) * 0.5) * 1.05;
+  const double margin = 1.12;
+  const double tanV = std::tan(radians(fovYDegrees) * 0.5);
+  const double tanH = tanV * std::max(aspect, 1e-3);
+  const glm::dvec3 r = right(), u = up(), f = forward();
+  double needed = 1e-6, halfHeight = 1e-6;
+  for (int i = 0; i < 8; ++i) {
+    glm::dvec3 c(i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                 i & 4 ? bounds.max.z : bounds.min.z);
+    glm::dvec3 d = c - target;
+    double x = std::fabs(glm::dot(d, r)) * margin, y = std::fabs(glm::dot(d, u)) * margin;
+    double depth = glm::dot(d, f);  // beyond the target: positive
+    // Perspective: the corner must lie inside the frustum at distance + depth from the eye.
+    needed = std::max({needed, x / tanH - depth, y / tanV - depth});
+    halfHeight = std::max({halfHeight, y, x / std::max(aspect, 1e-3)});
+  }
+  // Orthographic: the view's half height is distance * tanV.
+  distance = ortho ? halfHeight / tanV : needed;
+  distance = std::max(distance, glm::length(bounds.size()) * 0.05 + 1e-6);
 }
 
 void Camera::setAxisView(AxisView view) {

@@ -42,8 +42,9 @@ class Camera {
   void orbit(double dxPixels, double dyPixels);
   void pan(double dxPixels, double dyPixels, double heightPixels);
   void zoom(double wheelSteps);
-  // Looks at `bounds` so that it fills most of the view (keeps the direction).
-  void frame(const Bounds& bounds);
+  // Looks at `bounds` from the current direction, as close as the box's corners allow with a
+  // small margin, in a view of width / height `aspect`.
+  void frame(const Bounds& bounds, double aspect);
   void setAxisView(AxisView view);
 
   // The ray through a pixel of a viewport of `size` pixels.

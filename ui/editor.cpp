@@ -7,7 +7,9 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "engine/document/commands.h"
@@ -24,6 +26,43 @@
 
 namespace strata::ui {
 
+namespace {
+// Keys, between GLFW and ImGui. ImGui 1.86 samples key state once a frame, so a key pressed and
+// released between two frames (a quick tap while frames are slow) would never be seen, by
+// shortcuts or by text fields (Enter). This callback sits in front of ImGui's: it records every
+// press for the shortcuts (EditorState::keyPresses) and holds back the release of a key
+// pressed in the same batch of events until the next frame, so ImGui sees the key down once.
+GLFWkeyfun g_imguiKeyCallback = nullptr;
+std::vector<KeyPress> g_keyPresses;
+std::vector<int> g_pressedInBatch;
+struct HeldRelease {
+  GLFWwindow* window;
+  int key, scancode, mods;
+};
+std::vector<HeldRelease> g_heldReleases;
+
+void onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  if (action == GLFW_PRESS) {
+    g_keyPresses.push_back(KeyPress{key, mods});
+    g_pressedInBatch.push_back(key);
+  }
+  if (action == GLFW_RELEASE &&
+      std::find(g_pressedInBatch.begin(), g_pressedInBatch.end(), key) != g_pressedInBatch.end()) {
+    g_heldReleases.push_back(HeldRelease{window, key, scancode, mods});
+    return;
+  }
+  if (g_imguiKeyCallback) g_imguiKeyCallback(window, key, scancode, action, mods);
+}
+
+// Before a frame's events: deliver the releases held back from the previous batch.
+void releaseHeldKeys() {
+  for (const HeldRelease& r : g_heldReleases)
+    if (g_imguiKeyCallback) g_imguiKeyCallback(r.window, r.key, r.scancode, GLFW_RELEASE, r.mods);
+  g_heldReleases.clear();
+  g_pressedInBatch.clear();
+}
+}  // namespace
+
 // The GL side: window, ImGui context and the viewport renderer, created and destroyed in order.
 struct Editor::Gl {
   GlWindow window;
@@ -33,6 +72,7 @@ struct Editor::Gl {
   Stopwatch frameClock;
 
   Gl(const EditorOptions& o) : window(o.width, o.height, "Strata", o.visible) {
+    renderer = std::make_unique<ViewportRenderer>();  // may throw: nothing else to undo yet
     IMGUI_CHECKVERSION();
     imgui = ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed; nothing to remember
@@ -40,10 +80,12 @@ struct Editor::Gl {
     glfwGetWindowContentScale(window.handle(), &scale, nullptr);
     applyTheme(scale > 0.5f ? scale : 1.0f);
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
+    g_imguiKeyCallback = glfwSetKeyCallback(window.handle(), onKey);  // in front of ImGui's
     ImGui_ImplOpenGL3_Init("#version 330 core");
-    renderer = std::make_unique<ViewportRenderer>();
   }
   ~Gl() {
+    glfwSetKeyCallback(window.handle(), g_imguiKeyCallback);
+    g_imguiKeyCallback = nullptr;
     renderer.reset();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -69,10 +111,21 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   s.glDescription = gl_->window.description() + " (context " +
                     std::to_string(gl_->window.glMajor()) + "." +
                     std::to_string(gl_->window.glMinor()) + " core)";
-  worker_ = std::make_unique<EngineWorker>(options_.makeBackend(), options_.coarseResolution);
+  worker_ = std::make_unique<EngineWorker>(options_.makeBackend(), options_.coarseResolution,
+                                           [] { glfwPostEmptyEvent(); });
   s.backendDescription = worker_->backendDescription();
   startTime_ = glfwGetTime();
-  if (!options_.scenePath.empty()) openDocument(s, options_.scenePath);
+  if (!options_.scenePath.empty()) {
+    std::error_code ec;
+    if (options_.sceneAsTemplate) {
+      openTemplate(s, options_.scenePath);
+    } else if (std::filesystem::exists(options_.scenePath, ec)) {
+      openDocument(s, options_.scenePath);
+    } else {
+      s.document.setPath(options_.scenePath);  // a new scene, saved there
+      logInfo(s, options_.scenePath + " does not exist yet: a new scene, saved there");
+    }
+  }
   gl_->viewport.viewAll(s);
   lastAutosave_ = 0.0;
 }
@@ -128,8 +181,7 @@ void Editor::requestPreviewIfNeeded() {
     empty->scene = s.document.snapshot();
     empty->resolution = resolution;
     applyResult(empty);
-    // Still tell the worker, so that a running evaluation of an older scene is cancelled.
-    worker_->request(s.document.snapshot(), resolution, true, revision);
+    worker_->cancel();  // an evaluation of an older scene is of no use now
     return;
   }
   requestedEmpty_ = false;
@@ -188,10 +240,11 @@ void Editor::autosave() {
 void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height) {
   EditorState& s = *state_;
   GLFWwindow* window = gl_->window.handle();
-  s.frameMs = gl_->frameClock.seconds() * 1000.0;
-  gl_->frameClock.restart();
+  gl_->frameClock.restart();  // the status bar shows the previous frame's drawing time
   s.now = glfwGetTime() - startTime_;
 
+  s.keyPresses.swap(g_keyPresses);
+  g_keyPresses.clear();
   pumpPreview();
   handleDialogResult(s);
 
@@ -265,13 +318,29 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
     *height = fbHeight;
   }
   if (swap) glfwSwapBuffers(window);
+  s.frameMs = gl_->frameClock.seconds() * 1000.0;
 
   gl_->window.setTitle("Strata \u2014 " + s.document.title());
   autosave();
 }
 
 bool Editor::frame() {
-  glfwPollEvents();
+  // Idle: sleep until an event (input, a finished result) or a short timeout, so that a still
+  // editor costs no CPU. Just after input: draw at once. While an evaluation or export runs:
+  // redraw often enough to show progress, leaving the cores to the work.
+  const ImGuiIO& io = ImGui::GetIO();
+  bool input = io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f || io.MouseWheel != 0.0f ||
+               io.InputQueueCharacters.Size > 0;
+  for (bool down : io.MouseDown) input = input || down;
+  for (bool down : io.KeysDown) input = input || down;
+  if (input) activeUntil_ = state_->now + 0.5;
+  const bool working = state_->worker.busy || state_->dialog.isOpen() ||
+                       (state_->exportJob && state_->exportJob->status().running);
+  releaseHeldKeys();
+  if (state_->now < activeUntil_)
+    glfwPollEvents();
+  else
+    glfwWaitEventsTimeout(working ? 0.05 : 0.5);  // progress shows at 20 frames a second
   if (glfwWindowShouldClose(gl_->window.handle())) {
     glfwSetWindowShouldClose(gl_->window.handle(), GLFW_FALSE);
     if (state_->document.dirty())
@@ -304,6 +373,7 @@ std::vector<uint8_t> Editor::renderViewport(int width, int height) {
 
 std::vector<uint8_t> Editor::screenshot(int* width, int* height) {
   std::vector<uint8_t> pixels;
+  releaseHeldKeys();
   glfwPollEvents();
   drawFrame(true, &pixels, width, height);
   return pixels;

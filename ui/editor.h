@@ -21,7 +21,8 @@
 namespace strata::ui {
 
 struct EditorOptions {
-  std::string scenePath;  // opened at start; "" = a new, empty document
+  std::string scenePath;         // opened at start; "" = a new, empty document
+  bool sceneAsTemplate = false;  // open scenePath as an untitled copy (the bundled demo)
   // Makes a backend; called once for the preview worker and once per export.
   std::function<std::shared_ptr<Backend>()> makeBackend;
   bool visible = true;  // false: an invisible window for off-screen rendering
@@ -86,6 +87,7 @@ class Editor {
   uint64_t styledRevision_ = ~uint64_t(0);
   std::vector<NodeId> styledSelection_;
   double lastAutosave_ = 0.0;
+  double activeUntil_ = 0.0;  // draw without waiting for events until then (seconds)
   uint64_t autosavedRevision_ = 0;
   double startTime_ = 0.0;
 };

@@ -64,6 +64,12 @@ void logError(EditorState& state, const std::string& text) {
   addLog(state, LogLevel::Error, text);
 }
 
+bool keyPressed(const EditorState& state, int key, int mods) {
+  for (const KeyPress& k : state.keyPresses)
+    if (k.key == key && (k.mods & 7) == mods) return true;
+  return false;
+}
+
 bool guarded(EditorState& state, const std::function<void()>& body) {
   try {
     body();
@@ -240,6 +246,18 @@ bool openDocument(EditorState& state, const std::string& path) {
     for (const auto& w : warnings) logWarning(state, w);
     logInfo(state, "opened " + path);
     rememberRecent(state, path);
+  });
+}
+
+bool openTemplate(EditorState& state, const std::string& path) {
+  return guarded(state, [&] {
+    std::vector<std::string> warnings;
+    Document original = Document::open(path, &warnings);
+    Scene scene = original.scene();
+    scene.root = absoluteMeshPaths(scene.root, fs::path(path).parent_path().string());
+    replaceDocument(state, Document(std::move(scene)));
+    for (const auto& w : warnings) logWarning(state, w);
+    logInfo(state, "opened a copy of " + path + " (Save asks where to keep it)");
   });
 }
 

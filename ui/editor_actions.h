@@ -43,6 +43,9 @@ void redo(EditorState& state);
 // Files. Each returns false (with a message) when it failed.
 void newDocument(EditorState& state);
 bool openDocument(EditorState& state, const std::string& path);
+// Opens a scene as a new, untitled document (the bundled demo: saving asks where, never
+// overwriting the original). Mesh paths become absolute so that they resolve from anywhere.
+bool openTemplate(EditorState& state, const std::string& path);
 // False without a message when the document has no path yet (the caller asks for one).
 bool saveDocument(EditorState& state);
 bool saveDocumentAs(EditorState& state, const std::string& path);

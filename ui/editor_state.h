@@ -35,6 +35,12 @@ struct PendingReplace {
   std::string path;
 };
 
+// A key press as the window system reported it (GLFW key code and modifier bits).
+struct KeyPress {
+  int key = 0;
+  int mods = 0;  // GLFW_MOD_SHIFT 1, GLFW_MOD_CONTROL 2, GLFW_MOD_ALT 4
+};
+
 struct EditorState {
   Document document;
   std::vector<NodeId> selection;  // the primary (inspected, gizmo) node is the last
@@ -76,6 +82,10 @@ struct EditorState {
   bool requestFrameSelected = false;
   bool quitNow = false;
 
+  // This frame's key presses, collected from GLFW as they happened: ImGui 1.86 samples key
+  // state once a frame, so a tap shorter than a frame would be lost to IsKeyPressed.
+  std::vector<KeyPress> keyPresses;
+
   std::deque<LogLine> log;
   double now = 0.0;  // seconds since start, set each frame
 };
@@ -84,5 +94,9 @@ struct EditorState {
 void logInfo(EditorState& state, const std::string& text);
 void logWarning(EditorState& state, const std::string& text);
 void logError(EditorState& state, const std::string& text);
+
+// True when `key` was pressed this frame with exactly the modifiers `mods` (shift, control and
+// alt bits; other bits such as caps lock are ignored).
+bool keyPressed(const EditorState& state, int key, int mods = 0);
 
 }  // namespace strata::ui

@@ -8,10 +8,12 @@
 
 namespace strata::ui {
 
-EngineWorker::EngineWorker(std::shared_ptr<Backend> backend, int coarseResolution)
+EngineWorker::EngineWorker(std::shared_ptr<Backend> backend, int coarseResolution,
+                           std::function<void()> onResult)
     : backend_(std::move(backend)),
       backendDescription_(backend_->description()),
-      coarse_(std::max(coarseResolution, 8)) {
+      coarse_(std::max(coarseResolution, 8)),
+      onResult_(std::move(onResult)) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -34,6 +36,12 @@ void EngineWorker::request(std::shared_ptr<const Scene> scene, int resolution, b
     if (running_) running_->cancel();
   }
   wake_.notify_all();
+}
+
+void EngineWorker::cancel() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  hasRequest_ = false;
+  if (running_) running_->cancel();
 }
 
 std::shared_ptr<const PreviewResult> EngineWorker::takeResult() {
@@ -114,12 +122,15 @@ bool EngineWorker::evaluatePass(Evaluator& evaluator, const Request& request, in
   } catch (...) {
     result->error = "unexpected error";
   }
-  std::lock_guard<std::mutex> lock(mutex_);
-  running_.reset();
-  status_ = WorkerStatus{};
-  if (cancelled) return false;
-  lastShown_ = request.scene;
-  finished_ = std::move(result);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    running_.reset();
+    status_ = WorkerStatus{};
+    if (cancelled) return false;
+    lastShown_ = request.scene;
+    finished_ = std::move(result);
+  }
+  if (onResult_) onResult_();
   return true;
 }
 

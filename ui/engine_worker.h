@@ -18,6 +18,7 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -51,14 +52,18 @@ struct WorkerStatus {
 
 class EngineWorker {
  public:
-  // `backend` is used by the worker thread alone from now on.
-  explicit EngineWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96);
+  // `backend` is used by the worker thread alone from now on. `onResult`, when given, is called
+  // on the worker thread each time a result is ready (e.g. to wake the UI's event loop).
+  explicit EngineWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96,
+                        std::function<void()> onResult = {});
   ~EngineWorker();  // cancels the running evaluation and joins
   EngineWorker(const EngineWorker&) = delete;
   EngineWorker& operator=(const EngineWorker&) = delete;
 
   // Replaces any pending request and cancels the running one.
   void request(std::shared_ptr<const Scene> scene, int resolution, bool interactive, uint64_t tag);
+  // Drops the pending request and cancels the running one (e.g. nothing is left to show).
+  void cancel();
   // The newest finished result not taken yet, or null.
   std::shared_ptr<const PreviewResult> takeResult();
   WorkerStatus status() const;
@@ -79,6 +84,7 @@ class EngineWorker {
   std::shared_ptr<Backend> backend_;
   std::string backendDescription_;
   int coarse_;
+  std::function<void()> onResult_;
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;

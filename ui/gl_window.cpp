@@ -51,6 +51,14 @@ bool displayNamed() {
   return (x && *x) || (wayland && *wayland);
 }
 
+// Multisampling of the window: STRATA_MSAA samples (0 turns it off), 4 by default.
+int multisamples() {
+  const char* v = std::getenv("STRATA_MSAA");
+  if (!v || !*v) return 4;
+  int n = std::atoi(v);
+  return n < 0 ? 0 : n > 16 ? 16 : n;
+}
+
 }  // namespace
 
 bool displayAvailable(std::string* why) {
@@ -68,6 +76,32 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
     throw Error("cannot open a window: no display (neither DISPLAY nor WAYLAND_DISPLAY is set)");
   std::string why;
   if (!acquireGlfw(&why)) throw Error("cannot open a window: " + why);
+  int samples = multisamples();
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    createWindow(width, height, title, visible, samples);
+    if (!window_) {
+      std::string error = lastGlfwError();
+      releaseGlfw();
+      throw Error("cannot create a window with an OpenGL 4.5 or 3.3 core context (" + error + ")");
+    }
+    glfwMakeContextCurrent(window_);
+    description_ = describeGlContext();
+    // Software rasterisers pay for every sample (a frame takes twice as long with 4): open the
+    // window again single-sampled there, unless STRATA_MSAA asks for samples.
+    const bool software = description_.find("llvmpipe") != std::string::npos ||
+                          description_.find("softpipe") != std::string::npos;
+    if (!software || samples == 0 || std::getenv("STRATA_MSAA")) break;
+    glfwDestroyWindow(window_);
+    window_ = nullptr;
+    samples = 0;
+  }
+  glfwSwapInterval(1);
+  description_ +=
+      samples > 0 ? ", " + std::to_string(samples) + "x multisampling" : ", no multisampling";
+}
+
+void GlWindow::createWindow(int width, int height, const std::string& title, bool visible,
+                            int samples) {
   const int versions[][2] = {{4, 5}, {3, 3}};
   for (const auto& v : versions) {
     glfwDefaultWindowHints();
@@ -76,22 +110,14 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
-    glfwWindowHint(GLFW_SAMPLES, 4);
+    glfwWindowHint(GLFW_SAMPLES, samples);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (window_) {
       major_ = v[0];
       minor_ = v[1];
-      break;
+      return;
     }
   }
-  if (!window_) {
-    std::string error = lastGlfwError();
-    releaseGlfw();
-    throw Error("cannot create a window with an OpenGL 4.5 or 3.3 core context (" + error + ")");
-  }
-  glfwMakeContextCurrent(window_);
-  glfwSwapInterval(1);
-  description_ = describeGlContext();
 }
 
 GlWindow::~GlWindow() {

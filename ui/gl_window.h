@@ -17,7 +17,8 @@ bool displayAvailable(std::string* why);
 class GlWindow {
  public:
   // Opens a window of `width` x `height` screen coordinates; an invisible one for off-screen
-  // rendering when `visible` is false. Throws strata::Error saying why it could not.
+  // rendering when `visible` is false. Multisampled (4 samples, or STRATA_MSAA; none on software
+  // renderers unless STRATA_MSAA asks). Throws strata::Error saying why it could not.
   GlWindow(int width, int height, const std::string& title, bool visible);
   ~GlWindow();
   GlWindow(const GlWindow&) = delete;
@@ -31,6 +32,8 @@ class GlWindow {
   void setTitle(const std::string& title);
 
  private:
+  void createWindow(int width, int height, const std::string& title, bool visible, int samples);
+
   GLFWwindow* window_ = nullptr;
   int major_ = 0, minor_ = 0;
   std::string description_;

@@ -48,13 +48,6 @@ void save(EditorState& state) {
     state.dialog.open(DialogPurpose::SaveAs, "untitled.strata.json");
 }
 
-bool ctrl() {
-  return ImGui::GetIO().KeyCtrl;
-}
-bool pressed(int key) {
-  return ImGui::IsKeyPressed(key, false);
-}
-
 }  // namespace
 
 void drawMainMenu(EditorState& state) {
@@ -123,29 +116,27 @@ void drawMainMenu(EditorState& state) {
 void handleShortcuts(EditorState& state) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput || state.dialog.isOpen() || state.pendingReplace) return;
-  if (ctrl()) {
-    if (pressed(GLFW_KEY_S)) {
-      if (io.KeyShift)
-        state.dialog.open(DialogPurpose::SaveAs, state.document.path());
-      else
-        save(state);
-    }
-    if (pressed(GLFW_KEY_N)) replaceOrAsk(state, {PendingReplace::New, ""});
-    if (pressed(GLFW_KEY_O)) replaceOrAsk(state, {PendingReplace::Open, ""});
-    if (pressed(GLFW_KEY_E)) state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
-    if (pressed(GLFW_KEY_Q)) replaceOrAsk(state, {PendingReplace::Quit, ""});
-    if (io.WantCaptureKeyboard) return;
-    if (pressed(GLFW_KEY_Z)) io.KeyShift ? redo(state) : undo(state);
-    if (pressed(GLFW_KEY_Y)) redo(state);
-    if (pressed(GLFW_KEY_D)) duplicateSelection(state);
-    if (pressed(GLFW_KEY_G)) groupSelection(state, NodeKind::Union);
-    return;
-  }
+  const int ctrl = GLFW_MOD_CONTROL, shift = GLFW_MOD_SHIFT;
+  if (keyPressed(state, GLFW_KEY_S, ctrl)) save(state);
+  if (keyPressed(state, GLFW_KEY_S, ctrl | shift))
+    state.dialog.open(DialogPurpose::SaveAs, state.document.path());
+  if (keyPressed(state, GLFW_KEY_N, ctrl)) replaceOrAsk(state, {PendingReplace::New, ""});
+  if (keyPressed(state, GLFW_KEY_O, ctrl)) replaceOrAsk(state, {PendingReplace::Open, ""});
+  if (keyPressed(state, GLFW_KEY_E, ctrl))
+    state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
+  if (keyPressed(state, GLFW_KEY_Q, ctrl)) replaceOrAsk(state, {PendingReplace::Quit, ""});
   if (io.WantCaptureKeyboard) return;
-  if (pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_BACKSPACE)) deleteSelection(state);
-  if (pressed(GLFW_KEY_H)) toggleSelectionHidden(state);
-  if (pressed(GLFW_KEY_F2) && !state.selection.empty()) state.renaming = primarySelection(state);
-  if (pressed(GLFW_KEY_ESCAPE)) clearSelection(state);
+  if (keyPressed(state, GLFW_KEY_Z, ctrl)) undo(state);
+  if (keyPressed(state, GLFW_KEY_Z, ctrl | shift) || keyPressed(state, GLFW_KEY_Y, ctrl))
+    redo(state);
+  if (keyPressed(state, GLFW_KEY_D, ctrl)) duplicateSelection(state);
+  if (keyPressed(state, GLFW_KEY_G, ctrl)) groupSelection(state, NodeKind::Union);
+  if (keyPressed(state, GLFW_KEY_DELETE) || keyPressed(state, GLFW_KEY_BACKSPACE))
+    deleteSelection(state);
+  if (keyPressed(state, GLFW_KEY_H)) toggleSelectionHidden(state);
+  if (keyPressed(state, GLFW_KEY_F2) && !state.selection.empty())
+    state.renaming = primarySelection(state);
+  if (keyPressed(state, GLFW_KEY_ESCAPE)) clearSelection(state);
 }
 
 void handleDialogResult(EditorState& state) {

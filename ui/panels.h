@@ -10,7 +10,7 @@ namespace strata::ui {
 struct PanelLayout {
   float menuHeight = 0.0f;
   float statusHeight = 0.0f;
-  float leftWidth = 300.0f;
+  float leftWidth = 320.0f;
   float rightWidth = 330.0f;
   float paletteHeight = 250.0f;  // the palette, under the outliner
   float previewHeight = 250.0f;  // the preview settings, under the inspector

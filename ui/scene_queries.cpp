@@ -19,6 +19,8 @@ bool pathTo(const NodePtr& node, NodeId id, std::vector<const Node*>* path) {
   return false;
 }
 
+Bounds computeSceneBounds(const NodePtr& root);
+
 }  // namespace
 
 glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id) {
@@ -54,6 +56,18 @@ Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection
 
 Bounds sceneBounds(const NodePtr& root) {
   if (!root) return Bounds();
+  // Asked several times a frame; the tree is immutable, so remember the last answer.
+  thread_local std::weak_ptr<const Node> lastRoot;
+  thread_local Bounds lastBounds;
+  if (lastRoot.lock() == root) return lastBounds;
+  Bounds b = computeSceneBounds(root);
+  lastRoot = root;
+  lastBounds = b;
+  return b;
+}
+
+namespace {
+Bounds computeSceneBounds(const NodePtr& root) {
   Bounds b = nodeBounds(root, root, glm::dmat4(1.0));
   if (!b.empty()) return b;
   for (NodeId id : treeOrder(root)) {
@@ -63,6 +77,7 @@ Bounds sceneBounds(const NodePtr& root) {
   }
   return b;
 }
+}  // namespace
 
 LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& selection) {
   LeafStyleTable table;

@@ -24,6 +24,7 @@ void applyTheme(float scale) {
   ImGuiIO& io = ImGui::GetIO();
   if (const char* font = findFont()) {
     static const ImWchar ranges[] = {0x0020, 0x00FF,  // Latin-1
+                                     0x2000, 0x206F,  // punctuation: … — ·
                                      0x2190, 0x21FF,  // arrows
                                      0x2200, 0x22FF,  // ∪ ∩ − ×
                                      0x2500, 0x25FF,  // box drawing, ● ○ ■ □ ▲

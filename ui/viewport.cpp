@@ -13,10 +13,6 @@
 namespace strata::ui {
 namespace {
 
-bool keyPressed(int key) {
-  return ImGui::IsKeyPressed(key, false);
-}
-
 void appendBox(const Bounds& b, const glm::vec4& color, std::vector<LineVertex>* lines) {
   glm::dvec3 c[8];
   for (int i = 0; i < 8; ++i)
@@ -88,9 +84,10 @@ void Viewport::viewAll(const EditorState& state) {
   if (b.empty()) {
     camera.target = glm::dvec3(0.0);
     camera.distance = 10.0;
+    pendingFrame_.reset();
     return;
   }
-  camera.frame(b);
+  pendingFrame_ = b;
 }
 
 void Viewport::frameSelected(const EditorState& state) {
@@ -98,7 +95,13 @@ void Viewport::frameSelected(const EditorState& state) {
   if (b.empty())
     viewAll(state);
   else
-    camera.frame(b);
+    pendingFrame_ = b;
+}
+
+void Viewport::framePending(const ViewRect& rect) {
+  if (!pendingFrame_) return;
+  camera.frame(*pendingFrame_, rect.width / std::max(rect.height, 1.0));
+  pendingFrame_.reset();
 }
 
 void Viewport::pick(EditorState& state, const ViewRect& rect, glm::dvec2 mouse, bool extend) {
@@ -118,26 +121,30 @@ void Viewport::pick(EditorState& state, const ViewRect& rect, glm::dvec2 mouse, 
 }
 
 void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
+  framePending(rect);
   ImGuiIO& io = ImGui::GetIO();
   const glm::dvec2 mouse(io.MousePos.x - rect.x, io.MousePos.y - rect.y);
   const bool inside = mouse.x >= 0 && mouse.y >= 0 && mouse.x < rect.width && mouse.y < rect.height;
   const ScreenMapping view = mapping(state, rect);
 
   // Keys.
-  if (!io.WantCaptureKeyboard) {
-    const bool ctrl = io.KeyCtrl;
-    if (keyPressed(GLFW_KEY_F)) frameSelected(state);
-    if (keyPressed(GLFW_KEY_HOME)) viewAll(state);
-    if (keyPressed(GLFW_KEY_1) || keyPressed(GLFW_KEY_KP_1))
-      camera.setAxisView(ctrl ? AxisView::Back : AxisView::Front);
-    if (keyPressed(GLFW_KEY_3) || keyPressed(GLFW_KEY_KP_3))
-      camera.setAxisView(ctrl ? AxisView::Left : AxisView::Right);
-    if (keyPressed(GLFW_KEY_7) || keyPressed(GLFW_KEY_KP_7))
-      camera.setAxisView(ctrl ? AxisView::Bottom : AxisView::Top);
-    if (keyPressed(GLFW_KEY_5) || keyPressed(GLFW_KEY_KP_5)) camera.ortho = !camera.ortho;
-    if (!ctrl && keyPressed(GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
-    if (!ctrl && keyPressed(GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
-    if (!ctrl && keyPressed(GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
+  if (!io.WantCaptureKeyboard && !io.WantTextInput) {
+    auto pressed = [&](int key, int keypad, int mods) {
+      return keyPressed(state, key, mods) || keyPressed(state, keypad, mods);
+    };
+    const int ctrl = GLFW_MOD_CONTROL;
+    if (keyPressed(state, GLFW_KEY_F)) frameSelected(state);
+    if (keyPressed(state, GLFW_KEY_HOME)) viewAll(state);
+    if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1, 0)) camera.setAxisView(AxisView::Front);
+    if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1, ctrl)) camera.setAxisView(AxisView::Back);
+    if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, 0)) camera.setAxisView(AxisView::Right);
+    if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, ctrl)) camera.setAxisView(AxisView::Left);
+    if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, 0)) camera.setAxisView(AxisView::Top);
+    if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, ctrl)) camera.setAxisView(AxisView::Bottom);
+    if (pressed(GLFW_KEY_5, GLFW_KEY_KP_5, 0)) camera.ortho = !camera.ortho;
+    if (keyPressed(state, GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
+    if (keyPressed(state, GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
+    if (keyPressed(state, GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
   }
 
   // An ongoing gizmo drag keeps the mouse wherever it goes.
@@ -196,6 +203,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
 
 void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
                     int framebufferHeight, double pixelScale) {
+  framePending(rect);
   ViewportFrame frame;
   const ScreenMapping view = mapping(state, rect);
   frame.viewProjection = view.viewProjection;

@@ -9,6 +9,8 @@
 // Threads: the UI thread.
 #pragma once
 
+#include <optional>
+
 #include "ui/camera.h"
 #include "ui/editor_state.h"
 #include "ui/gizmo.h"
@@ -30,6 +32,7 @@ class Viewport {
   // pixels per window pixel.
   void draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
             int framebufferHeight, double pixelScale);
+  // Frame the whole scene / the selection (at the next handleInput or draw).
   void viewAll(const EditorState& state);
   void frameSelected(const EditorState& state);
   bool gizmoDragging() const { return gizmo_.dragging(); }
@@ -40,7 +43,11 @@ class Viewport {
   bool placeGizmo(const EditorState& state);
   void pick(EditorState& state, const ViewRect& rect, glm::dvec2 mouse, bool extend);
 
+  // Framing waits for the viewport's shape, known in handleInput and draw.
+  void framePending(const ViewRect& rect);
+
   Gizmo gizmo_;
+  std::optional<Bounds> pendingFrame_;
   int hot_ = -1;
   bool navigating_ = false;
   bool clickPending_ = false;

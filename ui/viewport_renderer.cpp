@@ -179,7 +179,7 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
     surfelProgram_.set("viewForward", glm::vec3(f.forward));
     surfelProgram_.set("ortho", f.ortho ? 1 : 0);
     surfelProgram_.set("cellSize", float(cellSize_));
-    surfelProgram_.set("splatRadius", 0.85f);
+    surfelProgram_.set("splatRadius", 1.0f);
     surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
     surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
     surfelProgram_.set("leafTexture", 0);

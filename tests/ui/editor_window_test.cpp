@@ -4,7 +4,9 @@
 // (saying why) when it cannot.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -32,26 +34,37 @@ class DisplayEnvironment : public testing::Environment {
       why_ = "DISPLAY is unset and Xvfb is not installed (.ci/deps --editor installs it)";
       return;
     }
-    for (int n = 90 + int(getpid() % 60); n < 200 && server_ == 0; ++n) {
-      std::string socket = "/tmp/.X11-unix/X" + std::to_string(n);
-      std::string lock = "/tmp/.X" + std::to_string(n) + "-lock";
-      if (std::filesystem::exists(socket) || std::filesystem::exists(lock)) continue;
-      pid_t pid = fork();
-      if (pid == 0) {
-        std::string name = ":" + std::to_string(n);
-        execlp("Xvfb", "Xvfb", name.c_str(), "-screen", "0", "1280x800x24", "-nolisten", "tcp",
-               static_cast<char*>(nullptr));
-        _exit(127);
-      }
-      for (int i = 0; i < 100 && !std::filesystem::exists(socket); ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      if (std::filesystem::exists(socket)) {
-        server_ = pid;
-        setenv("DISPLAY", (":" + std::to_string(n)).c_str(), 1);
-      } else {
-        kill(pid, SIGTERM);
-        waitpid(pid, nullptr, 0);
-      }
+    // Xvfb picks a free display number itself and writes it to the pipe once it accepts clients
+    // (-displayfd), so parallel test programs never race for a number.
+    int fds[2];
+    if (pipe(fds) != 0) {
+      why_ = "DISPLAY is unset and no pipe for Xvfb";
+      return;
+    }
+    pid_t pid = fork();
+    if (pid == 0) {
+      prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the tests
+      close(fds[0]);
+      int devnull = open("/dev/null", O_RDWR);
+      dup2(devnull, 1);
+      dup2(devnull, 2);
+      std::string fd = std::to_string(fds[1]);
+      // -noreset: no server reset (and refused connections) when the last window closes.
+      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x800x24", "-nolisten",
+             "tcp", "-noreset", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(fds[1]);
+    std::string number;
+    char c;
+    while (read(fds[0], &c, 1) == 1 && c != '\n') number += c;
+    close(fds[0]);
+    if (pid > 0 && !number.empty()) {
+      server_ = pid;
+      setenv("DISPLAY", (":" + number).c_str(), 1);
+    } else if (pid > 0) {
+      kill(pid, SIGTERM);
+      waitpid(pid, nullptr, 0);
     }
     if (server_ == 0) why_ = "DISPLAY is unset and Xvfb did not start";
   }

@@ -243,17 +243,16 @@ namespace {
 TEST(ContourRegression, ScaffoldWithMovedOffsetHasNoPinchedVertices) {
   Scene s = loadScene(assetsDir() + "/scenes/bone_scaffold.strata.json");
   const Grid grid = Evaluator::gridFor(s, 256);
-  for (const auto& c : s.root->children) {
-    if (c->name != "cortical shell") continue;
-    auto offset = std::make_shared<Node>(*c->children[1]);
+  auto root = std::make_shared<Node>(*s.root);
+  for (auto& child : root->children) {
+    if (child->name != "cortical shell") continue;
+    auto offset = std::make_shared<Node>(*child->children[1]);
     offset->transform.translate += glm::dvec3(0.37 * grid.h);
-    auto shell = std::make_shared<Node>(*c);
+    auto shell = std::make_shared<Node>(*child);
     shell->children[1] = offset;
-    auto root = std::make_shared<Node>(*s.root);
-    for (auto& child : root->children)
-      if (child == c) child = shell;
-    s.root = root;
+    child = shell;
   }
+  s.root = root;
   s.settings.resolution = 256;
   Contoured r = contour(s);
   EXPECT_TRUE(isWatertight(r.mesh.mesh));

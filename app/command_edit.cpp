@@ -1,0 +1,157 @@
+// `strata edit` and `strata render`: the editor (ui/) on the backend chosen here. Compiled in
+// every build; without the editor (STRATA_HAS_EDITOR unset) both say so and edit falls back to
+// the command line.
+#include <cstdio>
+
+#include "app/cli_common.h"
+#include "app/commands.h"
+#include "app/editor_commands.h"
+#include "engine/document/user_files.h"
+#include "engine/io/scene_file.h"
+#include "engine/ldi/grid.h"
+#include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
+#if defined(STRATA_HAS_EDITOR)
+#include "ui/editor.h"
+#include "ui/editor_actions.h"
+#include "ui/png_file.h"
+#endif
+
+namespace strata {
+namespace {
+
+std::vector<std::string> editorValuedOptions() {
+  std::vector<std::string> valued = kValuedOptions;
+  for (const char* o : {"--width", "--height", "--screenshot", "--view"}) valued.push_back(o);
+  return valued;
+}
+
+// Without an editor: the command line's evaluation of the same scene, with the options it takes.
+int fallBackToEval(const std::string& scene, const CliArgs& args, const std::string& why) {
+  std::fprintf(stderr, "strata: cannot open the editor: %s\n", why.c_str());
+  std::fprintf(stderr, "strata: evaluating %s on the command line instead\n", scene.c_str());
+  std::vector<std::string> evalArgs{scene};
+  for (const char* o : {"--backend", "--threads", "--resolution"})
+    if (args.has(o)) evalArgs.insert(evalArgs.end(), {o, args.text(o, "")});
+  return runEval(evalArgs);
+}
+
+#if defined(STRATA_HAS_EDITOR)
+std::function<std::shared_ptr<Backend>()> backendMaker(const CliArgs& args) {
+  if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));
+  std::string name = args.text("--backend", "auto");
+  BackendChoice first = chooseBackend(name);  // fails early, with the reason, for a bad name
+  std::fprintf(stderr, "%s\n", first.why.c_str());
+  auto spare = std::make_shared<std::shared_ptr<Backend>>(first.backend);
+  return [name, spare]() -> std::shared_ptr<Backend> {
+    if (*spare) return std::move(*spare);  // the first caller gets the one made above
+    return chooseBackend(name).backend;
+  };
+}
+
+ui::AxisView parseView(const std::string& view, bool* iso) {
+  *iso = false;
+  if (view == "front") return ui::AxisView::Front;
+  if (view == "back") return ui::AxisView::Back;
+  if (view == "right") return ui::AxisView::Right;
+  if (view == "left") return ui::AxisView::Left;
+  if (view == "top") return ui::AxisView::Top;
+  if (view == "bottom") return ui::AxisView::Bottom;
+  if (view != "iso")
+    throw Error("--view: unknown view '" + view +
+                "' (expected iso, front, back, right, left, top or bottom)");
+  *iso = true;
+  return ui::AxisView::Front;
+}
+#endif
+
+}  // namespace
+
+bool looksLikeScenePath(const std::string& arg) {
+  return arg.size() > 5 && arg.compare(arg.size() - 5, 5, ".json") == 0;
+}
+
+int runEdit(const std::vector<std::string>& argv) {
+  return runGuarded([&] {
+    CliArgs args(argv, editorValuedOptions(), kFlagOptions);
+    if (args.positional().size() > 1)
+      throw Error("usage: strata edit [SCENE.strata.json] [--backend B] [--screenshot FILE]");
+    const std::string scene = args.positional().empty() ? demoScenePath() : args.positional()[0];
+#if !defined(STRATA_HAS_EDITOR)
+    return fallBackToEval(scene, args,
+                          "this build has no editor (GLFW, libepoxy or Dear ImGui were missing "
+                          "when it was built; see .ci/deps --editor)");
+#else
+    std::string why;
+    if (!ui::editorDisplayAvailable(&why)) return fallBackToEval(scene, args, why);
+    ui::EditorOptions options;
+    options.scenePath = scene;
+    options.sceneAsTemplate = args.positional().empty();  // the demo: never saved over
+    options.makeBackend = backendMaker(args);
+    options.width = args.integer("--width", 1600, 320, 8192);
+    options.height = args.integer("--height", 1000, 240, 8192);
+    const std::string screenshot = args.text("--screenshot", "");
+    if (screenshot.empty()) {
+      options.recentFilesPath = defaultRecentFilesPath();
+      options.recoveryPath = defaultRecoveryPath();
+    }
+    ui::Editor editor(options);
+    if (screenshot.empty()) return editor.run();
+    // Documentation screenshots: the whole window once the preview has settled.
+    editor.waitForPreview(600.0);
+    for (int i = 0; i < 3; ++i) editor.frame();  // ImGui settles its layout in a frame or two
+    int width = 0, height = 0;
+    std::vector<uint8_t> pixels = editor.screenshot(&width, &height);
+    ui::writePng(screenshot, width, height, pixels);
+    std::fprintf(stderr, "strata: wrote %s (%d x %d)\n", screenshot.c_str(), width, height);
+    return 0;
+#endif
+  });
+}
+
+int runRender(const std::vector<std::string>& argv) {
+  return runGuarded([&] {
+    CliArgs args(argv, editorValuedOptions(), kFlagOptions);
+    const std::string output = args.text("-o", args.text("--output", ""));
+    if (args.positional().size() != 1 || output.empty())
+      throw Error(
+          "usage: strata render SCENE.strata.json -o shot.png [--width W] [--height H] "
+          "[--resolution N] [--view iso|front|right|top|...]");
+    if (fileExtension(output) != "png")
+      throw Error(output + ": render writes PNG; use a .png name");
+    const int width = args.integer("--width", 1280, 16, 8192);
+    const int height = args.integer("--height", 800, 16, 8192);
+#if !defined(STRATA_HAS_EDITOR)
+    throw Error("this build has no editor, so it cannot render (see .ci/deps --editor)");
+#else
+    bool iso = true;
+    ui::AxisView view = parseView(args.text("--view", "iso"), &iso);
+    std::string why;
+    if (!ui::editorDisplayAvailable(&why))
+      throw Error("strata render needs a display for its (invisible) window: " + why +
+                  "; run it under xvfb-run");
+    const std::string scene = args.positional()[0];
+    loadScene(scene);  // a bad file fails here with its message
+    ui::EditorOptions options;
+    options.scenePath = scene;
+    options.makeBackend = backendMaker(args);
+    options.visible = false;
+    ui::Editor editor(options);
+    ui::EditorState& state = editor.state();
+    if (args.has("--resolution"))
+      ui::setResolution(state, args.integer("--resolution", 0, kMinResolution, kMaxResolution));
+    if (!editor.waitForPreview(3600.0))
+      throw Error(scene + ": " +
+                  (state.previewError.empty() ? "evaluation did not finish" : state.previewError));
+    if (!iso) editor.camera().setAxisView(view);
+    editor.viewAll();
+    std::vector<uint8_t> pixels = editor.renderViewport(width, height);
+    ui::writePng(output, width, height, pixels);
+    std::printf("wrote %s (%d x %d, %zu splats at resolution %d)\n", output.c_str(), width, height,
+                state.preview->splats.size(), state.preview->resolution);
+    return 0;
+#endif
+  });
+}
+
+}  // namespace strata

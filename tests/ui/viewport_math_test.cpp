@@ -1,0 +1,132 @@
+// The viewport's math without a window: camera views and rays, framing, the gizmo's drag, and
+// picking a surfel (ui/camera.h, ui/gizmo.h, ui/surfel_splats.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/document/commands.h"
+#include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
+#include "ui/camera.h"
+#include "ui/gizmo.h"
+#include "ui/surfel_splats.h"
+
+namespace strata::ui {
+namespace {
+
+void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance = 1e-9) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+ScreenMapping mappingOf(const Camera& camera, glm::dvec2 size) {
+  ScreenMapping m;
+  m.viewProjection = camera.projection(size.x / size.y, 10.0) * camera.view();
+  m.size = size;
+  m.eye = camera.eye();
+  m.forward = camera.forward();
+  m.ortho = camera.ortho;
+  m.unitsPerPixel = camera.unitsPerPixel(size.y) / camera.distance;
+  return m;
+}
+
+TEST(EditorMath, AxisViewsLookAlongTheAxes) {
+  Camera c;
+  c.setAxisView(AxisView::Front);
+  expectNear(c.forward(), {0, 1, 0});
+  expectNear(c.up(), {0, 0, 1});
+  expectNear(c.right(), {1, 0, 0});
+  c.setAxisView(AxisView::Top);
+  expectNear(c.forward(), {0, 0, -1});
+  expectNear(c.right(), {1, 0, 0});
+  c.setAxisView(AxisView::Right);
+  expectNear(c.forward(), {-1, 0, 0});
+  Ray centre = c.rayThrough({50, 50}, {100, 100});
+  expectNear(centre.direction, c.forward());
+  expectNear(centre.origin, c.eye());
+}
+
+TEST(EditorMath, FramingKeepsEveryCornerInView) {
+  for (bool ortho : {false, true}) {
+    Camera c;
+    c.ortho = ortho;
+    Bounds b;
+    b.include(glm::dvec3(-30, -10, 0));
+    b.include(glm::dvec3(50, 20, 15));
+    const glm::dvec2 size(160, 90);
+    c.frame(b, size.x / size.y);
+    ScreenMapping m = mappingOf(c, size);
+    for (int i = 0; i < 8; ++i) {
+      glm::dvec3 corner(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
+                        i & 4 ? b.max.z : b.min.z);
+      glm::dvec2 p;
+      ASSERT_TRUE(m.toScreen(corner, &p));
+      EXPECT_GE(p.x, 0.0);
+      EXPECT_LE(p.x, size.x);
+      EXPECT_GE(p.y, 0.0);
+      EXPECT_LE(p.y, size.y);
+    }
+  }
+}
+
+TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
+  Camera c;
+  c.setAxisView(AxisView::Front);
+  c.distance = 20.0;
+  const glm::dvec2 size(400, 400);
+  ScreenMapping m = mappingOf(c, size);
+  Gizmo g;
+  g.mode = GizmoMode::Move;
+  g.place(glm::dmat4(1.0), Transform());
+  // The x handle points right from the centre of the screen.
+  glm::dvec2 handle(size.x / 2 + 60, size.y / 2);
+  ASSERT_EQ(g.hover(m, handle), 0);
+  g.begin(0, m, handle);
+  Transform moved = g.drag(m, handle + glm::dvec2(40, 25), GizmoSnap());
+  const double unitsPerPixel = c.unitsPerPixel(size.y);  // at the target's depth
+  EXPECT_NEAR(moved.translate.x, 40 * unitsPerPixel, 1e-6);
+  EXPECT_EQ(moved.translate.y, 0.0);
+  EXPECT_EQ(moved.translate.z, 0.0);
+  GizmoSnap snap;
+  snap.enabled = true;
+  snap.step = 1.0;
+  Transform snapped = g.drag(m, handle + glm::dvec2(40, 0), snap);
+  EXPECT_EQ(snapped.translate.x, std::round(40 * unitsPerPixel));
+  g.end();
+  EXPECT_FALSE(g.dragging());
+
+  g.mode = GizmoMode::Rotate;
+  g.place(glm::dmat4(1.0), Transform());
+  // Seen from the front, the ring of the rotation about y faces the viewer (a circle of 0.85
+  // handle lengths, 90 pixels); the x and z rings are seen edge-on as lines through the centre.
+  const double r = 90 * 0.85, d = r / std::sqrt(2.0);
+  int ring = g.hover(m, glm::dvec2(size.x / 2 + d, size.y / 2 - d));
+  EXPECT_EQ(ring, 1);
+}
+
+TEST(EditorMath, PickingFindsTheLeafUnderTheRay) {
+  NodePtr sphere = makePrimitiveNode(NodeKind::Sphere, 7);
+  NodePtr box = makePrimitiveNode(NodeKind::Box, 8);
+  auto movedBox = std::make_shared<Node>(*box);
+  movedBox->transform.translate = glm::dvec3(3, 0, 0);
+  Scene scene;
+  scene.root = makeOperationNode(NodeKind::Union, 1, {sphere, movedBox});
+  scene.settings.resolution = 48;
+  auto backend = std::make_shared<CpuBackend>();
+  Evaluator evaluator(backend);
+  Progress progress;
+  EvalResult result = evaluator.evaluate(scene, EvalOptions(), progress);
+  std::vector<Splat> splats = buildSplats(*backend->download(result.root));
+  ASSERT_FALSE(splats.empty());
+  SplatHit hit;
+  ASSERT_TRUE(pickSplat(splats, Ray{{0, -10, 0}, {0, 1, 0}}, result.grid.h, &hit));
+  EXPECT_EQ(hit.leaf, 7u);
+  EXPECT_NEAR(hit.position.y, -0.5, result.grid.h);
+  ASSERT_TRUE(pickSplat(splats, Ray{{3, -10, 0}, {0, 1, 0}}, result.grid.h, &hit));
+  EXPECT_EQ(hit.leaf, 8u);
+  EXPECT_FALSE(pickSplat(splats, Ray{{1.7, -10, 0}, {0, 1, 0}}, result.grid.h, &hit));
+}
+
+}  // namespace
+}  // namespace strata::ui
