@@ -1,16 +1,19 @@
 // `strata edit` and `strata render`: the editor (ui/) on the backend chosen here. Compiled in
 // every build; without the editor (STRATA_HAS_EDITOR unset) both say so and edit falls back to
 // the command line.
+#include <algorithm>
 #include <cstdio>
 
 #include "app/cli_common.h"
 #include "app/commands.h"
 #include "app/editor_commands.h"
 #include "engine/document/user_files.h"
+#include "engine/eval/evaluator.h"
 #include "engine/io/scene_file.h"
 #include "engine/ldi/grid.h"
 #include "engine/util/error.h"
 #include "engine/util/parallel_for.h"
+#include "engine/util/timer.h"
 #if defined(STRATA_HAS_EDITOR)
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
@@ -22,7 +25,9 @@ namespace {
 
 std::vector<std::string> editorValuedOptions() {
   std::vector<std::string> valued = kValuedOptions;
-  for (const char* o : {"--width", "--height", "--screenshot", "--view"}) valued.push_back(o);
+  for (const char* o :
+       {"--width", "--height", "--screenshot", "--view", "--measure-latency", "--move-leaf"})
+    valued.push_back(o);
   return valued;
 }
 
@@ -35,6 +40,52 @@ int fallBackToEval(const std::string& scene, const CliArgs& args, const std::str
     if (args.has(o)) evalArgs.insert(evalArgs.end(), {o, args.text(o, "")});
   return runEval(evalArgs);
 }
+
+#if defined(STRATA_HAS_EDITOR)
+// The leaf named `name` (or the last leaf of the tree when empty) in `node`'s subtree.
+NodePtr findLeaf(const NodePtr& node, const std::string& name) {
+  if (!node) return nullptr;
+  NodePtr found;
+  if (!isOperation(node->kind) && (name.empty() || node->name == name)) found = node;
+  for (const auto& c : node->children)
+    if (NodePtr f = findLeaf(c, name)) found = f;
+  return found;
+}
+
+// `strata edit SCENE --measure-latency N [--move-leaf NAME]`: N times, moves a leaf by a small
+// step through the document (as a drag's release would) and runs frames until the window shows
+// the surfels of that edit at the scene's resolution; prints each time from the edit to the end
+// of that frame (buffers swapped, GL finished), and the median.
+int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
+  NodePtr leaf = findLeaf(editor.state().document.root(), leafName);
+  if (!leaf) throw Error("--move-leaf: no leaf named '" + leafName + "'");
+  if (!editor.waitForPreview(600.0)) throw Error("the first evaluation did not finish");
+  for (int i = 0; i < 3; ++i) editor.frame();
+  const double step = Evaluator::gridFor(editor.state().document.scene(), 0).h * 0.37;
+  std::vector<double> ms;
+  for (int k = 0; k < count; ++k) {
+    Transform t = leaf->transform;
+    t.translate.x += (k % 2 == 0 ? step : -step);
+    Stopwatch clock;
+    editor.state().document.setTransform(leaf->id, t);
+    leaf = findNode(editor.state().document.root(), leaf->id);
+    const uint64_t revision = editor.state().document.revision();
+    for (;;) {
+      editor.frame();
+      const auto& p = editor.state().preview;
+      if (p && p->tag == revision && !p->coarse) break;
+      if (clock.seconds() > 60.0) throw Error("an edit did not reach the screen within 60 s");
+    }
+    ms.push_back(clock.seconds() * 1e3);
+    std::printf("edit %d: %.1f ms from the edit to its surfels on screen\n", k + 1, ms.back());
+  }
+  std::sort(ms.begin(), ms.end());
+  std::printf("latency: median %.1f ms, best %.1f ms, worst %.1f ms over %d edits of '%s' (%s)\n",
+              ms[ms.size() / 2], ms.front(), ms.back(), count, leaf->name.c_str(),
+              editor.state().backendDescription.c_str());
+  return 0;
+}
+#endif
 
 #if defined(STRATA_HAS_EDITOR)
 std::function<std::shared_ptr<Backend>()> backendMaker(const CliArgs& args) {
@@ -96,6 +147,9 @@ int runEdit(const std::vector<std::string>& argv) {
       options.recoveryPath = defaultRecoveryPath();
     }
     ui::Editor editor(options);
+    if (args.has("--measure-latency"))
+      return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
+                            args.text("--move-leaf", ""));
     if (screenshot.empty()) return editor.run();
     // Documentation screenshots: the whole window once the preview has settled.
     editor.waitForPreview(600.0);

@@ -29,14 +29,18 @@ CliRun strata(const std::string& args, bool withoutDisplay = false) {
   return run;
 }
 
-std::string temp(const std::string& name) { return testing::TempDir() + "/strata_cli_" + name; }
+std::string temp(const std::string& name) {
+  return testing::TempDir() + "/strata_cli_" + name;
+}
 
-std::string data(const std::string& name) { return std::string(STRATA_TEST_DATA) + "/" + name; }
+std::string data(const std::string& name) {
+  return std::string(STRATA_TEST_DATA) + "/" + name;
+}
 
 TEST(Cli, EvalPrintsReportAndWritesJson) {
   std::string report = temp("report.json");
   CliRun r = strata("eval " + std::string(STRATA_ASSETS) +
-                 "/scenes/demo.strata.json --resolution 96 --report " + report + " -q");
+                    "/scenes/demo.strata.json --resolution 96 --report " + report + " -q");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("sample"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("volume"), std::string::npos);
@@ -57,7 +61,7 @@ TEST(Cli, BooleanOfMeshFilesWritesASurfelCloud) {
   std::string out = temp("union.ply");
   std::string report = temp("union.json");
   CliRun r = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                 " --resolution 64 --surfels " + out + " --report " + report + " -q");
+                    " --resolution 64 --surfels " + out + " --report " + report + " -q");
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream ply(out, std::ios::binary);
   std::string header;
@@ -73,7 +77,7 @@ TEST(Cli, BooleanOfMeshFilesWritesASurfelCloud) {
 TEST(Cli, DifferenceOfAMeshWithItselfIsEmpty) {
   std::string report = temp("empty.json");
   CliRun r = strata("boolean difference " + data("eight.obj") + " " + data("eight.obj") +
-                 " --resolution 64 --report " + report + " -q");
+                    " --resolution 64 --report " + report + " -q");
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(report);
   nlohmann::json j = nlohmann::json::parse(in);
@@ -94,26 +98,26 @@ TEST(Cli, BadInputsGiveClearErrors) {
   EXPECT_EQ(option.code, 1);
   EXPECT_NE(option.output.find("unknown option --frobnicate"), std::string::npos);
 
-  CliRun resolution = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                          " --resolution 3");
+  CliRun resolution =
+      strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") + " --resolution 3");
   EXPECT_EQ(resolution.code, 1);
   EXPECT_NE(resolution.output.find("--resolution"), std::string::npos) << resolution.output;
 
-  CliRun cuda = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                    " --backend cuda");
+  CliRun cuda =
+      strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") + " --backend cuda");
   EXPECT_EQ(cuda.code, 1);
   EXPECT_NE(cuda.output.find("cuda"), std::string::npos) << cuda.output;
 
   std::string notPly = temp("out.stl");
   CliRun format = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                      " --resolution 32 -q --surfels " + notPly);
+                         " --resolution 32 -q --surfels " + notPly);
   EXPECT_EQ(format.code, 1);
   EXPECT_NE(format.output.find("PLY"), std::string::npos) << format.output;
   EXPECT_FALSE(std::ifstream(notPly).good());
 
   std::string unknown = temp("out.xyz");
   CliRun exportFormat = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
-                            " --resolution 32 -q -o " + unknown);
+                               " --resolution 32 -q -o " + unknown);
   EXPECT_EQ(exportFormat.code, 1);
   EXPECT_NE(exportFormat.output.find("unknown export format 'xyz'"), std::string::npos)
       << exportFormat.output;
@@ -142,7 +146,7 @@ TEST(CliExport, EveryFormatPassesTheCheck) {
     std::string out = temp(std::string("export.") + ext);
     std::string report = temp(std::string("export_") + ext + ".json");
     CliRun r = strata("boolean difference " + data("bunny.obj") + " " + data("eight.obj") +
-                   " --unit-scale 1 --resolution 64 -q -o " + out + " --report " + report);
+                      " --unit-scale 1 --resolution 64 -q -o " + out + " --report " + report);
     ASSERT_EQ(r.code, 0) << ext << ": " << r.output;
     EXPECT_NE(r.output.find("passed the watertight check"), std::string::npos) << r.output;
     std::ifstream in(report);
@@ -157,14 +161,14 @@ TEST(CliExport, EveryFormatPassesTheCheck) {
 TEST(CliExport, SceneExportWithTilesAndErrors) {
   std::string out = temp("demo.stl");
   CliRun r = strata("export " + std::string(STRATA_ASSETS) +
-                 "/scenes/demo.strata.json --resolution 96 --tile 32 -q -o " + out);
+                    "/scenes/demo.strata.json --resolution 96 --tile 32 -q -o " + out);
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("tiles"), std::string::npos) << r.output;
   CliRun missing = strata("export " + std::string(STRATA_ASSETS) + "/scenes/demo.strata.json");
   EXPECT_EQ(missing.code, 1);
   EXPECT_NE(missing.output.find("usage: strata export"), std::string::npos);
   CliRun badDir = strata("export " + std::string(STRATA_ASSETS) +
-                      "/scenes/demo.strata.json --resolution 32 -q -o /nonexistent/dir/x.stl");
+                         "/scenes/demo.strata.json --resolution 32 -q -o /nonexistent/dir/x.stl");
   EXPECT_EQ(badDir.code, 1);
   EXPECT_NE(badDir.output.find("/nonexistent/dir/x.stl"), std::string::npos) << badDir.output;
 }

@@ -50,7 +50,7 @@ NodePtr randomTree(std::mt19937& rng, int depth) {
   int children = fan(rng);
   for (int c = 0; c < children; ++c)
     n->children.push_back(c == 0 || k != NodeKind::Intersection ? randomTree(rng, depth - 1)
-                                                                 : randomLeaf(rng));
+                                                                : randomLeaf(rng));
   return n;
 }
 
