@@ -9,8 +9,8 @@
 namespace strata {
 
 const std::vector<std::string> kValuedOptions = {
-    "--resolution", "--report", "-o",     "--output",     "--backend", "--threads",
-    "--margin",     "--surfels", "--tile", "--unit-scale"};
+    "--resolution", "--report", "-o",        "--output", "--backend",
+    "--threads",    "--margin", "--surfels", "--tile",   "--unit-scale"};
 const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open"};
 
 int runGuarded(const std::function<int()>& body) {
@@ -28,7 +28,9 @@ int runGuarded(const std::function<int()>& body) {
   }
 }
 
-bool quietRequested(const CliArgs& args) { return args.has("--quiet") || args.has("-q"); }
+bool quietRequested(const CliArgs& args) {
+  return args.has("--quiet") || args.has("-q");
+}
 
 BackendChoice setUpBackend(const CliArgs& args) {
   if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));

@@ -37,13 +37,14 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
   Evaluator evaluator(choice.backend);
   TerminalProgress terminal(quietRequested(args));
   std::shared_ptr<Backend> used;
-  EvalResult result = evaluateWithFallback(evaluator, scene, options, terminal.progress(),
-                                           [&](const std::string& line) {
-                                             terminal.finish();
-                                             std::fprintf(stderr, "strata: %s\n", line.c_str());
-                                             context.warnings.push_back(line);
-                                           },
-                                           &used);
+  EvalResult result = evaluateWithFallback(
+      evaluator, scene, options, terminal.progress(),
+      [&](const std::string& line) {
+        terminal.finish();
+        std::fprintf(stderr, "strata: %s\n", line.c_str());
+        context.warnings.push_back(line);
+      },
+      &used);
   Backend& backend = used ? *used : *choice.backend;
   const std::string surfels = args.text("--surfels", "");
   if (!surfels.empty()) {
@@ -92,8 +93,9 @@ int runEval(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
     if (args.positional().size() != 1)
-      throw Error("usage: strata eval SCENE.strata.json [--resolution N] [--report FILE] "
-                  "[--surfels points.ply]");
+      throw Error(
+          "usage: strata eval SCENE.strata.json [--resolution N] [--report FILE] "
+          "[--surfels points.ply]");
     if (args.has("-o") || args.has("--output"))
       throw Error("eval does not write meshes; use strata export SCENE -o FILE");
     ReportContext context;
@@ -108,8 +110,9 @@ int runBoolean(const std::vector<std::string>& argv) {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
     const auto& pos = args.positional();
     if (pos.size() < 3)
-      throw Error("usage: strata boolean union|intersection|difference A B [C...] "
-                  "[--resolution N] [-o out.stl|.obj|.ply|.3mf] [--report FILE]");
+      throw Error(
+          "usage: strata boolean union|intersection|difference A B [C...] "
+          "[--resolution N] [-o out.stl|.obj|.ply|.3mf] [--report FILE]");
     MeshReadOptions meshOptions;
     meshOptions.allowOpen = args.has("--allow-open");
     meshOptions.unitScale = args.number("--unit-scale", 1.0, 1e-9, 1e9);
@@ -120,7 +123,8 @@ int runBoolean(const std::vector<std::string>& argv) {
     for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
     std::string input = pos[0] + " of";
     for (const auto& f : files) input += " " + f;
-    if (args.has("-o") || args.has("--output")) return exportAndReport(scene, args, input, warnings);
+    if (args.has("-o") || args.has("--output"))
+      return exportAndReport(scene, args, input, warnings);
     ReportContext context;
     context.input = input;
     context.warnings = warnings;
@@ -132,8 +136,9 @@ int runExport(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
     if (args.positional().size() != 1 || !(args.has("-o") || args.has("--output")))
-      throw Error("usage: strata export SCENE.strata.json -o part.stl|.obj|.ply|.3mf "
-                  "[--resolution N] [--tile N] [--report FILE]");
+      throw Error(
+          "usage: strata export SCENE.strata.json -o part.stl|.obj|.ply|.3mf "
+          "[--resolution N] [--tile N] [--report FILE]");
     std::vector<std::string> warnings;
     Scene scene = loadSceneFromArgs(args, args.positional()[0], &warnings);
     return exportAndReport(scene, args, args.positional()[0], warnings);

@@ -36,8 +36,9 @@ std::string formatReportText(const EvalResult& r, const ReportContext& c, bool l
   std::snprintf(line, sizeof(line), "%-10s %9.4f %7s %12s   %s\n", "total", r.seconds, "", "",
                 mib(r.peakBytes).c_str());
   out << line;
-  std::snprintf(line, sizeof(line), "\nnodes     %d computed, %d reused from the cache (%s cached)\n",
-                r.computed, r.reused, mib(r.cacheBytes).c_str());
+  std::snprintf(line, sizeof(line),
+                "\nnodes     %d computed, %d reused from the cache (%s cached)\n", r.computed,
+                r.reused, mib(r.cacheBytes).c_str());
   out << line;
   if (listNodes) {
     for (const NodeRecord& n : r.nodes) {
@@ -53,8 +54,7 @@ std::string formatReportText(const EvalResult& r, const ReportContext& c, bool l
                 r.measure.volume, u.c_str(), r.measure.axisVolume[0], r.measure.axisVolume[1],
                 r.measure.axisVolume[2], r.measure.area, u.c_str(), r.measure.surfels);
   out << line;
-  if (!c.output.empty())
-    out << "wrote     " << c.output << " (" << c.outputPoints << " points)\n";
+  if (!c.output.empty()) out << "wrote     " << c.output << " (" << c.outputPoints << " points)\n";
   for (const auto& w : c.warnings) out << "warning   " << w << "\n";
   return out.str();
 }

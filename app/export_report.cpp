@@ -9,7 +9,9 @@
 
 namespace strata {
 namespace {
-const char* yes(bool b) { return b ? "yes" : "NO"; }
+const char* yes(bool b) {
+  return b ? "yes" : "NO";
+}
 std::string mib(uint64_t bytes) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / 1048576.0);
@@ -36,8 +38,8 @@ std::string formatExportText(const ExportSummary& summary) {
   std::snprintf(line, sizeof(line),
                 "time      evaluate %.3f s, contour %.3f s, merge %.3f s, write %.3f s, check "
                 "%.3f s; peak memory %s\n",
-                r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.writeSeconds,
-                s.checkSeconds, mib(r.peakBytes).c_str());
+                r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.writeSeconds, s.checkSeconds,
+                mib(r.peakBytes).c_str());
   out << line;
   out << "wrote     " << s.output << "\n";
   const MeshCheck& c = s.check;
@@ -83,12 +85,12 @@ std::string formatExportJson(const ExportSummary& s) {
                {"h", r.grid.h},
                {"cells", {r.grid.cells.x, r.grid.cells.y, r.grid.cells.z}}};
   j["tiles"] = r.tiles;
-  j["stages"] = nlohmann::ordered_json::array(
-      {{{"name", "evaluate"}, {"seconds", r.evaluateSeconds}},
-       {{"name", "contour"}, {"seconds", r.contourSeconds}},
-       {{"name", "merge"}, {"seconds", r.mergeSeconds}},
-       {{"name", "write"}, {"seconds", s.writeSeconds}},
-       {{"name", "check"}, {"seconds", s.checkSeconds}}});
+  j["stages"] =
+      nlohmann::ordered_json::array({{{"name", "evaluate"}, {"seconds", r.evaluateSeconds}},
+                                     {{"name", "contour"}, {"seconds", r.contourSeconds}},
+                                     {{"name", "merge"}, {"seconds", r.mergeSeconds}},
+                                     {{"name", "write"}, {"seconds", s.writeSeconds}},
+                                     {{"name", "check"}, {"seconds", s.checkSeconds}}});
   j["peak_bytes"] = r.peakBytes;
   j["surfels"] = r.surfels;
   j["check"] = {{"passed", exportCheckPassed(c)},

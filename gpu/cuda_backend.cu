@@ -35,8 +35,8 @@ class CudaBackend : public Backend {
 
   std::string description() const override { return "cuda (" + name_ + ")"; }
 
-  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld,
-                       const Grid& grid, uint32_t leafId, Progress& progress) override {
+  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                       uint32_t leafId, Progress& progress) override {
     setAllocationStream(stream_);
     progress.check();
     GridMesh placed = toGridUnits(mesh, objectToWorld, grid);
@@ -96,7 +96,8 @@ bool cudaDeviceAvailable(std::string* why) {
   cudaError_t status = cudaGetDeviceCount(&count);
   if (status != cudaSuccess) {
     cudaGetLastError();
-    if (why) *why = std::string("no usable CUDA driver or device (") + cudaGetErrorString(status) + ")";
+    if (why)
+      *why = std::string("no usable CUDA driver or device (") + cudaGetErrorString(status) + ")";
     return false;
   }
   if (count == 0) {

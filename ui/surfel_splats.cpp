@@ -7,19 +7,6 @@
 #include "engine/io/point_cloud.h"
 
 namespace strata::ui {
-namespace {
-// The same rule as the point cloud writer: ties go to the lower axis, so each surfel is kept on
-// exactly one axis.
-bool onDominantAxis(const float n[3], int axis) {
-  float a = std::fabs(n[axis]);
-  for (int k = 0; k < 3; ++k) {
-    if (k == axis) continue;
-    float b = std::fabs(n[k]);
-    if (b > a || (b == a && k < axis)) return false;
-  }
-  return true;
-}
-}  // namespace
 
 std::vector<Splat> buildSplats(const Ldi& ldi) {
   std::vector<Splat> splats;

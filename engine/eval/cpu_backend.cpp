@@ -53,7 +53,9 @@ LdiMeasure CpuBackend::measure(const LdiHandle& ldi, Progress& progress) {
   return measureLdi(*hostLdi(ldi));
 }
 
-std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) { return hostLdi(ldi); }
+std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) {
+  return hostLdi(ldi);
+}
 
 TileContour Backend::contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                  const glm::ivec3& begin, const glm::ivec3& end,

@@ -9,8 +9,8 @@ namespace strata {
 class CpuBackend : public Backend {
  public:
   std::string description() const override;
-  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld,
-                       const Grid& grid, uint32_t leafId, Progress& progress) override;
+  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                       uint32_t leafId, Progress& progress) override;
   LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
                     Progress& progress) override;
   LdiHandle empty(const Grid& grid) override;

@@ -208,8 +208,7 @@ uint64_t Evaluator::meshHash(const std::shared_ptr<const TriangleMesh>& mesh) {
   return digest;
 }
 
-Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& world,
-                                      Context& ctx) {
+Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx) {
   Hasher key;
   key.add(uint8_t(node->kind)).add(node->id);
   const glm::dmat4& m = world;
@@ -241,7 +240,8 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
     std::shared_ptr<const TriangleMesh> mesh = node->mesh;
     if (node->kind != NodeKind::Mesh) {
       Stopwatch tessellate;
-      mesh = std::make_shared<TriangleMesh>(tessellatePrimitive(node->kind, node->params, segments));
+      mesh =
+          std::make_shared<TriangleMesh>(tessellatePrimitive(node->kind, node->params, segments));
       ctx.finishStage(kTessellate, tessellate.seconds(), 0);
     }
     Stopwatch sample;
@@ -328,8 +328,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
   return v;
 }
 
-EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options,
-                               Progress& progress) {
+EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options, Progress& progress) {
   if (!scene.root) throw Error("the scene has no root node");
   return evaluateOn(scene, gridFor(scene, options.resolution), progress);
 }

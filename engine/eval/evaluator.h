@@ -26,11 +26,11 @@ struct EvalOptions {
 
 // Totals of one stage of the pipeline over all nodes of an evaluation.
 struct StageStats {
-  std::string name;         // "tessellate", "sample", "boolean", "measure"
-  double seconds = 0.0;     // wall time spent in the stage
-  uint64_t surfels = 0;     // surfels produced by the stage
-  uint64_t peakBytes = 0;   // process peak resident memory when the stage last ended
-  int runs = 0;             // nodes the stage ran for
+  std::string name;        // "tessellate", "sample", "boolean", "measure"
+  double seconds = 0.0;    // wall time spent in the stage
+  uint64_t surfels = 0;    // surfels produced by the stage
+  uint64_t peakBytes = 0;  // process peak resident memory when the stage last ended
+  int runs = 0;            // nodes the stage ran for
 };
 
 // What happened to one node.
@@ -47,7 +47,7 @@ struct NodeRecord {
   std::string name;
   std::string kind;
   NodeOutcome outcome = NodeOutcome::Computed;
-  double seconds = 0.0;   // time spent computing this node alone (0 unless Computed)
+  double seconds = 0.0;  // time spent computing this node alone (0 unless Computed)
   uint64_t surfels = 0;
 };
 
@@ -57,8 +57,8 @@ struct EvalResult {
   LdiMeasure measure;  // volume and area of the root, from its LDI
   std::vector<StageStats> stages;
   std::vector<NodeRecord> nodes;  // in evaluation order (children before parents)
-  int computed = 0;  // nodes with outcome Computed
-  int reused = 0;    // nodes with outcome Cached
+  int computed = 0;               // nodes with outcome Computed
+  int reused = 0;                 // nodes with outcome Cached
   double seconds = 0.0;
   uint64_t peakBytes = 0;   // process peak resident memory after the evaluation
   uint64_t cacheBytes = 0;  // LDI memory held by the cache after the evaluation

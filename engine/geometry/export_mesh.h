@@ -19,10 +19,10 @@ struct LeafStyle {
 };
 
 struct ExportMesh {
-  TriangleMesh mesh;                       // scene units, outward oriented
-  std::vector<uint32_t> triangleLeaf;      // per triangle: the leaf id (size = triangles)
-  std::map<uint32_t, LeafStyle> leaves;    // every leaf id used by triangleLeaf
-  std::string unit = "millimetre";         // length unit of the coordinates
+  TriangleMesh mesh;                     // scene units, outward oriented
+  std::vector<uint32_t> triangleLeaf;    // per triangle: the leaf id (size = triangles)
+  std::map<uint32_t, LeafStyle> leaves;  // every leaf id used by triangleLeaf
+  std::string unit = "millimetre";       // length unit of the coordinates
 };
 
 }  // namespace strata

@@ -136,8 +136,8 @@ TriangleMesh tessellatePrimitive(NodeKind kind, const PrimitiveParams& p, int se
       if (!(p.minorRadius < p.majorRadius))
         throw Error("primitive parameter minorRadius must be smaller than majorRadius");
       // Tube segments scaled to the tube's share of the outer radius, for an even chord error.
-      int tube = std::max(8, int(std::ceil(segments * std::sqrt(p.minorRadius /
-                                                                 (p.majorRadius + p.minorRadius)))));
+      int tube = std::max(
+          8, int(std::ceil(segments * std::sqrt(p.minorRadius / (p.majorRadius + p.minorRadius)))));
       TriangleMesh mesh;
       for (int i = 0; i < segments; ++i) {
         double phi = 2.0 * kPi * i / segments;

@@ -15,6 +15,8 @@ glm::dmat4 Transform::matrix() const {
   return m;
 }
 
-bool mirrors(const glm::dmat4& m) { return glm::determinant(glm::dmat3(m)) < 0.0; }
+bool mirrors(const glm::dmat4& m) {
+  return glm::determinant(glm::dmat3(m)) < 0.0;
+}
 
 }  // namespace strata

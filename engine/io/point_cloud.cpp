@@ -8,16 +8,6 @@
 
 namespace strata {
 namespace {
-bool dominantAxis(const float n[3], int axis) {
-  float a = std::fabs(n[axis]);
-  for (int k = 0; k < 3; ++k) {
-    if (k == axis) continue;
-    float b = std::fabs(n[k]);
-    // Ties go to the lower axis index, so a surfel is kept on exactly one axis.
-    if (b > a || (b == a && k < axis)) return false;
-  }
-  return true;
-}
 
 #pragma pack(push, 1)
 struct PlyPoint {
@@ -52,7 +42,7 @@ uint64_t writePointCloudPly(const Ldi& ldi, const std::string& path,
         const Surfel& s = a.surfels[k];
         float n[3];
         decodeNormal(s.normal, n);
-        if (!dominantAxis(n, axis)) continue;
+        if (!onDominantAxis(n, axis)) continue;
         glm::dvec3 p = surfelPosition(ldi.grid, axis, ray, s.depth);
         glm::vec3 c = leafColor(surfelLeaf(s.tag));
         points.push_back(PlyPoint{float(p.x), float(p.y), float(p.z), n[0], n[1], n[2], toByte(c.r),

@@ -52,7 +52,8 @@ std::shared_ptr<Ldi> combineLdis(RayOp op, const std::vector<std::shared_ptr<con
   if (children.empty()) return makeEmptyLdi(grid);
   auto ldi = std::make_shared<Ldi>();
   ldi->grid = grid;
-  for (int axis = 0; axis < 3; ++axis) combineAxis(op, children, grid, axis, progress, &ldi->axes[axis]);
+  for (int axis = 0; axis < 3; ++axis)
+    combineAxis(op, children, grid, axis, progress, &ldi->axes[axis]);
   return ldi;
 }
 

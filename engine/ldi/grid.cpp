@@ -54,8 +54,7 @@ Grid makeGridExact(const Bounds& box, int resolution) {
   Grid grid;
   grid.h = longest / resolution;
   grid.origin = box.min;
-  for (int a = 0; a < 3; ++a)
-    grid.cells[a] = std::max(1, int(std::ceil(size[a] / grid.h - 1e-9)));
+  for (int a = 0; a < 3; ++a) grid.cells[a] = std::max(1, int(std::ceil(size[a] / grid.h - 1e-9)));
   return grid;
 }
 

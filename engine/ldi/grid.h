@@ -22,7 +22,7 @@ namespace strata {
 
 struct Grid {
   glm::dvec3 origin{0.0};
-  double h = 1.0;            // cell size in scene units
+  double h = 1.0;             // cell size in scene units
   glm::ivec3 cells{1, 1, 1};  // cells per axis; nodes per axis = cells + 1
   glm::ivec3 first{0, 0, 0};  // global index of the window's first node
 

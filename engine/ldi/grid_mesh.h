@@ -16,7 +16,7 @@
 namespace strata {
 
 struct GridMesh {
-  std::vector<glm::dvec3> positions;  // global grid units: (world - origin) / h
+  std::vector<glm::dvec3> positions;               // global grid units: (world - origin) / h
   std::vector<std::array<uint32_t, 3>> triangles;  // wound outward (mirrors already undone)
   std::vector<glm::dvec3> normals;  // per triangle, unit, outward; zero for degenerate ones
 };

@@ -88,8 +88,8 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
 
   // Pass 3: sort each ray's hits and normalise them into a clean list.
   const float lo = clipLo(grid, axis), hi = clipHi(grid, axis);
-  uint32_t minus = encodeNormal(axis == 0 ? -1.f : 0.f, axis == 1 ? -1.f : 0.f,
-                                axis == 2 ? -1.f : 0.f);
+  uint32_t minus =
+      encodeNormal(axis == 0 ? -1.f : 0.f, axis == 1 ? -1.f : 0.f, axis == 2 ? -1.f : 0.f);
   uint32_t plus = encodeNormal(axis == 0 ? 1.f : 0.f, axis == 1 ? 1.f : 0.f, axis == 2 ? 1.f : 0.f);
   const int64_t chunkCount = (rays + kRayGrain - 1) / kRayGrain;
   std::vector<RayChunkOutput> chunks(static_cast<size_t>(chunkCount));

@@ -22,7 +22,9 @@ std::shared_ptr<Ldi> sampleMesh(const TriangleMesh& mesh, const glm::dmat4& obje
                                 const Grid& grid, uint32_t leafId, Progress* progress = nullptr);
 
 // The clip range along a ray of `axis`, in global grid units: one cell beyond the window.
-inline float clipLo(const Grid& grid, int axis) { return float(grid.first[axis] - 1); }
+inline float clipLo(const Grid& grid, int axis) {
+  return float(grid.first[axis] - 1);
+}
 inline float clipHi(const Grid& grid, int axis) {
   return float(grid.first[axis] + grid.cells[axis] + 1);
 }

@@ -28,13 +28,19 @@ struct Surfel {
   uint32_t tag;
 };
 
-STRATA_HD bool surfelEnters(uint32_t tag) { return (tag & 1u) != 0; }
-STRATA_HD uint32_t surfelLeaf(uint32_t tag) { return tag >> 1; }
+STRATA_HD bool surfelEnters(uint32_t tag) {
+  return (tag & 1u) != 0;
+}
+STRATA_HD uint32_t surfelLeaf(uint32_t tag) {
+  return tag >> 1;
+}
 STRATA_HD uint32_t makeSurfelTag(uint32_t leaf, bool enters) {
   return (leaf << 1) | (enters ? 1u : 0u);
 }
 
-STRATA_HD float signNotZero(float x) { return x >= 0.0f ? 1.0f : -1.0f; }
+STRATA_HD float signNotZero(float x) {
+  return x >= 0.0f ? 1.0f : -1.0f;
+}
 
 // Octahedral encoding of a unit vector into two snorm16 values (x in the low half).
 STRATA_HD uint32_t encodeNormal(float x, float y, float z) {
@@ -71,6 +77,19 @@ STRATA_HD void decodeNormal(uint32_t packed, float* out) {
   out[2] = z / len;
 }
 
+// True when `axis` is the axis the unit normal n is most aligned with (ties go to the lower
+// axis): drawing or writing each surfel only there shows every patch of surface once, at an even
+// density of one sample per h^2 of projected area.
+STRATA_HD bool onDominantAxis(const float n[3], int axis) {
+  const float a = fabsf(n[axis]);
+  for (int k = 0; k < 3; ++k) {
+    if (k == axis) continue;
+    const float b = fabsf(n[k]);
+    if (b > a || (b == a && k < axis)) return false;
+  }
+  return true;
+}
+
 // The normal with its sign flipped (a surfel taken from a subtracted solid).
 STRATA_HD uint32_t flipNormal(uint32_t packed) {
   float n[3];
@@ -89,7 +108,7 @@ STRATA_HD uint32_t flipNormal(uint32_t packed) {
 // triangles sharing an edge see exactly opposite signs. Together: a ray through a shared edge or
 // vertex of a closed mesh hits exactly the triangles a generic nearby ray would, never 0 or 2.
 
-constexpr int64_t kSubcell = 256;          // lattice steps per cell for projected corners
+constexpr int64_t kSubcell = 256;  // lattice steps per cell for projected corners
 constexpr int64_t kMaxLatticeCoord = int64_t(1) << 60;  // |snapped coordinate| limit
 
 #if defined(__SIZEOF_INT128__)
@@ -123,35 +142,35 @@ STRATA_HD int edgeSign(int64_t au, int64_t av, int64_t bu, int64_t bv, int64_t p
 }
 
 // Exact edge function value (not perturbed) of the directed edge a -> b at p.
-STRATA_HD wide_t edgeValue(int64_t au, int64_t av, int64_t bu, int64_t bv, int64_t pu,
-                           int64_t pv) {
+STRATA_HD wide_t edgeValue(int64_t au, int64_t av, int64_t bu, int64_t bv, int64_t pu, int64_t pv) {
   return wide_t(bu - au) * wide_t(pv - av) - wide_t(bv - av) * wide_t(pu - au);
 }
 
 // A triangle prepared for the rays of one axis.
 struct ProjectedTriangle {
-  int64_t u[3], v[3];  // snapped corners on the lattice (kSubcell steps per cell)
-  double depth[3];     // corner depths in grid units
-  int orientation;     // sign of the projected area: +1, -1, or 0 (parallel to the rays: skip)
-  bool enters;         // the ray enters the solid through this triangle (orientation < 0)
+  int64_t u[3], v[3];      // snapped corners on the lattice (kSubcell steps per cell)
+  double depth[3];         // corner depths in grid units
+  int orientation;         // sign of the projected area: +1, -1, or 0 (parallel to the rays: skip)
+  bool enters;             // the ray enters the solid through this triangle (orientation < 0)
   int64_t firstU, firstV;  // global lattice index of the window's ray (0, 0)
   int rayUMin, rayUMax, rayVMin, rayVMax;  // inclusive window ray range to test (may be empty)
-  uint32_t normal;     // encoded outward face normal
+  uint32_t normal;                         // encoded outward face normal
 };
 
 STRATA_HD int64_t floorDiv(int64_t a, int64_t b) {
   int64_t q = a / b;
   return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
-STRATA_HD int64_t ceilDiv(int64_t a, int64_t b) { return -floorDiv(-a, b); }
+STRATA_HD int64_t ceilDiv(int64_t a, int64_t b) {
+  return -floorDiv(-a, b);
+}
 
 // Prepares a triangle given its corners in global grid units (p[i][axis] is depth; p[i][u],
 // p[i][v] are the coordinates across), the face normal (unit, outward), the global index of
 // the window's first ray along u and v, and the window's ray counts. Corners must be finite
 // with |coordinate| * kSubcell < kMaxLatticeCoord.
 STRATA_HD ProjectedTriangle projectTriangle(const double p[3][3], const double normal[3], int axis,
-                                            int64_t firstU, int64_t firstV, int raysU,
-                                            int raysV) {
+                                            int64_t firstU, int64_t firstV, int raysU, int raysV) {
   const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
   ProjectedTriangle t;
   t.firstU = firstU;
@@ -269,9 +288,9 @@ STRATA_HD int normalizeLeafRay(const Surfel* in, int n, float lo, float hi, uint
 
 // State of an n-ary Boolean while sweeping one ray: how many children are inside.
 struct BooleanState {
-  int insideCount;       // children currently inside (all children for union / intersection,
-                         // the subtracted ones for difference)
-  bool firstInside;      // difference only: the first child is inside
+  int insideCount;   // children currently inside (all children for union / intersection,
+                     // the subtracted ones for difference)
+  bool firstInside;  // difference only: the first child is inside
 };
 
 STRATA_HD bool booleanInside(RayOp op, const BooleanState& s, int childCount) {

@@ -2,8 +2,8 @@
 
 #include <sys/resource.h>
 
-#include <cstdio>
 #include <unistd.h>
+#include <cstdio>
 
 namespace strata {
 

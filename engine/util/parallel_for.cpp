@@ -27,7 +27,9 @@ int workerCount() {
   return n > 0 ? n : defaultWorkers();
 }
 
-void setWorkerCount(int threads) { g_override.store(std::max(0, threads)); }
+void setWorkerCount(int threads) {
+  g_override.store(std::max(0, threads));
+}
 
 void parallelFor(int64_t begin, int64_t end, int64_t grain,
                  const std::function<void(int64_t, int64_t)>& body) {

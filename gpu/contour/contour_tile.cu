@@ -1,6 +1,6 @@
+#include <thrust/iterator/counting_iterator.h>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
 
 #include <mutex>
 
@@ -87,8 +87,8 @@ __global__ void cellMasks(TileView t, uint8_t* masks, uint8_t* boundaryFlags,
 __global__ void componentCounts(TileView t, uint32_t* counts) {
   for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b <= t.boundaryCount;
        b += int64_t(gridDim.x) * blockDim.x)
-    counts[b] = b < t.boundaryCount ? uint32_t(c_cellCases.cases[t.masks[t.boundary[b]]].components)
-                                    : 0u;
+    counts[b] =
+        b < t.boundaryCount ? uint32_t(c_cellCases.cases[t.masks[t.boundary[b]]].components) : 0u;
 }
 
 __global__ void placeVertices(TileView t, CellVertex* vertices) {
@@ -105,8 +105,8 @@ __global__ void countPolygons(TileView t, uint32_t* triangles, uint32_t* faces) 
       continue;
     }
     int faceCount = 0, synthesized = 0;
-    triangles[b] = uint32_t(cellPolygons(t, c_cellCases, b, nullptr, nullptr, &faceCount,
-                                         &synthesized));
+    triangles[b] =
+        uint32_t(cellPolygons(t, c_cellCases, b, nullptr, nullptr, &faceCount, &synthesized));
     faces[b] = uint32_t(faceCount);
   }
 }
@@ -128,13 +128,14 @@ __global__ void writePolygons(TileView t, const uint32_t* triangleStart, const u
 // In-place exclusive scan of count + 1 uint32 values; returns the total (one wait).
 uint32_t scan32(uint32_t* data, int64_t count, cudaStream_t stream) {
   size_t tempBytes = 0;
-  STRATA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count + 1, stream));
+  STRATA_CUDA_CHECK(
+      cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count + 1, stream));
   DeviceBuffer<unsigned char> temp(tempBytes);
   STRATA_CUDA_CHECK(
       cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count + 1, stream));
   uint32_t total = 0;
-  STRATA_CUDA_CHECK(cudaMemcpyAsync(&total, data + count, sizeof(uint32_t), cudaMemcpyDeviceToHost,
-                                    stream));
+  STRATA_CUDA_CHECK(
+      cudaMemcpyAsync(&total, data + count, sizeof(uint32_t), cudaMemcpyDeviceToHost, stream));
   STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
   return total;
 }
@@ -216,7 +217,7 @@ TileContour contourTileOnDevice(const DeviceLdi& ldi, const glm::ivec3& globalCe
   DeviceBuffer<uint32_t> triangleStart(static_cast<size_t>(t.boundaryCount) + 1),
       faceStart(static_cast<size_t>(t.boundaryCount) + 1);
   countPolygons<<<blocksFor(boundaryCount + 1, 128), 128, 0, stream>>>(t, triangleStart.data(),
-                                                                      faceStart.data());
+                                                                       faceStart.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
   const uint32_t triangleCount = scan32(triangleStart.data(), boundaryCount, stream);
   const uint32_t faceCount = scan32(faceStart.data(), boundaryCount, stream);
@@ -235,8 +236,8 @@ TileContour contourTileOnDevice(const DeviceLdi& ldi, const glm::ivec3& globalCe
   faces.download(&faceHost, stream);
   triangles.download(&out.triangles, stream);
   unsigned long long stats[2] = {0, 0};
-  STRATA_CUDA_CHECK(cudaMemcpyAsync(stats, counters.data(), sizeof(stats), cudaMemcpyDeviceToHost,
-                                    stream));
+  STRATA_CUDA_CHECK(
+      cudaMemcpyAsync(stats, counters.data(), sizeof(stats), cudaMemcpyDeviceToHost, stream));
   STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
   out.vertices.insert(out.vertices.end(), faceHost.begin(), faceHost.end());
   out.signDisagreements = stats[0];

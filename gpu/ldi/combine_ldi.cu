@@ -69,8 +69,7 @@ std::shared_ptr<DeviceLdi> emptyOnDevice(const Grid& grid, cudaStream_t stream) 
   return ldi;
 }
 
-std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op,
-                                           const std::vector<const DeviceLdi*>& children,
+std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op, const std::vector<const DeviceLdi*>& children,
                                            const Grid& grid, cudaStream_t stream) {
   if (children.empty()) return emptyOnDevice(grid, stream);
   auto ldi = std::make_shared<DeviceLdi>(grid);

@@ -13,8 +13,7 @@ namespace strata {
 
 // Combines the children (all on `grid`, clean lists) with an n-ary operation. Synchronous on
 // `stream`. With no children the result is empty.
-std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op,
-                                           const std::vector<const DeviceLdi*>& children,
+std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op, const std::vector<const DeviceLdi*>& children,
                                            const Grid& grid, cudaStream_t stream);
 
 // An LDI with no surfels.

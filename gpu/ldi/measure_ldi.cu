@@ -26,11 +26,11 @@ __global__ void measureRays(const uint32_t* offsets, const Surfel* surfels, int6
 double sum(const double* values, int64_t count, cudaStream_t stream) {
   DeviceBuffer<double> result(1);
   size_t tempBytes = 0;
-  STRATA_CUDA_CHECK(cub::DeviceReduce::Sum(nullptr, tempBytes, values, result.data(), count,
-                                           stream));
+  STRATA_CUDA_CHECK(
+      cub::DeviceReduce::Sum(nullptr, tempBytes, values, result.data(), count, stream));
   DeviceBuffer<unsigned char> temp(tempBytes);
-  STRATA_CUDA_CHECK(cub::DeviceReduce::Sum(temp.data(), tempBytes, values, result.data(), count,
-                                           stream));
+  STRATA_CUDA_CHECK(
+      cub::DeviceReduce::Sum(temp.data(), tempBytes, values, result.data(), count, stream));
   double host = 0.0;
   STRATA_CUDA_CHECK(
       cudaMemcpyAsync(&host, result.data(), sizeof(double), cudaMemcpyDeviceToHost, stream));

@@ -33,11 +33,10 @@ __global__ void projectTriangles(const TriangleInput* in, int64_t count, AxisSet
     }
     const int axis = int(j / count);
     const int64_t t = j % count;
-    ProjectedTriangle pt = projectTriangle(in[t].p, in[t].n, axis, s.firstU[axis],
-                                           s.firstV[axis], s.raysU[axis], s.raysV[axis]);
+    ProjectedTriangle pt = projectTriangle(in[t].p, in[t].n, axis, s.firstU[axis], s.firstV[axis],
+                                           s.raysU[axis], s.raysV[axis]);
     out[j] = pt;
-    const int64_t w =
-        int64_t(pt.rayUMax - pt.rayUMin + 1) * int64_t(pt.rayVMax - pt.rayVMin + 1);
+    const int64_t w = int64_t(pt.rayUMax - pt.rayUMin + 1) * int64_t(pt.rayVMax - pt.rayVMin + 1);
     work[j] = pt.rayUMax < pt.rayUMin ? 0 : uint64_t(w);
   }
 }
@@ -165,9 +164,9 @@ std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& 
   readBack(workEnd, &totalWork, 1, stream);
 
   // Pass 1: count hits per ray; scan into raw offsets.
-  rasterize<false><<<itemBlocks(totalWork), 256, 0, stream>>>(
-      projected.data(), work.data(), count, totalWork, space, leafId, counters.data(), nullptr,
-      nullptr);
+  rasterize<false><<<itemBlocks(totalWork), 256, 0, stream>>>(projected.data(), work.data(), count,
+                                                              totalWork, space, leafId,
+                                                              counters.data(), nullptr, nullptr);
   STRATA_CUDA_CHECK(cudaGetLastError());
   DeviceBuffer<uint64_t> rawOffsets(static_cast<size_t>(rays) + 1);
   widenCounts(counters.data(), rays, rawOffsets.data(), stream);

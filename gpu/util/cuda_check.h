@@ -19,9 +19,9 @@ class DeviceOutOfMemory : public BackendOutOfMemory {
 
 }  // namespace strata
 
-#define STRATA_CUDA_CHECK(call)                                                    \
-  do {                                                                             \
-    cudaError_t strata_status_ = (call);                                           \
-    if (strata_status_ != cudaSuccess)                                             \
-      ::strata::throwCudaError(strata_status_, #call, __FILE__, __LINE__);          \
+#define STRATA_CUDA_CHECK(call)                                            \
+  do {                                                                     \
+    cudaError_t strata_status_ = (call);                                   \
+    if (strata_status_ != cudaSuccess)                                     \
+      ::strata::throwCudaError(strata_status_, #call, __FILE__, __LINE__); \
   } while (0)

@@ -45,14 +45,14 @@ class DeviceBuffer {
   void upload(const std::vector<T>& host, cudaStream_t stream) {
     resize(host.size());
     if (size_)
-      STRATA_CUDA_CHECK(cudaMemcpyAsync(data_, host.data(), size_ * sizeof(T),
-                                        cudaMemcpyHostToDevice, stream));
+      STRATA_CUDA_CHECK(
+          cudaMemcpyAsync(data_, host.data(), size_ * sizeof(T), cudaMemcpyHostToDevice, stream));
   }
   void download(std::vector<T>* host, cudaStream_t stream) const {
     host->resize(size_);
     if (size_)
-      STRATA_CUDA_CHECK(cudaMemcpyAsync(host->data(), data_, size_ * sizeof(T),
-                                        cudaMemcpyDeviceToHost, stream));
+      STRATA_CUDA_CHECK(
+          cudaMemcpyAsync(host->data(), data_, size_ * sizeof(T), cudaMemcpyDeviceToHost, stream));
   }
   T* data() { return data_; }
   const T* data() const { return data_; }

@@ -23,8 +23,12 @@ void configurePool() {
 }
 }  // namespace
 
-void setAllocationStream(cudaStream_t stream) { t_stream = stream; }
-cudaStream_t allocationStream() { return t_stream; }
+void setAllocationStream(cudaStream_t stream) {
+  t_stream = stream;
+}
+cudaStream_t allocationStream() {
+  return t_stream;
+}
 
 void* deviceAllocate(size_t bytes) {
   std::call_once(g_poolConfigured, configurePool);
@@ -43,8 +47,14 @@ void deviceFree(void* pointer, size_t bytes) {
   g_inUse.fetch_sub(bytes);
 }
 
-uint64_t deviceBytesInUse() { return g_inUse.load(); }
-uint64_t devicePeakBytes() { return g_peak.load(); }
-void resetDevicePeak() { g_peak.store(g_inUse.load()); }
+uint64_t deviceBytesInUse() {
+  return g_inUse.load();
+}
+uint64_t devicePeakBytes() {
+  return g_peak.load();
+}
+void resetDevicePeak() {
+  g_peak.store(g_inUse.load());
+}
 
 }  // namespace strata

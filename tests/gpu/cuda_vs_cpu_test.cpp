@@ -51,14 +51,15 @@ TEST_F(CudaVsCpu, AnalyticBooleansMatchRayByRay) {
   constexpr double kPi = 3.14159265358979323846;
   (void)kPi;
   for (int resolution : {64, 160}) {
-    expectIdentical(makeScene(op(NodeKind::Union, {sphere(1, {-0.5, 0, 0}), sphere(1, {0.5, 0, 0})}),
-                              resolution),
-                    cuda_, "sphere union");
-    expectIdentical(makeScene(op(NodeKind::Intersection,
-                                 {cylinder(1, 3, {}, {0, 90, 0}), cylinder(1, 3, {}, {90, 0, 0}),
-                                  cylinder(1, 3)}),
-                              resolution),
-                    cuda_, "steinmetz");
+    expectIdentical(
+        makeScene(op(NodeKind::Union, {sphere(1, {-0.5, 0, 0}), sphere(1, {0.5, 0, 0})}),
+                  resolution),
+        cuda_, "sphere union");
+    expectIdentical(
+        makeScene(op(NodeKind::Intersection, {cylinder(1, 3, {}, {0, 90, 0}),
+                                              cylinder(1, 3, {}, {90, 0, 0}), cylinder(1, 3)}),
+                  resolution),
+        cuda_, "steinmetz");
     expectIdentical(makeScene(op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2)}), resolution),
                     cuda_, "cube minus ball");
     expectIdentical(

@@ -89,7 +89,8 @@ Row run(const Bench& b, const std::shared_ptr<Backend>& backend, int resolution,
   row.surfels = r.measure.surfels;
   // One leaf moves: only its path to the root is recomputed.
   Scene edited = b.scene;
-  edited.root = moved(b.scene.root, b.movedLeaf, glm::dvec3(0.37 * Evaluator::gridFor(b.scene, resolution).h));
+  edited.root = moved(b.scene.root, b.movedLeaf,
+                      glm::dvec3(0.37 * Evaluator::gridFor(b.scene, resolution).h));
   Stopwatch update;
   evaluator.evaluate(edited, options, progress);
   row.update = update.seconds();
@@ -100,8 +101,9 @@ Row run(const Bench& b, const std::shared_ptr<Backend>& backend, int resolution,
   row.download = download.seconds();
   ContourReport report;
   Stopwatch exportTime;
-  ExportMesh mesh = contourScene(edited, evaluator, ContourOptions{resolution, resolution <= 1024 ? 1024 : 512},
-                                 progress, &report);
+  ExportMesh mesh =
+      contourScene(edited, evaluator, ContourOptions{resolution, resolution <= 1024 ? 1024 : 512},
+                   progress, &report);
   row.exportTotal = exportTime.seconds();
   row.contour = report.contourSeconds + report.mergeSeconds;
   row.triangles = mesh.mesh.triangles.size();
@@ -120,10 +122,14 @@ int main(int argc, char** argv) {
   std::string assets = STRATA_ASSETS, data = STRATA_TEST_DATA;
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string k = argv[i];
-    if (k == "--resolutions") resolutions = parseList(argv[i + 1]);
-    else if (k == "--cpu-max") cpuMax = std::atoi(argv[i + 1]);
-    else if (k == "--assets") assets = argv[i + 1];
-    else if (k == "--data") data = argv[i + 1];
+    if (k == "--resolutions")
+      resolutions = parseList(argv[i + 1]);
+    else if (k == "--cpu-max")
+      cpuMax = std::atoi(argv[i + 1]);
+    else if (k == "--assets")
+      assets = argv[i + 1];
+    else if (k == "--data")
+      data = argv[i + 1];
   }
   std::string why;
   if (!cudaDeviceAvailable(&why)) {
@@ -173,26 +179,29 @@ int main(int argc, char** argv) {
               cpu->description().c_str());
   for (const auto& b : benches) {
     std::printf("### %s\n\n", b.name.c_str());
-    std::printf("| res | backend | sample | Boolean | full eval | update (1 leaf) | download | "
-                "contour+merge | export total | triangles | watertight | surfels | peak device "
-                "MiB | peak host MiB |\n");
+    std::printf(
+        "| res | backend | sample | Boolean | full eval | update (1 leaf) | download | "
+        "contour+merge | export total | triangles | watertight | surfels | peak device "
+        "MiB | peak host MiB |\n");
     std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|\n");
     for (int res : resolutions) {
       for (int g = 1; g >= 0; --g) {
         if (!g && res > cpuMax) continue;
         try {
           Row r = run(b, g ? cuda : std::shared_ptr<Backend>(cpu), res, g);
-          std::printf("| %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %s | "
-                      "%llu | %s | %.0f |\n",
-                      res, g ? "cuda" : "cpu", r.sample * 1e3, r.boolean * 1e3, r.full * 1e3,
-                      r.update * 1e3, r.download * 1e3, r.contour * 1e3, r.exportTotal * 1e3,
-                      static_cast<unsigned long long>(r.triangles), r.watertight ? "yes" : "NO",
-                      static_cast<unsigned long long>(r.surfels),
-                      g ? std::to_string(int(r.deviceBytes / 1048576)).c_str() : "-",
-                      double(r.hostBytes) / 1048576.0);
+          std::printf(
+              "| %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %s | "
+              "%llu | %s | %.0f |\n",
+              res, g ? "cuda" : "cpu", r.sample * 1e3, r.boolean * 1e3, r.full * 1e3,
+              r.update * 1e3, r.download * 1e3, r.contour * 1e3, r.exportTotal * 1e3,
+              static_cast<unsigned long long>(r.triangles), r.watertight ? "yes" : "NO",
+              static_cast<unsigned long long>(r.surfels),
+              g ? std::to_string(int(r.deviceBytes / 1048576)).c_str() : "-",
+              double(r.hostBytes) / 1048576.0);
           if (g && res == 512 && b.name.find("scaffold") != std::string::npos)
-            std::printf("|  | vs paper | | | %.0fx faster than 1.7 s | | | | | | | | %.2fx of 600 MB | |\n",
-                        1.7 / r.full, double(r.deviceBytes) / (600.0 * 1048576.0));
+            std::printf(
+                "|  | vs paper | | | %.0fx faster than 1.7 s | | | | | | | | %.2fx of 600 MB | |\n",
+                1.7 / r.full, double(r.deviceBytes) / (600.0 * 1048576.0));
         } catch (const std::exception& e) {
           std::printf("| %d | %s | failed: %s |\n", res, g ? "cuda" : "cpu", e.what());
         }

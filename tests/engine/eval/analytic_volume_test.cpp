@@ -13,7 +13,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Volume error allowed at cell size h for a solid whose boundary area is at most `area`:
 // a quarter of a cell thickness over the whole surface.
-double volumeTolerance(double h, double area) { return 0.25 * h * area; }
+double volumeTolerance(double h, double area) {
+  return 0.25 * h * area;
+}
 
 struct Case {
   const char* name;
@@ -33,9 +35,8 @@ std::vector<Case> cases() {
   c.push_back(twoSpheres(NodeKind::Intersection, 5 * kPi / 12));
   c.push_back(twoSpheres(NodeKind::Difference, 11 * kPi / 12));
   c.push_back({"steinmetz",
-               op(NodeKind::Intersection,
-                  {cylinder(1.0, 3.0, {}, {0, 90, 0}), cylinder(1.0, 3.0, {}, {90, 0, 0}),
-                   cylinder(1.0, 3.0)}),
+               op(NodeKind::Intersection, {cylinder(1.0, 3.0, {}, {0, 90, 0}),
+                                           cylinder(1.0, 3.0, {}, {90, 0, 0}), cylinder(1.0, 3.0)}),
                8 * (2 - std::sqrt(2.0)), 3 * (2 * kPi * 3 + 2 * kPi)});
   double ball = 4.0 / 3.0 * kPi * 1.2 * 1.2 * 1.2;
   double cap = kPi * 0.2 * 0.2 * (3 * 1.2 - 0.2) / 3;

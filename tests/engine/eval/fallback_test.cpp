@@ -16,8 +16,8 @@ class SmallMemoryBackend : public CpuBackend {
  public:
   explicit SmallMemoryBackend(int maxCells) : maxCells_(maxCells) {}
   std::string description() const override { return "small-memory test backend"; }
-  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld,
-                       const Grid& grid, uint32_t leafId, Progress& progress) override {
+  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                       uint32_t leafId, Progress& progress) override {
     if (std::max({grid.cells.x, grid.cells.y, grid.cells.z}) > maxCells_)
       throw BackendOutOfMemory("pretend: out of device memory");
     return CpuBackend::sampleMesh(mesh, objectToWorld, grid, leafId, progress);
@@ -56,8 +56,8 @@ TEST(Fallback, ExportAndEvaluationFallBackToTheCpu) {
 
   notices.clear();
   std::shared_ptr<Backend> used;
-  EvalResult r = evaluateWithFallback(tiny, s, {}, progress,
-                                      [&](const std::string& n) { notices.push_back(n); }, &used);
+  EvalResult r = evaluateWithFallback(
+      tiny, s, {}, progress, [&](const std::string& n) { notices.push_back(n); }, &used);
   ASSERT_EQ(notices.size(), 1u);
   ASSERT_TRUE(used);
   EXPECT_NE(used->description().find("cpu"), std::string::npos);

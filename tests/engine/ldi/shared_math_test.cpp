@@ -36,8 +36,8 @@ TEST(SharedMath, RayThroughSharedVertexHitsExactlyOneFanTriangle) {
     for (int i = 0; i < n; ++i) {
       double angle = 2 * M_PI * (i + 0.5 + jitter(rng)) / n;
       // Snap ring corners to the lattice too, sometimes exactly onto rays' lines.
-      ring.push_back({std::round(std::cos(angle) * 4) / 2, std::round(std::sin(angle) * 4) / 2,
-                      jitter(rng)});
+      ring.push_back(
+          {std::round(std::cos(angle) * 4) / 2, std::round(std::sin(angle) * 4) / 2, jitter(rng)});
     }
     int hits = 0, valid = 0;
     for (int i = 0; i < n; ++i) {
@@ -74,8 +74,10 @@ TEST(SharedMath, NormalEncodingRoundTrips) {
 TEST(SharedMath, LeafSweepUnitesOverlappingShellsByWinding) {
   // Two overlapping shells on one ray: enter 1, enter 2, exit 3, exit 4 -> one interval [1, 4].
   uint32_t n = encodeNormal(1, 0, 0);
-  Surfel in[4] = {{1, n, makeSurfelTag(5, true)}, {2, n, makeSurfelTag(5, true)},
-                  {3, n, makeSurfelTag(5, false)}, {4, n, makeSurfelTag(5, false)}};
+  Surfel in[4] = {{1, n, makeSurfelTag(5, true)},
+                  {2, n, makeSurfelTag(5, true)},
+                  {3, n, makeSurfelTag(5, false)},
+                  {4, n, makeSurfelTag(5, false)}};
   Surfel out[6];
   int k = normalizeLeafRay(in, 4, -1, 100, 5, n, n, out);
   ASSERT_EQ(k, 2);
