@@ -11,21 +11,10 @@ namespace strata::ui {
 std::vector<Splat> buildSplats(const Ldi& ldi) {
   std::vector<Splat> splats;
   splats.reserve(ldi.surfelCount() / 3 + 16);
-  for (int axis = 0; axis < 3; ++axis) {
-    const AxisLdi& a = ldi.axes[static_cast<size_t>(axis)];
-    for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray) {
-      for (uint32_t k = a.offsets[size_t(ray)]; k < a.offsets[size_t(ray) + 1]; ++k) {
-        const Surfel& s = a.surfels[k];
-        float n[3];
-        decodeNormal(s.normal, n);
-        if (!onDominantAxis(n, axis)) continue;
-        glm::dvec3 p = surfelPosition(ldi.grid, axis, ray, s.depth);
-        splats.push_back(Splat{{float(p.x), float(p.y), float(p.z)},
-                               s.normal,
-                               (surfelLeaf(s.tag) << 2) | uint32_t(axis)});
-      }
-    }
-  }
+  forEachDominantSurfel(ldi, [&](int axis, const Surfel& s, const float*, const glm::dvec3& p) {
+    splats.push_back(Splat{
+        {float(p.x), float(p.y), float(p.z)}, s.normal, (surfelLeaf(s.tag) << 2) | uint32_t(axis)});
+  });
   return splats;
 }
 

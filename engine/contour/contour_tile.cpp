@@ -192,12 +192,6 @@ TileWindow tileWindow(const glm::ivec3& begin, const glm::ivec3& end, const glm:
   return w;
 }
 
-uint64_t edgeKey(const glm::ivec3& globalCells, int axis, const glm::ivec3& node) {
-  const int cells[3] = {globalCells.x, globalCells.y, globalCells.z};
-  const int n[3] = {node.x, node.y, node.z};
-  return globalEdgeKey(cells, axis, n);
-}
-
 TileView makeTileView(const glm::ivec3& first, const glm::ivec3& cells,
                       const glm::ivec3& globalCells, const glm::ivec3& begin,
                       const glm::ivec3& end) {

@@ -46,7 +46,4 @@ TileView makeTileView(const glm::ivec3& first, const glm::ivec3& cells,
                       const glm::ivec3& globalCells, const glm::ivec3& begin,
                       const glm::ivec3& end);
 
-// Global key of the edge along `axis` whose lower node is `node`.
-uint64_t edgeKey(const glm::ivec3& globalCells, int axis, const glm::ivec3& node);
-
 }  // namespace strata

@@ -32,9 +32,9 @@ glm::dvec3 surfelPosition(const Grid& grid, int axis, int64_t ray, float depth) 
   return p;
 }
 
-uint64_t writePointCloudPly(const Ldi& ldi, const std::string& path,
-                            const std::function<glm::vec3(uint32_t leafId)>& leafColor) {
-  std::vector<PlyPoint> points;
+void forEachDominantSurfel(const Ldi& ldi,
+                           const std::function<void(int axis, const Surfel& s, const float n[3],
+                                                    const glm::dvec3& p)>& visit) {
   for (int axis = 0; axis < 3; ++axis) {
     const AxisLdi& a = ldi.axes[axis];
     for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray) {
@@ -42,14 +42,21 @@ uint64_t writePointCloudPly(const Ldi& ldi, const std::string& path,
         const Surfel& s = a.surfels[k];
         float n[3];
         decodeNormal(s.normal, n);
-        if (!onDominantAxis(n, axis)) continue;
-        glm::dvec3 p = surfelPosition(ldi.grid, axis, ray, s.depth);
-        glm::vec3 c = leafColor(surfelLeaf(s.tag));
-        points.push_back(PlyPoint{float(p.x), float(p.y), float(p.z), n[0], n[1], n[2], toByte(c.r),
-                                  toByte(c.g), toByte(c.b)});
+        if (onDominantAxis(n, axis))
+          visit(axis, s, n, surfelPosition(ldi.grid, axis, ray, s.depth));
       }
     }
   }
+}
+
+uint64_t writePointCloudPly(const Ldi& ldi, const std::string& path,
+                            const std::function<glm::vec3(uint32_t leafId)>& leafColor) {
+  std::vector<PlyPoint> points;
+  forEachDominantSurfel(ldi, [&](int, const Surfel& s, const float n[3], const glm::dvec3& p) {
+    glm::vec3 c = leafColor(surfelLeaf(s.tag));
+    points.push_back(PlyPoint{float(p.x), float(p.y), float(p.z), n[0], n[1], n[2], toByte(c.r),
+                              toByte(c.g), toByte(c.b)});
+  });
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "ply\nformat binary_little_endian 1.0\ncomment written by strata: LDI surfels\n"
         << "element vertex " << points.size() << "\n"

@@ -21,4 +21,11 @@ uint64_t writePointCloudPly(const Ldi& ldi, const std::string& path,
 // World position of a surfel on ray `ray` of `axis`.
 glm::dvec3 surfelPosition(const Grid& grid, int axis, int64_t ray, float depth);
 
+// Calls visit(axis, surfel, unitNormal, worldPosition) for every surfel of `ldi` on the axis its
+// normal is most aligned with (onDominantAxis): each patch of surface once, at an even density.
+// What the point cloud writer and the editor's splats are made of.
+void forEachDominantSurfel(const Ldi& ldi,
+                           const std::function<void(int axis, const Surfel& s, const float n[3],
+                                                    const glm::dvec3& p)>& visit);
+
 }  // namespace strata

@@ -7,7 +7,5 @@ namespace strata {
 
 // Peak resident set size of this process so far, in bytes (0 where unknown).
 uint64_t peakResidentBytes();
-// Current resident set size in bytes (0 where unknown).
-uint64_t currentResidentBytes();
 
 }  // namespace strata

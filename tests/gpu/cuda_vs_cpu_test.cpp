@@ -48,8 +48,6 @@ void expectIdentical(const Scene& scene, const std::shared_ptr<Backend>& cuda, c
 }
 
 TEST_F(CudaVsCpu, AnalyticBooleansMatchRayByRay) {
-  constexpr double kPi = 3.14159265358979323846;
-  (void)kPi;
   for (int resolution : {64, 160}) {
     expectIdentical(
         makeScene(op(NodeKind::Union, {sphere(1, {-0.5, 0, 0}), sphere(1, {0.5, 0, 0})}),

@@ -16,6 +16,7 @@
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/scene_file.h"
+#include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
@@ -169,9 +170,10 @@ int main(int argc, char** argv) {
     Bench scaffold;
     scaffold.name = "bone scaffold (depth 30)";
     scaffold.scene = loadScene(assets + "/scenes/bone_scaffold.strata.json");
-    scaffold.movedLeaf = 2;  // a strut of the scaffold cell template: every cell instance moves
+    scaffold.movedLeaf = 0;  // the offset mesh (the cortical shell's second child)
     for (const auto& c : scaffold.scene.root->children)
-      if (c->name == "cortical shell") scaffold.movedLeaf = c->children[1]->id;  // the offset
+      if (c->name == "cortical shell") scaffold.movedLeaf = c->children[1]->id;
+    if (scaffold.movedLeaf == 0) throw Error("bone_scaffold.strata.json: no cortical shell");
     benches.push_back(scaffold);
   }
 
