@@ -19,7 +19,8 @@ BackendChoice chooseBackend(const std::string& name) {
   std::string why;
   if (cudaDeviceAvailable(&why)) {
     auto cuda = makeCudaBackend();
-    return {cuda, "backend " + cuda->description() + (name == "auto" ? " (auto)" : " (asked for)")};
+    return {cuda, "backend " + cuda->description() + (name == "auto" ? " (auto)" : " (asked for)"),
+            true};
   }
   if (name == "cuda") throw Error("--backend cuda: " + why + "; use --backend cpu");
 #else

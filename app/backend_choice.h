@@ -10,7 +10,8 @@ namespace strata {
 
 struct BackendChoice {
   std::shared_ptr<Backend> backend;
-  std::string why;  // one line for the user: what was chosen and why
+  std::string why;    // one line for the user: what was chosen and why
+  bool cuda = false;  // the CUDA backend (its splats can go to GL through CUDA-GL interop)
 };
 
 // auto: CUDA when this build has it and a device is present, otherwise the CPU.

@@ -3,6 +3,7 @@
 // the command line.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/cli_common.h"
 #include "app/commands.h"
@@ -15,6 +16,7 @@
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
 #if defined(STRATA_HAS_EDITOR)
+#include "app/cuda_gl_splat_copier.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
 #include "ui/png_file.h"
@@ -25,10 +27,16 @@ namespace {
 
 std::vector<std::string> editorValuedOptions() {
   std::vector<std::string> valued = kValuedOptions;
-  for (const char* o :
-       {"--width", "--height", "--screenshot", "--view", "--measure-latency", "--move-leaf"})
+  for (const char* o : {"--width", "--height", "--screenshot", "--view", "--measure-latency",
+                        "--move-leaf", "--section"})
     valued.push_back(o);
   return valued;
+}
+
+std::vector<std::string> editorFlagOptions() {
+  std::vector<std::string> flags = kFlagOptions;
+  flags.push_back("--no-interop");
+  return flags;
 }
 
 // Without an editor: the command line's evaluation of the same scene, with the options it takes.
@@ -88,16 +96,53 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
 #endif
 
 #if defined(STRATA_HAS_EDITOR)
-std::function<std::shared_ptr<Backend>()> backendMaker(const CliArgs& args) {
+// Sets the editor's backend maker (--backend, --threads) and, for the CUDA backend, the CUDA-GL
+// interop copier of its splats (--no-interop: the host upload path, for comparison).
+void chooseEditorBackend(const CliArgs& args, ui::EditorOptions* options) {
   if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));
   std::string name = args.text("--backend", "auto");
   BackendChoice first = chooseBackend(name);  // fails early, with the reason, for a bad name
   std::fprintf(stderr, "%s\n", first.why.c_str());
   auto spare = std::make_shared<std::shared_ptr<Backend>>(first.backend);
-  return [name, spare]() -> std::shared_ptr<Backend> {
+  options->makeBackend = [name, spare]() -> std::shared_ptr<Backend> {
     if (*spare) return std::move(*spare);  // the first caller gets the one made above
     return chooseBackend(name).backend;
   };
+  if (first.cuda && !args.has("--no-interop")) options->makeSplatCopier = makeCudaGlSplatCopier;
+}
+
+// --section AXIS[:AT][:flip], e.g. "y:0.4": the section plane across AXIS at the fraction AT
+// of the scene's bounds (default 0.5), cutting away the upper side (the lower with ":flip").
+void applySection(const CliArgs& args, ui::EditorState& state) {
+  if (!args.has("--section")) return;
+  const std::string text = args.text("--section", "");
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (;;) {
+    size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  const std::string usage =
+      "--section: expected AXIS[:AT][:flip] with AXIS x, y or z and AT in "
+      "[0, 1], e.g. y:0.4; got '" +
+      text + "'";
+  if (parts[0].size() != 1 || parts[0][0] < 'x' || parts[0][0] > 'z') throw Error(usage);
+  ui::SectionState section;
+  section.on = true;
+  section.axis = parts[0][0] - 'x';
+  for (size_t i = 1; i < parts.size(); ++i) {
+    if (parts[i] == "flip") {
+      section.flip = true;
+      continue;
+    }
+    char* end = nullptr;
+    section.at = std::strtod(parts[i].c_str(), &end);
+    if (parts[i].empty() || *end != '\0' || !(section.at >= 0.0 && section.at <= 1.0))
+      throw Error(usage);
+  }
+  state.section = section;
 }
 
 ui::AxisView parseView(const std::string& view, bool* iso) {
@@ -124,7 +169,7 @@ bool looksLikeScenePath(const std::string& arg) {
 
 int runEdit(const std::vector<std::string>& argv) {
   return runGuarded([&] {
-    CliArgs args(argv, editorValuedOptions(), kFlagOptions);
+    CliArgs args(argv, editorValuedOptions(), editorFlagOptions());
     if (args.positional().size() > 1)
       throw Error("usage: strata edit [SCENE.strata.json] [--backend B] [--screenshot FILE]");
     const std::string scene = args.positional().empty() ? demoScenePath() : args.positional()[0];
@@ -138,7 +183,7 @@ int runEdit(const std::vector<std::string>& argv) {
     ui::EditorOptions options;
     options.scenePath = scene;
     options.sceneAsTemplate = args.positional().empty();  // the demo: never saved over
-    options.makeBackend = backendMaker(args);
+    chooseEditorBackend(args, &options);
     options.width = args.integer("--width", 1600, 320, 8192);
     options.height = args.integer("--height", 1000, 240, 8192);
     const std::string screenshot = args.text("--screenshot", "");
@@ -147,6 +192,7 @@ int runEdit(const std::vector<std::string>& argv) {
       options.recoveryPath = defaultRecoveryPath();
     }
     ui::Editor editor(options);
+    applySection(args, editor.state());
     if (args.has("--measure-latency"))
       return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
                             args.text("--move-leaf", ""));
@@ -165,7 +211,7 @@ int runEdit(const std::vector<std::string>& argv) {
 
 int runRender(const std::vector<std::string>& argv) {
   return runGuarded([&] {
-    CliArgs args(argv, editorValuedOptions(), kFlagOptions);
+    CliArgs args(argv, editorValuedOptions(), editorFlagOptions());
     const std::string output = args.text("-o", args.text("--output", ""));
     if (args.positional().size() != 1 || output.empty())
       throw Error(
@@ -188,10 +234,11 @@ int runRender(const std::vector<std::string>& argv) {
     loadScene(scene);  // a bad file fails here with its message
     ui::EditorOptions options;
     options.scenePath = scene;
-    options.makeBackend = backendMaker(args);
+    chooseEditorBackend(args, &options);
     options.visible = false;
     ui::Editor editor(options);
     ui::EditorState& state = editor.state();
+    applySection(args, state);
     if (args.has("--resolution"))
       ui::setResolution(state, args.integer("--resolution", 0, kMinResolution, kMaxResolution));
     if (!editor.waitForPreview(3600.0))
@@ -202,7 +249,7 @@ int runRender(const std::vector<std::string>& argv) {
     std::vector<uint8_t> pixels = editor.renderViewport(width, height);
     ui::writePng(output, width, height, pixels);
     std::printf("wrote %s (%d x %d, %zu splats at resolution %d)\n", output.c_str(), width, height,
-                state.preview->splats.size(), state.preview->resolution);
+                state.preview->splatCount(), state.preview->resolution);
     return 0;
 #endif
   });

@@ -7,6 +7,7 @@
 #include "gpu/ldi/combine_ldi.cuh"
 #include "gpu/ldi/measure_ldi.cuh"
 #include "gpu/ldi/sample_mesh.cuh"
+#include "gpu/ldi/splats.cuh"
 #include "gpu/util/cuda_check.h"
 #include "gpu/util/device_memory.h"
 
@@ -69,6 +70,12 @@ class CudaBackend : public Backend {
     setAllocationStream(stream_);
     progress.check();
     return contourTileOnDevice(deviceLdi(root), globalCells, begin, end, stream_);
+  }
+
+  SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
+    setAllocationStream(stream_);
+    progress.check();
+    return splatsOnDevice(deviceLdi(ldi), stream_);
   }
 
   std::shared_ptr<const Ldi> download(const LdiHandle& handle) override {

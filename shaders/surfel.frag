@@ -1,23 +1,61 @@
 #version 330 core
 // Lit surfel discs: a key light and a fill light fixed to the camera, ambient, a little
 // specular; the selection is tinted. Output is gamma-encoded (the window is not sRGB).
+// With the section plane on (see surfel.vert): fragments on the cut side are discarded, and a
+// splat facing away from the camera is drawn as the cap: the leaf's colour, flat-lit by the
+// plane's normal, with a faint hatch on the plane.
 
 in vec3 vNormal;
 in vec3 vColor;
 in vec2 vCorner;
 in float vSelected;
 in vec3 vToEye;
+in vec3 vWorld;
+in float vFacing;
+flat in uint vLeaf;
 
 uniform vec3 keyLight;   // unit direction towards the light, world space
 uniform vec3 fillLight;
+uniform bool sectionOn;
+uniform vec4 sectionPlane;
+uniform vec3 eye;
+uniform vec3 viewForward;
+uniform bool ortho;
+uniform float cellSize;
 
 out vec4 fragColor;
 
+vec3 gammaEncode(vec3 linear) {
+  return pow(clamp(linear, 0.0, 1.0), vec3(1.0 / 2.2));
+}
+
+// Where the view ray through this fragment meets the section plane.
+vec3 onSectionPlane() {
+  vec3 dir = ortho ? viewForward : normalize(vWorld - eye);
+  vec3 origin = ortho ? vWorld : eye;
+  float denom = dot(sectionPlane.xyz, dir);
+  if (abs(denom) < 1e-6) return vWorld;
+  return origin + dir * ((sectionPlane.w - dot(sectionPlane.xyz, origin)) / denom);
+}
+
 void main() {
   if (dot(vCorner, vCorner) > 1.0) discard;
-  vec3 n = normalize(vNormal);
   vec3 base = vColor;
   if (vSelected > 0.5) base = mix(base, vec3(1.0, 0.55, 0.12), 0.45);
+  if (sectionOn) {
+    if (dot(sectionPlane.xyz, vWorld) > sectionPlane.w) discard;
+    if (vFacing < 0.0) {
+      // The cap: lit as the plane (its normal turned to the viewer), hatched every 8 cells.
+      vec3 toEye = ortho ? -viewForward : normalize(eye - vWorld);
+      vec3 pn = dot(sectionPlane.xyz, toEye) >= 0.0 ? sectionPlane.xyz : -sectionPlane.xyz;
+      vec3 c = onSectionPlane();
+      float hatch = step(0.5, fract((c.x + c.y + c.z) / (8.0 * cellSize)));
+      float light = 0.35 + 0.45 * max(dot(pn, keyLight), 0.0) + 0.15 * max(dot(pn, fillLight), 0.0);
+      fragColor = vec4(gammaEncode(base * light * (0.82 + 0.18 * hatch)), 1.0);
+      return;
+    }
+  }
+  vec3 n = normalize(vNormal);
   float key = max(dot(n, keyLight), 0.0);
   float fill = max(dot(n, fillLight), 0.0);
   float rim = pow(1.0 - max(dot(n, vToEye), 0.0), 3.0);
@@ -25,5 +63,5 @@ void main() {
   float spec = pow(max(dot(n, h), 0.0), 48.0);
   vec3 linear = base * (0.18 + 0.72 * key + 0.25 * fill) + vec3(0.18 * spec) + 0.12 * rim * base;
   if (vSelected > 0.5) linear += vec3(0.35, 0.16, 0.02) * rim;
-  fragColor = vec4(pow(clamp(linear, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+  fragColor = vec4(gammaEncode(linear), 1.0);
 }

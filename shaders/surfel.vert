@@ -3,6 +3,11 @@
 // plane. The quad is built in the plane across the surfel's ray axis (where rays are h apart)
 // and lifted onto the tangent plane, so neighbouring splats of one axis meet without gaps
 // whatever the slope; the disc cut from it (surfel.frag) covers the ray's cell.
+//
+// Section plane: with sectionOn, everything where dot(sectionPlane.xyz, p) > sectionPlane.w is
+// cut away (per fragment, in surfel.frag), and splats facing away from the camera are kept: where
+// the nearest remaining splat faces away, the view ray is inside the solid at the plane, and the
+// fragment shader draws the cap there.
 
 layout(location = 0) in vec2 corner;          // per vertex: (+-1, +-1)
 layout(location = 1) in vec3 surfelPosition;  // per instance: world position, scene units
@@ -17,12 +22,17 @@ uniform float cellSize;   // h, scene units
 uniform float splatRadius;  // in cells, across the ray axis
 uniform sampler2D leafTexture;  // per leaf id: rgb colour (linear), a = 1 when selected
 uniform int leafTextureWidth;
+uniform bool sectionOn;
+uniform vec4 sectionPlane;  // unit normal (xyz) and offset (w), scene units
 
 out vec3 vNormal;
 out vec3 vColor;
 out vec2 vCorner;
 out float vSelected;
 out vec3 vToEye;
+out vec3 vWorld;        // the fragment's world position, scene units
+out float vFacing;      // dot(normal, direction to the eye): < 0 faces away
+flat out uint vLeaf;
 
 float snorm16(uint bits) {
   int v = int(bits);
@@ -52,7 +62,14 @@ void main() {
 
   vec3 toEye = ortho ? -viewForward : normalize(eye - surfelPosition);
   vToEye = toEye;
-  if (dot(n, toEye) < -0.25) {  // clearly facing away: hidden by the front of the closed surface
+  vFacing = dot(n, toEye);
+  bool cull = sectionOn
+                  // wholly on the cut side
+                  ? dot(sectionPlane.xyz, surfelPosition) - sectionPlane.w >
+                        2.0 * splatRadius * cellSize
+                  // clearly facing away: hidden by the front of the closed surface
+                  : vFacing < -0.25;
+  if (cull) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }
@@ -65,7 +82,9 @@ void main() {
   float na = n[axis];
   offset[axis] = -(n[u] * du + n[v] * dv) / (abs(na) < 0.3 ? sign(na + 1e-6) * 0.3 : na);
 
-  gl_Position = viewProjection * vec4(surfelPosition + offset, 1.0);
+  vWorld = surfelPosition + offset;
+  vLeaf = leaf;
+  gl_Position = viewProjection * vec4(vWorld, 1.0);
   ivec2 texel = ivec2(int(leaf) % leafTextureWidth, int(leaf) / leafTextureWidth);
   vec4 leafData = texelFetch(leafTexture, texel, 0);
   vColor = leafData.rgb;

@@ -68,6 +68,7 @@ struct Editor::Gl {
   GlWindow window;
   ImGuiContext* imgui = nullptr;
   std::unique_ptr<ViewportRenderer> renderer;
+  std::unique_ptr<DeviceSplatCopier> copier;  // null: host upload
   Viewport viewport;
   Stopwatch frameClock;
 
@@ -86,6 +87,7 @@ struct Editor::Gl {
   ~Gl() {
     glfwSetKeyCallback(window.handle(), g_imguiKeyCallback);
     g_imguiKeyCallback = nullptr;
+    copier.reset();  // unregisters the buffer while it and the context exist
     renderer.reset();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -111,8 +113,24 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   s.glDescription = gl_->window.description() + " (context " +
                     std::to_string(gl_->window.glMajor()) + "." +
                     std::to_string(gl_->window.glMinor()) + " core)";
+  if (options_.makeSplatCopier) {
+    // Interop only where it works: registering the splat buffer fails on GL that does not run
+    // on the CUDA device (Mesa's llvmpipe, another GPU).
+    try {
+      gl_->copier = options_.makeSplatCopier();
+      if (gl_->copier) {
+        gl_->renderer->reserveSplats(1);
+        gl_->copier->attach(gl_->renderer->splatBuffer());
+        s.splatTransfer = gl_->copier->name();
+      }
+    } catch (const Error& e) {
+      gl_->copier.reset();
+      s.splatTransfer = std::string("host upload (") + e.what() + ")";
+    }
+  }
   worker_ = std::make_unique<EngineWorker>(options_.makeBackend(), options_.coarseResolution,
                                            [] { glfwPostEmptyEvent(); });
+  worker_->setHostSplats(gl_->copier == nullptr);
   s.backendDescription = worker_->backendDescription();
   startTime_ = glfwGetTime();
   if (!options_.scenePath.empty()) {
@@ -144,13 +162,53 @@ Camera& Editor::camera() {
   return gl_->viewport.camera;
 }
 
+void Editor::dropCopier(const std::string& why) {
+  EditorState& s = *state_;
+  gl_->copier.reset();
+  worker_->setHostSplats(true);
+  s.splatTransfer = "host upload (" + why + ")";
+  logWarning(s, "CUDA-GL interop failed, using the host upload path: " + why);
+}
+
+void Editor::transferSplats(const PreviewResult& result) {
+  ViewportRenderer& renderer = *gl_->renderer;
+  const double h = result.ok() ? result.stats.grid.h : 1.0;
+  if (!result.splats || result.splats->count() == 0) {
+    renderer.setSplatCount(0, h);
+    return;
+  }
+  const SplatResource& splats = *result.splats;
+  if (const Splat* host = splats.hostData()) {
+    renderer.uploadSplats(host, splats.count(), h);
+    return;
+  }
+  if (gl_->copier && gl_->copier->accepts(splats)) {
+    try {
+      if (!renderer.splatBufferFits(splats.count())) {
+        gl_->copier->detach();  // no registration across a reallocation
+        renderer.reserveSplats(splats.count());
+        gl_->copier->attach(renderer.splatBuffer());
+      }
+      gl_->copier->copy(splats);
+      renderer.setSplatCount(splats.count(), h);
+      return;
+    } catch (const Error& e) {
+      dropCopier(e.what());
+    }
+  }
+  // Device splats and no way to copy them on the device: through the host, this once.
+  std::vector<Splat> copy(splats.count());
+  splats.copyToHost(copy.data());
+  renderer.uploadSplats(copy.data(), copy.size(), h);
+}
+
 void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
   EditorState& s = *state_;
   s.previewError = result->error;
   Stopwatch upload;
-  gl_->renderer->uploadSplats(result->splats, result->ldi ? result->stats.grid.h : 1.0);
+  transferSplats(*result);
   s.uploadMs = upload.seconds() * 1000.0;
-  s.uploadedBytes = gl_->renderer->uploadedBytes();
+  s.uploadedBytes = gl_->renderer->splatBytes();
   s.preview = std::move(result);
 }
 
@@ -282,7 +340,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
 
   // Hints over the viewport.
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  if (s.preview && s.preview->splats.empty() && s.previewError.empty()) {
+  if (s.preview && s.preview->splatCount() == 0 && s.previewError.empty()) {
     const char* hint = "Empty scene: add a primitive from the palette on the left.";
     ImVec2 size = ImGui::CalcTextSize(hint);
     draw->AddText(
@@ -306,6 +364,8 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
   glfwGetWindowSize(window, &winWidth, &winHeight);
   const double pixelScale = winWidth > 0 ? double(fbWidth) / winWidth : 1.0;
+  gl_->viewport.resolvePicks(*gl_->renderer, s, rect, pixelScale);
+  updateLeafStyles();  // a pick may have changed the selection
   glViewport(0, 0, fbWidth, fbHeight);
   glClearColor(0.09f, 0.095f, 0.105f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -369,6 +429,20 @@ std::vector<uint8_t> Editor::renderViewport(int width, int height) {
   rect.height = height;
   gl_->viewport.draw(*gl_->renderer, *state_, rect, height, 1.0);
   return target.read();
+}
+
+std::optional<PickHit> Editor::pickViewport(int width, int height, double x, double y) {
+  ViewRect rect;
+  rect.width = width;
+  rect.height = height;
+  return gl_->viewport.pickAt(*gl_->renderer, *state_, rect, glm::dvec2(x, y), 1.0);
+}
+
+Placement Editor::placementInViewport(int width, int height, double x, double y) {
+  ViewRect rect;
+  rect.width = width;
+  rect.height = height;
+  return gl_->viewport.placementAt(*gl_->renderer, *state_, rect, glm::dvec2(x, y), 1.0);
 }
 
 std::vector<uint8_t> Editor::screenshot(int* width, int* height) {

@@ -11,12 +11,15 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/eval/backend.h"
 #include "ui/camera.h"
+#include "ui/device_splat_copier.h"
 #include "ui/editor_state.h"
+#include "ui/viewport_renderer.h"
 
 namespace strata::ui {
 
@@ -25,6 +28,9 @@ struct EditorOptions {
   bool sceneAsTemplate = false;  // open scenePath as an untitled copy (the bundled demo)
   // Makes a backend; called once for the preview worker and once per export.
   std::function<std::shared_ptr<Backend>()> makeBackend;
+  // Optional: copies the backend's device splats into GL (CUDA-GL interop). Without it, or when
+  // it cannot attach to this GL context, splats take the host upload path.
+  std::function<std::unique_ptr<DeviceSplatCopier>()> makeSplatCopier;
   bool visible = true;  // false: an invisible window for off-screen rendering
   int width = 1600, height = 1000;
   std::string recentFilesPath;  // "" = none
@@ -62,6 +68,11 @@ class Editor {
   // Renders the 3D view alone (no panels) off-screen: width * height * 4 RGBA bytes, top row
   // first.
   std::vector<uint8_t> renderViewport(int width, int height);
+  // What renderViewport(width, height) shows at pixel (x, y) from its top-left corner: the leaf
+  // and the point (the click-to-select and drop-from-palette query).
+  std::optional<PickHit> pickViewport(int width, int height, double x, double y);
+  // Where a palette item dropped at pixel (x, y) of that view goes.
+  Placement placementInViewport(int width, int height, double x, double y);
   // Draws one whole frame (panels included) and reads it back: the window's pixels.
   std::vector<uint8_t> screenshot(int* width, int* height);
 
@@ -70,6 +81,10 @@ class Editor {
   void pumpPreview();
   void requestPreviewIfNeeded();
   void applyResult(std::shared_ptr<const PreviewResult> result);
+  // Puts the result's splats into the renderer's buffer: device to device through the copier,
+  // or a host upload. Falls back to the host path for good when the copier fails.
+  void transferSplats(const PreviewResult& result);
+  void dropCopier(const std::string& why);
   void updateLeafStyles();
   void autosave();
   void drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height);

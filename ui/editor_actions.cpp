@@ -6,6 +6,8 @@
 #include "engine/document/commands.h"
 #include "engine/document/user_files.h"
 #include "engine/util/error.h"
+#include "ui/import_options.h"
+#include "ui/panels.h"
 #include "ui/scene_queries.h"
 
 namespace strata::ui {
@@ -50,6 +52,28 @@ double sceneScale(const EditorState& state) {
   if (b.empty()) return 1.0;
   glm::dvec3 size = b.size();
   return niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+}
+
+// Moves the just-added node `id` so that its world bounds are centred on the placement's point
+// (or rest on the ground below it). Part of the caller's interaction (one undo step).
+void placeNode(EditorState& state, NodeId id, const Placement& placement) {
+  NodePtr node = findNode(state.document.root(), id);
+  if (!node) return;
+  const Bounds b = selectionBounds(state.document.root(), {id});
+  if (b.empty()) return;
+  glm::dvec3 delta = placement.point - b.center();
+  if (placement.onGround) delta.z = placement.point.z - b.min.z;
+  const glm::dmat4 toParent = glm::inverse(parentWorldMatrix(state.document.root(), id));
+  Transform t = node->transform;
+  t.translate += glm::dvec3(toParent * glm::dvec4(delta, 0.0));
+  state.document.setTransform(id, t);
+}
+
+// The primitive node `addPrimitive` adds: sized to the scene.
+NodePtr newPrimitive(EditorState& state, NodeKind kind) {
+  auto node = std::make_shared<Node>(*makePrimitiveNode(kind, state.document.nextId()));
+  node->params = scaledParams(sceneScale(state));
+  return node;
 }
 
 }  // namespace
@@ -116,12 +140,33 @@ void pruneSelection(EditorState& state) {
 NodeId addPrimitive(EditorState& state, NodeKind kind) {
   NodeId id = 0;
   guarded(state, [&] {
-    auto node = std::make_shared<Node>(*makePrimitiveNode(kind, state.document.nextId()));
-    node->params = scaledParams(sceneScale(state));
-    id = state.document.addSubtree(node, primarySelection(state));  // keeps the name: same id
+    // Keeps the name: same id.
+    id = state.document.addSubtree(newPrimitive(state, kind), primarySelection(state));
     selectNode(state, id);
   });
   return id;
+}
+
+NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placement) {
+  NodeId id = 0;
+  state.document.beginInteraction();
+  guarded(state, [&] {
+    id = state.document.addSubtree(newPrimitive(state, kind), primarySelection(state));
+    placeNode(state, id, placement);
+    selectNode(state, id);
+  });
+  state.document.endInteraction();
+  return id;
+}
+
+void dropPaletteItem(EditorState& state, int item, NodeId target) {
+  if (target) selectNode(state, target);
+  if (item == kImportMeshItem) {
+    state.importPlacement.reset();
+    state.dialog.open(DialogPurpose::ImportMesh, "");
+    return;
+  }
+  addPrimitive(state, NodeKind(item));
 }
 
 NodeId addOperation(EditorState& state, NodeKind kind) {
@@ -134,12 +179,25 @@ NodeId addOperation(EditorState& state, NodeKind kind) {
 }
 
 NodeId importMesh(EditorState& state, const std::string& path) {
+  PendingImport import;
+  import.path = path;
+  return importMesh(state, import);
+}
+
+NodeId importMesh(EditorState& state, const PendingImport& import) {
   NodeId id = 0;
+  std::string why;
+  const double scale = importScale(import.unit, state.document.scene().settings.unit, &why);
+  if (!why.empty()) logWarning(state, why);
+  state.document.beginInteraction();
   guarded(state, [&] {
-    id = state.document.addMesh(path, primarySelection(state));
+    id = state.document.addMesh(import.path, primarySelection(state), -1,
+                                importTransform(scale, import.upAxis));
+    if (import.placement) placeNode(state, id, *import.placement);
     selectNode(state, id);
-    logInfo(state, "imported " + path);
+    logInfo(state, "imported " + import.path);
   });
+  state.document.endInteraction();
   return id;
 }
 

@@ -23,7 +23,16 @@ void pruneSelection(EditorState& state);
 NodeId addPrimitive(EditorState& state, NodeKind kind);
 // Adds an empty operation the same way.
 NodeId addOperation(EditorState& state, NodeKind kind);
+// Adds a primitive as addPrimitive does, placed at `placement` (a palette item dropped in the
+// viewport): its bounds centred on the point, or resting on the ground plane. One undo step.
+NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placement);
+// Adds a mesh file under the primary selection (as addPrimitive), with the import options
+// (unit, up axis) and optional placement. One undo step.
 NodeId importMesh(EditorState& state, const std::string& path);
+NodeId importMesh(EditorState& state, const PendingImport& import);
+// A palette item dropped onto outliner row `target`: added into it (an operation) or beside it
+// (a leaf). kImportMeshItem opens the file dialog for it.
+void dropPaletteItem(EditorState& state, int item, NodeId target);
 
 void deleteSelection(EditorState& state);
 void duplicateSelection(EditorState& state);

@@ -35,6 +35,31 @@ struct PendingReplace {
   std::string path;
 };
 
+// The section plane of the viewport: cuts the preview across axis `axis` (0 x, 1 y, 2 z) at the
+// fraction `at` of the scene's bounds, removing the upper side (the lower with `flip`), and
+// caps the cut. A view setting: not part of the document.
+struct SectionState {
+  bool on = false;
+  int axis = 0;
+  double at = 0.5;
+  bool flip = false;
+};
+
+// Where a node added by dragging from the palette goes: centred on `point` (world, scene units),
+// or, `onGround`, resting on the ground plane z = 0 below `point`.
+struct Placement {
+  glm::dvec3 point{0.0};
+  bool onGround = false;
+};
+
+// A mesh file chosen for import, waiting for its options in the import dialog.
+struct PendingImport {
+  std::string path;
+  int unit = 0;    // index into importUnits() (import_options.h); 0 = scene units
+  int upAxis = 0;  // 0: +Z up (as written), 1: +Y up (turned so that +Y becomes +Z)
+  std::optional<Placement> placement;
+};
+
 // A key press as the window system reported it (GLFW key code and modifier bits).
 struct KeyPress {
   int key = 0;
@@ -59,6 +84,8 @@ struct EditorState {
   std::string backendDescription;
   std::string glDescription;
   double frameMs = 0.0;
+  // How splats reach GL: "CUDA-GL interop" or "host upload (...why)"; the last transfer.
+  std::string splatTransfer = "host upload";
   double uploadMs = 0.0;
   size_t uploadedBytes = 0;
 
@@ -66,6 +93,7 @@ struct EditorState {
   GizmoMode gizmoMode = GizmoMode::Move;
   GizmoSnap snap;
   bool showGrid = true;
+  SectionState section;
   bool showDiagnostics = false;
   bool showDemoWindow = false;
 
@@ -76,6 +104,10 @@ struct EditorState {
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
   NodeId renaming = 0;                           // outliner row being renamed
+  std::optional<PendingImport> pendingImport;    // the import dialog is open for it
+  std::optional<Placement> importPlacement;      // for the mesh being chosen (palette drag)
+  int lastImportUnit = 0;                        // the import dialog's last choices
+  int lastImportUpAxis = 0;
 
   // Requests to the frame loop.
   bool requestViewAll = false;

@@ -105,12 +105,18 @@ bool EngineWorker::evaluatePass(Evaluator& evaluator, const Request& request, in
     EvalOptions options;
     options.resolution = resolution;
     result->stats = evaluator.evaluate(*request.scene, options, *progress);
-    Stopwatch download;
-    result->ldi = backend_->download(result->stats.root);
-    result->stats.root.reset();  // the cache keeps what it needs; the UI needs only the copy
-    progress->check();
-    result->splats = buildSplats(*result->ldi);
-    result->downloadSeconds = download.seconds();
+    Stopwatch splatClock;
+    result->surfels = result->stats.root->surfelCount();
+    result->ldiBytes = result->stats.root->bytes();
+    SplatsHandle splats = backend_->splats(result->stats.root, *progress);
+    result->stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
+    if (hostSplats_ && !splats->hostData()) {
+      std::vector<Splat> host(splats->count());
+      splats->copyToHost(host.data());
+      splats = std::make_shared<HostSplats>(std::move(host));
+    }
+    result->splats = std::move(splats);
+    result->splatSeconds = splatClock.seconds();
   } catch (const Cancelled&) {
     cancelled = true;
   } catch (const Error& e) {

@@ -7,15 +7,18 @@
 //   - An interactive request (the user is dragging) is evaluated only at a coarse resolution,
 //     min(requested, coarseResolution); the request made when the hand stops refines it. A
 //     calm request for a new scene shows the coarse result first, then the full one.
-//   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the host
-//     LDI (Backend::download, the one named copy across to the host), its splats, and the
-//     evaluation's statistics. The UI thread uploads the splats to GL.
+//   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the root's
+//     splats (Backend::splats: made where the backend keeps its LDIs, on the device for CUDA)
+//     and the evaluation's statistics. The UI thread copies device splats into GL through
+//     CUDA-GL interop, or uploads host splats; when it cannot take device splats it says so
+//     (setHostSplats(true)) and the worker copies them to the host first.
 //   - No GL here. The worker catches everything and reports it in the result's `error`.
 //
 // Threads: request(), takeResult(), status() from the UI thread (never blocking for longer than
 // a mutex hand-over); evaluation on the worker thread, which owns the Evaluator and its cache.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -27,7 +30,7 @@
 
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
-#include "ui/surfel_splats.h"
+#include "engine/ldi/splats.h"
 
 namespace strata::ui {
 
@@ -36,11 +39,15 @@ struct PreviewResult {
   std::shared_ptr<const Scene> scene;  // the snapshot it shows
   int resolution = 0;                  // cells along the longest side, as evaluated
   bool coarse = false;                 // a coarse pass; a finer one follows unless superseded
-  std::shared_ptr<const Ldi> ldi;      // host copy of the root's LDI; null on failure
-  std::vector<Splat> splats;           // what the viewport draws
+  SplatsHandle splats;                 // what the viewport draws; null on failure
+  size_t surfels = 0;                  // in the root's LDI
+  size_t ldiBytes = 0;                 // held by the root's LDI
   EvalResult stats;                    // stages, nodes, grid (its `root` handle released)
-  double downloadSeconds = 0.0;        // Backend::download plus building the splats
+  double splatSeconds = 0.0;           // making the splats (and copying them to the host)
   std::string error;                   // empty on success
+
+  size_t splatCount() const { return splats ? splats->count() : 0; }
+  bool ok() const { return splats != nullptr; }
 };
 
 struct WorkerStatus {
@@ -67,6 +74,9 @@ class EngineWorker {
   // The newest finished result not taken yet, or null.
   std::shared_ptr<const PreviewResult> takeResult();
   WorkerStatus status() const;
+  // Whether results must carry host splats (default) or may keep them where the backend made
+  // them (the UI copies device splats through CUDA-GL interop). Any thread.
+  void setHostSplats(bool host) { hostSplats_ = host; }
   const std::string& backendDescription() const { return backendDescription_; }
   int coarseResolution() const { return coarse_; }
 
@@ -85,6 +95,7 @@ class EngineWorker {
   std::string backendDescription_;
   int coarse_;
   std::function<void()> onResult_;
+  std::atomic<bool> hostSplats_{true};
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;

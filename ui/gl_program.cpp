@@ -88,6 +88,9 @@ void GlProgram::set(const char* name, const glm::mat4& value) const {
 void GlProgram::set(const char* name, const glm::vec3& value) const {
   glUniform3fv(glGetUniformLocation(program_, name), 1, glm::value_ptr(value));
 }
+void GlProgram::set(const char* name, const glm::vec4& value) const {
+  glUniform4fv(glGetUniformLocation(program_, name), 1, glm::value_ptr(value));
+}
 void GlProgram::set(const char* name, float value) const {
   glUniform1f(glGetUniformLocation(program_, name), value);
 }

@@ -7,6 +7,7 @@
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <string>
 
@@ -30,6 +31,7 @@ class GlProgram {
   // Uniform setters; a name the program does not use is ignored (as GL does for location -1).
   void set(const char* name, const glm::mat4& value) const;
   void set(const char* name, const glm::vec3& value) const;
+  void set(const char* name, const glm::vec4& value) const;
   void set(const char* name, float value) const;
   void set(const char* name, int value) const;
 

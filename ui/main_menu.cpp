@@ -65,7 +65,10 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Save as\u2026", "Ctrl+Shift+S"))
       state.dialog.open(DialogPurpose::SaveAs, state.document.path());
     ImGui::Separator();
-    if (ImGui::MenuItem("Import mesh\u2026")) state.dialog.open(DialogPurpose::ImportMesh, "");
+    if (ImGui::MenuItem("Import mesh\u2026")) {
+      state.importPlacement.reset();
+      state.dialog.open(DialogPurpose::ImportMesh, "");
+    }
     if (ImGui::MenuItem("Export\u2026", "Ctrl+E"))
       state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
     ImGui::Separator();
@@ -157,9 +160,17 @@ void handleDialogResult(EditorState& state) {
     case DialogPurpose::Export:
       startExport(state, path, state.document.scene().settings.resolution);
       break;
-    case DialogPurpose::ImportMesh:
-      importMesh(state, path);
+    case DialogPurpose::ImportMesh: {
+      // The import dialog (panel_modals.cpp) asks for the unit and up axis.
+      PendingImport import;
+      import.path = path;
+      import.unit = state.lastImportUnit;
+      import.upAxis = state.lastImportUpAxis;
+      import.placement = state.importPlacement;
+      state.importPlacement.reset();
+      state.pendingImport = import;
       break;
+    }
   }
 }
 

@@ -1,9 +1,12 @@
 // Questions that block the document (recover the last session? discard unsaved changes?) and
 // the export progress window.
 #include <imgui.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 
 #include "engine/document/user_files.h"
 #include "ui/editor_actions.h"
+#include "ui/import_options.h"
 #include "ui/panels.h"
 
 namespace strata::ui {
@@ -109,11 +112,62 @@ void exportWindow(EditorState& state) {
   if (!open) state.exportJob.reset();
 }
 
+// The import dialog: the chosen file's unit and up axis, then import or cancel.
+void importDialog(EditorState& state) {
+  const char* title = "Import mesh";
+  if (state.pendingImport && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  centreNext();
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  if (!state.pendingImport) {
+    ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;
+  }
+  PendingImport& import = *state.pendingImport;
+  ImGui::TextUnformatted(import.path.c_str());
+  const auto& units = importUnits();
+  ImGui::SetNextItemWidth(220);
+  if (ImGui::BeginCombo("file unit", units[size_t(import.unit)].label)) {
+    for (int i = 0; i < int(units.size()); ++i)
+      if (ImGui::Selectable(units[size_t(i)].label, i == import.unit)) import.unit = i;
+    ImGui::EndCombo();
+  }
+  std::string why;
+  const double scale = importScale(import.unit, state.document.scene().settings.unit, &why);
+  ImGui::TextDisabled("scene unit: %s; scale %.6g", state.document.scene().settings.unit.c_str(),
+                      scale);
+  if (!why.empty()) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", why.c_str());
+  const char* upAxes[] = {"+Z up (as written)", "+Y up (turn +Y to +Z)"};
+  ImGui::SetNextItemWidth(220);
+  ImGui::Combo("up axis", &import.upAxis, upAxes, 2);
+  if (import.placement)
+    ImGui::TextDisabled("placed where it was dropped (%.4g, %.4g, %.4g)%s",
+                        import.placement->point.x, import.placement->point.y,
+                        import.placement->point.z,
+                        import.placement->onGround ? ", on the ground" : "");
+  ImGui::Separator();
+  if (ImGui::Button("Import", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ENTER)) {
+    state.lastImportUnit = import.unit;
+    state.lastImportUpAxis = import.upAxis;
+    PendingImport chosen = import;
+    state.pendingImport.reset();
+    importMesh(state, chosen);
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(120, 0))) {
+    state.pendingImport.reset();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
 }  // namespace
 
 void drawModals(EditorState& state) {
   recoveryQuestion(state);
   unsavedQuestion(state);
+  importDialog(state);
   exportWindow(state);
 }
 

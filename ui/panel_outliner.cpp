@@ -18,7 +18,18 @@ struct PendingDrop {
   NodeId dragged = 0;
   NodeId target = 0;
   bool valid = false;
+  int paletteItem = 0;  // with paletteDrop: what was dropped from the palette onto `target`
+  bool paletteDrop = false;
 };
+
+// Accepts a palette item over the last item (a row, or the empty space: target 0).
+void acceptPaletteItem(NodeId target, PendingDrop* drop) {
+  if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPalettePayload)) {
+    std::memcpy(&drop->paletteItem, p->Data, sizeof(int));
+    drop->target = target;
+    drop->paletteDrop = true;
+  }
+}
 
 ImVec4 kindColor(NodeKind kind) {
   switch (kind) {
@@ -118,6 +129,7 @@ void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* 
         drop->target = node->id;
         drop->valid = true;
       }
+      acceptPaletteItem(node->id, drop);
       ImGui::EndDragDropTarget();
     }
     contextMenu(state, node);
@@ -140,6 +152,16 @@ void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* 
     ImGui::TreePop();
   }
   ImGui::PopID();
+}
+
+// The last palette button as a drag source of `item`.
+void paletteDragSource(int item, const char* label) {
+  if (ImGui::BeginDragDropSource()) {
+    ImGui::SetDragDropPayload(kPalettePayload, &item, sizeof(item));
+    ImGui::Text("%s", label);
+    ImGui::TextDisabled("drop on a surface, the ground, or a tree row");
+    ImGui::EndDragDropSource();
+  }
 }
 
 }  // namespace
@@ -165,10 +187,15 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
       drop.target = 0;
       drop.valid = true;
     }
+    acceptPaletteItem(0, &drop);
     ImGui::EndDragDropTarget();
   }
   ImGui::End();
   if (drop.valid) dropNode(state, drop.dragged, drop.target);
+  if (drop.paletteDrop) {
+    if (drop.target == 0) clearSelection(state);
+    dropPaletteItem(state, drop.paletteItem, drop.target);
+  }
 }
 
 void drawPalette(EditorState& state, const PanelLayout& layout) {
@@ -180,7 +207,8 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   NodeId target = primarySelection(state);
   NodePtr targetNode = target ? findNode(state.document.root(), target) : nullptr;
-  ImGui::TextDisabled("adds %s %s", targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
+  ImGui::TextDisabled("click: adds %s %s; or drag into the view or the tree",
+                      targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
                       targetNode ? targetNode->name.c_str() : "the root");
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
   const NodeKind primitives[] = {NodeKind::Box,  NodeKind::Sphere, NodeKind::Cylinder,
@@ -190,9 +218,13 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     char label[64];
     std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitives[i]), kindName(primitives[i]));
     if (ImGui::Button(label, ImVec2(w, 0))) addPrimitive(state, primitives[i]);
+    paletteDragSource(int(primitives[i]), label);
   }
-  if (ImGui::Button("\u25C6 Import mesh\u2026", ImVec2(-1, 0)))
+  if (ImGui::Button("\u25C6 Import mesh\u2026", ImVec2(-1, 0))) {
+    state.importPlacement.reset();
     state.dialog.open(DialogPurpose::ImportMesh, "");
+  }
+  paletteDragSource(kImportMeshItem, "\u25C6 mesh\u2026");
   ImGui::Separator();
   ImGui::TextDisabled("empty operation");
   const NodeKind ops[] = {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection};

@@ -66,9 +66,9 @@ bool gridAt(const EditorState& state, int resolution, Grid* grid) {
 // the resolution), or a guess of two surfels per ray when nothing is shown yet.
 double estimateBytes(const EditorState& state, const Grid& grid, int resolution) {
   const PreviewResult* shown = state.preview.get();
-  if (shown && shown->ldi && shown->resolution > 0) {
+  if (shown && shown->ok() && shown->resolution > 0) {
     double ratio = double(resolution) / shown->resolution;
-    return double(shown->ldi->bytes()) * ratio * ratio;
+    return double(shown->ldiBytes) * ratio * ratio;
   }
   double rays = double(grid.rayCount(0) + grid.rayCount(1) + grid.rayCount(2));
   return rays * (2.0 * sizeof(Surfel) + sizeof(uint32_t));
@@ -108,6 +108,22 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     ImGui::TextDisabled("(empty scene: no grid)");
   }
   ImGui::Separator();
+  // The section plane: a view setting, cut and capped on the GPU as the splats are drawn.
+  ImGui::Checkbox("section", &state.section.on);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Cut the preview with a plane across one axis and cap the cut");
+  ImGui::BeginDisabled(!state.section.on);
+  const char* axes[] = {"x", "y", "z"};
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(50.0f);
+  ImGui::Combo("##sectionAxis", &state.section.axis, axes, 3);
+  ImGui::SameLine();
+  ImGui::Checkbox("flip", &state.section.flip);
+  ImGui::SetNextItemWidth(-1);
+  float at = float(state.section.at);
+  if (ImGui::SliderFloat("##sectionAt", &at, 0.0f, 1.0f, "at %.3f of the bounds"))
+    state.section.at = at;
+  ImGui::EndDisabled();
   ImGui::Checkbox("ground grid", &state.showGrid);
   ImGui::SameLine();
   ImGui::Checkbox("snap", &state.snap.enabled);
@@ -132,15 +148,15 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::TextDisabled("%s", state.backendDescription.c_str());
   const PreviewResult* shown = state.preview.get();
-  if (shown && shown->ldi) {
+  if (shown && shown->ok()) {
     const Grid& g = shown->stats.grid;
     ImGui::SameLine();
     ImGui::Text("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
                 unitShort(shown->scene->settings.unit));
     ImGui::SameLine();
-    ImGui::Text(
-        "|  surfels %s (%s splats, host upload %s)", countText(shown->ldi->surfelCount()).c_str(),
-        countText(shown->splats.size()).c_str(), bytesText(double(state.uploadedBytes)).c_str());
+    ImGui::Text("|  surfels %s (%s splats, %s, %s)", countText(shown->surfels).c_str(),
+                countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),
+                bytesText(double(state.uploadedBytes)).c_str());
     ImGui::SameLine();
     std::string stages;
     for (const auto& s : shown->stats.stages) {
@@ -185,18 +201,18 @@ void drawDiagnostics(EditorState& state) {
   }
   ImGui::TextWrapped("backend: %s", state.backendDescription.c_str());
   ImGui::TextWrapped("display: %s", state.glDescription.c_str());
-  ImGui::Text("surfels: host upload (%.2f ms for the last result, %s)", state.uploadMs,
-              bytesText(double(state.uploadedBytes)).c_str());
+  ImGui::TextWrapped("splats to GL: %s (%.2f ms for the last result, %s)",
+                     state.splatTransfer.c_str(), state.uploadMs,
+                     bytesText(double(state.uploadedBytes)).c_str());
   const PreviewResult* shown = state.preview.get();
-  if (shown && shown->ldi) {
+  if (shown && shown->ok()) {
     const EvalResult& r = shown->stats;
     ImGui::Separator();
     ImGui::Text("resolution %d%s, %d computed, %d reused; volume %.6g, area %.6g",
                 shown->resolution, shown->coarse ? " (coarse)" : "", r.computed, r.reused,
                 r.measure.volume, r.measure.area);
-    ImGui::Text("peak memory %s, cache %s, download + splats %.1f ms",
-                bytesText(double(r.peakBytes)).c_str(), bytesText(double(r.cacheBytes)).c_str(),
-                shown->downloadSeconds * 1000.0);
+    ImGui::Text("peak memory %s, cache %s, splats %.1f ms", bytesText(double(r.peakBytes)).c_str(),
+                bytesText(double(r.cacheBytes)).c_str(), shown->splatSeconds * 1000.0);
     if (ImGui::BeginTable("stages", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
       ImGui::TableSetupColumn("stage");
       ImGui::TableSetupColumn("ms");

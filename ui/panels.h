@@ -7,13 +7,17 @@
 
 namespace strata::ui {
 
+// Drag and drop from the palette: the payload is an int, a NodeKind or kImportMeshItem.
+constexpr const char* kPalettePayload = "STRATA_PALETTE";
+constexpr int kImportMeshItem = -1;
+
 struct PanelLayout {
   float menuHeight = 0.0f;
   float statusHeight = 0.0f;
   float leftWidth = 320.0f;
   float rightWidth = 330.0f;
   float paletteHeight = 250.0f;  // the palette, under the outliner
-  float previewHeight = 250.0f;  // the preview settings, under the inspector
+  float previewHeight = 310.0f;  // the preview settings, under the inspector
 };
 
 // Menu bar (File, Edit, View) and the keyboard shortcuts of its items.

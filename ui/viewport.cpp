@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "ui/editor_actions.h"
+#include "ui/panels.h"
 #include "ui/scene_queries.h"
 
 namespace strata::ui {
@@ -46,6 +48,29 @@ void appendGrid(const Bounds& scene, std::vector<LineVertex>* lines) {
     lines->push_back(lineVertex({cx + n * step, y, 0.0}, ex));
     lines->push_back(lineVertex({x, cy - n * step, 0.0}, ey));
     lines->push_back(lineVertex({x, cy + n * step, 0.0}, ey));
+  }
+}
+
+// The section plane's rectangle across the scene's bounds (grown by a tenth), as lines.
+void appendSectionOutline(const EditorState& state, const ViewportFrame& frame,
+                          std::vector<LineVertex>* lines) {
+  Bounds b = sceneBounds(state.document.root());
+  const glm::dvec3 grow = b.size() * 0.1;
+  b.min -= grow;
+  b.max += grow;
+  const int axis = std::clamp(state.section.axis, 0, 2);
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const double at = frame.sectionOffset * frame.sectionNormal[axis];
+  glm::dvec3 c[4];
+  for (int i = 0; i < 4; ++i) {
+    c[i][axis] = at;
+    c[i][u] = (i == 1 || i == 2) ? b.max[u] : b.min[u];
+    c[i][v] = (i >= 2) ? b.max[v] : b.min[v];
+  }
+  const glm::vec4 color(0.35f, 0.75f, 1.0f, 0.7f);
+  for (int i = 0; i < 4; ++i) {
+    lines->push_back(lineVertex(c[i], color));
+    lines->push_back(lineVertex(c[(i + 1) % 4], color));
   }
 }
 
@@ -104,22 +129,6 @@ void Viewport::framePending(const ViewRect& rect) {
   pendingFrame_.reset();
 }
 
-void Viewport::pick(EditorState& state, const ViewRect& rect, glm::dvec2 mouse, bool extend) {
-  if (!state.preview || state.preview->splats.empty()) {
-    if (!extend) clearSelection(state);
-    return;
-  }
-  Ray ray = camera.rayThrough(mouse, glm::dvec2(rect.width, rect.height));
-  SplatHit hit;
-  double radius = state.preview->stats.grid.h * 0.9;
-  if (pickSplat(state.preview->splats, ray, radius, &hit) &&
-      findNode(state.document.root(), hit.leaf)) {
-    selectNode(state, hit.leaf, extend);
-  } else if (!extend) {
-    clearSelection(state);
-  }
-}
-
 void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   framePending(rect);
   ImGuiIO& io = ImGui::GetIO();
@@ -162,6 +171,14 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   if (navigating_) {
     if (!io.MouseDown[2] && !io.MouseDown[0]) navigating_ = false;
   }
+  // A palette item released over the view (not over a panel): placed there.
+  const ImGuiPayload* payload = ImGui::GetDragDropPayload();
+  if (payload && payload->IsDataType(kPalettePayload) && ImGui::IsMouseReleased(0) && inside &&
+      !ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) {
+    int item = 0;
+    std::memcpy(&item, payload->Data, sizeof(item));
+    drop_ = PendingDrop{mouse, item};
+  }
   if (io.WantCaptureMouse && !navigating_) {
     hot_ = -1;
     clickPending_ = false;
@@ -197,13 +214,12 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   if (clickPending_ && ImGui::IsMouseDragging(0, 4.0f)) clickPending_ = false;
   if (clickPending_ && ImGui::IsMouseReleased(0)) {
     clickPending_ = false;
-    pick(state, rect, mouse, io.KeyCtrl || io.KeyShift);
+    click_ = PendingClick{mouse, io.KeyCtrl || io.KeyShift};
   }
 }
 
-void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
-                    int framebufferHeight, double pixelScale) {
-  framePending(rect);
+ViewportFrame Viewport::makeFrame(const EditorState& state, const ViewRect& rect,
+                                  int framebufferHeight, double pixelScale) const {
   ViewportFrame frame;
   const ScreenMapping view = mapping(state, rect);
   frame.viewProjection = view.viewProjection;
@@ -215,9 +231,83 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
   frame.width = std::max(1, int(std::lround(rect.width * pixelScale)));
   frame.height = std::max(1, int(std::lround(rect.height * pixelScale)));
   frame.y = framebufferHeight - int(std::lround((rect.y + rect.height) * pixelScale));
+  frame.sectionOn = sectionPlane(state, &frame.sectionNormal, &frame.sectionOffset);
+  return frame;
+}
+
+std::optional<PickHit> Viewport::pickAt(ViewportRenderer& renderer, const EditorState& state,
+                                        const ViewRect& rect, glm::dvec2 mouse, double pixelScale) {
+  framePending(rect);
+  const ViewportFrame frame = makeFrame(state, rect, 0, pixelScale);
+  const int px = int(std::floor(mouse.x * pixelScale));
+  const int py = frame.height - 1 - int(std::floor(mouse.y * pixelScale));
+  return renderer.pick(frame, px, py);
+}
+
+Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& state,
+                                const ViewRect& rect, glm::dvec2 mouse, double pixelScale) {
+  // On the surface under the cursor; else on the ground plane where the ray meets it; else
+  // (looking at or above the horizon) on the ground below the point the camera orbits.
+  Placement placement;
+  if (std::optional<PickHit> hit = pickAt(renderer, state, rect, mouse, pixelScale)) {
+    placement.point = hit->position;
+    return placement;
+  }
+  const Ray ray = camera.rayThrough(mouse, glm::dvec2(rect.width, rect.height));
+  placement.onGround = true;
+  placement.point = camera.target;
+  if (std::fabs(ray.direction.z) > 1e-9) {
+    const double t = -ray.origin.z / ray.direction.z;
+    if (t > 0.0) placement.point = ray.origin + t * ray.direction;
+  }
+  placement.point.z = 0.0;
+  return placement;
+}
+
+void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, const ViewRect& rect,
+                            double pixelScale) {
+  if (click_) {
+    std::optional<PickHit> hit = pickAt(renderer, state, rect, click_->mouse, pixelScale);
+    if (hit && findNode(state.document.root(), hit->leaf))
+      selectNode(state, hit->leaf, click_->extend);
+    else if (!click_->extend)
+      clearSelection(state);
+    click_.reset();
+  }
+  if (drop_) {
+    const Placement placement = placementAt(renderer, state, rect, drop_->mouse, pixelScale);
+    if (drop_->item == kImportMeshItem) {
+      state.importPlacement = placement;
+      state.dialog.open(DialogPurpose::ImportMesh, "");
+    } else {
+      addPrimitiveAt(state, NodeKind(drop_->item), placement);
+    }
+    drop_.reset();
+  }
+}
+
+bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) {
+  if (!state.section.on) return false;
+  const Bounds b = sceneBounds(state.document.root());
+  if (b.empty()) return false;
+  const int axis = std::clamp(state.section.axis, 0, 2);
+  const double at =
+      b.min[axis] + std::clamp(state.section.at, 0.0, 1.0) * (b.max[axis] - b.min[axis]);
+  *normal = glm::dvec3(0.0);
+  (*normal)[axis] = state.section.flip ? -1.0 : 1.0;
+  *offset = state.section.flip ? -at : at;
+  return true;
+}
+
+void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
+                    int framebufferHeight, double pixelScale) {
+  framePending(rect);
+  const ViewportFrame frame = makeFrame(state, rect, framebufferHeight, pixelScale);
+  const ScreenMapping view = mapping(state, rect);
 
   std::vector<LineVertex> lines, overlay, triangles;
   if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &lines);
+  if (frame.sectionOn) appendSectionOutline(state, frame, &lines);
   if (!state.selection.empty()) {
     Bounds b = selectionBounds(state.document.root(), state.selection);
     if (!b.empty()) appendBox(b, glm::vec4(1.0f, 0.62f, 0.2f, 0.55f), &overlay);

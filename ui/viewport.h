@@ -1,5 +1,7 @@
-// The 3D view in the middle of the editor: camera navigation, click-to-select, the gizmo, and
-// drawing the scene through ViewportRenderer.
+// The 3D view in the middle of the editor: camera navigation, click-to-select, the gizmo, the
+// section plane, drops from the palette, and drawing the scene through ViewportRenderer.
+// Clicks and drops are resolved against what is on screen (ViewportRenderer::pick: the leaf and
+// the point under the cursor), whichever way the splats reached GL.
 //
 // Navigation: orbit with the middle mouse button (or Alt + left), pan with Shift + middle, zoom
 // with the wheel; F frames the selection, Home shows everything, 1 / 3 / 7 look from the front,
@@ -28,6 +30,16 @@ class Viewport {
   Camera camera;
 
   void handleInput(EditorState& state, const ViewRect& rect);
+  // Resolves this frame's click (selection) and palette drop (a new node on the surface under
+  // the cursor, or on the ground plane) with `renderer`. After handleInput, before draw.
+  void resolvePicks(ViewportRenderer& renderer, EditorState& state, const ViewRect& rect,
+                    double pixelScale);
+  // What the view shows at `mouse` (window pixels from the view's top-left corner).
+  std::optional<PickHit> pickAt(ViewportRenderer& renderer, const EditorState& state,
+                                const ViewRect& rect, glm::dvec2 mouse, double pixelScale);
+  // Where a palette item dropped at `mouse` goes (see Placement).
+  Placement placementAt(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
+                        glm::dvec2 mouse, double pixelScale);
   // Draws into the bound framebuffer of `framebufferHeight` pixels, `pixelScale` framebuffer
   // pixels per window pixel.
   void draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
@@ -39,9 +51,18 @@ class Viewport {
 
  private:
   ScreenMapping mapping(const EditorState& state, const ViewRect& rect) const;
+  ViewportFrame makeFrame(const EditorState& state, const ViewRect& rect, int framebufferHeight,
+                          double pixelScale) const;
   double sceneRadius(const EditorState& state) const;
   bool placeGizmo(const EditorState& state);
-  void pick(EditorState& state, const ViewRect& rect, glm::dvec2 mouse, bool extend);
+  struct PendingClick {
+    glm::dvec2 mouse;  // window pixels from the view's top-left corner
+    bool extend = false;
+  };
+  struct PendingDrop {
+    glm::dvec2 mouse;
+    int item = 0;  // palette item: a NodeKind, or kImportMeshItem
+  };
 
   // Framing waits for the viewport's shape, known in handleInput and draw.
   void framePending(const ViewRect& rect);
@@ -51,6 +72,12 @@ class Viewport {
   int hot_ = -1;
   bool navigating_ = false;
   bool clickPending_ = false;
+  std::optional<PendingClick> click_;
+  std::optional<PendingDrop> drop_;
 };
+
+// The section plane of `state` over the scene's bounds: unit normal and offset (what lies where
+// dot(normal, p) > offset is cut away). False when it is off or the scene is empty.
+bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset);
 
 }  // namespace strata::ui

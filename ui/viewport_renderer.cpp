@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
 #include "engine/util/error.h"
 
 namespace strata::ui {
@@ -42,6 +45,7 @@ LineVertex lineVertex(const glm::dvec3& p, const glm::vec4& c) {
 
 ViewportRenderer::ViewportRenderer()
     : surfelProgram_("surfel.vert", "surfel.frag"),
+      pickProgram_("surfel.vert", "surfel_pick.frag"),
       lineProgram_("line.vert", "line.frag"),
       backgroundProgram_("background.vert", "background.frag") {
   // Surfels: a unit quad per instance plus the instance buffer.
@@ -93,6 +97,11 @@ ViewportRenderer::ViewportRenderer()
 }
 
 ViewportRenderer::~ViewportRenderer() {
+  if (pickFramebuffer_) {
+    glDeleteFramebuffers(1, &pickFramebuffer_);
+    GLuint targets[] = {pickIds_, pickDepth_};
+    glDeleteRenderbuffers(2, targets);
+  }
   glDeleteTextures(1, &leafTexture_);
   GLuint buffers[] = {cornerBuffer_, splatBuffer_, lineBuffer_};
   glDeleteBuffers(3, buffers);
@@ -100,17 +109,33 @@ ViewportRenderer::~ViewportRenderer() {
   glDeleteVertexArrays(3, vaos);
 }
 
-void ViewportRenderer::uploadSplats(const std::vector<Splat>& splats, double cellSize) {
+bool ViewportRenderer::splatBufferFits(size_t count) const {
+  return splatCapacity_ > 0 && count <= splatCapacity_ &&
+         (splatCapacity_ <= kMinSplatCapacity || count * 4 >= splatCapacity_);
+}
+
+bool ViewportRenderer::reserveSplats(size_t count) {
+  if (splatBufferFits(count)) return false;
+  const size_t capacity = std::max(kMinSplatCapacity, count + count / 4);
   glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
-  const size_t bytes = splats.size() * sizeof(Splat);
-  if (splats.size() > splatCapacity_ || splats.size() * 4 < splatCapacity_) {
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), splats.data(), GL_DYNAMIC_DRAW);
-    splatCapacity_ = splats.size();
-  } else if (bytes > 0) {
-    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(bytes), splats.data());
-  }
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(Splat)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  splatCount_ = splats.size();
+  splatCapacity_ = capacity;
+  return true;
+}
+
+void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double cellSize) {
+  reserveSplats(count);
+  if (count > 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(count * sizeof(Splat)), splats);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+  setSplatCount(count, cellSize);
+}
+
+void ViewportRenderer::setSplatCount(size_t count, double cellSize) {
+  splatCount_ = std::min(count, splatCapacity_);
   cellSize_ = cellSize;
 }
 
@@ -173,20 +198,9 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
   glm::mat4 viewProjection(f.viewProjection);
 
   if (splatCount_ > 0) {
-    surfelProgram_.use();
-    surfelProgram_.set("viewProjection", viewProjection);
-    surfelProgram_.set("eye", glm::vec3(f.eye));
-    surfelProgram_.set("viewForward", glm::vec3(f.forward));
-    surfelProgram_.set("ortho", f.ortho ? 1 : 0);
-    surfelProgram_.set("cellSize", float(cellSize_));
-    surfelProgram_.set("splatRadius", 1.0f);
+    useSurfelProgram(surfelProgram_, f);
     surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
     surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
-    surfelProgram_.set("leafTexture", 0);
-    surfelProgram_.set("leafTextureWidth", leafTextureWidth_);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, leafTexture_);
-    glBindVertexArray(surfelVao_);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
     glBindTexture(GL_TEXTURE_2D, 0);
   }
@@ -206,6 +220,98 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
   glUseProgram(0);
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_DEPTH_TEST);
+}
+
+void ViewportRenderer::useSurfelProgram(const GlProgram& program, const ViewportFrame& f) {
+  program.use();
+  program.set("viewProjection", glm::mat4(f.viewProjection));
+  program.set("eye", glm::vec3(f.eye));
+  program.set("viewForward", glm::vec3(f.forward));
+  program.set("ortho", f.ortho ? 1 : 0);
+  program.set("cellSize", float(cellSize_));
+  program.set("splatRadius", 1.0f);
+  program.set("leafTexture", 0);
+  program.set("leafTextureWidth", leafTextureWidth_);
+  program.set("sectionOn", f.sectionOn ? 1 : 0);
+  program.set("sectionPlane", glm::vec4(glm::vec3(f.sectionNormal), float(f.sectionOffset)));
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, leafTexture_);
+  glBindVertexArray(surfelVao_);
+}
+
+std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, int py) {
+  if (splatCount_ == 0 || px < 0 || py < 0 || px >= f.width || py >= f.height) return {};
+  GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
+  glGetIntegerv(GL_VIEWPORT, previousViewport);
+  if (!pickFramebuffer_ || pickWidth_ != f.width || pickHeight_ != f.height) {
+    if (!pickFramebuffer_) {
+      glGenFramebuffers(1, &pickFramebuffer_);
+      glGenRenderbuffers(1, &pickIds_);
+      glGenRenderbuffers(1, &pickDepth_);
+    }
+    glBindRenderbuffer(GL_RENDERBUFFER, pickIds_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_R32UI, f.width, f.height);
+    glBindRenderbuffer(GL_RENDERBUFFER, pickDepth_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, f.width, f.height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, pickFramebuffer_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, pickIds_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, pickDepth_);
+    pickWidth_ = f.width;
+    pickHeight_ = f.height;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, pickFramebuffer_);
+  std::optional<PickHit> hit;
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) {
+    glViewport(0, 0, f.width, f.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(px, py, 1, 1);  // one pixel is drawn
+    const GLuint none[4] = {0, 0, 0, 0};
+    glClearBufferuiv(GL_COLOR, 0, none);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    useSurfelProgram(pickProgram_, f);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    GLuint leafPlusOne = 0;
+    float depth = 1.0f;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(px, py, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &leafPlusOne);
+    glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    if (leafPlusOne > 0) {
+      const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
+      auto unproject = [&](double ndcDepth) {
+        const glm::dvec4 ndc((px + 0.5) / f.width * 2.0 - 1.0, (py + 0.5) / f.height * 2.0 - 1.0,
+                             ndcDepth, 1.0);
+        const glm::dvec4 world = toWorld * ndc;
+        return glm::dvec3(world) / world.w;
+      };
+      PickHit h;
+      h.cap = (leafPlusOne & 0x80000000u) != 0;
+      h.leaf = (leafPlusOne & 0x7fffffffu) - 1;
+      h.position = unproject(double(depth) * 2.0 - 1.0);
+      if (h.cap) {  // the view ray through the pixel meets the plane there
+        const glm::dvec3 a = unproject(-1.0), b = unproject(1.0);
+        const double denom = glm::dot(f.sectionNormal, b - a);
+        if (std::fabs(denom) > 1e-12)
+          h.position = a + (b - a) * ((f.sectionOffset - glm::dot(f.sectionNormal, a)) / denom);
+      }
+      hit = h;
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
+  glViewport(previousViewport[0], previousViewport[1], previousViewport[2], previousViewport[3]);
+  return hit;
 }
 
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {

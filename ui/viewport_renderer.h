@@ -13,10 +13,11 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "engine/ldi/splats.h"
 #include "ui/gl_program.h"
-#include "ui/surfel_splats.h"
 
 namespace strata::ui {
 
@@ -39,6 +40,18 @@ struct ViewportFrame {
   glm::dvec3 up{0.0, 0.0, 1.0};
   bool ortho = false;
   int x = 0, y = 0, width = 1, height = 1;  // GL viewport, pixels, origin bottom-left
+  // Section plane: when on, what lies where dot(sectionNormal, p) > sectionOffset is cut away
+  // and the cut is capped.
+  bool sectionOn = false;
+  glm::dvec3 sectionNormal{0.0, 0.0, 1.0};  // unit
+  double sectionOffset = 0.0;               // scene units
+};
+
+// What a pixel of the viewport shows.
+struct PickHit {
+  uint32_t leaf = 0;
+  glm::dvec3 position{0.0};  // world, scene units
+  bool cap = false;          // on the section plane's cap (position on the plane)
 };
 
 class ViewportRenderer {
@@ -48,11 +61,22 @@ class ViewportRenderer {
   ViewportRenderer(const ViewportRenderer&) = delete;
   ViewportRenderer& operator=(const ViewportRenderer&) = delete;
 
-  // Host upload of the splats into the instance buffer; `cellSize` is the grid's h.
-  void uploadSplats(const std::vector<Splat>& splats, double cellSize);
+  // The splat instance buffer. Its storage holds splatCapacity() splats; reserveSplats
+  // reallocates it (glBufferData) to hold `count`, keeping some room to grow, and returns
+  // whether it did (a CUDA-GL registration of the buffer must then be renewed).
+  GLuint splatBuffer() const { return splatBuffer_; }
+  size_t splatCapacity() const { return splatCapacity_; }
+  bool reserveSplats(size_t count);
+  // Whether reserveSplats(count) would keep the buffer as it is.
+  bool splatBufferFits(size_t count) const;
+  static constexpr size_t kMinSplatCapacity = 1024;
+  // Host upload of `count` splats; `cellSize` is the grid's h.
+  void uploadSplats(const Splat* splats, size_t count, double cellSize);
+  // After the buffer was filled on the device (CUDA-GL interop): draw `count` splats.
+  void setSplatCount(size_t count, double cellSize);
   void setLeafStyles(const LeafStyleTable& styles);
   size_t splatCount() const { return splatCount_; }
-  size_t uploadedBytes() const { return splatCount_ * sizeof(Splat); }
+  size_t splatBytes() const { return splatCount_ * sizeof(Splat); }
 
   // `lines` are depth-tested against the surfels (grid, boxes); `overlay` is drawn on top
   // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list.
@@ -60,10 +84,18 @@ class ViewportRenderer {
             const std::vector<LineVertex>& overlay,
             const std::vector<LineVertex>& overlayTriangles);
 
+  // The leaf and point that pixel (px, py) of `frame`'s viewport shows (pixels from its
+  // bottom-left corner), rendered into an off-screen id buffer; nothing when it shows no splat.
+  // Leaves the bound framebuffer and viewport as they were.
+  std::optional<PickHit> pick(const ViewportFrame& frame, int px, int py);
+
  private:
   void drawLines(const std::vector<LineVertex>& vertices, GLenum mode);
+  // Binds `program` and sets the uniforms surfel.vert needs.
+  void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
 
   GlProgram surfelProgram_;
+  GlProgram pickProgram_;
   GlProgram lineProgram_;
   GlProgram backgroundProgram_;
   GLuint surfelVao_ = 0, cornerBuffer_ = 0, splatBuffer_ = 0;
@@ -75,6 +107,8 @@ class ViewportRenderer {
   size_t splatCapacity_ = 0;
   size_t lineCapacity_ = 0;
   double cellSize_ = 1.0;
+  GLuint pickFramebuffer_ = 0, pickIds_ = 0, pickDepth_ = 0;
+  int pickWidth_ = 0, pickHeight_ = 0;
 };
 
 // An off-screen colour + depth target for rendering the viewport alone (headless renders,

@@ -98,7 +98,8 @@ NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
   return id;
 }
 
-NodeId Document::addMesh(const std::string& file, NodeId parent, int index) {
+NodeId Document::addMesh(const std::string& file, NodeId parent, int index,
+                         const Transform& transform) {
   auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file));
   std::string hash = hashFile(file);
   fs::path absolute = fs::absolute(file).lexically_normal();
@@ -108,7 +109,9 @@ NodeId Document::addMesh(const std::string& file, NodeId parent, int index) {
         absolute.lexically_relative(fs::absolute(folderOf(path_)).lexically_normal());
     if (!relative.empty() && *relative.begin() != "..") stored = relative.generic_string();
   }
-  NodePtr node = makeMeshNode(1, fs::path(file).stem().string(), mesh, stored, hash);
+  auto node =
+      std::make_shared<Node>(*makeMeshNode(1, fs::path(file).stem().string(), mesh, stored, hash));
+  node->transform = transform;
   return addSubtree(node, parent, index);
 }
 

@@ -54,7 +54,9 @@ class Document {
   NodeId addSubtree(const NodePtr& node, NodeId parent = 0, int index = -1);
   // Reads a closed mesh file and adds it as a mesh leaf named after the file. Its path is stored
   // relative to the document's folder when the document has a file, absolute otherwise.
-  NodeId addMesh(const std::string& file, NodeId parent = 0, int index = -1);
+  // `transform` becomes the leaf's (import options: unit scale, up axis).
+  NodeId addMesh(const std::string& file, NodeId parent = 0, int index = -1,
+                 const Transform& transform = Transform{});
 
   void remove(NodeId id);
   NodeId duplicate(NodeId id);

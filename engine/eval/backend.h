@@ -16,6 +16,7 @@
 #include "engine/contour/contour_tile.h"
 #include "engine/geometry/mesh.h"
 #include "engine/ldi/ldi.h"
+#include "engine/ldi/splats.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -48,6 +49,9 @@ class Backend {
   virtual TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                   const glm::ivec3& begin, const glm::ivec3& end,
                                   Progress& progress);
+  // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
+  // The default downloads the LDI and builds them on the host.
+  virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);
 };
 
 }  // namespace strata

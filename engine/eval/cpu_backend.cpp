@@ -57,6 +57,12 @@ std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) {
   return hostLdi(ldi);
 }
 
+SplatsHandle Backend::splats(const LdiHandle& ldi, Progress& progress) {
+  progress.check();
+  std::shared_ptr<const Ldi> host = download(ldi);
+  return std::make_shared<HostSplats>(buildSplats(*host));
+}
+
 TileContour Backend::contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                  const glm::ivec3& begin, const glm::ivec3& end,
                                  Progress& progress) {

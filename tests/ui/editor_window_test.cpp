@@ -20,6 +20,7 @@
 #include "engine/eval/cpu_backend.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
+#include "ui/scene_queries.h"
 
 namespace strata::ui {
 namespace {
@@ -125,7 +126,8 @@ TEST(EditorWindow, SphereSilhouetteAppearsAndUndoRemovesIt) {
   clearSelection(state);  // no selection tint, no gizmo
   state.showGrid = false;
   ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
-  EXPECT_GT(state.preview->splats.size(), 100u);
+  EXPECT_GT(state.preview->splatCount(), 100u);
+  EXPECT_EQ(state.splatTransfer, "host upload");  // the CPU backend: no interop to try
   editor.camera().setAxisView(AxisView::Front);
   editor.viewAll();
 
@@ -213,6 +215,152 @@ TEST(EditorWindow, DifferenceShowsTheHoleFromAbove) {
   EXPECT_NEAR(cx, w * 0.5, 3.0);
   EXPECT_TRUE(bluish(at(image, w, int(cx + half * 0.75), h / 2)));
   EXPECT_FALSE(bluish(at(image, w, int(cx + half * 0.3), h / 2)));  // inside the hole
+}
+
+// A red sphere at the origin and a blue box at x = 3, resolution 48, no grid, nothing selected.
+struct SphereAndBox {
+  NodeId sphere = 0, box = 0;
+  explicit SphereAndBox(EditorState& state) {
+    sphere = addPrimitive(state, NodeKind::Sphere);  // radius 0.5
+    clearSelection(state);
+    box = addPrimitive(state, NodeKind::Box);
+    EXPECT_TRUE(guarded(state, [&] {
+      PrimitiveParams cube;
+      cube.size = glm::dvec3(1.0);
+      state.document.setParams(box, cube);
+      state.document.setColor(sphere, glm::vec3(0.9f, 0.1f, 0.1f));
+      state.document.setColor(box, glm::vec3(0.1f, 0.3f, 0.95f));
+      Transform t;
+      t.translate = glm::dvec3(3.0, 0.0, 0.0);
+      state.document.setTransform(box, t);
+    }));
+    clearSelection(state);
+    setResolution(state, 48);
+    state.showGrid = false;
+  }
+};
+
+TEST(EditorWindow, PickingReadsTheLeafAndThePointUnderTheCursor) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  SphereAndBox scene(state);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  editor.camera().setAxisView(AxisView::Front);  // looking along +y
+  editor.viewAll();
+  const int w = 320, h = 200;
+  const std::vector<uint8_t> image = editor.renderViewport(w, h);
+  const double cellSize = state.preview->stats.grid.h;
+  int redX = -1, blueX = -1;
+  for (int x = 0; x < w; ++x) {
+    if (redX < 0 && reddish(at(image, w, x, h / 2))) redX = x + 6;
+    if (bluish(at(image, w, x, h / 2))) blueX = x - 6;
+  }
+  ASSERT_GE(redX, 0);
+  ASSERT_GE(blueX, 0);
+  std::optional<PickHit> red = editor.pickViewport(w, h, redX + 0.5, h / 2 + 0.5);
+  ASSERT_TRUE(red);
+  EXPECT_EQ(red->leaf, scene.sphere);
+  EXPECT_FALSE(red->cap);
+  EXPECT_NEAR(glm::length(red->position), 0.5, 1.5 * cellSize);  // on the sphere
+  EXPECT_LT(red->position.y, 0.0);                               // its front
+  std::optional<PickHit> blue = editor.pickViewport(w, h, blueX + 0.5, h / 2 + 0.5);
+  ASSERT_TRUE(blue);
+  EXPECT_EQ(blue->leaf, scene.box);
+  EXPECT_NEAR(blue->position.y, -0.5, 1.5 * cellSize);  // the box's front face
+  EXPECT_FALSE(editor.pickViewport(w, h, 2.5, 2.5)) << "a corner shows no surface";
+}
+
+TEST(EditorWindow, SectionPlaneCutsAndCapsTheSolid) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  SphereAndBox scene(state);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  const double cellSize = state.preview->stats.grid.h;
+  // Look from +y at the sphere's back; the plane y = 0 keeps the half towards -y.
+  editor.camera().setAxisView(AxisView::Back);
+  editor.camera().ortho = true;
+  editor.viewAll();
+  const int w = 320, h = 200;
+  const std::vector<uint8_t> whole = editor.renderViewport(w, h);
+  int redX = -1, redEnd = -1;
+  for (int x = 0; x < w; ++x)
+    if (reddish(at(whole, w, x, h / 2))) {
+      if (redX < 0) redX = x;
+      redEnd = x;
+    }
+  ASSERT_GE(redX, 0);
+  const double sphereX = (redX + redEnd) * 0.5 + 0.5;
+  std::optional<PickHit> back = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
+  ASSERT_TRUE(back);
+  EXPECT_NEAR(back->position.y, 0.5, 1.5 * cellSize);  // the sphere's back
+  EXPECT_FALSE(back->cap);
+
+  const Bounds bounds = sceneBounds(state.document.root());
+  state.section.on = true;
+  state.section.axis = 1;
+  state.section.at = (0.0 - bounds.min.y) / (bounds.max.y - bounds.min.y);
+  std::optional<PickHit> cap = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
+  ASSERT_TRUE(cap);
+  EXPECT_TRUE(cap->cap);
+  EXPECT_EQ(cap->leaf, scene.sphere);
+  EXPECT_NEAR(cap->position.y, 0.0, 1e-6);  // on the plane
+  const std::vector<uint8_t> cut = editor.renderViewport(w, h);
+  EXPECT_TRUE(reddish(at(cut, w, int(sphereX), h / 2))) << "the cap has the leaf's colour";
+  // The cap is filled: every pixel inside the cut disc (radius 0.5, less a cell) is red.
+  const double pixelsPerUnit = (redEnd - redX + 1) / 1.0;
+  const int r = int((0.5 - cellSize) * pixelsPerUnit);
+  int holes = 0, inside = 0;
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx)
+      if (dx * dx + dy * dy <= r * r) {
+        ++inside;
+        holes += reddish(at(cut, w, int(sphereX) + dx, h / 2 + dy)) ? 0 : 1;
+      }
+  EXPECT_GT(inside, 100);
+  EXPECT_EQ(holes, 0);
+  // Flipped, the plane keeps the far half: the view shows its outside, not a cap.
+  state.section.flip = true;
+  std::optional<PickHit> far = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
+  ASSERT_TRUE(far);
+  EXPECT_FALSE(far->cap);
+  EXPECT_NEAR(far->position.y, 0.5, 1.5 * cellSize);
+}
+
+TEST(EditorWindow, PaletteDropLandsOnTheSurfaceOrTheGround) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  SphereAndBox scene(state);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  editor.camera().setAxisView(AxisView::Top);  // looking down -z
+  editor.camera().ortho = true;
+  editor.viewAll();
+  const int w = 320, h = 200;
+  const std::vector<uint8_t> image = editor.renderViewport(w, h);
+  int blueX = -1, blueEnd = -1;
+  for (int x = 0; x < w; ++x)
+    if (bluish(at(image, w, x, h / 2))) {
+      if (blueX < 0) blueX = x;
+      blueEnd = x;
+    }
+  ASSERT_GE(blueX, 0);
+  // On the box's top face (z = 0.5).
+  Placement top = editor.placementInViewport(w, h, (blueX + blueEnd) * 0.5 + 0.5, h / 2 + 0.5);
+  EXPECT_FALSE(top.onGround);
+  EXPECT_NEAR(top.point.z, 0.5, 1.5 * state.preview->stats.grid.h);
+  EXPECT_NEAR(top.point.x, 3.0, 0.25);  // within the box's top (half width 0.5)
+  EXPECT_NEAR(top.point.y, 0.0, 0.25);
+  // Beside everything: the ground plane z = 0.
+  Placement ground = editor.placementInViewport(w, h, 4.5, 4.5);
+  EXPECT_TRUE(ground.onGround);
+  EXPECT_EQ(ground.point.z, 0.0);
+  NodeId cone = addPrimitiveAt(state, NodeKind::Cone, ground);
+  const Bounds b = selectionBounds(state.document.root(), {cone});
+  EXPECT_NEAR(b.min.z, 0.0, 1e-9);
+  EXPECT_NEAR(b.center().x, ground.point.x, 1e-9);
+  EXPECT_NEAR(b.center().y, ground.point.y, 1e-9);
 }
 
 }  // namespace

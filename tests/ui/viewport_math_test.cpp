@@ -1,5 +1,5 @@
-// The viewport's math without a window: camera views and rays, framing, the gizmo's drag, and
-// picking a surfel (ui/camera.h, ui/gizmo.h, ui/surfel_splats.h).
+// The viewport's math without a window: camera views and rays, framing, the gizmo's drag
+// (ui/camera.h, ui/gizmo.h), and the import options (ui/import_options.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +9,6 @@
 #include "engine/eval/evaluator.h"
 #include "ui/camera.h"
 #include "ui/gizmo.h"
-#include "ui/surfel_splats.h"
 
 namespace strata::ui {
 namespace {
@@ -103,29 +102,6 @@ TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
   const double r = 90 * 0.85, d = r / std::sqrt(2.0);
   int ring = g.hover(m, glm::dvec2(size.x / 2 + d, size.y / 2 - d));
   EXPECT_EQ(ring, 1);
-}
-
-TEST(EditorMath, PickingFindsTheLeafUnderTheRay) {
-  NodePtr sphere = makePrimitiveNode(NodeKind::Sphere, 7);
-  NodePtr box = makePrimitiveNode(NodeKind::Box, 8);
-  auto movedBox = std::make_shared<Node>(*box);
-  movedBox->transform.translate = glm::dvec3(3, 0, 0);
-  Scene scene;
-  scene.root = makeOperationNode(NodeKind::Union, 1, {sphere, movedBox});
-  scene.settings.resolution = 48;
-  auto backend = std::make_shared<CpuBackend>();
-  Evaluator evaluator(backend);
-  Progress progress;
-  EvalResult result = evaluator.evaluate(scene, EvalOptions(), progress);
-  std::vector<Splat> splats = buildSplats(*backend->download(result.root));
-  ASSERT_FALSE(splats.empty());
-  SplatHit hit;
-  ASSERT_TRUE(pickSplat(splats, Ray{{0, -10, 0}, {0, 1, 0}}, result.grid.h, &hit));
-  EXPECT_EQ(hit.leaf, 7u);
-  EXPECT_NEAR(hit.position.y, -0.5, result.grid.h);
-  ASSERT_TRUE(pickSplat(splats, Ray{{3, -10, 0}, {0, 1, 0}}, result.grid.h, &hit));
-  EXPECT_EQ(hit.leaf, 8u);
-  EXPECT_FALSE(pickSplat(splats, Ray{{1.7, -10, 0}, {0, 1, 0}}, result.grid.h, &hit));
 }
 
 }  // namespace

@@ -1,0 +1,93 @@
+// Splats: what the editor's viewport draws of an LDI. Every surfel once, on the axis its normal
+// is most aligned with (onDominantAxis, ALGORITHM.md §6), as a compact record for a GL instance
+// buffer. The per-surfel math (splatOf) is shared with the CUDA twin (gpu/ldi/splats.cu), so
+// both backends produce the same splats, bit for bit and in the same order: axis, then ray,
+// then depth along the ray.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "engine/ldi/ldi.h"
+#include "engine/ldi/shared_math.h"
+
+namespace strata {
+
+// One splat: 20 bytes, laid out for glVertexAttrib(I)Pointer (see shaders/surfel.vert).
+struct Splat {
+  float position[3];  // world, scene units
+  uint32_t normal;    // octahedral, as in Surfel
+  uint32_t leafAxis;  // leaf id << 2 | axis of the ray it lies on
+};
+static_assert(sizeof(Splat) == 20, "tightly packed splat");
+
+STRATA_HD uint32_t splatLeaf(const Splat& s) {
+  return s.leafAxis >> 2;
+}
+
+// The lattice of one grid as plain numbers (what a device kernel can take by value).
+struct SplatFrame {
+  double origin[3];
+  double h;
+  int64_t first[3];
+  int64_t raysU[3];  // per axis: rays along that axis's u direction
+};
+SplatFrame splatFrame(const Grid& grid);
+
+// The splat of surfel `s` on ray `ray` of `axis`; its position is surfelPosition() rounded to
+// float.
+STRATA_HD Splat splatOf(const SplatFrame& f, int axis, int64_t ray, const Surfel& s) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  double p[3];
+  p[axis] = f.origin[axis] + f.h * double(s.depth);
+  p[u] = f.origin[u] + f.h * double(f.first[u] + ray % f.raysU[axis]);
+  p[v] = f.origin[v] + f.h * double(f.first[v] + ray / f.raysU[axis]);
+  Splat out;
+  out.position[0] = float(p[0]);
+  out.position[1] = float(p[1]);
+  out.position[2] = float(p[2]);
+  out.normal = s.normal;
+  out.leafAxis = (surfelLeaf(s.tag) << 2) | uint32_t(axis);
+  return out;
+}
+
+// Whether surfel `s` of `axis` becomes a splat.
+STRATA_HD bool surfelMakesSplat(const Surfel& s, int axis) {
+  float n[3];
+  decodeNormal(s.normal, n);
+  return onDominantAxis(n, axis);
+}
+
+// The splats of `ldi`, on the host (any thread).
+std::vector<Splat> buildSplats(const Ldi& ldi);
+
+// Splats owned by a backend, wherever it keeps them (host memory for the CPU backend, device
+// memory for CUDA, where the editor copies them into a GL buffer without a trip through the
+// host). Immutable once made; may be released on any thread.
+class SplatResource {
+ public:
+  virtual ~SplatResource() = default;
+  virtual size_t count() const = 0;
+  size_t bytes() const { return count() * sizeof(Splat); }
+  // The splats in host memory, or null when they live elsewhere.
+  virtual const Splat* hostData() const = 0;
+  // Copies all count() splats into `out` (host memory).
+  virtual void copyToHost(Splat* out) const = 0;
+};
+using SplatsHandle = std::shared_ptr<const SplatResource>;
+
+// Splats in host memory.
+class HostSplats : public SplatResource {
+ public:
+  explicit HostSplats(std::vector<Splat> splats) : splats_(std::move(splats)) {}
+  size_t count() const override { return splats_.size(); }
+  const Splat* hostData() const override { return splats_.data(); }
+  void copyToHost(Splat* out) const override;
+  const std::vector<Splat>& splats() const { return splats_; }
+
+ private:
+  std::vector<Splat> splats_;
+};
+
+}  // namespace strata

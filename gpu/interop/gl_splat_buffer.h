@@ -1,0 +1,44 @@
+// CUDA-GL interop for the editor's splats, CUDA side: copies the CUDA backend's splats
+// (DeviceSplats, gpu/ldi/splats.cuh) into an OpenGL buffer object, device to device, with no
+// trip through the host. Plain C++: no GL or CUDA header needed to include it; GL buffer
+// objects are passed by name (a GLuint).
+//
+// Threads: the thread that has the GL context current (the editor's UI thread). The GL context
+// must run on the CUDA device the splats live on; on any other GL (Mesa's llvmpipe, another
+// GPU) attach() throws, and the caller takes the host upload path instead.
+#pragma once
+
+#include <cstddef>
+
+#include "engine/ldi/splats.h"
+
+struct cudaGraphicsResource;
+
+namespace strata {
+
+class CudaGlSplatBuffer {
+ public:
+  CudaGlSplatBuffer() = default;
+  ~CudaGlSplatBuffer();  // detaches
+  CudaGlSplatBuffer(const CudaGlSplatBuffer&) = delete;
+  CudaGlSplatBuffer& operator=(const CudaGlSplatBuffer&) = delete;
+
+  // Registers GL buffer object `glBuffer` (with storage already allocated) for writing by
+  // CUDA. Detach before the buffer's storage is reallocated (glBufferData) and attach again
+  // after. Throws strata::Error quoting CUDA's reason when the buffer cannot be registered.
+  void attach(unsigned int glBuffer);
+  void detach();
+  bool attached() const { return resource_ != nullptr; }
+
+  // Copies all of `splats` to the start of the attached buffer; GL commands issued after it
+  // returns see the copied splats (cudaGraphicsUnmapResources orders them). Throws strata::Error
+  // when the splats are not the CUDA backend's, or when they do not fit in the mapped buffer.
+  void copy(const SplatResource& splats);
+  // Whether `splats` are the CUDA backend's (device-resident), i.e. what copy() takes.
+  static bool canCopy(const SplatResource& splats);
+
+ private:
+  cudaGraphicsResource* resource_ = nullptr;
+};
+
+}  // namespace strata

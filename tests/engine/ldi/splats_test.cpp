@@ -1,0 +1,66 @@
+// The editor's splats (engine/ldi/splats.h): every surfel once, on its dominant axis, at its
+// exact position, carrying its normal and leaf; the same as the point cloud writer visits.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cstring>
+
+#include "engine/eval/cpu_backend.h"
+#include "engine/io/point_cloud.h"
+#include "engine/ldi/splats.h"
+#include "tests/support/scene_builder.h"
+
+namespace strata::test {
+namespace {
+
+TEST(Splats, OneSplatPerSurfelOnItsDominantAxis) {
+  Scene scene =
+      makeScene(op(NodeKind::Union, {sphere(1.0), box(glm::dvec3(1.0), {1.2, 0, 0})}), 40);
+  EvalResult result = evaluateCpu(scene);
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  SplatsHandle handle = backend->splats(result.root, progress);
+  ASSERT_TRUE(handle);
+  ASSERT_NE(handle->hostData(), nullptr);  // the CPU backend keeps them on the host
+  std::vector<Splat> copied(handle->count());
+  handle->copyToHost(copied.data());
+
+  std::shared_ptr<const Ldi> host = backend->download(result.root);
+  std::vector<Splat> built = buildSplats(*host);
+  ASSERT_EQ(built.size(), copied.size());
+  size_t i = 0;
+  forEachDominantSurfel(*host, [&](int axis, const Surfel& s, const float*, const glm::dvec3& p) {
+    ASSERT_LT(i, built.size());
+    const Splat& splat = built[i];
+    EXPECT_EQ(splat.leafAxis & 3u, uint32_t(axis));
+    EXPECT_EQ(splatLeaf(splat), surfelLeaf(s.tag));
+    EXPECT_EQ(splat.normal, s.normal);
+    EXPECT_EQ(splat.position[0], float(p.x));
+    EXPECT_EQ(splat.position[1], float(p.y));
+    EXPECT_EQ(splat.position[2], float(p.z));
+    EXPECT_EQ(std::memcmp(&splat, &copied[i], sizeof(Splat)), 0);
+    ++i;
+  });
+  EXPECT_EQ(i, built.size());
+  // A curved patch is sampled on all three axes and becomes splats on one; the box's faces are
+  // sampled on one axis only.
+  EXPECT_GT(double(built.size()), 0.3 * double(host->surfelCount()));
+  EXPECT_LT(built.size(), host->surfelCount());
+  // Splats lie on the surface they came from: the sphere's within a cell of radius 1.
+  for (const Splat& s : built) {
+    const glm::dvec3 p(s.position[0], s.position[1], s.position[2]);
+    if (p.x < 0.0) {
+      EXPECT_NEAR(glm::length(p), 1.0, result.grid.h);
+    }
+  }
+}
+
+TEST(Splats, EmptyLdiHasNone) {
+  Grid grid;
+  grid.cells = glm::ivec3(8);
+  EXPECT_TRUE(buildSplats(*makeEmptyLdi(grid)).empty());
+}
+
+}  // namespace
+}  // namespace strata::test

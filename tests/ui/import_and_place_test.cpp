@@ -1,0 +1,104 @@
+// The import dialog's options (ui/import_options.h) and what importing and dropping from the
+// palette do to the document (ui/editor_actions.h), without a window.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "engine/document/commands.h"
+#include "ui/editor_actions.h"
+#include "ui/import_options.h"
+#include "ui/scene_queries.h"
+
+namespace strata::ui {
+namespace {
+
+int unitIndex(const std::string& label) {
+  const auto& units = importUnits();
+  for (size_t i = 0; i < units.size(); ++i)
+    if (label == units[i].label) return int(i);
+  ADD_FAILURE() << "no unit " << label;
+  return 0;
+}
+
+TEST(ImportOptions, ScaleConvertsFileUnitsToSceneUnits) {
+  std::string why;
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("scene units"), "millimetre", &why), 1.0);
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("millimetres"), "millimetre", &why), 1.0);
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("metres"), "millimetre", &why), 1000.0);
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("inches"), "mm", &why), 25.4);
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("millimetres"), "inch", &why), 1.0 / 25.4);
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("centimetres"), "metre", &why), 0.01);
+  EXPECT_TRUE(why.empty()) << why;
+  EXPECT_DOUBLE_EQ(importScale(unitIndex("metres"), "furlong", &why), 1.0);
+  EXPECT_NE(why.find("furlong"), std::string::npos) << why;
+}
+
+TEST(ImportOptions, YUpTurnsPlusYOntoPlusZ) {
+  const glm::dmat4 m = importTransform(2.0, 1).matrix();
+  const glm::dvec3 y = glm::dvec3(m * glm::dvec4(0, 1, 0, 0));
+  EXPECT_NEAR(glm::distance(y, glm::dvec3(0, 0, 2)), 0.0, 1e-12);
+  const glm::dvec3 z = glm::dvec3(m * glm::dvec4(0, 0, 1, 0));
+  EXPECT_NEAR(glm::distance(z, glm::dvec3(0, -2, 0)), 0.0, 1e-12);  // still right-handed
+  EXPECT_EQ(importTransform(3.0, 0).rotateDegrees, glm::dvec3(0.0));
+}
+
+TEST(ImportAndPlace, ImportWithOptionsIsOneUndoStep) {
+  EditorState state;
+  PendingImport import;
+  import.path = std::string(STRATA_ASSETS) + "/meshes/bunny.obj";
+  import.unit = unitIndex("metres");  // the scene is in millimetres
+  import.upAxis = 1;
+  import.placement = Placement{glm::dvec3(10.0, 20.0, 30.0), false};
+  NodeId id = importMesh(state, import);
+  ASSERT_NE(id, 0u);
+  NodePtr node = findNode(state.document.root(), id);
+  ASSERT_TRUE(node);
+  EXPECT_EQ(node->kind, NodeKind::Mesh);
+  EXPECT_EQ(node->transform.scale, glm::dvec3(1000.0));
+  EXPECT_EQ(node->transform.rotateDegrees, glm::dvec3(90.0, 0.0, 0.0));
+  const Bounds b = selectionBounds(state.document.root(), {id});
+  EXPECT_NEAR(glm::distance(b.center(), glm::dvec3(10.0, 20.0, 30.0)), 0.0, 1e-6);
+  EXPECT_EQ(state.selection, std::vector<NodeId>{id});
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), id));
+}
+
+TEST(ImportAndPlace, ABadMeshFileIsReportedAndNothingIsAdded) {
+  EditorState state;
+  PendingImport import;
+  import.path = "/nonexistent/part.stl";
+  EXPECT_EQ(importMesh(state, import), 0u);
+  EXPECT_TRUE(state.document.root()->children.empty());
+  ASSERT_FALSE(state.log.empty());
+  EXPECT_NE(state.log.back().text.find("/nonexistent/part.stl"), std::string::npos);
+  EXPECT_FALSE(state.document.canUndo());
+}
+
+TEST(ImportAndPlace, DroppedPrimitiveIsCentredOnTheSurfacePointOrRestsOnTheGround) {
+  EditorState state;
+  NodeId group = addOperation(state, NodeKind::Union);
+  // A parent transform: placement is in world space whatever the parent does.
+  Transform parent;
+  parent.translate = glm::dvec3(5.0, 0.0, 0.0);
+  parent.rotateDegrees = glm::dvec3(0.0, 0.0, 90.0);
+  parent.scale = glm::dvec3(2.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(group, parent); }));
+  selectNode(state, group);
+  NodeId onSurface = addPrimitiveAt(state, NodeKind::Sphere, {glm::dvec3(1.0, 2.0, 3.0), false});
+  ASSERT_NE(onSurface, 0u);
+  Bounds b = selectionBounds(state.document.root(), {onSurface});
+  EXPECT_NEAR(glm::distance(b.center(), glm::dvec3(1.0, 2.0, 3.0)), 0.0, 1e-9);
+  selectNode(state, group);
+  NodeId onGround = addPrimitiveAt(state, NodeKind::Cylinder, {glm::dvec3(-4.0, 1.0, 0.0), true});
+  b = selectionBounds(state.document.root(), {onGround});
+  EXPECT_NEAR(b.min.z, 0.0, 1e-9);
+  EXPECT_NEAR(b.center().x, -4.0, 1e-9);
+  EXPECT_NEAR(b.center().y, 1.0, 1e-9);
+  // Each drop is one undo step.
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), onGround));
+  EXPECT_TRUE(findNode(state.document.root(), onSurface));
+}
+
+}  // namespace
+}  // namespace strata::ui

@@ -1,0 +1,30 @@
+// The import dialog's options for a mesh file: the length unit its coordinates are in (scaled
+// to the scene's unit) and which axis is up in it (Strata's up is +Z). Plain math; any thread.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/geometry/transform.h"
+
+namespace strata::ui {
+
+struct ImportUnit {
+  const char* label;  // "millimetres"
+  double metres;      // length of one unit in metres; 0 for "scene units" (no scaling)
+};
+// The units offered, "scene units" first.
+const std::vector<ImportUnit>& importUnits();
+
+// Metres per unit of a scene unit name ("millimetre", "mm", "inch", ...); 0 when unknown.
+double sceneUnitMetres(const std::string& sceneUnit);
+
+// The factor from file units (importUnits()[unit]) to scene units. 1 for "scene units"; when
+// the scene's unit is unknown, 1 with *why saying so.
+double importScale(int unit, const std::string& sceneUnit, std::string* why);
+
+// The mesh node's transform: uniform `scale`, and for upAxis 1 (+Y up in the file) a quarter
+// turn about +X that takes +Y to +Z.
+Transform importTransform(double scale, int upAxis);
+
+}  // namespace strata::ui
