@@ -19,7 +19,10 @@
 #include "app/cuda_gl_splat_copier.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
+#include "ui/gl_window.h"
+#include "ui/headless_gl.h"
 #include "ui/png_file.h"
+#include "ui/scene_render.h"
 #endif
 
 namespace strata {
@@ -36,6 +39,7 @@ std::vector<std::string> editorValuedOptions() {
 std::vector<std::string> editorFlagOptions() {
   std::vector<std::string> flags = kFlagOptions;
   flags.push_back("--no-interop");
+  flags.push_back("--ortho");
   return flags;
 }
 
@@ -113,8 +117,8 @@ void chooseEditorBackend(const CliArgs& args, ui::EditorOptions* options) {
 
 // --section AXIS[:AT][:flip], e.g. "y:0.4": the section plane across AXIS at the fraction AT
 // of the scene's bounds (default 0.5), cutting away the upper side (the lower with ":flip").
-void applySection(const CliArgs& args, ui::EditorState& state) {
-  if (!args.has("--section")) return;
+ui::SectionState parseSection(const CliArgs& args) {
+  if (!args.has("--section")) return {};
   const std::string text = args.text("--section", "");
   std::vector<std::string> parts;
   size_t start = 0;
@@ -142,7 +146,7 @@ void applySection(const CliArgs& args, ui::EditorState& state) {
     if (parts[i].empty() || *end != '\0' || !(section.at >= 0.0 && section.at <= 1.0))
       throw Error(usage);
   }
-  state.section = section;
+  return section;
 }
 
 ui::AxisView parseView(const std::string& view, bool* iso) {
@@ -192,7 +196,7 @@ int runEdit(const std::vector<std::string>& argv) {
       options.recoveryPath = defaultRecoveryPath();
     }
     ui::Editor editor(options);
-    applySection(args, editor.state());
+    editor.state().section = parseSection(args);
     if (args.has("--measure-latency"))
       return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
                             args.text("--move-leaf", ""));
@@ -216,7 +220,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (args.positional().size() != 1 || output.empty())
       throw Error(
           "usage: strata render SCENE.strata.json -o shot.png [--width W] [--height H] "
-          "[--resolution N] [--view iso|front|right|top|...]");
+          "[--resolution N] [--view iso|front|right|top|...] [--ortho] [--section AXIS[:AT]]");
     if (fileExtension(output) != "png")
       throw Error(output + ": render writes PNG; use a .png name");
     const int width = args.integer("--width", 1280, 16, 8192);
@@ -226,30 +230,41 @@ int runRender(const std::vector<std::string>& argv) {
 #else
     bool iso = true;
     ui::AxisView view = parseView(args.text("--view", "iso"), &iso);
-    std::string why;
-    if (!ui::editorDisplayAvailable(&why))
-      throw Error("strata render needs a display for its (invisible) window: " + why +
-                  "; run it under xvfb-run");
-    const std::string scene = args.positional()[0];
-    loadScene(scene);  // a bad file fails here with its message
-    ui::EditorOptions options;
-    options.scenePath = scene;
-    chooseEditorBackend(args, &options);
-    options.visible = false;
-    ui::Editor editor(options);
-    ui::EditorState& state = editor.state();
-    applySection(args, state);
+    ui::SceneRenderOptions options;
+    options.width = width;
+    options.height = height;
+    if (!iso) options.view = view;
+    options.ortho = args.has("--ortho");
+    options.section = parseSection(args);
     if (args.has("--resolution"))
-      ui::setResolution(state, args.integer("--resolution", 0, kMinResolution, kMaxResolution));
-    if (!editor.waitForPreview(3600.0))
-      throw Error(scene + ": " +
-                  (state.previewError.empty() ? "evaluation did not finish" : state.previewError));
-    if (!iso) editor.camera().setAxisView(view);
-    editor.viewAll();
-    std::vector<uint8_t> pixels = editor.renderViewport(width, height);
-    ui::writePng(output, width, height, pixels);
-    std::printf("wrote %s (%d x %d, %zu splats at resolution %d)\n", output.c_str(), width, height,
-                state.preview->splatCount(), state.preview->resolution);
+      options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
+    const std::string scenePath = args.positional()[0];
+    Scene scene = loadScene(scenePath);  // a bad file fails here with its message
+    if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));
+    BackendChoice backend = chooseBackend(args.text("--backend", "auto"));
+    std::fprintf(stderr, "%s\n", backend.why.c_str());
+    // A GL context without a window (EGL) where there is one; else an invisible window, which
+    // needs a display.
+    std::unique_ptr<ui::HeadlessGl> headless;
+    std::unique_ptr<ui::GlWindow> window;
+    std::string context;
+    try {
+      headless = std::make_unique<ui::HeadlessGl>();
+      context = headless->description();
+    } catch (const Error& e) {
+      std::string why;
+      if (!ui::displayAvailable(&why))
+        throw Error(std::string("strata render: ") + e.what() + "; and no window either: " + why);
+      window = std::make_unique<ui::GlWindow>(64, 64, "strata render", false);
+      context = "invisible window: " + window->description() + " (" + e.what() + ")";
+    }
+    std::fprintf(stderr, "strata: rendering with %s\n", context.c_str());
+    Progress progress;
+    ui::SceneRender render = ui::renderScene(scene, scenePath, backend.backend, options, progress);
+    ui::writePng(output, width, height, render.pixels);
+    std::printf("wrote %s (%d x %d, %zu splats at resolution %d, evaluated in %.0f ms)\n",
+                output.c_str(), width, height, render.splats, render.resolution,
+                render.evaluateSeconds * 1e3);
     return 0;
 #endif
   });

@@ -135,6 +135,33 @@ TEST(Cli, HelpAndNoArgumentsRunTheDemo) {
   EXPECT_NE(demo.output.find("result"), std::string::npos);
 }
 
+// `strata render` needs no display: it renders through EGL (a window only where EGL is missing).
+TEST(Cli, RenderWritesAPngWithoutADisplay) {
+  const std::string png = temp("render.png");
+  std::remove(png.c_str());
+  CliRun r = strata("render " + std::string(STRATA_ASSETS) + "/scenes/demo.strata.json -o " + png +
+                        " --resolution 64 --width 160 --height 100 --section x:0.4",
+                    /*withoutDisplay=*/true);
+  if (r.output.find("has no editor") != std::string::npos) GTEST_SKIP() << r.output;
+  if (r.output.find("headless OpenGL") != std::string::npos) GTEST_SKIP() << "no EGL: " << r.output;
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("rendering with EGL"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("160 x 100"), std::string::npos) << r.output;
+  std::ifstream in(png, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+TEST(Cli, RenderRejectsABadSection) {
+  CliRun r = strata("render " + std::string(STRATA_ASSETS) + "/scenes/demo.strata.json -o " +
+                    temp("bad.png") + " --section w:2");
+  EXPECT_NE(r.code, 0);
+  if (r.output.find("has no editor") != std::string::npos) GTEST_SKIP() << r.output;
+  EXPECT_NE(r.output.find("--section: expected AXIS"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'w:2'"), std::string::npos) << r.output;
+}
+
 }  // namespace
 
 namespace {

@@ -3,6 +3,8 @@
 // `gpu`; without a CUDA device every test skips and says why.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "engine/contour/contour_scene.h"
 #include "engine/io/scene_file.h"
 #include "gpu/cuda_backend.h"
@@ -45,6 +47,16 @@ void expectIdentical(const Scene& scene, const std::shared_ptr<Backend>& cuda, c
   EXPECT_NEAR(a.measure.volume, b.measure.volume, 1e-9 * std::max(1.0, a.measure.volume)) << what;
   EXPECT_NEAR(a.measure.area, b.measure.area, 1e-9 * std::max(1.0, a.measure.area)) << what;
   EXPECT_EQ(a.computed, b.computed);
+
+  // The editor's splats, made on each backend: the same bits in the same order.
+  SplatsHandle p = onCpu.backend().splats(a.root, progress);
+  SplatsHandle q = onGpu.backend().splats(b.root, progress);
+  ASSERT_NE(p->hostData(), nullptr);
+  ASSERT_EQ(q->hostData(), nullptr) << "CUDA splats stay on the device";
+  ASSERT_EQ(p->count(), q->count()) << what;
+  std::vector<Splat> onDevice(q->count());
+  q->copyToHost(onDevice.data());
+  EXPECT_EQ(std::memcmp(p->hostData(), onDevice.data(), p->bytes()), 0) << what << ": splats";
 }
 
 TEST_F(CudaVsCpu, AnalyticBooleansMatchRayByRay) {
