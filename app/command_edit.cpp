@@ -31,7 +31,7 @@ namespace {
 std::vector<std::string> editorValuedOptions() {
   std::vector<std::string> valued = kValuedOptions;
   for (const char* o : {"--width", "--height", "--screenshot", "--view", "--measure-latency",
-                        "--move-leaf", "--section"})
+                        "--move-leaf", "--section", "--measure-frames"})
     valued.push_back(o);
   return valued;
 }
@@ -100,6 +100,39 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
 #endif
 
 #if defined(STRATA_HAS_EDITOR)
+// `strata edit SCENE --measure-frames SECONDS [--resolution N]`: runs the editor's frame loop
+// for SECONDS while the engine thread evaluates the scene (at N), and prints how long the UI
+// thread took per frame (events, panels, splat transfer, drawing; not the idle wait) while the
+// evaluation was running: the UI must keep 60 frames a second (16.7 ms) whatever the engine does.
+int measureFrames(ui::Editor& editor, double seconds, int resolution) {
+  ui::EditorState& state = editor.state();
+  if (resolution > 0) ui::setResolution(state, resolution);
+  std::vector<double> busy;
+  Stopwatch clock;
+  int frames = 0;
+  double busySeconds = 0.0;
+  while (clock.seconds() < seconds) {
+    const double before = clock.seconds();
+    editor.frame();
+    ++frames;
+    if (state.worker.busy) {
+      busy.push_back(state.frameMs);
+      busySeconds += clock.seconds() - before;
+    }
+  }
+  if (busy.empty()) throw Error("--measure-frames: the evaluation finished before a frame ran");
+  std::sort(busy.begin(), busy.end());
+  auto quantile = [&](double q) {
+    return busy[std::min(busy.size() - 1, size_t(q * busy.size()))];
+  };
+  std::printf(
+      "frames while evaluating at %d (%s): %zu over %.1f s; UI thread per frame: median "
+      "%.2f ms, 99%% %.2f ms, worst %.2f ms (%d frames in all)\n",
+      state.document.scene().settings.resolution, state.backendDescription.c_str(), busy.size(),
+      busySeconds, quantile(0.5), quantile(0.99), busy.back(), frames);
+  return 0;
+}
+
 // Sets the editor's backend maker (--backend, --threads) and, for the CUDA backend, the CUDA-GL
 // interop copier of its splats (--no-interop: the host upload path, for comparison).
 void chooseEditorBackend(const CliArgs& args, ui::EditorOptions* options) {
@@ -197,6 +230,11 @@ int runEdit(const std::vector<std::string>& argv) {
     }
     ui::Editor editor(options);
     editor.state().section = parseSection(args);
+    if (args.has("--measure-frames"))
+      return measureFrames(editor, args.number("--measure-frames", 10.0, 0.1, 3600.0),
+                           args.has("--resolution")
+                               ? args.integer("--resolution", 0, kMinResolution, kMaxResolution)
+                               : 0);
     if (args.has("--measure-latency"))
       return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
                             args.text("--move-leaf", ""));

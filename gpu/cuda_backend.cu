@@ -28,10 +28,17 @@ class CudaBackend : public Backend {
     STRATA_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
     name_ = prop.name;
     STRATA_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
-    setAllocationStream(stream_);
   }
+  // Each method orders the calling thread's allocations on stream_ (setAllocationStream). The
+  // stream goes with the backend: device memory released after that (an LDI or splats handle
+  // that outlives its backend, released on this or another thread) must be freed on the legacy
+  // stream, so the destroying thread's allocation stream is reset here. (Other threads that
+  // called into the backend must not outlive it with handles; the editor's worker joins first.)
   ~CudaBackend() override {
-    if (stream_) cudaStreamDestroy(stream_);
+    if (!stream_) return;
+    cudaStreamSynchronize(stream_);
+    if (allocationStream() == stream_) setAllocationStream(nullptr);
+    cudaStreamDestroy(stream_);
   }
 
   std::string description() const override { return "cuda (" + name_ + ")"; }

@@ -149,6 +149,7 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
 }
 
 Editor::~Editor() {
+  state_->preview.reset();    // its splats may be device memory: free them while all is alive
   state_->exportJob.reset();  // cancel and join before the GL side goes
   worker_.reset();
   gl_.reset();

@@ -54,7 +54,7 @@ void drawMainMenu(EditorState& state) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New", "Ctrl+N")) replaceOrAsk(state, {PendingReplace::New, ""});
-    if (ImGui::MenuItem("Open\u2026", "Ctrl+O")) replaceOrAsk(state, {PendingReplace::Open, ""});
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) replaceOrAsk(state, {PendingReplace::Open, ""});
     if (ImGui::BeginMenu("Open recent", !state.recentFiles.empty())) {
       for (const auto& f : state.recentFiles)
         if (ImGui::MenuItem(f.c_str())) replaceOrAsk(state, {PendingReplace::Open, f});
@@ -62,14 +62,14 @@ void drawMainMenu(EditorState& state) {
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Save", "Ctrl+S")) save(state);
-    if (ImGui::MenuItem("Save as\u2026", "Ctrl+Shift+S"))
+    if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
       state.dialog.open(DialogPurpose::SaveAs, state.document.path());
     ImGui::Separator();
-    if (ImGui::MenuItem("Import mesh\u2026")) {
+    if (ImGui::MenuItem("Import mesh...")) {
       state.importPlacement.reset();
       state.dialog.open(DialogPurpose::ImportMesh, "");
     }
-    if (ImGui::MenuItem("Export\u2026", "Ctrl+E"))
+    if (ImGui::MenuItem("Export...", "Ctrl+E"))
       state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) replaceOrAsk(state, {PendingReplace::Quit, ""});

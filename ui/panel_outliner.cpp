@@ -55,9 +55,10 @@ void contextMenu(EditorState& state, const NodePtr& node) {
   if (ImGui::MenuItem("Delete", "Del")) deleteSelection(state);
   ImGui::Separator();
   if (ImGui::BeginMenu("Group as")) {
-    if (ImGui::MenuItem("\u222A Union")) groupSelection(state, NodeKind::Union);
-    if (ImGui::MenuItem("\u2212 Difference")) groupSelection(state, NodeKind::Difference);
-    if (ImGui::MenuItem("\u2229 Intersection")) groupSelection(state, NodeKind::Intersection);
+    for (NodeKind k : {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection}) {
+      const std::string label = std::string(kindGlyph(k)) + " " + kindName(k);
+      if (ImGui::MenuItem(label.c_str())) groupSelection(state, k);
+    }
     ImGui::EndMenu();
   }
   if (isOperation(node->kind) && ImGui::BeginMenu("Operation")) {
@@ -207,7 +208,7 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   NodeId target = primarySelection(state);
   NodePtr targetNode = target ? findNode(state.document.root(), target) : nullptr;
-  ImGui::TextDisabled("click: adds %s %s; or drag into the view or the tree",
+  ImGui::TextDisabled("click: add %s %s (or drag)",
                       targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
                       targetNode ? targetNode->name.c_str() : "the root");
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
@@ -220,11 +221,12 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     if (ImGui::Button(label, ImVec2(w, 0))) addPrimitive(state, primitives[i]);
     paletteDragSource(int(primitives[i]), label);
   }
-  if (ImGui::Button("\u25C6 Import mesh\u2026", ImVec2(-1, 0))) {
+  const std::string importLabel = std::string(kindGlyph(NodeKind::Mesh)) + " Import mesh...";
+  if (ImGui::Button(importLabel.c_str(), ImVec2(-1, 0))) {
     state.importPlacement.reset();
     state.dialog.open(DialogPurpose::ImportMesh, "");
   }
-  paletteDragSource(kImportMeshItem, "\u25C6 mesh\u2026");
+  paletteDragSource(kImportMeshItem, importLabel.c_str());
   ImGui::Separator();
   ImGui::TextDisabled("empty operation");
   const NodeKind ops[] = {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection};

@@ -102,7 +102,7 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (gridAt(state, scene.settings.resolution, &grid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitShort(scene.settings.unit));
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
-    ImGui::Text("root LDI \u2248 %s",
+    ImGui::Text("root LDI ~ %s",
                 bytesText(estimateBytes(state, grid, scene.settings.resolution)).c_str());
   } else {
     ImGui::TextDisabled("(empty scene: no grid)");

@@ -87,8 +87,8 @@ std::vector<uint8_t> renderInEditor(std::function<std::shared_ptr<Backend>()> ma
   options.makeBackend = std::move(makeBackend);
   if (interop) options.makeSplatCopier = makeCudaGlSplatCopier;
   options.visible = false;
-  options.width = 640;
-  options.height = 400;
+  options.width = 1280;  // room for the panels around the view
+  options.height = 800;
   ui::Editor editor(options);
   ui::EditorState& state = editor.state();
   NodeId block = ui::addPrimitive(state, NodeKind::Box);
