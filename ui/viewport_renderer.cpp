@@ -110,8 +110,11 @@ ViewportRenderer::~ViewportRenderer() {
 }
 
 bool ViewportRenderer::splatBufferFits(size_t count) const {
+  // Grows when needed; shrinks only from a large buffer that is mostly unused, so that
+  // alternating coarse and full previews do not reallocate (and re-register with CUDA) each time.
+  constexpr size_t kShrinkAbove = size_t(1) << 22;  // splats (80 MiB)
   return splatCapacity_ > 0 && count <= splatCapacity_ &&
-         (splatCapacity_ <= kMinSplatCapacity || count * 4 >= splatCapacity_);
+         (splatCapacity_ <= kShrinkAbove || count * 4 >= splatCapacity_);
 }
 
 bool ViewportRenderer::reserveSplats(size_t count) {

@@ -217,6 +217,22 @@ TEST(EditorWindow, DifferenceShowsTheHoleFromAbove) {
   EXPECT_FALSE(bluish(at(image, w, int(cx + half * 0.3), h / 2)));  // inside the hole
 }
 
+// The first and last pixel of row `y` where `match` holds (-1, -1 when none does).
+struct Span {
+  int first = -1, last = -1;
+  double centre() const { return (first + last) * 0.5 + 0.5; }
+};
+template <typename Match>
+Span spanInRow(const std::vector<uint8_t>& image, int width, int y, Match match) {
+  Span span;
+  for (int x = 0; x < width; ++x)
+    if (match(at(image, width, x, y))) {
+      if (span.first < 0) span.first = x;
+      span.last = x;
+    }
+  return span;
+}
+
 // A red sphere at the origin and a blue box at x = 3, resolution 48, no grid, nothing selected.
 struct SphereAndBox {
   NodeId sphere = 0, box = 0;
@@ -251,13 +267,11 @@ TEST(EditorWindow, PickingReadsTheLeafAndThePointUnderTheCursor) {
   const int w = 320, h = 200;
   const std::vector<uint8_t> image = editor.renderViewport(w, h);
   const double cellSize = state.preview->stats.grid.h;
-  int redX = -1, blueX = -1;
-  for (int x = 0; x < w; ++x) {
-    if (redX < 0 && reddish(at(image, w, x, h / 2))) redX = x + 6;
-    if (bluish(at(image, w, x, h / 2))) blueX = x - 6;
-  }
-  ASSERT_GE(redX, 0);
-  ASSERT_GE(blueX, 0);
+  const Span redSpan = spanInRow(image, w, h / 2, reddish);
+  const Span blueSpan = spanInRow(image, w, h / 2, bluish);
+  ASSERT_GE(redSpan.first, 0);
+  ASSERT_GE(blueSpan.first, 0);
+  const int redX = redSpan.first + 6, blueX = blueSpan.last - 6;  // inside each silhouette
   std::optional<PickHit> red = editor.pickViewport(w, h, redX + 0.5, h / 2 + 0.5);
   ASSERT_TRUE(red);
   EXPECT_EQ(red->leaf, scene.sphere);
@@ -284,14 +298,9 @@ TEST(EditorWindow, SectionPlaneCutsAndCapsTheSolid) {
   editor.viewAll();
   const int w = 320, h = 200;
   const std::vector<uint8_t> whole = editor.renderViewport(w, h);
-  int redX = -1, redEnd = -1;
-  for (int x = 0; x < w; ++x)
-    if (reddish(at(whole, w, x, h / 2))) {
-      if (redX < 0) redX = x;
-      redEnd = x;
-    }
-  ASSERT_GE(redX, 0);
-  const double sphereX = (redX + redEnd) * 0.5 + 0.5;
+  const Span red = spanInRow(whole, w, h / 2, reddish);
+  ASSERT_GE(red.first, 0);
+  const double sphereX = red.centre();
   std::optional<PickHit> back = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
   ASSERT_TRUE(back);
   EXPECT_NEAR(back->position.y, 0.5, 1.5 * cellSize);  // the sphere's back
@@ -309,7 +318,7 @@ TEST(EditorWindow, SectionPlaneCutsAndCapsTheSolid) {
   const std::vector<uint8_t> cut = editor.renderViewport(w, h);
   EXPECT_TRUE(reddish(at(cut, w, int(sphereX), h / 2))) << "the cap has the leaf's colour";
   // The cap is filled: every pixel inside the cut disc (radius 0.5, less a cell) is red.
-  const double pixelsPerUnit = (redEnd - redX + 1) / 1.0;
+  const double pixelsPerUnit = (red.last - red.first + 1) / 1.0;
   const int r = int((0.5 - cellSize) * pixelsPerUnit);
   int holes = 0, inside = 0;
   for (int dy = -r; dy <= r; ++dy)
@@ -339,15 +348,10 @@ TEST(EditorWindow, PaletteDropLandsOnTheSurfaceOrTheGround) {
   editor.viewAll();
   const int w = 320, h = 200;
   const std::vector<uint8_t> image = editor.renderViewport(w, h);
-  int blueX = -1, blueEnd = -1;
-  for (int x = 0; x < w; ++x)
-    if (bluish(at(image, w, x, h / 2))) {
-      if (blueX < 0) blueX = x;
-      blueEnd = x;
-    }
-  ASSERT_GE(blueX, 0);
+  const Span blue = spanInRow(image, w, h / 2, bluish);
+  ASSERT_GE(blue.first, 0);
   // On the box's top face (z = 0.5).
-  Placement top = editor.placementInViewport(w, h, (blueX + blueEnd) * 0.5 + 0.5, h / 2 + 0.5);
+  Placement top = editor.placementInViewport(w, h, blue.centre(), h / 2 + 0.5);
   EXPECT_FALSE(top.onGround);
   EXPECT_NEAR(top.point.z, 0.5, 1.5 * state.preview->stats.grid.h);
   EXPECT_NEAR(top.point.x, 3.0, 0.25);  // within the box's top (half width 0.5)
