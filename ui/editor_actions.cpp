@@ -226,6 +226,28 @@ void duplicateSelection(EditorState& state) {
   if (!copies.empty()) state.selection = copies;
 }
 
+void instanceSelection(EditorState& state) {
+  if (state.selection.empty()) return;
+  std::vector<NodeId> instances;
+  state.document.beginInteraction();
+  for (NodeId id : state.selection) {
+    guarded(state, [&] {
+      NodePtr original = findNode(state.document.root(), id);
+      NodeLocation where;
+      if (!original || !locateNode(state.document.root(), id, &where) || !where.parent)
+        throw Error("the root cannot be instanced: select a part of the tree");
+      auto instance = std::make_shared<Node>();
+      instance->kind = NodeKind::Instance;
+      instance->instanceOf = id;
+      instance->name = original->name + " instance";
+      instance->color = original->color;
+      instances.push_back(state.document.addSubtree(instance, where.parent->id, where.index + 1));
+    });
+  }
+  state.document.endInteraction();
+  if (!instances.empty()) state.selection = instances;
+}
+
 void toggleSelectionHidden(EditorState& state) {
   if (state.selection.empty()) return;
   bool allHidden = true;

@@ -36,6 +36,10 @@ void dropPaletteItem(EditorState& state, int item, NodeId target);
 
 void deleteSelection(EditorState& state);
 void duplicateSelection(EditorState& state);
+// Adds an instance of each selected node (a live copy that follows every edit of the original,
+// with its own transform; it starts where the original is) right after it in its parent, and
+// selects the instances. One undo step. The root cannot be instanced.
+void instanceSelection(EditorState& state);
 // Hides the selection, or shows it when every selected node is hidden.
 void toggleSelectionHidden(EditorState& state);
 void groupSelection(EditorState& state, NodeKind kind);

@@ -83,6 +83,7 @@ void drawMainMenu(EditorState& state) {
     ImGui::Separator();
     const bool any = !state.selection.empty();
     if (ImGui::MenuItem("Duplicate", "Ctrl+D", false, any)) duplicateSelection(state);
+    if (ImGui::MenuItem("Instance", "Alt+D", false, any)) instanceSelection(state);
     if (ImGui::MenuItem("Delete", "Del", false, any)) deleteSelection(state);
     if (ImGui::MenuItem("Hide / show", "H", false, any)) toggleSelectionHidden(state);
     if (ImGui::MenuItem("Rename", "F2", false, any)) state.renaming = primarySelection(state);
@@ -133,6 +134,7 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_Z, ctrl | shift) || keyPressed(state, GLFW_KEY_Y, ctrl))
     redo(state);
   if (keyPressed(state, GLFW_KEY_D, ctrl)) duplicateSelection(state);
+  if (keyPressed(state, GLFW_KEY_D, GLFW_MOD_ALT)) instanceSelection(state);
   if (keyPressed(state, GLFW_KEY_G, ctrl)) groupSelection(state, NodeKind::Union);
   if (keyPressed(state, GLFW_KEY_DELETE) || keyPressed(state, GLFW_KEY_BACKSPACE))
     deleteSelection(state);

@@ -52,6 +52,7 @@ void contextMenu(EditorState& state, const NodePtr& node) {
   if (ImGui::MenuItem("Rename", "F2")) state.renaming = node->id;
   if (ImGui::MenuItem(node->visible ? "Hide" : "Show", "H")) toggleSelectionHidden(state);
   if (ImGui::MenuItem("Duplicate", "Ctrl+D")) duplicateSelection(state);
+  if (ImGui::MenuItem("Instance", "Alt+D")) instanceSelection(state);
   if (ImGui::MenuItem("Delete", "Del")) deleteSelection(state);
   ImGui::Separator();
   if (ImGui::BeginMenu("Group as")) {

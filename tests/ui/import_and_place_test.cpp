@@ -100,5 +100,60 @@ TEST(ImportAndPlace, DroppedPrimitiveIsCentredOnTheSurfacePointOrRestsOnTheGroun
   EXPECT_TRUE(findNode(state.document.root(), onSurface));
 }
 
+TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {
+  EditorState state;
+  NodeId box = addPrimitive(state, NodeKind::Box);
+  NodeId ball = addPrimitive(state, NodeKind::Sphere);  // beside the box
+  state.selection = {box};
+  instanceSelection(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId instance = state.selection[0];
+  NodePtr node = findNode(state.document.root(), instance);
+  ASSERT_TRUE(node);
+  EXPECT_EQ(node->kind, NodeKind::Instance);
+  EXPECT_EQ(node->instanceOf, box);
+  // Right after the original in its parent.
+  const auto& siblings = state.document.root()->children;
+  ASSERT_EQ(siblings.size(), 3u);
+  EXPECT_EQ(siblings[0]->id, box);
+  EXPECT_EQ(siblings[1]->id, instance);
+  EXPECT_EQ(siblings[2]->id, ball);
+  // It shows the original, and follows its edits; moving it moves only the instance.
+  EXPECT_EQ(selectionBounds(state.document.root(), {instance}).size(),
+            selectionBounds(state.document.root(), {box}).size());
+  ASSERT_TRUE(guarded(state, [&] {
+    PrimitiveParams p;
+    p.size = glm::dvec3(3.0, 1.0, 1.0);
+    state.document.setParams(box, p);
+    Transform t;
+    t.translate = glm::dvec3(0.0, 5.0, 0.0);
+    state.document.setTransform(instance, t);
+  }));
+  const Bounds moved = selectionBounds(state.document.root(), {instance});
+  EXPECT_NEAR(moved.size().x, 3.0, 1e-9);
+  EXPECT_NEAR(moved.center().y, 5.0, 1e-9);
+  EXPECT_NEAR(selectionBounds(state.document.root(), {box}).center().y, 0.0, 1e-9);
+  // The original cannot be deleted while the instance uses it; undo removes the instance.
+  state.selection = {box};
+  deleteSelection(state);
+  EXPECT_TRUE(findNode(state.document.root(), box));
+  undo(state);  // the move
+  undo(state);  // the size
+  undo(state);  // the instance
+  EXPECT_FALSE(findNode(state.document.root(), instance));
+  EXPECT_TRUE(findNode(state.document.root(), box));
+}
+
+TEST(Instances, TheRootCannotBeInstanced) {
+  EditorState state;
+  addPrimitive(state, NodeKind::Box);
+  state.selection = {state.document.root()->id};
+  const uint64_t revision = state.document.revision();
+  instanceSelection(state);
+  EXPECT_EQ(state.document.revision(), revision);
+  ASSERT_FALSE(state.log.empty());
+  EXPECT_NE(state.log.back().text.find("root cannot be instanced"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace strata::ui
