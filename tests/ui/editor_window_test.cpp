@@ -233,14 +233,19 @@ Span spanInRow(const std::vector<uint8_t>& image, int width, int y, Match match)
   return span;
 }
 
-// A red sphere at the origin and a blue box at x = 3, resolution 48, no grid, nothing selected.
-struct SphereAndBox {
-  NodeId sphere = 0, box = 0;
-  explicit SphereAndBox(EditorState& state) {
-    sphere = addPrimitive(state, NodeKind::Sphere);  // radius 0.5
+// A red sphere (radius 0.5) at the origin and a blue unit box at x = 3, evaluated at 48, no
+// grid, nothing selected; look() renders it 320 x 200 from an axis.
+class SphereAndBox : public testing::Test {
+ protected:
+  static constexpr int w = 320, h = 200;
+  void SetUp() override {
+    REQUIRE_DISPLAY();
+    editor = std::make_unique<Editor>(testOptions());
+    EditorState& state = editor->state();
+    sphere = addPrimitive(state, NodeKind::Sphere);
     clearSelection(state);
     box = addPrimitive(state, NodeKind::Box);
-    EXPECT_TRUE(guarded(state, [&] {
+    ASSERT_TRUE(guarded(state, [&] {
       PrimitiveParams cube;
       cube.size = glm::dvec3(1.0);
       state.document.setParams(box, cube);
@@ -253,55 +258,48 @@ struct SphereAndBox {
     clearSelection(state);
     setResolution(state, 48);
     state.showGrid = false;
+    ASSERT_TRUE(editor->waitForPreview(60.0)) << state.previewError;
+    cellSize = state.preview->stats.grid.h;
   }
+  std::vector<uint8_t> look(AxisView view, bool ortho) {
+    editor->camera().setAxisView(view);
+    editor->camera().ortho = ortho;
+    editor->viewAll();
+    return editor->renderViewport(w, h);
+  }
+  std::unique_ptr<Editor> editor;
+  NodeId sphere = 0, box = 0;
+  double cellSize = 0.0;
 };
 
-TEST(EditorWindow, PickingReadsTheLeafAndThePointUnderTheCursor) {
-  REQUIRE_DISPLAY();
-  Editor editor(testOptions());
-  EditorState& state = editor.state();
-  SphereAndBox scene(state);
-  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
-  editor.camera().setAxisView(AxisView::Front);  // looking along +y
-  editor.viewAll();
-  const int w = 320, h = 200;
-  const std::vector<uint8_t> image = editor.renderViewport(w, h);
-  const double cellSize = state.preview->stats.grid.h;
+TEST_F(SphereAndBox, PickingReadsTheLeafAndThePointUnderTheCursor) {
+  const std::vector<uint8_t> image = look(AxisView::Front, false);  // looking along +y
   const Span redSpan = spanInRow(image, w, h / 2, reddish);
   const Span blueSpan = spanInRow(image, w, h / 2, bluish);
   ASSERT_GE(redSpan.first, 0);
   ASSERT_GE(blueSpan.first, 0);
   const int redX = redSpan.first + 6, blueX = blueSpan.last - 6;  // inside each silhouette
-  std::optional<PickHit> red = editor.pickViewport(w, h, redX + 0.5, h / 2 + 0.5);
+  std::optional<PickHit> red = editor->pickViewport(w, h, redX + 0.5, h / 2 + 0.5);
   ASSERT_TRUE(red);
-  EXPECT_EQ(red->leaf, scene.sphere);
+  EXPECT_EQ(red->leaf, sphere);
   EXPECT_FALSE(red->cap);
   EXPECT_NEAR(glm::length(red->position), 0.5, 1.5 * cellSize);  // on the sphere
   EXPECT_LT(red->position.y, 0.0);                               // its front
-  std::optional<PickHit> blue = editor.pickViewport(w, h, blueX + 0.5, h / 2 + 0.5);
+  std::optional<PickHit> blue = editor->pickViewport(w, h, blueX + 0.5, h / 2 + 0.5);
   ASSERT_TRUE(blue);
-  EXPECT_EQ(blue->leaf, scene.box);
+  EXPECT_EQ(blue->leaf, box);
   EXPECT_NEAR(blue->position.y, -0.5, 1.5 * cellSize);  // the box's front face
-  EXPECT_FALSE(editor.pickViewport(w, h, 2.5, 2.5)) << "a corner shows no surface";
+  EXPECT_FALSE(editor->pickViewport(w, h, 2.5, 2.5)) << "a corner shows no surface";
 }
 
-TEST(EditorWindow, SectionPlaneCutsAndCapsTheSolid) {
-  REQUIRE_DISPLAY();
-  Editor editor(testOptions());
-  EditorState& state = editor.state();
-  SphereAndBox scene(state);
-  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
-  const double cellSize = state.preview->stats.grid.h;
+TEST_F(SphereAndBox, SectionPlaneCutsAndCapsTheSolid) {
+  EditorState& state = editor->state();
   // Look from +y at the sphere's back; the plane y = 0 keeps the half towards -y.
-  editor.camera().setAxisView(AxisView::Back);
-  editor.camera().ortho = true;
-  editor.viewAll();
-  const int w = 320, h = 200;
-  const std::vector<uint8_t> whole = editor.renderViewport(w, h);
+  const std::vector<uint8_t> whole = look(AxisView::Back, true);
   const Span red = spanInRow(whole, w, h / 2, reddish);
   ASSERT_GE(red.first, 0);
   const double sphereX = red.centre();
-  std::optional<PickHit> back = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
+  std::optional<PickHit> back = editor->pickViewport(w, h, sphereX, h / 2 + 0.5);
   ASSERT_TRUE(back);
   EXPECT_NEAR(back->position.y, 0.5, 1.5 * cellSize);  // the sphere's back
   EXPECT_FALSE(back->cap);
@@ -310,12 +308,12 @@ TEST(EditorWindow, SectionPlaneCutsAndCapsTheSolid) {
   state.section.on = true;
   state.section.axis = 1;
   state.section.at = (0.0 - bounds.min.y) / (bounds.max.y - bounds.min.y);
-  std::optional<PickHit> cap = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
+  std::optional<PickHit> cap = editor->pickViewport(w, h, sphereX, h / 2 + 0.5);
   ASSERT_TRUE(cap);
   EXPECT_TRUE(cap->cap);
-  EXPECT_EQ(cap->leaf, scene.sphere);
+  EXPECT_EQ(cap->leaf, sphere);
   EXPECT_NEAR(cap->position.y, 0.0, 1e-6);  // on the plane
-  const std::vector<uint8_t> cut = editor.renderViewport(w, h);
+  const std::vector<uint8_t> cut = editor->renderViewport(w, h);
   EXPECT_TRUE(reddish(at(cut, w, int(sphereX), h / 2))) << "the cap has the leaf's colour";
   // The cap is filled: every pixel inside the cut disc (radius 0.5, less a cell) is red.
   const double pixelsPerUnit = (red.last - red.first + 1) / 1.0;
@@ -331,33 +329,25 @@ TEST(EditorWindow, SectionPlaneCutsAndCapsTheSolid) {
   EXPECT_EQ(holes, 0);
   // Flipped, the plane keeps the far half: the view shows its outside, not a cap.
   state.section.flip = true;
-  std::optional<PickHit> far = editor.pickViewport(w, h, sphereX, h / 2 + 0.5);
+  std::optional<PickHit> far = editor->pickViewport(w, h, sphereX, h / 2 + 0.5);
   ASSERT_TRUE(far);
   EXPECT_FALSE(far->cap);
   EXPECT_NEAR(far->position.y, 0.5, 1.5 * cellSize);
 }
 
-TEST(EditorWindow, PaletteDropLandsOnTheSurfaceOrTheGround) {
-  REQUIRE_DISPLAY();
-  Editor editor(testOptions());
-  EditorState& state = editor.state();
-  SphereAndBox scene(state);
-  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
-  editor.camera().setAxisView(AxisView::Top);  // looking down -z
-  editor.camera().ortho = true;
-  editor.viewAll();
-  const int w = 320, h = 200;
-  const std::vector<uint8_t> image = editor.renderViewport(w, h);
+TEST_F(SphereAndBox, PaletteDropLandsOnTheSurfaceOrTheGround) {
+  EditorState& state = editor->state();
+  const std::vector<uint8_t> image = look(AxisView::Top, true);  // looking down -z
   const Span blue = spanInRow(image, w, h / 2, bluish);
   ASSERT_GE(blue.first, 0);
   // On the box's top face (z = 0.5).
-  Placement top = editor.placementInViewport(w, h, blue.centre(), h / 2 + 0.5);
+  Placement top = editor->placementInViewport(w, h, blue.centre(), h / 2 + 0.5);
   EXPECT_FALSE(top.onGround);
-  EXPECT_NEAR(top.point.z, 0.5, 1.5 * state.preview->stats.grid.h);
+  EXPECT_NEAR(top.point.z, 0.5, 1.5 * cellSize);
   EXPECT_NEAR(top.point.x, 3.0, 0.25);  // within the box's top (half width 0.5)
   EXPECT_NEAR(top.point.y, 0.0, 0.25);
   // Beside everything: the ground plane z = 0.
-  Placement ground = editor.placementInViewport(w, h, 4.5, 4.5);
+  Placement ground = editor->placementInViewport(w, h, 4.5, 4.5);
   EXPECT_TRUE(ground.onGround);
   EXPECT_EQ(ground.point.z, 0.0);
   NodeId cone = addPrimitiveAt(state, NodeKind::Cone, ground);
