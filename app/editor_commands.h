@@ -13,8 +13,9 @@ namespace strata {
 // the scene on the command line instead, as `strata eval` does.
 int runEdit(const std::vector<std::string>& args);
 
-// `strata render SCENE -o shot.png [--width W] [--height H] [--resolution N] [--view V]`: the
-// editor's viewport of the whole scene, rendered in an invisible window and written as PNG.
+// `strata render SCENE -o shot.png [--width W] [--height H] [--resolution N] [--view V]
+// [--ortho] [--section AXIS[:AT][:flip]]`: the editor's viewport of the whole scene, rendered
+// headless through EGL (an invisible window where EGL is missing) and written as PNG.
 // V: iso (default), front, back, right, left, top, bottom.
 int runRender(const std::vector<std::string>& args);
 

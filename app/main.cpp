@@ -1,4 +1,4 @@
-// strata: the command line (and, once the editor lands, the editor) on the engine's code path.
+// strata: the command line and the editor on the engine's code path.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -38,7 +38,17 @@ const char* kUsage =
     "  --margin M        boolean: grid margin as a fraction of the bounds (default 0.05)\n"
     "  -q, --quiet       no progress bar or backend line\n"
     "\n"
-    "Mesh files: .obj .stl (ascii or binary) .ply (ascii or binary) .off\n"
+    "Editor and render options:\n"
+    "  --width W --height H       window or image size in pixels\n"
+    "  --view V                   render: iso, front, back, right, left, top, bottom\n"
+    "  --ortho                    render: orthographic\n"
+    "  --section AXIS[:AT][:flip] cut across x, y or z at the fraction AT of the bounds, capped\n"
+    "  --screenshot F.png         edit: write the whole window once the preview settled, exit\n"
+    "  --no-interop               edit: splats through the host instead of CUDA-GL interop\n"
+    "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
+    "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
+    "\n"
+    "Mesh files: .obj .stl (ascii or binary) .ply (ascii or binary) .off .3mf\n"
     "Ctrl-C cancels cleanly; nothing half-written is left behind.\n";
 }  // namespace
 

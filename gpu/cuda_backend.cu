@@ -56,7 +56,11 @@ class CudaBackend : public Backend {
     setAllocationStream(stream_);
     progress.check();
     std::vector<const DeviceLdi*> inputs;
-    for (const auto& c : children) inputs.push_back(&deviceLdi(c));
+    for (const auto& c : children) {
+      inputs.push_back(&deviceLdi(c));
+      // As the CPU twin: children on another grid would be read past their rays' ends.
+      if (!(inputs.back()->grid() == grid)) throw Error("combining LDIs of different grids");
+    }
     return combineOnDevice(op, inputs, grid, stream_);
   }
 

@@ -22,6 +22,7 @@ uniform float cellSize;   // h, scene units
 uniform float splatRadius;  // in cells, across the ray axis
 uniform sampler2D leafTexture;  // per leaf id: rgb colour (linear), a = 1 when selected
 uniform int leafTextureWidth;
+uniform int leafCount;  // entries in leafTexture; a newer document may have fewer leaves
 uniform bool sectionOn;
 uniform vec4 sectionPlane;  // unit normal (xyz) and offset (w), scene units
 
@@ -85,7 +86,8 @@ void main() {
   vWorld = surfelPosition + offset;
   vLeaf = leaf;
   gl_Position = viewProjection * vec4(vWorld, 1.0);
-  ivec2 texel = ivec2(int(leaf) % leafTextureWidth, int(leaf) / leafTextureWidth);
+  int entry = min(int(leaf), leafCount - 1);  // texelFetch outside the texture is undefined
+  ivec2 texel = ivec2(entry % leafTextureWidth, entry / leafTextureWidth);
   vec4 leafData = texelFetch(leafTexture, texel, 0);
   vColor = leafData.rgb;
   vSelected = leafData.a;

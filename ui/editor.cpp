@@ -395,8 +395,11 @@ bool Editor::frame() {
   for (bool down : io.MouseDown) input = input || down;
   for (bool down : io.KeysDown) input = input || down;
   if (input) activeUntil_ = state_->now + 0.5;
-  const bool working = state_->worker.busy || state_->dialog.isOpen() ||
-                       (state_->exportJob && state_->exportJob->status().running);
+  // An edit made since the last frame without input (a dialog's result, a script, a test) is
+  // sent to the worker before sleeping: its result wakes the loop (glfwPostEmptyEvent).
+  requestPreviewIfNeeded();
+  const bool working =
+      state_->worker.busy || (state_->exportJob && state_->exportJob->status().running);
   releaseHeldKeys();
   if (state_->now < activeUntil_)
     glfwPollEvents();

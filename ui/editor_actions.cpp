@@ -178,12 +178,6 @@ NodeId addOperation(EditorState& state, NodeKind kind) {
   return id;
 }
 
-NodeId importMesh(EditorState& state, const std::string& path) {
-  PendingImport import;
-  import.path = path;
-  return importMesh(state, import);
-}
-
 NodeId importMesh(EditorState& state, const PendingImport& import) {
   NodeId id = 0;
   std::string why;
@@ -332,10 +326,8 @@ bool openDocument(EditorState& state, const std::string& path) {
 bool openTemplate(EditorState& state, const std::string& path) {
   return guarded(state, [&] {
     std::vector<std::string> warnings;
-    Document original = Document::open(path, &warnings);
-    Scene scene = original.scene();
-    scene.root = absoluteMeshPaths(scene.root, fs::path(path).parent_path().string());
-    replaceDocument(state, Document(std::move(scene)));
+    Document original = Document::open(path, &warnings);  // mesh paths absolute
+    replaceDocument(state, Document(original.scene()));
     for (const auto& w : warnings) logWarning(state, w);
     logInfo(state, "opened a copy of " + path + " (Save asks where to keep it)");
   });
@@ -379,7 +371,6 @@ void startExport(EditorState& state, const std::string& path, int resolution) {
     if (!state.makeBackend) throw Error("no backend to export with");
     state.exportJob = std::make_unique<ExportJob>(state.document.snapshot(), path, resolution,
                                                   state.makeBackend());
-    state.exportPath = path;
     logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution));
   });
 }

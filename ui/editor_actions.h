@@ -28,7 +28,6 @@ NodeId addOperation(EditorState& state, NodeKind kind);
 NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placement);
 // Adds a mesh file under the primary selection (as addPrimitive), with the import options
 // (unit, up axis) and optional placement. One undo step.
-NodeId importMesh(EditorState& state, const std::string& path);
 NodeId importMesh(EditorState& state, const PendingImport& import);
 // A palette item dropped onto outliner row `target`: added into it (an operation) or beside it
 // (a leaf). kImportMeshItem opens the file dialog for it.

@@ -31,7 +31,7 @@ struct LogLine {
 
 // Something that replaces the document, held back while the user decides about unsaved changes.
 struct PendingReplace {
-  enum Kind { New, Open, Recover, Quit } kind = New;
+  enum Kind { New, Open, Quit } kind = New;
   std::string path;
 };
 
@@ -95,14 +95,12 @@ struct EditorState {
   bool showGrid = true;
   SectionState section;
   bool showDiagnostics = false;
-  bool showDemoWindow = false;
 
   // Jobs and dialogs.
   std::unique_ptr<ExportJob> exportJob;
-  std::string exportPath;
-  int exportResolution = 0;
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
+  std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds
   NodeId renaming = 0;                           // outliner row being renamed
   std::optional<PendingImport> pendingImport;    // the import dialog is open for it
   std::optional<Placement> importPlacement;      // for the mesh being chosen (palette drag)

@@ -78,7 +78,6 @@ class EngineWorker {
   // them (the UI copies device splats through CUDA-GL interop). Any thread.
   void setHostSplats(bool host) { hostSplats_ = host; }
   const std::string& backendDescription() const { return backendDescription_; }
-  int coarseResolution() const { return coarse_; }
 
  private:
   struct Request {

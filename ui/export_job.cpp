@@ -3,6 +3,7 @@
 #include <new>
 
 #include "engine/contour/contour_scene.h"
+#include "engine/eval/fallback.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"
@@ -49,8 +50,13 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, std::shared_ptr<Backend>
     options.resolution = resolution;
     MeshCheck check;
     {
+      // Out of memory: smaller tiles, then the CPU, as on the command line (fallback.h).
       Evaluator evaluator(backend);
-      ExportMesh mesh = contourScene(*scene, evaluator, options, *progress_);
+      ExportMesh mesh = contourWithFallback(*scene, evaluator, options, *progress_, nullptr,
+                                            [&](const std::string& line) {
+                                              std::lock_guard<std::mutex> lock(mutex_);
+                                              status_.notice = line;
+                                            });
       writeMeshFile(path, mesh, progress_.get());
     }
     progress_->report("check", 0.0);

@@ -27,6 +27,7 @@ struct ExportStatus {
   std::string stage;
   double fraction = 0.0;
   std::string error;
+  std::string notice;  // a fallback taken (smaller tiles, the CPU), "" when none
   std::string path;
   MeshCheck check;  // of the file as written (valid when succeeded)
   double seconds = 0.0;

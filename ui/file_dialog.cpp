@@ -1,10 +1,17 @@
 #include "ui/file_dialog.h"
 
+#include <fcntl.h>
 #include <imgui.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 namespace strata::ui {
 namespace {
@@ -68,22 +75,24 @@ const char* dialogTitle(DialogPurpose purpose) {
 
 FileDialog::FileDialog() {
   const char* forced = std::getenv("STRATA_FILE_DIALOG");  // "built-in" to skip the tools
-  if (forced && std::strcmp(forced, "built-in") == 0)
-    tool_ = "built-in";
-  else if (programInstalled("zenity"))
-    tool_ = "zenity";
-  else if (programInstalled("kdialog"))
-    tool_ = "kdialog";
-  else
-    tool_ = "built-in";
+  forcedBuiltIn_ = forced && std::strcmp(forced, "built-in") == 0;
 }
 
 FileDialog::~FileDialog() {
-  if (helper_.joinable()) helper_.detach();  // a native dialog left open dies with the process
+  if (!external_) return;
+  std::lock_guard<std::mutex> lock(external_->mutex);
+  if (!external_->done && external_->pid > 0) kill(external_->pid, SIGTERM);
+  // The helper thread holds its own reference to the shared state; it reaps the child and ends.
 }
 
 void FileDialog::open(DialogPurpose purpose, const std::string& suggestion) {
   if (open_) return;
+  if (tool_.empty()) {
+    tool_ = forcedBuiltIn_                ? "built-in"
+            : programInstalled("zenity")  ? "zenity"
+            : programInstalled("kdialog") ? "kdialog"
+                                          : "built-in";
+  }
   open_ = true;
   purpose_ = purpose;
   hasChosen_ = false;
@@ -103,34 +112,58 @@ void FileDialog::open(DialogPurpose purpose, const std::string& suggestion) {
               shellQuote(suggestion.empty() ? "." : suggestion) + " " + kdialogFilter(purpose) +
               " --title " + shellQuote(dialogTitle(purpose));
   }
-  if (helper_.joinable()) helper_.join();
-  helperDone_ = false;
-  helper_ = std::thread([this, command] { runExternal(command + " 2>/dev/null"); });
+  startExternal(command);
 }
 
-void FileDialog::runExternal(std::string command) {
-  std::string out;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[4096];
-    size_t n;
-    while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
-    pclose(pipe);
+void FileDialog::startExternal(const std::string& command) {
+  auto state = std::make_shared<External>();
+  external_ = state;
+  int fds[2];
+  pid_t pid = -1;
+  if (pipe(fds) == 0) {
+    pid = fork();
+    if (pid == 0) {
+      close(fds[0]);
+      dup2(fds[1], 1);
+      int devnull = ::open("/dev/null", O_WRONLY);
+      if (devnull >= 0) dup2(devnull, 2);
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(fds[1]);
+    if (pid < 0) close(fds[0]);
   }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  std::lock_guard<std::mutex> lock(mutex_);
-  helperResult_ = out;
-  helperDone_ = true;
+  if (pid < 0) {  // no process: the dialog closes as cancelled
+    std::lock_guard<std::mutex> lock(state->mutex);
+    state->done = true;
+    return;
+  }
+  state->pid = pid;
+  std::thread([state, fd = fds[0]] {
+    std::string out;
+    char buffer[4096];
+    ssize_t n;
+    while ((n = read(fd, buffer, sizeof(buffer))) > 0) out.append(buffer, size_t(n));
+    close(fd);
+    waitpid(state->pid, nullptr, 0);
+    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+    {
+      std::lock_guard<std::mutex> lock(state->mutex);
+      state->output = out;
+      state->done = true;
+    }
+    glfwPostEmptyEvent();  // the editor sleeps in glfwWaitEvents: wake it for the result
+  }).detach();
 }
 
 void FileDialog::draw() {
   if (!open_) return;
   if (tool_ != "built-in") {
-    if (helperDone_) {
-      helper_.join();
-      std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<std::mutex> lock(external_->mutex);
+    if (external_->done) {
       open_ = false;
-      if (!helperResult_.empty()) {
-        chosen_ = helperResult_;
+      if (!external_->output.empty()) {
+        chosen_ = external_->output;
         hasChosen_ = true;
       }
     }
@@ -143,7 +176,8 @@ void FileDialog::draw() {
   }
   ImGui::SetNextWindowSize(ImVec2(620, 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::TextUnformatted("Path (no zenity or kdialog found for a file browser):");
+    ImGui::TextUnformatted(
+        forcedBuiltIn_ ? "Path:" : "Path (no zenity or kdialog found for a file browser):");
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
     ImGui::SetNextItemWidth(-1);
     bool enter =

@@ -1,14 +1,15 @@
-// Choosing a file: zenity or kdialog when installed (run on a helper thread, so the editor keeps
-// drawing), otherwise an ImGui window with a path field.
+// Choosing a file: zenity or kdialog when installed (a child process read by a helper thread,
+// so the editor keeps drawing; the tool is looked for at the first open()), otherwise an ImGui
+// window with a path field.
 //
-// Threads: the UI thread; the helper thread only runs the external program.
+// Threads: the UI thread; the helper thread only waits for the child process and its output,
+// in state it shares (not the dialog object), then wakes the UI (glfwPostEmptyEvent). A dialog
+// destroyed while the child runs kills it.
 #pragma once
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 
 namespace strata::ui {
 
@@ -31,23 +32,27 @@ class FileDialog {
   // When the user has chosen, returns true once with the path in *path; a cancelled dialog
   // closes without returning a path.
   bool takeResult(std::string* path);
-  // "zenity", "kdialog" or "built-in".
-  const std::string& tool() const { return tool_; }
 
  private:
-  void runExternal(std::string command);
+  // What the helper thread shares with the dialog: the child's pid and, once it exited, its
+  // output.
+  struct External {
+    std::mutex mutex;
+    int pid = 0;
+    bool done = false;
+    std::string output;
+  };
+  void startExternal(const std::string& command);
 
-  std::string tool_;
+  std::string tool_;  // "zenity", "kdialog" or "built-in"; "" until the first open()
+  bool forcedBuiltIn_ = false;
   bool open_ = false;
   DialogPurpose purpose_ = DialogPurpose::Open;
   char field_[1024] = {};
   bool justOpened_ = false;
   std::string chosen_;
   bool hasChosen_ = false;
-  std::thread helper_;
-  std::mutex mutex_;
-  std::atomic<bool> helperDone_{false};
-  std::string helperResult_;
+  std::shared_ptr<External> external_;  // of the running native dialog
 };
 
 // "Open scene", "Save scene as", ... for titles and labels.

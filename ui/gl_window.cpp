@@ -126,6 +126,8 @@ GlWindow::~GlWindow() {
 }
 
 void GlWindow::setTitle(const std::string& title) {
+  if (title == title_) return;  // called every frame; X11 round trip only on a change
+  title_ = title;
   glfwSetWindowTitle(window_, title.c_str());
 }
 

@@ -37,6 +37,7 @@ class GlWindow {
   GLFWwindow* window_ = nullptr;
   int major_ = 0, minor_ = 0;
   std::string description_;
+  std::string title_;
 };
 
 }  // namespace strata::ui

@@ -29,10 +29,15 @@ std::string exportSuggestion(const EditorState& state) {
 
 // New and Open replace the document: ask first when it has unsaved changes.
 void replaceOrAsk(EditorState& state, PendingReplace action) {
-  if (state.document.dirty()) {
+  if (state.document.dirty())
     state.pendingReplace = action;
-    return;
-  }
+  else
+    performReplace(state, action);
+}
+
+}  // namespace
+
+void performReplace(EditorState& state, const PendingReplace& action) {
   if (action.kind == PendingReplace::New) newDocument(state);
   if (action.kind == PendingReplace::Quit) state.quitNow = true;
   if (action.kind == PendingReplace::Open) {
@@ -43,12 +48,14 @@ void replaceOrAsk(EditorState& state, PendingReplace action) {
   }
 }
 
-void save(EditorState& state) {
-  if (!saveDocument(state) && state.document.path().empty())
+bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then) {
+  if (saveDocument(state)) return true;
+  if (state.document.path().empty()) {
+    state.afterSaveAs = then;
     state.dialog.open(DialogPurpose::SaveAs, "untitled.strata.json");
+  }
+  return false;
 }
-
-}  // namespace
 
 void drawMainMenu(EditorState& state) {
   if (!ImGui::BeginMainMenuBar()) return;
@@ -61,7 +68,7 @@ void drawMainMenu(EditorState& state) {
       ImGui::EndMenu();
     }
     ImGui::Separator();
-    if (ImGui::MenuItem("Save", "Ctrl+S")) save(state);
+    if (ImGui::MenuItem("Save", "Ctrl+S")) saveOrAsk(state, std::nullopt);
     if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
       state.dialog.open(DialogPurpose::SaveAs, state.document.path());
     ImGui::Separator();
@@ -121,7 +128,7 @@ void handleShortcuts(EditorState& state) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput || state.dialog.isOpen() || state.pendingReplace) return;
   const int ctrl = GLFW_MOD_CONTROL, shift = GLFW_MOD_SHIFT;
-  if (keyPressed(state, GLFW_KEY_S, ctrl)) save(state);
+  if (keyPressed(state, GLFW_KEY_S, ctrl)) saveOrAsk(state, std::nullopt);
   if (keyPressed(state, GLFW_KEY_S, ctrl | shift))
     state.dialog.open(DialogPurpose::SaveAs, state.document.path());
   if (keyPressed(state, GLFW_KEY_N, ctrl)) replaceOrAsk(state, {PendingReplace::New, ""});
@@ -146,7 +153,10 @@ void handleShortcuts(EditorState& state) {
 
 void handleDialogResult(EditorState& state) {
   std::string path;
-  if (!state.dialog.takeResult(&path)) return;
+  if (!state.dialog.takeResult(&path)) {
+    if (!state.dialog.isOpen()) state.afterSaveAs.reset();  // cancelled, or none asked
+    return;
+  }
   switch (state.dialog.purpose()) {
     case DialogPurpose::Open:
       openDocument(state, path);
@@ -156,7 +166,9 @@ void handleDialogResult(EditorState& state) {
       if (path.size() < suffix.size() ||
           path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
         path += ".strata.json";
-      saveDocumentAs(state, path);
+      std::optional<PendingReplace> then = state.afterSaveAs;
+      state.afterSaveAs.reset();
+      if (saveDocumentAs(state, path) && then) performReplace(state, *then);
       break;
     }
     case DialogPurpose::Export:

@@ -46,28 +46,17 @@ void unsavedQuestion(EditorState& state) {
   ImGui::Text("%s has unsaved changes.", state.document.title().c_str());
   bool proceed = false, close = false;
   if (ImGui::Button("Save", ImVec2(110, 0))) {
-    if (saveDocument(state)) {
-      proceed = true;
-    } else {
-      if (state.document.path().empty())
-        state.dialog.open(DialogPurpose::SaveAs, "untitled.strata.json");
-      close = true;
-    }
+    // An untitled document asks where first; the action follows the save (main_menu.cpp).
+    proceed = saveOrAsk(state, state.pendingReplace);
+    close = true;
   }
   ImGui::SameLine();
   if (ImGui::Button("Discard", ImVec2(110, 0))) proceed = true;
   ImGui::SameLine();
   if (ImGui::Button("Cancel", ImVec2(110, 0))) close = true;
   if (proceed && state.pendingReplace) {
-    PendingReplace action = *state.pendingReplace;
-    if (action.kind == PendingReplace::New) newDocument(state);
-    if (action.kind == PendingReplace::Quit) state.quitNow = true;
-    if (action.kind == PendingReplace::Open) {
-      if (action.path.empty())
-        state.dialog.open(DialogPurpose::Open, "");
-      else
-        openDocument(state, action.path);
-    }
+    const PendingReplace action = *state.pendingReplace;  // performReplace may open another
+    performReplace(state, action);
     close = true;
   }
   if (close) {
@@ -107,6 +96,7 @@ void exportWindow(EditorState& state) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "failed");
     ImGui::TextWrapped("%s", s.error.c_str());
   }
+  if (!s.notice.empty()) ImGui::TextWrapped("%s", s.notice.c_str());
   if (!s.running && ImGui::Button("Close", ImVec2(120, 0))) open = false;
   ImGui::End();
   if (!open) state.exportJob.reset();

@@ -25,6 +25,11 @@ void drawMainMenu(EditorState& state);
 void handleShortcuts(EditorState& state);
 // Reacts to a chosen file (open, save as, export, import).
 void handleDialogResult(EditorState& state);
+// Does what a PendingReplace asks (new, open, quit, recover), without asking.
+void performReplace(EditorState& state, const PendingReplace& action);
+// Saves; an untitled document opens Save As instead, and `then` runs after that save succeeds.
+// Returns whether the document was saved now.
+bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then);
 
 // Left column: the scene tree and the palette of things to add.
 void drawOutliner(EditorState& state, const PanelLayout& layout);

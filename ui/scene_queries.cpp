@@ -31,12 +31,6 @@ glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id) {
   return m;
 }
 
-glm::dmat4 worldMatrix(const NodePtr& root, NodeId id) {
-  NodePtr node = findNode(root, id);
-  glm::dmat4 parent = parentWorldMatrix(root, id);
-  return node ? parent * node->transform.matrix() : parent;
-}
-
 Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection) {
   Bounds b;
   for (NodeId id : selection) {

@@ -12,9 +12,8 @@
 
 namespace strata::ui {
 
-// Object-to-world matrix of the node's parent (identity for the root) and of the node itself.
+// Object-to-world matrix of the node's parent (identity for the root).
 glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id);
-glm::dmat4 worldMatrix(const NodePtr& root, NodeId id);
 
 // World bounds of the visible result of each selected node (empty when nothing is visible).
 Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection);

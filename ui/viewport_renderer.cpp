@@ -159,6 +159,7 @@ void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
                texels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
   leafTextureWidth_ = width;
+  leafCount_ = count;
 }
 
 void ViewportRenderer::drawLines(const std::vector<LineVertex>& vertices, GLenum mode) {
@@ -235,6 +236,7 @@ void ViewportRenderer::useSurfelProgram(const GlProgram& program, const Viewport
   program.set("splatRadius", 1.0f);
   program.set("leafTexture", 0);
   program.set("leafTextureWidth", leafTextureWidth_);
+  program.set("leafCount", leafCount_);
   program.set("sectionOn", f.sectionOn ? 1 : 0);
   program.set("sectionPlane", glm::vec4(glm::vec3(f.sectionNormal), float(f.sectionOffset)));
   glActiveTexture(GL_TEXTURE0);

@@ -103,6 +103,7 @@ class ViewportRenderer {
   GLuint emptyVao_ = 0;
   GLuint leafTexture_ = 0;
   int leafTextureWidth_ = 1;
+  int leafCount_ = 1;
   size_t splatCount_ = 0;
   size_t splatCapacity_ = 0;
   size_t lineCapacity_ = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "engine/contour/contour_tile.h"
 #include "engine/util/error.h"
@@ -29,7 +30,18 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   const Grid grid = Evaluator::gridFor(scene, options.resolution);
   r.grid = grid;
   const glm::ivec3 tiles = (grid.cells + options.tileCells - 1) / options.tileCells;
-  r.tiles = tiles.x * tiles.y * tiles.z;
+  // Cells of a tile are indexed in 32 bits (contour_cells.h, both backends); the tile count is
+  // an int. Refuse what would overflow rather than wrap around into a wrong mesh.
+  uint64_t tileWindowCells = 1;
+  for (int a = 0; a < 3; ++a)
+    tileWindowCells *= uint64_t(std::min(options.tileCells, grid.cells[a]) + 4);  // with halo
+  if (tileWindowCells > uint64_t(UINT32_MAX))
+    throw Error("a tile of " + std::to_string(options.tileCells) +
+                " cells a side is too large to contour; use --tile 1024 or less");
+  const int64_t tileCount = int64_t(tiles.x) * tiles.y * tiles.z;
+  if (tileCount > INT32_MAX)
+    throw Error(std::to_string(tileCount) + " tiles are too many; use a larger --tile");
+  r.tiles = int(tileCount);
 
   std::vector<ContourVertex> vertices;
   std::vector<ContourTriangle> triangles;
@@ -44,6 +56,11 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
         const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
 
         Stopwatch evaluate;
+        if (r.tiles > 1) {
+          // Each tile has its own grid, so no cache entry serves another tile: keep none, so
+          // that memory stays that of one tile's evaluation (what --tile promises).
+          evaluator.clearCache();
+        }
         EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
         r.evaluateSeconds += evaluate.seconds();
         r.surfels += result.measure.surfels;

@@ -375,7 +375,9 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
   NodePtr group = makeOperationNode(kind, groupId, members);
   NodePtr result = root;
   for (size_t i = 1; i < order.size(); ++i) result = detach(result, order[i]);
-  return rewriteOrThrow(result, order[0], [&](const NodePtr&) { return group; });
+  result = rewriteOrThrow(result, order[0], [&](const NodePtr&) { return group; });
+  checkInstances(result);  // grouping moves nodes: an instance may now lie inside its original
+  return result;
 }
 
 NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind) {
@@ -421,26 +423,11 @@ fs::path absoluteFolder(const std::string& dir) {
 }
 }  // namespace
 
-NodePtr rebaseMeshPaths(const NodePtr& root, const std::string& fromDir, const std::string& toDir) {
-  if (!root) return root;
-  fs::path from = absoluteFolder(fromDir);
-  fs::path to = absoluteFolder(toDir);
-  if (from == to) return root;
-  return rewriteMeshPaths(root, [&](const fs::path& path) {
-    if (path.is_absolute()) return path.generic_string();
-    fs::path absolute = (from / path).lexically_normal();
-    fs::path relative = absolute.lexically_relative(to);
-    bool inside = !relative.empty() && *relative.begin() != "..";
-    return inside ? relative.generic_string() : absolute.generic_string();
-  });
-}
-
 NodePtr absoluteMeshPaths(const NodePtr& root, const std::string& fromDir) {
   if (!root) return root;
   fs::path from = absoluteFolder(fromDir);
   return rewriteMeshPaths(root, [&](const fs::path& path) {
-    return path.is_absolute() ? path.generic_string()
-                              : (from / path).lexically_normal().generic_string();
+    return (path.is_absolute() ? path : from / path).lexically_normal().generic_string();
   });
 }
 

@@ -23,7 +23,7 @@ namespace strata {
 NodePtr makePrimitiveNode(NodeKind kind, NodeId id);
 // A new operation over `children` (in order), named after its kind and id.
 NodePtr makeOperationNode(NodeKind kind, NodeId id, std::vector<NodePtr> children);
-// A mesh leaf holding a loaded, checked mesh; `meshPath` as it will be written to the file.
+// A mesh leaf holding a loaded, checked mesh; `meshPath` absolute (see Document).
 NodePtr makeMeshNode(NodeId id, const std::string& name, std::shared_ptr<const TriangleMesh> mesh,
                      const std::string& meshPath, const std::string& meshHash);
 
@@ -91,11 +91,8 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
 // Changes an operation's kind (union, intersection, difference). Refused for leaves.
 NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind);
 
-// Rewrites relative mesh paths written against folder `fromDir` so that they resolve from
-// `toDir`: relative when the file lies under `toDir`, absolute otherwise. Absolute paths stay.
-// Empty folders mean the current directory.
-NodePtr rebaseMeshPaths(const NodePtr& root, const std::string& fromDir, const std::string& toDir);
-// Rewrites relative mesh paths written against `fromDir` as absolute paths.
+// Rewrites relative mesh paths written against `fromDir` (empty: the current directory) as
+// absolute, lexically normal paths.
 NodePtr absoluteMeshPaths(const NodePtr& root, const std::string& fromDir);
 // Rewrites absolute mesh paths of files under `toDir` as paths relative to it.
 NodePtr relativeMeshPaths(const NodePtr& root, const std::string& toDir);

@@ -1,5 +1,6 @@
 #include "engine/document/document.h"
 
+#include <atomic>
 #include <filesystem>
 
 #include "engine/document/commands.h"
@@ -12,6 +13,12 @@ namespace strata {
 namespace {
 namespace fs = std::filesystem;
 
+// A revision no document of this process has had (see Document::revision).
+uint64_t freshRevision() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1);
+}
+
 std::string folderOf(const std::string& path) {
   return path.empty() ? std::string() : fs::path(path).parent_path().string();
 }
@@ -22,12 +29,15 @@ Document::Document() {
   auto root = std::make_shared<Node>(*makeOperationNode(NodeKind::Union, 1, {}));
   root->name = "scene";
   scene.root = root;
-  state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), 0};
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), freshRevision()};
+  savedRevision_ = state_.revision;
 }
 
 Document::Document(Scene scene, std::string path) : path_(std::move(path)) {
   if (!scene.root) throw Error("a document needs a root node");
-  state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), 0};
+  scene.root = absoluteMeshPaths(scene.root, folderOf(path_));
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), freshRevision()};
+  savedRevision_ = state_.revision;
 }
 
 Document Document::open(const std::string& path, std::vector<std::string>* warnings) {
@@ -52,14 +62,14 @@ void Document::apply(const std::string& label, const NodePtr& newRoot) {
   Scene next = scene();
   next.root = newRoot;
   history_.record(state_, label);
-  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), nextRevision_++};
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }
 
 void Document::applySettings(const std::string& label, const SceneSettings& settings) {
   Scene next = scene();
   next.settings = settings;
   history_.record(state_, label);
-  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), nextRevision_++};
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }
 
 NodeId Document::parentForAdd(NodeId parent, int* index) const {
@@ -102,13 +112,7 @@ NodeId Document::addMesh(const std::string& file, NodeId parent, int index,
                          const Transform& transform) {
   auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file));
   std::string hash = hashFile(file);
-  fs::path absolute = fs::absolute(file).lexically_normal();
-  std::string stored = absolute.generic_string();
-  if (!path_.empty()) {
-    fs::path relative =
-        absolute.lexically_relative(fs::absolute(folderOf(path_)).lexically_normal());
-    if (!relative.empty() && *relative.begin() != "..") stored = relative.generic_string();
-  }
+  const std::string stored = fs::absolute(file).lexically_normal().generic_string();
   auto node =
       std::make_shared<Node>(*makeMeshNode(1, fs::path(file).stem().string(), mesh, stored, hash));
   node->transform = transform;
@@ -128,6 +132,8 @@ NodeId Document::duplicate(NodeId id) {
 }
 
 void Document::rename(NodeId id, const std::string& name) {
+  NodePtr node = findNode(root(), id);
+  if (node && node->name == name) return;  // no change, no undo step
   apply("rename", editNode(root(), id, [&](Node& n) { n.name = name; }));
 }
 
@@ -157,6 +163,8 @@ void Document::setParams(NodeId id, const PrimitiveParams& params) {
 }
 
 void Document::setVisible(NodeId id, bool visible) {
+  NodePtr node = findNode(root(), id);
+  if (node && node->visible == visible) return;
   apply(visible ? "show" : "hide", editNode(root(), id, [&](Node& n) { n.visible = visible; }));
 }
 
@@ -208,17 +216,13 @@ void Document::save() {
 void Document::saveAs(const std::string& path) {
   if (path.empty()) throw Error("no file name given");
   Scene out = scene();
-  out.root = rebaseMeshPaths(out.root, folderOf(path_), folderOf(path));
+  out.root = relativeMeshPaths(out.root, folderOf(path));
   std::error_code ec;
   if (fs::exists(path, ec)) {
     fs::copy_file(path, path + ".bak", fs::copy_options::overwrite_existing, ec);
     if (ec) throw Error(path + ".bak: cannot keep the previous version: " + ec.message());
   }
   saveScene(out, path);
-  if (out.root != root()) {
-    // The stored mesh paths changed with the folder: that is the document now (not an undo step).
-    state_ = DocumentState{std::make_shared<const Scene>(std::move(out)), nextRevision_++};
-  }
   path_ = path;
   savedRevision_ = state_.revision;
 }

@@ -24,6 +24,11 @@ class Document {
   // A new, empty, never saved document: a union root named "scene".
   Document();
   // A document over an existing scene; `path` is the file it came from ("" = none).
+  //
+  // Mesh paths: in memory every mesh leaf's path is absolute (relative ones in `scene` are
+  // resolved against the folder of `path`, or the working directory), so that no edit, undo or
+  // Save As can make a path point elsewhere. Only the file written by saveAs holds them relative
+  // to its own folder (where the mesh lies inside it).
   explicit Document(Scene scene, std::string path = "");
 
   // Loads a scene file (loadScene); warnings, if any, are appended to `warnings`.
@@ -32,7 +37,9 @@ class Document {
   const Scene& scene() const { return *state_.scene; }
   const NodePtr& root() const { return state_.scene->root; }
   std::shared_ptr<const Scene> snapshot() const { return state_.scene; }
-  // Changes with every edit, undo and redo; equal revisions mean equal documents.
+  // Changes with every edit, undo and redo; equal revisions mean equal documents. Unique across
+  // all documents of the process, so that a new or opened document never repeats the revision
+  // of the one it replaces (the editor keys its caches on it).
   uint64_t revision() const { return state_.revision; }
   NodeId nextId() const;
 
@@ -52,9 +59,9 @@ class Document {
   NodeId addNode(NodeKind kind, NodeId parent = 0, int index = -1);
   // Adds `node` (a subtree from elsewhere, e.g. a mesh leaf) with fresh ids; returns its id.
   NodeId addSubtree(const NodePtr& node, NodeId parent = 0, int index = -1);
-  // Reads a closed mesh file and adds it as a mesh leaf named after the file. Its path is stored
-  // relative to the document's folder when the document has a file, absolute otherwise.
-  // `transform` becomes the leaf's (import options: unit scale, up axis).
+  // Reads a closed mesh file and adds it as a mesh leaf named after the file (its path made
+  // absolute, see the constructor). `transform` becomes the leaf's (import options: unit scale, up
+  // axis).
   NodeId addMesh(const std::string& file, NodeId parent = 0, int index = -1,
                  const Transform& transform = Transform{});
 
@@ -90,8 +97,8 @@ class Document {
   // Saves to path(); throws strata::Error when the document has none.
   void save();
   // Saves atomically (saveScene) to `path`, first copying an existing file there to
-  // "<path>.bak". Relative mesh paths are rewritten for the new folder. The document then
-  // belongs to `path` and is clean.
+  // "<path>.bak". Mesh paths are written relative to the file's folder where the mesh lies
+  // inside it, absolute otherwise. The document then belongs to `path` and is clean.
   void saveAs(const std::string& path);
   // Makes the document belong to `path` without writing (e.g. after recovering it).
   void setPath(const std::string& path) { path_ = path; }
@@ -104,7 +111,6 @@ class Document {
   DocumentState state_;
   History history_;
   std::string path_;
-  uint64_t nextRevision_ = 1;
   uint64_t savedRevision_ = 0;
 };
 

@@ -71,8 +71,9 @@ struct Node {
 
   PrimitiveParams params;  // primitives only
 
-  // Mesh leaves: the path as written in the scene file (relative to the scene's folder or
-  // absolute), the content hash of the file, and the loaded, checked mesh (shared, immutable).
+  // Mesh leaves: the file's path (absolute in a Document; in a scene file relative to its
+  // folder or absolute), the content hash of the file, and the loaded, checked mesh (shared,
+  // immutable).
   std::string meshPath;
   std::string meshHash;
   std::shared_ptr<const TriangleMesh> mesh;

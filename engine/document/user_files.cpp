@@ -74,11 +74,7 @@ std::vector<std::string> addRecentFile(const std::string& listPath, const std::s
 
 void writeRecoveryFile(const Document& document, const std::string& recoveryPath) {
   makeFolderFor(recoveryPath);
-  Scene scene = document.scene();
-  std::string from =
-      document.path().empty() ? "" : fs::path(document.path()).parent_path().string();
-  scene.root = absoluteMeshPaths(scene.root, from);
-  saveScene(scene, recoveryPath);
+  saveScene(document.scene(), recoveryPath);  // mesh paths are absolute (Document)
   writeFileAtomically(originPath(recoveryPath),
                       [&](std::ostream& out) { out << document.path() << "\n"; });
 }
@@ -95,10 +91,6 @@ Document readRecoveryFile(const std::string& recoveryPath, std::vector<std::stri
   std::string origin;
   std::ifstream in(originPath(recoveryPath));
   std::getline(in, origin);
-  if (!origin.empty()) {
-    // Store mesh paths as the origin file would (relative to its folder where possible).
-    scene.root = relativeMeshPaths(scene.root, fs::path(origin).parent_path().string());
-  }
   Document document(std::move(scene), origin);
   document.markDirty();
   return document;

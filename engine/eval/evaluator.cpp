@@ -293,7 +293,15 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
     key.add(uint8_t(0xEE));
     hashGrid(key, ctx.grid);
     v.key = key.digest();
-    v.ldi = backend_->empty(ctx.grid);
+    // One empty LDI per grid, kept like any result (its offsets alone are 12 bytes per ray).
+    auto hit = cache_.find(v.key);
+    if (hit != cache_.end()) {
+      hit->second.generation = generation_;
+      v.ldi = hit->second.ldi;
+    } else {
+      v.ldi = backend_->empty(ctx.grid);
+      cache_[v.key] = CacheEntry{v.ldi, generation_};
+    }
     record.outcome = NodeOutcome::Empty;
   } else if (operands.size() == 1) {
     // A single operand (the others empty, or the only child) is the result itself.

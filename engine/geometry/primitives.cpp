@@ -65,8 +65,8 @@ int autoSegments(double worldRadius, double maxError) {
   if (!(worldRadius > 0.0) || !(maxError > 0.0)) return 12;
   if (maxError >= worldRadius) return 12;
   double n = kPi / std::acos(1.0 - maxError / worldRadius);
-  if (!std::isfinite(n)) return kMaxSegments;
-  return std::clamp(int(std::ceil(n)), 12, kMaxSegments);
+  if (!std::isfinite(n)) return kMaxAutoSegments;
+  return std::clamp(int(std::ceil(n)), 12, kMaxAutoSegments);
 }
 
 double primitiveRadius(NodeKind kind, const PrimitiveParams& p) {

@@ -8,9 +8,11 @@ namespace strata {
 
 // Segments around the circumference for a primitive whose largest radius, after its world
 // transform, is `worldRadius` scene units, such that the chordal error stays below
-// `maxError` scene units. Clamped to [12, kMaxSegments].
+// `maxError` scene units. Clamped to [12, kMaxAutoSegments].
 int autoSegments(double worldRadius, double maxError);
-constexpr int kMaxSegments = 1024;
+constexpr int kMaxAutoSegments = 1024;
+// The most segments a primitive may ask for explicitly (scene files, the inspector).
+constexpr int kMaxSegments = 4096;
 
 // The primitive's mesh in object coordinates (centred at the origin, axis along z), with
 // `segments` segments around (>= 3). Box ignores segments. Throws strata::Error for a

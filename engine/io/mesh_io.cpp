@@ -172,12 +172,7 @@ TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report) {
 
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,
                           MeshReadReport* report) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file (" + std::strerror(errno) + ")");
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read file");
-  return readMeshBytes(path, contents.str(), options, report);
+  return readMeshBytes(path, readWholeFile(path), options, report);
 }
 
 TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,

@@ -1,13 +1,17 @@
 #include "engine/io/point_cloud.h"
 
-#include <cmath>
-#include <cstring>
+#include <array>
 #include <vector>
 
+#include "engine/io/mesh_writer_formats.h"
+#include "engine/ldi/splats.h"
 #include "engine/util/atomic_file.h"
 
 namespace strata {
 namespace {
+
+// The records are written as they lie in memory: PLY's binary_little_endian.
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "point clouds are written little-endian");
 
 #pragma pack(push, 1)
 struct PlyPoint {
@@ -17,46 +21,18 @@ struct PlyPoint {
 #pragma pack(pop)
 static_assert(sizeof(PlyPoint) == 27, "packed PLY vertex");
 
-uint8_t toByte(float c) {
-  return uint8_t(std::lround(std::fmin(1.f, std::fmax(0.f, c)) * 255.f));
-}
 }  // namespace
-
-glm::dvec3 surfelPosition(const Grid& grid, int axis, int64_t ray, float depth) {
-  const int u = grid.uAxis(axis), v = grid.vAxis(axis);
-  const int64_t raysU = grid.raysU(axis);
-  glm::dvec3 p;
-  p[axis] = grid.origin[axis] + grid.h * double(depth);
-  p[u] = grid.origin[u] + grid.h * double(grid.first[u] + ray % raysU);
-  p[v] = grid.origin[v] + grid.h * double(grid.first[v] + ray / raysU);
-  return p;
-}
-
-void forEachDominantSurfel(const Ldi& ldi,
-                           const std::function<void(int axis, const Surfel& s, const float n[3],
-                                                    const glm::dvec3& p)>& visit) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const AxisLdi& a = ldi.axes[axis];
-    for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray) {
-      for (uint32_t k = a.offsets[size_t(ray)]; k < a.offsets[size_t(ray) + 1]; ++k) {
-        const Surfel& s = a.surfels[k];
-        float n[3];
-        decodeNormal(s.normal, n);
-        if (onDominantAxis(n, axis))
-          visit(axis, s, n, surfelPosition(ldi.grid, axis, ray, s.depth));
-      }
-    }
-  }
-}
 
 uint64_t writePointCloudPly(const Ldi& ldi, const std::string& path,
                             const std::function<glm::vec3(uint32_t leafId)>& leafColor) {
   std::vector<PlyPoint> points;
-  forEachDominantSurfel(ldi, [&](int, const Surfel& s, const float n[3], const glm::dvec3& p) {
-    glm::vec3 c = leafColor(surfelLeaf(s.tag));
-    points.push_back(PlyPoint{float(p.x), float(p.y), float(p.z), n[0], n[1], n[2], toByte(c.r),
-                              toByte(c.g), toByte(c.b)});
-  });
+  for (const Splat& s : buildSplats(ldi)) {
+    float n[3];
+    decodeNormal(s.normal, n);
+    const std::array<uint8_t, 3> c = meshio::srgb8(leafColor(splatLeaf(s)));
+    points.push_back(
+        PlyPoint{s.position[0], s.position[1], s.position[2], n[0], n[1], n[2], c[0], c[1], c[2]});
+  }
   writeFileAtomically(path, [&](std::ostream& out) {
     out << "ply\nformat binary_little_endian 1.0\ncomment written by strata: LDI surfels\n"
         << "element vertex " << points.size() << "\n"

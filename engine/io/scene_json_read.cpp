@@ -20,7 +20,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "engine/geometry/primitives.h"
 #include "engine/io/scene_file.h"
+#include "engine/ldi/grid.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -32,10 +34,7 @@ constexpr const char* kFormatName = "strata-scene";
 // A tree of kMaxTreeDepth levels nests two JSON levels per tree level (node object, children
 // array) plus a few for transforms and vectors; anything much deeper is not a scene.
 constexpr int kMaxJsonNesting = 2 * kMaxTreeDepth + 16;
-constexpr int kMinResolution = 8;
-constexpr int kMaxResolution = 16384;
 constexpr double kMaxMargin = 10.0;
-constexpr int kMaxSegments = 4096;
 constexpr size_t kMaxDescribedString = 40;
 
 // "1:5"-style location of a 0-based byte offset: 1-based line and column (columns count bytes).

@@ -193,11 +193,18 @@ STRATA_HD ProjectedTriangle projectTriangle(const double p[3][3], const double n
   }
   int64_t r0 = ceilDiv(umin, kSubcell) - firstU, r1 = floorDiv(umax, kSubcell) - firstU;
   int64_t s0 = ceilDiv(vmin, kSubcell) - firstV, s1 = floorDiv(vmax, kSubcell) - firstV;
-  t.rayUMin = int(r0 < 0 ? 0 : r0);
-  t.rayUMax = int(r1 > raysU - 1 ? raysU - 1 : r1);
-  t.rayVMin = int(s0 < 0 ? 0 : s0);
-  t.rayVMax = int(s1 > raysV - 1 ? raysV - 1 : s1);
-  if (t.orientation == 0 || t.rayUMin > t.rayUMax || t.rayVMin > t.rayVMax) {
+  // Clamped to the window on both sides in 64 bits before narrowing: a triangle far outside it
+  // (a tool parked away) must give an empty range, not one that wrapped around.
+  r0 = r0 < 0 ? 0 : r0;
+  r1 = r1 > raysU - 1 ? raysU - 1 : r1;
+  s0 = s0 < 0 ? 0 : s0;
+  s1 = s1 > raysV - 1 ? raysV - 1 : s1;
+  const bool empty = r0 > r1 || s0 > s1;
+  t.rayUMin = empty ? 0 : int(r0);
+  t.rayUMax = empty ? -1 : int(r1);
+  t.rayVMin = empty ? 0 : int(s0);
+  t.rayVMax = empty ? -1 : int(s1);
+  if (t.orientation == 0 || empty) {
     t.rayUMin = 0;  // nothing to test
     t.rayUMax = -1;
     t.rayVMin = 0;

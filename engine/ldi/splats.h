@@ -35,8 +35,8 @@ struct SplatFrame {
 };
 SplatFrame splatFrame(const Grid& grid);
 
-// The splat of surfel `s` on ray `ray` of `axis`; its position is surfelPosition() rounded to
-// float.
+// The splat of surfel `s` on ray `ray` of `axis`: its world position (grid.h: origin + h times
+// the global node line and the depth, in double) rounded to float.
 STRATA_HD Splat splatOf(const SplatFrame& f, int axis, int64_t ray, const Surfel& s) {
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   double p[3];

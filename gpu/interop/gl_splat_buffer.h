@@ -28,7 +28,6 @@ class CudaGlSplatBuffer {
   // after. Throws strata::Error quoting CUDA's reason when the buffer cannot be registered.
   void attach(unsigned int glBuffer);
   void detach();
-  bool attached() const { return resource_ != nullptr; }
 
   // Copies all of `splats` to the start of the attached buffer; GL commands issued after it
   // returns see the copied splats (cudaGraphicsUnmapResources orders them). Throws strata::Error

@@ -47,9 +47,6 @@ void deviceFree(void* pointer, size_t bytes) {
   g_inUse.fetch_sub(bytes);
 }
 
-uint64_t deviceBytesInUse() {
-  return g_inUse.load();
-}
 uint64_t devicePeakBytes() {
   return g_peak.load();
 }

@@ -19,8 +19,7 @@ cudaStream_t allocationStream();
 void* deviceAllocate(size_t bytes);  // throws DeviceOutOfMemory / strata::Error
 void deviceFree(void* pointer, size_t bytes);
 
-// Bytes held by DeviceBuffers now, and the most held at once since the last reset.
-uint64_t deviceBytesInUse();
+// The most bytes held by DeviceBuffers at once since the last reset.
 uint64_t devicePeakBytes();
 void resetDevicePeak();
 

@@ -164,7 +164,7 @@ TEST(EditorWindow, SphereSilhouetteAppearsAndUndoRemovesIt) {
   undo(state);  // colour
   undo(state);  // add
   EXPECT_TRUE(state.document.root()->children.empty());
-  editor.waitForPreview(5.0);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
   std::vector<uint8_t> empty = editor.renderViewport(w, h);
   EXPECT_FALSE(reddish(at(empty, w, w / 2, h / 2)));
   redo(state);

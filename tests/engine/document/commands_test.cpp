@@ -194,20 +194,17 @@ TEST(DocumentCommands, ValidatesParametersAndTransforms) {
   EXPECT_THROW(validateTransform(t), Error);
 }
 
-TEST(DocumentCommands, RebasesRelativeMeshPaths) {
-  NodePtr mesh = makeMeshNode(2, "m", nullptr, "meshes/part.obj", "");
+TEST(DocumentCommands, MeshPathsBetweenAbsoluteAndRelative) {
+  NodePtr mesh = makeMeshNode(2, "m", nullptr, "meshes/../meshes/part.obj", "");
   NodePtr absolute = makeMeshNode(3, "a", nullptr, "/data/x.stl", "");
   NodePtr root = makeOperationNode(NodeKind::Union, 1, {mesh, absolute});
-  NodePtr down = rebaseMeshPaths(root, "/work/scenes", "/work");
-  EXPECT_EQ(findNode(down, 2)->meshPath, "scenes/meshes/part.obj");
-  EXPECT_EQ(findNode(down, 3), absolute);
-  NodePtr away = rebaseMeshPaths(root, "/work/scenes", "/elsewhere");
-  EXPECT_EQ(findNode(away, 2)->meshPath, "/work/scenes/meshes/part.obj");
-  EXPECT_EQ(rebaseMeshPaths(root, "/work/scenes", "/work/scenes/"), root);
   NodePtr full = absoluteMeshPaths(root, "/w");
   EXPECT_EQ(findNode(full, 2)->meshPath, "/w/meshes/part.obj");
+  EXPECT_EQ(findNode(full, 3)->meshPath, "/data/x.stl");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/"), 2)->meshPath, "meshes/part.obj");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/"), 3)->meshPath, "/data/x.stl");
+  EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/other"), 2)->meshPath, "/w/meshes/part.obj");
+  EXPECT_EQ(findNode(relativeMeshPaths(full, "/"), 2)->meshPath, "w/meshes/part.obj");
 }
 
 }  // namespace

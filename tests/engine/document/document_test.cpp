@@ -177,22 +177,38 @@ TEST(Document, MeshImportAndSaveAsElsewhereKeepsTheMeshFound) {
   std::string dir = tempDir("mesh");
   fs::create_directories(dir + "/meshes");
   fs::copy_file(std::string(STRATA_ASSETS) + "/meshes/bunny.obj", dir + "/meshes/bunny.obj");
+  const std::string absolute =
+      (fs::absolute(dir) / "meshes/bunny.obj").lexically_normal().generic_string();
+  auto fileText = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
   Document doc;
   doc.saveAs(dir + "/scene.strata.json");
   NodeId mesh = doc.addMesh(dir + "/meshes/bunny.obj");
   NodePtr node = findNode(doc.root(), mesh);
   EXPECT_EQ(node->name, "bunny");
-  EXPECT_EQ(node->meshPath, "meshes/bunny.obj");
+  EXPECT_EQ(node->meshPath, absolute);  // absolute in memory
   EXPECT_FALSE(node->meshHash.empty());
   ASSERT_TRUE(node->mesh);
   doc.save();
+  // Written relative to the file's folder.
+  EXPECT_NE(fileText(dir + "/scene.strata.json").find("\"meshes/bunny.obj\""), std::string::npos);
+  EXPECT_EQ(findNode(Document::open(dir + "/scene.strata.json").root(), mesh)->meshPath, absolute);
+
   fs::create_directories(dir + "/other");
+  doc.rename(mesh, "renamed");
   doc.saveAs(dir + "/other/copy.strata.json");
   // Outside the new folder: written absolute.
-  EXPECT_EQ(findNode(doc.root(), mesh)->meshPath,
-            (fs::path(dir) / "meshes/bunny.obj").lexically_normal().generic_string());
+  EXPECT_NE(fileText(dir + "/other/copy.strata.json").find("\"" + absolute + "\""),
+            std::string::npos);
+  EXPECT_TRUE(findNode(Document::open(dir + "/other/copy.strata.json").root(), mesh)->mesh);
+  // Undo after Save As elsewhere, then save: the mesh is still found from the new folder.
+  ASSERT_TRUE(doc.undo());
+  doc.save();
   Document again = Document::open(dir + "/other/copy.strata.json");
   EXPECT_TRUE(findNode(again.root(), mesh)->mesh);
+  EXPECT_EQ(findNode(again.root(), mesh)->name, "bunny");
   EXPECT_THROW(doc.addMesh(dir + "/missing.obj"), Error);
 }
 

@@ -30,6 +30,7 @@ TEST(SharedMath, RayThroughSharedVertexHitsExactlyOneFanTriangle) {
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> count(3, 9);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  int checked = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     int n = count(rng);
     std::vector<std::array<double, 3>> ring;
@@ -54,8 +55,28 @@ TEST(SharedMath, RayThroughSharedVertexHitsExactlyOneFanTriangle) {
     }
     if (valid == n) {
       EXPECT_EQ(hits, 1) << "trial " << trial;
+      ++checked;
     }
   }
+  EXPECT_GT(checked, 1000) << "most fans must be valid, or the test checks nothing";
+}
+
+// A triangle far outside the window on either side (a tool parked away, up to the 2^51 grid
+// units toGridUnits accepts) gives an empty ray range, not one that wrapped around 32 bits.
+TEST(SharedMath, FarTrianglesProjectToAnEmptyRange) {
+  const double normal[3] = {0, 0, 1};
+  for (double offset : {-1e15, -5e9, -3e9, 3e9, 5e9, 1e15}) {
+    double p[3][3] = {{offset, 0, 0}, {offset + 2, 0, 0}, {offset, 2, 0}};
+    ProjectedTriangle t = projectTriangle(p, normal, 2, 0, 0, 64, 64);
+    EXPECT_GT(t.rayUMin, t.rayUMax) << offset;
+    double q[3][3] = {{0, offset, 0}, {2, offset, 0}, {0, offset + 2, 0}};
+    ProjectedTriangle s = projectTriangle(q, normal, 2, 0, 0, 64, 64);
+    EXPECT_GT(s.rayVMin, s.rayVMax) << offset;
+  }
+  double inside[3][3] = {{1, 1, 0}, {5, 1, 0}, {1, 5, 0}};
+  ProjectedTriangle t = projectTriangle(inside, normal, 2, 0, 0, 64, 64);
+  EXPECT_EQ(t.rayUMin, 1);
+  EXPECT_EQ(t.rayUMax, 5);
 }
 
 TEST(SharedMath, NormalEncodingRoundTrips) {

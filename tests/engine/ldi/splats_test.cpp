@@ -1,5 +1,5 @@
-// The editor's splats (engine/ldi/splats.h): every surfel once, on its dominant axis, at its
-// exact position, carrying its normal and leaf; the same as the point cloud writer visits.
+// The editor's splats (engine/ldi/splats.h), also what the point cloud writer writes: every
+// surfel once, on its dominant axis, at its exact position, carrying its normal and leaf.
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -7,7 +7,6 @@
 #include <cstring>
 
 #include "engine/eval/cpu_backend.h"
-#include "engine/io/point_cloud.h"
 #include "engine/ldi/splats.h"
 #include "tests/support/scene_builder.h"
 
@@ -29,19 +28,35 @@ TEST(Splats, OneSplatPerSurfelOnItsDominantAxis) {
   std::shared_ptr<const Ldi> host = backend->download(result.root);
   std::vector<Splat> built = buildSplats(*host);
   ASSERT_EQ(built.size(), copied.size());
+  // The reference, written out here: every surfel on its dominant axis, in axis, ray, depth
+  // order, at origin + h * (global node line, depth).
   size_t i = 0;
-  forEachDominantSurfel(*host, [&](int axis, const Surfel& s, const float*, const glm::dvec3& p) {
-    ASSERT_LT(i, built.size());
-    const Splat& splat = built[i];
-    EXPECT_EQ(splat.leafAxis & 3u, uint32_t(axis));
-    EXPECT_EQ(splatLeaf(splat), surfelLeaf(s.tag));
-    EXPECT_EQ(splat.normal, s.normal);
-    EXPECT_EQ(splat.position[0], float(p.x));
-    EXPECT_EQ(splat.position[1], float(p.y));
-    EXPECT_EQ(splat.position[2], float(p.z));
-    EXPECT_EQ(std::memcmp(&splat, &copied[i], sizeof(Splat)), 0);
-    ++i;
-  });
+  const Grid& g = host->grid;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const AxisLdi& a = host->axes[axis];
+    for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray)
+      for (uint32_t k = a.offsets[size_t(ray)]; k < a.offsets[size_t(ray) + 1]; ++k) {
+        const Surfel& s = a.surfels[k];
+        float n[3];
+        decodeNormal(s.normal, n);
+        if (!onDominantAxis(n, axis)) continue;
+        ASSERT_LT(i, built.size());
+        glm::dvec3 p;
+        p[axis] = g.origin[axis] + g.h * double(s.depth);
+        p[u] = g.origin[u] + g.h * double(g.first[u] + ray % g.raysU(axis));
+        p[v] = g.origin[v] + g.h * double(g.first[v] + ray / g.raysU(axis));
+        const Splat& splat = built[i];
+        EXPECT_EQ(splat.leafAxis & 3u, uint32_t(axis));
+        EXPECT_EQ(splatLeaf(splat), surfelLeaf(s.tag));
+        EXPECT_EQ(splat.normal, s.normal);
+        EXPECT_EQ(splat.position[0], float(p.x));
+        EXPECT_EQ(splat.position[1], float(p.y));
+        EXPECT_EQ(splat.position[2], float(p.z));
+        EXPECT_EQ(std::memcmp(&splat, &copied[i], sizeof(Splat)), 0);
+        ++i;
+      }
+  }
   EXPECT_EQ(i, built.size());
   // A curved patch is sampled on all three axes and becomes splats on one; the box's faces are
   // sampled on one axis only.
