@@ -11,7 +11,7 @@
 #include "app/scene_from_meshes.h"
 #include "app/terminal_progress.h"
 #include "engine/eval/evaluator.h"
-#include "engine/eval/fallback.h"
+#include "engine/export/fallback.h"
 #include "engine/io/point_cloud.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/atomic_file.h"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/contour/contour_scene.h"
+#include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
 
 namespace strata {

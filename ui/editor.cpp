@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "engine/document/commands.h"
-#include "engine/document/user_files.h"
+#include "engine/io/user_files.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
 #include "ui/editor_actions.h"

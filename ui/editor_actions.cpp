@@ -4,7 +4,9 @@
 #include <filesystem>
 
 #include "engine/document/commands.h"
-#include "engine/document/user_files.h"
+#include "engine/io/document_files.h"
+#include "engine/io/user_files.h"
+#include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"
@@ -36,17 +38,6 @@ void replaceDocument(EditorState& state, Document document) {
   state.requestViewAll = true;
 }
 
-PrimitiveParams scaledParams(double s) {
-  PrimitiveParams p;
-  p.size *= s;
-  p.radius *= s;
-  p.topRadius *= s;
-  p.height *= s;
-  p.majorRadius *= s;
-  p.minorRadius *= s;
-  return p;
-}
-
 double sceneScale(const EditorState& state) {
   Bounds b = sceneBounds(state.document.root());
   if (b.empty()) return 1.0;
@@ -72,7 +63,7 @@ void placeNode(EditorState& state, NodeId id, const Placement& placement) {
 // The primitive node `addPrimitive` adds: sized to the scene.
 NodePtr newPrimitive(EditorState& state, NodeKind kind) {
   auto node = std::make_shared<Node>(*makePrimitiveNode(kind, state.document.nextId()));
-  node->params = scaledParams(sceneScale(state));
+  node->params = scaledPrimitiveParams(kind, node->params, sceneScale(state));
   return node;
 }
 
@@ -185,8 +176,8 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
   if (!why.empty()) logWarning(state, why);
   state.document.beginInteraction();
   guarded(state, [&] {
-    id = state.document.addMesh(import.path, primarySelection(state), -1,
-                                importTransform(scale, import.upAxis));
+    id = importMeshFile(state.document, import.path, primarySelection(state), -1,
+                        importTransform(scale, import.upAxis));
     if (import.placement) placeNode(state, id, *import.placement);
     selectNode(state, id);
     logInfo(state, "imported " + import.path);
@@ -315,7 +306,7 @@ void newDocument(EditorState& state) {
 bool openDocument(EditorState& state, const std::string& path) {
   return guarded(state, [&] {
     std::vector<std::string> warnings;
-    Document doc = Document::open(path, &warnings);
+    Document doc = strata::openDocument(path, &warnings);
     replaceDocument(state, std::move(doc));
     for (const auto& w : warnings) logWarning(state, w);
     logInfo(state, "opened " + path);
@@ -326,7 +317,7 @@ bool openDocument(EditorState& state, const std::string& path) {
 bool openTemplate(EditorState& state, const std::string& path) {
   return guarded(state, [&] {
     std::vector<std::string> warnings;
-    Document original = Document::open(path, &warnings);  // mesh paths absolute
+    Document original = strata::openDocument(path, &warnings);  // mesh paths absolute
     replaceDocument(state, Document(original.scene()));
     for (const auto& w : warnings) logWarning(state, w);
     logInfo(state, "opened a copy of " + path + " (Save asks where to keep it)");
@@ -340,7 +331,7 @@ bool saveDocument(EditorState& state) {
 
 bool saveDocumentAs(EditorState& state, const std::string& path) {
   return guarded(state, [&] {
-    state.document.saveAs(path);
+    saveDocumentAs(state.document, path);
     logInfo(state, "saved " + path);
     rememberRecent(state, path);
   });

@@ -2,8 +2,8 @@
 
 #include <new>
 
-#include "engine/contour/contour_scene.h"
-#include "engine/eval/fallback.h"
+#include "engine/export/contour_scene.h"
+#include "engine/export/fallback.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"

@@ -95,9 +95,9 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Hide / show", "H", false, any)) toggleSelectionHidden(state);
     if (ImGui::MenuItem("Rename", "F2", false, any)) state.renaming = primarySelection(state);
     if (ImGui::BeginMenu("Group as", any)) {
-      if (ImGui::MenuItem("Union", "Ctrl+G")) groupSelection(state, NodeKind::Union);
-      if (ImGui::MenuItem("Difference")) groupSelection(state, NodeKind::Difference);
-      if (ImGui::MenuItem("Intersection")) groupSelection(state, NodeKind::Intersection);
+      for (NodeKind k : operationKinds())
+        if (ImGui::MenuItem(kindName(k), k == NodeKind::Union ? "Ctrl+G" : nullptr))
+          groupSelection(state, k);
       ImGui::EndMenu();
     }
     if (ImGui::MenuItem("Select none", "Esc", false, any)) clearSelection(state);

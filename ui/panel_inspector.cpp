@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "engine/document/commands.h"
-#include "engine/geometry/primitives.h"
+#include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
@@ -68,43 +68,27 @@ void lengthField(EditorState& state, const NodePtr& node, const char* label,
   });
 }
 
+// The primitive's parameters, as its table entry lists them.
 void primitiveParams(EditorState& state, const NodePtr& node, double speed) {
-  const double eps = 1e-6;
-  PrimitiveParams p = node->params;
-  switch (node->kind) {
-    case NodeKind::Box: {
-      glm::dvec3 size = p.size;
+  const PrimitiveInfo* info = primitiveInfo(node->kind);
+  if (!info) return;
+  const PrimitiveParams p = node->params;
+  for (const PrimitiveParam& param : info->params) {
+    const double minimum = param.minimum == ParamMinimum::Positive ? 1e-6 : 0.0;
+    if (param.scalar) lengthField(state, node, param.label, param.scalar, speed, minimum);
+    if (param.vector) {
+      glm::dvec3 value = p.*param.vector;
       dragVec3(
-          state, "size", &size, speed,
+          state, param.label, &value, speed,
           [&](const glm::dvec3& v) {
             PrimitiveParams q = p;
-            q.size = glm::max(v, glm::dvec3(eps));
+            q.*param.vector = glm::max(v, glm::dvec3(minimum));
             state.document.setParams(node->id, q);
           },
           "%.4g");
-      break;
     }
-    case NodeKind::Sphere:
-      lengthField(state, node, "radius", &PrimitiveParams::radius, speed, eps);
-      break;
-    case NodeKind::Cylinder:
-    case NodeKind::Capsule:
-      lengthField(state, node, "radius", &PrimitiveParams::radius, speed, eps);
-      lengthField(state, node, "height", &PrimitiveParams::height, speed, eps);
-      break;
-    case NodeKind::Cone:
-      lengthField(state, node, "radius", &PrimitiveParams::radius, speed, eps);
-      lengthField(state, node, "top radius", &PrimitiveParams::topRadius, speed, 0.0);
-      lengthField(state, node, "height", &PrimitiveParams::height, speed, eps);
-      break;
-    case NodeKind::Torus:
-      lengthField(state, node, "major radius", &PrimitiveParams::majorRadius, speed, eps);
-      lengthField(state, node, "minor radius", &PrimitiveParams::minorRadius, speed, eps);
-      break;
-    default:
-      return;
   }
-  if (node->kind != NodeKind::Box) {
+  if (info->usesSegments) {
     ImGui::TextUnformatted("segments");
     ImGui::SameLine(110.0f);
     ImGui::SetNextItemWidth(-1);
@@ -210,11 +194,13 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
 
   if (isOperation(node->kind) &&
       ImGui::CollapsingHeader("Operation", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const NodeKind ops[] = {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection};
-    for (int i = 0; i < 3; ++i) {
-      if (i) ImGui::SameLine();
-      if (ImGui::RadioButton(kindName(ops[i]), node->kind == ops[i]))
-        guarded(state, [&] { state.document.setOperation(node->id, ops[i]); });
+    bool first = true;
+    for (NodeKind op : operationKinds()) {
+      if (!first) ImGui::SameLine();
+      first = false;
+      if (ImGui::RadioButton(kindName(op), node->kind == op))
+        guarded(state, [&] { state.document.setOperation(node->id, op); });
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(op).summary);
     }
     ImGui::TextDisabled("%zu children%s", node->children.size(),
                         node->kind == NodeKind::Difference ? "; the first minus the others" : "");

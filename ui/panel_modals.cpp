@@ -4,7 +4,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "engine/document/user_files.h"
+#include "engine/io/user_files.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"

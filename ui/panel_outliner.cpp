@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "engine/document/commands.h"
+#include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
 #include "ui/theme.h"
@@ -31,16 +32,17 @@ void acceptPaletteItem(NodeId target, PendingDrop* drop) {
   }
 }
 
+// Operations are coloured by the Boolean they apply; leaves are grey.
 ImVec4 kindColor(NodeKind kind) {
-  switch (kind) {
-    case NodeKind::Union:
+  const NodeKindInfo& info = nodeKindInfo(kind);
+  if (info.role != KindRole::Operation) return ImVec4(0.7f, 0.72f, 0.76f, 1.0f);
+  switch (info.rayOp) {
+    case RayOp::Union:
       return ImVec4(0.45f, 0.78f, 1.0f, 1.0f);
-    case NodeKind::Intersection:
+    case RayOp::Intersection:
       return ImVec4(0.75f, 0.6f, 1.0f, 1.0f);
-    case NodeKind::Difference:
-      return ImVec4(1.0f, 0.45f, 0.42f, 1.0f);
     default:
-      return ImVec4(0.7f, 0.72f, 0.76f, 1.0f);
+      return ImVec4(1.0f, 0.45f, 0.42f, 1.0f);
   }
 }
 
@@ -56,14 +58,14 @@ void contextMenu(EditorState& state, const NodePtr& node) {
   if (ImGui::MenuItem("Delete", "Del")) deleteSelection(state);
   ImGui::Separator();
   if (ImGui::BeginMenu("Group as")) {
-    for (NodeKind k : {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection}) {
+    for (NodeKind k : operationKinds()) {
       const std::string label = std::string(kindGlyph(k)) + " " + kindName(k);
       if (ImGui::MenuItem(label.c_str())) groupSelection(state, k);
     }
     ImGui::EndMenu();
   }
   if (isOperation(node->kind) && ImGui::BeginMenu("Operation")) {
-    for (NodeKind k : {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection})
+    for (NodeKind k : operationKinds())
       if (ImGui::MenuItem(kindName(k), nullptr, node->kind == k)) setSelectionOperation(state, k);
     ImGui::EndMenu();
   }
@@ -213,14 +215,14 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
                       targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
                       targetNode ? targetNode->name.c_str() : "the root");
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
-  const NodeKind primitives[] = {NodeKind::Box,  NodeKind::Sphere, NodeKind::Cylinder,
-                                 NodeKind::Cone, NodeKind::Torus,  NodeKind::Capsule};
-  for (int i = 0; i < 6; ++i) {
-    if (i % 3) ImGui::SameLine();
+  int column = 0;
+  for (const PrimitiveInfo& primitive : primitiveTable()) {
+    if (column++ % 3) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitives[i]), kindName(primitives[i]));
-    if (ImGui::Button(label, ImVec2(w, 0))) addPrimitive(state, primitives[i]);
-    paletteDragSource(int(primitives[i]), label);
+    std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitive.kind), primitive.name);
+    if (ImGui::Button(label, ImVec2(w, 0))) addPrimitive(state, primitive.kind);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", primitive.summary);
+    paletteDragSource(int(primitive.kind), label);
   }
   const std::string importLabel = std::string(kindGlyph(NodeKind::Mesh)) + " Import mesh...";
   if (ImGui::Button(importLabel.c_str(), ImVec2(-1, 0))) {
@@ -230,19 +232,20 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   paletteDragSource(kImportMeshItem, importLabel.c_str());
   ImGui::Separator();
   ImGui::TextDisabled("empty operation");
-  const NodeKind ops[] = {NodeKind::Union, NodeKind::Difference, NodeKind::Intersection};
-  for (int i = 0; i < 3; ++i) {
+  const std::vector<NodeKind> ops = operationKinds();
+  for (size_t i = 0; i < ops.size(); ++i) {
     if (i) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s##add%d", kindName(ops[i]), i);
+    std::snprintf(label, sizeof(label), "%s##add%zu", kindName(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) addOperation(state, ops[i]);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(ops[i]).summary);
   }
   ImGui::TextDisabled("group selection as");
   ImGui::BeginDisabled(state.selection.empty());
-  for (int i = 0; i < 3; ++i) {
+  for (size_t i = 0; i < ops.size(); ++i) {
     if (i) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s %s##group%d", kindGlyph(ops[i]), kindName(ops[i]), i);
+    std::snprintf(label, sizeof(label), "%s %s##group%zu", kindGlyph(ops[i]), kindName(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) groupSelection(state, ops[i]);
   }
   ImGui::EndDisabled();

@@ -70,47 +70,8 @@ void applyTheme(float scale) {
 }
 
 const char* kindGlyph(NodeKind kind) {
-  if (!g_unicode) {
-    switch (kind) {
-      case NodeKind::Union:
-        return "U";
-      case NodeKind::Intersection:
-        return "&";
-      case NodeKind::Difference:
-        return "-";
-      case NodeKind::Mesh:
-        return "M";
-      case NodeKind::Instance:
-        return ">";
-      default:
-        return "o";
-    }
-  }
-  switch (kind) {
-    case NodeKind::Union:
-      return "\u222A";  // ∪
-    case NodeKind::Intersection:
-      return "\u2229";  // ∩
-    case NodeKind::Difference:
-      return "\u2212";  // −
-    case NodeKind::Box:
-      return "\u25A0";  // ■
-    case NodeKind::Sphere:
-      return "\u25CF";  // ●
-    case NodeKind::Cylinder:
-      return "\u25AE";  // ▮
-    case NodeKind::Cone:
-      return "\u25B2";  // ▲
-    case NodeKind::Torus:
-      return "\u25CE";  // ◎
-    case NodeKind::Capsule:
-      return "\u25AC";  // ▬
-    case NodeKind::Mesh:
-      return "\u25C6";  // ◆
-    case NodeKind::Instance:
-      return "\u21B3";  // ↳
-  }
-  return "?";
+  const NodeKindInfo& info = nodeKindInfo(kind);
+  return g_unicode ? info.glyph : info.asciiGlyph;
 }
 
 const char* visibleGlyph(bool visible) {

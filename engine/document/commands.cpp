@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "engine/geometry/primitives.h"
+#include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -99,11 +99,6 @@ NodePtr remapInstances(const NodePtr& node, const std::unordered_map<NodeId, Nod
   return copy;
 }
 
-void requirePositive(double value, const char* what) {
-  if (!(value > 0) || !std::isfinite(value))
-    throw Error(std::string(what) + " must be a positive number");
-}
-
 }  // namespace
 
 NodePtr makePrimitiveNode(NodeKind kind, NodeId id) {
@@ -112,6 +107,7 @@ NodePtr makePrimitiveNode(NodeKind kind, NodeId id) {
   node->id = id;
   node->kind = kind;
   node->name = std::string(kindName(kind)) + " " + std::to_string(id);
+  node->params = primitiveInfo(kind)->defaults;
   return node;
 }
 
@@ -172,37 +168,7 @@ std::vector<NodeId> treeOrder(const NodePtr& root) {
 }
 
 void validateParams(NodeKind kind, const PrimitiveParams& p) {
-  switch (kind) {
-    case NodeKind::Box:
-      requirePositive(p.size.x, "size x");
-      requirePositive(p.size.y, "size y");
-      requirePositive(p.size.z, "size z");
-      break;
-    case NodeKind::Sphere:
-      requirePositive(p.radius, "radius");
-      break;
-    case NodeKind::Cylinder:
-    case NodeKind::Capsule:
-      requirePositive(p.radius, "radius");
-      requirePositive(p.height, "height");
-      break;
-    case NodeKind::Cone:
-      requirePositive(p.radius, "radius");
-      requirePositive(p.height, "height");
-      if (!(p.topRadius >= 0) || !std::isfinite(p.topRadius))
-        throw Error("top radius must be a number >= 0");
-      break;
-    case NodeKind::Torus:
-      requirePositive(p.majorRadius, "major radius");
-      requirePositive(p.minorRadius, "minor radius");
-      if (!(p.minorRadius < p.majorRadius))
-        throw Error("the minor radius must be smaller than the major radius");
-      break;
-    default:
-      break;
-  }
-  if (p.segments != 0 && (p.segments < 3 || p.segments > kMaxSegments))
-    throw Error("segments must be 0 (automatic) or from 3 to " + std::to_string(kMaxSegments));
+  validatePrimitiveParams(kind, p);
 }
 
 void validateTransform(const Transform& t) {

@@ -4,10 +4,8 @@
 #include <filesystem>
 
 #include "engine/document/commands.h"
-#include "engine/io/mesh_io.h"
-#include "engine/io/scene_file.h"
-#include "engine/ldi/grid.h"
 #include "engine/util/error.h"
+#include "engine/util/limits.h"
 
 namespace strata {
 namespace {
@@ -38,13 +36,6 @@ Document::Document(Scene scene, std::string path) : path_(std::move(path)) {
   scene.root = absoluteMeshPaths(scene.root, folderOf(path_));
   state_ = DocumentState{std::make_shared<const Scene>(std::move(scene)), freshRevision()};
   savedRevision_ = state_.revision;
-}
-
-Document Document::open(const std::string& path, std::vector<std::string>* warnings) {
-  SceneLoadReport report;
-  Scene scene = loadScene(path, &report);
-  if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
-  return Document(std::move(scene), path);
 }
 
 NodeId Document::nextId() const {
@@ -108,13 +99,11 @@ NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
   return id;
 }
 
-NodeId Document::addMesh(const std::string& file, NodeId parent, int index,
+NodeId Document::addMesh(std::shared_ptr<const TriangleMesh> mesh, const std::string& file,
+                         const std::string& hash, NodeId parent, int index,
                          const Transform& transform) {
-  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file));
-  std::string hash = hashFile(file);
-  const std::string stored = fs::absolute(file).lexically_normal().generic_string();
-  auto node =
-      std::make_shared<Node>(*makeMeshNode(1, fs::path(file).stem().string(), mesh, stored, hash));
+  auto node = std::make_shared<Node>(
+      *makeMeshNode(1, fs::path(file).stem().string(), std::move(mesh), file, hash));
   node->transform = transform;
   return addSubtree(node, parent, index);
 }
@@ -206,25 +195,6 @@ bool Document::redo() {
   if (!history_.canRedo()) return false;
   state_ = history_.redo(state_);
   return true;
-}
-
-void Document::save() {
-  if (path_.empty()) throw Error("the document has no file yet; use Save As");
-  saveAs(path_);
-}
-
-void Document::saveAs(const std::string& path) {
-  if (path.empty()) throw Error("no file name given");
-  Scene out = scene();
-  out.root = relativeMeshPaths(out.root, folderOf(path));
-  std::error_code ec;
-  if (fs::exists(path, ec)) {
-    fs::copy_file(path, path + ".bak", fs::copy_options::overwrite_existing, ec);
-    if (ec) throw Error(path + ".bak: cannot keep the previous version: " + ec.message());
-  }
-  saveScene(out, path);
-  path_ = path;
-  savedRevision_ = state_.revision;
 }
 
 }  // namespace strata

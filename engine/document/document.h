@@ -31,9 +31,6 @@ class Document {
   // to its own folder (where the mesh lies inside it).
   explicit Document(Scene scene, std::string path = "");
 
-  // Loads a scene file (loadScene); warnings, if any, are appended to `warnings`.
-  static Document open(const std::string& path, std::vector<std::string>* warnings = nullptr);
-
   const Scene& scene() const { return *state_.scene; }
   const NodePtr& root() const { return state_.scene->root; }
   std::shared_ptr<const Scene> snapshot() const { return state_.scene; }
@@ -59,10 +56,12 @@ class Document {
   NodeId addNode(NodeKind kind, NodeId parent = 0, int index = -1);
   // Adds `node` (a subtree from elsewhere, e.g. a mesh leaf) with fresh ids; returns its id.
   NodeId addSubtree(const NodePtr& node, NodeId parent = 0, int index = -1);
-  // Reads a closed mesh file and adds it as a mesh leaf named after the file (its path made
-  // absolute, see the constructor). `transform` becomes the leaf's (import options: unit scale, up
-  // axis).
-  NodeId addMesh(const std::string& file, NodeId parent = 0, int index = -1,
+  // Adds a loaded, checked mesh as a mesh leaf named after its file's stem. `file` is the
+  // absolute path it was read from, `hash` the file's content hash; `transform` becomes the
+  // leaf's (import options: unit scale, up axis). Reading the file is engine/io's
+  // (importMeshFile in document_files.h).
+  NodeId addMesh(std::shared_ptr<const TriangleMesh> mesh, const std::string& file,
+                 const std::string& hash, NodeId parent = 0, int index = -1,
                  const Transform& transform = Transform{});
 
   void remove(NodeId id);
@@ -93,13 +92,12 @@ class Document {
   void endInteraction() { history_.endInteraction(); }
   bool interacting() const { return history_.interacting(); }
 
-  // --- files ---------------------------------------------------------------------------------
-  // Saves to path(); throws strata::Error when the document has none.
-  void save();
-  // Saves atomically (saveScene) to `path`, first copying an existing file there to
-  // "<path>.bak". Mesh paths are written relative to the file's folder where the mesh lies
-  // inside it, absolute otherwise. The document then belongs to `path` and is clean.
-  void saveAs(const std::string& path);
+  // --- files (read and written by engine/io/document_files.h) ---------------------------------
+  // The document now belongs to `path` and is clean (it was just written there).
+  void markSaved(const std::string& path) {
+    path_ = path;
+    savedRevision_ = state_.revision;
+  }
   // Makes the document belong to `path` without writing (e.g. after recovering it).
   void setPath(const std::string& path) { path_ = path; }
   // Marks the current state as modified (e.g. a recovered document that was never saved).

@@ -14,47 +14,10 @@
 
 #include "engine/geometry/mesh.h"
 #include "engine/geometry/transform.h"
+#include "engine/kinds/node_kinds.h"
+#include "engine/kinds/primitive_params.h"
 
 namespace strata {
-
-enum class NodeKind : uint8_t {
-  // Inner nodes (n-ary): the children, combined.
-  Union,
-  Intersection,
-  Difference,  // first child minus all the others
-  // Leaves: primitives, centred at the origin, axis along z.
-  Box,       // size.x by size.y by size.z
-  Sphere,    // radius
-  Cylinder,  // radius, height
-  Cone,      // radius (bottom, z = -height/2), topRadius (0 = pointed), height
-  Torus,     // majorRadius (ring, in the xy plane), minorRadius (tube)
-  Capsule,   // radius, height of the cylindrical part (total height + 2 radius)
-  Mesh,      // an imported closed triangle mesh
-  Instance,  // a reference to another node of the document (by id), with its own transform
-};
-
-bool isOperation(NodeKind kind);
-bool isPrimitive(NodeKind kind);
-// Lower-case name used in files and on the command line ("union", "box", ...).
-const char* kindName(NodeKind kind);
-// Inverse of kindName; returns false for unknown names.
-bool kindFromName(const std::string& name, NodeKind* kind);
-
-// Parameters of the primitive leaves; each kind reads the fields its comment above names.
-// Lengths in scene units.
-struct PrimitiveParams {
-  glm::dvec3 size{1.0};
-  double radius = 0.5;
-  double topRadius = 0.0;
-  double height = 1.0;
-  double majorRadius = 1.0;
-  double minorRadius = 0.25;
-  // Tessellation level of detail: segments around the circumference; 0 = automatic, chosen
-  // from the grid's cell size so that the chordal error stays below 1/50 of a cell.
-  int segments = 0;
-
-  bool operator==(const PrimitiveParams& o) const;
-};
 
 using NodeId = uint32_t;  // unique within a document, never 0 for a real node
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/geometry/primitives.h"
+#include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
 #include "engine/util/memory.h"
@@ -20,17 +20,6 @@ constexpr double kAutoChordErrorCells = 0.02;
 
 enum Stage { kTessellate, kSample, kBoolean, kMeasure, kStageCount };
 const char* const kStageNames[kStageCount] = {"tessellate", "sample", "boolean", "measure"};
-
-RayOp rayOp(NodeKind kind) {
-  switch (kind) {
-    case NodeKind::Union:
-      return RayOp::Union;
-    case NodeKind::Intersection:
-      return RayOp::Intersection;
-    default:
-      return RayOp::Difference;
-  }
-}
 
 double largestScale(const glm::dmat4& m) {
   double s = 0.0;
@@ -55,39 +44,12 @@ Bounds transformedBox(const Bounds& local, const glm::dmat4& world) {
   return b;
 }
 
-Bounds primitiveLocalBounds(const Node& n) {
-  const PrimitiveParams& p = n.params;
-  glm::dvec3 half(0.0);
-  switch (n.kind) {
-    case NodeKind::Box:
-      half = p.size * 0.5;
-      break;
-    case NodeKind::Sphere:
-      half = glm::dvec3(p.radius);
-      break;
-    case NodeKind::Cylinder:
-      half = {p.radius, p.radius, p.height / 2};
-      break;
-    case NodeKind::Cone: {
-      double r = std::max(p.radius, p.topRadius);
-      half = {r, r, p.height / 2};
-      break;
-    }
-    case NodeKind::Torus: {
-      double r = p.majorRadius + p.minorRadius;
-      half = {r, r, p.minorRadius};
-      break;
-    }
-    case NodeKind::Capsule:
-      half = {p.radius, p.radius, p.height / 2 + p.radius};
-      break;
-    default:
-      break;
+// The primitive's parameters in the cache key, as its table entry lists them.
+void hashPrimitiveParams(Hasher& h, NodeKind kind, const PrimitiveParams& p) {
+  for (const PrimitiveParam& param : primitiveInfo(kind)->params) {
+    if (param.scalar) h.add(p.*param.scalar);
+    if (param.vector) h.add((p.*param.vector).x).add((p.*param.vector).y).add((p.*param.vector).z);
   }
-  Bounds b;
-  b.min = -half;
-  b.max = half;
-  return b;
 }
 
 Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
@@ -102,14 +64,16 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
       for (const auto& p : node->mesh->positions) b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
     return b;
   }
-  if (isPrimitive(node->kind)) return transformedBox(primitiveLocalBounds(*node), world);
+  if (isPrimitive(node->kind))
+    return transformedBox(primitiveLocalBounds(node->kind, node->params), world);
   bool first = true;
   for (const auto& child : node->children) {
     if (!child->visible) continue;
     Bounds cb = boundsOf(child, root, world, false, depth + 1);
-    if (node->kind == NodeKind::Union) {
+    const RayOp op = nodeKindInfo(node->kind).rayOp;
+    if (op == RayOp::Union) {
       b.include(cb);
-    } else if (node->kind == NodeKind::Intersection) {
+    } else if (op == RayOp::Intersection) {
       b = first ? cb : b.intersected(cb);
     } else if (first) {
       b = cb;  // difference: the first visible child
@@ -223,8 +187,8 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
     segments = p.segments > 0 ? p.segments
                               : autoSegments(primitiveRadius(node->kind, p) * largestScale(world),
                                              kAutoChordErrorCells * ctx.grid.h);
-    key.add(p.size.x).add(p.size.y).add(p.size.z).add(p.radius).add(p.topRadius);
-    key.add(p.height).add(p.majorRadius).add(p.minorRadius).add(segments);
+    hashPrimitiveParams(key, node->kind, p);
+    key.add(segments);
   }
   Visit v;
   v.key = key.digest();
@@ -277,7 +241,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
     children.push_back(visit(c, world, depth + 1, ctx));
   }
   // Empty operands decide some results without a Boolean.
-  const RayOp op = rayOp(node->kind);
+  const RayOp op = nodeKindInfo(node->kind).rayOp;
   std::vector<Visit> operands;
   bool resultEmpty = children.empty();
   for (size_t i = 0; i < children.size(); ++i) {

@@ -20,8 +20,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "engine/geometry/primitives.h"
 #include "engine/io/scene_file.h"
+#include "engine/kinds/primitives.h"
 #include "engine/ldi/grid.h"
 #include "engine/util/error.h"
 
@@ -222,47 +222,22 @@ std::string describe(const json& v) {
   }
 }
 
-// Fields each node type accepts besides the common ones.
-struct TypeFields {
-  NodeKind kind;
-  std::vector<const char*> fields;
-};
-const std::vector<TypeFields>& typeFields() {
-  static const std::vector<TypeFields> table = {
-      {NodeKind::Union, {"children"}},
-      {NodeKind::Intersection, {"children"}},
-      {NodeKind::Difference, {"children"}},
-      {NodeKind::Box, {"size", "segments"}},
-      {NodeKind::Sphere, {"radius", "segments"}},
-      {NodeKind::Cylinder, {"radius", "height", "segments"}},
-      {NodeKind::Cone, {"radius", "topRadius", "height", "segments"}},
-      {NodeKind::Torus, {"majorRadius", "minorRadius", "segments"}},
-      {NodeKind::Capsule, {"radius", "height", "segments"}},
-      {NodeKind::Mesh, {"path", "hash"}},
-      {NodeKind::Instance, {"of"}},
-  };
-  return table;
-}
 const char* const kCommonFields[] = {"id", "type", "name", "transform", "color", "visible"};
 
 bool typeHasField(NodeKind kind, const std::string& key) {
-  for (const TypeFields& t : typeFields()) {
-    if (t.kind != kind) continue;
-    for (const char* f : t.fields)
-      if (key == f) return true;
-  }
+  for (const std::string& f : nodeKindInfo(kind).fields)
+    if (key == f) return true;
   return false;
 }
 bool anyTypeHasField(const std::string& key) {
-  for (const TypeFields& t : typeFields())
-    for (const char* f : t.fields)
-      if (key == f) return true;
+  for (const NodeKindInfo& info : nodeKindTable())
+    if (typeHasField(info.kind, key)) return true;
   return false;
 }
 std::string typeList() {
   std::string list;
-  for (const TypeFields& t : typeFields())
-    list += (list.empty() ? "" : ", ") + std::string(kindName(t.kind));
+  for (const NodeKindInfo& info : nodeKindTable())
+    list += (list.empty() ? "" : ", ") + std::string(info.name);
   return list;
 }
 
@@ -560,22 +535,23 @@ class SceneReader {
     return t;
   }
 
+  // Reads the fields the primitive's table entry lists, starting from its defaults.
   void readPrimitiveParams(const json& v, const std::string& at, NodeKind kind,
                            PrimitiveParams* params) const {
-    auto positiveField = [&](const char* key, double* out) {
-      if (auto f = v.find(key); f != v.end()) *out = positive(*f, at + "/" + key);
-    };
-    if (auto f = v.find("size"); f != v.end())
-      params->size = vec3(*f, at + "/size",
-                          [this](const json& c, const std::string& p) { return positive(c, p); });
-    positiveField("radius", &params->radius);
-    positiveField("height", &params->height);
-    positiveField("majorRadius", &params->majorRadius);
-    positiveField("minorRadius", &params->minorRadius);
-    if (auto f = v.find("topRadius"); f != v.end()) {
-      params->topRadius = number(*f, at + "/topRadius", "a number >= 0");
-      if (params->topRadius < 0)
-        fail(at + "/topRadius", "expected a number >= 0, got " + describe(*f));
+    const PrimitiveInfo& info = *primitiveInfo(kind);
+    *params = info.defaults;
+    for (const PrimitiveParam& param : info.params) {
+      auto f = v.find(param.key);
+      if (f == v.end()) continue;
+      const std::string p = at + "/" + param.key;
+      auto inRange = [&](const json& x, const std::string& xp) {
+        if (param.minimum == ParamMinimum::Positive) return positive(x, xp);
+        double d = number(x, xp, "a number >= 0");
+        if (d < 0) fail(xp, "expected a number >= 0, got " + describe(x));
+        return d;
+      };
+      if (param.scalar) params->*param.scalar = inRange(*f, p);
+      if (param.vector) params->*param.vector = vec3(*f, p, inRange);
     }
     if (auto f = v.find("segments"); f != v.end()) {
       std::string expected =
@@ -585,10 +561,17 @@ class SceneReader {
         fail(at + "/segments", "expected " + expected + ", got " + describe(*f));
       params->segments = static_cast<int>(s);
     }
-    if (kind == NodeKind::Torus && !(params->minorRadius < params->majorRadius)) {
-      std::string p = at + (v.contains("minorRadius") ? "/minorRadius" : "/majorRadius");
-      fail(p, "minorRadius (" + numberText(params->minorRadius) +
-                  ") must be smaller than majorRadius (" + numberText(params->majorRadius) + ")");
+    if (info.relations) {
+      ParamProblem problem = info.relations(*params);
+      if (!problem.message.empty()) {
+        const char* where = problem.keys.back();
+        for (const char* key : problem.keys)
+          if (v.contains(key)) {
+            where = key;
+            break;
+          }
+        fail(at + "/" + where, problem.message);
+      }
     }
   }
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "engine/io/scene_file.h"
+#include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -94,40 +95,19 @@ ojson nodeToJson(const Node& node, int depth) {
   j["name"] = node.name;
   j["type"] = kindName(node.kind);
 
-  const PrimitiveParams& p = node.params;
-  auto param = [&](const char* key, double value) { j[key] = finite(value, label + " " + key); };
-  switch (node.kind) {
-    case NodeKind::Box:
-      j["size"] = vec3(p.size, label + " size");
-      break;
-    case NodeKind::Sphere:
-      param("radius", p.radius);
-      break;
-    case NodeKind::Cylinder:
-    case NodeKind::Capsule:
-      param("radius", p.radius);
-      param("height", p.height);
-      break;
-    case NodeKind::Cone:
-      param("radius", p.radius);
-      param("topRadius", p.topRadius);
-      param("height", p.height);
-      break;
-    case NodeKind::Torus:
-      param("majorRadius", p.majorRadius);
-      param("minorRadius", p.minorRadius);
-      break;
-    case NodeKind::Mesh:
-      j["path"] = node.meshPath;
-      if (!node.meshHash.empty()) j["hash"] = node.meshHash;
-      break;
-    case NodeKind::Instance:
-      j["of"] = node.instanceOf;
-      break;
-    default:
-      break;
+  if (const PrimitiveInfo* info = primitiveInfo(node.kind)) {
+    for (const PrimitiveParam& param : info->params) {
+      const std::string what = label + " " + param.label;
+      if (param.scalar) j[param.key] = finite(node.params.*param.scalar, what);
+      if (param.vector) j[param.key] = vec3(node.params.*param.vector, what);
+    }
+    j["segments"] = node.params.segments;
+  } else if (node.kind == NodeKind::Mesh) {
+    j["path"] = node.meshPath;
+    if (!node.meshHash.empty()) j["hash"] = node.meshHash;
+  } else if (node.kind == NodeKind::Instance) {
+    j["of"] = node.instanceOf;
   }
-  if (isPrimitive(node.kind)) j["segments"] = p.segments;
 
   ojson transform;
   transform["translate"] = vec3(node.transform.translate, label + " translation");

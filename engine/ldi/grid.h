@@ -17,6 +17,7 @@
 
 #include "engine/geometry/mesh.h"
 #include "engine/ldi/shared_math.h"
+#include "engine/util/limits.h"
 
 namespace strata {
 
@@ -57,8 +58,5 @@ Grid makeGrid(const Bounds& bounds, int resolution, double margin);
 // A grid covering exactly `box` (origin at box.min) with `resolution` cells along the longest
 // side; the other sides get ceil(extent / h) cells. Used for explicit bounds in scene files.
 Grid makeGridExact(const Bounds& box, int resolution);
-
-constexpr int kMinResolution = 8;
-constexpr int kMaxResolution = 16384;
 
 }  // namespace strata

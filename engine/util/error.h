@@ -14,7 +14,7 @@ class Error : public std::runtime_error {
 };
 
 // A backend ran out of its own memory (device memory for the CUDA backend). The caller may retry
-// with smaller tiles or on another backend; see engine/eval/fallback.h.
+// with smaller tiles or on another backend; see engine/export/fallback.h.
 class BackendOutOfMemory : public Error {
  public:
   explicit BackendOutOfMemory(const std::string& message) : Error(message) {}

@@ -28,9 +28,9 @@
 #include <thread>
 #include <vector>
 
-#include "engine/contour/contour_scene.h"
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
+#include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/util/memory.h"

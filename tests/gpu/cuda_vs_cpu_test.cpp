@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "engine/contour/contour_scene.h"
+#include "engine/export/contour_scene.h"
 #include "engine/io/scene_file.h"
 #include "gpu/cuda_backend.h"
 #include "tests/support/mesh_invariants.h"

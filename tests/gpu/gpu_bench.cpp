@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/contour/contour_scene.h"
 #include "engine/eval/cpu_backend.h"
+#include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/scene_file.h"

@@ -7,6 +7,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/document/document.h"
+#include "engine/io/document_files.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/error.h"
 
@@ -153,22 +154,22 @@ TEST(Document, SaveLoadRoundTripAndBackup) {
   doc.setTransform(hole, t);
   doc.setColor(box, glm::vec3(0.25f, 0.5f, 1.0f));
   doc.setResolution(48);
-  EXPECT_THROW(doc.save(), Error);  // no file yet
-  doc.saveAs(path);
+  EXPECT_THROW(saveDocument(doc), Error);  // no file yet
+  saveDocumentAs(doc, path);
   EXPECT_FALSE(doc.dirty());
   EXPECT_EQ(doc.title(), "part.strata.json");
   EXPECT_FALSE(fs::exists(path + ".bak"));
 
-  Document loaded = Document::open(path);
+  Document loaded = openDocument(path);
   EXPECT_EQ(sceneToJson(loaded.scene()), sceneToJson(doc.scene()));
   EXPECT_FALSE(loaded.dirty());
 
   doc.rename(box, "block");
   EXPECT_EQ(doc.title(), "part.strata.json *");
-  doc.save();
+  saveDocument(doc);
   ASSERT_TRUE(fs::exists(path + ".bak"));
-  EXPECT_EQ(findNode(Document::open(path + ".bak").root(), box)->name, "box 2");
-  EXPECT_EQ(findNode(Document::open(path).root(), box)->name, "block");
+  EXPECT_EQ(findNode(openDocument(path + ".bak").root(), box)->name, "box 2");
+  EXPECT_EQ(findNode(openDocument(path).root(), box)->name, "block");
   doc.undo();
   EXPECT_TRUE(doc.dirty());
 }
@@ -184,32 +185,32 @@ TEST(Document, MeshImportAndSaveAsElsewhereKeepsTheMeshFound) {
     return std::string(std::istreambuf_iterator<char>(in), {});
   };
   Document doc;
-  doc.saveAs(dir + "/scene.strata.json");
-  NodeId mesh = doc.addMesh(dir + "/meshes/bunny.obj");
+  saveDocumentAs(doc, dir + "/scene.strata.json");
+  NodeId mesh = importMeshFile(doc, dir + "/meshes/bunny.obj");
   NodePtr node = findNode(doc.root(), mesh);
   EXPECT_EQ(node->name, "bunny");
   EXPECT_EQ(node->meshPath, absolute);  // absolute in memory
   EXPECT_FALSE(node->meshHash.empty());
   ASSERT_TRUE(node->mesh);
-  doc.save();
+  saveDocument(doc);
   // Written relative to the file's folder.
   EXPECT_NE(fileText(dir + "/scene.strata.json").find("\"meshes/bunny.obj\""), std::string::npos);
-  EXPECT_EQ(findNode(Document::open(dir + "/scene.strata.json").root(), mesh)->meshPath, absolute);
+  EXPECT_EQ(findNode(openDocument(dir + "/scene.strata.json").root(), mesh)->meshPath, absolute);
 
   fs::create_directories(dir + "/other");
   doc.rename(mesh, "renamed");
-  doc.saveAs(dir + "/other/copy.strata.json");
+  saveDocumentAs(doc, dir + "/other/copy.strata.json");
   // Outside the new folder: written absolute.
   EXPECT_NE(fileText(dir + "/other/copy.strata.json").find("\"" + absolute + "\""),
             std::string::npos);
-  EXPECT_TRUE(findNode(Document::open(dir + "/other/copy.strata.json").root(), mesh)->mesh);
+  EXPECT_TRUE(findNode(openDocument(dir + "/other/copy.strata.json").root(), mesh)->mesh);
   // Undo after Save As elsewhere, then save: the mesh is still found from the new folder.
   ASSERT_TRUE(doc.undo());
-  doc.save();
-  Document again = Document::open(dir + "/other/copy.strata.json");
+  saveDocument(doc);
+  Document again = openDocument(dir + "/other/copy.strata.json");
   EXPECT_TRUE(findNode(again.root(), mesh)->mesh);
   EXPECT_EQ(findNode(again.root(), mesh)->name, "bunny");
-  EXPECT_THROW(doc.addMesh(dir + "/missing.obj"), Error);
+  EXPECT_THROW(importMeshFile(doc, dir + "/missing.obj"), Error);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "engine/eval/fallback.h"
+#include "engine/export/fallback.h"
 
 #include "engine/eval/cpu_backend.h"
 #include "engine/util/error.h"

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "engine/contour/contour_scene.h"
 #include "engine/eval/evaluator.h"
+#include "engine/export/contour_scene.h"
 
 namespace strata {
 

@@ -7,7 +7,7 @@
 #include <random>
 #include <tuple>
 
-#include "engine/contour/contour_scene.h"
+#include "engine/export/contour_scene.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
 

@@ -1,10 +1,11 @@
-// Recent files and the recovery file (engine/document/user_files.h).
+// Recent files and the recovery file (engine/io/user_files.h).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 
-#include "engine/document/user_files.h"
+#include "engine/io/document_files.h"
+#include "engine/io/user_files.h"
 
 namespace strata {
 namespace {
@@ -49,8 +50,8 @@ TEST(DocumentRecovery, RoundTripKeepsContentOriginAndMeshes) {
   std::string recovery = dir + "/data/recovery.strata.json";
 
   Document doc;
-  doc.saveAs(dir + "/project/part.strata.json");
-  NodeId mesh = doc.addMesh(dir + "/project/meshes/bunny.obj");
+  saveDocumentAs(doc, dir + "/project/part.strata.json");
+  NodeId mesh = importMeshFile(doc, dir + "/project/meshes/bunny.obj");
   NodeId box = doc.addNode(NodeKind::Box);
   doc.rename(box, "unsaved change");
   EXPECT_FALSE(recoveryFileExists(recovery));

@@ -1,4 +1,4 @@
-#include "engine/document/user_files.h"
+#include "engine/io/user_files.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <functional>
 
-#include "engine/contour/contour_scene.h"
+#include "engine/export/contour_scene.h"
 #include "engine/io/scene_file.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"

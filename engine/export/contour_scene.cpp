@@ -1,4 +1,4 @@
-#include "engine/contour/contour_scene.h"
+#include "engine/export/contour_scene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "engine/eval/fallback.h"
+#include "engine/export/fallback.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
 

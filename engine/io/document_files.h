@@ -1,0 +1,32 @@
+// A document's files: opening a scene file as a document, saving it, importing a mesh file
+// into it. The document model (engine/document) holds no file I/O; this is where it meets the
+// disk.
+//
+// Threads: the caller's (the editor's UI thread, tests); synchronous.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/document/document.h"
+
+namespace strata {
+
+// Loads a scene file (loadScene) as a clean document belonging to `path`; warnings, if any, are
+// appended to `warnings`. Throws strata::Error.
+Document openDocument(const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+// Saves to document.path(); throws strata::Error when the document has none.
+void saveDocument(Document& document);
+// Saves atomically (saveScene) to `path`, first copying an existing file there to
+// "<path>.bak". Mesh paths are written relative to the file's folder where the mesh lies
+// inside it, absolute otherwise. The document then belongs to `path` and is clean.
+void saveDocumentAs(Document& document, const std::string& path);
+
+// Reads a closed mesh file (readMeshFile) and adds it as a mesh leaf named after the file, its
+// path made absolute (see Document's constructor), under `parent` at `index` (Document::addNode)
+// with `transform`. One undo step. Returns the new leaf's id. Throws strata::Error.
+NodeId importMeshFile(Document& document, const std::string& file, NodeId parent = 0,
+                      int index = -1, const Transform& transform = Transform{});
+
+}  // namespace strata

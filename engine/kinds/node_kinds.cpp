@@ -1,0 +1,104 @@
+#include "engine/kinds/node_kinds.h"
+
+namespace strata {
+namespace {
+
+std::vector<NodeKindInfo> buildTable() {
+  std::vector<NodeKindInfo> table = {
+      {NodeKind::Union,
+       "union",
+       KindRole::Operation,
+       "\u222A",
+       "U",
+       "Union: everything any child covers",
+       RayOp::Union,
+       {"children"}},
+      {NodeKind::Difference,
+       "difference",
+       KindRole::Operation,
+       "\u2212",
+       "-",
+       "Difference: the first child minus all the others",
+       RayOp::Difference,
+       {"children"}},
+      {NodeKind::Intersection,
+       "intersection",
+       KindRole::Operation,
+       "\u2229",
+       "&",
+       "Intersection: only what every child covers",
+       RayOp::Intersection,
+       {"children"}},
+  };
+  for (const PrimitiveInfo& p : primitiveTable()) {
+    std::vector<std::string> fields;
+    for (const PrimitiveParam& param : p.params) fields.push_back(param.key);
+    fields.push_back("segments");
+    NodeKindInfo info{p.kind,    p.name,       KindRole::Primitive, p.glyph, p.asciiGlyph,
+                      p.summary, RayOp::Union, std::move(fields),   &p};
+    table.push_back(std::move(info));
+  }
+  table.push_back({NodeKind::Mesh,
+                   "mesh",
+                   KindRole::Mesh,
+                   "\u25C6",
+                   "M",
+                   "An imported closed triangle mesh",
+                   RayOp::Union,
+                   {"path", "hash"}});
+  table.push_back({NodeKind::Instance,
+                   "instance",
+                   KindRole::Instance,
+                   "\u21B3",
+                   ">",
+                   "A live copy of another node, with its own transform",
+                   RayOp::Union,
+                   {"of"}});
+  return table;
+}
+
+}  // namespace
+
+const std::vector<NodeKindInfo>& nodeKindTable() {
+  static const std::vector<NodeKindInfo> table = buildTable();
+  return table;
+}
+
+const NodeKindInfo& nodeKindInfo(NodeKind kind) {
+  for (const NodeKindInfo& info : nodeKindTable())
+    if (info.kind == kind) return info;
+  static const NodeKindInfo unknown{kind,         "unknown", KindRole::Mesh, "?", "?", "",
+                                    RayOp::Union, {},        nullptr};
+  return unknown;
+}
+
+bool isOperation(NodeKind kind) {
+  return nodeKindInfo(kind).role == KindRole::Operation;
+}
+
+bool isPrimitive(NodeKind kind) {
+  return nodeKindInfo(kind).role == KindRole::Primitive;
+}
+
+const char* kindName(NodeKind kind) {
+  return nodeKindInfo(kind).name;
+}
+
+bool kindFromName(const std::string& name, NodeKind* kind) {
+  for (const NodeKindInfo& info : nodeKindTable()) {
+    if (name == info.name) {
+      *kind = info.kind;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<NodeKind> operationKinds() {
+  std::vector<NodeKind> kinds;
+  for (const NodeKindInfo& info : nodeKindTable())
+    if (info.role == KindRole::Operation) kinds.push_back(info.kind);
+  return kinds;
+}
+
+}  // namespace strata

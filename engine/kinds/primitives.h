@@ -1,0 +1,93 @@
+// The primitive leaves, one table entry each: name, icon, parameters with their ranges and
+// units, defaults, local bounds, automatic level of detail and tessellation. Scene files, the
+// document's validation, the evaluator's cache keys and tessellation, and the editor's palette,
+// inspector and outliner all iterate over this table; adding a primitive is one entry in
+// primitives.cpp, its tessellation beside it, and its value in node_kind.h (CONTRIBUTING.md).
+//
+// Conventions: object coordinates, centred at the origin, axis along z; lengths in scene units.
+// Meshes are closed, consistently oriented outward, without degenerate triangles.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/geometry/mesh.h"
+#include "engine/kinds/node_kind.h"
+#include "engine/kinds/primitive_params.h"
+
+namespace strata {
+
+// Segments around the circumference for a primitive whose largest radius, after its world
+// transform, is `worldRadius` scene units, such that the chordal error stays below
+// `maxError` scene units. Clamped to [12, kMaxAutoSegments].
+int autoSegments(double worldRadius, double maxError);
+constexpr int kMaxAutoSegments = 1024;
+// The most segments a primitive may ask for explicitly (scene files, the inspector).
+constexpr int kMaxSegments = 4096;
+
+// The smallest value a parameter takes.
+enum class ParamMinimum : uint8_t {
+  Positive,     // > 0
+  NonNegative,  // >= 0
+};
+
+// One parameter: a length, or three lengths along x, y, z. Exactly one of `scalar` and
+// `vector` is set.
+struct PrimitiveParam {
+  const char* key;    // scene-file field, e.g. "topRadius"
+  const char* label;  // for people, e.g. "top radius"
+  double PrimitiveParams::*scalar = nullptr;
+  glm::dvec3 PrimitiveParams::*vector = nullptr;
+  ParamMinimum minimum = ParamMinimum::Positive;
+};
+
+// A constraint between parameters that failed: what to say, and the parameters involved (a
+// message about a file names the first of them the file sets, else the last).
+struct ParamProblem {
+  std::string message;
+  std::vector<const char*> keys;
+};
+
+struct PrimitiveInfo {
+  NodeKind kind;
+  const char* name;        // in files and on the command line: "box"
+  const char* glyph;       // UTF-8 icon (from U+2190..U+21FF or U+2500..U+25FF, which the
+                           // editor's font carries)
+  const char* asciiGlyph;  // where the font lacks it
+  const char* summary;     // one line for tooltips
+  std::vector<PrimitiveParam> params;
+  bool usesSegments;         // shown in the inspector; every primitive's file may carry one
+  PrimitiveParams defaults;  // a new primitive of size about 1
+  // Largest radius in object units, for automatic segments (0: not curved).
+  double (*radius)(const PrimitiveParams&);
+  // Local bounds are [-halfExtent, +halfExtent].
+  glm::dvec3 (*halfExtent)(const PrimitiveParams&);
+  // Constraints between parameters (each alone in range); nullptr or "" message: none failed.
+  ParamProblem (*relations)(const PrimitiveParams&);
+  // The mesh, for parameters that passed validation, with `segments` >= 3 around.
+  TriangleMesh (*tessellate)(const PrimitiveParams&, int segments);
+};
+
+// Every primitive, in palette order.
+const std::vector<PrimitiveInfo>& primitiveTable();
+// The entry of `kind`; nullptr when `kind` is not a primitive.
+const PrimitiveInfo* primitiveInfo(NodeKind kind);
+
+// Checks every parameter of `kind` (ranges, relations, segments). Throws strata::Error
+// "<label> must be ..." for the first that fails, or when `kind` is not a primitive.
+void validatePrimitiveParams(NodeKind kind, const PrimitiveParams& params);
+
+// The primitive's mesh in object coordinates with `segments` segments around (at least 3 are
+// used). Validates first (throws strata::Error for a non-primitive kind or invalid parameters).
+TriangleMesh tessellatePrimitive(NodeKind kind, const PrimitiveParams& params, int segments);
+
+// The largest radius of the primitive in object units (0 for a box): what autoSegments needs,
+// times the transform's largest scale.
+double primitiveRadius(NodeKind kind, const PrimitiveParams& params);
+// The primitive's local bounds; empty for a non-primitive kind.
+Bounds primitiveLocalBounds(NodeKind kind, const PrimitiveParams& params);
+
+// Every length parameter of `kind` multiplied by `factor` (> 0); segments kept.
+PrimitiveParams scaledPrimitiveParams(NodeKind kind, const PrimitiveParams& params, double factor);
+
+}  // namespace strata

@@ -1,0 +1,117 @@
+// The primitive table: every entry, present and future, must tessellate into a closed, oriented
+// mesh inside its bounds, validate its defaults, and round-trip through scene files. The rounded
+// box is checked against its analytic volume and area.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/document/commands.h"
+#include "engine/io/scene_file.h"
+#include "engine/kinds/node_kinds.h"
+#include "engine/kinds/primitives.h"
+#include "engine/util/error.h"
+#include "tests/support/mesh_invariants.h"
+#include "tests/support/scene_builder.h"
+
+namespace strata {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(PrimitiveTable, EveryEntryTessellatesClosedInsideItsBounds) {
+  ASSERT_GE(primitiveTable().size(), 7u);
+  for (const PrimitiveInfo& info : primitiveTable()) {
+    SCOPED_TRACE(info.name);
+    EXPECT_NO_THROW(validatePrimitiveParams(info.kind, info.defaults));
+    EXPECT_TRUE(isPrimitive(info.kind));
+    EXPECT_EQ(nodeKindInfo(info.kind).primitive, &info);
+    for (int segments : {3, 12, 64}) {
+      TriangleMesh mesh = tessellatePrimitive(info.kind, info.defaults, segments);
+      EXPECT_TRUE(test::isWatertight(mesh)) << segments << " segments";
+      EXPECT_EQ(checkMesh(mesh).genus, info.kind == NodeKind::Torus ? 1 : 0);
+      Bounds bounds = primitiveLocalBounds(info.kind, info.defaults);
+      for (const glm::dvec3& p : mesh.positions)
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(p[a], bounds.min[a] - 1e-12);
+          EXPECT_LE(p[a], bounds.max[a] + 1e-12);
+        }
+    }
+  }
+}
+
+TEST(PrimitiveTable, EveryEntryRoundTripsThroughSceneFiles) {
+  for (const PrimitiveInfo& info : primitiveTable()) {
+    SCOPED_TRACE(info.name);
+    NodePtr leaf = makePrimitiveNode(info.kind, 2);
+    auto node = std::make_shared<Node>(*leaf);
+    node->params = scaledPrimitiveParams(info.kind, info.defaults, 1.75);
+    node->params.segments = 40;
+    Scene scene = test::makeScene(makeOperationNode(NodeKind::Union, 1, {node}), 32);
+    Scene back = parseScene(sceneToJson(scene), "t.strata.json", ".");
+    NodePtr read = findNode(back.root, node->id);
+    ASSERT_TRUE(read);
+    EXPECT_EQ(read->kind, info.kind);
+    EXPECT_EQ(read->params, node->params);
+  }
+}
+
+TEST(PrimitiveTable, ParametersOutOfRangeAreRefusedWithTheirLabel) {
+  for (const PrimitiveInfo& info : primitiveTable()) {
+    for (const PrimitiveParam& param : info.params) {
+      SCOPED_TRACE(std::string(info.name) + " " + param.key);
+      PrimitiveParams p = info.defaults;
+      if (param.scalar) p.*param.scalar = -1.0;
+      if (param.vector) (p.*param.vector).y = -1.0;
+      try {
+        validatePrimitiveParams(info.kind, p);
+        ADD_FAILURE() << "accepted a negative " << param.key;
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(param.label), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
+TEST(RoundedBox, MeshMatchesTheAnalyticVolumeAndArea) {
+  PrimitiveParams p;
+  p.size = {2.0, 1.5, 1.0};
+  p.radius = 0.2;
+  const glm::dvec3 in = p.size - 2.0 * p.radius;
+  const double r = p.radius;
+  const double volume = in.x * in.y * in.z + 2 * r * (in.x * in.y + in.y * in.z + in.z * in.x) +
+                        kPi * r * r * (in.x + in.y + in.z) + 4.0 / 3.0 * kPi * r * r * r;
+  const double area = 2 * (in.x * in.y + in.y * in.z + in.z * in.x) +
+                      2 * kPi * r * (in.x + in.y + in.z) + 4 * kPi * r * r;
+  TriangleMesh mesh = tessellatePrimitive(NodeKind::RoundedBox, p, 256);
+  MeshCheck c = checkMesh(mesh);
+  EXPECT_TRUE(test::isWatertight(mesh));
+  EXPECT_EQ(c.genus, 0);
+  EXPECT_EQ(c.components, 1);
+  EXPECT_NEAR(c.volume, volume, 1e-3 * volume);
+  EXPECT_NEAR(c.area, area, 1e-3 * area);
+}
+
+TEST(RoundedBox, EvaluatesToItsVolumeAndRefusesATooLargeRadius) {
+  auto node = std::make_shared<Node>(*makePrimitiveNode(NodeKind::RoundedBox, 2));
+  node->params.size = {2.0, 2.0, 2.0};
+  node->params.radius = 0.5;
+  const double v = 1.0 + 2 * 0.5 * 3.0 + kPi * 0.25 * 3.0 + 4.0 / 3.0 * kPi * 0.125;
+  EvalResult r = test::evaluateCpu(test::makeScene(test::op(NodeKind::Union, {node}), 128));
+  EXPECT_NEAR(r.measure.volume, v, 0.01 * v);
+
+  node->params.radius = 1.0;  // the inner box would vanish
+  EXPECT_THROW(validatePrimitiveParams(NodeKind::RoundedBox, node->params), Error);
+  const std::string file =
+      R"({"format": "strata-scene", "version": 1, "root": {"id": 1, "type": "roundedBox",
+      "size": [1, 1, 1], "radius": 0.5}})";
+  try {
+    parseScene(file, "r.strata.json", ".");
+    ADD_FAILURE() << "accepted a radius of half the size";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/root/radius: radius (0.5) must be less than half"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace strata
