@@ -1,6 +1,7 @@
 #include "app/cli_common.h"
 
 #include <cctype>
+#include <cstdint>
 #include <new>
 
 #include "engine/util/error.h"
@@ -9,8 +10,8 @@
 namespace strata {
 
 const std::vector<std::string> kValuedOptions = {
-    "--resolution", "--report", "-o",        "--output", "--backend",
-    "--threads",    "--margin", "--surfels", "--tile",   "--unit-scale"};
+    "--resolution", "--report",  "-o",     "--output",     "--backend",   "--threads",
+    "--margin",     "--surfels", "--tile", "--unit-scale", "--max-leaves"};
 const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open"};
 
 int runGuarded(const std::function<int()>& body) {
@@ -47,6 +48,11 @@ std::string unitAbbreviation(const std::string& unit) {
   if (unit == "foot") return "ft";
   if (unit == "micron" || unit == "micrometre" || unit == "micrometer") return "um";
   return unit;
+}
+
+void applySceneLimits(const CliArgs& args, Scene* scene) {
+  if (args.has("--max-leaves"))
+    scene->settings.maxLeaves = uint64_t(args.integer("--max-leaves", 0, 1, INT32_MAX));
 }
 
 std::string fileExtension(const std::string& path) {

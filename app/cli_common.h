@@ -8,6 +8,7 @@
 
 #include "app/backend_choice.h"
 #include "app/cli_args.h"
+#include "engine/document/scene.h"
 
 namespace strata {
 
@@ -22,6 +23,9 @@ int runGuarded(const std::function<int()>& body);
 BackendChoice setUpBackend(const CliArgs& args);
 
 bool quietRequested(const CliArgs& args);
+
+// Applies --max-leaves to the scene's settings (engine/document/expansion.h).
+void applySceneLimits(const CliArgs& args, Scene* scene);
 
 // Lower-case extension of a path without the dot ("" when none).
 std::string fileExtension(const std::string& path);

@@ -45,6 +45,11 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
         context.warnings.push_back(line);
       },
       &used);
+  for (const auto& w : result.warnings) {
+    terminal.finish();
+    std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
+    context.warnings.push_back(w);
+  }
   Backend& backend = used ? *used : *choice.backend;
   const std::string surfels = args.text("--surfels", "");
   if (!surfels.empty()) {
@@ -74,6 +79,7 @@ Scene loadSceneFromArgs(const CliArgs& args, const std::string& path,
   MeshReadOptions meshOptions;
   meshOptions.allowOpen = args.has("--allow-open");
   Scene scene = loadScene(path, &load, meshOptions);
+  applySceneLimits(args, &scene);
   for (const auto& w : load.warnings) {
     std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
     warnings->push_back(w);
@@ -120,6 +126,7 @@ int runBoolean(const std::vector<std::string>& argv) {
     std::vector<std::string> files(pos.begin() + 1, pos.end());
     Scene scene = sceneFromMeshFiles(pos[0], files, meshOptions,
                                      args.number("--margin", 0.05, 0.0, 10.0), &warnings);
+    applySceneLimits(args, &scene);
     for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
     std::string input = pos[0] + " of";
     for (const auto& f : files) input += " " + f;

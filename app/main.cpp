@@ -32,6 +32,8 @@ const char* kUsage =
     "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"
     "  --backend B       auto | cpu | cuda (default auto)\n"
     "  --threads N       worker threads (default: all cores, or STRATA_THREADS)\n"
+    "  --max-leaves N    evaluate scenes whose instances expand to more than 100000\n"
+    "                    visible leaves (refused by default, before any work)\n"
     "  --nodes           list every node: computed or reused, time, surfels\n"
     "  --allow-open      try open or non-manifold meshes instead of rejecting them\n"
     "  --unit-scale S    boolean: multiply mesh coordinates by S\n"

@@ -2,22 +2,12 @@
 
 #include <algorithm>
 
+#include "engine/document/expansion.h"
+
 namespace strata {
-namespace {
-int depthOf(const NodePtr& node, const NodePtr& root, int guard) {
-  if (!node || guard > 100000) return 0;
-  if (node->kind == NodeKind::Instance) {
-    NodePtr target = findNode(root, node->instanceOf);
-    return target ? depthOf(target, root, guard + 1) : 1;
-  }
-  int deepest = 0;
-  for (const auto& c : node->children) deepest = std::max(deepest, depthOf(c, root, guard + 1));
-  return deepest + 1;
-}
-}  // namespace
 
 int treeDepth(const NodePtr& root) {
-  return depthOf(root, root, 0);
+  return measureExpansion(root).depth;
 }
 
 NodePtr findNode(const NodePtr& root, NodeId id) {

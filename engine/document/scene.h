@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/document/node.h"
+#include "engine/util/limits.h"
 
 namespace strata {
 
@@ -17,6 +18,8 @@ struct SceneSettings {
   // box instead of the scene bounds plus margin.
   bool hasBounds = false;
   Bounds bounds;
+  // Visible leaves an evaluation may visit through instances (engine/document/expansion.h).
+  uint64_t maxLeaves = kDefaultMaxLeaves;
 };
 
 struct Scene {

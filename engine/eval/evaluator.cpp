@@ -1,10 +1,15 @@
 #include "engine/eval/evaluator.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
+#include "engine/document/expansion.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
@@ -83,6 +88,56 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
   return b;
 }
 
+// Numbers a leaf's placement must keep: a finite, invertible world transform whose scales neither
+// underflow nor overflow, and a size that the coordinates' precision can still represent.
+// Throws strata::Error naming the leaf.
+void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds& bounds) {
+  const std::string who = std::string(kindName(node.kind)) + " '" + node.name + "'";
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(world[c][r]))
+        throw Error(who +
+                    ": its world transform overflows (nested scales or translations "
+                    "multiply past 1e308)");
+  const double det = glm::determinant(glm::dmat3(world));
+  if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%.3g", det);
+    throw Error(who +
+                ": its world transform is singular or underflows (the nested scales "
+                "multiply to a volume factor of " +
+                text + ")");
+  }
+  if (!(bounds.min.x <= bounds.max.x)) return;  // no points (empty() also holds for flat boxes)
+  const glm::dvec3 size = bounds.max - bounds.min;
+  const glm::dvec3 far = glm::max(glm::abs(bounds.min), glm::abs(bounds.max));
+  bool finite = true;
+  for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(size[a]) && std::isfinite(far[a]);
+  if (!finite) throw Error(who + ": its coordinates overflow");
+  for (int a = 0; a < 3; ++a)
+    if (!(size[a] > far[a] * 1e-12)) {  // fewer than ~4500 doubles across the part
+      char text[120];
+      std::snprintf(text, sizeof(text), "%.3g from the origin along %c, where its size of %.3g",
+                    far[a], "xyz"[a], size[a]);
+      throw Error(who + " lies " + text + " cannot be represented in double precision");
+    }
+}
+
+// "part 'X' (0.001 across) is smaller than a cell (0.01); ..." when the leaf's largest extent is
+// below the cell size h, so that it may vanish or break up at this resolution; "" otherwise.
+std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, double h) {
+  if (bounds.empty()) return "";
+  const glm::dvec3 size = bounds.size();
+  const double extent = std::max({size.x, size.y, size.z});
+  if (extent >= h) return "";
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                " (%.3g across) is smaller than a cell (%.3g): it may vanish at this resolution; "
+                "raise the resolution to see it",
+                extent, h);
+  return std::string(kindName(node.kind)) + " '" + node.name + "'" + text;
+}
+
 // Bounds of everything visible, whatever the operations: the fallback grid of a scene whose
 // result is empty (so that the evaluation still runs and reports an empty result).
 void allLeafBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
@@ -96,15 +151,6 @@ void allLeafBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& p
   } else {
     out->include(boundsOf(node, root, parentWorld, true, depth));  // visibility checked above
   }
-}
-
-int countNodes(const NodePtr& node, const NodePtr& root, bool asInstance, int depth) {
-  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return 0;
-  if (node->kind == NodeKind::Instance)
-    return countNodes(findNode(root, node->instanceOf), root, true, depth + 1);
-  int n = 1;
-  for (const auto& c : node->children) n += countNodes(c, root, false, depth + 1);
-  return n;
 }
 
 }  // namespace
@@ -123,6 +169,11 @@ struct Evaluator::Context {
     stages[s].surfels += surfels;
     stages[s].peakBytes = peakResidentBytes();
     stages[s].runs += 1;
+  }
+  void warn(const std::string& warning) {
+    if (warning.empty()) return;
+    auto& list = result->warnings;
+    if (std::find(list.begin(), list.end(), warning) == list.end()) list.push_back(warning);
   }
   void nodeDone() {
     ++done;
@@ -151,6 +202,7 @@ Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& pa
 
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;
+  checkExpansion(scene.root, scene.settings.maxLeaves);  // before any walk through instances
   if (scene.settings.hasBounds) return makeGridExact(scene.settings.bounds, n);
   Bounds b = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
   if (b.empty()) allLeafBounds(scene.root, scene.root, glm::dmat4(1.0), true, 0, &b);
@@ -199,6 +251,7 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
     v.ldi = hit->second.ldi;
     record.outcome = NodeOutcome::Cached;
     ++ctx.result->reused;
+    ctx.warn(hit->second.warning);
   } else {
     Stopwatch watch;
     std::shared_ptr<const TriangleMesh> mesh = node->mesh;
@@ -208,10 +261,15 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
           std::make_shared<TriangleMesh>(tessellatePrimitive(node->kind, node->params, segments));
       ctx.finishStage(kTessellate, tessellate.seconds(), 0);
     }
+    Bounds bounds;
+    for (const auto& p : mesh->positions) bounds.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+    checkLeafPlacement(*node, world, bounds);
+    const std::string warning = smallerThanCellWarning(*node, bounds, ctx.grid.h);
     Stopwatch sample;
     v.ldi = backend_->sampleMesh(*mesh, world, ctx.grid, node->id, *ctx.progress);
     ctx.finishStage(kSample, sample.seconds(), v.ldi->surfelCount());
-    cache_[v.key] = CacheEntry{v.ldi, generation_};
+    cache_[v.key] = CacheEntry{v.ldi, generation_, warning};
+    ctx.warn(warning);
     record.seconds = watch.seconds();
     ++ctx.result->computed;
   }
@@ -264,7 +322,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
       v.ldi = hit->second.ldi;
     } else {
       v.ldi = backend_->empty(ctx.grid);
-      cache_[v.key] = CacheEntry{v.ldi, generation_};
+      cache_[v.key] = CacheEntry{v.ldi, generation_, {}};
     }
     record.outcome = NodeOutcome::Empty;
   } else if (operands.size() == 1) {
@@ -289,7 +347,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
       v.ldi = backend_->combine(op, inputs, ctx.grid, *ctx.progress);
       record.seconds = watch.seconds();
       ctx.finishStage(kBoolean, record.seconds, v.ldi->surfelCount());
-      cache_[v.key] = CacheEntry{v.ldi, generation_};
+      cache_[v.key] = CacheEntry{v.ldi, generation_, {}};
     }
   }
   if (record.outcome == NodeOutcome::Cached) ++ctx.result->reused;
@@ -316,7 +374,9 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   ctx.grid = grid;
   ctx.progress = &progress;
   ctx.result = &result;
-  ctx.total = std::max(1, countNodes(scene.root, scene.root, true, 0)) + 1;
+  const TreeExpansion expansion = measureExpansion(scene.root);
+  checkExpansion(scene.root, scene.settings.maxLeaves);
+  ctx.total = int(std::min<uint64_t>(expansion.nodes, 1u << 30)) + 1;
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];
   result.grid = ctx.grid;
 

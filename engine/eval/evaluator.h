@@ -63,6 +63,8 @@ struct EvalResult {
   uint64_t peakBytes = 0;   // process peak resident memory after the evaluation
   uint64_t cacheBytes = 0;  // LDI memory held by the cache after the evaluation
   std::string backend;
+  // Said once each, for the user: parts smaller than a cell (named), ...
+  std::vector<std::string> warnings;
 };
 
 class Evaluator {
@@ -85,6 +87,7 @@ class Evaluator {
   struct CacheEntry {
     LdiHandle ldi;
     uint64_t generation = 0;  // the last evaluation that used it
+    std::string warning;      // what sampling this leaf warned about ("" for none)
   };
   struct Context;
   struct Visit {

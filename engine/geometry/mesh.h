@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace strata {
@@ -22,8 +23,8 @@ struct TriangleMesh {
 
 // Axis-aligned box; empty when min > max on any axis.
 struct Bounds {
-  glm::dvec3 min{1e300, 1e300, 1e300};
-  glm::dvec3 max{-1e300, -1e300, -1e300};
+  glm::dvec3 min{std::numeric_limits<double>::infinity()};
+  glm::dvec3 max{-std::numeric_limits<double>::infinity()};
 
   bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
   void include(const glm::dvec3& p);

@@ -12,11 +12,11 @@
 
 #include "engine/document/scene.h"
 #include "engine/io/mesh_io.h"
+#include "engine/util/limits.h"
 
 namespace strata {
 
 constexpr int kSceneFormatVersion = 1;
-constexpr int kMaxTreeDepth = 512;  // deeper trees are rejected as absurd
 
 struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving

@@ -396,6 +396,10 @@ class SceneReader {
       } else if (key == "bounds") {
         readBounds(*it, p, &settings->bounds);
         settings->hasBounds = true;
+      } else if (key == "maxLeaves") {
+        settings->maxLeaves = static_cast<uint64_t>(
+            integer(*it, p, 1, kMaxLeavesSetting,
+                    "an integer from 1 to " + std::to_string(kMaxLeavesSetting)));
       } else {
         fail(p, "unknown field \"" + key + "\"");
       }

@@ -149,6 +149,7 @@ std::string sceneToJson(const Scene& scene) {
     bounds["max"] = vec3(s.bounds.max, "the grid bounds");
     settings["bounds"] = std::move(bounds);
   }
+  if (s.maxLeaves != kDefaultMaxLeaves) settings["maxLeaves"] = s.maxLeaves;
   doc["settings"] = std::move(settings);
   doc["root"] = nodeToJson(*scene.root, 1);
   try {

@@ -2,10 +2,21 @@
 // for. Messages that refuse a value name the limit.
 #pragma once
 
+#include <cstdint>
+
 namespace strata {
 
 // Cells along the longest side of an evaluation grid.
 constexpr int kMinResolution = 8;
 constexpr int kMaxResolution = 16384;
+
+// Levels of a CSG tree, counted through instances (a leaf alone has depth 1).
+constexpr int kMaxTreeDepth = 512;
+
+// Visible leaves an evaluation may visit, counted through instances, unless the user raises it
+// (`--max-leaves N`, or the scene setting "maxLeaves").
+constexpr uint64_t kDefaultMaxLeaves = 100000;
+// The most a scene file or the command line may set it to (2^40, about 1.1e12).
+constexpr int64_t kMaxLeavesSetting = int64_t(1) << 40;
 
 }  // namespace strata

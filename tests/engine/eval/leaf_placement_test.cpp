@@ -1,0 +1,67 @@
+// Numbers out of range are errors or warnings, never a silent zero: scales that underflow,
+// parts too far out for their size, and parts smaller than a cell.
+#include <gtest/gtest.h>
+
+#include "engine/document/commands.h"
+#include "engine/util/error.h"
+#include "tests/support/scene_builder.h"
+
+namespace strata {
+namespace {
+
+std::string evaluationError(const Scene& scene) {
+  try {
+    test::evaluateCpu(scene);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(LeafPlacement, NestedScalesThatUnderflowNameTheLeaf) {
+  auto cube = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  cube->name = "tiny cube";
+  NodePtr node = cube;
+  NodeId id = 3;
+  for (int i = 0; i < 40; ++i) {
+    auto wrap = std::make_shared<Node>(*makeOperationNode(NodeKind::Union, id++, {node}));
+    wrap->transform.scale = glm::dvec3(1e-10);
+    node = wrap;
+  }
+  Scene scene = test::makeSceneInBox(makeOperationNode(NodeKind::Union, 1, {node}), 16,
+                                     glm::dvec3(-1.0), glm::dvec3(1.0));
+  const std::string m = evaluationError(scene);
+  EXPECT_NE(m.find("box 'tiny cube'"), std::string::npos) << m;
+  EXPECT_NE(m.find("underflows"), std::string::npos) << m;
+}
+
+TEST(LeafPlacement, APartTooFarOutForItsSizeIsRefused) {
+  auto cube = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  cube->name = "far cube";
+  cube->transform.translate.x = 1e308;
+  Scene scene = test::makeSceneInBox(makeOperationNode(NodeKind::Union, 1, {cube}), 16,
+                                     glm::dvec3(-1.0), glm::dvec3(1.0));
+  const std::string m = evaluationError(scene);
+  EXPECT_NE(m.find("box 'far cube'"), std::string::npos) << m;
+  EXPECT_NE(m.find("cannot be represented"), std::string::npos) << m;
+}
+
+TEST(LeafPlacement, APartSmallerThanACellIsNamedInTheWarnings) {
+  auto big = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  auto speck = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 3));
+  speck->name = "speck";
+  speck->params.radius = 1e-4;
+  speck->transform.translate.x = 0.3;
+  EvalResult r =
+      test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, speck}), 32));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("sphere 'speck'"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("smaller than a cell"), std::string::npos) << r.warnings[0];
+  // Cached on the next evaluation, still said.
+  EvalResult again =
+      test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, speck}), 32));
+  EXPECT_EQ(again.warnings.size(), 1u);
+}
+
+}  // namespace
+}  // namespace strata
