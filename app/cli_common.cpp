@@ -1,6 +1,5 @@
 #include "app/cli_common.h"
 
-#include <cctype>
 #include <new>
 
 #include "engine/util/error.h"
@@ -47,15 +46,6 @@ std::string unitAbbreviation(const std::string& unit) {
   if (unit == "foot") return "ft";
   if (unit == "micron" || unit == "micrometre" || unit == "micrometer") return "um";
   return unit;
-}
-
-std::string fileExtension(const std::string& path) {
-  size_t slash = path.find_last_of('/');
-  size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 }  // namespace strata

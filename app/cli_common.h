@@ -23,9 +23,6 @@ BackendChoice setUpBackend(const CliArgs& args);
 
 bool quietRequested(const CliArgs& args);
 
-// Lower-case extension of a path without the dot ("" when none).
-std::string fileExtension(const std::string& path);
-
 // "mm" for "millimetre" and the other units scene files name; anything else unchanged.
 std::string unitAbbreviation(const std::string& unit);
 
