@@ -1,6 +1,5 @@
 #include "app/cli_common.h"
 
-#include <cctype>
 #include <cstdint>
 #include <new>
 
@@ -53,15 +52,6 @@ std::string unitAbbreviation(const std::string& unit) {
 void applySceneLimits(const CliArgs& args, Scene* scene) {
   if (args.has("--max-leaves"))
     scene->settings.maxLeaves = uint64_t(args.integer("--max-leaves", 0, 1, INT32_MAX));
-}
-
-std::string fileExtension(const std::string& path) {
-  size_t slash = path.find_last_of('/');
-  size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
 }
 
 }  // namespace strata

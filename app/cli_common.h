@@ -27,9 +27,6 @@ bool quietRequested(const CliArgs& args);
 // Applies --max-leaves to the scene's settings (engine/document/expansion.h).
 void applySceneLimits(const CliArgs& args, Scene* scene);
 
-// Lower-case extension of a path without the dot ("" when none).
-std::string fileExtension(const std::string& path);
-
 // "mm" for "millimetre" and the other units scene files name; anything else unchanged.
 std::string unitAbbreviation(const std::string& unit);
 

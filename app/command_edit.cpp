@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "app/editor_commands.h"
 #include "engine/eval/evaluator.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/user_files.h"
 #include "engine/ldi/grid.h"
@@ -259,7 +260,7 @@ int runRender(const std::vector<std::string>& argv) {
       throw Error(
           "usage: strata render SCENE.strata.json -o shot.png [--width W] [--height H] "
           "[--resolution N] [--view iso|front|right|top|...] [--ortho] [--section AXIS[:AT]]");
-    if (fileExtension(output) != "png")
+    if (lowerExtension(output) != "png")
       throw Error(output + ": render writes PNG; use a .png name");
     const int width = args.integer("--width", 1280, 16, 8192);
     const int height = args.integer("--height", 800, 16, 8192);

@@ -12,6 +12,7 @@
 #include "app/terminal_progress.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/fallback.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/io/point_cloud.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/atomic_file.h"
@@ -24,6 +25,14 @@ void collectColors(const NodePtr& node, std::map<uint32_t, glm::vec3>* colors) {
   if (!node) return;
   (*colors)[node->id] = node->color;
   for (const auto& c : node->children) collectColors(c, colors);
+}
+
+// "out.stl|.obj|.ply|.3mf" for usage lines: `stem` and every writable mesh extension.
+std::string outputAlternatives(const std::string& stem) {
+  std::string text = stem;
+  for (const std::string& ext : meshExtensions(MeshAccess::Write))
+    text += (text == stem ? "." : "|.") + ext;
+  return text;
 }
 
 // Evaluates `scene`, prints the report, writes the optional report and surfel cloud.
@@ -53,7 +62,7 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
   Backend& backend = used ? *used : *choice.backend;
   const std::string surfels = args.text("--surfels", "");
   if (!surfels.empty()) {
-    if (fileExtension(surfels) != "ply")
+    if (lowerExtension(surfels) != "ply")
       throw Error(surfels + ": --surfels writes a PLY point cloud; use a .ply file name");
     std::map<uint32_t, glm::vec3> colors;
     collectColors(scene.root, &colors);
@@ -118,7 +127,8 @@ int runBoolean(const std::vector<std::string>& argv) {
     if (pos.size() < 3)
       throw Error(
           "usage: strata boolean union|intersection|difference A B [C...] "
-          "[--resolution N] [-o out.stl|.obj|.ply|.3mf] [--report FILE]");
+          "[--resolution N] [-o " +
+          outputAlternatives("out") + "] [--report FILE]");
     MeshReadOptions meshOptions;
     meshOptions.allowOpen = args.has("--allow-open");
     meshOptions.unitScale = args.number("--unit-scale", 1.0, 1e-9, 1e9);
@@ -143,9 +153,8 @@ int runExport(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
     if (args.positional().size() != 1 || !(args.has("-o") || args.has("--output")))
-      throw Error(
-          "usage: strata export SCENE.strata.json -o part.stl|.obj|.ply|.3mf "
-          "[--resolution N] [--tile N] [--report FILE]");
+      throw Error("usage: strata export SCENE.strata.json -o " + outputAlternatives("part") +
+                  " [--resolution N] [--tile N] [--report FILE]");
     std::vector<std::string> warnings;
     Scene scene = loadSceneFromArgs(args, args.positional()[0], &warnings);
     return exportAndReport(scene, args, args.positional()[0], warnings);

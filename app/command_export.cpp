@@ -5,6 +5,7 @@
 #include "app/terminal_progress.h"
 #include "engine/export/contour_scene.h"
 #include "engine/export/fallback.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/atomic_file.h"
@@ -16,10 +17,9 @@ namespace strata {
 int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& input,
                     const std::vector<std::string>& warnings) {
   const std::string output = args.text("-o", args.text("--output", ""));
-  const std::string ext = fileExtension(output);
-  if (ext != "stl" && ext != "obj" && ext != "ply" && ext != "3mf")
-    throw Error(output + ": unknown export format '" + ext +
-                "' (expected .stl, .obj, .ply or .3mf)");
+  if (!meshFormatFor(output, MeshAccess::Write))
+    throw Error(output + ": unknown export format '" + lowerExtension(output) + "' (expected " +
+                meshExtensionList(MeshAccess::Write) + ")");
   BackendChoice choice = setUpBackend(args);
   ContourOptions options;
   options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);

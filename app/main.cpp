@@ -5,9 +5,12 @@
 
 #include "app/commands.h"
 #include "app/editor_commands.h"
+#include "engine/io/mesh_formats.h"
 
 namespace {
-const char* kUsage =
+
+// The usage text around the lists of mesh formats (mesh_formats.h), which usage() fills in.
+const char* kUsageHead =
     "strata: CSG Booleans of closed triangle meshes through layered depth images\n"
     "\n"
     "usage:\n"
@@ -23,11 +26,8 @@ const char* kUsage =
     "\n"
     "options:\n"
     "  --resolution N    cells along the longest side (default: the scene's, 256 for boolean)\n"
-    "  --report FILE     write the report as JSON\n"
-    "  -o FILE           export (export, boolean): a closed, oriented, manifold mesh as\n"
-    "                    .stl (binary), .obj (+ .mtl, a material per leaf), .ply (vertex\n"
-    "                    colours) or .3mf (colour per leaf, the scene's unit); written\n"
-    "                    atomically, then re-read and checked\n"
+    "  --report FILE     write the report as JSON\n";
+const char* kUsageOptions =
     "  --tile N          export: tile edge in cells (default 256; memory follows the tile)\n"
     "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"
     "  --backend B       auto | cpu | cuda (default auto)\n"
@@ -49,9 +49,40 @@ const char* kUsage =
     "  --no-interop               edit: splats through the host instead of CUDA-GL interop\n"
     "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
-    "\n"
-    "Mesh files: .obj .stl (ascii or binary) .ply (ascii or binary) .off .3mf\n"
-    "Ctrl-C cancels cleanly; nothing half-written is left behind.\n";
+    "\n";
+const char* kUsageTail = "Ctrl-C cancels cleanly; nothing half-written is left behind.\n";
+
+// `text` broken at spaces into lines of at most kUsageWidth characters, the first starting with
+// `first`, the others indented to its width.
+std::string wrapped(const std::string& first, const std::string& text) {
+  constexpr size_t kUsageWidth = 90;
+  std::string out = first, line;
+  size_t begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find(' ', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (!line.empty() && first.size() + line.size() + 1 + word.size() > kUsageWidth) {
+      out += line + "\n" + std::string(first.size(), ' ');
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return out + line + "\n";
+}
+
+std::string usage() {
+  using strata::MeshAccess;
+  return kUsageHead +
+         wrapped("  -o FILE           ",
+                 "export (export, boolean): a closed, oriented, manifold mesh as " +
+                     strata::meshFormatUsage(MeshAccess::Write) +
+                     "; written atomically, then re-read and checked") +
+         kUsageOptions + wrapped("Mesh files: ", strata::meshFormatUsage(MeshAccess::Read)) +
+         kUsageTail;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,7 +91,7 @@ int main(int argc, char** argv) {
   const std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (command == "--help" || command == "-h" || command == "help") {
-    std::fputs(kUsage, stdout);
+    std::fputs(usage().c_str(), stdout);
     return 0;
   }
   if (command == "--version") {
@@ -73,6 +104,6 @@ int main(int argc, char** argv) {
   if (command == "edit") return strata::runEdit(rest);
   if (command == "render") return strata::runRender(rest);
   if (strata::looksLikeScenePath(command)) return strata::runEdit(args);
-  std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), kUsage);
+  std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), usage().c_str());
   return 2;
 }

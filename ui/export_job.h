@@ -36,8 +36,8 @@ struct ExportStatus {
 
 class ExportJob {
  public:
-  // Starts exporting `scene` at `resolution` (cells along the longest side) to `path` (.stl
-  // .obj .ply .3mf).
+  // Starts exporting `scene` at `resolution` (cells along the longest side) to `path` (a
+  // writable format of engine/io/mesh_formats.h, picked by its extension).
   ExportJob(std::shared_ptr<const Scene> scene, std::string path, int resolution,
             std::shared_ptr<Backend> backend);
   ~ExportJob();  // cancels and joins

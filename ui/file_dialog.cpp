@@ -12,6 +12,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <thread>
+#include <vector>
+
+#include "engine/io/mesh_formats.h"
 
 namespace strata::ui {
 namespace {
@@ -27,30 +30,40 @@ std::string shellQuote(const std::string& s) {
   return out + "'";
 }
 
-const char* zenityFilter(DialogPurpose p) {
-  switch (p) {
-    case DialogPurpose::Open:
-    case DialogPurpose::SaveAs:
-      return "--file-filter='Strata scenes | *.strata.json *.json'";
-    case DialogPurpose::Export:
-      return "--file-filter='Meshes | *.stl *.obj *.ply *.3mf'";
-    case DialogPurpose::ImportMesh:
-      return "--file-filter='Meshes | *.obj *.stl *.ply *.off *.3mf'";
-  }
-  return "";
+bool isMeshDialog(DialogPurpose p) {
+  return p == DialogPurpose::Export || p == DialogPurpose::ImportMesh;
 }
 
-const char* kdialogFilter(DialogPurpose p) {
-  switch (p) {
-    case DialogPurpose::Open:
-    case DialogPurpose::SaveAs:
-      return "'*.strata.json *.json|Strata scenes'";
-    case DialogPurpose::Export:
-      return "'*.stl *.obj *.ply *.3mf|Meshes'";
-    case DialogPurpose::ImportMesh:
-      return "'*.obj *.stl *.ply *.off *.3mf|Meshes'";
+// Mesh dialogs list the formats of the table in engine/io/mesh_formats.h: import the readable
+// ones, export the writable ones.
+MeshAccess meshAccess(DialogPurpose p) {
+  return p == DialogPurpose::Export ? MeshAccess::Write : MeshAccess::Read;
+}
+
+// "*.stl *.obj ..." for a list of extensions.
+std::string patterns(const std::vector<std::string>& extensions) {
+  std::string text;
+  for (const std::string& ext : extensions) text += (text.empty() ? "*." : " *.") + ext;
+  return text;
+}
+
+// All meshes first, then one filter per format, named by its label.
+std::string zenityFilter(DialogPurpose p) {
+  if (!isMeshDialog(p)) return "--file-filter='Strata scenes | *.strata.json *.json'";
+  const MeshAccess access = meshAccess(p);
+  std::string filters =
+      "--file-filter=" + shellQuote("Meshes | " + patterns(meshExtensions(access)));
+  for (const MeshFormat& format : meshFormats()) {
+    if (!format.supports(access)) continue;
+    filters += " --file-filter=" +
+               shellQuote(std::string(format.label) + " | " + patterns(format.extensions));
   }
-  return "''";
+  return filters;
+}
+
+std::string kdialogFilter(DialogPurpose p) {
+  if (!isMeshDialog(p)) return "'*.strata.json *.json|Strata scenes'";
+  return shellQuote(patterns(meshExtensions(meshAccess(p))) + "|Meshes");
 }
 
 bool saving(DialogPurpose p) {

@@ -1,6 +1,7 @@
-// readMeshFile / readMeshBytes: pick a parser by extension, scale, prepare (weld, drop
-// degenerate triangles, orient outward), report repairs as warnings, and refuse meshes that
-// sampling cannot use. Also the strict text scanning shared by the parsers (mesh_readers.h).
+// readMeshFile / readMeshBytes: pick a parser by extension (the table in mesh_formats.h), scale,
+// prepare (weld, drop degenerate triangles, orient outward), report repairs as warnings, and
+// refuse meshes that sampling cannot use. Also the strict text scanning shared by the parsers
+// (mesh_readers.h).
 #include "engine/io/mesh_io.h"
 
 #include <cerrno>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "engine/geometry/mesh_check.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/io/mesh_readers.h"
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
@@ -125,40 +127,21 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
 
 namespace {
 
-std::string lowercaseExtension(const std::string& name) {
-  const size_t slash = name.find_last_of("/\\");
-  const size_t dot = name.rfind('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = name.substr(dot);
-  for (char& ch : ext) {
-    if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
-  }
-  return ext;
-}
-
 std::string plural(size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-// The parser the extension names, exactly as the file describes the mesh (no repairs).
+// The parser the extension names (mesh_formats.h), exactly as the file describes the mesh (no
+// repairs).
 TriangleMesh parseByExtension(const std::string& name, const std::string& bytes,
                               MeshReadReport* report) {
-  const std::string ext = lowercaseExtension(name);
-  TriangleMesh mesh;
-  if (ext == ".obj") {
-    mesh = meshio::parseObj(name, bytes, report);
-  } else if (ext == ".stl") {
-    mesh = meshio::parseStl(name, bytes, report);
-  } else if (ext == ".ply") {
-    mesh = meshio::parsePly(name, bytes, report);
-  } else if (ext == ".off") {
-    mesh = meshio::parseOff(name, bytes, report);
-  } else if (ext == ".3mf") {
-    mesh = meshio::parse3mf(name, bytes, report);
-  } else {
-    throw Error(name + ": unknown mesh format '" + ext +
-                "' (expected .obj, .stl, .ply, .off or .3mf)");
+  const MeshFormat* format = meshFormatFor(name, MeshAccess::Read);
+  if (!format) {
+    const std::string ext = lowerExtension(name);
+    throw Error(name + ": unknown mesh format '" + (ext.empty() ? "" : "." + ext) + "' (expected " +
+                meshExtensionList(MeshAccess::Read) + ")");
   }
+  TriangleMesh mesh = format->parse(name, bytes, report);
   if (mesh.triangles.empty()) throw Error(name + ": contains no triangles");
   return mesh;
 }

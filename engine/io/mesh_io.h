@@ -1,5 +1,6 @@
 // Reading closed triangle meshes from OBJ, STL (ascii and binary), PLY (ascii and binary), OFF
-// and 3MF (the geometry its build places; see read_3mf.cpp).
+// and 3MF (the geometry its build places; see read_3mf.cpp). The format is picked by the
+// file's extension through the table in mesh_formats.h.
 //
 // Every reader is strict: malformed numbers, NaN/Inf coordinates, out-of-range or negative
 // indices (OBJ's relative negative indices are resolved, then range-checked), truncated files,
@@ -31,7 +32,9 @@ struct MeshReadReport {
   size_t fileFaces = 0;               // polygons as read, before triangulation
 };
 
-// Reads by extension (.obj .stl .ply .off .3mf, case-insensitive). Throws strata::Error.
+// Reads by extension (case-insensitive; the readable formats of mesh_formats.h). Throws
+// strata::Error, for an unknown extension "<path>: unknown mesh format '.ext' (expected .stl,
+// ... or .3mf)".
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options = {},
                           MeshReadReport* report = nullptr);
 

@@ -1,7 +1,8 @@
-// Private to engine/io: the format parsers behind readMeshBytes, and the strict text
-// scanning they share. Each parser turns a whole file held in memory into an indexed triangle
-// mesh exactly as the file describes it (no welding across vertices, no repairs), and throws
-// strata::Error "<name>: line <n>: <what>" or "<name>: byte <n>: <what>" for anything malformed.
+// Private to engine/io: the format parsers behind readMeshBytes, each named by its entry in the
+// table of mesh_formats.h, and the strict text scanning they share. Each parser turns a whole
+// file held in memory into an indexed triangle mesh exactly as the file describes it (no
+// welding across vertices, no repairs), and throws strata::Error "<name>: line <n>: <what>" or
+// "<name>: byte <n>: <what>" for anything malformed.
 // Parsers fill report->fileVertices / fileFaces and may append warnings; report is never null.
 // Synchronous, no shared state: any thread may call them.
 #pragma once

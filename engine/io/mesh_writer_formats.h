@@ -1,7 +1,8 @@
-// Private to engine/io: the per-format writers behind writeMeshFile (mesh_writers.h) and the
-// helpers they share (defined in mesh_writers.cpp). Each writer receives an ExportMesh that
-// writeMeshFile has validated (indices in range, finite coordinates, one leaf per triangle,
-// every leaf styled, at least one triangle) and writes `path` atomically.
+// Private to engine/io: the per-format writers behind writeMeshFile (mesh_writers.h), each
+// named by its entry in the table of mesh_formats.h, and the helpers they share (defined in
+// mesh_writers.cpp). Each writer receives an ExportMesh that writeMeshFile has validated
+// (indices in range, finite coordinates, one leaf per triangle, every leaf styled, at least one
+// triangle) and writes `path` atomically.
 #pragma once
 
 #include <glm/vec3.hpp>

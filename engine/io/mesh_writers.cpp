@@ -1,10 +1,11 @@
-// writeMeshFile: validate the ExportMesh, pick the writer by extension. Also the helpers the
-// format writers share (mesh_writer_formats.h).
+// writeMeshFile: validate the ExportMesh, pick the writer by extension (the table in
+// mesh_formats.h). Also the helpers the format writers share (mesh_writer_formats.h).
 #include "engine/io/mesh_writers.h"
 
 #include <charconv>
 #include <cmath>
 
+#include "engine/io/mesh_formats.h"
 #include "engine/io/mesh_writer_formats.h"
 #include "engine/util/error.h"
 
@@ -48,17 +49,6 @@ std::string oneLine(const std::string& text) {
 
 namespace {
 
-std::string lowercaseExtension(const std::string& path) {
-  const size_t slash = path.find_last_of("/\\");
-  const size_t dot = path.rfind('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  for (char& ch : ext) {
-    if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
-  }
-  return ext;
-}
-
 void validate(const std::string& path, const ExportMesh& mesh) {
   const auto& m = mesh.mesh;
   if (m.triangles.empty()) throw Error(path + ": nothing to write (the mesh has no triangles)");
@@ -89,23 +79,15 @@ void validate(const std::string& path, const ExportMesh& mesh) {
 }  // namespace
 
 void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress) {
-  const std::string ext = lowercaseExtension(path);
-  void (*writer)(const std::string&, const ExportMesh&, Progress*) = nullptr;
-  if (ext == ".stl") {
-    writer = meshio::writeStl;
-  } else if (ext == ".obj") {
-    writer = meshio::writeObj;
-  } else if (ext == ".ply") {
-    writer = meshio::writePly;
-  } else if (ext == ".3mf") {
-    writer = meshio::write3mf;
-  } else {
-    throw Error(path + ": cannot write mesh format '" + ext +
-                "' (supported: .stl, .obj, .ply, .3mf)");
+  const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
+  if (!format) {
+    const std::string ext = lowerExtension(path);
+    throw Error(path + ": cannot write mesh format '" + (ext.empty() ? "" : "." + ext) +
+                "' (supported: " + meshExtensionList(MeshAccess::Write, ", ") + ")");
   }
   if (progress) progress->check();
   validate(path, mesh);
-  writer(path, mesh, progress);
+  format->write(path, mesh, progress);
 }
 
 }  // namespace strata

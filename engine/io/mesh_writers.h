@@ -1,7 +1,8 @@
 // Writing finished surfaces (ExportMesh: triangles in scene units, each tagged with its CSG
 // leaf, and the leaves' names and colours) as STL, OBJ + MTL, PLY or 3MF.
 //
-// Formats, chosen by the extension of `path` (case-insensitive):
+// Formats, chosen by the extension of `path` (case-insensitive) through the table in
+// mesh_formats.h:
 //   .stl  binary STL: 80-byte header naming Strata and the unit, a unit facet normal computed
 //         from each triangle's winding, attribute 0. Coordinates as float32; no colours.
 //   .obj  OBJ with a companion "<basename>.mtl" beside it (`mtllib <basename>.mtl`): one
@@ -35,10 +36,11 @@
 
 namespace strata {
 
-// Throws strata::Error naming `path` for an unknown extension (listing the supported ones), a
-// malformed ExportMesh (no triangles, an index out of range, a non-finite coordinate, a leaf id
-// without a style, triangleLeaf of the wrong size), a unit 3MF cannot express, or a file that
-// cannot be written; throws Cancelled when `progress` is cancelled.
+// Throws strata::Error naming `path` for an unknown extension ("<path>: cannot write mesh format
+// '.ext' (supported: .stl, ...)", listing the writable ones), a malformed ExportMesh (no
+// triangles, an index out of range, a non-finite coordinate, a leaf id without a style,
+// triangleLeaf of the wrong size), a unit 3MF cannot express, or a file that cannot be written;
+// throws Cancelled when `progress` is cancelled.
 void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress = nullptr);
 
 }  // namespace strata

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include "engine/io/mesh_formats.h"
+
 namespace {
 
 struct CliRun {
@@ -147,6 +149,30 @@ TEST(Cli, HelpAndNoArgumentsRunTheDemo) {
   EXPECT_NE(demo.output.find("result"), std::string::npos);
 }
 
+// The usage texts list the formats of engine/io/mesh_formats.h: --help every readable and
+// writable extension, the export usage lines every writable one.
+TEST(Cli, UsageListsEveryMeshFormat) {
+  using strata::MeshAccess;
+  CliRun help = strata("--help");
+  ASSERT_EQ(help.code, 0);
+  for (MeshAccess access : {MeshAccess::Read, MeshAccess::Write}) {
+    for (const std::string& ext : strata::meshExtensions(access))
+      EXPECT_NE(help.output.find("." + ext), std::string::npos) << ext << "\n" << help.output;
+  }
+  CliRun exportUsage = strata("export");
+  CliRun booleanUsage = strata("boolean union");
+  for (const std::string& ext : strata::meshExtensions(MeshAccess::Write)) {
+    EXPECT_NE(exportUsage.output.find("." + ext), std::string::npos) << exportUsage.output;
+    EXPECT_NE(booleanUsage.output.find("." + ext), std::string::npos) << booleanUsage.output;
+  }
+  // Upper-case extensions are accepted like lower-case ones.
+  std::string upper = temp("UPPER.PLY");
+  CliRun r = strata("boolean union " + data("bunny.obj") + " " + data("bunny.obj") +
+                    " --resolution 32 -q -o " + upper);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(std::ifstream(upper).good());
+}
+
 // `strata render` needs no display: it renders through EGL (a window only where EGL is missing).
 TEST(Cli, RenderWritesAPngWithoutADisplay) {
   const std::string png = temp("render.png");
@@ -181,7 +207,7 @@ namespace {
 // `strata export` and `strata boolean ... -o`: a watertight mesh in each format, re-read and
 // checked by the command itself; the JSON report carries the check.
 TEST(CliExport, EveryFormatPassesTheCheck) {
-  for (const char* ext : {"stl", "obj", "ply", "3mf"}) {
+  for (const std::string& ext : strata::meshExtensions(strata::MeshAccess::Write)) {
     std::string out = temp(std::string("export.") + ext);
     std::string report = temp(std::string("export_") + ext + ".json");
     CliRun r = strata("boolean difference " + data("bunny.obj") + " " + data("eight.obj") +
