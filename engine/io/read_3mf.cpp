@@ -10,9 +10,16 @@
 // Objects no item places are not read; items placing objects of type support, surface or other
 // are skipped with a warning. Coordinates are kept in the model's unit: a unit other than
 // millimeter is reported in a warning, never converted (MeshReadOptions::unitScale does that).
-// Colours, materials and metadata are ignored. Elements of other namespaces (extensions) are
-// skipped with their content; a model that *requires* an extension other than materials or
-// production, or refers to another model part (the production extension's p:path), is refused.
+// Colours, materials and metadata are ignored.
+//
+// The XML goes through expat (xml_reader.h) with namespaces resolved: elements are matched by
+// namespace URI and local name, so a file may bind the core namespace to any prefix or make it
+// the default. <model> must be in the core namespace (a model in no namespace at all is read
+// with a warning; in another namespace it is refused: it is not a 3MF model). Elements of any
+// other namespace are skipped with their content, as the specification asks of consumers for
+// extensions they do not require, even where their local names are core names. A model that
+// *requires* an extension other than materials or production, or refers to another model part
+// (the production extension's p:path), is refused.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -23,7 +30,7 @@
 #include <glm/matrix.hpp>
 
 #include "engine/io/mesh_readers.h"
-#include "engine/io/xml_scan.h"
+#include "engine/io/xml_reader.h"
 #include "engine/io/zip_archive.h"
 #include "engine/util/error.h"
 
@@ -33,12 +40,16 @@ namespace {
 
 constexpr std::string_view kCoreNamespace =
     "http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
+constexpr std::string_view kMaterialNamespace =
+    "http://schemas.microsoft.com/3dmanufacturing/material/2015/02";
+constexpr std::string_view kProductionNamespace =
+    "http://schemas.microsoft.com/3dmanufacturing/production/2015/06";
+// Extensions a model may require: what they add (colours, materials, UUIDs) is not geometry.
+constexpr std::string_view kHarmlessExtensions[] = {kMaterialNamespace, kProductionNamespace};
+constexpr std::string_view kRelationshipsNamespace =
+    "http://schemas.openxmlformats.org/package/2006/relationships";
 constexpr std::string_view kModelRelationship =
     "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel";
-constexpr std::string_view kHarmlessExtensions[] = {
-    "http://schemas.microsoft.com/3dmanufacturing/material/2015/02",
-    "http://schemas.microsoft.com/3dmanufacturing/production/2015/06",
-};
 const char* const kDefaultModelPart = "3D/3dmodel.model";
 const char* const kRelationshipsPart = "_rels/.rels";
 
@@ -125,25 +136,48 @@ std::string partNameFromTarget(std::string_view target) {
   return part;
 }
 
+// The part named by the first 3D-model relationship of _rels/.rels (Relationship elements in
+// the OPC relationships namespace, or in none), checked to be in the archive.
+class RelationshipScan : public XmlReader::Handler {
+ public:
+  RelationshipScan(const zipio::ZipReader& zip, const XmlReader& xml) : zip_(zip), xml_(xml) {}
+
+  void startElement(const XmlElement& element) override {
+    if (found_ || element.name.local != "Relationship") return;
+    if (!element.name.uri.empty() && element.name.uri != kRelationshipsNamespace) return;
+    const std::string_view* type = element.attribute("Type");
+    if (!type || *type != kModelRelationship) return;
+    const std::string_view* target = element.attribute("Target");
+    if (!target || target->empty()) {
+      xml_.fail(element.line, "the 3D model relationship has no Target");
+    }
+    part_ = partNameFromTarget(*target);
+    if (!zip_.has(part_)) {
+      xml_.fail(element.line, "the 3D model relationship names part " + quoted(*target) +
+                                  ", which is not in the archive");
+    }
+    found_ = true;
+  }
+  void endElement(const XmlName&, size_t) override {}
+
+  bool found() const { return found_; }
+  const std::string& part() const { return part_; }
+
+ private:
+  const zipio::ZipReader& zip_;
+  const XmlReader& xml_;
+  bool found_ = false;
+  std::string part_;
+};
+
 std::string findModelPart(const zipio::ZipReader& zip, const std::string& name,
                           MeshReadReport* report) {
   if (zip.has(kRelationshipsPart)) {
     const std::string text = zip.read(kRelationshipsPart, kMaxRelationshipBytes);
-    XmlScanner xml(text, name + ": " + kRelationshipsPart);
-    XmlTag tag;
-    while (xml.next(tag)) {
-      if (tag.kind == XmlTag::Kind::End || XmlTag::localOf(tag.name) != "Relationship") continue;
-      const std::string_view* type = tag.attribute("Type");
-      if (!type || *type != kModelRelationship) continue;
-      const std::string_view* target = tag.attribute("Target");
-      if (!target || target->empty()) xml.fail(tag.line, "the 3D model relationship has no Target");
-      const std::string part = partNameFromTarget(*target);
-      if (!zip.has(part)) {
-        xml.fail(tag.line, "the 3D model relationship names part " + quoted(*target) +
-                               ", which is not in the archive");
-      }
-      return part;
-    }
+    XmlReader xml(name + ": " + kRelationshipsPart);
+    RelationshipScan scan(zip, xml);
+    xml.parse(text, scan);
+    if (scan.found()) return scan.part();
     if (!zip.has(kDefaultModelPart)) {
       throw Error(name + ": missing 3D model part: " + kRelationshipsPart +
                   " has no 3D model relationship and there is no " + kDefaultModelPart);
@@ -163,32 +197,17 @@ std::string findModelPart(const zipio::ZipReader& zip, const std::string& name,
   return kDefaultModelPart;
 }
 
-class ModelParser {
+// The model part, read as expat reports it: the elements open around each start tag are a
+// stack of contexts; objects are kept as they close (components may only place objects defined
+// before them), the build's items are placed once the whole part is read.
+class ModelParser : public XmlReader::Handler {
  public:
-  ModelParser(const std::string& fileName, std::string_view xml, const std::string& part,
-              MeshReadReport* report)
-      : fileName_(fileName), where_(fileName + ": " + part), xml_(xml, where_), report_(report) {}
+  ModelParser(const std::string& fileName, const std::string& part, MeshReadReport* report)
+      : fileName_(fileName), where_(fileName + ": " + part), xml_(where_), report_(report) {}
 
-  TriangleMesh parse() {
-    XmlTag tag;
-    xml_.next(tag);  // throws when there is no root element
-    readModelElement(tag);
-    stack_.push_back(Context::Model);
-    while (xml_.next(tag)) {
-      if (tag.kind == XmlTag::Kind::End) {
-        const Context context = stack_.back();
-        stack_.pop_back();
-        if (context == Context::Object) finishObject();
-        continue;
-      }
-      const Context context = startElement(stack_.back(), tag);
-      if (tag.kind == XmlTag::Kind::Start) {
-        stack_.push_back(context);
-      } else if (context == Context::Object) {
-        finishObject();
-      }
-    }
-    if (!sawBuild_) xml_.fail(xml_.line(), "the model has no <build> element");
+  TriangleMesh parse(std::string_view text) {
+    xml_.parse(text, *this);  // throws when there is no root element
+    if (!sawBuild_) xml_.fail(endLine_, "the model has no <build> element");
     if (items_.empty()) xml_.fail(buildLine_, "the <build> element places no <item>");
 
     TriangleMesh mesh;
@@ -196,6 +215,22 @@ class ModelParser {
     report_->fileVertices += mesh.positions.size();
     report_->fileFaces += mesh.triangles.size();
     return mesh;
+  }
+
+  void startElement(const XmlElement& element) override {
+    if (stack_.empty()) {
+      readModelElement(element);
+      stack_.push_back(Context::Model);
+      return;
+    }
+    stack_.push_back(childContext(stack_.back(), element));
+  }
+
+  void endElement(const XmlName&, size_t line) override {
+    const Context context = stack_.back();
+    stack_.pop_back();
+    if (context == Context::Object) finishObject();
+    endLine_ = line;
   }
 
  private:
@@ -211,145 +246,130 @@ class ModelParser {
     Skipped,  // extension elements, metadata, vertex/triangle content: not read
   };
 
-  void readModelElement(const XmlTag& tag) {
-    if (XmlTag::localOf(tag.name) != "model") {
-      xml_.fail(tag.line, "the root element is <" + std::string(tag.name) + ">, expected <model>");
-    }
-    const std::string_view* defaultNamespace = nullptr;
-    for (const auto& [attr, value] : tag.attributes) {
-      if (attr == "xmlns") {
-        defaultNamespace = &value;
-        namespaces_[""] = value;
-      } else if (XmlTag::prefixOf(attr) == "xmlns") {
-        namespaces_[XmlTag::localOf(attr)] = value;
-      }
-    }
-    bool foundCore = false;
-    for (const auto& [prefix, uri] : namespaces_) {
-      if (uri == kCoreNamespace && (!foundCore || prefix.empty())) {
-        corePrefix_ = prefix;
-        foundCore = true;
-      }
-    }
-    if (!foundCore) {
-      if (defaultNamespace) {
-        xml_.fail(tag.line, "<model> is not in the 3MF core namespace (xmlns=" +
-                                quotedUri(*defaultNamespace) + ")");
-      }
-      addWarning(report_, fileName_,
-                 "<model> declares no 3MF core namespace; read its unprefixed elements as 3MF");
-    }
-    if (XmlTag::prefixOf(tag.name) != corePrefix_) {
-      xml_.fail(tag.line, "<" + std::string(tag.name) + "> is not in the 3MF core namespace");
-    }
+  // ---- <model> ----
 
-    if (const std::string_view* unit = tag.attribute("unit")) {
-      static const char* const kUnits[] = {"micron", "millimeter", "centimeter",
-                                           "inch",   "foot",       "meter"};
-      bool known = false;
-      for (const char* u : kUnits) known |= *unit == u;
-      if (!known) {
-        xml_.fail(tag.line, "unknown unit " + quoted(*unit) +
+  void readModelElement(const XmlElement& model) {
+    if (model.name.local != "model") {
+      xml_.fail(model.line,
+                "the root element is <" + model.name.qualified() + ">, expected <model>");
+    }
+    checkModelNamespace(model);
+    checkUnit(model);
+    checkRequiredExtensions(model);
+  }
+
+  // Sets coreUri_: the core namespace, or none for a model that declares no namespace at all.
+  void checkModelNamespace(const XmlElement& model) {
+    if (model.name.uri == kCoreNamespace) {
+      coreUri_ = std::string(kCoreNamespace);
+      return;
+    }
+    if (!model.name.uri.empty()) {
+      xml_.fail(model.line, "<" + model.name.qualified() +
+                                "> is not in the 3MF core namespace (it is in " +
+                                quotedUri(model.name.uri) + ")");
+    }
+    if (xml_.isBound(kCoreNamespace)) {
+      xml_.fail(model.line, "<" + model.name.qualified() +
+                                "> is not in the 3MF core namespace (which the file binds to a "
+                                "prefix <model> does not use)");
+    }
+    addWarning(report_, fileName_,
+               "<model> declares no 3MF core namespace; read its elements in no namespace as "
+               "3MF");
+    coreUri_.clear();
+  }
+
+  void checkUnit(const XmlElement& model) {
+    const std::string_view* unit = model.attribute("unit");
+    if (!unit) return;
+    static const char* const kUnits[] = {"micron", "millimeter", "centimeter",
+                                         "inch",   "foot",       "meter"};
+    bool known = false;
+    for (const char* u : kUnits) known |= *unit == u;
+    if (!known) {
+      xml_.fail(model.line, "unknown unit " + quoted(*unit) +
                                 " (3MF allows micron, millimeter, centimeter, inch, foot, meter)");
-      }
-      if (*unit != "millimeter") {
-        addWarning(report_, fileName_,
-                   "the model's unit is " + std::string(*unit) +
-                       "; coordinates are read as written, not converted to millimetres");
-      }
     }
-
-    if (const std::string_view* required = tag.attribute("requiredextensions")) {
-      std::vector<std::string_view> prefixes;
-      splitTokens(*required, prefixes, false);
-      for (std::string_view prefix : prefixes) {
-        auto it = namespaces_.find(prefix);
-        if (it == namespaces_.end()) {
-          xml_.fail(tag.line, "requiredextensions names prefix " + quoted(prefix) +
-                                  ", which no xmlns declares");
-        }
-        bool harmless = it->second == kCoreNamespace;
-        for (std::string_view ns : kHarmlessExtensions) harmless |= it->second == ns;
-        if (!harmless) {
-          xml_.fail(tag.line, "the model requires the 3MF extension " + quotedUri(it->second) +
-                                  ", which Strata cannot read");
-        }
-      }
-    }
-    if (tag.kind != XmlTag::Kind::Start) xml_.fail(tag.line, "<model> is empty");
-  }
-
-  bool isCore(const XmlTag& tag) const { return XmlTag::prefixOf(tag.name) == corePrefix_; }
-
-  Context unexpected(const XmlTag& tag, const char* parent) {
-    xml_.fail(tag.line,
-              "unexpected element <" + std::string(tag.name) + "> inside <" + parent + ">");
-  }
-
-  Context ignoreUnknown(const XmlTag& tag) {
-    if (warnedUnknown_.insert(std::string(tag.name)).second) {
+    if (*unit != "millimeter") {
       addWarning(report_, fileName_,
-                 "ignored unknown 3MF element <" + std::string(tag.name) + "> (first at line " +
-                     std::to_string(tag.line) + ")");
+                 "the model's unit is " + std::string(*unit) +
+                     "; coordinates are read as written, not converted to millimetres");
+    }
+  }
+
+  // requiredextensions lists prefixes bound on <model>; each must name an extension whose
+  // content can be skipped without changing the geometry.
+  void checkRequiredExtensions(const XmlElement& model) {
+    const std::string_view* required = model.attribute("requiredextensions");
+    if (!required) return;
+    std::vector<std::string_view> prefixes;
+    splitTokens(*required, prefixes, false);
+    for (std::string_view prefix : prefixes) {
+      const std::string* uri = xml_.namespaceUri(prefix);
+      if (!uri) {
+        xml_.fail(model.line, "requiredextensions names prefix " + quoted(prefix) +
+                                  ", which no xmlns declares");
+      }
+      bool harmless = *uri == kCoreNamespace;
+      for (std::string_view ns : kHarmlessExtensions) harmless |= *uri == ns;
+      if (!harmless) {
+        xml_.fail(model.line, "the model requires the 3MF extension " + quotedUri(*uri) +
+                                  ", which Strata cannot read");
+      }
+    }
+  }
+
+  // ---- Elements inside <model> ----
+
+  Context unexpected(const XmlElement& element, const char* parent) {
+    xml_.fail(element.line,
+              "unexpected element <" + element.name.qualified() + "> inside <" + parent + ">");
+  }
+
+  Context ignoreUnknown(const XmlElement& element) {
+    const std::string name = element.name.qualified();
+    if (warnedUnknown_.insert(name).second) {
+      addWarning(report_, fileName_,
+                 "ignored unknown 3MF element <" + name + "> (first at line " +
+                     std::to_string(element.line) + ")");
     }
     return Context::Skipped;
   }
 
-  Context startElement(Context parent, const XmlTag& tag) {
-    if (parent == Context::Skipped || !isCore(tag)) return Context::Skipped;
-    const std::string_view local = XmlTag::localOf(tag.name);
+  Context childContext(Context parent, const XmlElement& element) {
+    if (parent == Context::Skipped || element.name.uri != coreUri_) return Context::Skipped;
     switch (parent) {
       case Context::Model:
-        if (local == "resources") {
-          if (sawResources_) xml_.fail(tag.line, "a second <resources> element");
-          sawResources_ = true;
-          return Context::Resources;
-        }
-        if (local == "build") {
-          if (sawBuild_) xml_.fail(tag.line, "a second <build> element");
-          sawBuild_ = true;
-          buildLine_ = tag.line;
-          return Context::Build;
-        }
-        if (local == "metadata") return Context::Skipped;
-        return ignoreUnknown(tag);
+        return childOfModel(element);
       case Context::Resources:
-        if (local == "object") {
-          beginObject(tag);
+        if (element.name.local == "object") {
+          beginObject(element);
           return Context::Object;
         }
-        if (local == "basematerials") return Context::Skipped;
-        return ignoreUnknown(tag);
+        if (element.name.local == "basematerials") return Context::Skipped;
+        return ignoreUnknown(element);
       case Context::Object:
-        if (local == "mesh" || local == "components") {
-          if (current_.hasMesh || current_.hasComponents) {
-            xml_.fail(tag.line, "object " + std::to_string(current_.id) +
-                                    " has more than one <mesh> or <components>");
-          }
-          (local == "mesh" ? current_.hasMesh : current_.hasComponents) = true;
-          return local == "mesh" ? Context::Mesh : Context::Components;
-        }
-        if (local == "metadatagroup") return Context::Skipped;
-        return ignoreUnknown(tag);
+        return childOfObject(element);
       case Context::Mesh:
-        if (local == "vertices") return Context::Vertices;
-        if (local == "triangles") return Context::Triangles;
-        return ignoreUnknown(tag);
+        if (element.name.local == "vertices") return Context::Vertices;
+        if (element.name.local == "triangles") return Context::Triangles;
+        return ignoreUnknown(element);
       case Context::Vertices:
-        if (local != "vertex") return unexpected(tag, "vertices");
-        addVertex(tag);
+        if (element.name.local != "vertex") return unexpected(element, "vertices");
+        addVertex(element);
         return Context::Skipped;
       case Context::Triangles:
-        if (local != "triangle") return unexpected(tag, "triangles");
-        addTriangle(tag);
+        if (element.name.local != "triangle") return unexpected(element, "triangles");
+        addTriangle(element);
         return Context::Skipped;
       case Context::Components:
-        if (local != "component") return unexpected(tag, "components");
-        addComponent(tag);
+        if (element.name.local != "component") return unexpected(element, "components");
+        addComponent(element);
         return Context::Skipped;
       case Context::Build:
-        if (local != "item") return unexpected(tag, "build");
-        addItem(tag);
+        if (element.name.local != "item") return unexpected(element, "build");
+        addItem(element);
         return Context::Skipped;
       case Context::Skipped:
         break;
@@ -357,47 +377,80 @@ class ModelParser {
     return Context::Skipped;
   }
 
-  const std::string_view& required(const XmlTag& tag, std::string_view attr) {
-    const std::string_view* value = tag.attribute(attr);
+  Context childOfModel(const XmlElement& element) {
+    const std::string_view local = element.name.local;
+    if (local == "resources") {
+      if (sawResources_) xml_.fail(element.line, "a second <resources> element");
+      sawResources_ = true;
+      return Context::Resources;
+    }
+    if (local == "build") {
+      if (sawBuild_) xml_.fail(element.line, "a second <build> element");
+      sawBuild_ = true;
+      buildLine_ = element.line;
+      return Context::Build;
+    }
+    if (local == "metadata") return Context::Skipped;
+    return ignoreUnknown(element);
+  }
+
+  Context childOfObject(const XmlElement& element) {
+    const std::string_view local = element.name.local;
+    if (local == "mesh" || local == "components") {
+      if (current_.hasMesh || current_.hasComponents) {
+        xml_.fail(element.line, "object " + std::to_string(current_.id) +
+                                    " has more than one <mesh> or <components>");
+      }
+      (local == "mesh" ? current_.hasMesh : current_.hasComponents) = true;
+      return local == "mesh" ? Context::Mesh : Context::Components;
+    }
+    if (local == "metadatagroup") return Context::Skipped;
+    return ignoreUnknown(element);
+  }
+
+  const std::string_view& required(const XmlElement& element, std::string_view attr) {
+    const std::string_view* value = element.attribute(attr);
     if (!value) {
-      xml_.fail(tag.line,
-                "<" + std::string(tag.name) + "> has no " + std::string(attr) + " attribute");
+      xml_.fail(element.line,
+                "<" + element.name.qualified() + "> has no " + std::string(attr) + " attribute");
     }
     return *value;
   }
 
   // A resource id: a positive integer.
-  uint64_t parseId(const XmlTag& tag, std::string_view attr) {
-    const std::string_view& text = required(tag, attr);
+  uint64_t parseId(const XmlElement& element, std::string_view attr) {
+    const std::string_view& text = required(element, attr);
     long long id = 0;
     if (!parseInteger(text, id) || id <= 0 || id > 0x7fffffff) {
-      xml_.fail(tag.line, std::string(attr) + " is not a positive integer id: " + quoted(text));
+      xml_.fail(element.line, std::string(attr) + " is not a positive integer id: " + quoted(text));
     }
     return static_cast<uint64_t>(id);
   }
 
-  void refuseOtherParts(const XmlTag& tag) {
-    for (const auto& attribute : tag.attributes) {
-      if (XmlTag::localOf(attribute.first) == "path" &&
-          !XmlTag::prefixOf(attribute.first).empty()) {
-        xml_.fail(tag.line, "<" + std::string(tag.name) + "> refers to another model part (" +
-                                std::string(attribute.first) + "=" + quoted(attribute.second) +
-                                "); multi-part 3MF files are not supported");
+  // The production extension's p:path places an object of another model part.
+  void refuseOtherParts(const XmlElement& element) {
+    for (const XmlAttribute& attribute : element.attributes) {
+      if (attribute.name.uri == kProductionNamespace && attribute.name.local == "path") {
+        xml_.fail(element.line, "<" + element.name.qualified() +
+                                    "> refers to another model part (" +
+                                    attribute.name.qualified() + "=" + quoted(attribute.value) +
+                                    "); multi-part 3MF files are not supported");
       }
     }
   }
 
-  Affine parseTransform(const XmlTag& tag) {
+  Affine parseTransform(const XmlElement& element) {
     Affine transform;
-    const std::string_view* text = tag.attribute("transform");
+    const std::string_view* text = element.attribute("transform");
     if (!text) return transform;
     std::vector<std::string_view> tokens;
     splitTokens(*text, tokens, false);
     if (tokens.size() != 12) {
-      xml_.fail(tag.line, "transform must have 12 numbers, has " + std::to_string(tokens.size()));
+      xml_.fail(element.line,
+                "transform must have 12 numbers, has " + std::to_string(tokens.size()));
     }
     double m[12];
-    for (int i = 0; i < 12; ++i) m[i] = parseCoordinate(where_, tag.line, tokens[i]);
+    for (int i = 0; i < 12; ++i) m[i] = parseCoordinate(where_, element.line, tokens[i]);
     // Row-vector convention: x' = m00 x + m10 y + m20 z + m30, so column c of the matrix
     // acting on column vectors is (m0c, m1c, m2c); glm indexes [column][row].
     for (int r = 0; r < 3; ++r) {
@@ -406,23 +459,23 @@ class ModelParser {
     transform.translation = glm::dvec3(m[9], m[10], m[11]);
     const double det = glm::determinant(transform.linear);
     if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
-      xml_.fail(tag.line, "transform is singular (it flattens the object)");
+      xml_.fail(element.line, "transform is singular (it flattens the object)");
     }
     transform.identity = false;
     return transform;
   }
 
-  void beginObject(const XmlTag& tag) {
+  void beginObject(const XmlElement& element) {
     current_ = Object();
-    current_.id = parseId(tag, "id");
-    current_.line = tag.line;
+    current_.id = parseId(element, "id");
+    current_.line = element.line;
     if (objects_.count(current_.id)) {
-      xml_.fail(tag.line, "object id " + std::to_string(current_.id) + " is used twice");
+      xml_.fail(element.line, "object id " + std::to_string(current_.id) + " is used twice");
     }
-    if (const std::string_view* type = tag.attribute("type")) {
+    if (const std::string_view* type = element.attribute("type")) {
       if (*type != "model" && *type != "solidsupport" && *type != "support" && *type != "surface" &&
           *type != "other") {
-        xml_.fail(tag.line, "unknown object type " + quoted(*type));
+        xml_.fail(element.line, "unknown object type " + quoted(*type));
       }
       current_.type = std::string(*type);
     }
@@ -445,70 +498,71 @@ class ModelParser {
     current_ = Object();
   }
 
-  void addVertex(const XmlTag& tag) {
-    if (current_.vertices.size() >= 0xffffffffu) xml_.fail(tag.line, "too many vertices");
+  void addVertex(const XmlElement& element) {
+    if (current_.vertices.size() >= 0xffffffffu) xml_.fail(element.line, "too many vertices");
     glm::dvec3 p;
-    p.x = parseCoordinate(where_, tag.line, required(tag, "x"));
-    p.y = parseCoordinate(where_, tag.line, required(tag, "y"));
-    p.z = parseCoordinate(where_, tag.line, required(tag, "z"));
+    p.x = parseCoordinate(where_, element.line, required(element, "x"));
+    p.y = parseCoordinate(where_, element.line, required(element, "y"));
+    p.z = parseCoordinate(where_, element.line, required(element, "z"));
     current_.vertices.push_back(p);
   }
 
-  void addTriangle(const XmlTag& tag) {
+  void addTriangle(const XmlElement& element) {
     static const char* const kNames[3] = {"v1", "v2", "v3"};
     std::array<uint32_t, 3> triangle{};
     for (int k = 0; k < 3; ++k) {
-      const std::string_view& text = required(tag, kNames[k]);
+      const std::string_view& text = required(element, kNames[k]);
       long long index = 0;
       if (!parseInteger(text, index)) {
-        xml_.fail(tag.line, std::string(kNames[k]) + " is not an integer: " + quoted(text));
+        xml_.fail(element.line, std::string(kNames[k]) + " is not an integer: " + quoted(text));
       }
       if (index < 0 || static_cast<unsigned long long>(index) >= current_.vertices.size()) {
-        xml_.fail(tag.line, "vertex index " + std::string(kNames[k]) + "=" + std::to_string(index) +
-                                " is out of range (object " + std::to_string(current_.id) +
-                                " has " + std::to_string(current_.vertices.size()) +
-                                " vertices so far; indices start at 0)");
+        xml_.fail(element.line, "vertex index " + std::string(kNames[k]) + "=" +
+                                    std::to_string(index) + " is out of range (object " +
+                                    std::to_string(current_.id) + " has " +
+                                    std::to_string(current_.vertices.size()) +
+                                    " vertices so far; indices start at 0)");
       }
       triangle[k] = static_cast<uint32_t>(index);
     }
     current_.triangles.push_back(triangle);
   }
 
-  const Object& referencedObject(const XmlTag& tag) {
-    const uint64_t id = parseId(tag, "objectid");
+  const Object& referencedObject(const XmlElement& element) {
+    const uint64_t id = parseId(element, "objectid");
     auto it = objects_.find(id);
     if (it == objects_.end()) {
-      xml_.fail(tag.line,
+      xml_.fail(element.line,
                 "objectid " + std::to_string(id) + " names no object defined before this point");
     }
     return it->second;
   }
 
-  void addComponent(const XmlTag& tag) {
-    refuseOtherParts(tag);
+  void addComponent(const XmlElement& element) {
+    refuseOtherParts(element);
     Component component;
-    component.objectId = referencedObject(tag).id;
-    component.transform = parseTransform(tag);
+    component.objectId = referencedObject(element).id;
+    component.transform = parseTransform(element);
     current_.components.push_back(component);
   }
 
-  void addItem(const XmlTag& tag) {
-    refuseOtherParts(tag);
-    const Object& object = referencedObject(tag);
+  void addItem(const XmlElement& element) {
+    refuseOtherParts(element);
+    const Object& object = referencedObject(element);
     Item item;
     item.objectId = object.id;
-    item.transform = parseTransform(tag);
-    item.line = tag.line;
+    item.transform = parseTransform(element);
+    item.line = element.line;
     if (object.type != "model" && object.type != "solidsupport") {
       addWarning(report_, fileName_,
-                 "line " + std::to_string(tag.line) + ": skipped build item: object " +
+                 "line " + std::to_string(element.line) + ": skipped build item: object " +
                      std::to_string(object.id) + " has type " + object.type +
                      " (not a solid model)");
       return;
     }
     placedTriangles_ = saturatingAdd(placedTriangles_, object.placedTriangles);
     if (placedTriangles_ > kMaxPlacedTriangles) {
-      xml_.fail(tag.line,
+      xml_.fail(element.line,
                 "the build places more than " + std::to_string(kMaxPlacedTriangles) + " triangles");
     }
     items_.push_back(item);
@@ -549,15 +603,15 @@ class ModelParser {
 
   const std::string& fileName_;
   const std::string where_;  // "<file>: <model part>", for messages
-  XmlScanner xml_;
+  XmlReader xml_;
   MeshReadReport* report_;
 
-  std::map<std::string_view, std::string_view> namespaces_;
-  std::string_view corePrefix_;
+  std::string coreUri_;  // the namespace of core elements: the core one, or "" (none)
   std::vector<Context> stack_;
   bool sawResources_ = false;
   bool sawBuild_ = false;
   size_t buildLine_ = 0;
+  size_t endLine_ = 0;  // of the last end tag
   std::set<std::string> warnedUnknown_;
 
   Object current_;
@@ -572,8 +626,8 @@ TriangleMesh parse3mf(const std::string& name, const std::string& bytes, MeshRea
   const zipio::ZipReader zip(name, bytes);
   const std::string part = findModelPart(zip, name, report);
   const std::string xml = zip.read(part, kMaxModelBytes);
-  ModelParser parser(name, xml, part, report);
-  return parser.parse();
+  ModelParser parser(name, part, report);
+  return parser.parse(xml);
 }
 
 }  // namespace meshio
