@@ -10,6 +10,7 @@
 #include "gpu/ldi/splats.cuh"
 #include "gpu/util/cuda_check.h"
 #include "gpu/util/device_memory.h"
+#include "gpu/util/device_stream.h"
 
 namespace strata {
 namespace {
@@ -20,6 +21,11 @@ const DeviceLdi& deviceLdi(const LdiHandle& handle) {
   return *d;
 }
 
+// Streams and ownership: the backend owns one stream (stream_) and queues all its work there,
+// from whichever thread calls it (one call at a time, as the Backend interface says). Every
+// call returns with the stream drained, so a handle it returns is complete and may be read from
+// any stream or thread. Each LDI and splats handle shares stream_ through its buffers, which are
+// freed on it: handles may outlive the backend, and the stream goes with the last of them.
 class CudaBackend : public Backend {
  public:
   CudaBackend() {
@@ -27,25 +33,14 @@ class CudaBackend : public Backend {
     cudaDeviceProp prop{};
     STRATA_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
     name_ = prop.name;
-    STRATA_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
-  }
-  // Each method orders the calling thread's allocations on stream_ (setAllocationStream). The
-  // stream goes with the backend: device memory released after that (an LDI or splats handle
-  // that outlives its backend, released on this or another thread) must be freed on the legacy
-  // stream, so the destroying thread's allocation stream is reset here. (Other threads that
-  // called into the backend must not outlive it with handles; the editor's worker joins first.)
-  ~CudaBackend() override {
-    if (!stream_) return;
-    cudaStreamSynchronize(stream_);
-    if (allocationStream() == stream_) setAllocationStream(nullptr);
-    cudaStreamDestroy(stream_);
+    keepFreedDeviceMemory(0);
+    stream_ = DeviceStream::create();
   }
 
   std::string description() const override { return "cuda (" + name_ + ")"; }
 
   LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
                        uint32_t leafId, Progress& progress) override {
-    setAllocationStream(stream_);
     progress.check();
     GridMesh placed = toGridUnits(mesh, objectToWorld, grid);
     return sampleMeshOnDevice(placed, grid, leafId, stream_);
@@ -53,7 +48,6 @@ class CudaBackend : public Backend {
 
   LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
                     Progress& progress) override {
-    setAllocationStream(stream_);
     progress.check();
     std::vector<const DeviceLdi*> inputs;
     for (const auto& c : children) {
@@ -64,13 +58,9 @@ class CudaBackend : public Backend {
     return combineOnDevice(op, inputs, grid, stream_);
   }
 
-  LdiHandle empty(const Grid& grid) override {
-    setAllocationStream(stream_);
-    return emptyOnDevice(grid, stream_);
-  }
+  LdiHandle empty(const Grid& grid) override { return emptyOnDevice(grid, stream_); }
 
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override {
-    setAllocationStream(stream_);
     progress.check();
     return measureOnDevice(deviceLdi(ldi), stream_);
   }
@@ -78,33 +68,31 @@ class CudaBackend : public Backend {
   TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                           const glm::ivec3& begin, const glm::ivec3& end,
                           Progress& progress) override {
-    setAllocationStream(stream_);
     progress.check();
     return contourTileOnDevice(deviceLdi(root), globalCells, begin, end, stream_);
   }
 
   SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
-    setAllocationStream(stream_);
     progress.check();
     return splatsOnDevice(deviceLdi(ldi), stream_);
   }
 
+  // Queued on the LDI's own stream (its buffers' copies), then waited for.
   std::shared_ptr<const Ldi> download(const LdiHandle& handle) override {
-    setAllocationStream(stream_);
     const DeviceLdi& d = deviceLdi(handle);
     auto host = std::make_shared<Ldi>();
     host->grid = d.grid();
     for (int a = 0; a < 3; ++a) {
-      d.axes[a].offsets.download(&host->axes[a].offsets, stream_);
-      d.axes[a].surfels.download(&host->axes[a].surfels, stream_);
+      d.axes[a].offsets.downloadAsync(&host->axes[a].offsets);
+      d.axes[a].surfels.downloadAsync(&host->axes[a].surfels);
     }
-    STRATA_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    d.stream().synchronize();
     return host;
   }
 
  private:
   std::string name_;
-  cudaStream_t stream_ = nullptr;
+  DeviceStream stream_;
 };
 
 }  // namespace

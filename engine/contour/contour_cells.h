@@ -65,6 +65,37 @@ STRATA_HD uint64_t tileGlobalCell(const TileView& t, const int c[3]) {
                                        uint64_t(t.globalCells[1]) * uint64_t(c[2] + t.first[2]));
 }
 
+// The window ray along `axis` through window node n (n[axis] is ignored): rays of an axis are
+// indexed u + (cells[u] + 1) * v, with u = (axis + 1) % 3 and v = (axis + 2) % 3.
+STRATA_HD int64_t tileRay(const TileView& t, int axis, const int n[3]) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  return int64_t(n[u]) + int64_t(n[v]) * (t.cells[u] + 1);
+}
+
+// One ray's walk over its surfels for the node votes, visiting its nodes in increasing order.
+struct RayVoteCursor {
+  uint32_t next, end;  // the next surfel and the ray's end, in t.surfels[axis]
+  bool in;             // parity of the surfels passed
+};
+
+// The cursor at the start of the window ray along `axis` through window node n.
+STRATA_HD RayVoteCursor startRayVote(const TileView& t, int axis, const int n[3]) {
+  const int64_t ray = tileRay(t, axis, n);
+  return RayVoteCursor{t.offsets[axis][ray], t.offsets[axis][ray + 1], false};
+}
+
+// This ray's vote for its window node number `node` along the axis (1: inside), after the nodes
+// before it. A node counts the surfels at or before it: it sits just after its own depth, as the
+// tie rule's perturbation puts the other axes' rays just after theirs.
+STRATA_HD uint8_t rayVote(const TileView& t, int axis, RayVoteCursor& c, int node) {
+  const float depth = float(t.first[axis] + node);
+  while (c.next < c.end && t.surfels[axis][c.next].depth <= depth) {
+    c.in = !c.in;
+    ++c.next;
+  }
+  return c.in ? 1 : 0;
+}
+
 // Global key of the edge along `axis` whose lower node is `node` (global).
 STRATA_HD uint64_t globalEdgeKey(const int globalCells[3], int axis, const int node[3]) {
   const uint64_t nx = uint64_t(globalCells[0]) + 1, ny = uint64_t(globalCells[1]) + 1;
@@ -109,8 +140,7 @@ struct EdgeCrossing {
 // ray's own parity disagreed with the decided signs (a tangent ray), one synthesised at the
 // middle facing out of the solid along the axis, with the leaf of the ray's nearest surfel.
 STRATA_HD EdgeCrossing tileCrossing(const TileView& t, int axis, const int n[3], bool lowerInside) {
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  const int64_t ray = int64_t(n[u]) + int64_t(n[v]) * (t.cells[u] + 1);
+  const int64_t ray = tileRay(t, axis, n);
   const float lo = float(t.first[axis] + n[axis]), hi = lo + 1.0f;
   const Surfel* begin = t.surfels[axis] + t.offsets[axis][ray];
   const Surfel* end = t.surfels[axis] + t.offsets[axis][ray + 1];
@@ -236,13 +266,200 @@ STRATA_HD int localEdgeIndex(int axis, const int bits[3]) {
   return 4 * axis + bits[(axis + 1) % 3] + 2 * bits[(axis + 2) % 3];
 }
 
+// The polygon around one sign-changing edge: the vertices of the four cells around it,
+// counter-clockwise in (u, v) seen from +axis, each followed by a face-segment vertex where the
+// face it shares with the next cell is split (at most 8 vertices).
+struct EdgePolygon {
+  uint64_t keys[8];
+  double pos[8][3];
+  int count;
+  int firstInserted;  // the first face-segment vertex, or -1 when there is none
+};
+
+// Offsets (along u, then v) below the edge's lower node of the q-th cell around an edge, q in
+// 0..3 counter-clockwise in (u, v) seen from +axis.
+STRATA_HD void cellAroundEdge(int q, int offset[2]) {
+  const int around[4][2] = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
+  offset[0] = around[q][0];
+  offset[1] = around[q][1];
+}
+
+// The face shared by cells q and q + 1 around an edge along `axis`.
+struct FaceAroundEdge {
+  bool normalU;    // its normal is along u (else along v)
+  int normalAxis;  // u or v
+  int w;           // its other in-plane axis (v or u)
+  int wBit;        // where the edge lies across the face along w (same in both cells)
+};
+
+STRATA_HD FaceAroundEdge faceAroundEdge(int axis, int q) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  int aq[2], aq1[2];
+  cellAroundEdge(q, aq);
+  cellAroundEdge((q + 1) % 4, aq1);
+  FaceAroundEdge f;
+  f.normalU = aq[0] != aq1[0];
+  f.normalAxis = f.normalU ? u : v;
+  f.w = f.normalU ? v : u;
+  f.wBit = f.w == u ? aq[0] : aq[1];
+  return f;
+}
+
+// Whether the face shared by cells q and q + 1 around the edge along `axis` (cells: the four
+// cells around it) is split: on each side both of its edges along `axis` belong to one
+// component, and the face is ambiguous (its two w-edges cross too; otherwise the two
+// axis-edges form the face's single segment).
+STRATA_HD bool faceSplitsEdge(const TileView& t, const CellCaseTable& table, const int cells[4][3],
+                              int axis, int q, const FaceAroundEdge& f) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const int q1 = (q + 1) % 4;
+  int aq[2], aq1[2];
+  cellAroundEdge(q, aq);
+  cellAroundEdge(q1, aq1);
+  int bitsQ[3], bitsQ1[3];
+  bitsQ[axis] = bitsQ1[axis] = 0;
+  bitsQ[u] = aq[0];
+  bitsQ[v] = aq[1];
+  bitsQ1[u] = aq1[0];
+  bitsQ1[v] = aq1[1];
+  const int eQ = localEdgeIndex(axis, bitsQ), eQ1 = localEdgeIndex(axis, bitsQ1);
+  bitsQ[f.w] = bitsQ1[f.w] = 1 - f.wBit;
+  const int oppQ = localEdgeIndex(axis, bitsQ), oppQ1 = localEdgeIndex(axis, bitsQ1);
+  const CellCase& caseQ = table.cases[t.masks[tileCell(t, cells[q][0], cells[q][1], cells[q][2])]];
+  const CellCase& caseQ1 =
+      table.cases[t.masks[tileCell(t, cells[q1][0], cells[q1][1], cells[q1][2])]];
+  if (caseQ.edgeComponent[oppQ] != caseQ.edgeComponent[eQ] ||
+      caseQ1.edgeComponent[oppQ1] != caseQ1.edgeComponent[eQ1])
+    return false;
+  int wBits[3];
+  wBits[f.normalAxis] = f.normalU ? aq[0] : aq[1];
+  wBits[f.w] = 0;
+  wBits[axis] = 0;
+  const int w0 = localEdgeIndex(f.w, wBits);
+  wBits[axis] = 1;
+  const int w1 = localEdgeIndex(f.w, wBits);
+  return !(caseQ.edgeComponent[w0] < 0 || caseQ.edgeComponent[w1] < 0);
+}
+
+// The vertex splitting a split face (f) around the edge along `axis` from window node n, the
+// corner 0 of a boundary cell (in0: its side): on the face segment around the edge's inside
+// corner, made of this edge and the w-edge at that corner, halfway between their crossings.
+STRATA_HD void faceSegmentVertex(const TileView& t, const int n[3], int axis, bool in0,
+                                 const FaceAroundEdge& f, uint64_t* key, double pos[3]) {
+  const int w = f.w;
+  int insideCorner[3] = {n[0], n[1], n[2]};
+  if (!in0) insideCorner[axis] += 1;
+  int faceMin[3] = {n[0], n[1], n[2]};
+  if (f.wBit == 1) faceMin[w] -= 1;
+  int wLower[3] = {insideCorner[0], insideCorner[1], insideCorner[2]};
+  if (f.wBit == 1) wLower[w] -= 1;
+  // Corner offsets ordered by axis index, so that the polygons around the segment's a-edge
+  // and around its w-edge compute the same key.
+  const int lowAxis = axis < w ? axis : w, highAxis = axis < w ? w : axis;
+  const int corner =
+      (insideCorner[lowAxis] - faceMin[lowAxis]) + 2 * (insideCorner[highAxis] - faceMin[highAxis]);
+  const int faceMinGlobal[3] = {faceMin[0] + t.first[0], faceMin[1] + t.first[1],
+                                faceMin[2] + t.first[2]};
+  *key = faceSegmentKey(t.globalCells, faceMinGlobal, f.normalAxis, corner);
+  const EdgeCrossing ea = tileCrossing(t, axis, n, t.inside[tileNode(t, n[0], n[1], n[2])]);
+  const EdgeCrossing ew =
+      tileCrossing(t, w, wLower, t.inside[tileNode(t, wLower[0], wLower[1], wLower[2])]);
+  for (int k = 0; k < 3; ++k) {
+    double pa = double(t.first[k] + n[k]), pw = double(t.first[k] + wLower[k]);
+    if (k == axis) pa = ea.t;
+    if (k == w) pw = ew.t;
+    pos[k] = 0.5 * (pa + pw);
+  }
+}
+
+// The polygon around the sign-changing edge along `axis` from window node n (corner 0 of a
+// boundary cell, on side in0), counter-clockwise seen from +axis, into *p. Its face-segment
+// vertices are also written to faceVertices (when not null) from *faceCount on, which counts
+// them.
+STRATA_HD void edgePolygon(const TileView& t, const CellCaseTable& table, const int n[3], int axis,
+                           bool in0, EdgePolygon* p, CellVertex* faceVertices, int* faceCount) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  int cells[4][3];
+  for (int q = 0; q < 4; ++q) {
+    int offset[2];
+    cellAroundEdge(q, offset);
+    for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
+    cells[q][u] -= offset[0];  // >= 0: the grid's outer nodes are outside
+    cells[q][v] -= offset[1];
+  }
+  p->count = 0;
+  p->firstInserted = -1;
+  for (int q = 0; q < 4; ++q) {
+    int offset[2];
+    cellAroundEdge(q, offset);
+    const CellVertex& vtx = vertexOfEdge(t, table, cells[q], 4 * axis + offset[0] + 2 * offset[1]);
+    p->keys[p->count] = vtx.key;
+    for (int k = 0; k < 3; ++k) p->pos[p->count][k] = vtx.position[k];
+    ++p->count;
+    const FaceAroundEdge f = faceAroundEdge(axis, q);
+    if (!faceSplitsEdge(t, table, cells, axis, q, f)) continue;
+    faceSegmentVertex(t, n, axis, in0, f, &p->keys[p->count], p->pos[p->count]);
+    if (faceVertices) {
+      CellVertex& fv = faceVertices[*faceCount];
+      fv.key = p->keys[p->count];
+      for (int k = 0; k < 3; ++k) fv.position[k] = p->pos[p->count][k];
+      fv.planeDistance = 0.0;
+    }
+    ++*faceCount;
+    if (p->firstInserted < 0) p->firstInserted = p->count;
+    ++p->count;
+  }
+}
+
+// Reverses the polygon's order (when the solid lies after the edge, the surface faces -axis).
+STRATA_HD void reverseEdgePolygon(EdgePolygon* p) {
+  for (int i = 0, j = p->count - 1; i < j; ++i, --j) {
+    const uint64_t tk = p->keys[i];
+    p->keys[i] = p->keys[j];
+    p->keys[j] = tk;
+    for (int k = 0; k < 3; ++k) {
+      const double tp = p->pos[i][k];
+      p->pos[i][k] = p->pos[j][k];
+      p->pos[j][k] = tp;
+    }
+  }
+  if (p->firstInserted >= 0) p->firstInserted = p->count - 1 - p->firstInserted;
+}
+
+// The triangles of an edge's polygon, ordered from `order` (the edge's global key * 8), written
+// to tris when not null; returns their number. Four vertices: the better-agreeing diagonal
+// split. More: a fan from the first inserted face vertex (its spokes are unique to this polygon).
+STRATA_HD int edgePolygonTriangles(const EdgePolygon& p, uint64_t order, uint32_t leaf,
+                                   CellTriangle* tris) {
+  if (p.firstInserted < 0) {
+    const double splitA = splitAgreement(p.pos[0], p.pos[1], p.pos[2], p.pos[3]);
+    const double splitB = splitAgreement(p.pos[1], p.pos[2], p.pos[3], p.pos[0]);
+    const int s = splitA >= splitB ? 0 : 1;
+    if (tris) {
+      tris[0] = CellTriangle{{p.keys[s], p.keys[s + 1], p.keys[s + 2]}, order, leaf};
+      tris[1] = CellTriangle{{p.keys[s], p.keys[s + 2], p.keys[(s + 3) % 4]}, order + 1, leaf};
+    }
+    return 2;
+  }
+  const int f = p.firstInserted, m = p.count;
+  int count = 0;
+  for (int k = 1; k + 1 < m; ++k) {
+    if (tris)
+      tris[count] = CellTriangle{
+          {p.keys[f], p.keys[(f + k) % m], p.keys[(f + k + 1) % m]}, order + uint64_t(k - 1), leaf};
+    ++count;
+  }
+  return count;
+}
+
 // The polygons of the sign-changing edges owned by boundary cell number b (those running from
 // its corner 0), joining the vertices of the four cells around each edge. Two neighbouring
 // cells whose components both pass twice through their shared, ambiguous face would be joined
 // by the same dual edge four times; there the dual edge is split at a vertex per face segment
 // (between the segment's two crossings), so every output edge has exactly two triangles.
-// Writes up to kMaxCellTriangles triangles and kMaxCellFaceVertices face vertices; returns the
-// number of triangles (and *faceCount the face vertices).
+// Writes up to kMaxCellTriangles triangles and kMaxCellFaceVertices face vertices (when tris and
+// faceVertices are not null); returns the number of triangles (and *faceCount the face
+// vertices); adds the synthesised crossings of the edges to *synthesized.
 STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_t b,
                            CellTriangle* tris, CellVertex* faceVertices, int* faceCount,
                            int* synthesized) {
@@ -257,127 +474,15 @@ STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_
   int triangleCount = 0;
   for (int axis = 0; axis < 3; ++axis) {
     if (bool((mask >> (1 << axis)) & 1) == in0) continue;  // corner 1, 2 or 4 vs corner 0
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    // The four cells around the edge, counter-clockwise in (u, v) seen from +axis.
-    const int around[4][2] = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
-    int cells[4][3];
-    for (int q = 0; q < 4; ++q) {
-      for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
-      cells[q][u] -= around[q][0];  // >= 0: the grid's outer nodes are outside
-      cells[q][v] -= around[q][1];
-    }
-    uint64_t keys[8];
-    double pos[8][3];
-    int m = 0, firstInserted = -1;
-    for (int q = 0; q < 4; ++q) {
-      const CellVertex& vtx =
-          vertexOfEdge(t, table, cells[q], 4 * axis + around[q][0] + 2 * around[q][1]);
-      keys[m] = vtx.key;
-      for (int k = 0; k < 3; ++k) pos[m][k] = vtx.position[k];
-      ++m;
-      // The face shared by cells q and q + 1: normal along u or v, other in-plane axis w.
-      const int q1 = (q + 1) % 4;
-      const bool normalU = around[q][0] != around[q1][0];
-      const int normalAxis = normalU ? u : v, w = normalU ? v : u;
-      int bitsQ[3], bitsQ1[3];
-      bitsQ[axis] = bitsQ1[axis] = 0;
-      bitsQ[u] = around[q][0];
-      bitsQ[v] = around[q][1];
-      bitsQ1[u] = around[q1][0];
-      bitsQ1[v] = around[q1][1];
-      const int eQ = localEdgeIndex(axis, bitsQ), eQ1 = localEdgeIndex(axis, bitsQ1);
-      const int wBit = bitsQ[w];  // where the edge lies across the face (same in both cells)
-      bitsQ[w] = bitsQ1[w] = 1 - wBit;
-      const int oppQ = localEdgeIndex(axis, bitsQ), oppQ1 = localEdgeIndex(axis, bitsQ1);
-      const CellCase& caseQ =
-          table.cases[t.masks[tileCell(t, cells[q][0], cells[q][1], cells[q][2])]];
-      const CellCase& caseQ1 =
-          table.cases[t.masks[tileCell(t, cells[q1][0], cells[q1][1], cells[q1][2])]];
-      if (caseQ.edgeComponent[oppQ] != caseQ.edgeComponent[eQ] ||
-          caseQ1.edgeComponent[oppQ1] != caseQ1.edgeComponent[eQ1])
-        continue;
-      // Both a-edges in one component on each side: split only if the face is ambiguous (its
-      // two w-edges cross too; otherwise the two a-edges form the face's single segment).
-      int wBits[3];
-      wBits[normalAxis] = normalU ? around[q][0] : around[q][1];
-      wBits[w] = 0;
-      wBits[axis] = 0;
-      const int w0 = localEdgeIndex(w, wBits);
-      wBits[axis] = 1;
-      const int w1 = localEdgeIndex(w, wBits);
-      if (caseQ.edgeComponent[w0] < 0 || caseQ.edgeComponent[w1] < 0) continue;
-      // The segment around this edge's inside corner: this edge and the w-edge at that corner.
-      int insideCorner[3] = {n[0], n[1], n[2]};
-      if (!in0) insideCorner[axis] += 1;
-      int faceMin[3] = {n[0], n[1], n[2]};
-      if (wBit == 1) faceMin[w] -= 1;
-      int wLower[3] = {insideCorner[0], insideCorner[1], insideCorner[2]};
-      if (wBit == 1) wLower[w] -= 1;
-      // Corner offsets ordered by axis index, so that the polygons around the segment's a-edge
-      // and around its w-edge compute the same key.
-      const int lowAxis = axis < w ? axis : w, highAxis = axis < w ? w : axis;
-      const int corner = (insideCorner[lowAxis] - faceMin[lowAxis]) +
-                         2 * (insideCorner[highAxis] - faceMin[highAxis]);
-      const int faceMinGlobal[3] = {faceMin[0] + t.first[0], faceMin[1] + t.first[1],
-                                    faceMin[2] + t.first[2]};
-      keys[m] = faceSegmentKey(t.globalCells, faceMinGlobal, normalAxis, corner);
-      const EdgeCrossing ea = tileCrossing(t, axis, n, t.inside[tileNode(t, n[0], n[1], n[2])]);
-      const EdgeCrossing ew =
-          tileCrossing(t, w, wLower, t.inside[tileNode(t, wLower[0], wLower[1], wLower[2])]);
-      for (int k = 0; k < 3; ++k) {
-        double pa = double(t.first[k] + n[k]), pw = double(t.first[k] + wLower[k]);
-        if (k == axis) pa = ea.t;
-        if (k == w) pw = ew.t;
-        pos[m][k] = 0.5 * (pa + pw);
-      }
-      if (faceVertices) {
-        CellVertex& f = faceVertices[*faceCount];
-        f.key = keys[m];
-        for (int k = 0; k < 3; ++k) f.position[k] = pos[m][k];
-        f.planeDistance = 0.0;
-      }
-      ++*faceCount;
-      if (firstInserted < 0) firstInserted = m;
-      ++m;
-    }
-    if (!in0) {  // the solid lies after the edge: the surface faces -axis
-      for (int i = 0, j = m - 1; i < j; ++i, --j) {
-        const uint64_t tk = keys[i];
-        keys[i] = keys[j];
-        keys[j] = tk;
-        for (int k = 0; k < 3; ++k) {
-          const double tp = pos[i][k];
-          pos[i][k] = pos[j][k];
-          pos[j][k] = tp;
-        }
-      }
-      if (firstInserted >= 0) firstInserted = m - 1 - firstInserted;
-    }
+    EdgePolygon polygon;
+    edgePolygon(t, table, n, axis, in0, &polygon, faceVertices, faceCount);
+    if (!in0) reverseEdgePolygon(&polygon);
     const EdgeCrossing x = tileCrossing(t, axis, n, in0);
     *synthesized += x.synthesized ? 1 : 0;
     const int g[3] = {n[0] + t.first[0], n[1] + t.first[1], n[2] + t.first[2]};
     const uint64_t order = globalEdgeKey(t.globalCells, axis, g) * 8;
-    if (firstInserted < 0) {
-      const double splitA = splitAgreement(pos[0], pos[1], pos[2], pos[3]);
-      const double splitB = splitAgreement(pos[1], pos[2], pos[3], pos[0]);
-      const int s = splitA >= splitB ? 0 : 1;
-      if (tris) {
-        tris[triangleCount] = CellTriangle{{keys[s], keys[s + 1], keys[s + 2]}, order, x.leaf};
-        tris[triangleCount + 1] =
-            CellTriangle{{keys[s], keys[s + 2], keys[(s + 3) % 4]}, order + 1, x.leaf};
-      }
-      triangleCount += 2;
-    } else {
-      // A fan from an inserted face vertex: its spokes are unique to this polygon.
-      for (int k = 1; k + 1 < m; ++k) {
-        if (tris)
-          tris[triangleCount] = CellTriangle{{keys[firstInserted], keys[(firstInserted + k) % m],
-                                              keys[(firstInserted + k + 1) % m]},
-                                             order + uint64_t(k - 1),
-                                             x.leaf};
-        ++triangleCount;
-      }
-    }
+    triangleCount +=
+        edgePolygonTriangles(polygon, order, x.leaf, tris ? tris + triangleCount : nullptr);
   }
   return triangleCount;
 }

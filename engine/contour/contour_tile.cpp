@@ -22,64 +22,61 @@ struct HostTile {
   TileView view{};
 };
 
-// Majority of the three rays through each window node (decideNodeSide). Every ray walks its
-// surfels once while the loops run over nodes in memory order (x fastest), keeping one cursor
-// per ray of the current row or slab, so all writes are sequential. Returns the number of nodes
-// whose rays disagreed.
-uint64_t decideNodeSigns(const Ldi& ldi, HostTile& tile, Progress* progress) {
+// The node votes (decideNodeSide): every ray walks its surfels once (startRayVote, rayVote)
+// while the loops run over nodes in memory order (x fastest), keeping one cursor per ray of the
+// current row or slab, so all writes are sequential. votes[node] = the x and y rays' votes.
+void voteAlongXAndY(const TileView& t, std::vector<uint8_t>& votes, Progress* progress) {
+  const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
+  const int64_t plane = int64_t(nx) * ny;
+  parallelFor(0, nz, 1, [&](int64_t b, int64_t e) {
+    if (progress) progress->check();
+    std::vector<RayVoteCursor> yCursors(static_cast<size_t>(nx));
+    for (int k = int(b); k < int(e); ++k) {
+      for (int i = 0; i < nx; ++i) {
+        const int node[3] = {i, 0, k};
+        yCursors[size_t(i)] = startRayVote(t, 1, node);
+      }
+      for (int j = 0; j < ny; ++j) {
+        uint8_t* row = votes.data() + plane * k + int64_t(nx) * j;
+        const int node[3] = {0, j, k};
+        RayVoteCursor xc = startRayVote(t, 0, node);
+        for (int i = 0; i < nx; ++i)
+          row[i] = uint8_t(rayVote(t, 0, xc, i) + rayVote(t, 1, yCursors[size_t(i)], j));
+      }
+    }
+  });
+}
+
+// votes[node] += the z rays' votes (as above).
+void addVotesAlongZ(const TileView& t, std::vector<uint8_t>& votes, Progress* progress) {
+  const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
+  const int64_t plane = int64_t(nx) * ny;
+  parallelFor(0, ny, 1, [&](int64_t b, int64_t e) {
+    if (progress) progress->check();
+    std::vector<RayVoteCursor> zCursors(static_cast<size_t>(nx));
+    for (int j = int(b); j < int(e); ++j) {
+      for (int i = 0; i < nx; ++i) {
+        const int node[3] = {i, j, 0};
+        zCursors[size_t(i)] = startRayVote(t, 2, node);
+      }
+      for (int k = 0; k < nz; ++k) {
+        uint8_t* row = votes.data() + plane * k + int64_t(nx) * j;
+        for (int i = 0; i < nx; ++i)
+          row[i] = uint8_t(row[i] + rayVote(t, 2, zCursors[size_t(i)], k));
+      }
+    }
+  });
+}
+
+// Majority of the three rays through each window node, and outside on the grid's outer faces
+// (decideNodeSide), into tile.inside. Returns the number of nodes whose rays disagreed.
+uint64_t decideNodeSigns(HostTile& tile, Progress* progress) {
   const TileView& t = tile.view;
   const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
   const int64_t plane = int64_t(nx) * ny;
   std::vector<uint8_t> votes(size_t(plane * nz), 0);
-  struct Cursor {
-    uint32_t next, end;
-    bool in;
-  };
-  auto startCursor = [&](const AxisLdi& a, int64_t ray) {
-    return Cursor{a.offsets[size_t(ray)], a.offsets[size_t(ray) + 1], false};
-  };
-  // A node counts the surfels at or before it: it sits just after its own depth, as the tie
-  // rule's perturbation puts the other axes' rays just after theirs.
-  auto advance = [](const AxisLdi& a, Cursor& c, float depth) {
-    while (c.next < c.end && a.surfels[c.next].depth <= depth) {
-      c.in = !c.in;
-      ++c.next;
-    }
-    return c.in;
-  };
-  const AxisLdi& ax = ldi.axes[0];  // rays indexed by (y, z)
-  const AxisLdi& ay = ldi.axes[1];  // rays indexed by (z, x)
-  const AxisLdi& az = ldi.axes[2];  // rays indexed by (x, y)
-  parallelFor(0, nz, 1, [&](int64_t b, int64_t e) {
-    if (progress) progress->check();
-    std::vector<Cursor> yCursors(static_cast<size_t>(nx));
-    for (int k = int(b); k < int(e); ++k) {
-      for (int i = 0; i < nx; ++i)
-        yCursors[size_t(i)] = startCursor(ay, int64_t(k) + int64_t(i) * nz);
-      for (int j = 0; j < ny; ++j) {
-        uint8_t* row = votes.data() + plane * k + int64_t(nx) * j;
-        Cursor xc = startCursor(ax, int64_t(j) + int64_t(k) * ny);
-        const float yDepth = float(t.first[1] + j);
-        for (int i = 0; i < nx; ++i)
-          row[i] = uint8_t(advance(ax, xc, float(t.first[0] + i)) ? 1 : 0) +
-                   uint8_t(advance(ay, yCursors[size_t(i)], yDepth) ? 1 : 0);
-      }
-    }
-  });
-  parallelFor(0, ny, 1, [&](int64_t b, int64_t e) {
-    if (progress) progress->check();
-    std::vector<Cursor> zCursors(static_cast<size_t>(nx));
-    for (int j = int(b); j < int(e); ++j) {
-      for (int i = 0; i < nx; ++i)
-        zCursors[size_t(i)] = startCursor(az, int64_t(i) + int64_t(j) * nx);
-      for (int k = 0; k < nz; ++k) {
-        uint8_t* row = votes.data() + plane * k + int64_t(nx) * j;
-        const float zDepth = float(t.first[2] + k);
-        for (int i = 0; i < nx; ++i)
-          row[i] = uint8_t(row[i] + (advance(az, zCursors[size_t(i)], zDepth) ? 1 : 0));
-      }
-    }
-  });
+  voteAlongXAndY(t, votes, progress);
+  addVotesAlongZ(t, votes, progress);
   std::atomic<uint64_t> disagreements{0};
   tile.inside.assign(votes.size(), 0);
   parallelFor(0, nz, 1, [&](int64_t b, int64_t e) {
@@ -215,7 +212,7 @@ TileContour contourTile(const Ldi& ldi, const glm::ivec3& globalCells, const glm
     tile.view.surfels[a] = ldi.axes[a].surfels.data();
   }
   TileContour out;
-  out.signDisagreements = decideNodeSigns(ldi, tile, progress);
+  out.signDisagreements = decideNodeSigns(tile, progress);
   computeCellMasks(tile, progress);
   placeVertices(tile, &out, progress);
   emitPolygons(tile, &out, progress);

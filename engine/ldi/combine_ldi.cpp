@@ -1,7 +1,5 @@
 #include "engine/ldi/combine_ldi.h"
 
-#include <algorithm>
-
 #include "engine/ldi/sample_mesh.h"
 #include "engine/util/error.h"
 #include "engine/util/parallel_for.h"
@@ -14,6 +12,9 @@ void combineAxis(RayOp op, const std::vector<std::shared_ptr<const Ldi>>& childr
                  const Grid& grid, int axis, Progress* progress, AxisLdi* out) {
   const int64_t rays = grid.rayCount(axis);
   const int childCount = int(children.size());
+  std::vector<AxisLdiView> views;
+  for (const auto& c : children)
+    views.push_back(AxisLdiView{c->axes[axis].offsets.data(), c->axes[axis].surfels.data()});
   const int64_t chunkCount = (rays + kRayGrain - 1) / kRayGrain;
   std::vector<RayChunkOutput> chunks(static_cast<size_t>(chunkCount));
   parallelFor(0, rays, kRayGrain, [&](int64_t b, int64_t e) {
@@ -22,21 +23,11 @@ void combineAxis(RayOp op, const std::vector<std::shared_ptr<const Ldi>>& childr
     chunk.counts.resize(size_t(e - b));
     std::vector<RayEvent> events;
     for (int64_t r = b; r < e; ++r) {
-      events.clear();
-      for (int c = 0; c < childCount; ++c) {
-        const AxisLdi& in = children[size_t(c)]->axes[axis];
-        for (uint32_t k = in.offsets[size_t(r)]; k < in.offsets[size_t(r) + 1]; ++k) {
-          const Surfel& s = in.surfels[k];
-          events.push_back(RayEvent{s.depth, s.normal, s.tag, uint32_t(c)});
-        }
-      }
-      // Each child's list is sorted; a stable sort by depth keeps equal depths in child order.
-      std::stable_sort(events.begin(), events.end(),
-                       [](const RayEvent& x, const RayEvent& y) { return x.depth < y.depth; });
+      events.resize(size_t(rayEventCount(views.data(), childCount, r)));
+      const int n = gatherRayEvents(views.data(), childCount, r, events.data());
       size_t at = chunk.surfels.size();
-      chunk.surfels.resize(at + events.size());
-      int written = combineRayEvents(op, childCount, events.data(), int(events.size()),
-                                     chunk.surfels.data() + at);
+      chunk.surfels.resize(at + size_t(n));
+      int written = combineRayEvents(op, childCount, events.data(), n, chunk.surfels.data() + at);
       chunk.surfels.resize(at + size_t(written));
       chunk.counts[size_t(r - b)] = uint32_t(written);
     }

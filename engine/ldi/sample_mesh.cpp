@@ -28,12 +28,6 @@ ProjectedTriangle project(const GridMesh& g, size_t t, int axis, const Grid& gri
                          grid.raysU(axis), grid.raysV(axis));
 }
 
-bool surfelLess(const Surfel& a, const Surfel& b) {
-  if (a.depth != b.depth) return a.depth < b.depth;
-  if (a.tag != b.tag) return a.tag < b.tag;
-  return a.normal < b.normal;
-}
-
 void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, Progress* progress,
                 AxisLdi* out) {
   const int64_t rays = grid.rayCount(axis);

@@ -38,6 +38,15 @@ STRATA_HD uint32_t makeSurfelTag(uint32_t leaf, bool enters) {
   return (leaf << 1) | (enters ? 1u : 0u);
 }
 
+// The order of a ray's raw hits before they are normalised: by depth, then tag, then normal. A
+// total order on distinct surfels (equal keys are identical surfels), so every sorting algorithm
+// gives the same list: the CPU's std::sort and the CUDA twin's insertion sort agree bit for bit.
+STRATA_HD bool surfelLess(const Surfel& a, const Surfel& b) {
+  if (a.depth != b.depth) return a.depth < b.depth;
+  if (a.tag != b.tag) return a.tag < b.tag;
+  return a.normal < b.normal;
+}
+
 STRATA_HD float signNotZero(float x) {
   return x >= 0.0f ? 1.0f : -1.0f;
 }
@@ -248,6 +257,44 @@ struct RayEvent {
 };
 
 enum class RayOp : uint8_t { Union = 0, Intersection = 1, Difference = 2 };
+
+// One axis of a child LDI as the per-ray steps read it (CSR, see ldi.h): offsets[r] ..
+// offsets[r + 1] index ray r's surfels. Memory of the side that runs the step.
+struct AxisLdiView {
+  const uint32_t* offsets;
+  const Surfel* surfels;
+};
+
+// The number of events on ray `ray` of the children (children[c] is child c's axis).
+STRATA_HD uint64_t rayEventCount(const AxisLdiView* children, int childCount, int64_t ray) {
+  uint64_t n = 0;
+  for (int c = 0; c < childCount; ++c) n += children[c].offsets[ray + 1] - children[c].offsets[ray];
+  return n;
+}
+
+// Gathers the surfels of ray `ray` of every child into `events` (room for rayEventCount), sorted
+// by depth with ties in child order, and within a child in its list's order: a stable insertion
+// of the children's lists one after the other, which orders exactly as a stable sort of their
+// concatenation does. Returns the number of events.
+STRATA_HD int gatherRayEvents(const AxisLdiView* children, int childCount, int64_t ray,
+                              RayEvent* events) {
+  int n = 0;
+  for (int c = 0; c < childCount; ++c) {
+    const AxisLdiView& v = children[c];
+    for (uint32_t k = v.offsets[ray]; k < v.offsets[ray + 1]; ++k) {
+      const Surfel s = v.surfels[k];
+      const RayEvent e{s.depth, s.normal, s.tag, uint32_t(c)};
+      int m = n - 1;
+      while (m >= 0 && e.depth < events[m].depth) {
+        events[m + 1] = events[m];
+        --m;
+      }
+      events[m + 1] = e;
+      ++n;
+    }
+  }
+  return n;
+}
 
 // Normalises a leaf's sorted raw hits into clean alternating enter/exit surfels: inside where the
 // winding number (enter +1, exit -1) is non-zero, so overlapping shells of one mesh unite. Hits

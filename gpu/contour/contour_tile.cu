@@ -13,12 +13,16 @@ namespace {
 
 __constant__ CellCaseTable c_cellCases;
 
-void uploadCellCases() {
+// The cell case table in constant memory, uploaded once per process (on the first caller's
+// stream, waited for before any caller goes on).
+void uploadCellCases(const DeviceStream& stream) {
   static std::once_flag once;
   static cudaError_t status = cudaSuccess;
-  std::call_once(once, [] {
+  std::call_once(once, [&stream] {
     const CellCaseTable table = buildCellCaseTable();
-    status = cudaMemcpyToSymbol(c_cellCases, &table, sizeof(table));
+    status = cudaMemcpyToSymbolAsync(c_cellCases, &table, sizeof(table), 0, cudaMemcpyHostToDevice,
+                                     stream.get());
+    if (status == cudaSuccess) status = cudaStreamSynchronize(stream.get());
   });
   STRATA_CUDA_CHECK(status);
 }
@@ -32,18 +36,11 @@ __global__ void voteAxis(TileView t, int axis, uint8_t* votes) {
     int n[3];
     n[u] = int(ray % nu);
     n[v] = int(ray / nu);
-    uint32_t k = t.offsets[axis][ray];
-    const uint32_t end = t.offsets[axis][ray + 1];
-    bool in = false;
+    n[axis] = 0;
+    RayVoteCursor cursor = startRayVote(t, axis, n);
     for (int i = 0; i < na; ++i) {
-      // A node counts the surfels at or before it (as on the CPU).
-      const float depth = float(t.first[axis] + i);
-      while (k < end && t.surfels[axis][k].depth <= depth) {
-        in = !in;
-        ++k;
-      }
       n[axis] = i;
-      votes[tileNode(t, n[0], n[1], n[2])] += in ? 1 : 0;
+      votes[tileNode(t, n[0], n[1], n[2])] += rayVote(t, axis, cursor, i);
     }
   }
 }
@@ -126,122 +123,149 @@ __global__ void writePolygons(TileView t, const uint32_t* triangleStart, const u
 }
 
 // In-place exclusive scan of count + 1 uint32 values; returns the total (one wait).
-uint32_t scan32(uint32_t* data, int64_t count, cudaStream_t stream) {
+uint32_t scan32(uint32_t* data, int64_t count, const DeviceStream& stream) {
   size_t tempBytes = 0;
   STRATA_CUDA_CHECK(
-      cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count + 1, stream));
-  DeviceBuffer<unsigned char> temp(tempBytes);
+      cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count + 1, stream.get()));
+  DeviceBuffer<unsigned char> temp(tempBytes, stream);
   STRATA_CUDA_CHECK(
-      cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count + 1, stream));
+      cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count + 1, stream.get()));
   uint32_t total = 0;
-  STRATA_CUDA_CHECK(
-      cudaMemcpyAsync(&total, data + count, sizeof(uint32_t), cudaMemcpyDeviceToHost, stream));
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(&total, data + count, sizeof(uint32_t), cudaMemcpyDeviceToHost,
+                                    stream.get()));
+  stream.synchronize();
   return total;
+}
+
+// The tile's device arrays, in the order the steps make them; t views them.
+struct DeviceTile {
+  TileView t{};
+  int64_t nodes = 0, cells = 0;
+  DeviceBuffer<unsigned long long> counters;  // disagreements, synthesised crossings
+  DeviceBuffer<uint8_t> inside, masks;
+  DeviceBuffer<uint32_t> boundary, vertexStart;
+  DeviceBuffer<CellVertex> vertices;
+};
+
+// Node sides: votes of the three axes, then majority and the outer faces.
+void decideNodeSides(DeviceTile& d, const DeviceStream& stream) {
+  DeviceBuffer<uint8_t> votes(static_cast<size_t>(d.nodes), stream);
+  d.inside = DeviceBuffer<uint8_t>(static_cast<size_t>(d.nodes), stream);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(votes.data(), 0, votes.bytes(), stream.get()));
+  for (int axis = 0; axis < 3; ++axis) {
+    const int64_t rays = int64_t(d.t.cells[(axis + 1) % 3] + 1) * (d.t.cells[(axis + 2) % 3] + 1);
+    voteAxis<<<blocksFor(rays, 128), 128, 0, stream.get()>>>(d.t, axis, votes.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  decideSides<<<blocksFor(d.nodes, 256), 256, 0, stream.get()>>>(d.t, votes.data(), d.inside.data(),
+                                                                 d.counters.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  d.t.inside = d.inside.data();
+}
+
+// Cell masks and the boundary cells, in increasing index (room for exactly those: they follow
+// the surface, not the volume).
+void findBoundaryCells(DeviceTile& d, const DeviceStream& stream) {
+  d.masks = DeviceBuffer<uint8_t>(static_cast<size_t>(d.cells), stream);
+  DeviceBuffer<uint8_t> flags(static_cast<size_t>(d.cells), stream);
+  DeviceBuffer<unsigned long long> flagged(1, stream);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(flagged.data(), 0, flagged.bytes(), stream.get()));
+  cellMasks<<<blocksFor(d.cells, 256), 256, 0, stream.get()>>>(d.t, d.masks.data(), flags.data(),
+                                                               flagged.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  d.t.masks = d.masks.data();
+  unsigned long long boundaryCount = 0;
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(&boundaryCount, flagged.data(), sizeof(boundaryCount),
+                                    cudaMemcpyDeviceToHost, stream.get()));
+  stream.synchronize();
+  d.boundary = DeviceBuffer<uint32_t>(static_cast<size_t>(boundaryCount), stream);
+  DeviceBuffer<int64_t> selected(1, stream);
+  if (boundaryCount > 0) {
+    thrust::counting_iterator<uint32_t> indices(0);
+    size_t tempBytes = 0;
+    STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, tempBytes, indices, flags.data(),
+                                                 d.boundary.data(), selected.data(), d.cells,
+                                                 stream.get()));
+    DeviceBuffer<unsigned char> temp(tempBytes, stream);
+    STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(temp.data(), tempBytes, indices, flags.data(),
+                                                 d.boundary.data(), selected.data(), d.cells,
+                                                 stream.get()));
+  }
+  d.t.boundary = d.boundary.data();
+  d.t.boundaryCount = int64_t(boundaryCount);
+}
+
+// One vertex per component of each boundary cell.
+void placeTileVertices(DeviceTile& d, const DeviceStream& stream) {
+  const int64_t boundaryCount = d.t.boundaryCount;
+  d.vertexStart = DeviceBuffer<uint32_t>(static_cast<size_t>(boundaryCount) + 1, stream);
+  componentCounts<<<blocksFor(boundaryCount + 1, 256), 256, 0, stream.get()>>>(
+      d.t, d.vertexStart.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  const uint32_t vertexCount = scan32(d.vertexStart.data(), boundaryCount, stream);
+  d.t.vertexStart = d.vertexStart.data();
+  d.vertices = DeviceBuffer<CellVertex>(vertexCount, stream);
+  if (boundaryCount > 0) {
+    placeVertices<<<blocksFor(boundaryCount, 128), 128, 0, stream.get()>>>(d.t, d.vertices.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  d.t.vertices = d.vertices.data();
+}
+
+// Polygons: count, scan, write; then everything back to the host into *out: cell vertices then
+// face vertices (as the CPU orders them), triangles, and the counters.
+void emitTilePolygons(DeviceTile& d, const DeviceStream& stream, TileContour* out) {
+  const int64_t boundaryCount = d.t.boundaryCount;
+  DeviceBuffer<uint32_t> triangleStart(static_cast<size_t>(boundaryCount) + 1, stream),
+      faceStart(static_cast<size_t>(boundaryCount) + 1, stream);
+  countPolygons<<<blocksFor(boundaryCount + 1, 128), 128, 0, stream.get()>>>(
+      d.t, triangleStart.data(), faceStart.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  const uint32_t triangleCount = scan32(triangleStart.data(), boundaryCount, stream);
+  const uint32_t faceCount = scan32(faceStart.data(), boundaryCount, stream);
+  DeviceBuffer<CellTriangle> triangles(triangleCount, stream);
+  DeviceBuffer<CellVertex> faces(faceCount, stream);
+  if (boundaryCount > 0) {
+    writePolygons<<<blocksFor(boundaryCount, 128), 128, 0, stream.get()>>>(
+        d.t, triangleStart.data(), faceStart.data(), triangles.data(), faces.data(),
+        d.counters.data() + 1);
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  std::vector<CellVertex> faceHost;
+  d.vertices.downloadAsync(&out->vertices);
+  faces.downloadAsync(&faceHost);
+  triangles.downloadAsync(&out->triangles);
+  unsigned long long stats[2] = {0, 0};
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(stats, d.counters.data(), sizeof(stats), cudaMemcpyDeviceToHost,
+                                    stream.get()));
+  stream.synchronize();
+  out->vertices.insert(out->vertices.end(), faceHost.begin(), faceHost.end());
+  out->signDisagreements = stats[0];
+  out->synthesizedCrossings = stats[1];
 }
 
 }  // namespace
 
 TileContour contourTileOnDevice(const DeviceLdi& ldi, const glm::ivec3& globalCells,
                                 const glm::ivec3& begin, const glm::ivec3& end,
-                                cudaStream_t stream) {
-  uploadCellCases();
+                                const DeviceStream& stream) {
+  uploadCellCases(stream);
   const Grid& grid = ldi.grid();
-  TileView t = makeTileView(grid.first, grid.cells, globalCells, begin, end);
+  DeviceTile d;
+  d.t = makeTileView(grid.first, grid.cells, globalCells, begin, end);
   for (int a = 0; a < 3; ++a) {
-    t.offsets[a] = ldi.axes[a].offsets.data();
-    t.surfels[a] = ldi.axes[a].surfels.data();
+    d.t.offsets[a] = ldi.axes[a].offsets.data();
+    d.t.surfels[a] = ldi.axes[a].surfels.data();
   }
-  const int64_t nodes = int64_t(grid.cells.x + 1) * (grid.cells.y + 1) * (grid.cells.z + 1);
-  const int64_t cells = int64_t(grid.cells.x) * grid.cells.y * grid.cells.z;
+  d.nodes = int64_t(grid.cells.x + 1) * (grid.cells.y + 1) * (grid.cells.z + 1);
+  d.cells = int64_t(grid.cells.x) * grid.cells.y * grid.cells.z;
+  d.counters = DeviceBuffer<unsigned long long>(2, stream);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(d.counters.data(), 0, d.counters.bytes(), stream.get()));
+  decideNodeSides(d, stream);
+  findBoundaryCells(d, stream);
+  placeTileVertices(d, stream);
   TileContour out;
-
-  // Node sides: votes of the three axes, then majority and the outer faces.
-  DeviceBuffer<uint8_t> votes(static_cast<size_t>(nodes)), inside(static_cast<size_t>(nodes));
-  DeviceBuffer<unsigned long long> counters(2);  // disagreements, synthesised crossings
-  STRATA_CUDA_CHECK(cudaMemsetAsync(votes.data(), 0, votes.bytes(), stream));
-  STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream));
-  for (int axis = 0; axis < 3; ++axis) {
-    const int64_t rays = grid.rayCount(axis);
-    voteAxis<<<blocksFor(rays, 128), 128, 0, stream>>>(t, axis, votes.data());
-    STRATA_CUDA_CHECK(cudaGetLastError());
-  }
-  decideSides<<<blocksFor(nodes, 256), 256, 0, stream>>>(t, votes.data(), inside.data(),
-                                                         counters.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  t.inside = inside.data();
-
-  // Cell masks and the boundary cells, in increasing index.
-  DeviceBuffer<uint8_t> masks(static_cast<size_t>(cells)), flags(static_cast<size_t>(cells));
-  DeviceBuffer<unsigned long long> flagged(1);
-  STRATA_CUDA_CHECK(cudaMemsetAsync(flagged.data(), 0, flagged.bytes(), stream));
-  cellMasks<<<blocksFor(cells, 256), 256, 0, stream>>>(t, masks.data(), flags.data(),
-                                                       flagged.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  t.masks = masks.data();
-  unsigned long long boundaryCount = 0;
-  STRATA_CUDA_CHECK(cudaMemcpyAsync(&boundaryCount, flagged.data(), sizeof(boundaryCount),
-                                    cudaMemcpyDeviceToHost, stream));
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
-  // Room for exactly the boundary cells (they follow the surface, not the volume).
-  DeviceBuffer<uint32_t> boundary(static_cast<size_t>(boundaryCount));
-  DeviceBuffer<int64_t> selected(1);
-  if (boundaryCount > 0) {
-    thrust::counting_iterator<uint32_t> indices(0);
-    size_t tempBytes = 0;
-    STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, tempBytes, indices, flags.data(),
-                                                 boundary.data(), selected.data(), cells, stream));
-    DeviceBuffer<unsigned char> temp(tempBytes);
-    STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(temp.data(), tempBytes, indices, flags.data(),
-                                                 boundary.data(), selected.data(), cells, stream));
-  }
-  t.boundary = boundary.data();
-  t.boundaryCount = int64_t(boundaryCount);
-  votes = DeviceBuffer<uint8_t>();
-  flags = DeviceBuffer<uint8_t>();
-
-  // One vertex per component of each boundary cell.
-  DeviceBuffer<uint32_t> vertexStart(static_cast<size_t>(t.boundaryCount) + 1);
-  componentCounts<<<blocksFor(boundaryCount + 1, 256), 256, 0, stream>>>(t, vertexStart.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  const uint32_t vertexCount = scan32(vertexStart.data(), boundaryCount, stream);
-  t.vertexStart = vertexStart.data();
-  DeviceBuffer<CellVertex> vertices(vertexCount);
-  if (boundaryCount > 0) {
-    placeVertices<<<blocksFor(boundaryCount, 128), 128, 0, stream>>>(t, vertices.data());
-    STRATA_CUDA_CHECK(cudaGetLastError());
-  }
-  t.vertices = vertices.data();
-
-  // Polygons: count, scan, write.
-  DeviceBuffer<uint32_t> triangleStart(static_cast<size_t>(t.boundaryCount) + 1),
-      faceStart(static_cast<size_t>(t.boundaryCount) + 1);
-  countPolygons<<<blocksFor(boundaryCount + 1, 128), 128, 0, stream>>>(t, triangleStart.data(),
-                                                                       faceStart.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  const uint32_t triangleCount = scan32(triangleStart.data(), boundaryCount, stream);
-  const uint32_t faceCount = scan32(faceStart.data(), boundaryCount, stream);
-  DeviceBuffer<CellTriangle> triangles(triangleCount);
-  DeviceBuffer<CellVertex> faces(faceCount);
-  if (boundaryCount > 0) {
-    writePolygons<<<blocksFor(boundaryCount, 128), 128, 0, stream>>>(
-        t, triangleStart.data(), faceStart.data(), triangles.data(), faces.data(),
-        counters.data() + 1);
-    STRATA_CUDA_CHECK(cudaGetLastError());
-  }
-
-  // Back to the host: cell vertices then face vertices (as the CPU orders them), triangles.
-  std::vector<CellVertex> faceHost;
-  vertices.download(&out.vertices, stream);
-  faces.download(&faceHost, stream);
-  triangles.download(&out.triangles, stream);
-  unsigned long long stats[2] = {0, 0};
-  STRATA_CUDA_CHECK(
-      cudaMemcpyAsync(stats, counters.data(), sizeof(stats), cudaMemcpyDeviceToHost, stream));
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
-  out.vertices.insert(out.vertices.end(), faceHost.begin(), faceHost.end());
-  out.signDisagreements = stats[0];
-  out.synthesizedCrossings = stats[1];
+  emitTilePolygons(d, stream, &out);
   return out;
 }
 

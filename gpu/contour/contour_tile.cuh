@@ -11,9 +11,10 @@
 
 namespace strata {
 
-// `ldi` is the root's LDI on the tile's window grid; see contourTile for the rest.
+// `ldi` is the root's LDI on the tile's window grid (on any stream); see contourTile for the
+// rest. Queued on `stream`; synchronous.
 TileContour contourTileOnDevice(const DeviceLdi& ldi, const glm::ivec3& globalCells,
                                 const glm::ivec3& begin, const glm::ivec3& end,
-                                cudaStream_t stream);
+                                const DeviceStream& stream);
 
 }  // namespace strata

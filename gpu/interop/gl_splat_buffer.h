@@ -6,20 +6,24 @@
 // Threads: the thread that has the GL context current (the editor's UI thread). The GL context
 // must run on the CUDA device the splats live on; on any other GL (Mesa's llvmpipe, another
 // GPU) attach() throws, and the caller takes the host upload path instead.
+//
+// Streams: copies run on a stream this object owns (not the backend's, which may be busy with
+// the next evaluation, nor the legacy stream 0). GL work issued after copy() returns sees the
+// copied splats (cudaGraphicsUnmapResources on that stream orders it), and the splats' own
+// stream is made to wait for the copy, so their stream-ordered free cannot overtake it.
 #pragma once
 
 #include <cstddef>
+#include <memory>
 
 #include "engine/ldi/splats.h"
-
-struct cudaGraphicsResource;
 
 namespace strata {
 
 class CudaGlSplatBuffer {
  public:
-  CudaGlSplatBuffer() = default;
-  ~CudaGlSplatBuffer();  // detaches
+  CudaGlSplatBuffer();   // touches no device: the stream is made by the first attach()
+  ~CudaGlSplatBuffer();  // detaches; failures at teardown are logged to stderr
   CudaGlSplatBuffer(const CudaGlSplatBuffer&) = delete;
   CudaGlSplatBuffer& operator=(const CudaGlSplatBuffer&) = delete;
 
@@ -27,17 +31,19 @@ class CudaGlSplatBuffer {
   // CUDA. Detach before the buffer's storage is reallocated (glBufferData) and attach again
   // after. Throws strata::Error quoting CUDA's reason when the buffer cannot be registered.
   void attach(unsigned int glBuffer);
+  // Waits for copies in flight, then unregisters the buffer (a failure is logged, not thrown).
   void detach();
 
-  // Copies all of `splats` to the start of the attached buffer; GL commands issued after it
-  // returns see the copied splats (cudaGraphicsUnmapResources orders them). Throws strata::Error
-  // when the splats are not the CUDA backend's, or when they do not fit in the mapped buffer.
+  // Copies all of `splats` to the start of the attached buffer (see Streams above). Throws
+  // strata::Error when the splats are not the CUDA backend's, or when they do not fit in the
+  // mapped buffer.
   void copy(const SplatResource& splats);
   // Whether `splats` are the CUDA backend's (device-resident), i.e. what copy() takes.
   static bool canCopy(const SplatResource& splats);
 
  private:
-  cudaGraphicsResource* resource_ = nullptr;
+  struct Device;  // the registered buffer, the copy stream and its event (gl_splat_buffer.cu)
+  std::unique_ptr<Device> device_;
 };
 
 }  // namespace strata

@@ -1,5 +1,5 @@
 // CUDA Booleans of device LDIs, ray by ray: the twin of engine/ldi/combine_ldi.cpp, sharing
-// combineRayEvents (engine/ldi/shared_math.h), one thread per ray.
+// gatherRayEvents and combineRayEvents (engine/ldi/shared_math.h), one thread per ray.
 #pragma once
 
 #include <cuda_runtime.h>
@@ -11,12 +11,13 @@
 
 namespace strata {
 
-// Combines the children (all on `grid`, clean lists) with an n-ary operation. Synchronous on
-// `stream`. With no children the result is empty.
+// Combines the children (all on `grid`, clean lists, complete) with an n-ary operation, into an
+// LDI allocated on `stream`; the children may live on any stream. Synchronous: returns with
+// `stream` drained. With no children the result is empty.
 std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op, const std::vector<const DeviceLdi*>& children,
-                                           const Grid& grid, cudaStream_t stream);
+                                           const Grid& grid, const DeviceStream& stream);
 
-// An LDI with no surfels.
-std::shared_ptr<DeviceLdi> emptyOnDevice(const Grid& grid, cudaStream_t stream);
+// An LDI with no surfels, on `stream` (synchronous).
+std::shared_ptr<DeviceLdi> emptyOnDevice(const Grid& grid, const DeviceStream& stream);
 
 }  // namespace strata

@@ -38,31 +38,34 @@ __global__ void copyRays(RaySpace space, const uint64_t* wide, const uint32_t* c
 
 }  // namespace
 
-void exclusiveScanAsync(uint64_t* data, int64_t count, cudaStream_t stream) {
+void exclusiveScanAsync(uint64_t* data, int64_t count, const DeviceStream& stream) {
   size_t tempBytes = 0;
-  STRATA_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count, stream));
-  DeviceBuffer<unsigned char> temp(tempBytes);
   STRATA_CUDA_CHECK(
-      cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count, stream));
+      cub::DeviceScan::ExclusiveSum(nullptr, tempBytes, data, data, count, stream.get()));
+  DeviceBuffer<unsigned char> temp(tempBytes, stream);
+  STRATA_CUDA_CHECK(
+      cub::DeviceScan::ExclusiveSum(temp.data(), tempBytes, data, data, count, stream.get()));
 }
 
-void readBack(const uint64_t* const* addresses, uint64_t* values, int n, cudaStream_t stream) {
+void readBack(const uint64_t* const* addresses, uint64_t* values, int n,
+              const DeviceStream& stream) {
   for (int i = 0; i < n; ++i)
     STRATA_CUDA_CHECK(cudaMemcpyAsync(values + i, addresses[i], sizeof(uint64_t),
-                                      cudaMemcpyDeviceToHost, stream));
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+                                      cudaMemcpyDeviceToHost, stream.get()));
+  stream.synchronize();
 }
 
-void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, cudaStream_t stream) {
-  widenKernel<<<blocksFor(total + 1, 256), 256, 0, stream>>>(counts, total, wide);
+void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide,
+                 const DeviceStream& stream) {
+  widenKernel<<<blocksFor(total + 1, 256), 256, 0, stream.get()>>>(counts, total, wide);
   STRATA_CUDA_CHECK(cudaGetLastError());
 }
 
 void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
-               const uint64_t* scratchOffsets, DeviceLdi* out, cudaStream_t stream,
-               const char* what) {
+               const uint64_t* scratchOffsets, DeviceLdi* out, const char* what) {
+  const DeviceStream& stream = out->stream();
   const int64_t total = space.total();
-  DeviceBuffer<uint64_t> wide(static_cast<size_t>(total) + 1);
+  DeviceBuffer<uint64_t> wide(static_cast<size_t>(total) + 1, stream);
   widenCounts(counts, total, wide.data(), stream);
   exclusiveScanAsync(wide.data(), total + 1, stream);
   const uint64_t* at[4] = {wide.data() + space.base[0], wide.data() + space.base[1],
@@ -75,16 +78,16 @@ void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scra
     checkSurfelCount(n, what);
     const int64_t rays = space.base[a + 1] - space.base[a];
     DeviceAxisLdi& axis = out->axes[a];
-    axis.offsets.resize(static_cast<size_t>(rays) + 1);
-    axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream>>>(wide.data(), space.base[a], rays,
-                                                              axis.offsets.data());
+    axis.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(rays) + 1, stream);
+    axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream.get()>>>(wide.data(), space.base[a],
+                                                                    rays, axis.offsets.data());
     STRATA_CUDA_CHECK(cudaGetLastError());
-    axis.surfels.resize(static_cast<size_t>(n));
+    axis.surfels = DeviceBuffer<Surfel>(static_cast<size_t>(n), stream);
     targets.surfels[a] = axis.surfels.data();
   }
   if (starts[3] > 0) {
-    copyRays<<<blocksFor(total, 256), 256, 0, stream>>>(space, wide.data(), counts, scratch,
-                                                        scratchOffsets, targets);
+    copyRays<<<blocksFor(total, 256), 256, 0, stream.get()>>>(space, wide.data(), counts, scratch,
+                                                              scratchOffsets, targets);
     STRATA_CUDA_CHECK(cudaGetLastError());
   }
 }

@@ -32,21 +32,25 @@ struct RaySpace {
   }
 };
 
+// Every function here queues its work on `stream` (and allocates its scratch there); the
+// device pointers it takes must be valid for work on that stream.
+
 // In-place exclusive scan of `count` 64-bit values; returns nothing (no host wait).
-void exclusiveScanAsync(uint64_t* data, int64_t count, cudaStream_t stream);
+void exclusiveScanAsync(uint64_t* data, int64_t count, const DeviceStream& stream);
 
 // Reads `n` values at the given device addresses into host memory, with one wait.
-void readBack(const uint64_t* const* addresses, uint64_t* values, int n, cudaStream_t stream);
+void readBack(const uint64_t* const* addresses, uint64_t* values, int n,
+              const DeviceStream& stream);
 
 // Writes counts[R] widened to 64 bits into wide[R] (and 0 at wide[total]).
-void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, cudaStream_t stream);
+void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, const DeviceStream& stream);
 
 // Given per-ray counts (concatenated rays) and each ray's start in a scratch buffer, builds the
 // three axes of `out`: scans the counts, reads the three axis totals back (one wait), and
-// copies each ray's list to its place. Throws strata::Error when an axis exceeds 2^32 surfels.
+// copies each ray's list to its place, allocating out's buffers on out->stream() (the one the
+// work is queued on). Throws strata::Error when an axis exceeds 2^32 surfels.
 void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
-               const uint64_t* scratchOffsets, DeviceLdi* out, cudaStream_t stream,
-               const char* what);
+               const uint64_t* scratchOffsets, DeviceLdi* out, const char* what);
 
 inline unsigned blocksFor(int64_t items, unsigned threads) {
   int64_t blocks = (items + threads - 1) / threads;

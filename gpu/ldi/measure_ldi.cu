@@ -23,33 +23,34 @@ __global__ void measureRays(const uint32_t* offsets, const Surfel* surfels, int6
   }
 }
 
-double sum(const double* values, int64_t count, cudaStream_t stream) {
-  DeviceBuffer<double> result(1);
+double sum(const double* values, int64_t count, const DeviceStream& stream) {
+  DeviceBuffer<double> result(1, stream);
   size_t tempBytes = 0;
   STRATA_CUDA_CHECK(
-      cub::DeviceReduce::Sum(nullptr, tempBytes, values, result.data(), count, stream));
-  DeviceBuffer<unsigned char> temp(tempBytes);
+      cub::DeviceReduce::Sum(nullptr, tempBytes, values, result.data(), count, stream.get()));
+  DeviceBuffer<unsigned char> temp(tempBytes, stream);
   STRATA_CUDA_CHECK(
-      cub::DeviceReduce::Sum(temp.data(), tempBytes, values, result.data(), count, stream));
+      cub::DeviceReduce::Sum(temp.data(), tempBytes, values, result.data(), count, stream.get()));
   double host = 0.0;
   STRATA_CUDA_CHECK(
-      cudaMemcpyAsync(&host, result.data(), sizeof(double), cudaMemcpyDeviceToHost, stream));
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+      cudaMemcpyAsync(&host, result.data(), sizeof(double), cudaMemcpyDeviceToHost, stream.get()));
+  stream.synchronize();
   return host;
 }
 
 }  // namespace
 
-LdiMeasure measureOnDevice(const DeviceLdi& ldi, cudaStream_t stream) {
+LdiMeasure measureOnDevice(const DeviceLdi& ldi, const DeviceStream& stream) {
   LdiMeasure m;
   const Grid& grid = ldi.grid();
   const double h = grid.h;
   for (int axis = 0; axis < 3; ++axis) {
     const int64_t rays = grid.rayCount(axis);
-    DeviceBuffer<double> length(static_cast<size_t>(rays)), area(static_cast<size_t>(rays));
-    measureRays<<<blocksFor(rays, 256), 256, 0, stream>>>(ldi.axes[axis].offsets.data(),
-                                                          ldi.axes[axis].surfels.data(), rays,
-                                                          length.data(), area.data());
+    DeviceBuffer<double> length(static_cast<size_t>(rays), stream),
+        area(static_cast<size_t>(rays), stream);
+    measureRays<<<blocksFor(rays, 256), 256, 0, stream.get()>>>(ldi.axes[axis].offsets.data(),
+                                                                ldi.axes[axis].surfels.data(), rays,
+                                                                length.data(), area.data());
     STRATA_CUDA_CHECK(cudaGetLastError());
     m.axisVolume[axis] = sum(length.data(), rays, stream) * h * h * h;
     m.area += sum(area.data(), rays, stream) * h * h;

@@ -8,6 +8,7 @@
 
 namespace strata {
 
-LdiMeasure measureOnDevice(const DeviceLdi& ldi, cudaStream_t stream);
+// Queued on `stream` (the LDI may live on any stream); synchronous.
+LdiMeasure measureOnDevice(const DeviceLdi& ldi, const DeviceStream& stream);
 
 }  // namespace strata

@@ -79,12 +79,6 @@ __global__ void rasterize(const ProjectedTriangle* tris, const uint64_t* scan, i
   }
 }
 
-__device__ bool surfelLessDevice(const Surfel& a, const Surfel& b) {
-  if (a.depth != b.depth) return a.depth < b.depth;
-  if (a.tag != b.tag) return a.tag < b.tag;
-  return a.normal < b.normal;
-}
-
 __global__ void sortAndNormalize(Surfel* raw, const uint64_t* rawOffsets, RaySpace space,
                                  AxisSetup s, uint32_t leafId, Surfel* normalized,
                                  uint64_t* normalizedOffsets, uint32_t* normalizedCounts) {
@@ -98,7 +92,7 @@ __global__ void sortAndNormalize(Surfel* raw, const uint64_t* rawOffsets, RaySpa
     for (int k = 1; k < n; ++k) {
       Surfel x = list[k];
       int m = k - 1;
-      while (m >= 0 && surfelLessDevice(x, list[m])) {
+      while (m >= 0 && surfelLess(x, list[m])) {
         list[m + 1] = list[m];
         --m;
       }
@@ -115,14 +109,7 @@ unsigned itemBlocks(uint64_t items) {
   return blocksFor(int64_t(items < (uint64_t(1) << 30) ? items : (uint64_t(1) << 30)), 256);
 }
 
-}  // namespace
-
-std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
-                                              uint32_t leafId, cudaStream_t stream) {
-  auto ldi = std::make_shared<DeviceLdi>(grid);
-  const RaySpace space(grid);
-  const int64_t rays = space.total();
-  const int64_t count = int64_t(mesh.triangles.size());
+AxisSetup makeAxisSetup(const Grid& grid) {
   AxisSetup setup;
   for (int a = 0; a < 3; ++a) {
     setup.firstU[a] = grid.first[grid.uAxis(a)];
@@ -136,14 +123,22 @@ std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& 
     setup.plus[a] = encodeNormal(axisDir[0], axisDir[1], axisDir[2]);
     setup.minus[a] = encodeNormal(-axisDir[0], -axisDir[1], -axisDir[2]);
   }
-  DeviceBuffer<uint32_t> counters(static_cast<size_t>(rays));
-  STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream));
-  if (count == 0) {
-    buildAxes(space, counters.data(), nullptr, nullptr, ldi.get(), stream, "sampling");
-    STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
-    return ldi;
-  }
+  return setup;
+}
 
+// The (triangle, candidate ray) work of all three axes: each triangle projected per axis and
+// the exclusive scan of their candidate ray counts (job j = axis * triangles + t).
+struct RasterWork {
+  int64_t triangles = 0;
+  DeviceBuffer<ProjectedTriangle> projected;
+  DeviceBuffer<uint64_t> scan;  // 3 * triangles + 1
+  uint64_t total = 0;           // items over all jobs
+};
+
+RasterWork projectMesh(const GridMesh& mesh, const AxisSetup& setup, const DeviceStream& stream) {
+  RasterWork w;
+  w.triangles = int64_t(mesh.triangles.size());
+  const int64_t count = w.triangles;
   std::vector<TriangleInput> host(static_cast<size_t>(count));
   for (int64_t t = 0; t < count; ++t) {
     for (int c = 0; c < 3; ++c)
@@ -151,48 +146,77 @@ std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& 
         host[size_t(t)].p[c][k] = mesh.positions[mesh.triangles[size_t(t)][c]][k];
     for (int k = 0; k < 3; ++k) host[size_t(t)].n[k] = mesh.normals[size_t(t)][k];
   }
-  DeviceBuffer<TriangleInput> input;
-  input.upload(host, stream);
-  DeviceBuffer<ProjectedTriangle> projected(static_cast<size_t>(3 * count));
-  DeviceBuffer<uint64_t> work(static_cast<size_t>(3 * count) + 1);
-  projectTriangles<<<blocksFor(3 * count + 1, 128), 128, 0, stream>>>(
-      input.data(), count, setup, projected.data(), work.data());
+  const auto input = DeviceBuffer<TriangleInput>::upload(host, stream);
+  w.projected = DeviceBuffer<ProjectedTriangle>(static_cast<size_t>(3 * count), stream);
+  w.scan = DeviceBuffer<uint64_t>(static_cast<size_t>(3 * count) + 1, stream);
+  projectTriangles<<<blocksFor(3 * count + 1, 128), 128, 0, stream.get()>>>(
+      input.data(), count, setup, w.projected.data(), w.scan.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  exclusiveScanAsync(work.data(), 3 * count + 1, stream);
-  uint64_t totalWork = 0;
-  const uint64_t* workEnd[1] = {work.data() + 3 * count};
-  readBack(workEnd, &totalWork, 1, stream);
+  exclusiveScanAsync(w.scan.data(), 3 * count + 1, stream);
+  const uint64_t* workEnd[1] = {w.scan.data() + 3 * count};
+  readBack(workEnd, &w.total, 1, stream);
+  return w;
+}
 
+// Every ray's raw hits, unsorted: ray R's at rawOffsets[R] .. rawOffsets[R + 1] of the result.
+// counters (one per ray) are scratch, left holding each ray's hit count.
+DeviceBuffer<Surfel> rasterizeHits(const RasterWork& w, const RaySpace& space, uint32_t leafId,
+                                   uint32_t* counters, DeviceBuffer<uint64_t>* rawOffsets,
+                                   const DeviceStream& stream) {
+  const int64_t rays = space.total();
   // Pass 1: count hits per ray; scan into raw offsets.
-  rasterize<false><<<itemBlocks(totalWork), 256, 0, stream>>>(projected.data(), work.data(), count,
-                                                              totalWork, space, leafId,
-                                                              counters.data(), nullptr, nullptr);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(counters, 0, size_t(rays) * sizeof(uint32_t), stream.get()));
+  rasterize<false><<<itemBlocks(w.total), 256, 0, stream.get()>>>(
+      w.projected.data(), w.scan.data(), w.triangles, w.total, space, leafId, counters, nullptr,
+      nullptr);
   STRATA_CUDA_CHECK(cudaGetLastError());
-  DeviceBuffer<uint64_t> rawOffsets(static_cast<size_t>(rays) + 1);
-  widenCounts(counters.data(), rays, rawOffsets.data(), stream);
-  exclusiveScanAsync(rawOffsets.data(), rays + 1, stream);
+  *rawOffsets = DeviceBuffer<uint64_t>(static_cast<size_t>(rays) + 1, stream);
+  widenCounts(counters, rays, rawOffsets->data(), stream);
+  exclusiveScanAsync(rawOffsets->data(), rays + 1, stream);
   uint64_t rawTotal = 0;
-  const uint64_t* rawEnd[1] = {rawOffsets.data() + rays};
+  const uint64_t* rawEnd[1] = {rawOffsets->data() + rays};
   readBack(rawEnd, &rawTotal, 1, stream);
 
   // Pass 2: write each hit at its ray's next slot.
-  DeviceBuffer<Surfel> raw(static_cast<size_t>(rawTotal));
-  STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream));
-  rasterize<true><<<itemBlocks(totalWork), 256, 0, stream>>>(
-      projected.data(), work.data(), count, totalWork, space, leafId, counters.data(),
-      rawOffsets.data(), raw.data());
+  DeviceBuffer<Surfel> raw(static_cast<size_t>(rawTotal), stream);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(counters, 0, size_t(rays) * sizeof(uint32_t), stream.get()));
+  rasterize<true><<<itemBlocks(w.total), 256, 0, stream.get()>>>(
+      w.projected.data(), w.scan.data(), w.triangles, w.total, space, leafId, counters,
+      rawOffsets->data(), raw.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
+  return raw;
+}
+
+}  // namespace
+
+std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
+                                              uint32_t leafId, const DeviceStream& stream) {
+  auto ldi = std::make_shared<DeviceLdi>(grid, stream);
+  const RaySpace space(grid);
+  const int64_t rays = space.total();
+  const AxisSetup setup = makeAxisSetup(grid);
+  DeviceBuffer<uint32_t> counters(static_cast<size_t>(rays), stream);
+  if (mesh.triangles.empty()) {
+    STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream.get()));
+    buildAxes(space, counters.data(), nullptr, nullptr, ldi.get(), "sampling");
+    stream.synchronize();
+    return ldi;
+  }
+  const RasterWork work = projectMesh(mesh, setup, stream);
+  DeviceBuffer<uint64_t> rawOffsets;
+  DeviceBuffer<Surfel> raw =
+      rasterizeHits(work, space, leafId, counters.data(), &rawOffsets, stream);
 
   // Pass 3: sort and normalise every ray; then the CSR of each axis.
-  DeviceBuffer<Surfel> normalized(static_cast<size_t>(rawTotal + 2 * uint64_t(rays)));
-  DeviceBuffer<uint64_t> normalizedOffsets(static_cast<size_t>(rays));
-  sortAndNormalize<<<blocksFor(rays, 128), 128, 0, stream>>>(
+  DeviceBuffer<Surfel> normalized(raw.size() + 2 * size_t(rays), stream);
+  DeviceBuffer<uint64_t> normalizedOffsets(static_cast<size_t>(rays), stream);
+  sortAndNormalize<<<blocksFor(rays, 128), 128, 0, stream.get()>>>(
       raw.data(), rawOffsets.data(), space, setup, leafId, normalized.data(),
       normalizedOffsets.data(), counters.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  buildAxes(space, counters.data(), normalized.data(), normalizedOffsets.data(), ldi.get(), stream,
+  buildAxes(space, counters.data(), normalized.data(), normalizedOffsets.data(), ldi.get(),
             "sampling");
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
+  stream.synchronize();
   return ldi;
 }
 

@@ -16,9 +16,10 @@
 
 namespace strata {
 
-// Samples `mesh` (already placed on the grid) with every surfel tagged `leafId`. Synchronous
-// on `stream`. Throws strata::Error (DeviceOutOfMemory when the device is full).
+// Samples `mesh` (already placed on the grid) with every surfel tagged `leafId`, into an LDI
+// on `stream`. Synchronous: returns with `stream` drained. Throws strata::Error
+// (DeviceOutOfMemory when the device is full).
 std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
-                                              uint32_t leafId, cudaStream_t stream);
+                                              uint32_t leafId, const DeviceStream& stream);
 
 }  // namespace strata

@@ -39,11 +39,13 @@ __global__ void writeSplats(RaySpace space, AxisSurfels in, SplatFrame frame,
 }  // namespace
 
 void DeviceSplats::copyToHost(Splat* out) const {
-  if (splats.size())
-    STRATA_CUDA_CHECK(cudaMemcpy(out, splats.data(), splats.bytes(), cudaMemcpyDeviceToHost));
+  if (!splats_.size()) return;
+  STRATA_CUDA_CHECK(cudaMemcpyAsync(out, splats_.data(), splats_.bytes(), cudaMemcpyDeviceToHost,
+                                    stream().get()));
+  stream().synchronize();
 }
 
-std::shared_ptr<DeviceSplats> splatsOnDevice(const DeviceLdi& ldi, cudaStream_t stream) {
+std::shared_ptr<DeviceSplats> splatsOnDevice(const DeviceLdi& ldi, const DeviceStream& stream) {
   const RaySpace space(ldi.grid());
   const int64_t total = space.total();
   AxisSurfels in;
@@ -51,23 +53,22 @@ std::shared_ptr<DeviceSplats> splatsOnDevice(const DeviceLdi& ldi, cudaStream_t 
     in.offsets[a] = ldi.axes[a].offsets.data();
     in.surfels[a] = ldi.axes[a].surfels.data();
   }
-  auto result = std::make_shared<DeviceSplats>();
-  DeviceBuffer<uint64_t> starts(static_cast<size_t>(total) + 1);
-  STRATA_CUDA_CHECK(cudaMemsetAsync(starts.data() + total, 0, sizeof(uint64_t), stream));
-  countSplats<<<blocksFor(total, 256), 256, 0, stream>>>(space, in, starts.data());
+  DeviceBuffer<uint64_t> starts(static_cast<size_t>(total) + 1, stream);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(starts.data() + total, 0, sizeof(uint64_t), stream.get()));
+  countSplats<<<blocksFor(total, 256), 256, 0, stream.get()>>>(space, in, starts.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
   exclusiveScanAsync(starts.data(), total + 1, stream);
   const uint64_t* at[1] = {starts.data() + total};
   uint64_t count = 0;
   readBack(at, &count, 1, stream);
-  result->splats.resize(static_cast<size_t>(count));
+  DeviceBuffer<Splat> splats(static_cast<size_t>(count), stream);
   if (count > 0) {
-    writeSplats<<<blocksFor(total, 256), 256, 0, stream>>>(space, in, splatFrame(ldi.grid()),
-                                                           starts.data(), result->splats.data());
+    writeSplats<<<blocksFor(total, 256), 256, 0, stream.get()>>>(space, in, splatFrame(ldi.grid()),
+                                                                 starts.data(), splats.data());
     STRATA_CUDA_CHECK(cudaGetLastError());
   }
-  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream));
-  return result;
+  stream.synchronize();
+  return std::make_shared<DeviceSplats>(std::move(splats));
 }
 
 }  // namespace strata

@@ -1,3 +1,5 @@
+#include <cstdio>
+
 #include "gpu/util/cuda_check.h"
 
 namespace strata {
@@ -8,6 +10,12 @@ void throwCudaError(cudaError_t status, const char* call, const char* file, int 
                         file + ":" + std::to_string(line) + ")";
   if (status == cudaErrorMemoryAllocation) throw DeviceOutOfMemory(message);
   throw Error(message);
+}
+
+void logCudaError(cudaError_t status, const char* call, const char* file, int line) noexcept {
+  cudaGetLastError();  // as above: later calls must not report it again
+  std::fprintf(stderr, "strata: CUDA: %s in %s (%s:%d)\n", cudaGetErrorString(status), call, file,
+               line);
 }
 
 }  // namespace strata

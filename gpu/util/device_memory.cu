@@ -2,38 +2,25 @@
 
 #include <atomic>
 #include <cstdint>
-#include <mutex>
 
 #include "gpu/util/cuda_check.h"
 
 namespace strata {
 namespace {
-thread_local cudaStream_t t_stream = nullptr;
 std::atomic<uint64_t> g_inUse{0};
 std::atomic<uint64_t> g_peak{0};
-std::once_flag g_poolConfigured;
-
-void configurePool() {
-  int device = 0;
-  if (cudaGetDevice(&device) != cudaSuccess) return;
-  cudaMemPool_t pool;
-  if (cudaDeviceGetDefaultMemPool(&pool, device) != cudaSuccess) return;
-  uint64_t keep = UINT64_MAX;  // keep freed blocks for reuse instead of returning them
-  cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep);
-}
 }  // namespace
 
-void setAllocationStream(cudaStream_t stream) {
-  t_stream = stream;
-}
-cudaStream_t allocationStream() {
-  return t_stream;
+void keepFreedDeviceMemory(int device) {
+  cudaMemPool_t pool;
+  STRATA_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, device));
+  uint64_t keep = UINT64_MAX;
+  STRATA_CUDA_CHECK(cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep));
 }
 
-void* deviceAllocate(size_t bytes) {
-  std::call_once(g_poolConfigured, configurePool);
+void* deviceAllocate(size_t bytes, cudaStream_t stream) {
   void* p = nullptr;
-  STRATA_CUDA_CHECK(cudaMallocAsync(&p, bytes, t_stream));
+  STRATA_CUDA_CHECK(cudaMallocAsync(&p, bytes, stream));
   uint64_t now = g_inUse.fetch_add(bytes) + bytes;
   uint64_t peak = g_peak.load();
   while (now > peak && !g_peak.compare_exchange_weak(peak, now)) {
@@ -41,9 +28,9 @@ void* deviceAllocate(size_t bytes) {
   return p;
 }
 
-void deviceFree(void* pointer, size_t bytes) {
+void deviceFree(void* pointer, size_t bytes, cudaStream_t stream) noexcept {
   if (!pointer) return;
-  cudaFreeAsync(pointer, t_stream);
+  STRATA_CUDA_LOG(cudaFreeAsync(pointer, stream));
   g_inUse.fetch_sub(bytes);
 }
 

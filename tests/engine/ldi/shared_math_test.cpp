@@ -1,7 +1,10 @@
-// The per-ray math both backends share: the tie rule, triangle hits and the sweeps.
+// The per-ray math both backends share: the tie rule, triangle hits, the event gather and the
+// sweeps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "engine/ldi/shared_math.h"
 
@@ -134,6 +137,42 @@ TEST(SharedMath, DifferenceFlipsNormalsOfSubtractedSurfels) {
   EXPECT_FALSE(surfelEnters(out[1].tag));
   EXPECT_EQ(surfelLeaf(out[1].tag), 2u);
   EXPECT_TRUE(surfelEnters(out[2].tag));
+}
+
+// Both backends gather a ray's events with gatherRayEvents: the order must be that of a stable
+// sort by depth of the children's lists concatenated (ties in child order, then list order).
+TEST(SharedMath, GatherRayEventsOrdersAsAStableSortByDepth) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> children(1, 6), length(0, 5), depth(0, 6);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int childCount = children(rng);
+    std::vector<std::vector<uint32_t>> offsets(static_cast<size_t>(childCount));
+    std::vector<std::vector<Surfel>> surfels(static_cast<size_t>(childCount));
+    std::vector<AxisLdiView> views;
+    std::vector<RayEvent> expected;
+    for (int c = 0; c < childCount; ++c) {
+      // Ray 1 of two rays; ray 0 holds one surfel that must not be gathered.
+      surfels[size_t(c)].push_back(Surfel{-1.0f, 0u, 0u});
+      const int n = length(rng);
+      for (int k = 0; k < n; ++k) {
+        const Surfel s{float(depth(rng)) * 0.5f, uint32_t(k), uint32_t(trial)};
+        surfels[size_t(c)].push_back(s);
+        expected.push_back(RayEvent{s.depth, s.normal, s.tag, uint32_t(c)});
+      }
+      offsets[size_t(c)] = {0u, 1u, uint32_t(1 + n)};
+      views.push_back(AxisLdiView{offsets[size_t(c)].data(), surfels[size_t(c)].data()});
+    }
+    std::stable_sort(expected.begin(), expected.end(),
+                     [](const RayEvent& x, const RayEvent& y) { return x.depth < y.depth; });
+    ASSERT_EQ(rayEventCount(views.data(), childCount, 1), expected.size());
+    std::vector<RayEvent> events(expected.size());
+    ASSERT_EQ(gatherRayEvents(views.data(), childCount, 1, events.data()), int(expected.size()));
+    for (size_t k = 0; k < expected.size(); ++k) {
+      EXPECT_EQ(events[k].depth, expected[k].depth);
+      EXPECT_EQ(events[k].child, expected[k].child);
+      EXPECT_EQ(events[k].normal, expected[k].normal);
+    }
+  }
 }
 
 }  // namespace
