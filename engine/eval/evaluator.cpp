@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <unordered_set>
 
 #include "engine/document/expansion.h"
 #include "engine/kinds/primitives.h"
@@ -163,6 +164,7 @@ struct Evaluator::Context {
   StageStats stages[kStageCount];
   int total = 1;
   int done = 0;
+  std::unordered_map<uint64_t, NodeId> firstLeafWithContent;  // leaf content key -> leaf id
 
   void finishStage(Stage s, double seconds, uint64_t surfels) {
     stages[s].seconds += seconds;
@@ -225,23 +227,31 @@ uint64_t Evaluator::meshHash(const std::shared_ptr<const TriangleMesh>& mesh) {
 }
 
 Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx) {
-  Hasher key;
-  key.add(uint8_t(node->kind)).add(node->id);
+  // The leaf's content: what it samples to, whoever it is.
+  Hasher content;
+  content.add(uint8_t(node->kind));
   const glm::dmat4& m = world;
-  key.bytes(glm::value_ptr(m), sizeof(double) * 16);
-  hashGrid(key, ctx.grid);
+  content.bytes(glm::value_ptr(m), sizeof(double) * 16);
+  hashGrid(content, ctx.grid);
   int segments = 0;
   if (node->kind == NodeKind::Mesh) {
     if (!node->mesh) throw Error("mesh node '" + node->name + "' has no mesh loaded");
-    key.add(meshHash(node->mesh));
+    content.add(meshHash(node->mesh));
   } else {
     const PrimitiveParams& p = node->params;
     segments = p.segments > 0 ? p.segments
                               : autoSegments(primitiveRadius(node->kind, p) * largestScale(world),
                                              kAutoChordErrorCells * ctx.grid.h);
-    hashPrimitiveParams(key, node->kind, p);
-    key.add(segments);
+    hashPrimitiveParams(content, node->kind, p);
+    content.add(segments);
   }
+  // Identical leaves (same content, same place) share one LDI, tagged with the first of them in
+  // tree order: a thousand copies of a part cost one sampling, and the Booleans below see equal
+  // keys and drop the duplicates. Keyed with that leaf's id, so a cached LDI is reused only
+  // while its tag names a leaf of the scene being evaluated.
+  const NodeId leafId = ctx.firstLeafWithContent.emplace(content.digest(), node->id).first->second;
+  Hasher key;
+  key.add(content.digest()).add(leafId);
   Visit v;
   v.key = key.digest();
   NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Computed, 0.0, 0};
@@ -266,7 +276,7 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
     checkLeafPlacement(*node, world, bounds);
     const std::string warning = smallerThanCellWarning(*node, bounds, ctx.grid.h);
     Stopwatch sample;
-    v.ldi = backend_->sampleMesh(*mesh, world, ctx.grid, node->id, *ctx.progress);
+    v.ldi = backend_->sampleMesh(*mesh, world, ctx.grid, leafId, *ctx.progress);
     ctx.finishStage(kSample, sample.seconds(), v.ldi->surfelCount());
     cache_[v.key] = CacheEntry{v.ldi, generation_, warning};
     ctx.warn(warning);
@@ -277,6 +287,21 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
   ctx.result->nodes.push_back(record);
   ctx.nodeDone();
   return v;
+}
+
+// Equal keys mean equal LDIs: A op A = A for union and intersection, and subtracting A twice
+// subtracts it once. Drops the repeats (keeping order); returns false when the result is empty
+// without work (a difference whose base is among its cutters: A - A).
+bool Evaluator::dropDuplicateOperands(RayOp op, std::vector<Visit>* operands) {
+  std::unordered_set<uint64_t> seen;
+  std::vector<Visit> kept;
+  for (size_t i = 0; i < operands->size(); ++i) {
+    const Visit& o = (*operands)[i];
+    if (op == RayOp::Difference && i > 0 && o.key == (*operands)[0].key) return false;
+    if (seen.insert(o.key).second) kept.push_back(o);
+  }
+  *operands = std::move(kept);
+  return true;
 }
 
 Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth,
@@ -308,6 +333,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
     if (op == RayOp::Difference && i == 0 && empty) resultEmpty = true;
     if (!empty) operands.push_back(children[i]);
   }
+  resultEmpty = resultEmpty || !dropDuplicateOperands(op, &operands);
   NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Computed, 0.0, 0};
   Visit v;
   if (resultEmpty || operands.empty()) {

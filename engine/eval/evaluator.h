@@ -97,6 +97,7 @@ class Evaluator {
   // Visits a node whose visibility the caller has checked (instances show hidden targets).
   Visit visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
   Visit visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx);
+  static bool dropDuplicateOperands(RayOp op, std::vector<Visit>* operands);
   uint64_t meshHash(const std::shared_ptr<const TriangleMesh>& mesh);
 
   std::shared_ptr<Backend> backend_;
