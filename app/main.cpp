@@ -5,6 +5,7 @@
 
 #include "app/commands.h"
 #include "app/editor_commands.h"
+#include "app/signal_cancellation.h"
 
 namespace {
 const char* kUsage =
@@ -49,11 +50,10 @@ const char* kUsage =
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
     "\n"
     "Mesh files: .obj .stl (ascii or binary) .ply (ascii or binary) .off .3mf\n"
-    "Ctrl-C cancels cleanly; nothing half-written is left behind.\n";
-}  // namespace
+    "Ctrl-C (SIGINT), SIGTERM and SIGHUP cancel cleanly: nothing half-written is left\n"
+    "behind, and the exit code is 128 + the signal's number (130, 143, 129).\n";
 
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+int runCommand(const std::vector<std::string>& args) {
   if (args.empty()) return strata::runEdit({});
   const std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
@@ -73,4 +73,11 @@ int main(int argc, char** argv) {
   if (strata::looksLikeScenePath(command)) return strata::runEdit(args);
   std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return 2;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  // For the whole command, loading included (app/signal_cancellation.h).
+  strata::SignalCancellation signals;
+  return strata::exitCodeAfterSignals(runCommand(std::vector<std::string>(argv + 1, argv + argc)));
 }
