@@ -5,6 +5,7 @@
 
 #include "app/commands.h"
 #include "app/editor_commands.h"
+#include "app/signal_cancellation.h"
 #include "engine/io/mesh_formats.h"
 
 namespace {
@@ -50,7 +51,9 @@ const char* kUsageOptions =
     "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
     "\n";
-const char* kUsageTail = "Ctrl-C cancels cleanly; nothing half-written is left behind.\n";
+const char* kUsageTail =
+    "Ctrl-C (SIGINT), SIGTERM and SIGHUP cancel cleanly: nothing half-written is left\n"
+    "behind, and the exit code is 128 + the signal's number (130, 143, 129).\n";
 
 // `text` broken at spaces into lines of at most kUsageWidth characters, the first starting with
 // `first`, the others indented to its width.
@@ -83,10 +86,7 @@ std::string usage() {
          kUsageTail;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+int runCommand(const std::vector<std::string>& args) {
   if (args.empty()) return strata::runEdit({});
   const std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
@@ -106,4 +106,11 @@ int main(int argc, char** argv) {
   if (strata::looksLikeScenePath(command)) return strata::runEdit(args);
   std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), usage().c_str());
   return 2;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  // For the whole command, loading included (app/signal_cancellation.h).
+  strata::SignalCancellation signals;
+  return strata::exitCodeAfterSignals(runCommand(std::vector<std::string>(argv + 1, argv + argc)));
 }

@@ -1,13 +1,16 @@
-// Progress on the terminal and Ctrl-C as cancellation, for the command line.
+// Progress on the terminal, and the operation that SIGINT, SIGTERM and SIGHUP cancel, for the
+// command line.
 #pragma once
 
+#include "app/signal_cancellation.h"
 #include "engine/util/progress.h"
 
 namespace strata {
 
-// A Progress that draws a one-line bar on stderr (only when stderr is a terminal and not
-// quiet) and that SIGINT cancels: the first Ctrl-C asks the running operation to stop, a
-// second one ends the process. Only one may exist at a time.
+// A Progress that draws a one-line bar on stderr (only when stderr is a terminal and not quiet)
+// and that the signals cancel while it exists (a CancellableScope, app/signal_cancellation.h):
+// the first signal asks the running operation to stop, a second one ends the process. Only one
+// may exist at a time.
 class TerminalProgress {
  public:
   explicit TerminalProgress(bool quiet);
@@ -19,6 +22,7 @@ class TerminalProgress {
  private:
   Progress progress_;
   bool drawn_ = false;
+  CancellableScope cancellable_{progress_};
 };
 
 }  // namespace strata

@@ -20,10 +20,10 @@
 // coordinates are never scaled.
 //
 // Every file is written atomically (engine/util/atomic_file.h): a failed or cancelled export
-// leaves neither the file nor "<path>.tmp" behind and an existing file untouched. For OBJ the
-// MTL is committed just before the OBJ, so a failure in between leaves a new MTL beside the old
-// OBJ. Synchronous; any thread; `progress` (may be null) is checked every 65536 elements and
-// before anything is written, and receives stage "write <format>" with its fraction.
+// leaves no new file and no temporary file behind, and an existing file untouched. The OBJ and
+// its MTL are one atomic set: both are replaced or neither. Synchronous; any thread; `progress`
+// (may be null) is checked every 65536 elements and before anything is written, and receives stage
+// "write <format>" with its fraction.
 //
 // To verify a written file, read it back with readMeshFileRaw (engine/io/mesh_io.h), which
 // repairs nothing, and run checkMesh on it.

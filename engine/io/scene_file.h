@@ -34,7 +34,9 @@ Scene parseScene(const std::string& text, const std::string& sourceName, const s
 // Serialises a scene; mesh paths are written as stored in the nodes.
 std::string sceneToJson(const Scene& scene);
 
-// Writes atomically: to "<path>.tmp", then renamed over `path`. Throws strata::Error.
+// Writes atomically (engine/util/atomic_file.h): to a temporary file of its own beside `path`
+// (created exclusively, never through a link), synced, then renamed over `path`; a failure
+// leaves `path` as it was and no temporary file. Throws strata::Error naming the path.
 void saveScene(const Scene& scene, const std::string& path);
 
 // The content hash that mesh nodes record ("fnv1a64:" + 16 hex digits, see formatContentHash)

@@ -74,9 +74,16 @@ std::vector<std::string> addRecentFile(const std::string& listPath, const std::s
 
 void writeRecoveryFile(const Document& document, const std::string& recoveryPath) {
   makeFolderFor(recoveryPath);
-  saveScene(document.scene(), recoveryPath);  // mesh paths are absolute (Document)
-  writeFileAtomically(originPath(recoveryPath),
-                      [&](std::ostream& out) { out << document.path() << "\n"; });
+  std::string scene;
+  try {
+    scene = sceneToJson(document.scene());  // mesh paths are absolute (Document)
+  } catch (const Error& e) {
+    throw Error(recoveryPath + ": " + e.what());
+  }
+  // One set: a recovery file never sits beside the origin of another document.
+  writeFilesAtomically(
+      {{recoveryPath, [&](std::ostream& out) { out << scene; }},
+       {originPath(recoveryPath), [&](std::ostream& out) { out << document.path() << "\n"; }}});
 }
 
 bool recoveryFileExists(const std::string& recoveryPath) {

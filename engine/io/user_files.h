@@ -33,7 +33,8 @@ std::vector<std::string> readRecentFiles(const std::string& listPath);
 // list atomically, creating its folder. Returns the new list. Throws strata::Error.
 std::vector<std::string> addRecentFile(const std::string& listPath, const std::string& file);
 
-// Writes the document's current scene and its origin atomically. Throws strata::Error.
+// Writes the document's current scene and its origin atomically, as one set (both or neither;
+// engine/util/atomic_file.h). Throws strata::Error.
 void writeRecoveryFile(const Document& document, const std::string& recoveryPath);
 // True when a recovery file exists.
 bool recoveryFileExists(const std::string& recoveryPath);

@@ -2,7 +2,8 @@
 // <basename>.mtl`, every vertex as `v x y z` (%.9g), then per leaf (in leaf id order)
 // `usemtl <material>` followed by its triangles as `f a b c` (1-based). The MTL: per leaf
 // `newmtl`, a comment with the leaf's id and name, Ka 0, Kd = the colour sRGB-encoded, Ks 0,
-// d 1, illum 1.
+// d 1, illum 1. Both files are one atomic set (writeFilesAtomically): both are replaced or
+// neither, the OBJ (written first) replaced after the MTL it refers to.
 #include <cstdio>
 #include <map>
 #include <set>
@@ -82,7 +83,8 @@ void writeObj(const std::string& path, const ExportMesh& em, Progress* progress)
     byLeaf[em.triangleLeaf[t]].push_back(static_cast<uint32_t>(t));
   }
 
-  writeFileAtomically(path, [&](std::ostream& out) {
+  auto writeMtl = [&](std::ostream& mtl) { mtl << mtlText(em, names); };
+  auto writeObjText = [&](std::ostream& out) {
     std::string text;
     text += "# Strata export\n# unit: " + oneLine(em.unit) + "\n";
     text += "# " + std::to_string(mesh.positions.size()) + " vertices, " +
@@ -122,9 +124,8 @@ void writeObj(const std::string& path, const ExportMesh& em, Progress* progress)
     }
     flush();
     if (progress) progress->check();
-    // Committed while the OBJ is still a temporary file: a failure here leaves no new OBJ.
-    writeFileAtomically(mtlPath, [&](std::ostream& mtl) { mtl << mtlText(em, names); });
-  });
+  };
+  writeFilesAtomically({{path, writeObjText}, {mtlPath, writeMtl}});
 }
 
 }  // namespace meshio

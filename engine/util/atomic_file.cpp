@@ -1,39 +1,339 @@
 #include "engine/util/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
+#include <utility>
 
 #include "engine/util/error.h"
+#include "engine/util/temporary_files.h"
 
 namespace strata {
+namespace {
+using namespace atomic_detail;
+
+std::string errorText(int error) {
+  return std::strerror(error);
+}
+
+// ---- Writing ----------------------------------------------------------------------------------
+
+// An output buffer over a file descriptor that remembers the first write error (errno value).
+class DescriptorBuffer : public std::streambuf {
+ public:
+  explicit DescriptorBuffer(int fd) : fd_(fd), buffer_(new char[kSize]) {
+    setp(buffer_.get(), buffer_.get() + kSize);
+  }
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(ch, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(ch);
+      pbump(1);
+    }
+    return traits_type::not_eof(ch);
+  }
+  std::streamsize xsputn(const char* data, std::streamsize n) override {
+    if (n < kSize) return std::streambuf::xsputn(data, n);
+    if (!drain() || !writeAll(data, static_cast<size_t>(n))) return 0;
+    return n;
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  static constexpr std::streamsize kSize = 1 << 16;
+
+  bool drain() {
+    const size_t n = static_cast<size_t>(pptr() - pbase());
+    if (n > 0 && !writeAll(pbase(), n)) return false;
+    setp(buffer_.get(), buffer_.get() + kSize);
+    return true;
+  }
+  bool writeAll(const char* data, size_t n) {
+    while (n > 0 && error_ == 0) {
+      const ssize_t written = ::write(fd_, data, n);
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) {
+        error_ = written < 0 ? errno : EIO;
+        break;
+      }
+      data += written;
+      n -= static_cast<size_t>(written);
+    }
+    return error_ == 0;
+  }
+
+  int fd_;
+  std::unique_ptr<char[]> buffer_;
+  int error_ = 0;
+};
+
+// Closes a descriptor unless handed over.
+struct Descriptor {
+  int fd = -1;
+  Descriptor() = default;
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+  // Closes and reports close's error (0 when none).
+  int close() {
+    const int result = ::close(fd);
+    fd = -1;
+    return result == 0 ? 0 : errno;
+  }
+};
+
+int createExclusive(const std::string& name, mode_t mode, Descriptor* out) {
+  const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
+  if (fd < 0) return errno;
+  out->fd = fd;
+  return 0;
+}
+
+void syncAndClose(Descriptor& file, const std::string& path) {
+  if (::fsync(file.fd) != 0) throw Error(path + ": cannot flush to disk: " + errorText(errno));
+  if (const int error = file.close()) throw Error(path + ": cannot write: " + errorText(error));
+}
+
+// Writes `file` into a fresh temporary file next to it, synced and closed.
+std::unique_ptr<OwnedFile> writeTemporary(const Target& target, const AtomicFileWrite& file) {
+  struct stat old;
+  const bool replacesRegular = ::lstat(target.path.c_str(), &old) == 0 && S_ISREG(old.st_mode);
+  Descriptor out;
+  int error = 0;
+  std::unique_ptr<OwnedFile> temporary = OwnedFile::create(
+      target, Kind::Temporary,
+      [&](const std::string& name) { return createExclusive(name, 0666, &out); }, &error);
+  if (!temporary) throw Error(target.path + ": cannot write: " + errorText(error));
+  if (replacesRegular) ::fchmod(out.fd, old.st_mode & 0777);  // best effort (FAT cannot)
+  DescriptorBuffer buffer(out.fd);
+  std::ostream stream(&buffer);
+  file.write(stream);
+  stream.flush();
+  if (buffer.error()) throw Error(target.path + ": cannot write: " + errorText(buffer.error()));
+  if (!stream) throw Error(target.path + ": write failed");
+  syncAndClose(out, target.path);
+  return temporary;
+}
+
+// ---- Sets -------------------------------------------------------------------------------------
+
+void syncFolder(const std::string& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);  // best effort: the rename has happened; some file systems cannot sync folders
+  ::close(fd);
+}
+
+// flock(2) on every distinct folder of a set, in (device, inode) order. Where the file system
+// refuses (NFS without write access, ...), the set goes unserialised.
+class FolderLocks {
+ public:
+  explicit FolderLocks(const std::vector<Target>& targets) {
+    std::vector<std::pair<std::pair<dev_t, ino_t>, int>> folders;
+    for (const Target& target : targets) {
+      const int fd = ::open(target.folderToOpen().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      struct stat st;
+      if (fd < 0) continue;
+      if (::fstat(fd, &st) != 0) {
+        ::close(fd);
+        continue;
+      }
+      const auto key = std::make_pair(st.st_dev, st.st_ino);
+      if (std::any_of(folders.begin(), folders.end(),
+                      [&](const auto& f) { return f.first == key; })) {
+        ::close(fd);
+        continue;
+      }
+      folders.push_back({key, fd});
+    }
+    std::sort(folders.begin(), folders.end());
+    for (const auto& folder : folders) {
+      while (::flock(folder.second, LOCK_EX) != 0 && errno == EINTR) {
+      }
+      fds_.push_back(folder.second);
+    }
+  }
+  FolderLocks(const FolderLocks&) = delete;
+  FolderLocks& operator=(const FolderLocks&) = delete;
+  ~FolderLocks() {
+    for (int fd : fds_) ::close(fd);  // releases the lock
+  }
+
+ private:
+  std::vector<int> fds_;
+};
+
+bool noHardLinks(int error) {
+  return error == EPERM || error == EMLINK || error == ENOTSUP || error == EOPNOTSUPP ||
+         error == ENOSYS || error == EXDEV;
+}
+
+// A copy of the regular file or link at `target`, for file systems without hard links.
+std::unique_ptr<OwnedFile> copyAsBackup(const Target& target, const struct stat& old) {
+  int error = 0;
+  if (S_ISLNK(old.st_mode)) {
+    std::string destination(static_cast<size_t>(old.st_size) + 1, '\0');
+    const ssize_t n = ::readlink(target.path.c_str(), &destination[0], destination.size());
+    if (n < 0 || static_cast<size_t>(n) >= destination.size())
+      throw Error(target.path + ": cannot keep the previous version: cannot read the link");
+    destination.resize(static_cast<size_t>(n));
+    auto backup = OwnedFile::create(
+        target, Kind::Backup,
+        [&](const std::string& name) {
+          return ::symlink(destination.c_str(), name.c_str()) == 0 ? 0 : errno;
+        },
+        &error);
+    if (!backup)
+      throw Error(target.path + ": cannot keep the previous version: " + errorText(error));
+    return backup;
+  }
+  if (!S_ISREG(old.st_mode))
+    throw Error(target.path + ": cannot keep the previous version: not a regular file");
+  Descriptor in;
+  in.fd = ::open(target.path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (in.fd < 0)
+    throw Error(target.path + ": cannot read the previous version: " + errorText(errno));
+  Descriptor out;
+  auto backup = OwnedFile::create(
+      target, Kind::Backup,
+      [&](const std::string& name) { return createExclusive(name, old.st_mode & 0777, &out); },
+      &error);
+  if (!backup) throw Error(target.path + ": cannot keep the previous version: " + errorText(error));
+  std::unique_ptr<char[]> chunk(new char[1 << 16]);
+  DescriptorBuffer copy(out.fd);
+  for (;;) {
+    const ssize_t n = ::read(in.fd, chunk.get(), 1 << 16);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw Error(target.path + ": cannot read the previous version: " + errorText(errno));
+    if (n == 0) break;
+    copy.sputn(chunk.get(), n);
+  }
+  if (copy.pubsync() != 0 || copy.error())
+    throw Error(target.path + ": cannot keep the previous version: " + errorText(copy.error()));
+  syncAndClose(out, backup->path());
+  return backup;
+}
+
+// The previous version of `target` under a backup name (null when there is none, or when it is
+// a folder, which no rename can replace).
+std::unique_ptr<OwnedFile> keepPreviousVersion(const Target& target) {
+  int error = 0;
+  // linkat fails with ENOENT when a writer outside this set's lock replaces the target meanwhile
+  // (the old inode's last link is gone): look again.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    struct stat old;
+    if (::lstat(target.path.c_str(), &old) != 0) {
+      if (errno == ENOENT) return nullptr;
+      throw Error(target.path + ": cannot replace the file: " + errorText(errno));
+    }
+    if (S_ISDIR(old.st_mode)) return nullptr;
+    auto backup = OwnedFile::create(
+        target, Kind::Backup,
+        [&](const std::string& name) {
+          if (hardLinksRefusedForTesting()) return EPERM;  // as FAT answers
+          // linkat without AT_SYMLINK_FOLLOW links a symbolic link itself.
+          return ::linkat(AT_FDCWD, target.path.c_str(), AT_FDCWD, name.c_str(), 0) == 0 ? 0
+                                                                                         : errno;
+        },
+        &error);
+    if (backup) return backup;
+    if (noHardLinks(error)) return copyAsBackup(target, old);
+    if (error != ENOENT) break;
+  }
+  throw Error(target.path + ": cannot keep the previous version: " + errorText(error));
+}
+
+}  // namespace
+
+void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
+  std::vector<Target> targets;
+  for (const AtomicFileWrite& file : files) {
+    for (const Target& t : targets)
+      if (t.path == file.path) throw Error(file.path + ": listed twice in one atomic write");
+    targets.push_back(splitTarget(file.path));
+  }
+  std::vector<std::unique_ptr<OwnedFile>> temporaries;
+  for (size_t i = 0; i < files.size(); ++i) {
+    removeLeftovers(targets[i]);
+    temporaries.push_back(writeTemporary(targets[i], files[i]));
+  }
+
+  if (files.size() == 1) {
+    {
+      RenameSection section;
+      if (::rename(temporaries[0]->path().c_str(), targets[0].path.c_str()) != 0)
+        throw Error(targets[0].path + ": cannot replace the file: " + errorText(errno));
+      temporaries[0]->release();
+    }
+    syncFolder(targets[0].folderToOpen());
+    return;
+  }
+
+  FolderLocks locks(targets);
+  std::vector<std::unique_ptr<OwnedFile>> backups;
+  for (const Target& target : targets) backups.push_back(keepPreviousVersion(target));
+  {
+    // Renamed last to first; `renamed` counts from the last.
+    RenameSection section;
+    const size_t n = targets.size();
+    size_t renamed = 0;
+    int error = 0;
+    for (; renamed < n; ++renamed) {
+      const size_t i = n - 1 - renamed;
+      if (::rename(temporaries[i]->path().c_str(), targets[i].path.c_str()) != 0) {
+        error = errno;
+        break;
+      }
+      temporaries[i]->release();
+    }
+    if (renamed < n) {
+      std::string message =
+          targets[n - 1 - renamed].path + ": cannot replace the file: " + errorText(error);
+      std::string notRestored;
+      for (size_t i = n - renamed; i < n; ++i) {
+        const std::string& path = targets[i].path;
+        if (backups[i]) {
+          if (::rename(backups[i]->path().c_str(), path.c_str()) == 0) {
+            backups[i]->release();
+          } else {
+            notRestored += "; " + path + " could not be put back (" + errorText(errno) +
+                           "; its previous version is " + backups[i]->path() + ")";
+            backups[i]->release();  // left for the user; a later write of the path removes it
+          }
+        } else if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
+          notRestored += "; the new " + path + " could not be removed (" + errorText(errno) + ")";
+        }
+      }
+      throw Error(message + (notRestored.empty() ? "; no file was replaced" : notRestored));
+    }
+  }
+  std::vector<std::string> synced;
+  for (const Target& target : targets) {
+    if (std::find(synced.begin(), synced.end(), target.folderToOpen()) != synced.end()) continue;
+    synced.push_back(target.folderToOpen());
+    syncFolder(synced.back());
+  }
+}
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  const std::string temp = path + ".tmp";
-  try {
-    {
-      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-      if (!out) throw Error(path + ": cannot write: " + std::strerror(errno));
-      write(out);
-      out.flush();
-      if (!out) throw Error(path + ": write failed (disk full?)");
-    }
-    int fd = ::open(temp.c_str(), O_RDONLY);
-    if (fd >= 0) {
-      ::fsync(fd);
-      ::close(fd);
-    }
-    if (std::rename(temp.c_str(), path.c_str()) != 0)
-      throw Error(path + ": cannot replace the file: " + std::strerror(errno));
-  } catch (...) {
-    std::remove(temp.c_str());
-    throw;
-  }
+  writeFilesAtomically({AtomicFileWrite{path, write}});
+}
+
+std::vector<std::string> temporaryFilesOf(const std::string& path) {
+  return leftoversOf(splitTarget(path));
 }
 
 std::string readWholeFile(const std::string& path) {

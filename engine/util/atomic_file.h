@@ -1,19 +1,97 @@
-// Writing files so that readers never see half of one: the content goes to "<path>.tmp" in
-// the same folder, is flushed to disk, and is renamed over `path`. On any failure (including
-// Cancelled thrown by `write`) the temporary file is removed and `path` is left untouched.
+// Writing files so that nothing is ever lost or half-seen: a reader finds the old file or the
+// whole new one, never a mixture, a truncated file or a file written through someone's link.
+//
+// How one file is written (POSIX; Linux is what is tested):
+//   1. Leftovers of killed writers of the same target are removed (see "Leftovers").
+//   2. A temporary file of its own is created in the target's folder,
+//        "<folder>/.<name>.strata-<pid>-<16 hex digits, random>.tmp"
+//      with open(O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC): it never opens an existing
+//      file and never follows a link planted at its name (it tries another random name). Its
+//      mode is 0666 less the umask, or the permission bits of the regular file it replaces.
+//      (<name> is shortened when the whole name would exceed 255 bytes.)
+//   3. `write` fills it through a std::ostream; it is fsync'ed and closed.
+//   4. It is renamed over the target (rename(2)) and the folder is fsync'ed (best effort: some
+//      file systems cannot, and the rename has happened by then).
+// On any failure, or when `write` throws (Cancelled included), the temporary file is removed and
+// the target is untouched.
+//
+// A symbolic link at the target itself is replaced by the new file (rename replaces the link);
+// the file it pointed to is never written. Links among the folders above are followed.
+//
+// Concurrent writers of one path (threads or processes) each write their own temporary file;
+// the last rename wins and leaves one writer's whole file.
+//
+// Several files that belong together (OBJ + MTL; a scene and its companion) are written with
+// writeFilesAtomically: every temporary file is written first, then the targets are replaced,
+// the main file (the first) last, the previous version of each kept meanwhile as a backup (a hard
+// link, or a copy where the file system has none) named like a temporary file with ".old" for
+// ".tmp". A failed rename puts back every target already replaced (or removes it when it did not
+// exist) and the error says so; on success the backups are removed. Strata writers of sets
+// serialise their renames on an flock(2) of the folder (where the file system supports it), so
+// concurrent sets to the same paths end as one writer's whole set.
+//
+// Leftovers: a writer killed by SIGKILL (or a crash, or a power cut) leaves its temporary or
+// backup files behind; the target keeps its previous version (a set killed in the middle of
+// its renames may be half replaced). Every write removes the temporary and backup files of the
+// same target whose names match the pattern above exactly and whose pid no longer runs
+// (kill(pid, 0) fails with ESRCH). Nothing else is ever removed: not other names, not the files
+// of a live process. (A folder shared by several hosts or pid namespaces, e.g. over NFS, could
+// see another host's live writer as dead; its rename then fails and it reports the error.)
+//
+// Signals: a process that exits from a signal handler calls abandonAtomicWritesForExit() first
+// (app/signal_cancellation.h does), so that SIGINT, SIGTERM and SIGHUP leave no temporary file.
+// Renames run with SIGINT, SIGTERM and SIGHUP blocked in the renaming thread.
+//
+// Threads: every function may be called from any thread, concurrently.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace strata {
 
 // Calls write(stream) and commits the result atomically. Throws strata::Error naming the path
-// when the file cannot be written; rethrows whatever `write` throws.
+// when the file cannot be written or replaced; rethrows whatever `write` throws.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+// One file of a set that is committed together.
+struct AtomicFileWrite {
+  std::string path;
+  std::function<void(std::ostream&)> write;
+};
+
+// Writes every file of `files` (distinct paths) to its temporary file, in order, then replaces
+// the targets in reverse order, all or none (see above): the first file is the main one, which
+// refers to the others (the OBJ before its MTL) and is replaced last. Throws strata::Error naming
+// the path that failed (and any target that could not be put back); rethrows whatever a `write`
+// throws. Nothing is replaced unless every `write` succeeded.
+void writeFilesAtomically(const std::vector<AtomicFileWrite>& files);
+
+// The temporary and backup files in `path`'s folder that belong to `path` by their name, of any
+// process, live or dead (full paths, sorted). For tests and diagnostics.
+std::vector<std::string> temporaryFilesOf(const std::string& path);
+
+// For a process about to end from a signal handler: refuses new temporary files (a writer that
+// tries throws Cancelled), waits up to about a second for renames in progress to finish, and
+// removes the temporary and backup files this process has open. Async-signal-safe; never throws;
+// call it only right before _exit. A forked child's call leaves its parent's files alone.
+void abandonAtomicWritesForExit() noexcept;
 
 // Reads a whole file. Throws strata::Error naming the path when it cannot be read.
 std::string readWholeFile(const std::string& path);
+
+// For tests: stand-ins for what a test cannot otherwise control. Process-wide; a test sets them
+// and restores the defaults ({}) when done.
+struct AtomicFileTestHooks {
+  // The random part of temporary and backup names (empty: the system's random numbers), so a
+  // test can plant files at the names a write is going to try.
+  std::function<uint64_t()> random;
+  // Backups as on a file system without hard links (FAT): copies of the previous version.
+  bool refuseHardLinks = false;
+};
+void setAtomicFileTestHooks(AtomicFileTestHooks hooks);
 
 }  // namespace strata

@@ -1,7 +1,7 @@
 // Mesh writers: every format writes a closed mesh of several coloured leaves that reads back raw
 // (readMeshFileRaw, no repairs) watertight with the same triangles and volume, and carries the
 // colours, material names and unit; writes are atomic (cancelled or failed exports leave no
-// file and no .tmp, and an existing file untouched). Also the 3MF reader's strictness.
+// file and no temporary file, and an existing file untouched). Also the 3MF reader's strictness.
 #include "engine/io/mesh_writers.h"
 
 #include <gtest/gtest.h>
@@ -121,7 +121,7 @@ size_t countOf(const std::string& text, const std::string& part) {
 // Writes, reads back raw, and checks what every format must keep.
 TriangleMesh writeAndCheck(const std::string& path, const ExportMesh& em = colouredScene()) {
   writeMeshFile(path, em);
-  EXPECT_FALSE(exists(path + ".tmp"));
+  EXPECT_TRUE(temporaryFilesOf(path).empty());
   const TriangleMesh back = readMeshFileRaw(path);
   const MeshCheck check = checkMesh(back);
   EXPECT_TRUE(check.watertight()) << path << ": boundary " << check.boundaryEdges
@@ -275,7 +275,7 @@ TEST(MeshWriters3mf, UnknownUnitIsAnErrorAndWritesNothing) {
   const std::string path = tempPath("furlong.3mf");
   expectContains(errorOf([&] { writeMeshFile(path, em); }), {path, "furlong", "3MF"});
   EXPECT_FALSE(exists(path));
-  EXPECT_FALSE(exists(path + ".tmp"));
+  EXPECT_TRUE(temporaryFilesOf(path).empty());
 }
 
 // ---- Atomicity, progress and errors ----
@@ -289,7 +289,7 @@ TEST(MeshWritersAtomic, AlreadyCancelledWritesNothing) {
     progress.cancel();
     EXPECT_THROW(writeMeshFile(path, colouredScene(), &progress), Cancelled) << ext;
     EXPECT_FALSE(exists(path)) << ext;
-    EXPECT_FALSE(exists(path + ".tmp")) << ext;
+    EXPECT_TRUE(temporaryFilesOf(path).empty()) << ext;
     EXPECT_FALSE(exists(tempPath("cancelled.mtl"))) << ext;
   }
 }
@@ -310,7 +310,7 @@ TEST(MeshWritersAtomic, CancelledMidwayLeavesTheOldFileAndNoTemp) {
     EXPECT_THROW(writeMeshFile(path, em, &progress), Cancelled) << ext;
     EXPECT_EQ(fractions.size(), 1u) << ext;
     EXPECT_EQ(readWholeFile(path), "old content") << ext;
-    EXPECT_FALSE(exists(path + ".tmp")) << ext;
+    EXPECT_TRUE(temporaryFilesOf(path).empty()) << ext;
     EXPECT_FALSE(exists(tempPath("midway.mtl"))) << ext;
   }
 }

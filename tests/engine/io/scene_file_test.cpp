@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
 
@@ -172,7 +173,7 @@ TEST_F(SceneFileDir, SceneFileRoundTripKeepsEverything) {
   Scene original = everyKindScene("meshes/bunny.obj", hashFile(kBunny));
   std::string path = (dir_ / "part.strata.json").string();
   saveScene(original, path);
-  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  EXPECT_TRUE(temporaryFilesOf(path).empty());
 
   SceneLoadReport report;
   Scene loaded = loadScene(path, &report);
