@@ -57,6 +57,10 @@ constexpr size_t kMaxModelBytes = size_t(2) << 30;  // uncompressed model XML
 constexpr size_t kMaxRelationshipBytes = size_t(16) << 20;
 // Placed triangles in all (components can multiply a small file into a huge mesh).
 constexpr uint64_t kMaxPlacedTriangles = 100'000'000;
+// Placed vertices, and objects placed (each component reference is a placement): an object of
+// vertices but no triangles, or of empty components, must not expand unboundedly either.
+constexpr uint64_t kMaxPlacedVertices = 100'000'000;
+constexpr uint64_t kMaxPlacements = 10'000'000;
 constexpr int kMaxComponentDepth = 32;
 
 // p -> linear * p + translation.
@@ -92,6 +96,8 @@ struct Object {
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<Component> components;
   uint64_t placedTriangles = 0;  // through components too, saturating above the limit
+  uint64_t placedVertices = 0;   // the same for vertices
+  uint64_t placements = 0;       // this object and every object its components place
   int depth = 0;                 // component nesting below this object
 };
 
@@ -484,9 +490,13 @@ class ModelParser : public XmlReader::Handler {
   void finishObject() {
     Object& object = current_;
     object.placedTriangles = object.triangles.size();
+    object.placedVertices = object.vertices.size();
+    object.placements = 1;
     for (const Component& component : object.components) {
       const Object& child = objects_.at(component.objectId);
       object.placedTriangles = saturatingAdd(object.placedTriangles, child.placedTriangles);
+      object.placedVertices = saturatingAdd(object.placedVertices, child.placedVertices);
+      object.placements = saturatingAdd(object.placements, child.placements);
       object.depth = std::max(object.depth, child.depth + 1);
     }
     if (object.depth > kMaxComponentDepth) {
@@ -561,9 +571,20 @@ class ModelParser : public XmlReader::Handler {
       return;
     }
     placedTriangles_ = saturatingAdd(placedTriangles_, object.placedTriangles);
+    placedVertices_ = saturatingAdd(placedVertices_, object.placedVertices);
+    placements_ = saturatingAdd(placements_, object.placements);
     if (placedTriangles_ > kMaxPlacedTriangles) {
       xml_.fail(element.line,
                 "the build places more than " + std::to_string(kMaxPlacedTriangles) + " triangles");
+    }
+    if (placedVertices_ > kMaxPlacedVertices) {
+      xml_.fail(element.line,
+                "the build places more than " + std::to_string(kMaxPlacedVertices) + " vertices");
+    }
+    if (placements_ > kMaxPlacements) {
+      xml_.fail(element.line, "the build places objects more than " +
+                                  std::to_string(kMaxPlacements) +
+                                  " times through its components (nested components multiply)");
     }
     items_.push_back(item);
   }
@@ -618,6 +639,8 @@ class ModelParser : public XmlReader::Handler {
   std::map<uint64_t, Object> objects_;
   std::vector<Item> items_;
   uint64_t placedTriangles_ = 0;
+  uint64_t placedVertices_ = 0;
+  uint64_t placements_ = 0;
 };
 
 }  // namespace

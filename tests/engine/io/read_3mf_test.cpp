@@ -210,5 +210,34 @@ TEST(Read3mfXml, DoctypeIsRefused) {
                  {"part.3mf: _rels/.rels: line 2: document type declarations"});
 }
 
+// Nested components multiply: objects eight wide and twenty deep place 8^20 leaves from a file
+// of a few KB. The reader counts placements, vertices and triangles before placing anything.
+std::string nestedComponents(int width, int depth, bool leafTriangles) {
+  std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + coreDefault() +
+                    "\n<resources>\n<object id=\"1\" type=\"model\"><mesh><vertices>";
+  for (int v = 0; v < 1000; ++v) xml += "<vertex x=\"" + std::to_string(v) + "\" y=\"0\" z=\"0\"/>";
+  xml += "</vertices><triangles>";
+  if (leafTriangles) xml += "<triangle v1=\"0\" v2=\"1\" v3=\"2\"/>";
+  xml += "</triangles></mesh></object>\n";
+  for (int level = 2; level <= depth + 1; ++level) {
+    xml += "<object id=\"" + std::to_string(level) + "\" type=\"model\"><components>";
+    for (int w = 0; w < width; ++w)
+      xml += "<component objectid=\"" + std::to_string(level - 1) + "\"/>";
+    xml += "</components></object>\n";
+  }
+  xml += "</resources>\n<build><item objectid=\"" + std::to_string(depth + 1) +
+         "\"/></build>\n</model>\n";
+  return xml;
+}
+
+TEST(Read3mf, NestedComponentsAreCountedBeforeTheyArePlaced) {
+  const std::string noTriangles = errorOf(fuzz::packageModel(nestedComponents(8, 20, false)));
+  EXPECT_NE(noTriangles.find("places more than 100000000 vertices"), std::string::npos)
+      << noTriangles;
+  const std::string withTriangles = errorOf(fuzz::packageModel(nestedComponents(8, 20, true)));
+  EXPECT_NE(withTriangles.find("places more than 100000000 triangles"), std::string::npos)
+      << withTriangles;
+}
+
 }  // namespace
 }  // namespace strata
