@@ -3,14 +3,15 @@
 #include <cstdint>
 #include <new>
 
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
 
 const std::vector<std::string> kValuedOptions = {
-    "--resolution", "--report",  "-o",     "--output",     "--backend",   "--threads",
-    "--margin",     "--surfels", "--tile", "--unit-scale", "--max-leaves"};
+    "--resolution", "--report",  "-o",     "--output",     "--backend",    "--threads",
+    "--margin",     "--surfels", "--tile", "--unit-scale", "--max-leaves", "--max-file-size"};
 const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open"};
 
 int runGuarded(const std::function<int()>& body) {
@@ -47,6 +48,29 @@ std::string unitAbbreviation(const std::string& unit) {
   if (unit == "foot") return "ft";
   if (unit == "micron" || unit == "micrometre" || unit == "micrometer") return "um";
   return unit;
+}
+
+void applyInputLimits(const CliArgs& args) {
+  if (!args.has("--max-file-size")) return;
+  const std::string text = args.text("--max-file-size", "");
+  size_t used = 0;
+  unsigned long long value = 0;
+  try {
+    value = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  std::string unit = text.substr(used);
+  int shift = unit == "" || unit == "B" ? 0
+              : unit == "K"             ? 10
+              : unit == "M"             ? 20
+              : unit == "G"             ? 30
+              : unit == "T"             ? 40
+                                        : -1;
+  if (used == 0 || shift < 0 || value == 0 || value > (~0ull >> shift))
+    throw Error("--max-file-size: expected a size such as 800M, 16G or 2000000000, got '" + text +
+                "'");
+  setMaxInputFileBytes(uint64_t(value) << shift);
 }
 
 void applySceneLimits(const CliArgs& args, Scene* scene) {

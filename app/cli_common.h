@@ -24,6 +24,10 @@ BackendChoice setUpBackend(const CliArgs& args);
 
 bool quietRequested(const CliArgs& args);
 
+// Applies --max-file-size (bytes, or with K, M, G, T) to every file read from now on. Call it
+// before reading any input.
+void applyInputLimits(const CliArgs& args);
+
 // Applies --max-leaves to the scene's settings (engine/document/expansion.h).
 void applySceneLimits(const CliArgs& args, Scene* scene);
 

@@ -84,6 +84,7 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
 
 Scene loadSceneFromArgs(const CliArgs& args, const std::string& path,
                         std::vector<std::string>* warnings) {
+  applyInputLimits(args);
   SceneLoadReport load;
   MeshReadOptions meshOptions;
   meshOptions.allowOpen = args.has("--allow-open");
@@ -129,6 +130,7 @@ int runBoolean(const std::vector<std::string>& argv) {
           "usage: strata boolean union|intersection|difference A B [C...] "
           "[--resolution N] [-o " +
           outputAlternatives("out") + "] [--report FILE]");
+    applyInputLimits(args);
     MeshReadOptions meshOptions;
     meshOptions.allowOpen = args.has("--allow-open");
     meshOptions.unitScale = args.number("--unit-scale", 1.0, 1e-9, 1e9);

@@ -33,6 +33,8 @@ const char* kUsageOptions =
     "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"
     "  --backend B       auto | cpu | cuda (default auto)\n"
     "  --threads N       worker threads (default: all cores, or STRATA_THREADS)\n"
+    "  --max-file-size S read input files up to S bytes (K, M, G, T; default 4G); larger\n"
+    "                    files, FIFOs and devices are refused before reading\n"
     "  --max-leaves N    evaluate scenes whose instances expand to more than 100000\n"
     "                    visible leaves (refused by default, before any work)\n"
     "  --nodes           list every node: computed or reused, time, surfels\n"

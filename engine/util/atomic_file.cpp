@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
@@ -336,13 +338,77 @@ std::vector<std::string> temporaryFilesOf(const std::string& path) {
   return leftoversOf(splitTarget(path));
 }
 
+namespace {
+std::atomic<uint64_t> g_maxInputFileBytes{kDefaultMaxInputFileBytes};
+
+std::string sizeText(uint64_t bytes) {
+  char text[32];
+  if (bytes >= (uint64_t(1) << 30))
+    std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
+  else
+    std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1 << 20));
+  return text;
+}
+
+const char* fileTypeName(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+}  // namespace
+
+uint64_t maxInputFileBytes() {
+  return g_maxInputFileBytes.load();
+}
+
+void setMaxInputFileBytes(uint64_t bytes) {
+  g_maxInputFileBytes.store(bytes);
+}
+
 std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw Error(path + ": read failed");
-  return s.str();
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw Error(path + ": cannot read: " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw Error(path + ": is " + fileTypeName(st.st_mode) + "; Strata reads regular files only");
+  const uint64_t limit = maxInputFileBytes();
+  auto tooLarge = [&](uint64_t size) {
+    return Error(path + ": the file is " + sizeText(size) + ", larger than the limit of " +
+                 sizeText(limit) + "; raise it with --max-file-size (e.g. --max-file-size 16G)");
+  };
+  if (uint64_t(st.st_size) > limit) throw tooLarge(uint64_t(st.st_size));
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::string bytes;
+  bytes.resize(size_t(st.st_size));
+  size_t done = 0;
+  for (;;) {  // the file may change while it is read: read to its end, within the limit
+    if (done == bytes.size()) {
+      if (bytes.size() >= limit) {
+        char probe;
+        ssize_t more = ::read(fd, &probe, 1);
+        if (more > 0) throw tooLarge(limit + 1);
+        if (more == 0) break;
+        if (errno == EINTR) continue;
+        throw Error(path + ": read failed: " + std::strerror(errno));
+      }
+      bytes.resize(std::min<uint64_t>(limit, std::max<uint64_t>(4096, bytes.size() * 2)));
+    }
+    const ssize_t got = ::read(fd, &bytes[done], bytes.size() - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw Error(path + ": read failed: " + std::strerror(errno));
+    if (got == 0) break;
+    done += size_t(got);
+  }
+  bytes.resize(done);
+  return bytes;
 }
 
 }  // namespace strata

@@ -80,8 +80,17 @@ std::vector<std::string> temporaryFilesOf(const std::string& path);
 // call it only right before _exit. A forked child's call leaves its parent's files alone.
 void abandonAtomicWritesForExit() noexcept;
 
-// Reads a whole file. Throws strata::Error naming the path when it cannot be read.
+// Reads a whole regular file of at most maxInputFileBytes() bytes. Throws strata::Error naming
+// the path when it cannot be read, is not a regular file (a FIFO, a device such as /dev/zero,
+// a folder: refused without blocking on them), or is larger than the limit (the message says
+// the size and how to raise the limit).
 std::string readWholeFile(const std::string& path);
+
+// The largest file readWholeFile reads (default kDefaultMaxInputFileBytes); process-wide, set by
+// the command line's --max-file-size. Any thread.
+uint64_t maxInputFileBytes();
+void setMaxInputFileBytes(uint64_t bytes);
+constexpr uint64_t kDefaultMaxInputFileBytes = uint64_t(4) << 30;  // 4 GiB
 
 // For tests: stand-ins for what a test cannot otherwise control. Process-wide; a test sets them
 // and restores the defaults ({}) when done.

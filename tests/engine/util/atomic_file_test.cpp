@@ -558,3 +558,35 @@ TEST_F(AtomicFileDir, AForkedChildAbandoningLeavesItsParentsWriteAlone) {
 
 }  // namespace
 }  // namespace strata
+
+namespace strata {
+namespace {
+
+// Input files are checked before they are read: devices and folders are refused at once, and a
+// file over the limit is refused naming its size and the option that raises the limit.
+TEST(ReadWholeFile, RefusesDevicesFoldersAndFilesOverTheLimit) {
+  auto message = [](const std::string& path) {
+    try {
+      readWholeFile(path);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read)");
+  };
+  EXPECT_NE(message("/dev/zero").find("/dev/zero: is a device"), std::string::npos);
+  EXPECT_NE(message(testing::TempDir()).find("is a folder"), std::string::npos);
+  const std::string file = testing::TempDir() + "/strata_limit_test.txt";
+  writeFileAtomically(file, [](std::ostream& out) { out << std::string(3000, 'x'); });
+  const uint64_t saved = maxInputFileBytes();
+  setMaxInputFileBytes(3000);
+  EXPECT_EQ(readWholeFile(file).size(), 3000u);
+  setMaxInputFileBytes(2999);
+  const std::string m = message(file);
+  setMaxInputFileBytes(saved);
+  EXPECT_NE(m.find("larger than the limit"), std::string::npos) << m;
+  EXPECT_NE(m.find("--max-file-size"), std::string::npos) << m;
+  std::remove(file.c_str());
+}
+
+}  // namespace
+}  // namespace strata
