@@ -3,14 +3,10 @@
 #include "app/cli_common.h"
 #include "app/export_report.h"
 #include "app/terminal_progress.h"
-#include "engine/export/contour_scene.h"
-#include "engine/export/fallback.h"
+#include "engine/export/export_scene.h"
 #include "engine/io/mesh_formats.h"
-#include "engine/io/mesh_io.h"
-#include "engine/io/mesh_writers.h"
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
-#include "engine/util/timer.h"
 
 namespace strata {
 
@@ -32,28 +28,20 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   summary.backend = choice.backend->description();
   summary.warnings = warnings;
   {
-    Evaluator evaluator(choice.backend);
     TerminalProgress terminal(quietRequested(args));
-    ExportMesh mesh = contourWithFallback(scene, evaluator, options, terminal.progress(),
-                                          &summary.contour, [&](const std::string& line) {
-                                            terminal.finish();
-                                            std::fprintf(stderr, "strata: %s\n", line.c_str());
-                                            summary.warnings.push_back(line);
-                                          });
-    Stopwatch write;
-    writeMeshFile(output, mesh, &terminal.progress());
-    summary.writeSeconds = write.seconds();
-    terminal.finish();
+    summary.result = exportScene(scene, output, options, choice.backend, terminal.progress(),
+                                 [&](const std::string& line) {
+                                   terminal.finish();
+                                   std::fprintf(stderr, "strata: %s\n", line.c_str());
+                                 });
   }
-  Stopwatch check;
-  summary.check = checkMesh(readMeshFileRaw(output));
-  summary.checkSeconds = check.seconds();
+  for (const auto& line : summary.result.notices) summary.warnings.push_back(line);
   std::fputs(formatExportText(summary).c_str(), stdout);
   if (args.has("--report")) {
     std::string json = formatExportJson(summary);
     writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
   }
-  return exportCheckPassed(summary.check) ? 0 : 3;
+  return exportCheckPassed(summary.result.check) ? 0 : 3;
 }
 
 }  // namespace strata

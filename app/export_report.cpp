@@ -28,7 +28,7 @@ std::string formatExportText(const ExportSummary& summary) {
   s.unit = unitAbbreviation(s.unit);
   std::ostringstream out;
   char line[512];
-  const ContourReport& r = s.contour;
+  const ContourReport& r = s.result.contour;
   out << "input     " << s.input << "\n";
   out << "backend   " << s.backend << "\n";
   std::snprintf(line, sizeof(line), "grid      %d x %d x %d cells, h = %.6g %s, %d tile%s\n",
@@ -38,11 +38,11 @@ std::string formatExportText(const ExportSummary& summary) {
   std::snprintf(line, sizeof(line),
                 "time      evaluate %.3f s, contour %.3f s, merge %.3f s, write %.3f s, check "
                 "%.3f s; peak memory %s\n",
-                r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.writeSeconds, s.checkSeconds,
-                mib(r.peakBytes).c_str());
+                r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.result.writeSeconds,
+                s.result.checkSeconds, mib(r.peakBytes).c_str());
   out << line;
   out << "wrote     " << s.output << "\n";
-  const MeshCheck& c = s.check;
+  const MeshCheck& c = s.result.check;
   std::snprintf(line, sizeof(line),
                 "check     %zu triangles, %zu vertices: closed %s, manifold %s, oriented %s, "
                 "components %d, genus %d\n",
@@ -74,8 +74,8 @@ std::string formatExportText(const ExportSummary& summary) {
 }
 
 std::string formatExportJson(const ExportSummary& s) {
-  const ContourReport& r = s.contour;
-  const MeshCheck& c = s.check;
+  const ContourReport& r = s.result.contour;
+  const MeshCheck& c = s.result.check;
   nlohmann::ordered_json j;
   j["input"] = s.input;
   j["output"] = s.output;
@@ -89,8 +89,8 @@ std::string formatExportJson(const ExportSummary& s) {
       nlohmann::ordered_json::array({{{"name", "evaluate"}, {"seconds", r.evaluateSeconds}},
                                      {{"name", "contour"}, {"seconds", r.contourSeconds}},
                                      {{"name", "merge"}, {"seconds", r.mergeSeconds}},
-                                     {{"name", "write"}, {"seconds", s.writeSeconds}},
-                                     {{"name", "check"}, {"seconds", s.checkSeconds}}});
+                                     {{"name", "write"}, {"seconds", s.result.writeSeconds}},
+                                     {{"name", "check"}, {"seconds", s.result.checkSeconds}}});
   j["peak_bytes"] = r.peakBytes;
   j["surfels"] = r.surfels;
   j["check"] = {{"passed", exportCheckPassed(c)},

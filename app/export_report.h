@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/contour_scene.h"
+#include "engine/export/export_scene.h"
 #include "engine/geometry/mesh_check.h"
 
 namespace strata {
@@ -14,11 +14,8 @@ struct ExportSummary {
   std::string output;
   std::string unit;
   std::string backend;
-  ContourReport contour;
-  double writeSeconds = 0.0;
-  double checkSeconds = 0.0;
-  MeshCheck check;  // of the file re-read from disk
-  std::vector<std::string> warnings;
+  ExportReport result;                // the contour report and the check of the file as written
+  std::vector<std::string> warnings;  // of the input, then the export's notices
 };
 
 // True when the re-read file is a closed, manifold, consistently oriented mesh with positive

@@ -128,8 +128,8 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
       s.splatTransfer = std::string("host upload (") + e.what() + ")";
     }
   }
-  worker_ = std::make_unique<EngineWorker>(options_.makeBackend(), options_.coarseResolution,
-                                           [] { glfwPostEmptyEvent(); });
+  worker_ = std::make_unique<PreviewWorker>(options_.makeBackend(), options_.coarseResolution,
+                                            [] { glfwPostEmptyEvent(); });
   worker_->setHostSplats(gl_->copier == nullptr);
   s.backendDescription = worker_->backendDescription();
   startTime_ = glfwGetTime();

@@ -92,7 +92,7 @@ class Editor {
   EditorOptions options_;
   std::unique_ptr<EditorState> state_;
   std::unique_ptr<Gl> gl_;
-  std::unique_ptr<EngineWorker> worker_;
+  std::unique_ptr<PreviewWorker> worker_;
   // What the worker was last asked for.
   uint64_t requestedRevision_ = ~uint64_t(0);
   int requestedResolution_ = 0;

@@ -360,8 +360,10 @@ void startExport(EditorState& state, const std::string& path, int resolution) {
   }
   guarded(state, [&] {
     if (!state.makeBackend) throw Error("no backend to export with");
-    state.exportJob = std::make_unique<ExportJob>(state.document.snapshot(), path, resolution,
-                                                  state.makeBackend());
+    ContourOptions options;
+    options.resolution = resolution;
+    state.exportJob =
+        std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend());
     logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution));
   });
 }

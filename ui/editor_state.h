@@ -15,8 +15,8 @@
 
 #include "engine/document/document.h"
 #include "engine/eval/backend.h"
-#include "ui/engine_worker.h"
-#include "ui/export_job.h"
+#include "engine/jobs/export_job.h"
+#include "engine/jobs/preview_worker.h"
 #include "ui/file_dialog.h"
 #include "ui/gizmo.h"
 
@@ -80,7 +80,7 @@ struct EditorState {
   // Preview.
   std::shared_ptr<const PreviewResult> preview;  // shown in the viewport
   std::string previewError;                      // of the newest evaluation, "" when it worked
-  WorkerStatus worker;
+  PreviewStatus worker;
   std::string backendDescription;
   std::string glDescription;
   double frameMs = 0.0;

@@ -1,0 +1,44 @@
+// Watertight export of a scene to a mesh file, the one pipeline behind `strata export` (and
+// `strata boolean ... -o`) and the editor's Export: contour (with the out-of-memory fallbacks of
+// fallback.h) -> write (engine/io/mesh_writers.h) -> read the file back raw and check it
+// (readMeshFileRaw, checkMesh).
+//
+// The file (and, for OBJ, its MTL, together) is written atomically (engine/util/atomic_file.h):
+// a failure or a cancellation while evaluating, contouring or writing leaves nothing behind and
+// an existing file untouched. Once written the new file is whole and in place; a cancellation
+// during the check leaves it there. A file that fails the check is kept (the check is a report,
+// not an error).
+//
+// Synchronous; any thread. `progress` receives the stages "evaluate", "export" (one step per
+// tile), "write <format>" and "check", and is checked between them.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/eval/backend.h"
+#include "engine/export/contour_scene.h"
+#include "engine/export/fallback.h"
+#include "engine/geometry/mesh_check.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+struct ExportReport {
+  ContourReport contour;             // how the mesh was made
+  double writeSeconds = 0.0;         // writing the file
+  double checkSeconds = 0.0;         // reading it back and checking it
+  MeshCheck check;                   // of the file as written, re-read without repairs
+  std::vector<std::string> notices;  // the fallbacks taken, in order (each also sent to notice)
+};
+
+// Exports the visible tree of `scene` to `path` (.stl .obj .ply .3mf, see mesh_writers.h),
+// evaluating on a fresh Evaluator over `backend` whose LDIs are released before the file is
+// written. `notice` (may be empty) is called with one line for the user each time a fallback is
+// taken. Throws strata::Error naming `path`, or Cancelled.
+ExportReport exportScene(const Scene& scene, const std::string& path, const ContourOptions& options,
+                         std::shared_ptr<Backend> backend, Progress& progress,
+                         const FallbackNotice& notice = {});
+
+}  // namespace strata

@@ -1,0 +1,72 @@
+// Export in the background: exportScene (engine/export/export_scene.h, the pipeline of `strata
+// export`) on a scene snapshot, on the job's own thread. A cancelled or failed export leaves
+// nothing behind and an existing file untouched.
+//
+// Threads: construct, status(), cancel() and destroy from any one owning thread (the editor's
+// UI thread); the work runs on the job's own thread with its own backend (a backend serves one
+// thread at a time, and the preview worker has its own). The thread catches everything and
+// reports it in the status.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "engine/document/scene.h"
+#include "engine/eval/backend.h"
+#include "engine/export/contour_scene.h"
+#include "engine/geometry/mesh_check.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+struct ExportStatus {
+  bool running = false;
+  bool finished = false;   // ended (succeeded, failed or cancelled)
+  bool succeeded = false;  // written, re-read and checked
+  bool cancelled = false;
+  std::string stage;  // "start", "evaluate", "export", "write <format>", "check"
+  double fraction = 0.0;
+  std::string error;
+  std::string notice;  // the last fallback taken (smaller tiles, the CPU), "" when none
+  std::string path;
+  MeshCheck check;  // of the file as written (valid when succeeded)
+  double seconds = 0.0;
+  int resolution = 0;
+};
+
+class ExportJob {
+ public:
+  // Called on the job's thread with the new status after each change (stage, fraction, notice,
+  // the end), outside the job's lock. Keep it short and do not throw: it runs inside the
+  // export's progress reporting.
+  using Listener = std::function<void(const ExportStatus&)>;
+
+  // Starts exporting `scene` with `options` (resolution: cells along the longest side, 0 = the
+  // scene's; tile size) to `path` (.stl .obj .ply .3mf).
+  ExportJob(std::shared_ptr<const Scene> scene, std::string path, const ContourOptions& options,
+            std::shared_ptr<Backend> backend, Listener onChange = {});
+  ~ExportJob();  // cancels and joins
+  ExportJob(const ExportJob&) = delete;
+  ExportJob& operator=(const ExportJob&) = delete;
+
+  ExportStatus status() const;
+  // Asks the export to stop at its next check; it ends with status().cancelled. Any thread.
+  void cancel() { progress_->cancel(); }
+
+ private:
+  void run(std::shared_ptr<const Scene> scene, ContourOptions options,
+           std::shared_ptr<Backend> backend);
+  // Applies `change` to the status under the lock, then tells the listener.
+  void update(const std::function<void(ExportStatus&)>& change);
+
+  Listener onChange_;
+  mutable std::mutex mutex_;
+  ExportStatus status_;
+  std::shared_ptr<Progress> progress_;
+  std::thread thread_;
+};
+
+}  // namespace strata

@@ -1,0 +1,168 @@
+#include "engine/jobs/preview_worker.h"
+
+#include <algorithm>
+#include <new>
+#include <vector>
+
+#include "engine/util/error.h"
+#include "engine/util/timer.h"
+
+namespace strata {
+
+PreviewWorker::PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution,
+                             std::function<void()> onResult)
+    : backend_(std::move(backend)),
+      backendDescription_(backend_->description()),
+      coarse_(std::max(coarseResolution, 8)),
+      onResult_(std::move(onResult)) {
+  thread_ = std::thread([this] { run(); });
+}
+
+PreviewWorker::~PreviewWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+    hasRequest_ = false;
+    if (running_) running_->cancel();
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void PreviewWorker::request(std::shared_ptr<const Scene> scene, int resolution, bool interactive,
+                            uint64_t tag) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_ = Request{std::move(scene), resolution, interactive, tag};
+    hasRequest_ = true;
+    if (running_) running_->cancel();
+  }
+  wake_.notify_all();
+}
+
+void PreviewWorker::cancel() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    hasRequest_ = false;
+    pending_ = Request{};
+    if (running_) running_->cancel();
+  }
+  idle_.notify_all();
+}
+
+std::shared_ptr<const PreviewResult> PreviewWorker::takeResult() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::move(finished_);
+}
+
+PreviewStatus PreviewWorker::status() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+bool PreviewWorker::waitUntilIdle(std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return idle_.wait_for(lock, timeout, [this] { return !hasRequest_ && !running_; });
+}
+
+void PreviewWorker::run() {
+  Evaluator evaluator(backend_);
+  for (;;) {
+    Request request;
+    std::shared_ptr<Progress> progress;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stopping_ || hasRequest_; });
+      if (stopping_) return;
+      request = std::move(pending_);
+      pending_ = Request{};
+      hasRequest_ = false;
+      // Taken and cancellable in one step: request() and cancel() reach it from now on.
+      progress = std::make_shared<Progress>([this](const std::string& stage, double fraction) {
+        std::lock_guard<std::mutex> guard(mutex_);
+        status_.stage = stage;
+        status_.fraction = fraction;
+      });
+      running_ = progress;
+      status_ = PreviewStatus{true, "start", 0.0, 0};
+    }
+    serve(evaluator, request, *progress);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      running_.reset();
+      status_ = PreviewStatus{};
+    }
+    idle_.notify_all();
+  }
+}
+
+void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress& progress) {
+  const int full = request.resolution;
+  const int coarse = std::min(full, coarse_);
+  if (request.interactive) {
+    evaluatePass(evaluator, request, coarse, coarse < full, progress);
+    return;
+  }
+  // A coarse pass first, unless the coarse result of this very snapshot is already shown (the
+  // hand just stopped) or there is nothing coarser. A request that arrives meanwhile cancels
+  // `progress`, and with it the refinement.
+  if (coarse < full && lastShown_ != request.scene) {
+    if (!evaluatePass(evaluator, request, coarse, true, progress)) return;
+  }
+  evaluatePass(evaluator, request, full, false, progress);
+}
+
+bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, int resolution,
+                                 bool coarse, Progress& progress) {
+  if (progress.cancelled()) return false;  // superseded before it began
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_ = PreviewStatus{true, "start", 0.0, resolution};
+  }
+  auto result = std::make_shared<PreviewResult>();
+  result->tag = request.tag;
+  result->scene = request.scene;
+  result->resolution = resolution;
+  result->coarse = coarse;
+  try {
+    computePass(evaluator, *request.scene, progress, *result);
+  } catch (const Cancelled&) {
+    return false;
+  } catch (const Error& e) {
+    result->error = e.what();
+  } catch (const std::bad_alloc&) {
+    result->error = "out of memory; lower the resolution";
+  } catch (const std::exception& e) {
+    result->error = std::string("unexpected error: ") + e.what();
+  } catch (...) {
+    result->error = "unexpected error";
+  }
+  lastShown_ = request.scene;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    finished_ = std::move(result);
+  }
+  if (onResult_) onResult_();
+  return true;
+}
+
+void PreviewWorker::computePass(Evaluator& evaluator, const Scene& scene, Progress& progress,
+                                PreviewResult& result) {
+  EvalOptions options;
+  options.resolution = result.resolution;
+  result.stats = evaluator.evaluate(scene, options, progress);
+  Stopwatch splatClock;
+  result.surfels = result.stats.root->surfelCount();
+  result.ldiBytes = result.stats.root->bytes();
+  SplatsHandle splats = backend_->splats(result.stats.root, progress);
+  result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
+  if (hostSplats_ && !splats->hostData()) {
+    std::vector<Splat> host(splats->count());
+    splats->copyToHost(host.data());
+    splats = std::make_shared<HostSplats>(std::move(host));
+  }
+  result.splats = std::move(splats);
+  result.splatSeconds = splatClock.seconds();
+}
+
+}  // namespace strata

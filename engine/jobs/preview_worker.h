@@ -1,0 +1,128 @@
+// The preview worker (the editor's engine thread): evaluates scene snapshots in the background
+// so that the UI never waits on the engine (libfive Studio's scheduling).
+//
+//   - The caller hands immutable snapshots (std::shared_ptr<const Scene>) with the requested
+//     resolution; only the latest request survives, and a new one cancels the running
+//     evaluation (Progress::cancel). Requests replaced before the worker took them are never
+//     evaluated.
+//   - An interactive request (the user is dragging) is evaluated only at a coarse resolution,
+//     min(requested, coarseResolution); the request made when the hand stops refines it. A
+//     calm request for a new scene shows the coarse result first, then the full one.
+//   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the root's
+//     splats (Backend::splats: made where the backend keeps its LDIs, on the device for CUDA)
+//     and the evaluation's statistics. A pass that finished before it was superseded still
+//     delivers its result; a cancelled pass delivers none. Where the caller cannot take device
+//     splats it says so (setHostSplats(true), the default) and the worker copies them to the
+//     host first.
+//   - Nothing here draws (no GL): ui/ uploads the splats or copies them through CUDA-GL
+//     interop. The worker catches everything and reports it in the result's `error`.
+//
+// Threads: request(), cancel(), takeResult(), status(), waitUntilIdle() and setHostSplats() from
+// any thread, never blocking for longer than a mutex hand-over (but waitUntilIdle). Construct
+// and destroy on the owning thread, never from inside onResult. Evaluation runs on the worker's
+// own thread, which owns the Evaluator and its cache and is the only user of the backend.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "engine/document/scene.h"
+#include "engine/eval/evaluator.h"
+#include "engine/ldi/splats.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+struct PreviewResult {
+  uint64_t tag = 0;                    // the caller's tag of the request (its document revision)
+  std::shared_ptr<const Scene> scene;  // the snapshot it shows
+  int resolution = 0;                  // cells along the longest side, as evaluated
+  bool coarse = false;                 // a coarse pass; a finer one follows unless superseded
+  SplatsHandle splats;                 // what the viewport draws; null on failure
+  size_t surfels = 0;                  // in the root's LDI
+  size_t ldiBytes = 0;                 // held by the root's LDI
+  EvalResult stats;                    // stages, nodes, grid (its `root` handle released)
+  double splatSeconds = 0.0;           // making the splats (and copying them to the host)
+  std::string error;                   // empty on success
+
+  size_t splatCount() const { return splats ? splats->count() : 0; }
+  bool ok() const { return splats != nullptr; }
+};
+
+struct PreviewStatus {
+  bool busy = false;      // a request is being evaluated
+  std::string stage;      // of the running evaluation ("start", "evaluate", ...)
+  double fraction = 0.0;  // of that stage
+  int resolution = 0;     // of the running pass
+};
+
+class PreviewWorker {
+ public:
+  // `backend` is used by the worker thread alone from now on. `onResult`, when given, is called
+  // on the worker thread each time a result is ready (e.g. to wake the UI's event loop); it may
+  // call takeResult().
+  explicit PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96,
+                         std::function<void()> onResult = {});
+  ~PreviewWorker();  // cancels the running evaluation, drops the pending one, and joins
+  PreviewWorker(const PreviewWorker&) = delete;
+  PreviewWorker& operator=(const PreviewWorker&) = delete;
+
+  // Replaces any pending request and cancels the running one.
+  void request(std::shared_ptr<const Scene> scene, int resolution, bool interactive, uint64_t tag);
+  // Drops the pending request and cancels the running one (e.g. nothing is left to show).
+  void cancel();
+  // The newest finished result not taken yet, or null.
+  std::shared_ptr<const PreviewResult> takeResult();
+  PreviewStatus status() const;
+  // Blocks until no request is pending or being evaluated, or until `timeout` has passed;
+  // returns whether the worker is idle. For tests and headless callers: the UI never waits.
+  bool waitUntilIdle(std::chrono::milliseconds timeout);
+  // Whether results must carry host splats (default) or may keep them where the backend made
+  // them (the UI copies device splats through CUDA-GL interop).
+  void setHostSplats(bool host) { hostSplats_ = host; }
+  const std::string& backendDescription() const { return backendDescription_; }
+
+ private:
+  struct Request {
+    std::shared_ptr<const Scene> scene;
+    int resolution = 0;
+    bool interactive = false;
+    uint64_t tag = 0;
+  };
+  void run();
+  // Evaluates one request: its coarse pass where one applies, then its full pass.
+  void serve(Evaluator& evaluator, const Request& request, Progress& progress);
+  // Evaluates one pass and publishes its result; returns false when cancelled.
+  bool evaluatePass(Evaluator& evaluator, const Request& request, int resolution, bool coarse,
+                    Progress& progress);
+  // The evaluation and splats of one pass into `result`. Throws what the engine throws.
+  void computePass(Evaluator& evaluator, const Scene& scene, Progress& progress,
+                   PreviewResult& result);
+
+  std::shared_ptr<Backend> backend_;
+  std::string backendDescription_;
+  int coarse_;
+  std::function<void()> onResult_;
+  std::atomic<bool> hostSplats_{true};
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;  // the worker: a request arrived, or stop
+  std::condition_variable idle_;  // waitUntilIdle: nothing pending or running any more
+  bool stopping_ = false;
+  bool hasRequest_ = false;
+  Request pending_;
+  std::shared_ptr<Progress> running_;  // of the request being served; null when none
+  std::shared_ptr<const PreviewResult> finished_;
+  PreviewStatus status_;
+  std::shared_ptr<const Scene> lastShown_;  // worker thread only
+  std::thread thread_;
+};
+
+}  // namespace strata

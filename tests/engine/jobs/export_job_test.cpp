@@ -1,0 +1,222 @@
+// The background export, headless: a finished export leaves a checked file; one cancelled at any
+// stage (evaluate, contour, write, check) or destroyed mid-way leaves nothing behind and an
+// earlier file untouched; failures name the file. The waits are on the job's own reports.
+#include "engine/jobs/export_job.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <condition_variable>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "engine/eval/cpu_backend.h"
+#include "engine/io/mesh_io.h"
+#include "tests/engine/jobs/job_test_support.h"
+#include "tests/support/gated_backend.h"
+#include "tests/support/mesh_invariants.h"
+
+namespace strata::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Follows a job through its listener: wakes the test when it ends, records the stages in
+// order, and can hold the job's thread at the first report of a stage (by prefix) until the
+// test releases it, so that a cancel lands in exactly that stage.
+class ExportWatch {
+ public:
+  explicit ExportWatch(std::string holdAtStage = "") : holdAt_(std::move(holdAtStage)) {}
+  ExportJob::Listener listener() {
+    return [this](const ExportStatus& s) { onChange(s); };
+  }
+  bool waitUntilHeld() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return changed_.wait_for(lock, kJobTimeout, [&] { return held_; });
+  }
+  void release() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      released_ = true;
+    }
+    changed_.notify_all();
+  }
+  bool waitUntilFinished() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return changed_.wait_for(lock, kJobTimeout, [&] { return finished_; });
+  }
+  std::vector<std::string> stages() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stages_;
+  }
+
+ private:
+  void onChange(const ExportStatus& s) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (stages_.empty() || stages_.back() != s.stage) stages_.push_back(s.stage);
+    finished_ = s.finished;
+    if (!holdAt_.empty() && !held_ && s.stage.rfind(holdAt_, 0) == 0) {
+      held_ = true;
+      changed_.notify_all();
+      changed_.wait_for(lock, kJobTimeout, [&] { return released_; });
+    }
+    changed_.notify_all();
+  }
+
+  std::string holdAt_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  bool held_ = false;
+  bool released_ = false;
+  bool finished_ = false;
+  std::vector<std::string> stages_;
+};
+
+// An empty folder of its own for each test.
+std::string freshFolder(const std::string& name) {
+  const fs::path folder = fs::path(testing::TempDir()) / ("strata_export_job_" + name);
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  return folder.string();
+}
+
+std::set<std::string> filesIn(const std::string& folder) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder))
+    names.insert(entry.path().filename().string());
+  return names;
+}
+
+std::string contentOf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// Resolution 32 in tiles of 16: eight tiles, so a cancel during "export" lands between tiles.
+ContourOptions smallTiles() {
+  return ContourOptions{32, 16};
+}
+
+TEST(ExportJob, FinishedExportLeavesACheckedFile) {
+  for (const std::string ext : {"stl", "obj"}) {
+    SCOPED_TRACE(ext);
+    const std::string folder = freshFolder("success_" + ext);
+    const std::string path = folder + "/part." + ext;
+    writeText(path, "an older export\n");  // replaced
+    ExportWatch watch;
+    ExportJob job(boxMinusSphere(32), path, smallTiles(), std::make_shared<CpuBackend>(),
+                  watch.listener());
+    ASSERT_TRUE(watch.waitUntilFinished());
+    const ExportStatus s = job.status();
+    ASSERT_TRUE(s.succeeded) << s.error;
+    EXPECT_FALSE(s.running);
+    EXPECT_FALSE(s.cancelled);
+    EXPECT_EQ(s.path, path);
+    EXPECT_EQ(s.resolution, 32);
+    EXPECT_TRUE(s.check.watertight());
+    EXPECT_GT(s.check.volume, 0.0);
+
+    TriangleMesh written = readMeshFileRaw(path);
+    EXPECT_TRUE(isWatertight(written));
+    EXPECT_EQ(written.triangles.size(), s.check.triangles);
+    std::set<std::string> expected{"part." + ext};
+    if (ext == "obj") expected.insert("part.mtl");
+    EXPECT_EQ(filesIn(folder), expected);  // no staging folder, no temporary file
+
+    // The stages in the order they first appear ("write STL" counts as "write").
+    std::vector<std::string> order;
+    for (const auto& stage : watch.stages())
+      for (const std::string name : {"evaluate", "export", "write", "check"})
+        if (stage.rfind(name, 0) == 0 && std::find(order.begin(), order.end(), name) == order.end())
+          order.push_back(name);
+    EXPECT_EQ(order, (std::vector<std::string>{"evaluate", "export", "write", "check"}));
+  }
+}
+
+// Cancels the job while it is held at the first report of `stage`; expects it to end cancelled
+// with `folder` as it was.
+void cancelAt(const std::string& stage, const std::string& path, const std::string& folder) {
+  const std::set<std::string> before = filesIn(folder);
+  std::vector<std::string> contents;
+  for (const auto& name : before) contents.push_back(contentOf(folder + "/" + name));
+
+  ExportWatch watch(stage);
+  ExportJob job(boxMinusSphere(32), path, smallTiles(), std::make_shared<CpuBackend>(),
+                watch.listener());
+  ASSERT_TRUE(watch.waitUntilHeld()) << "never reached " << stage;
+  job.cancel();
+  watch.release();
+  ASSERT_TRUE(watch.waitUntilFinished());
+  const ExportStatus s = job.status();
+  EXPECT_TRUE(s.finished);
+  EXPECT_TRUE(s.cancelled);
+  EXPECT_FALSE(s.succeeded);
+  EXPECT_EQ(s.error, "");
+
+  EXPECT_EQ(filesIn(folder), before);
+  std::vector<std::string> after;
+  for (const auto& name : before) after.push_back(contentOf(folder + "/" + name));
+  EXPECT_EQ(after, contents);
+}
+
+// (A cancel during the check, after the new file is in place, leaves that whole new file: see
+// ExportScene.CancelledDuringTheCheckLeavesTheWholeNewFile.)
+TEST(ExportJob, CancelledAtAnyStageLeavesNothingAndKeepsTheOldFile) {
+  for (const std::string stage : {"evaluate", "export", "write"}) {
+    for (const std::string ext : {"stl", "obj", "3mf"}) {
+      SCOPED_TRACE(stage + " ." + ext);
+      const std::string folder = freshFolder("cancel_" + ext);
+      writeText(folder + "/part." + ext, "the previous export\n");
+      if (ext == "obj") writeText(folder + "/part.mtl", "newmtl previous\n");
+      cancelAt(stage, folder + "/part." + ext, folder);
+    }
+    SCOPED_TRACE(stage + ", no earlier file");
+    const std::string folder = freshFolder("cancel_new");
+    cancelAt(stage, folder + "/part.ply", folder);
+  }
+}
+
+TEST(ExportJob, DestroyedWhileEvaluatingLeavesNothing) {
+  const std::string folder = freshFolder("destroyed");
+  auto backend = std::make_shared<GatedBackend>();
+  backend->close();
+  std::weak_ptr<GatedBackend> watch = backend;
+  auto job =
+      std::make_unique<ExportJob>(boxMinusSphere(32), folder + "/part.stl", smallTiles(), backend);
+  ASSERT_TRUE(backend->waitUntilHeld());
+  backend.reset();
+  expectReturnsWithin(
+      kJobTimeout, [&] { job.reset(); }, "~ExportJob (held at the gate)");
+  EXPECT_TRUE(watch.expired()) << "the job kept its backend alive";
+  EXPECT_TRUE(filesIn(folder).empty());
+}
+
+TEST(ExportJob, FailuresNameTheFileAndLeaveNothing) {
+  const std::string folder = freshFolder("failures");
+  for (const std::string& path : {folder + "/missing/part.stl", folder + "/part.xyz"}) {
+    SCOPED_TRACE(path);
+    ExportWatch watch;
+    ExportJob job(boxMinusSphere(32), path, smallTiles(), std::make_shared<CpuBackend>(),
+                  watch.listener());
+    ASSERT_TRUE(watch.waitUntilFinished());
+    const ExportStatus s = job.status();
+    EXPECT_FALSE(s.succeeded);
+    EXPECT_FALSE(s.cancelled);
+    EXPECT_NE(s.error.find(path), std::string::npos) << s.error;
+    EXPECT_EQ(s.error.find(".export-"), std::string::npos) << s.error;  // not the staging folder
+  }
+  EXPECT_TRUE(filesIn(folder).empty());
+}
+
+}  // namespace
+}  // namespace strata::test

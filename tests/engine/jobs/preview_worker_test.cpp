@@ -1,0 +1,212 @@
+// The preview worker's scheduling, headless: the latest request wins, cancel stops a pass, a calm
+// edit goes coarse then fine, a drag stays coarse and its stop refines, and the worker can be
+// destroyed while it evaluates. The waits are on results and idleness, never on sleeps.
+#include "engine/jobs/preview_worker.h"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+#include <vector>
+
+#include "tests/engine/jobs/job_test_support.h"
+#include "tests/support/gated_backend.h"
+
+namespace strata::test {
+namespace {
+
+using ResultPtr = std::shared_ptr<const PreviewResult>;
+
+// Every result the worker delivers, in order: taken inside onResult, so a coarse result is seen
+// even when the full one follows at once.
+class ResultLog {
+ public:
+  std::function<void()> callback() {
+    return [this] { onResult(); };
+  }
+  // Call before the first request (onResult comes only after one).
+  void attach(PreviewWorker* worker) { worker_ = worker; }
+  bool waitFor(size_t count) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return changed_.wait_for(lock, kJobTimeout, [&] { return results_.size() >= count; });
+  }
+  std::vector<ResultPtr> results() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return results_;
+  }
+
+ private:
+  void onResult() {
+    ResultPtr result = worker_->takeResult();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      results_.push_back(std::move(result));
+    }
+    changed_.notify_all();
+  }
+
+  PreviewWorker* worker_ = nullptr;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<ResultPtr> results_;
+};
+
+void expectShows(const ResultPtr& r, uint64_t tag, int resolution, bool coarse) {
+  ASSERT_TRUE(r);
+  EXPECT_TRUE(r->ok()) << r->error;
+  EXPECT_EQ(r->tag, tag);
+  EXPECT_EQ(r->resolution, resolution);
+  EXPECT_EQ(r->coarse, coarse);
+  EXPECT_GT(r->splatCount(), 0u);
+}
+
+TEST(PreviewWorker, QuickRequestsLeaveOnlyTheLastResult) {
+  auto backend = std::make_shared<GatedBackend>();
+  backend->close(GatedBackend::OnCancel::Stay);
+  ResultLog log;
+  PreviewWorker worker(backend, 96, log.callback());
+  log.attach(&worker);
+  const int n = 8;
+  std::vector<std::shared_ptr<const Scene>> scenes;
+  for (int i = 0; i < n; ++i) scenes.push_back(boxMinusSphere(32, i));
+
+  worker.request(scenes[0], 32, false, 1);
+  ASSERT_TRUE(backend->waitUntilHeld());  // the first request is being evaluated
+  EXPECT_TRUE(worker.status().busy);
+  for (int i = 1; i < n; ++i) worker.request(scenes[i], 32, false, uint64_t(i + 1));
+  backend->open();
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+
+  std::vector<ResultPtr> results = log.results();
+  ASSERT_EQ(results.size(), 1u);
+  expectShows(results[0], n, 32, false);
+  EXPECT_EQ(results[0]->scene, scenes.back());
+  // Two evaluations began: the first (cancelled at the gate) and the last; requests 2..n-1
+  // were replaced before the worker took them. Only the last one sampled anything.
+  EXPECT_EQ(backend->arrivals(), 3);  // the first leaf of request 1, both leaves of request n
+  EXPECT_EQ(backend->sampled(), 2);
+  EXPECT_FALSE(worker.takeResult());  // the log took it
+  EXPECT_FALSE(worker.status().busy);
+}
+
+TEST(PreviewWorker, CancelStopsAPassMidwayAndTheWorkerServesOn) {
+  auto backend = std::make_shared<GatedBackend>();
+  backend->close();
+  ResultLog log;
+  PreviewWorker worker(backend, 96, log.callback());
+  log.attach(&worker);
+  auto scene = boxMinusSphere(32);
+
+  worker.request(scene, 32, false, 7);
+  ASSERT_TRUE(backend->waitUntilHeld());
+  worker.cancel();
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  EXPECT_TRUE(log.results().empty());
+  EXPECT_EQ(backend->sampled(), 0);
+  EXPECT_FALSE(worker.takeResult());
+  EXPECT_FALSE(worker.status().busy);
+
+  backend->open();
+  worker.request(scene, 32, false, 8);
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ASSERT_EQ(log.results().size(), 1u);
+  expectShows(log.results()[0], 8, 32, false);
+}
+
+TEST(PreviewWorker, CancelAfterTheCoarsePassSkipsTheRefinement) {
+  ResultLog log;
+  PreviewWorker* self = nullptr;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, [&] {
+    log.callback()();
+    self->cancel();  // from the worker's thread, right after the coarse result
+  });
+  self = &worker;
+  log.attach(&worker);
+  worker.request(boxMinusSphere(64), 64, false, 3);
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ASSERT_EQ(log.results().size(), 1u);
+  expectShows(log.results()[0], 3, 32, true);
+}
+
+TEST(PreviewWorker, CalmEditShowsTheCoarseResultThenTheFullOne) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback());
+  log.attach(&worker);
+  auto scene = boxMinusSphere(64);
+  worker.request(scene, 64, false, 1);
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 2u);
+  expectShows(r[0], 1, 32, true);
+  expectShows(r[1], 1, 64, false);
+  EXPECT_EQ(r[0]->scene, scene);
+  EXPECT_EQ(r[1]->scene, scene);
+  EXPECT_GT(r[1]->surfels, r[0]->surfels);  // the finer grid has more rays
+}
+
+TEST(PreviewWorker, DragStaysCoarseAndItsStopRefinesWithoutRepeatingIt) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback());
+  log.attach(&worker);
+  auto dragged = boxMinusSphere(64, 1);
+  worker.request(dragged, 64, true, 1);  // the hand moves
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  worker.request(dragged, 64, false, 2);  // the hand stops on the same snapshot
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  // At or below the coarse resolution a drag is evaluated in full.
+  worker.request(boxMinusSphere(24, 2), 24, true, 3);
+  ASSERT_TRUE(log.waitFor(3));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 3u);
+  expectShows(r[0], 1, 32, true);
+  expectShows(r[1], 2, 64, false);
+  expectShows(r[2], 3, 24, false);
+}
+
+TEST(PreviewWorker, ErrorsArriveAsResults) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback());
+  log.attach(&worker);
+  worker.request(std::make_shared<const Scene>(), 32, false, 4);  // no root
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ResultPtr r = log.results().at(0);
+  EXPECT_FALSE(r->ok());
+  EXPECT_FALSE(r->error.empty());
+  EXPECT_EQ(r->tag, 4u);
+}
+
+TEST(PreviewWorker, DestructionWhileEvaluatingNeitherHangsNorLeaks) {
+  auto backend = std::make_shared<GatedBackend>();
+  backend->close();
+  std::weak_ptr<GatedBackend> watch = backend;
+  auto worker = std::make_unique<PreviewWorker>(backend, 96);
+  worker->request(boxMinusSphere(32), 32, false, 1);
+  ASSERT_TRUE(backend->waitUntilHeld());
+  backend.reset();  // the worker holds the last reference now
+  expectReturnsWithin(
+      kJobTimeout, [&] { worker.reset(); }, "~PreviewWorker (held at the gate)");
+  EXPECT_TRUE(watch.expired()) << "the worker kept its backend alive";
+}
+
+TEST(PreviewWorker, DestructionWithRealWorkInFlightReturns) {
+  // No gate: wherever the evaluation happens to be (not yet taken, sampling, combining, making
+  // splats), the destructor cancels and joins.
+  for (int i = 0; i < 4; ++i) {
+    auto worker = std::make_unique<PreviewWorker>(std::make_shared<CpuBackend>(), 32);
+    worker->request(boxMinusSphere(64, i), 64, false, 1);
+    worker->request(boxMinusSphere(64, i + 10), 64, i % 2 == 0, 2);
+    expectReturnsWithin(
+        kJobTimeout, [&] { worker.reset(); }, "~PreviewWorker");
+  }
+}
+
+}  // namespace
+}  // namespace strata::test

@@ -1,0 +1,70 @@
+// parallelFor: every index once, the first exception rethrown on the caller, and loops from
+// several threads at once (the preview worker and an export job do that). Also run under
+// ThreadSanitizer (.ci/test).
+#include "engine/util/parallel_for.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+
+// Sets the worker count for one test and restores the default afterwards.
+class WorkerCount {
+ public:
+  explicit WorkerCount(int threads) { setWorkerCount(threads); }
+  ~WorkerCount() { setWorkerCount(0); }
+};
+
+TEST(ParallelFor, VisitsEveryIndexOnce) {
+  WorkerCount four(4);
+  for (int64_t grain : {1, 7, 1000, 5000}) {
+    std::vector<std::atomic<int>> visits(4099);
+    parallelFor(3, 4099, grain, [&](int64_t begin, int64_t end) {
+      EXPECT_LE(end - begin, grain);
+      for (int64_t i = begin; i < end; ++i) visits[size_t(i)].fetch_add(1);
+    });
+    for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), i < 3 ? 0 : 1) << i;
+  }
+}
+
+TEST(ParallelFor, RethrowsTheFirstErrorOnTheCaller) {
+  WorkerCount four(4);
+  EXPECT_THROW(parallelFor(0, 10000, 1,
+                           [](int64_t begin, int64_t) {
+                             if (begin % 100 == 17) throw Cancelled();
+                           }),
+               Cancelled);
+  EXPECT_THROW(parallelFor(0, 64, 1,
+                           [](int64_t begin, int64_t) {
+                             if (begin == 63) throw std::runtime_error("last chunk");
+                           }),
+               std::runtime_error);
+}
+
+TEST(ParallelFor, LoopsFromSeveralThreadsAtOnce) {
+  WorkerCount three(3);
+  std::vector<int64_t> sums(4, 0);
+  std::vector<std::thread> callers;
+  for (size_t t = 0; t < sums.size(); ++t)
+    callers.emplace_back([&, t] {
+      std::atomic<int64_t> sum{0};
+      parallelFor(0, 20000, 64, [&](int64_t begin, int64_t end) {
+        int64_t local = 0;
+        for (int64_t i = begin; i < end; ++i) local += i;
+        sum.fetch_add(local);
+      });
+      sums[t] = sum.load();
+    });
+  for (auto& c : callers) c.join();
+  for (int64_t s : sums) EXPECT_EQ(s, int64_t(20000) * 19999 / 2);
+}
+
+}  // namespace
+}  // namespace strata
