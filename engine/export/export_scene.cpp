@@ -6,11 +6,6 @@
 #include "engine/util/timer.h"
 
 namespace strata {
-namespace {
-
-namespace fs = std::filesystem;
-
-}  // namespace
 
 ExportReport exportScene(const Scene& scene, const std::string& path, const ContourOptions& options,
                          std::shared_ptr<Backend> backend, Progress& progress,

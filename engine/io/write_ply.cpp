@@ -83,6 +83,7 @@ void writePly(const std::string& path, const ExportMesh& em, Progress* progress)
       for (uint32_t v : tri) putLittle(buffer, static_cast<int32_t>(v));
     }
     out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    if (progress) progress->check();  // a cancel during the write replaces nothing
   });
 }
 

@@ -68,6 +68,7 @@ void writeStl(const std::string& path, const ExportMesh& em, Progress* progress)
       buffer += '\0';
     }
     out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    if (progress) progress->check();  // a cancel during the write replaces nothing
   });
 }
 
