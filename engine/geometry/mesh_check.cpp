@@ -124,24 +124,86 @@ struct UnionFind {
   }
 };
 
-glm::dvec3 cornerCross(const TriangleMesh& mesh, const std::array<uint32_t, 3>& t) {
+// An axis-aligned box grown point by point, empty (lo > hi) until the first. NaN coordinates
+// are left out: glm::min and glm::max keep their first argument then.
+struct Box {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+  glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+
+  void include(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  double largestSide() const {
+    const glm::dvec3 side = hi - lo;  // -inf on an axis without coordinates
+    return std::max({side.x, side.y, side.z, 0.0});
+  }
+};
+
+// The box around the vertices the triangles use: a stray vertex far away, which prepareMesh
+// drops, must not make the frame below too coarse for the mesh.
+Box usedBox(const TriangleMesh& mesh) {
+  Box box;
+  const glm::dvec3* positions = mesh.positions.data();  // a local: box stays in registers
+  for (const auto& t : mesh.triangles) {
+    for (uint32_t v : t) box.include(positions[v]);
+  }
+  return box;
+}
+
+// Positions relative to the centre of the box around the mesh's triangles, scaled by a power
+// of two that brings its largest side into [1, 2): products of three such coordinates
+// (volumes, the cross products of ray tests) neither overflow nor underflow for any finite
+// mesh, and a mesh far from the origin keeps its precision. Scaling by a power of two is exact, so
+// `edge` is the scaled difference of the original positions to the bit whenever that difference is
+// neither infinite nor subnormal: exact zero tests and areas agree with an unscaled computation.
+class LocalFrame {
+ public:
+  explicit LocalFrame(const TriangleMesh& mesh) {
+    const auto [lo, hi] = usedBox(mesh);
+    const glm::dvec3 halfSide = hi * 0.5 - lo * 0.5;
+    const double half = std::max({halfSide.x, halfSide.y, halfSide.z});
+    if (!(half > 0.0 && half < std::numeric_limits<double>::infinity())) return;  // no size
+    exponent_ = std::max(std::ilogb(half) + 1, -1022);  // 2^-exponent_ stays finite
+    scale_ = std::ldexp(1.0, -exponent_);
+    centre_ = (lo * 0.5 + hi * 0.5) * scale_;
+  }
+
+  glm::dvec3 local(const glm::dvec3& p) const { return p * scale_ - centre_; }
+  glm::dvec3 edge(const glm::dvec3& from, const glm::dvec3& to) const {
+    return to * scale_ - from * scale_;
+  }
+  double areaToWorld(double area) const { return std::ldexp(area, 2 * exponent_); }
+  double volumeToWorld(double volume) const { return std::ldexp(volume, 3 * exponent_); }
+
+ private:
+  int exponent_ = 0;
+  double scale_ = 1.0;      // 2^-exponent_
+  glm::dvec3 centre_{0.0};  // scaled
+};
+
+// The cross product of a triangle's edges from its first corner, in the frame's scale.
+glm::dvec3 cornerCross(const TriangleMesh& mesh, const LocalFrame& frame,
+                       const std::array<uint32_t, 3>& t) {
   const glm::dvec3& a = mesh.positions[t[0]];
-  return glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
+  return glm::cross(frame.edge(a, mesh.positions[t[1]]), frame.edge(a, mesh.positions[t[2]]));
 }
 
 bool isZero(const glm::dvec3& v) {
   return v.x == 0.0 && v.y == 0.0 && v.z == 0.0;
 }
 
-// Parity of crossings of the ray p + s*dir (s > 0) with the given triangles.
-bool oddCrossings(const TriangleMesh& mesh, const std::vector<uint32_t>& triangles,
-                  const glm::dvec3& p, const glm::dvec3& dir) {
+// Parity of crossings of the ray p + s*dir (s > 0) with the given triangles; p in the frame.
+bool oddCrossings(const TriangleMesh& mesh, const LocalFrame& frame,
+                  const std::vector<uint32_t>& triangles, const glm::dvec3& p,
+                  const glm::dvec3& dir) {
   bool odd = false;
   for (uint32_t t : triangles) {
     const auto& tri = mesh.triangles[t];
-    const glm::dvec3& a = mesh.positions[tri[0]];
-    const glm::dvec3 e1 = mesh.positions[tri[1]] - a;
-    const glm::dvec3 e2 = mesh.positions[tri[2]] - a;
+    const glm::dvec3& corner = mesh.positions[tri[0]];
+    const glm::dvec3 a = frame.local(corner);
+    const glm::dvec3 e1 = frame.edge(corner, mesh.positions[tri[1]]);
+    const glm::dvec3 e2 = frame.edge(corner, mesh.positions[tri[2]]);
     const glm::dvec3 h = glm::cross(dir, e2);
     const double det = glm::dot(e1, h);
     if (det == 0.0) continue;
@@ -158,16 +220,16 @@ bool oddCrossings(const TriangleMesh& mesh, const std::vector<uint32_t>& triangl
 }
 
 // Point-in-closed-shell by ray parity, majority of three directions with irrational-looking
-// components so that rays rarely graze an edge or vertex.
-bool insideShell(const TriangleMesh& mesh, const std::vector<uint32_t>& triangles,
-                 const glm::dvec3& p) {
+// components so that rays rarely graze an edge or vertex; p in the frame.
+bool insideShell(const TriangleMesh& mesh, const LocalFrame& frame,
+                 const std::vector<uint32_t>& triangles, const glm::dvec3& p) {
   static const glm::dvec3 kDirections[3] = {
       glm::normalize(glm::dvec3(0.5773502691896258, 0.6180339887498949, 0.5345224838248488)),
       glm::normalize(glm::dvec3(-0.7071067811865476, 0.3183098861837907, 0.6324555320336759)),
       glm::normalize(glm::dvec3(0.2718281828459045, -0.8660254037844386, -0.4142135623730950)),
   };
   int votes = 0;
-  for (const glm::dvec3& dir : kDirections) votes += oddCrossings(mesh, triangles, p, dir);
+  for (const glm::dvec3& dir : kDirections) votes += oddCrossings(mesh, frame, triangles, p, dir);
   return votes >= 2;
 }
 
@@ -198,7 +260,41 @@ size_t weldInPlace(TriangleMesh& mesh) {
   return merged;
 }
 
+// Degenerate triangles (a repeated vertex through `canonical`, or zero area), the volume, the
+// area and the smallest triangle's area, into c.
+void measureTriangles(const TriangleMesh& mesh, const std::vector<uint32_t>& canonical,
+                      MeshCheck& c) {
+  const LocalFrame frame(mesh);
+  double smallest = std::numeric_limits<double>::infinity();
+  double twiceArea = 0.0;
+  double sixVolume = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 n = cornerCross(mesh, frame, t);
+    const uint32_t a = canonical[t[0]], b = canonical[t[1]], d = canonical[t[2]];
+    if (a == b || b == d || a == d || isZero(n)) ++c.degenerateTriangles;
+    const double length = glm::length(n);
+    smallest = std::min(smallest, 0.5 * length);
+    twiceArea += length;
+    // Six times the signed volume of the tetrahedron of the triangle and the frame's centre:
+    // a . (b x c) = a . ((b - a) x (c - a)) about that centre.
+    sixVolume += glm::dot(frame.local(mesh.positions[t[0]]), n);
+  }
+  c.smallestTriangleArea = mesh.triangles.empty() ? 0.0 : frame.areaToWorld(smallest);
+  c.area = frame.areaToWorld(twiceArea * 0.5);
+  c.volume = frame.volumeToWorld(sixVolume / 6.0);
+}
+
 }  // namespace
+
+double largestExtent(const std::vector<glm::dvec3>& positions) {
+  Box box;
+  for (const glm::dvec3& p : positions) box.include(p);
+  return box.largestSide();
+}
+
+double largestUsedExtent(const TriangleMesh& mesh) {
+  return usedBox(mesh).largestSide();
+}
 
 MeshCheck checkMesh(const TriangleMesh& mesh) {
   MeshCheck c;
@@ -208,16 +304,7 @@ MeshCheck checkMesh(const TriangleMesh& mesh) {
     c.nonFiniteCoordinates += !std::isfinite(p.x) + !std::isfinite(p.y) + !std::isfinite(p.z);
 
   const std::vector<uint32_t> canonical = canonicalVertices(mesh.positions);
-  double smallest = std::numeric_limits<double>::infinity();
-  for (const auto& t : mesh.triangles) {
-    const glm::dvec3 n = cornerCross(mesh, t);
-    const uint32_t a = canonical[t[0]], b = canonical[t[1]], d = canonical[t[2]];
-    if (a == b || b == d || a == d || isZero(n)) ++c.degenerateTriangles;
-    smallest = std::min(smallest, 0.5 * glm::length(n));
-  }
-  c.smallestTriangleArea = mesh.triangles.empty() ? 0.0 : smallest;
-  c.volume = signedVolume(mesh);
-  c.area = surfaceArea(mesh);
+  measureTriangles(mesh, canonical, c);
 
   const std::vector<HalfEdge> edges = sortedHalfEdges(mesh.triangles, &canonical);
   UnionFind components(mesh.triangles.size());
@@ -276,49 +363,60 @@ size_t weldIdenticalPositions(TriangleMesh& mesh) {
   return merged;
 }
 
-PrepareReport prepareMesh(TriangleMesh& mesh) {
-  PrepareReport report;
-  report.weldedVertices = weldInPlace(mesh);
+namespace {
 
-  // Degenerate triangles: a repeated index or an exactly zero cross product.
-  {
-    size_t kept = 0;
-    for (const auto& t : mesh.triangles) {
-      const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-      if (repeated || isZero(cornerCross(mesh, t))) continue;
-      mesh.triangles[kept++] = t;
-    }
-    report.removedDegenerate = mesh.triangles.size() - kept;
-    mesh.triangles.resize(kept);
+// Drops triangles with a repeated index or an exactly zero cross product; returns how many.
+size_t removeDegenerateTriangles(TriangleMesh& mesh, const LocalFrame& frame) {
+  size_t kept = 0;
+  for (const auto& t : mesh.triangles) {
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if (repeated || isZero(cornerCross(mesh, frame, t))) continue;
+    mesh.triangles[kept++] = t;
   }
+  const size_t removed = mesh.triangles.size() - kept;
+  mesh.triangles.resize(kept);
+  return removed;
+}
 
-  // Manifold neighbours: neighbour[3t + k] is the triangle across the edge leaving corner k,
-  // sameWay[3t + k] whether it traverses that edge in the same direction.
-  const size_t triangleCount = mesh.triangles.size();
-  std::vector<uint32_t> neighbour(triangleCount * 3, kNone);
-  std::vector<uint8_t> sameWay(triangleCount * 3, 0);
-  {
-    const std::vector<HalfEdge> edges = sortedHalfEdges(mesh.triangles, nullptr);
-    forEachEdge(edges, [&](size_t begin, size_t end) {
-      if (end - begin != 2) return;
-      const HalfEdge& x = edges[begin];
-      const HalfEdge& y = edges[begin + 1];
-      const bool same = x.forward == y.forward;
-      neighbour[3 * x.triangle + x.corner] = y.triangle;
-      neighbour[3 * y.triangle + y.corner] = x.triangle;
-      sameWay[3 * x.triangle + x.corner] = same;
-      sameWay[3 * y.triangle + y.corner] = same;
-    });
-  }
+// Neighbours across manifold edges: neighbour[3t + k] is the triangle across the edge leaving
+// corner k of triangle t (kNone unless exactly two triangles share that edge), sameWay[3t + k]
+// whether that triangle traverses the edge in the same direction.
+struct Adjacency {
+  std::vector<uint32_t> neighbour;
+  std::vector<uint8_t> sameWay;
+};
 
-  // Shells by breadth-first search over manifold edges; flip[t] makes neighbours agree.
-  struct Shell {
-    std::vector<uint32_t> triangles;
-    bool orientable = true;
-    bool closed = true;
-  };
+Adjacency manifoldAdjacency(const TriangleMesh& mesh) {
+  Adjacency adjacency;
+  adjacency.neighbour.assign(mesh.triangles.size() * 3, kNone);
+  adjacency.sameWay.assign(mesh.triangles.size() * 3, 0);
+  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh.triangles, nullptr);
+  forEachEdge(edges, [&](size_t begin, size_t end) {
+    if (end - begin != 2) return;
+    const HalfEdge& x = edges[begin];
+    const HalfEdge& y = edges[begin + 1];
+    const bool same = x.forward == y.forward;
+    adjacency.neighbour[3 * x.triangle + x.corner] = y.triangle;
+    adjacency.neighbour[3 * y.triangle + y.corner] = x.triangle;
+    adjacency.sameWay[3 * x.triangle + x.corner] = same;
+    adjacency.sameWay[3 * y.triangle + y.corner] = same;
+  });
+  return adjacency;
+}
+
+// Triangles connected through manifold edges.
+struct Shell {
+  std::vector<uint32_t> triangles;
+  bool orientable = true;
+  bool closed = true;
+};
+
+// Shells by breadth-first search over manifold edges. flip (one entry per triangle) marks the
+// triangles to flip so that neighbours agree within each orientable shell.
+std::vector<Shell> findShells(const Adjacency& adjacency, std::vector<uint8_t>& flip) {
+  const size_t triangleCount = adjacency.neighbour.size() / 3;
   std::vector<Shell> shells;
-  std::vector<uint8_t> flip(triangleCount, 0);
+  flip.assign(triangleCount, 0);
   std::vector<uint8_t> visited(triangleCount, 0);
   std::vector<uint32_t> queue;
   for (uint32_t start = 0; start < triangleCount; ++start) {
@@ -330,12 +428,12 @@ PrepareReport prepareMesh(TriangleMesh& mesh) {
       const uint32_t t = queue[head];
       shell.triangles.push_back(t);
       for (int k = 0; k < 3; ++k) {
-        const uint32_t n = neighbour[3 * t + k];
+        const uint32_t n = adjacency.neighbour[3 * t + k];
         if (n == kNone) {
           shell.closed = false;
           continue;
         }
-        const uint8_t wanted = flip[t] ^ sameWay[3 * t + k];
+        const uint8_t wanted = flip[t] ^ adjacency.sameWay[3 * t + k];
         if (!visited[n]) {
           visited[n] = 1;
           flip[n] = wanted;
@@ -347,60 +445,110 @@ PrepareReport prepareMesh(TriangleMesh& mesh) {
     }
     shells.push_back(std::move(shell));
   }
+  return shells;
+}
 
-  // Flip the minority of each orientable shell so that it agrees with the majority.
+// Flips the minority of each orientable shell so that it agrees with the majority; returns how
+// many triangles were flipped.
+size_t orientShellsConsistently(TriangleMesh& mesh, const std::vector<Shell>& shells,
+                                const std::vector<uint8_t>& flip) {
+  size_t reoriented = 0;
   for (const Shell& shell : shells) {
     if (!shell.orientable) continue;
     size_t flipped = 0;
     for (uint32_t t : shell.triangles) flipped += flip[t];
     const bool invert = 2 * flipped > shell.triangles.size();
-    report.reorientedTriangles += invert ? shell.triangles.size() - flipped : flipped;
+    reoriented += invert ? shell.triangles.size() - flipped : flipped;
     for (uint32_t t : shell.triangles) {
       if (flip[t] != invert) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
     }
   }
+  return reoriented;
+}
 
-  // Outward: a shell nested in an even number of closed shells has positive volume, in an odd
-  // number (a cavity) negative.
-  std::vector<double> volume(shells.size(), 0.0);
-  std::vector<Bounds> bounds(shells.size());
-  std::vector<glm::dvec3> probe(shells.size());
-  for (size_t s = 0; s < shells.size(); ++s) {
-    double largest = -1.0;
-    for (uint32_t t : shells[s].triangles) {
-      const auto& tri = mesh.triangles[t];
-      const glm::dvec3& a = mesh.positions[tri[0]];
-      const glm::dvec3& b = mesh.positions[tri[1]];
-      const glm::dvec3& c = mesh.positions[tri[2]];
-      volume[s] += glm::dot(a, glm::cross(b, c)) / 6.0;
-      bounds[s].include(a);
-      bounds[s].include(b);
-      bounds[s].include(c);
-      const double area = glm::length(glm::cross(b - a, c - a));
-      if (area > largest) {
-        largest = area;
-        probe[s] = (a + b + c) / 3.0;  // a point on the shell, away from its edges
-      }
+// Where a shell lies, in the frame: six times its signed volume, its bounds, and a point on it
+// away from its edges (the centroid of its largest triangle).
+struct ShellPlacement {
+  double sixVolume = 0.0;
+  Bounds bounds;
+  glm::dvec3 probe{0.0};
+};
+
+ShellPlacement placeShell(const TriangleMesh& mesh, const LocalFrame& frame, const Shell& shell) {
+  ShellPlacement placement;
+  Box world;
+  double largest = -1.0;
+  for (uint32_t t : shell.triangles) {
+    const auto& tri = mesh.triangles[t];
+    const glm::dvec3& corner = mesh.positions[tri[0]];
+    const glm::dvec3 e1 = frame.edge(corner, mesh.positions[tri[1]]);
+    const glm::dvec3 e2 = frame.edge(corner, mesh.positions[tri[2]]);
+    const glm::dvec3 n = glm::cross(e1, e2);
+    const glm::dvec3 a = frame.local(corner);
+    placement.sixVolume += glm::dot(a, n);  // a . (b x c) = a . ((b - a) x (c - a))
+    world.include(corner);
+    world.include(mesh.positions[tri[1]]);
+    world.include(mesh.positions[tri[2]]);
+    const double area = glm::length(n);
+    if (area > largest) {
+      largest = area;
+      placement.probe = a + (e1 + e2) / 3.0;
     }
   }
-  for (size_t s = 0; s < shells.size(); ++s) {
-    if (!shells[s].orientable || volume[s] == 0.0) continue;
-    int depth = 0;
-    for (size_t o = 0; o < shells.size() && shells.size() > 1; ++o) {
-      if (o == s || !shells[o].closed) continue;
-      const glm::dvec3& p = probe[s];
-      const Bounds& b = bounds[o];
-      if (p.x < b.min.x || p.y < b.min.y || p.z < b.min.z || p.x > b.max.x || p.y > b.max.y ||
-          p.z > b.max.z)
-        continue;
-      depth += insideShell(mesh, shells[o].triangles, p);
+  // The frame's map is monotonic: the box of the local corners.
+  placement.bounds.min = frame.local(world.lo);
+  placement.bounds.max = frame.local(world.hi);
+  return placement;
+}
+
+bool contains(const Bounds& b, const glm::dvec3& p) {
+  return p.x >= b.min.x && p.y >= b.min.y && p.z >= b.min.z && p.x <= b.max.x && p.y <= b.max.y &&
+         p.z <= b.max.z;
+}
+
+// How many closed shells other than shell s contain its probe point.
+int nestingDepth(const TriangleMesh& mesh, const LocalFrame& frame,
+                 const std::vector<Shell>& shells, const std::vector<ShellPlacement>& placements,
+                 size_t s) {
+  int depth = 0;
+  for (size_t o = 0; o < shells.size() && shells.size() > 1; ++o) {
+    if (o == s || !shells[o].closed || !contains(placements[o].bounds, placements[s].probe)) {
+      continue;
     }
-    const bool wantPositive = depth % 2 == 0;
-    if ((volume[s] > 0.0) == wantPositive) continue;
-    report.flippedInsideOut = true;
+    depth += insideShell(mesh, frame, shells[o].triangles, placements[s].probe);
+  }
+  return depth;
+}
+
+// Outward: a shell nested in an even number of closed shells gets a positive volume, in an odd
+// number (a cavity) a negative one. Returns whether any shell was flipped.
+bool orientShellsOutward(TriangleMesh& mesh, const LocalFrame& frame,
+                         const std::vector<Shell>& shells) {
+  std::vector<ShellPlacement> placements;
+  placements.reserve(shells.size());
+  for (const Shell& shell : shells) placements.push_back(placeShell(mesh, frame, shell));
+  bool flippedAny = false;
+  for (size_t s = 0; s < shells.size(); ++s) {
+    if (!shells[s].orientable || placements[s].sixVolume == 0.0) continue;
+    const bool wantPositive = nestingDepth(mesh, frame, shells, placements, s) % 2 == 0;
+    if ((placements[s].sixVolume > 0.0) == wantPositive) continue;
+    flippedAny = true;
     for (uint32_t t : shells[s].triangles) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
   }
+  return flippedAny;
+}
 
+}  // namespace
+
+PrepareReport prepareMesh(TriangleMesh& mesh) {
+  PrepareReport report;
+  report.weldedVertices = weldInPlace(mesh);
+  const LocalFrame frame(mesh);
+  report.removedDegenerate = removeDegenerateTriangles(mesh, frame);
+  std::vector<uint8_t> flip;
+  const std::vector<Shell> shells = findShells(manifoldAdjacency(mesh), flip);
+  report.reorientedTriangles = orientShellsConsistently(mesh, shells, flip);
+  report.flippedInsideOut = orientShellsOutward(mesh, frame, shells);
   report.removedUnreferenced = dropUnreferenced(mesh);
   report.check = checkMesh(mesh);
   return report;

@@ -23,6 +23,9 @@ struct MeshCheck {
   double volume = 0.0;  // signed
   double area = 0.0;
   double smallestTriangleArea = 0.0;
+  // The three above are measured about the centre of the triangles' bounding box, so a mesh far
+  // from the origin loses no precision; a mesh more than kMaxMeasurableExtent across may measure
+  // +-inf, one less than kMinMeasurableExtent across 0.
 
   bool closed() const { return boundaryEdges == 0; }
   bool manifold() const { return nonManifoldEdges == 0; }
@@ -33,6 +36,19 @@ struct MeshCheck {
 };
 
 MeshCheck checkMesh(const TriangleMesh& mesh);
+
+// The largest and smallest span of coordinates whose volumes (up to span^3) and areas a double
+// holds without overflow or underflow: 2^340 (about 2.2e102) and 2^-340 (about 4.5e-103).
+// prepareMesh's orientation, degeneracy and nesting tests run in a frame where they neither
+// overflow nor underflow, whatever the (finite) coordinates.
+constexpr double kMaxMeasurableExtent = 0x1p340;
+constexpr double kMinMeasurableExtent = 0x1p-340;
+
+// The largest side of the axis-aligned box around the positions (largestExtent) or around the
+// vertices that the triangles use (largestUsedExtent: never larger, but slower), NaN
+// coordinates left out: 0 when there are none, +inf when the side exceeds a double.
+double largestExtent(const std::vector<glm::dvec3>& positions);
+double largestUsedExtent(const TriangleMesh& mesh);
 
 struct PrepareReport {
   size_t weldedVertices = 0;       // vertices merged into an identical one

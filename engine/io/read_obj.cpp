@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "engine/io/mesh_readers.h"
+#include "engine/io/reader_checks.h"
 
 namespace strata {
 namespace meshio {
@@ -33,134 +34,166 @@ struct PendingIndex {
   size_t line;
 };
 
+// One pass over the file's lines, one method per statement kind.
+class ObjParser {
+ public:
+  ObjParser(const std::string& name, MeshReadReport* report) : name_(name), report_(report) {}
+
+  TriangleMesh parse(const std::string& bytes) {
+    LineReader lines(bytes);
+    std::string_view line;
+    while (lines.next(line)) {
+      splitTokens(line, tokens_, /*hashComments=*/true);
+      if (!tokens_.empty()) readStatement(lines.lineNumber());
+    }
+    checkForwardIndices();
+    report_->fileVertices = mesh_.positions.size();
+    warnAboutIgnoredStatements();
+    return std::move(mesh_);
+  }
+
+ private:
+  void readStatement(size_t lineNo) {
+    const std::string_view keyword = tokens_[0];
+    if (keyword == "v") {
+      readVertex(lineNo);
+    } else if (keyword == "f" || keyword == "fo") {
+      readFace(lineNo);
+    } else if (keyword == "l" || keyword == "p") {
+      ++linesAndPoints_;
+    } else if (!isIgnoredStatement(keyword) && unknownCount_++ == 0) {
+      firstUnknown_ = quoted(keyword);
+      firstUnknownLine_ = lineNo;
+    }
+  }
+
+  // v x y z [w] [r g b ...]
+  void readVertex(size_t lineNo) {
+    if (tokens_.size() < 4) {
+      failAtLine(name_, lineNo,
+                 "vertex needs 3 coordinates, found " + std::to_string(tokens_.size() - 1));
+    }
+    glm::dvec3 p;
+    for (int k = 0; k < 3; ++k) p[k] = parseCoordinate(name_, lineNo, tokens_[1 + k]);
+    for (size_t k = 4; k < tokens_.size(); ++k) {  // w or colour components: numbers only
+      double ignored;
+      if (!parseNumber(tokens_[k], ignored)) {
+        failAtLine(name_, lineNo, "not a number: " + quoted(tokens_[k]));
+      }
+    }
+    if (mesh_.positions.size() >= std::numeric_limits<uint32_t>::max()) {
+      failAtLine(name_, lineNo, "too many vertices");
+    }
+    mesh_.positions.push_back(p);
+  }
+
+  // f ref ref ref ...: fan-triangulated from the first corner.
+  void readFace(size_t lineNo) {
+    if (tokens_.size() < 4) {
+      failAtLine(name_, lineNo,
+                 "face needs at least 3 vertices, found " + std::to_string(tokens_.size() - 1));
+    }
+    polygon_.clear();
+    for (size_t k = 1; k < tokens_.size(); ++k) {
+      polygon_.push_back(resolveIndex(parseReference(tokens_[k], lineNo), lineNo));
+    }
+    ++report_->fileFaces;
+    for (size_t k = 1; k + 1 < polygon_.size(); ++k) {
+      mesh_.triangles.push_back({polygon_[0], polygon_[k], polygon_[k + 1]});
+    }
+  }
+
+  // The vertex index of a reference i, i/t, i//n or i/t/n, as written (t and n must be empty or
+  // integers, and are ignored).
+  long long parseReference(std::string_view ref, size_t lineNo) const {
+    const size_t slash1 = ref.find('/');
+    long long index = 0;
+    if (!parseInteger(ref.substr(0, slash1), index)) {
+      failAtLine(name_, lineNo, "bad vertex reference " + quoted(ref));
+    }
+    if (slash1 == std::string_view::npos) return index;
+    const std::string_view rest = ref.substr(slash1 + 1);
+    const size_t slash2 = rest.find('/');
+    const std::string_view texPart = rest.substr(0, slash2);
+    const std::string_view normalPart =
+        slash2 == std::string_view::npos ? std::string_view() : rest.substr(slash2 + 1);
+    long long ignored;
+    const bool texOk = texPart.empty() || parseInteger(texPart, ignored);
+    const bool normalOk = slash2 == std::string_view::npos ||
+                          (!normalPart.empty() && parseInteger(normalPart, ignored));
+    if (!texOk || !normalOk || (slash2 == std::string_view::npos && texPart.empty())) {
+      failAtLine(name_, lineNo, "bad vertex reference " + quoted(ref));
+    }
+    return index;
+  }
+
+  // The 0-based vertex of a 1-based (or negative, relative) index. Positive indices past the
+  // vertices read so far are remembered for checkForwardIndices.
+  uint32_t resolveIndex(long long index, size_t lineNo) {
+    if (index == 0) {
+      failAtLine(name_, lineNo, "vertex index 0 is invalid (OBJ indices start at 1)");
+    }
+    const long long available = static_cast<long long>(mesh_.positions.size());
+    long long resolved;
+    if (index < 0) {
+      resolved = available + index;
+      if (resolved < 0) {
+        failAtLine(name_, lineNo,
+                   "negative vertex index " + std::to_string(index) + " is out of range: only " +
+                       std::to_string(available) + " vertices precede it");
+      }
+    } else {
+      resolved = index - 1;
+      if (resolved >= available) pending_.push_back({index, lineNo});
+      if (resolved >= static_cast<long long>(std::numeric_limits<uint32_t>::max())) {
+        failAtLine(name_, lineNo, "vertex index " + std::to_string(index) + " is out of range");
+      }
+    }
+    return static_cast<uint32_t>(resolved);
+  }
+
+  void checkForwardIndices() const {
+    const long long total = static_cast<long long>(mesh_.positions.size());
+    for (const PendingIndex& p : pending_) {
+      if (p.index > total) {
+        failAtLine(name_, p.line,
+                   "vertex index " + std::to_string(p.index) + " is out of range: the file has " +
+                       std::to_string(total) + " vertices");
+      }
+    }
+  }
+
+  void warnAboutIgnoredStatements() {
+    if (linesAndPoints_ > 0) {
+      addWarning(report_, name_,
+                 "ignored " + std::to_string(linesAndPoints_) +
+                     " line/point elements ('l', 'p'): only faces make a solid");
+    }
+    if (unknownCount_ > 0) {
+      addWarning(report_, name_,
+                 "ignored " + std::to_string(unknownCount_) + " unknown statement(s), the first " +
+                     firstUnknown_ + " at line " + std::to_string(firstUnknownLine_));
+    }
+  }
+
+  const std::string& name_;
+  MeshReadReport* report_;
+  TriangleMesh mesh_;
+  std::vector<std::string_view> tokens_;  // of the current line
+  std::vector<uint32_t> polygon_;         // of the current face, resolved
+  std::vector<PendingIndex> pending_;
+  size_t linesAndPoints_ = 0;
+  size_t unknownCount_ = 0;
+  std::string firstUnknown_;
+  size_t firstUnknownLine_ = 0;
+};
+
 }  // namespace
 
 TriangleMesh parseObj(const std::string& name, const std::string& bytes, MeshReadReport* report) {
-  TriangleMesh mesh;
-  LineReader lines(bytes);
-  std::vector<std::string_view> tokens;
-  std::vector<uint32_t> polygon;
-  std::vector<PendingIndex> pending;
-  size_t linesAndPoints = 0;
-  size_t unknownCount = 0;
-  std::string firstUnknown;
-  size_t firstUnknownLine = 0;
-
-  std::string_view line;
-  while (lines.next(line)) {
-    const size_t lineNo = lines.lineNumber();
-    splitTokens(line, tokens, /*hashComments=*/true);
-    if (tokens.empty()) continue;
-    const std::string_view keyword = tokens[0];
-
-    if (keyword == "v") {
-      if (tokens.size() < 4) {
-        failAtLine(name, lineNo,
-                   "vertex needs 3 coordinates, found " + std::to_string(tokens.size() - 1));
-      }
-      glm::dvec3 p;
-      for (int k = 0; k < 3; ++k) p[k] = parseCoordinate(name, lineNo, tokens[1 + k]);
-      for (size_t k = 4; k < tokens.size(); ++k) {  // w or colour components: numbers only
-        double ignored;
-        if (!parseNumber(tokens[k], ignored)) {
-          failAtLine(name, lineNo, "not a number: " + quoted(tokens[k]));
-        }
-      }
-      if (mesh.positions.size() >= std::numeric_limits<uint32_t>::max()) {
-        failAtLine(name, lineNo, "too many vertices");
-      }
-      mesh.positions.push_back(p);
-      continue;
-    }
-
-    if (keyword == "f" || keyword == "fo") {
-      if (tokens.size() < 4) {
-        failAtLine(name, lineNo,
-                   "face needs at least 3 vertices, found " + std::to_string(tokens.size() - 1));
-      }
-      polygon.clear();
-      const long long available = static_cast<long long>(mesh.positions.size());
-      for (size_t k = 1; k < tokens.size(); ++k) {
-        const std::string_view ref = tokens[k];
-        const size_t slash1 = ref.find('/');
-        const std::string_view vertexPart = ref.substr(0, slash1);
-        long long index = 0;
-        if (!parseInteger(vertexPart, index)) {
-          failAtLine(name, lineNo, "bad vertex reference " + quoted(ref));
-        }
-        if (slash1 != std::string_view::npos) {  // t and n parts: empty or an integer
-          std::string_view rest = ref.substr(slash1 + 1);
-          const size_t slash2 = rest.find('/');
-          const std::string_view texPart = rest.substr(0, slash2);
-          const std::string_view normalPart =
-              slash2 == std::string_view::npos ? std::string_view() : rest.substr(slash2 + 1);
-          long long ignored;
-          const bool texOk = texPart.empty() || parseInteger(texPart, ignored);
-          const bool normalOk = slash2 == std::string_view::npos ||
-                                (!normalPart.empty() && parseInteger(normalPart, ignored));
-          if (!texOk || !normalOk || (slash2 == std::string_view::npos && texPart.empty())) {
-            failAtLine(name, lineNo, "bad vertex reference " + quoted(ref));
-          }
-        }
-        if (index == 0) {
-          failAtLine(name, lineNo, "vertex index 0 is invalid (OBJ indices start at 1)");
-        }
-        long long resolved;
-        if (index < 0) {
-          resolved = available + index;
-          if (resolved < 0) {
-            failAtLine(name, lineNo,
-                       "negative vertex index " + std::to_string(index) +
-                           " is out of range: only " + std::to_string(available) +
-                           " vertices precede it");
-          }
-        } else {
-          resolved = index - 1;
-          if (resolved >= available) pending.push_back({index, lineNo});
-          if (resolved >= static_cast<long long>(std::numeric_limits<uint32_t>::max())) {
-            failAtLine(name, lineNo, "vertex index " + std::to_string(index) + " is out of range");
-          }
-        }
-        polygon.push_back(static_cast<uint32_t>(resolved));
-      }
-      ++report->fileFaces;
-      for (size_t k = 1; k + 1 < polygon.size(); ++k) {
-        mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
-      }
-      continue;
-    }
-
-    if (keyword == "l" || keyword == "p") {
-      ++linesAndPoints;
-      continue;
-    }
-    if (isIgnoredStatement(keyword)) continue;
-    if (unknownCount++ == 0) {
-      firstUnknown = quoted(keyword);
-      firstUnknownLine = lineNo;
-    }
-  }
-
-  const long long total = static_cast<long long>(mesh.positions.size());
-  for (const PendingIndex& p : pending) {
-    if (p.index > total) {
-      failAtLine(name, p.line,
-                 "vertex index " + std::to_string(p.index) + " is out of range: the file has " +
-                     std::to_string(total) + " vertices");
-    }
-  }
-
-  report->fileVertices = mesh.positions.size();
-  if (linesAndPoints > 0) {
-    addWarning(report, name,
-               "ignored " + std::to_string(linesAndPoints) +
-                   " line/point elements ('l', 'p'): only faces make a solid");
-  }
-  if (unknownCount > 0) {
-    addWarning(report, name,
-               "ignored " + std::to_string(unknownCount) + " unknown statement(s), the first " +
-                   firstUnknown + " at line " + std::to_string(firstUnknownLine));
-  }
+  const std::optional<std::string> lf = lfCopyIfCrOnlyLineEnds(bytes);
+  TriangleMesh mesh = ObjParser(name, report).parse(lf ? *lf : bytes);
+  requireMeasurableExtent(name, mesh);
   return mesh;
 }
 

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "engine/io/mesh_readers.h"
+#include "engine/io/reader_checks.h"
 
 namespace strata {
 namespace meshio {
@@ -83,87 +84,126 @@ struct Header {
   size_t lines = 0;      // header lines, so ascii bodies number on from here
 };
 
-Header parseHeader(const std::string& name, const std::string& bytes) {
-  Header header;
-  LineReader lines(bytes);
-  std::vector<std::string_view> tokens;
-  std::string_view line;
-  if (!lines.next(line) || line != "ply") failAtLine(name, 1, "not a PLY file (expected 'ply')");
-  bool haveFormat = false;
-  while (true) {
-    if (!lines.next(line)) {
-      failAtLine(name, lines.lineNumber() + 1,
+// The header's lines up to end_header, one method per keyword.
+class HeaderParser {
+ public:
+  HeaderParser(const std::string& name, const std::string& bytes) : name_(name), lines_(bytes) {}
+
+  Header parse() {
+    std::string_view line;
+    if (!lines_.next(line) || line != "ply")
+      failAtLine(name_, 1, "not a PLY file (expected 'ply')");
+    for (bool more = true; more;) more = readLine();
+    if (!haveFormat_) failAtLine(name_, 2, "missing format line");
+    for (const Element& e : header_.elements) {
+      if (e.count > 0 && e.properties.empty()) {
+        failAtLine(name_, e.headerLine, "element '" + e.name + "' has no properties");
+      }
+    }
+    return std::move(header_);
+  }
+
+ private:
+  // One header line; false once it was end_header.
+  bool readLine() {
+    std::string_view line;
+    if (!lines_.next(line)) {
+      failAtLine(name_, lines_.lineNumber() + 1,
                  "unexpected end of file in the header (no end_header)");
     }
-    const size_t lineNo = lines.lineNumber();
-    splitTokens(line, tokens, /*hashComments=*/false);
-    if (tokens.empty()) continue;
-    const std::string_view keyword = tokens[0];
-    if (keyword == "comment" || keyword == "obj_info") continue;
+    const size_t lineNo = lines_.lineNumber();
+    splitTokens(line, tokens_, /*hashComments=*/false);
+    if (tokens_.empty()) return true;
+    const std::string_view keyword = tokens_[0];
+    if (keyword == "comment" || keyword == "obj_info") return true;
     if (keyword == "end_header") {
-      header.bodyStart = lines.byteOffset();
-      header.lines = lineNo;
-      break;
+      header_.bodyStart = lines_.byteOffset();
+      header_.lines = lineNo;
+      return false;
     }
     if (keyword == "format") {
-      if (tokens.size() != 3) failAtLine(name, lineNo, "format line needs a format and a version");
-      if (tokens[1] == "ascii") {
-        header.format = Format::Ascii;
-      } else if (tokens[1] == "binary_little_endian") {
-        header.format = Format::LittleEndian;
-      } else if (tokens[1] == "binary_big_endian") {
-        header.format = Format::BigEndian;
-      } else {
-        failAtLine(name, lineNo, "unknown format " + quoted(tokens[1]));
-      }
-      if (tokens[2] != "1.0" && tokens[2] != "1") {
-        failAtLine(name, lineNo, "unsupported PLY version " + quoted(tokens[2]));
-      }
-      haveFormat = true;
+      readFormat(lineNo);
     } else if (keyword == "element") {
-      long long count = 0;
-      if (tokens.size() != 3 || !parseInteger(tokens[2], count) || count < 0) {
-        failAtLine(name, lineNo, "element line needs a name and a non-negative count");
-      }
-      Element e;
-      e.name = std::string(tokens[1]);
-      e.count = static_cast<uint64_t>(count);
-      e.headerLine = lineNo;
-      header.elements.push_back(std::move(e));
+      readElement(lineNo);
     } else if (keyword == "property") {
-      if (header.elements.empty()) failAtLine(name, lineNo, "property before any element");
-      Property p;
-      if (tokens.size() == 5 && tokens[1] == "list") {
-        p.isList = true;
-        if (!typeFromName(tokens[2], p.countType) || !isInteger(p.countType)) {
-          failAtLine(name, lineNo,
-                     "list count type must be an integer type, found " + quoted(tokens[2]));
-        }
-        if (!typeFromName(tokens[3], p.type)) {
-          failAtLine(name, lineNo, "unknown property type " + quoted(tokens[3]));
-        }
-        p.name = std::string(tokens[4]);
-      } else if (tokens.size() == 3) {
-        if (!typeFromName(tokens[1], p.type)) {
-          failAtLine(name, lineNo, "unknown property type " + quoted(tokens[1]));
-        }
-        p.name = std::string(tokens[2]);
-      } else {
-        failAtLine(name, lineNo, "malformed property line");
-      }
-      header.elements.back().properties.push_back(std::move(p));
+      readProperty(lineNo);
     } else {
-      failAtLine(name, lineNo, "unknown header keyword " + quoted(keyword));
+      failAtLine(name_, lineNo, "unknown header keyword " + quoted(keyword));
     }
+    return true;
   }
-  if (!haveFormat) failAtLine(name, 2, "missing format line");
-  for (const Element& e : header.elements) {
-    if (e.count > 0 && e.properties.empty()) {
-      failAtLine(name, e.headerLine, "element '" + e.name + "' has no properties");
+
+  // format ascii|binary_little_endian|binary_big_endian 1.0
+  void readFormat(size_t lineNo) {
+    if (tokens_.size() != 3) failAtLine(name_, lineNo, "format line needs a format and a version");
+    if (tokens_[1] == "ascii") {
+      header_.format = Format::Ascii;
+    } else if (tokens_[1] == "binary_little_endian") {
+      header_.format = Format::LittleEndian;
+    } else if (tokens_[1] == "binary_big_endian") {
+      header_.format = Format::BigEndian;
+    } else {
+      failAtLine(name_, lineNo, "unknown format " + quoted(tokens_[1]));
     }
+    if (tokens_[2] != "1.0" && tokens_[2] != "1") {
+      failAtLine(name_, lineNo, "unsupported PLY version " + quoted(tokens_[2]));
+    }
+    haveFormat_ = true;
   }
-  return header;
-}
+
+  // element <name> <count>. The mesh's elements (vertex, face) may be declared only once.
+  void readElement(size_t lineNo) {
+    long long count = 0;
+    if (tokens_.size() != 3 || !parseInteger(tokens_[2], count) || count < 0) {
+      failAtLine(name_, lineNo, "element line needs a name and a non-negative count");
+    }
+    Element e;
+    e.name = std::string(tokens_[1]);
+    e.count = static_cast<uint64_t>(count);
+    e.headerLine = lineNo;
+    if (e.name == "vertex" || e.name == "face") {
+      for (const Element& earlier : header_.elements) {
+        if (earlier.name != e.name) continue;
+        failAtLine(name_, lineNo,
+                   "element '" + e.name + "' is declared twice (first at line " +
+                       std::to_string(earlier.headerLine) +
+                       "): which one holds the mesh is ambiguous");
+      }
+    }
+    header_.elements.push_back(std::move(e));
+  }
+
+  // property <type> <name>, or property list <count type> <item type> <name>
+  void readProperty(size_t lineNo) {
+    if (header_.elements.empty()) failAtLine(name_, lineNo, "property before any element");
+    Property p;
+    if (tokens_.size() == 5 && tokens_[1] == "list") {
+      p.isList = true;
+      if (!typeFromName(tokens_[2], p.countType) || !isInteger(p.countType)) {
+        failAtLine(name_, lineNo,
+                   "list count type must be an integer type, found " + quoted(tokens_[2]));
+      }
+      if (!typeFromName(tokens_[3], p.type)) {
+        failAtLine(name_, lineNo, "unknown property type " + quoted(tokens_[3]));
+      }
+      p.name = std::string(tokens_[4]);
+    } else if (tokens_.size() == 3) {
+      if (!typeFromName(tokens_[1], p.type)) {
+        failAtLine(name_, lineNo, "unknown property type " + quoted(tokens_[1]));
+      }
+      p.name = std::string(tokens_[2]);
+    } else {
+      failAtLine(name_, lineNo, "malformed property line");
+    }
+    header_.elements.back().properties.push_back(std::move(p));
+  }
+
+  const std::string& name_;
+  LineReader lines_;
+  std::vector<std::string_view> tokens_;  // of the current line
+  Header header_;
+  bool haveFormat_ = false;
+};
 
 // Where the geometry lives in the element list.
 struct Layout {
@@ -366,123 +406,167 @@ void parseBinaryBody(const std::string& name, const std::string& bytes, const He
 
 // ---- Ascii ----
 
-void parseAsciiBody(const std::string& name, const std::string& bytes, const Header& header,
-                    const Layout& layout, TriangleMesh& mesh) {
-  LineReader lines(bytes, header.bodyStart, header.lines);
-  std::vector<std::string_view> tokens;
-  std::vector<uint32_t> polygon;
-  std::string_view line;
-  for (const Element& e : header.elements) {
-    const bool isVertex = &e == layout.vertex;
-    const bool isFace = &e == layout.face;
-    if (isVertex) mesh.positions.reserve(std::min<uint64_t>(e.count, bytes.size() / 6 + 1));
-    for (uint64_t i = 0; i < e.count; ++i) {
-      do {
-        if (!lines.next(line)) {
-          failAtLine(name, lines.lineNumber() + 1,
-                     "unexpected end of file: expected " + std::to_string(e.count) + " '" + e.name +
-                         "' elements, found " + std::to_string(i) +
-                         " (truncated, or the header's counts are wrong)");
-        }
-        splitTokens(line, tokens, /*hashComments=*/false);
-      } while (tokens.empty());
-      const size_t lineNo = lines.lineNumber();
-      size_t t = 0;
-      auto nextToken = [&]() -> std::string_view {
-        if (t >= tokens.size()) {
-          failAtLine(name, lineNo,
-                     "too few values for element '" + e.name + "' " + std::to_string(i) +
-                         " (the header's counts may be wrong)");
-        }
-        return tokens[t++];
-      };
-      glm::dvec3 p(0.0);
-      for (int pi = 0; pi < static_cast<int>(e.properties.size()); ++pi) {
-        const Property& prop = e.properties[pi];
-        if (!prop.isList) {
-          const std::string_view token = nextToken();
-          if (isVertex && (pi == layout.x || pi == layout.y || pi == layout.z)) {
-            p[pi == layout.x ? 0 : pi == layout.y ? 1 : 2] = parseCoordinate(name, lineNo, token);
-          } else {
-            double ignored;
-            if (!parseNumber(token, ignored)) {
-              failAtLine(name, lineNo, "not a number: " + quoted(token));
-            }
-          }
-          continue;
-        }
-        const std::string_view countToken = nextToken();
-        long long n = 0;
-        if (!parseInteger(countToken, n) || n < 0) {
-          failAtLine(name, lineNo,
-                     "bad list length " + quoted(countToken) + " in element '" + e.name + "'");
-        }
-        if (static_cast<size_t>(n) > tokens.size() - t) {
-          failAtLine(name, lineNo,
-                     "list of " + std::to_string(n) + " values has only " +
-                         std::to_string(tokens.size() - t) + " on the line");
-        }
-        const bool indices = isFace && pi == layout.indices;
-        if (indices && n < 3) {
-          failAtLine(name, lineNo,
-                     "face " + std::to_string(i) + " has " + std::to_string(n) +
-                         " vertices, needs at least 3");
-        }
-        polygon.clear();
-        for (long long k = 0; k < n; ++k) {
-          const std::string_view token = nextToken();
-          if (!indices) {
-            double ignored;
-            if (!parseNumber(token, ignored))
-              failAtLine(name, lineNo, "not a number: " + quoted(token));
-            continue;
-          }
-          long long index = 0;
-          if (!parseInteger(token, index)) {
-            failAtLine(name, lineNo, "bad vertex index " + quoted(token));
-          }
-          if (index < 0 || static_cast<uint64_t>(index) >= layout.vertex->count) {
-            failAtLine(name, lineNo,
-                       "vertex index " + std::to_string(index) + " is out of range: the file has " +
-                           std::to_string(layout.vertex->count) + " vertices");
-          }
-          polygon.push_back(static_cast<uint32_t>(index));
-        }
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) {
-          mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
-        }
+// One element instance per line, each property's values in the order the header declares
+// them; the vertex's x, y, z and the face's index list go into the mesh.
+class AsciiBodyParser {
+ public:
+  AsciiBodyParser(const std::string& name, const std::string& bytes, const Header& header,
+                  const Layout& layout, TriangleMesh& mesh)
+      : name_(name),
+        bytes_(bytes),
+        header_(header),
+        layout_(layout),
+        mesh_(mesh),
+        lines_(bytes, header.bodyStart, header.lines) {}
+
+  void parse() {
+    for (const Element& e : header_.elements) {
+      if (&e == layout_.vertex) {
+        mesh_.positions.reserve(std::min<uint64_t>(e.count, bytes_.size() / 6 + 1));
       }
-      if (t != tokens.size()) {
-        failAtLine(name, lineNo,
-                   "element '" + e.name + "' " + std::to_string(i) + " has " +
-                       std::to_string(tokens.size()) + " values, expected " + std::to_string(t) +
-                       " (the header's counts may be wrong)");
+      for (uint64_t i = 0; i < e.count; ++i) {
+        nextInstanceLine(e, i);
+        readInstance(e, i);
       }
-      if (isVertex) mesh.positions.push_back(p);
+    }
+    std::string_view line;
+    while (lines_.next(line)) {
+      splitTokens(line, tokens_, /*hashComments=*/false);
+      if (!tokens_.empty()) {
+        failAtLine(name_, lines_.lineNumber(),
+                   "data after the last element (the header's counts disagree with the data)");
+      }
     }
   }
-  while (lines.next(line)) {
-    splitTokens(line, tokens, /*hashComments=*/false);
-    if (!tokens.empty()) {
-      failAtLine(name, lines.lineNumber(),
-                 "data after the last element (the header's counts disagree with the data)");
+
+ private:
+  // The next line with values, into tokens_ and lineNo_; instance i of element e is expected.
+  void nextInstanceLine(const Element& e, uint64_t i) {
+    std::string_view line;
+    do {
+      if (!lines_.next(line)) {
+        failAtLine(name_, lines_.lineNumber() + 1,
+                   "unexpected end of file: expected " + std::to_string(e.count) + " '" + e.name +
+                       "' elements, found " + std::to_string(i) +
+                       " (truncated, or the header's counts are wrong)");
+      }
+      splitTokens(line, tokens_, /*hashComments=*/false);
+    } while (tokens_.empty());
+    lineNo_ = lines_.lineNumber();
+    next_ = 0;
+  }
+
+  // The line's next value, of instance i of element e.
+  std::string_view nextToken(const Element& e, uint64_t i) {
+    if (next_ >= tokens_.size()) {
+      failAtLine(name_, lineNo_,
+                 "too few values for element '" + e.name + "' " + std::to_string(i) +
+                     " (the header's counts may be wrong)");
+    }
+    return tokens_[next_++];
+  }
+
+  void readInstance(const Element& e, uint64_t i) {
+    const bool isVertex = &e == layout_.vertex;
+    glm::dvec3 p(0.0);
+    for (int pi = 0; pi < static_cast<int>(e.properties.size()); ++pi) {
+      if (e.properties[pi].isList) {
+        readList(e, i, &e == layout_.face && pi == layout_.indices);
+        continue;
+      }
+      const std::string_view token = nextToken(e, i);
+      if (isVertex && (pi == layout_.x || pi == layout_.y || pi == layout_.z)) {
+        p[pi == layout_.x ? 0 : pi == layout_.y ? 1 : 2] = parseCoordinate(name_, lineNo_, token);
+      } else {
+        requireNumber(token);
+      }
+    }
+    if (next_ != tokens_.size()) {
+      failAtLine(name_, lineNo_,
+                 "element '" + e.name + "' " + std::to_string(i) + " has " +
+                     std::to_string(tokens_.size()) + " values, expected " + std::to_string(next_) +
+                     " (the header's counts may be wrong)");
+    }
+    if (isVertex) mesh_.positions.push_back(p);
+  }
+
+  // A list property: its length, then its values; `indices` when it is the face's index list,
+  // which is fan-triangulated into the mesh.
+  void readList(const Element& e, uint64_t i, bool indices) {
+    const std::string_view countToken = nextToken(e, i);
+    long long n = 0;
+    if (!parseInteger(countToken, n) || n < 0) {
+      failAtLine(name_, lineNo_,
+                 "bad list length " + quoted(countToken) + " in element '" + e.name + "'");
+    }
+    if (static_cast<size_t>(n) > tokens_.size() - next_) {
+      failAtLine(name_, lineNo_,
+                 "list of " + std::to_string(n) + " values has only " +
+                     std::to_string(tokens_.size() - next_) + " on the line");
+    }
+    if (!indices) {
+      for (long long k = 0; k < n; ++k) requireNumber(nextToken(e, i));
+      return;
+    }
+    if (n < 3) {
+      failAtLine(name_, lineNo_,
+                 "face " + std::to_string(i) + " has " + std::to_string(n) +
+                     " vertices, needs at least 3");
+    }
+    polygon_.clear();
+    for (long long k = 0; k < n; ++k) polygon_.push_back(readIndex(nextToken(e, i)));
+    for (size_t k = 1; k + 1 < polygon_.size(); ++k) {
+      mesh_.triangles.push_back({polygon_[0], polygon_[k], polygon_[k + 1]});
     }
   }
-}
+
+  uint32_t readIndex(std::string_view token) const {
+    long long index = 0;
+    if (!parseInteger(token, index))
+      failAtLine(name_, lineNo_, "bad vertex index " + quoted(token));
+    if (index < 0 || static_cast<uint64_t>(index) >= layout_.vertex->count) {
+      failAtLine(name_, lineNo_,
+                 "vertex index " + std::to_string(index) + " is out of range: the file has " +
+                     std::to_string(layout_.vertex->count) + " vertices");
+    }
+    return static_cast<uint32_t>(index);
+  }
+
+  void requireNumber(std::string_view token) const {
+    double ignored;
+    if (!parseNumber(token, ignored)) failAtLine(name_, lineNo_, "not a number: " + quoted(token));
+  }
+
+  const std::string& name_;
+  const std::string& bytes_;
+  const Header& header_;
+  const Layout& layout_;
+  TriangleMesh& mesh_;
+  LineReader lines_;
+  std::vector<std::string_view> tokens_;  // of the current line
+  size_t lineNo_ = 0;                     // of the current line
+  size_t next_ = 0;                       // the current line's next token
+  std::vector<uint32_t> polygon_;         // of the current face
+};
 
 }  // namespace
 
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report) {
-  const Header header = parseHeader(name, bytes);
+  // Text with classic Mac OS line ends is read from an LF copy of the same length: the header's
+  // byte offsets hold in the file too, from which a binary body is read as it is.
+  const std::optional<std::string> lf = lfCopyIfCrOnlyLineEnds(bytes);
+  const std::string& text = lf ? *lf : bytes;
+  const Header header = HeaderParser(name, text).parse();
   const Layout layout = findLayout(name, header);
   TriangleMesh mesh;
   if (header.format == Format::Ascii) {
-    parseAsciiBody(name, bytes, header, layout, mesh);
+    AsciiBodyParser(name, text, header, layout, mesh).parse();
   } else {
     parseBinaryBody(name, bytes, header, layout, mesh);
   }
   report->fileVertices = layout.vertex->count;
   report->fileFaces = layout.face->count;
+  requireMeasurableExtent(name, mesh);
   return mesh;
 }
 

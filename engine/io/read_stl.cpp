@@ -10,6 +10,7 @@
 
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_readers.h"
+#include "engine/io/reader_checks.h"
 
 namespace strata {
 namespace meshio {
@@ -84,17 +85,33 @@ TriangleMesh parseBinary(const std::string& name, const std::string& bytes,
   return mesh;
 }
 
-TriangleMesh parseAscii(const std::string& name, const std::string& bytes, MeshReadReport* report) {
-  enum class Expect { Solid, FacetOrEnd, OuterLoop, Vertex, EndFacet, AfterSolid };
-  TriangleMesh mesh;
-  LineReader lines(bytes);
-  std::vector<std::string_view> tokens;
-  std::vector<glm::dvec3> loop;
-  Expect expect = Expect::Solid;
-  size_t lastLine = 0;
+// solid / facet normal / outer loop / vertex x3 / endloop / endfacet / endsolid, as a state
+// machine over the file's lines: one method per expected keyword.
+class AsciiStlParser {
+ public:
+  AsciiStlParser(const std::string& name, MeshReadReport* report) : name_(name), report_(report) {}
 
-  auto expected = [&](Expect e) -> std::string {
-    switch (e) {
+  TriangleMesh parse(const std::string& bytes) {
+    LineReader lines(bytes);
+    std::string_view line;
+    size_t lastLine = 0;
+    while (lines.next(line)) {
+      lastLine = lines.lineNumber();
+      splitTokens(line, tokens_, /*hashComments=*/false);
+      if (!tokens_.empty()) readLine(lastLine);
+    }
+    if (expect_ != Expect::AfterSolid) {
+      failAtLine(name_, lastLine + 1,
+                 std::string("unexpected end of file (truncated?): expected ") + expected());
+    }
+    return std::move(mesh_);
+  }
+
+ private:
+  enum class Expect { Solid, FacetOrEnd, OuterLoop, Vertex, EndFacet, AfterSolid };
+
+  const char* expected() const {
+    switch (expect_) {
       case Expect::Solid:
         return "'solid'";
       case Expect::FacetOrEnd:
@@ -109,78 +126,85 @@ TriangleMesh parseAscii(const std::string& name, const std::string& bytes, MeshR
         return "'solid' or the end of the file";
     }
     return "";
-  };
+  }
 
-  std::string_view line;
-  while (lines.next(line)) {
-    const size_t lineNo = lines.lineNumber();
-    lastLine = lineNo;
-    splitTokens(line, tokens, /*hashComments=*/false);
-    if (tokens.empty()) continue;
-    const std::string_view keyword = tokens[0];
-    auto unexpected = [&]() {
-      failAtLine(name, lineNo, "expected " + expected(expect) + ", found " + quoted(keyword));
-    };
+  [[noreturn]] void unexpected(size_t lineNo) const {
+    failAtLine(name_, lineNo,
+               std::string("expected ") + expected() + ", found " + quoted(tokens_[0]));
+  }
 
-    switch (expect) {
+  bool keywordIs(const char* keyword) const { return equalsIgnoreCase(tokens_[0], keyword); }
+
+  void readLine(size_t lineNo) {
+    switch (expect_) {
       case Expect::Solid:
       case Expect::AfterSolid:
-        if (!equalsIgnoreCase(keyword, "solid")) unexpected();
-        expect = Expect::FacetOrEnd;
+        if (!keywordIs("solid")) unexpected(lineNo);
+        expect_ = Expect::FacetOrEnd;
         break;
       case Expect::FacetOrEnd:
-        if (equalsIgnoreCase(keyword, "endsolid")) {
-          expect = Expect::AfterSolid;
-        } else if (equalsIgnoreCase(keyword, "facet")) {
-          expect = Expect::OuterLoop;  // the normal is ignored: winding decides orientation
+        if (keywordIs("endsolid")) {
+          expect_ = Expect::AfterSolid;
+        } else if (keywordIs("facet")) {
+          expect_ = Expect::OuterLoop;  // the normal is ignored: winding decides orientation
         } else {
-          unexpected();
+          unexpected(lineNo);
         }
         break;
       case Expect::OuterLoop:
-        if (!(tokens.size() == 2 && equalsIgnoreCase(keyword, "outer") &&
-              equalsIgnoreCase(tokens[1], "loop")))
-          unexpected();
-        loop.clear();
-        expect = Expect::Vertex;
+        if (!(tokens_.size() == 2 && keywordIs("outer") && equalsIgnoreCase(tokens_[1], "loop"))) {
+          unexpected(lineNo);
+        }
+        loop_.clear();
+        expect_ = Expect::Vertex;
         break;
       case Expect::Vertex:
-        if (equalsIgnoreCase(keyword, "vertex")) {
-          if (tokens.size() != 4) {
-            failAtLine(name, lineNo,
-                       "vertex needs 3 coordinates, found " + std::to_string(tokens.size() - 1));
-          }
-          glm::dvec3 p;
-          for (int k = 0; k < 3; ++k) p[k] = parseCoordinate(name, lineNo, tokens[1 + k]);
-          loop.push_back(p);
-        } else if (equalsIgnoreCase(keyword, "endloop")) {
-          if (loop.size() < 3) {
-            failAtLine(name, lineNo,
-                       "facet has " + std::to_string(loop.size()) + " vertices, needs 3");
-          }
-          const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-          mesh.positions.insert(mesh.positions.end(), loop.begin(), loop.end());
-          for (uint32_t k = 1; k + 1 < loop.size(); ++k) {
-            mesh.triangles.push_back({base, base + k, base + k + 1});
-          }
-          ++report->fileFaces;
-          expect = Expect::EndFacet;
-        } else {
-          unexpected();
-        }
+        readVertexOrEndLoop(lineNo);
         break;
       case Expect::EndFacet:
-        if (!equalsIgnoreCase(keyword, "endfacet")) unexpected();
-        expect = Expect::FacetOrEnd;
+        if (!keywordIs("endfacet")) unexpected(lineNo);
+        expect_ = Expect::FacetOrEnd;
         break;
     }
   }
-  if (expect != Expect::AfterSolid) {
-    failAtLine(name, lastLine + 1,
-               "unexpected end of file (truncated?): expected " + expected(expect));
+
+  void readVertexOrEndLoop(size_t lineNo) {
+    if (keywordIs("vertex")) {
+      if (tokens_.size() != 4) {
+        failAtLine(name_, lineNo,
+                   "vertex needs 3 coordinates, found " + std::to_string(tokens_.size() - 1));
+      }
+      glm::dvec3 p;
+      for (int k = 0; k < 3; ++k) p[k] = parseCoordinate(name_, lineNo, tokens_[1 + k]);
+      loop_.push_back(p);
+    } else if (keywordIs("endloop")) {
+      addFacet(lineNo);
+      expect_ = Expect::EndFacet;
+    } else {
+      unexpected(lineNo);
+    }
   }
-  return mesh;
-}
+
+  // The loop's vertices as a facet, fan-triangulated from its first vertex.
+  void addFacet(size_t lineNo) {
+    if (loop_.size() < 3) {
+      failAtLine(name_, lineNo, "facet has " + std::to_string(loop_.size()) + " vertices, needs 3");
+    }
+    const uint32_t base = static_cast<uint32_t>(mesh_.positions.size());
+    mesh_.positions.insert(mesh_.positions.end(), loop_.begin(), loop_.end());
+    for (uint32_t k = 1; k + 1 < loop_.size(); ++k) {
+      mesh_.triangles.push_back({base, base + k, base + k + 1});
+    }
+    ++report_->fileFaces;
+  }
+
+  const std::string& name_;
+  MeshReadReport* report_;
+  Expect expect_ = Expect::Solid;
+  TriangleMesh mesh_;
+  std::vector<std::string_view> tokens_;  // of the current line
+  std::vector<glm::dvec3> loop_;          // of the current facet
+};
 
 }  // namespace
 
@@ -193,9 +217,16 @@ TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshRea
   } else {
     binary = !startsWithSolid(bytes);
   }
-  TriangleMesh mesh = binary ? parseBinary(name, bytes, report) : parseAscii(name, bytes, report);
+  TriangleMesh mesh;
+  if (binary) {
+    mesh = parseBinary(name, bytes, report);
+  } else {
+    const std::optional<std::string> lf = lfCopyIfCrOnlyLineEnds(bytes);
+    mesh = AsciiStlParser(name, report).parse(lf ? *lf : bytes);
+  }
   report->fileVertices = mesh.positions.size();
   weldIdenticalPositions(mesh);
+  requireMeasurableExtent(name, mesh);
   return mesh;
 }
 

@@ -140,9 +140,9 @@ TEST(MeshCheck, EdgesAreCountedAfterWeldingIdenticalPositions) {
 TEST(MeshCheck, CountsDegenerateAndNonFinite) {
   TriangleMesh m = cube();
   m.positions.push_back({2, 0, 0});
-  m.positions.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
-  m.triangles.push_back({0, 0, 1});  // repeated index
-  m.triangles.push_back({0, 1, 8});  // collinear corners
+  m.positions.push_back({std::numeric_limits<double>::quiet_NaN(), 6, 6});  // x left out
+  m.triangles.push_back({0, 0, 1});                                         // repeated index
+  m.triangles.push_back({0, 1, 8});                                         // collinear corners
   const MeshCheck c = checkMesh(m);
   EXPECT_EQ(c.degenerateTriangles, 2u);
   EXPECT_EQ(c.nonFiniteCoordinates, 1u);
@@ -270,6 +270,101 @@ TEST(MeshCheckPrepare, NonOrientableSurfaceIsLeftMisoriented) {
   EXPECT_GT(r.check.misorientedEdges, 0u);
   EXPECT_GT(r.check.boundaryEdges, 0u);
   EXPECT_EQ(r.reorientedTriangles, 0u);
+}
+
+// ---- Coordinates far from 1 and far from the origin ----
+
+TriangleMesh scaled(TriangleMesh m, double factor) {
+  for (auto& p : m.positions) p *= factor;
+  return m;
+}
+
+TEST(MeshCheckRange, LargestExtentOfAllOrOfTheUsedVertices) {
+  EXPECT_EQ(largestExtent({}), 0.0);
+  EXPECT_EQ(largestUsedExtent(TriangleMesh()), 0.0);
+  TriangleMesh m = cube(glm::dvec3(5.0), 2.0);
+  EXPECT_EQ(largestExtent(m.positions), 2.0);
+  EXPECT_EQ(largestUsedExtent(m), 2.0);
+  m.positions.push_back({1e300, 6, 6});  // used by no triangle
+  EXPECT_EQ(largestExtent(m.positions), 1e300);
+  EXPECT_EQ(largestUsedExtent(m), 2.0);
+  m.positions.push_back({std::numeric_limits<double>::quiet_NaN(), 6, 6});  // x left out
+  m.triangles.push_back({0, 1, 9});
+  EXPECT_EQ(largestUsedExtent(m), 2.0);
+  m.positions.push_back({-1e308, 0, 0});
+  m.positions.push_back({1e308, 0, 0});
+  m.triangles.push_back({0, 10, 11});
+  EXPECT_TRUE(std::isinf(largestUsedExtent(m)));
+}
+
+TEST(MeshCheckRange, StrayVertexFarAwayDoesNotSpoilOrientation) {
+  TriangleMesh m = inverted(cube());
+  m.positions.push_back({1e20, -1e20, 0});  // used by no triangle
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_EQ(r.removedUnreferenced, 1u);
+  EXPECT_EQ(r.check.volume, 1.0);
+}
+
+TEST(MeshCheckRange, HugeCubeIsNeitherFlippedNorDegenerate) {
+  // Its volume (1e600) and area do not fit a double: they are +inf, but the orientation and
+  // the degeneracy tests are right.
+  TriangleMesh m = cube(glm::dvec3(0.0), 1e200);
+  PrepareReport r = prepareMesh(m);
+  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_EQ(r.removedDegenerate, 0u);
+  EXPECT_TRUE(r.check.watertight());
+  EXPECT_EQ(r.check.degenerateTriangles, 0u);
+  EXPECT_EQ(r.check.volume, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(r.check.area, std::numeric_limits<double>::infinity());
+
+  m = inverted(cube(glm::dvec3(0.0), 1e200));
+  r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_NEAR(checkMesh(scaled(m, 1e-200)).volume, 1.0, 1e-12);
+}
+
+TEST(MeshCheckRange, TinyCubeIsNeitherFlippedNorDegenerate) {
+  // Its volume (1e-600) underflows to 0, but the orientation and degeneracy tests are right.
+  TriangleMesh m = cube(glm::dvec3(0.0), 1e-200);
+  PrepareReport r = prepareMesh(m);
+  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_EQ(r.removedDegenerate, 0u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_TRUE(r.check.watertight());
+  EXPECT_EQ(r.check.volume, 0.0);
+
+  m = inverted(cube(glm::dvec3(0.0), 1e-200));
+  r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_NEAR(checkMesh(scaled(m, 1e200)).volume, 1.0, 1e-12);
+
+  m = cube(glm::dvec3(0.0), 1e-200);
+  m.positions.push_back({0.5e-200, 0, 0});  // on the edge 0-1: still degenerate at this scale
+  m.triangles.push_back({0, 8, 1});
+  r = prepareMesh(m);
+  EXPECT_EQ(r.removedDegenerate, 1u);
+}
+
+TEST(MeshCheckRange, NestedShellsAtHugeScale) {
+  TriangleMesh m = inverted(cube(glm::dvec3(0.0), 4e200));  // outer shell inside out
+  append(m, cube(glm::dvec3(1e200), 2e200));                // cavity pointing outward
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_NEAR(checkMesh(scaled(m, 1e-200)).volume, 64.0 - 8.0, 1e-9);
+}
+
+TEST(MeshCheckRange, CubeFarFromTheOrigin) {
+  // About the origin, a unit cube at 1e15 sums terms of 1e45 to a volume of 1: noise.
+  const glm::dvec3 far(1e15, -3e15, 2e15);
+  EXPECT_EQ(checkMesh(cube(far)).volume, 1.0);
+  EXPECT_EQ(checkMesh(cube(far)).area, 6.0);
+  TriangleMesh m = cube(far);
+  EXPECT_FALSE(prepareMesh(m).flippedInsideOut);
+  m = inverted(cube(far));
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_EQ(r.check.volume, 1.0);
 }
 
 }  // namespace

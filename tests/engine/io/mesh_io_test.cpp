@@ -12,6 +12,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
+#include <utility>
 
 #include "engine/geometry/mesh_check.h"
 #include "engine/util/error.h"
@@ -54,14 +55,14 @@ std::initializer_list<int> allTriangles() {
   return all;
 }
 
-std::string cubeAsciiStl() {
+std::string cubeAsciiStl(double size = 1.0) {
   std::ostringstream s;
   s << "solid cube\n";
   for (const auto& t : kCubeTriangles) {
     s << "  facet normal 0 0 0\n    outer loop\n";
     for (int k = 0; k < 3; ++k) {
       const double* c = kCubeCorners[t[k]];
-      s << "      vertex " << c[0] << " " << c[1] << " " << c[2] << "\n";
+      s << "      vertex " << size * c[0] << " " << size * c[1] << " " << size * c[2] << "\n";
     }
     s << "    endloop\n  endfacet\n";
   }
@@ -114,10 +115,13 @@ std::string cubePlyHeader(const std::string& format, int vertexCount = 8,
   return s.str();
 }
 
-std::string cubeAsciiPly(int vertexCount = 8, const std::string& indexName = "vertex_indices") {
-  std::string s = cubePlyHeader("ascii", vertexCount, "float", indexName);
+std::string cubeAsciiPly(int vertexCount = 8, const std::string& indexName = "vertex_indices",
+                         double size = 1.0) {
+  std::string s = cubePlyHeader("ascii", vertexCount, size == 1.0 ? "float" : "double", indexName);
   std::ostringstream b;
-  for (const auto& c : kCubeCorners) b << c[0] << " " << c[1] << " " << c[2] << " 255\n";
+  for (const auto& c : kCubeCorners) {
+    b << size * c[0] << " " << size * c[1] << " " << size * c[2] << " 255\n";
+  }
   for (const auto& t : kCubeTriangles) b << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
   b << "2 0 1 7\n";
   return s + b.str();
@@ -154,10 +158,12 @@ std::string cubeBinaryPly(bool bigEndian, bool doubles = false, int vertexCount 
   return s;
 }
 
-std::string cubeOff(int vertexCount = 8, int faceCount = 12) {
+std::string cubeOff(int vertexCount = 8, int faceCount = 12, double size = 1.0) {
   std::ostringstream s;
   s << "OFF\n# a unit cube\n" << vertexCount << " " << faceCount << " 18\n";
-  for (const auto& c : kCubeCorners) s << c[0] << " " << c[1] << " " << c[2] << "\n";
+  for (const auto& c : kCubeCorners) {
+    s << size * c[0] << " " << size * c[1] << " " << size * c[2] << "\n";
+  }
   for (const auto& t : kCubeTriangles) {
     s << "3 " << t[0] << " " << t[1] << " " << t[2] << " 0.5 0.5 0.5\n";
   }
@@ -459,6 +465,15 @@ TEST(MeshIoPly, NaNCoordinate) {
   expectReadError("inf.ply", text, {"inf.ply: line 21:", "infinite"});
 }
 
+TEST(MeshIoPly, RepeatedVertexOrFaceElement) {
+  std::string text = cubeAsciiPly();
+  const size_t headerEnd = text.find("end_header");
+  expectReadError("twice.ply", std::string(text).insert(headerEnd, "element vertex 8\n"),
+                  {"twice.ply: line 14:", "element 'vertex' is declared twice (first at line 4)"});
+  expectReadError("twice.ply", text.insert(headerEnd, "element face 0\n"),
+                  {"twice.ply: line 14:", "element 'face' is declared twice (first at line 9)"});
+}
+
 // ---- OFF ----
 
 TEST(MeshIoOff, CountsLie) {
@@ -481,6 +496,122 @@ TEST(MeshIoOff, BadHeaderAndNaN) {
   std::string text = cubeOff();
   text.replace(text.find("\n1 1 1\n"), 7, "\n1 NaN 1\n");
   expectReadError("nan.off", text, {"nan.off: line 10:", "NaN"});
+}
+
+// ---- Classic Mac OS line ends (a lone CR) ----
+
+std::string crOnly(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', '\r');
+  return text;
+}
+
+TEST(MeshIoCrLineEnds, EveryTextFormatReads) {
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"cr.obj", cubeObj()},
+                                   {"cr.off", cubeOff()},
+                                   {"cr.stl", cubeAsciiStl()},
+                                   {"cr.ply", cubeAsciiPly()}}) {
+    MeshReadReport report;
+    expectUnitCube(readMeshBytes(name, crOnly(text), {}, &report));
+    EXPECT_TRUE(report.warnings.empty()) << name;
+  }
+}
+
+TEST(MeshIoCrLineEnds, BinaryPlyHeader) {
+  std::string bytes = cubeBinaryPly(false);
+  const size_t body = bytes.find("end_header\n") + 11;
+  bytes = crOnly(bytes.substr(0, body)) + bytes.substr(body);
+  expectUnitCube(readMeshBytes("cr.ply", bytes));
+  // A body whose first byte is LF: the header's last CR is still its line end (the first x is
+  // then a denormal float, next to 0).
+  bytes[body] = '\n';
+  expectUnitCube(readMeshBytes("cr.ply", bytes));
+}
+
+TEST(MeshIoCrLineEnds, ErrorsNameTheLine) {
+  expectReadError("cr.obj", crOnly("v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+                  {"cr.obj: line 2:", "NaN"});
+  std::string off = cubeOff();
+  off.replace(off.find("\n1 1 1\n"), 7, "\n1 NaN 1\n");
+  expectReadError("cr.off", crOnly(off), {"cr.off: line 10:", "NaN"});
+  expectReadError("cr.stl", crOnly("solid x\nfacet normal 0 0 1\nouter loop\nvertx 0 0 0\n"),
+                  {"cr.stl: line 4:", "expected 'vertex' or 'endloop'", "'vertx'"});
+  std::string ply = cubeAsciiPly();
+  ply.replace(ply.find("1 1 1 255"), 9, "1 inf 1 255");
+  expectReadError("cr.ply", crOnly(ply), {"cr.ply: line 21:", "infinite"});
+}
+
+TEST(MeshIoCrLineEnds, CrLfAndStrayCrAreUnchanged) {
+  std::string crlf;
+  for (char c : cubeObj()) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  expectUnitCube(readMeshBytes("crlf.obj", crlf));
+  expectReadError("crlf.obj", "v 0 0 0\r\nv 1 2 abc\r\n", {"crlf.obj: line 2:", "'abc'"});
+  // After an LF-ended first line, a CR is whitespace as before; "\r\r\n" is a CRLF line end.
+  std::string stray = "# cube\n" + cubeObj();
+  stray.replace(stray.find("v 0 0 0"), 7, "v 0\r0\r0");
+  expectUnitCube(readMeshBytes("stray.obj", stray));
+  expectReadError("stray.obj", "v 0 0 0\r\r\nv 1 2 abc\r\r\n", {"stray.obj: line 2:", "'abc'"});
+}
+
+// ---- Coordinates whose volume a double cannot hold ----
+
+// The cube of side `size` in every text format.
+std::vector<std::pair<std::string, std::string>> cubesOfSize(double size) {
+  return {{"cube.obj", cubeObj({}, -1, 0.0, size)},
+          {"cube.off", cubeOff(8, 12, size)},
+          {"cube.stl", cubeAsciiStl(size)},
+          {"cube.ply", cubeAsciiPly(8, "vertex_indices", size)}};
+}
+
+TEST(MeshIoRange, HugeMeshIsRefused) {
+  for (const auto& [name, text] : cubesOfSize(1e200)) {
+    expectReadError(name, text,
+                    {name + ": coordinates span 1e+200, more than 2.24e+102",
+                     "volume and area would overflow a double", "rescale the mesh"});
+  }
+}
+
+TEST(MeshIoRange, TinyMeshIsRefused) {
+  for (const auto& [name, text] : cubesOfSize(1e-200)) {
+    expectReadError(name, text,
+                    {name + ": coordinates span only 1e-200, less than 4.46e-103",
+                     "would underflow a double", "rescale the mesh"});
+  }
+}
+
+TEST(MeshIoRange, MeshesNearTheLimitsRead) {
+  for (const double size : {1e100, 1e-100}) {
+    for (const auto& [name, text] : cubesOfSize(size)) {
+      MeshReadReport report;
+      const MeshCheck c = checkMesh(readMeshBytes(name, text, {}, &report));
+      EXPECT_TRUE(report.warnings.empty()) << name << " " << size;
+      EXPECT_TRUE(c.watertight()) << name << " " << size;
+      EXPECT_NEAR(c.volume / (size * size * size), 1.0, 1e-12) << name << " " << size;
+      EXPECT_NEAR(c.area / (size * size), 6.0, 1e-12) << name << " " << size;
+    }
+  }
+}
+
+TEST(MeshIoRange, UnusedVertexOutOfRangeIsOnlyDropped) {
+  MeshReadReport report;
+  expectUnitCube(readMeshBytes("stray.obj", cubeObj() + "v 1e200 0 0\n", {}, &report));
+  EXPECT_TRUE(anyWarningContains(report, "dropped 1 vertex"));
+}
+
+TEST(MeshIoRange, MeshCollapsedFarFromTheOriginIsAPoint) {
+  // 1e300 + 1 == 1e300: the unit cube's corners are one point.
+  expectReadError("far.obj", cubeObj({}, -1, 1e300),
+                  {"far.obj: all vertices lie at one point (1e+300, 1e+300, 1e+300)",
+                   "the mesh has no size", "16 significant digits"});
+}
+
+TEST(MeshIoRange, DistantMeshReadsWithoutFalseFlips) {
+  // A unit cube 1e15 from the origin: volumes about the origin cancel to noise there.
+  MeshReadReport report;
+  const MeshCheck far = checkMesh(readMeshBytes("far.obj", cubeObj({}, -1, 1e15), {}, &report));
+  EXPECT_TRUE(report.warnings.empty());
+  EXPECT_EQ(far.volume, 1.0);
+  readMeshBytes("far_inv.obj", cubeObj(allTriangles(), -1, 1e15), {}, &report);
+  EXPECT_TRUE(anyWarningContains(report, "far_inv.obj: mesh was inside out"));
 }
 
 // ---- Preparation through the reader ----
