@@ -36,6 +36,10 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
                                  });
   }
   for (const auto& line : summary.result.notices) summary.warnings.push_back(line);
+  for (const auto& line : summary.result.contour.warnings) {
+    std::fprintf(stderr, "strata: warning: %s\n", line.c_str());
+    summary.warnings.push_back(line);
+  }
   std::fputs(formatExportText(summary).c_str(), stdout);
   if (args.has("--report")) {
     std::string json = formatExportJson(summary);

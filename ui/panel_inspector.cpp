@@ -103,27 +103,8 @@ void primitiveParams(EditorState& state, const NodePtr& node, double speed) {
   }
 }
 
-}  // namespace
-
-void drawInspector(EditorState& state, const PanelLayout& layout) {
-  const ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(
-      ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth, vp->Pos.y + layout.menuHeight));
-  ImGui::SetNextWindowSize(
-      ImVec2(layout.rightWidth,
-             vp->Size.y - layout.menuHeight - layout.statusHeight - layout.previewHeight));
-  ImGui::Begin("Inspector", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-  const NodeId id = primarySelection(state);
-  const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
-  if (!node) {
-    ImGui::TextDisabled("Nothing selected.");
-    ImGui::TextDisabled("Click a part in the viewport or a row");
-    ImGui::TextDisabled("in the scene tree.");
-    ImGui::End();
-    return;
-  }
-  ImGui::PushID(static_cast<int>(node->id));
+// The kind, id, name, visibility and colour of `node`.
+void nodeIdentity(EditorState& state, const NodePtr& node) {
   ImGui::Text("%s  %s", kindGlyph(node->kind), kindName(node->kind));
   ImGui::SameLine();
   ImGui::TextDisabled("id %u%s", node->id,
@@ -149,12 +130,10 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
   edited(state, colorChanged, [&] {
     state.document.setColor(node->id, glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f)));
   });
+}
 
-  // Drag speeds follow the scene's size.
-  Bounds b = sceneBounds(state.document.root());
-  double extent = b.empty() ? 1.0 : std::max({b.size().x, b.size().y, b.size().z});
-  double speed = std::max(extent * 0.002, 1e-6);
-
+// Move, rotate and scale of `node`; `speed` is the drag step in scene units.
+void nodeTransform(EditorState& state, const NodePtr& node, double speed) {
   if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) {
     Transform t = node->transform;
     auto applyTransform = [&](const Transform& next) {
@@ -188,7 +167,10 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
         "%.4g");
     if (ImGui::SmallButton("reset")) guarded(state, [&] { applyTransform(Transform()); });
   }
+}
 
+// What the node's kind adds: primitive parameters, the operation, the mesh file, the target.
+void nodeKindSections(EditorState& state, const NodePtr& node, double speed) {
   if (isPrimitive(node->kind) && ImGui::CollapsingHeader("Shape", ImGuiTreeNodeFlags_DefaultOpen))
     primitiveParams(state, node, speed);
 
@@ -218,6 +200,37 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
     NodePtr target = findNode(state.document.root(), node->instanceOf);
     ImGui::Text("instance of %s (id %u)", target ? target->name.c_str() : "?", node->instanceOf);
   }
+}
+
+}  // namespace
+
+void drawInspector(EditorState& state, const PanelLayout& layout) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(
+      ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth, vp->Pos.y + layout.menuHeight));
+  ImGui::SetNextWindowSize(
+      ImVec2(layout.rightWidth,
+             vp->Size.y - layout.menuHeight - layout.statusHeight - layout.previewHeight));
+  ImGui::Begin("Inspector", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  const NodeId id = primarySelection(state);
+  const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
+  if (!node) {
+    ImGui::TextDisabled("Nothing selected.");
+    ImGui::TextDisabled("Click a part in the viewport or a row");
+    ImGui::TextDisabled("in the scene tree.");
+    ImGui::End();
+    return;
+  }
+  ImGui::PushID(static_cast<int>(node->id));
+  nodeIdentity(state, node);
+  // Drag speeds follow the scene's size.
+  Bounds b = sceneBounds(state.document.root());
+  double extent = b.empty() ? 1.0 : std::max({b.size().x, b.size().y, b.size().z});
+  double speed = std::max(extent * 0.002, 1e-6);
+
+  nodeTransform(state, node, speed);
+  nodeKindSections(state, node, speed);
   ImGui::PopID();
   ImGui::End();
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "engine/contour/contour_tile.h"
 #include "engine/util/error.h"
@@ -19,85 +21,84 @@ void collectLeafStyles(const NodePtr& node, std::map<uint32_t, LeafStyle>* style
   for (const auto& c : node->children) collectLeafStyles(c, styles);
 }
 
-}  // namespace
-
-ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
-                        Progress& progress, ContourReport* report) {
-  if (options.tileCells < 8) throw Error("tile size must be at least 8 cells");
-  ContourReport local;
-  ContourReport& r = report ? *report : local;
-  r = ContourReport();
-  const Grid grid = Evaluator::gridFor(scene, options.resolution);
-  r.grid = grid;
-  const glm::ivec3 tiles = (grid.cells + options.tileCells - 1) / options.tileCells;
+// The tiles of `grid`, refused where cell indices or the tile count would overflow.
+glm::ivec3 tileCounts(const Grid& grid, int tileCells) {
+  if (tileCells < 8) throw Error("tile size must be at least 8 cells");
+  const glm::ivec3 tiles = (grid.cells + tileCells - 1) / tileCells;
   // Cells of a tile are indexed in 32 bits (contour_cells.h, both backends); the tile count is
   // an int. Refuse what would overflow rather than wrap around into a wrong mesh.
   uint64_t tileWindowCells = 1;
   for (int a = 0; a < 3; ++a)
-    tileWindowCells *= uint64_t(std::min(options.tileCells, grid.cells[a]) + 4);  // with halo
+    tileWindowCells *= uint64_t(std::min(tileCells, grid.cells[a]) + 4);  // with halo
   if (tileWindowCells > uint64_t(UINT32_MAX))
-    throw Error("a tile of " + std::to_string(options.tileCells) +
+    throw Error("a tile of " + std::to_string(tileCells) +
                 " cells a side is too large to contour; use --tile 1024 or less");
   const int64_t tileCount = int64_t(tiles.x) * tiles.y * tiles.z;
   if (tileCount > INT32_MAX)
     throw Error(std::to_string(tileCount) + " tiles are too many; use a larger --tile");
-  r.tiles = int(tileCount);
+  return tiles;
+}
 
+// Vertices and triangles of every tile, keyed on the global lattice.
+struct TiledContour {
   std::vector<ContourVertex> vertices;
   std::vector<ContourTriangle> triangles;
-  int done = 0;
-  for (int tz = 0; tz < tiles.z; ++tz)
-    for (int ty = 0; ty < tiles.y; ++ty)
-      for (int tx = 0; tx < tiles.x; ++tx) {
-        const glm::ivec3 begin = glm::ivec3(tx, ty, tz) * options.tileCells;
-        const glm::ivec3 end = glm::min(begin + options.tileCells, grid.cells);
-        const TileWindow window = tileWindow(begin, end, grid.cells);
-        const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
-        const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
+};
 
-        Stopwatch evaluate;
-        if (r.tiles > 1) {
-          // Each tile has its own grid, so no cache entry serves another tile: keep none, so
-          // that memory stays that of one tile's evaluation (what --tile promises).
-          evaluator.clearCache();
-        }
-        EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
-        r.evaluateSeconds += evaluate.seconds();
-        r.surfels += result.measure.surfels;
-        if (result.measure.surfels == 0) {
-          progress.report("export", double(++done) / r.tiles);
-          continue;
-        }
-        Stopwatch contour;
-        TileContour tile =
-            evaluator.backend().contourTile(result.root, grid.cells, begin, end, progress);
-        r.contourSeconds += contour.seconds();
-        r.synthesizedCrossings += tile.synthesizedCrossings;
-        r.signDisagreements += tile.signDisagreements;
-        vertices.insert(vertices.end(), tile.vertices.begin(), tile.vertices.end());
-        triangles.insert(triangles.end(), tile.triangles.begin(), tile.triangles.end());
-        progress.report("export", double(++done) / r.tiles);
-      }
+// Evaluates and contours one tile, appending to `out`.
+void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
+                    const glm::ivec3& begin, const glm::ivec3& end, Progress& progress,
+                    ContourReport& r, TiledContour* out) {
+  const TileWindow window = tileWindow(begin, end, grid.cells);
+  const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
+  const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
+  Stopwatch evaluate;
+  if (r.tiles > 1) {
+    // Each tile has its own grid, so no cache entry serves another tile: keep none, so that
+    // memory stays that of one tile's evaluation (what --tile promises).
+    evaluator.clearCache();
+  }
+  EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
+  r.evaluateSeconds += evaluate.seconds();
+  r.surfels += result.measure.surfels;
+  for (const std::string& w : result.warnings)
+    if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
+      r.warnings.push_back(w);
+  if (result.measure.surfels == 0) return;
+  Stopwatch contour;
+  TileContour tile = evaluator.backend().contourTile(result.root, grid.cells, begin, end, progress);
+  r.contourSeconds += contour.seconds();
+  r.synthesizedCrossings += tile.synthesizedCrossings;
+  r.signDisagreements += tile.signDisagreements;
+  out->vertices.insert(out->vertices.end(), tile.vertices.begin(), tile.vertices.end());
+  out->triangles.insert(out->triangles.end(), tile.triangles.begin(), tile.triangles.end());
+}
 
-  Stopwatch merge;
-  // Vertices: one per key (neighbouring tiles computed their shared halo cells identically),
-  // in key order; triangles in edge order. Both orders are independent of the tiling. Each
-  // tile emits its cells and edges in increasing order already, so one tile needs no sort.
+// Vertices: one per key (neighbouring tiles computed their shared halo cells identically), in
+// key order; triangles in edge order. Both orders are independent of the tiling. Each tile
+// emits its cells and edges in increasing order already, so one tile needs no sort.
+void mergeTiles(TiledContour* c, Progress& progress) {
   auto byKey = [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; };
-  if (!std::is_sorted(vertices.begin(), vertices.end(), byKey))
-    std::sort(vertices.begin(), vertices.end(), byKey);
-  vertices.erase(
-      std::unique(vertices.begin(), vertices.end(),
+  if (!std::is_sorted(c->vertices.begin(), c->vertices.end(), byKey))
+    std::sort(c->vertices.begin(), c->vertices.end(), byKey);
+  c->vertices.erase(
+      std::unique(c->vertices.begin(), c->vertices.end(),
                   [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
-      vertices.end());
+      c->vertices.end());
   progress.check();
   auto byOrder = [](const ContourTriangle& a, const ContourTriangle& b) {
     return a.order < b.order;
   };
-  if (!std::is_sorted(triangles.begin(), triangles.end(), byOrder))
-    std::sort(triangles.begin(), triangles.end(), byOrder);
+  if (!std::is_sorted(c->triangles.begin(), c->triangles.end(), byOrder))
+    std::sort(c->triangles.begin(), c->triangles.end(), byOrder);
   progress.check();
+}
 
+// The indexed mesh in scene units, each triangle tagged with its leaf.
+ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour& c,
+                       ContourReport& r) {
+  const auto& vertices = c.vertices;
+  const auto& triangles = c.triangles;
   ExportMesh out;
   out.unit = scene.settings.unit;
   collectLeafStyles(scene.root, &out.leaves);
@@ -134,6 +135,35 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
     previous = leaf;
     if (!out.leaves.count(leaf)) out.leaves[leaf] = LeafStyle{"unknown", glm::vec3(0.8f)};
   }
+  return out;
+}
+
+}  // namespace
+
+ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
+                        Progress& progress, ContourReport* report) {
+  ContourReport local;
+  ContourReport& r = report ? *report : local;
+  r = ContourReport();
+  const Grid grid = Evaluator::gridFor(scene, options.resolution);
+  r.grid = grid;
+  const glm::ivec3 tiles = tileCounts(grid, options.tileCells);
+  r.tiles = tiles.x * tiles.y * tiles.z;
+
+  TiledContour contour;
+  int done = 0;
+  for (int tz = 0; tz < tiles.z; ++tz)
+    for (int ty = 0; ty < tiles.y; ++ty)
+      for (int tx = 0; tx < tiles.x; ++tx) {
+        const glm::ivec3 begin = glm::ivec3(tx, ty, tz) * options.tileCells;
+        const glm::ivec3 end = glm::min(begin + options.tileCells, grid.cells);
+        contourOneTile(scene, evaluator, grid, begin, end, progress, r, &contour);
+        progress.report("export", double(++done) / r.tiles);
+      }
+
+  Stopwatch merge;
+  mergeTiles(&contour, progress);
+  ExportMesh out = indexedMesh(scene, grid, contour, r);
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;
   r.peakBytes = peakResidentBytes();

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
@@ -36,6 +38,8 @@ struct ContourReport {
   // Measured: the largest distance of a vertex from the tangent planes of its own Hermite data
   // (scene units); small where the QEF could fit the planes (flat parts, sharp features).
   double maxPlaneDistance = 0.0;
+  // Said once each over all tiles: parts smaller than a cell, ... (EvalResult::warnings).
+  std::vector<std::string> warnings;
 };
 
 // Contours the visible tree. Throws strata::Error or Cancelled; progress stage "export".
