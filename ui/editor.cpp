@@ -296,6 +296,28 @@ void Editor::autosave() {
   }
 }
 
+namespace {
+// Hints over the viewport: the empty-scene hint, the projection and the gizmo mode.
+void drawViewportHints(const EditorState& s, const ViewRect& rect, bool ortho) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  if (s.preview && s.preview->splatCount() == 0 && s.previewError.empty()) {
+    const char* hint = "Empty scene: add a primitive from the palette on the left.";
+    ImVec2 size = ImGui::CalcTextSize(hint);
+    draw->AddText(
+        ImVec2(float(rect.x + (rect.width - size.x) * 0.5), float(rect.y + rect.height * 0.5)),
+        IM_COL32(200, 200, 205, 200), hint);
+  }
+  char corner[160];
+  std::snprintf(corner, sizeof(corner), "%s  \u00B7  %s", ortho ? "orthographic" : "perspective",
+                s.gizmoMode == GizmoMode::Move     ? "move (W)"
+                : s.gizmoMode == GizmoMode::Rotate ? "rotate (E)"
+                                                   : "scale (R)");
+  draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 8)), IM_COL32(210, 210, 215, 170),
+                corner);
+}
+
+}  // namespace
+
 void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height) {
   EditorState& s = *state_;
   GLFWwindow* window = gl_->window.handle();
@@ -339,25 +361,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   if (s.document.interacting() && !ImGui::IsAnyItemActive() && !gl_->viewport.gizmoDragging())
     s.document.endInteraction();
 
-  // Hints over the viewport.
-  ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  if (s.preview && s.preview->splatCount() == 0 && s.previewError.empty()) {
-    const char* hint = "Empty scene: add a primitive from the palette on the left.";
-    ImVec2 size = ImGui::CalcTextSize(hint);
-    draw->AddText(
-        ImVec2(float(rect.x + (rect.width - size.x) * 0.5), float(rect.y + rect.height * 0.5)),
-        IM_COL32(200, 200, 205, 200), hint);
-  }
-  {
-    char corner[160];
-    std::snprintf(corner, sizeof(corner), "%s  \u00B7  %s",
-                  gl_->viewport.camera.ortho ? "orthographic" : "perspective",
-                  s.gizmoMode == GizmoMode::Move     ? "move (W)"
-                  : s.gizmoMode == GizmoMode::Rotate ? "rotate (E)"
-                                                     : "scale (R)");
-    draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 8)), IM_COL32(210, 210, 215, 170),
-                  corner);
-  }
+  drawViewportHints(s, rect, gl_->viewport.camera.ortho);
   ImGui::Render();
 
   updateLeafStyles();

@@ -129,6 +129,26 @@ void Viewport::framePending(const ViewRect& rect) {
   pendingFrame_.reset();
 }
 
+// Framing, axis views, projection and gizmo modes from the keyboard (when ImGui does not want it).
+void Viewport::handleKeys(EditorState& state) {
+  auto pressed = [&](int key, int keypad, int mods) {
+    return keyPressed(state, key, mods) || keyPressed(state, keypad, mods);
+  };
+  const int ctrl = GLFW_MOD_CONTROL;
+  if (keyPressed(state, GLFW_KEY_F)) frameSelected(state);
+  if (keyPressed(state, GLFW_KEY_HOME)) viewAll(state);
+  if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1, 0)) camera.setAxisView(AxisView::Front);
+  if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1, ctrl)) camera.setAxisView(AxisView::Back);
+  if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, 0)) camera.setAxisView(AxisView::Right);
+  if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, ctrl)) camera.setAxisView(AxisView::Left);
+  if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, 0)) camera.setAxisView(AxisView::Top);
+  if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, ctrl)) camera.setAxisView(AxisView::Bottom);
+  if (pressed(GLFW_KEY_5, GLFW_KEY_KP_5, 0)) camera.ortho = !camera.ortho;
+  if (keyPressed(state, GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
+  if (keyPressed(state, GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
+  if (keyPressed(state, GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
+}
+
 void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   framePending(rect);
   ImGuiIO& io = ImGui::GetIO();
@@ -136,25 +156,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   const bool inside = mouse.x >= 0 && mouse.y >= 0 && mouse.x < rect.width && mouse.y < rect.height;
   const ScreenMapping view = mapping(state, rect);
 
-  // Keys.
-  if (!io.WantCaptureKeyboard && !io.WantTextInput) {
-    auto pressed = [&](int key, int keypad, int mods) {
-      return keyPressed(state, key, mods) || keyPressed(state, keypad, mods);
-    };
-    const int ctrl = GLFW_MOD_CONTROL;
-    if (keyPressed(state, GLFW_KEY_F)) frameSelected(state);
-    if (keyPressed(state, GLFW_KEY_HOME)) viewAll(state);
-    if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1, 0)) camera.setAxisView(AxisView::Front);
-    if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1, ctrl)) camera.setAxisView(AxisView::Back);
-    if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, 0)) camera.setAxisView(AxisView::Right);
-    if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, ctrl)) camera.setAxisView(AxisView::Left);
-    if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, 0)) camera.setAxisView(AxisView::Top);
-    if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, ctrl)) camera.setAxisView(AxisView::Bottom);
-    if (pressed(GLFW_KEY_5, GLFW_KEY_KP_5, 0)) camera.ortho = !camera.ortho;
-    if (keyPressed(state, GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
-    if (keyPressed(state, GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
-    if (keyPressed(state, GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
-  }
+  if (!io.WantCaptureKeyboard && !io.WantTextInput) handleKeys(state);
 
   // An ongoing gizmo drag keeps the mouse wherever it goes.
   if (gizmo_.dragging()) {

@@ -66,6 +66,7 @@ class Viewport {
 
   // Framing waits for the viewport's shape, known in handleInput and draw.
   void framePending(const ViewRect& rect);
+  void handleKeys(EditorState& state);
 
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;
