@@ -1,6 +1,7 @@
 // The scene tree (outliner) and the palette.
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -30,6 +31,12 @@ void acceptPaletteItem(NodeId target, PendingDrop* drop) {
     drop->target = target;
     drop->paletteDrop = true;
   }
+}
+
+// The palette's height: its default, plus a row of buttons for every three primitives beyond six.
+float paletteHeightFor(const PanelLayout& layout) {
+  const int rows = int((primitiveTable().size() + 2) / 3);
+  return layout.paletteHeight + float(std::max(0, rows - 2)) * ImGui::GetFrameHeightWithSpacing();
 }
 
 // Operations are coloured by the Boolean they apply; leaves are grey.
@@ -172,7 +179,7 @@ void paletteDragSource(int item, const char* label) {
 
 void drawOutliner(EditorState& state, const PanelLayout& layout) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  const float paletteHeight = layout.paletteHeight;
+  const float paletteHeight = paletteHeightFor(layout);
   ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + layout.menuHeight));
   ImGui::SetNextWindowSize(ImVec2(
       layout.leftWidth, vp->Size.y - layout.menuHeight - layout.statusHeight - paletteHeight));
@@ -204,7 +211,7 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
 
 void drawPalette(EditorState& state, const PanelLayout& layout) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  const float height = layout.paletteHeight;
+  const float height = paletteHeightFor(layout);
   ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - layout.statusHeight - height));
   ImGui::SetNextWindowSize(ImVec2(layout.leftWidth, height));
   ImGui::Begin("Add", nullptr,
@@ -215,12 +222,19 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
                       targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
                       targetNode ? targetNode->name.c_str() : "the root");
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
+  const int count = int(primitiveTable().size());
+  const int lastRowStart = (count - 1) / 3 * 3;  // a short last row shares the whole width
+  const float lastWidth = (ImGui::GetContentRegionAvail().x -
+                           float(count - lastRowStart - 1) * ImGui::GetStyle().ItemSpacing.x) /
+                          float(count - lastRowStart);
   int column = 0;
   for (const PrimitiveInfo& primitive : primitiveTable()) {
+    const bool lastRow = column >= lastRowStart;
     if (column++ % 3) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitive.kind), primitive.name);
-    if (ImGui::Button(label, ImVec2(w, 0))) addPrimitive(state, primitive.kind);
+    std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitive.kind), primitive.label);
+    if (ImGui::Button(label, ImVec2(lastRow ? lastWidth : w, 0)))
+      addPrimitive(state, primitive.kind);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", primitive.summary);
     paletteDragSource(int(primitive.kind), label);
   }

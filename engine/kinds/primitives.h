@@ -50,7 +50,8 @@ struct ParamProblem {
 
 struct PrimitiveInfo {
   NodeKind kind;
-  const char* name;        // in files and on the command line: "box"
+  const char* name;        // in files and on the command line: "box", "roundedBox"
+  const char* label;       // for people: "box", "rounded box"
   const char* glyph;       // UTF-8 icon (from U+2190..U+21FF or U+2500..U+25FF, which the
                            // editor's font carries)
   const char* asciiGlyph;  // where the font lacks it
