@@ -229,10 +229,10 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
     }
     if (!options.allowOpen) {
       throw Error(name + ": " + problem +
-                  "; sampling it would leak. Repair the mesh, or import it with the allow-open "
-                  "option (MeshReadOptions::allowOpen) to accept it anyway");
+                  "; sampling it would leak. Repair the mesh, or accept it anyway with "
+                  "--allow-open (strata eval, boolean, export)");
     }
-    meshio::addWarning(rep, name, problem + "; accepted because allow-open is set (may leak)");
+    meshio::addWarning(rep, name, problem + "; accepted because of --allow-open (may leak)");
   }
   return mesh;
 }
