@@ -10,6 +10,7 @@
 #include "app/eval_report.h"
 #include "app/scene_from_meshes.h"
 #include "app/terminal_progress.h"
+#include "engine/document/expansion.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/fallback.h"
 #include "engine/io/mesh_formats.h"
@@ -90,6 +91,11 @@ Scene loadSceneFromArgs(const CliArgs& args, const std::string& path,
   meshOptions.allowOpen = args.has("--allow-open");
   Scene scene = loadScene(path, &load, meshOptions);
   applySceneLimits(args, &scene);
+  try {
+    checkExpansion(scene.root, scene.settings.maxLeaves);  // refused here, naming the file
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
   for (const auto& w : load.warnings) {
     std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
     warnings->push_back(w);

@@ -144,7 +144,7 @@ std::string countText(uint64_t count) {
   return out;
 }
 
-void checkExpansion(const NodePtr& root, uint64_t maxLeaves) {
+TreeExpansion checkExpansion(const NodePtr& root, uint64_t maxLeaves) {
   TreeExpansion e = measureExpansion(root);
   if (e.cycle) throw Error("an instance refers to one of its own ancestors (an instance cycle)");
   if (e.missingTarget) throw Error("an instance refers to a node that is not in the scene");
@@ -158,6 +158,7 @@ void checkExpansion(const NodePtr& root, uint64_t maxLeaves) {
                 countText(maxLeaves) +
                 "; raise it with --max-leaves N (or the scene setting \"maxLeaves\") if you "
                 "mean it");
+  return e;
 }
 
 }  // namespace strata

@@ -29,8 +29,8 @@ TreeExpansion measureExpansion(const NodePtr& root);
 
 // Throws strata::Error when the expansion exceeds `maxLeaves` visible leaves or kMaxTreeDepth
 // levels, or has an instance cycle or a missing target. The message names the count and how to
-// raise the limit (`--max-leaves`, or the scene's "maxLeaves" setting).
-void checkExpansion(const NodePtr& root, uint64_t maxLeaves);
+// raise the limit (`--max-leaves`, or the scene's "maxLeaves" setting). Returns the measure.
+TreeExpansion checkExpansion(const NodePtr& root, uint64_t maxLeaves);
 
 // Text for a count that may be saturated: "12,345" or "more than 10^19".
 std::string countText(uint64_t count);

@@ -400,8 +400,7 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   ctx.grid = grid;
   ctx.progress = &progress;
   ctx.result = &result;
-  const TreeExpansion expansion = measureExpansion(scene.root);
-  checkExpansion(scene.root, scene.settings.maxLeaves);
+  const TreeExpansion expansion = checkExpansion(scene.root, scene.settings.maxLeaves);
   ctx.total = int(std::min<uint64_t>(expansion.nodes, 1u << 30)) + 1;
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];
   result.grid = ctx.grid;
