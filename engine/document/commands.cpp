@@ -106,7 +106,7 @@ NodePtr makePrimitiveNode(NodeKind kind, NodeId id) {
   auto node = std::make_shared<Node>();
   node->id = id;
   node->kind = kind;
-  node->name = std::string(kindName(kind)) + " " + std::to_string(id);
+  node->name = std::string(primitiveInfo(kind)->label) + " " + std::to_string(id);
   node->params = primitiveInfo(kind)->defaults;
   return node;
 }
