@@ -1,8 +1,11 @@
 // checkMesh measures topology (after welding identical positions) and geometry; prepareMesh
 // makes the repairs that never move a vertex: weld, drop degenerate triangles, orient shells
 // consistently and outward (cavities inward). Edges come from sorting half-edges, so both are
-// O(n log n); the shell nesting test is O(shells * triangles), pruned by bounding boxes.
+// O(n log n); the shell nesting test visits, through a box tree, only the closed shells whose
+// bounds hold a shell's probe point (O(n log n) unless shells pile up on one another).
 #include "engine/geometry/mesh_check.h"
+
+#include "engine/geometry/box_tree.h"
 
 #include <glm/geometric.hpp>
 
@@ -501,22 +504,15 @@ ShellPlacement placeShell(const TriangleMesh& mesh, const LocalFrame& frame, con
   return placement;
 }
 
-bool contains(const Bounds& b, const glm::dvec3& p) {
-  return p.x >= b.min.x && p.y >= b.min.y && p.z >= b.min.z && p.x <= b.max.x && p.y <= b.max.y &&
-         p.z <= b.max.z;
-}
-
-// How many closed shells other than shell s contain its probe point.
+// How many closed shells other than shell s contain its probe point. containers indexes the
+// closed shells' bounds, so a shell meets only the shells whose boxes hold its probe.
 int nestingDepth(const TriangleMesh& mesh, const LocalFrame& frame,
                  const std::vector<Shell>& shells, const std::vector<ShellPlacement>& placements,
-                 size_t s) {
+                 const BoxTree& containers, size_t s) {
   int depth = 0;
-  for (size_t o = 0; o < shells.size() && shells.size() > 1; ++o) {
-    if (o == s || !shells[o].closed || !contains(placements[o].bounds, placements[s].probe)) {
-      continue;
-    }
-    depth += insideShell(mesh, frame, shells[o].triangles, placements[s].probe);
-  }
+  containers.forEachContaining(placements[s].probe, [&](uint32_t o) {
+    if (o != s) depth += insideShell(mesh, frame, shells[o].triangles, placements[s].probe);
+  });
   return depth;
 }
 
@@ -527,10 +523,15 @@ bool orientShellsOutward(TriangleMesh& mesh, const LocalFrame& frame,
   std::vector<ShellPlacement> placements;
   placements.reserve(shells.size());
   for (const Shell& shell : shells) placements.push_back(placeShell(mesh, frame, shell));
+  // Only closed shells contain anything: the others get an empty box.
+  std::vector<Bounds> closedBounds(shells.size());
+  for (size_t s = 0; s < shells.size(); ++s)
+    if (shells[s].closed) closedBounds[s] = placements[s].bounds;
+  const BoxTree containers(closedBounds);
   bool flippedAny = false;
   for (size_t s = 0; s < shells.size(); ++s) {
     if (!shells[s].orientable || placements[s].sixVolume == 0.0) continue;
-    const bool wantPositive = nestingDepth(mesh, frame, shells, placements, s) % 2 == 0;
+    const bool wantPositive = nestingDepth(mesh, frame, shells, placements, containers, s) % 2 == 0;
     if ((placements[s].sixVolume > 0.0) == wantPositive) continue;
     flippedAny = true;
     for (uint32_t t : shells[s].triangles) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
