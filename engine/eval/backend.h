@@ -42,7 +42,7 @@ class Backend {
                             Progress& progress) = 0;
   virtual LdiHandle empty(const Grid& grid) = 0;
   virtual LdiMeasure measure(const LdiHandle& ldi, Progress& progress) = 0;
-  // A host copy (or view) of the LDI.
+  // A host copy (or view) of the LDI, every axis whole (see AxisLdi).
   virtual std::shared_ptr<const Ldi> download(const LdiHandle& ldi) = 0;
   // Dual contouring of one tile (see engine/contour/contour_tile.h) of `root`, an LDI on the
   // tile's window grid. The default downloads the LDI and contours it on the CPU.

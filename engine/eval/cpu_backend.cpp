@@ -54,7 +54,7 @@ LdiMeasure CpuBackend::measure(const LdiHandle& ldi, Progress& progress) {
 }
 
 std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) {
-  return hostLdi(ldi);
+  return wholeLdi(hostLdi(ldi));
 }
 
 SplatsHandle Backend::splats(const LdiHandle& ldi, Progress& progress) {

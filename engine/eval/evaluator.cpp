@@ -341,7 +341,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
     key.add(uint8_t(0xEE));
     hashGrid(key, ctx.grid);
     v.key = key.digest();
-    // One empty LDI per grid, kept like any result (its offsets alone are 12 bytes per ray).
+    // One empty LDI per grid, kept like any result .
     auto hit = cache_.find(v.key);
     if (hit != cache_.end()) {
       hit->second.generation = generation_;

@@ -88,35 +88,46 @@ void checkNesting(const std::string& text, const std::string& source) {
   }
 }
 
-// Follows the parser's events to know the JSON pointer of every key, and records the first key
-// that repeats within one object (nlohmann would silently keep only one of them).
+// Builds the document like json::parse (through nlohmann's DOM builder), following the events
+// to know the JSON pointer of every key, and records the first key that repeats within one
+// object (nlohmann would silently keep only one of them). A SAX handler rather than parse's
+// callback: the callback builder rescans the parent container at every value's end, quadratic
+// in the children of one node (100,000 leaves took seconds).
 class DuplicateKeyFinder {
  public:
-  void onEvent(json::parse_event_t event, const json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-        frames_.push_back(Frame{true, {}, {}, 0});
-        break;
-      case json::parse_event_t::array_start:
-        frames_.push_back(Frame{false, {}, {}, 0});
-        break;
-      case json::parse_event_t::key:
-        if (!frames_.empty() && parsed.is_string()) {
-          Frame& frame = frames_.back();
-          frame.key = parsed.get<std::string>();
-          if (!frame.keys.insert(frame.key).second && duplicate_.empty()) duplicate_ = pointer();
-        }
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        if (!frames_.empty()) frames_.pop_back();
-        elementDone();
-        break;
-      case json::parse_event_t::value:
-        elementDone();
-        break;
-    }
+  using Dom = nlohmann::detail::json_sax_dom_parser<json>;
+  explicit DuplicateKeyFinder(json& doc) : dom_(doc, true) {}
+
+  bool null() { return value(dom_.null()); }
+  bool boolean(bool v) { return value(dom_.boolean(v)); }
+  bool number_integer(json::number_integer_t v) { return value(dom_.number_integer(v)); }
+  bool number_unsigned(json::number_unsigned_t v) { return value(dom_.number_unsigned(v)); }
+  bool number_float(json::number_float_t v, const json::string_t& s) {
+    return value(dom_.number_float(v, s));
   }
+  bool string(json::string_t& v) { return value(dom_.string(v)); }
+  bool binary(json::binary_t& v) { return value(dom_.binary(v)); }
+  bool start_object(std::size_t n) {
+    frames_.push_back(Frame{true, {}, {}, 0});
+    return dom_.start_object(n);
+  }
+  bool key(json::string_t& k) {
+    Frame& frame = frames_.back();
+    frame.key = k;
+    if (!frame.keys.insert(frame.key).second && duplicate_.empty()) duplicate_ = pointer();
+    return dom_.key(k);
+  }
+  bool end_object() { return end(dom_.end_object()); }
+  bool start_array(std::size_t n) {
+    frames_.push_back(Frame{false, {}, {}, 0});
+    return dom_.start_array(n);
+  }
+  bool end_array() { return end(dom_.end_array()); }
+  template <class Exception>
+  bool parse_error(std::size_t at, const std::string& token, const Exception& e) {
+    return dom_.parse_error(at, token, e);  // throws e
+  }
+
   // Pointer of the first repeated key; empty when there was none.
   const std::string& duplicate() const { return duplicate_; }
 
@@ -127,6 +138,15 @@ class DuplicateKeyFinder {
     std::string key;             // objects: the current key
     size_t index;                // arrays: the current element
   };
+  bool value(bool ok) {
+    elementDone();
+    return ok;
+  }
+  bool end(bool ok) {
+    if (!frames_.empty()) frames_.pop_back();
+    elementDone();
+    return ok;
+  }
   void elementDone() {
     if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
   }
@@ -136,6 +156,7 @@ class DuplicateKeyFinder {
       p += "/" + (f.object ? pointerToken(f.key) : std::to_string(f.index));
     return p;
   }
+  Dom dom_;
   std::vector<Frame> frames_;
   std::string duplicate_;
 };
@@ -154,13 +175,10 @@ std::string parseErrorText(const json::parse_error& e) {
 
 json parseJson(const std::string& text, const std::string& source) {
   checkNesting(text, source);
-  DuplicateKeyFinder finder;
   json doc;
+  DuplicateKeyFinder finder(doc);
   try {
-    doc = json::parse(text, [&finder](int, json::parse_event_t event, json& parsed) {
-      finder.onEvent(event, parsed);
-      return true;
-    });
+    json::sax_parse(text, &finder);
   } catch (const json::parse_error& e) {
     size_t offset = e.byte > 0 ? e.byte - 1 : 0;
     throw Error(source + ": " + lineColumn(text, offset) + ": invalid JSON: " + parseErrorText(e));

@@ -11,8 +11,67 @@ namespace strata {
 std::shared_ptr<Ldi> makeEmptyLdi(const Grid& grid) {
   auto ldi = std::make_shared<Ldi>();
   ldi->grid = grid;
-  for (int a = 0; a < 3; ++a) ldi->axes[a].offsets.assign(grid.rayCount(a) + 1, 0u);
+  for (AxisLdi& axis : ldi->axes) {
+    axis.whole = false;
+    axis.window = RayWindow{};
+    axis.offsets.assign(1, 0u);
+  }
   return ldi;
+}
+
+RayWindow wholeWindow(const Grid& grid, int axis) {
+  return RayWindow{0, 0, grid.raysU(axis), grid.raysV(axis)};
+}
+
+namespace {
+// The offsets of every ray of the grid for a windowed axis: rays outside the window are empty.
+std::vector<uint32_t> wholeOffsets(const Grid& grid, int axisIndex, const RayWindow& window,
+                                   const std::vector<uint32_t>& windowOffsets) {
+  const int raysU = grid.raysU(axisIndex), raysV = grid.raysV(axisIndex);
+  std::vector<uint32_t> offsets(size_t(grid.rayCount(axisIndex)) + 1);
+  uint32_t running = 0;
+  size_t ray = 0;
+  for (int j = 0; j < raysV; ++j) {
+    for (int i = 0; i < raysU; ++i, ++ray) {
+      if (window.contains(i, j)) {
+        const size_t local = size_t(i - window.u0) + size_t(j - window.v0) * size_t(window.uCount);
+        running = windowOffsets[local];
+        offsets[ray] = running;
+        running = windowOffsets[local + 1];
+      } else {
+        offsets[ray] = running;
+      }
+    }
+  }
+  offsets[ray] = windowOffsets.back();
+  return offsets;
+}
+}  // namespace
+
+std::shared_ptr<const Ldi> wholeLdi(std::shared_ptr<const Ldi> ldi) {
+  if (ldi->axes[0].whole && ldi->axes[1].whole && ldi->axes[2].whole) return ldi;
+  auto copy = std::make_shared<Ldi>(*ldi);
+  for (int a = 0; a < 3; ++a) {
+    AxisLdi& axis = copy->axes[a];
+    if (axis.whole) continue;
+    axis.offsets = wholeOffsets(copy->grid, a, axis.window, axis.offsets);
+    axis.whole = true;
+    axis.window = RayWindow{};
+  }
+  return copy;
+}
+
+void settleAxisWindow(const Grid& grid, int axisIndex, const RayWindow& window, AxisLdi* axis) {
+  if (window.rayCount() * 2 > grid.rayCount(axisIndex)) {
+    if (window.u0 != 0 || window.v0 != 0 || window.uCount != grid.raysU(axisIndex) ||
+        window.vCount != grid.raysV(axisIndex))
+      axis->offsets = wholeOffsets(grid, axisIndex, window, axis->offsets);
+    axis->whole = true;
+    axis->window = RayWindow{};
+  } else {
+    axis->whole = false;
+    axis->window = window;
+  }
 }
 
 void checkSurfelCount(uint64_t count, const char* what) {

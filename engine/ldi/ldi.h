@@ -13,10 +13,28 @@
 
 namespace strata {
 
-// The surfels of one axis. offsets has rayCount(axis) + 1 entries; the surfels of ray r are
-// surfels[offsets[r] .. offsets[r + 1]), sorted by depth, alternating enter / exit, starting
-// with an enter (a "clean" list).
+// The rays of one axis that an AxisLdi stores: (u0 + i, v0 + j) for i < uCount, j < vCount,
+// in the grid's ray coordinates (see grid.h); local ray i + j * uCount.
+struct RayWindow {
+  int u0 = 0, v0 = 0, uCount = 0, vCount = 0;
+
+  int64_t rayCount() const { return int64_t(uCount) * vCount; }
+  bool empty() const { return uCount <= 0 || vCount <= 0; }
+  bool contains(int i, int j) const {
+    return i >= u0 && j >= v0 && i < u0 + uCount && j < v0 + vCount;
+  }
+};
+
+// The surfels of one axis. A whole axis (whole == true, what every consumer but the CPU
+// backend's combine sees; see wholeLdi) has offsets for all rayCount(axis) rays: the surfels of
+// ray r are surfels[offsets[r] .. offsets[r + 1]). A windowed axis (whole == false, made by the
+// CPU backend for solids small against the grid, so that 100,000 small leaves do not each pay
+// for every ray of the grid) has offsets only for the rays of `window`, indexed by local ray;
+// the other rays have no surfels. Either way each list is sorted by depth, alternating enter /
+// exit, starting with an enter (a "clean" list).
 struct AxisLdi {
+  bool whole = true;
+  RayWindow window;  // meaningful when !whole
   std::vector<uint32_t> offsets;
   std::vector<Surfel> surfels;
 
@@ -35,8 +53,19 @@ struct Ldi {
   size_t bytes() const { return axes[0].bytes() + axes[1].bytes() + axes[2].bytes(); }
 };
 
-// An LDI with no surfels on the grid (every offset zero).
+// An LDI with no surfels on the grid (windowed axes of no rays: a few bytes whatever the grid).
 std::shared_ptr<Ldi> makeEmptyLdi(const Grid& grid);
+
+// The window of every ray of `axis` of the grid.
+RayWindow wholeWindow(const Grid& grid, int axis);
+
+// `ldi` itself when every axis is whole, else a copy with whole axes.
+std::shared_ptr<const Ldi> wholeLdi(std::shared_ptr<const Ldi> ldi);
+
+// Stores `axis` (built for the rays of `window`) whole when the window covers more than half of
+// the grid's rays (the offsets of the other rays cost little then, and consumers read it
+// directly), windowed otherwise.
+void settleAxisWindow(const Grid& grid, int axisIndex, const RayWindow& window, AxisLdi* axis);
 
 // Volume and area of the solid an LDI describes, in scene units.
 //   volume: per axis, the summed inside length of all rays times h^2; the three axes averaged

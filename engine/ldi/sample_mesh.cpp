@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -28,14 +29,50 @@ ProjectedTriangle project(const GridMesh& g, size_t t, int axis, const Grid& gri
                          grid.raysU(axis), grid.raysV(axis));
 }
 
+// The rays any triangle of g may hit along `axis`: the bounding window of their ray ranges.
+RayWindow candidateWindow(const GridMesh& g, const Grid& grid, int axis, int64_t triangleGrain,
+                          Progress* progress) {
+  const int64_t triangles = int64_t(g.triangles.size());
+  const int64_t chunks = (triangles + triangleGrain - 1) / triangleGrain;
+  struct Range {
+    int uMin = std::numeric_limits<int>::max(), uMax = -1;
+    int vMin = std::numeric_limits<int>::max(), vMax = -1;
+  };
+  std::vector<Range> ranges(size_t(std::max<int64_t>(chunks, 1)));
+  parallelFor(0, triangles, triangleGrain, [&](int64_t b, int64_t e) {
+    if (progress) progress->check();
+    Range& r = ranges[size_t(b / triangleGrain)];
+    for (int64_t t = b; t < e; ++t) {
+      const ProjectedTriangle pt = project(g, size_t(t), axis, grid);
+      if (pt.rayUMin > pt.rayUMax || pt.rayVMin > pt.rayVMax) continue;
+      r.uMin = std::min(r.uMin, pt.rayUMin);
+      r.uMax = std::max(r.uMax, pt.rayUMax);
+      r.vMin = std::min(r.vMin, pt.rayVMin);
+      r.vMax = std::max(r.vMax, pt.rayVMax);
+    }
+  });
+  Range all;
+  for (const Range& r : ranges) {
+    all.uMin = std::min(all.uMin, r.uMin);
+    all.uMax = std::max(all.uMax, r.uMax);
+    all.vMin = std::min(all.vMin, r.vMin);
+    all.vMax = std::max(all.vMax, r.vMax);
+  }
+  if (all.uMax < 0 || all.vMax < 0) return RayWindow{};
+  return RayWindow{all.uMin, all.vMin, all.uMax - all.uMin + 1, all.vMax - all.vMin + 1};
+}
+
 void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, Progress* progress,
                 AxisLdi* out) {
-  const int64_t rays = grid.rayCount(axis);
-  const int raysU = grid.raysU(axis);
   const int64_t triangles = int64_t(g.triangles.size());
   // Enough chunks to balance big and small triangles over the workers.
   const int64_t triangleGrain = std::max<int64_t>(64, triangles / (int64_t(workerCount()) * 16));
-  std::unique_ptr<std::atomic<uint32_t>[]> counts(new std::atomic<uint32_t>[rays]);
+  // Only the rays the triangles can reach get counters and offsets: a small part of a big grid
+  // costs its size, not the grid's.
+  const RayWindow window = candidateWindow(g, grid, axis, triangleGrain, progress);
+  const int64_t rays = window.rayCount();
+  const int64_t raysU = window.uCount;
+  std::unique_ptr<std::atomic<uint32_t>[]> counts(new std::atomic<uint32_t>[size_t(rays)]);
   for (int64_t r = 0; r < rays; ++r) counts[r].store(0, std::memory_order_relaxed);
 
   // Pass 1: count the hits of every ray.
@@ -47,7 +84,8 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
         for (int i = pt.rayUMin; i <= pt.rayUMax; ++i) {
           double depth;
           if (hitTriangle(pt, i, j, &depth))
-            counts[int64_t(i) + int64_t(j) * raysU].fetch_add(1, std::memory_order_relaxed);
+            counts[int64_t(i - window.u0) + int64_t(j - window.v0) * raysU].fetch_add(
+                1, std::memory_order_relaxed);
         }
     }
   });
@@ -71,7 +109,7 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
         for (int i = pt.rayUMin; i <= pt.rayUMax; ++i) {
           double depth;
           if (!hitTriangle(pt, i, j, &depth)) continue;
-          int64_t r = int64_t(i) + int64_t(j) * raysU;
+          int64_t r = int64_t(i - window.u0) + int64_t(j - window.v0) * raysU;
           uint32_t slot = counts[r].fetch_add(1, std::memory_order_relaxed);
           raw[rawOffsets[size_t(r)] + slot] =
               Surfel{float(depth), pt.normal, makeSurfelTag(leafId, pt.enters)};
@@ -106,6 +144,7 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
   raw.clear();
   raw.shrink_to_fit();
   assembleAxis(chunks, rays, out, "sampling");
+  settleAxisWindow(grid, axis, window, out);
 }
 
 }  // namespace

@@ -296,6 +296,20 @@ STRATA_HD int gatherRayEvents(const AxisLdiView* children, int childCount, int64
   return n;
 }
 
+// Sorts events by depth, stably (ties keep their order): the order gatherRayEvents produces
+// when the events were appended child by child. Insertion: quadratic, for short rays.
+STRATA_HD void sortRayEvents(RayEvent* events, int n) {
+  for (int k = 1; k < n; ++k) {
+    const RayEvent e = events[k];
+    int m = k - 1;
+    while (m >= 0 && e.depth < events[m].depth) {
+      events[m + 1] = events[m];
+      --m;
+    }
+    events[m + 1] = e;
+  }
+}
+
 // Normalises a leaf's sorted raw hits into clean alternating enter/exit surfels: inside where the
 // winding number (enter +1, exit -1) is non-zero, so overlapping shells of one mesh unite. Hits
 // outside [lo, hi] only update the winding; a solid crossing lo or hi is closed there with a

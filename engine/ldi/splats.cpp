@@ -21,10 +21,16 @@ std::vector<Splat> buildSplats(const Ldi& ldi) {
   splats.reserve(ldi.surfelCount() / 3 + 16);
   for (int axis = 0; axis < 3; ++axis) {
     const AxisLdi& a = ldi.axes[axis];
-    for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray)
-      for (uint32_t k = a.offsets[size_t(ray)]; k < a.offsets[size_t(ray) + 1]; ++k)
+    const int raysU = ldi.grid.raysU(axis);
+    for (int64_t local = 0; local + 1 < int64_t(a.offsets.size()); ++local) {
+      // The grid's ray index of this stored ray (the same for a whole axis).
+      const int64_t ray = a.whole ? local
+                                  : (a.window.u0 + local % a.window.uCount) +
+                                        (a.window.v0 + local / a.window.uCount) * int64_t(raysU);
+      for (uint32_t k = a.offsets[size_t(local)]; k < a.offsets[size_t(local) + 1]; ++k)
         if (surfelMakesSplat(a.surfels[k], axis))
           splats.push_back(splatOf(frame, axis, ray, a.surfels[k]));
+    }
   }
   return splats;
 }

@@ -24,7 +24,11 @@ int defaultWorkers() {
 
 int workerCount() {
   int n = g_override.load();
-  return n > 0 ? n : defaultWorkers();
+  if (n > 0) return n;
+  // Read once: hardware_concurrency() reads /sys on every call, which cost more than sampling a
+  // small leaf does.
+  static const int workers = defaultWorkers();
+  return workers;
 }
 
 void setWorkerCount(int threads) {

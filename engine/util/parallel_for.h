@@ -11,7 +11,8 @@
 
 namespace strata {
 
-// Number of threads parallelFor uses: STRATA_THREADS if set (>= 1), else the hardware count.
+// Number of threads parallelFor uses: setWorkerCount's, else STRATA_THREADS if set (>= 1) when
+// first asked, else the hardware count.
 int workerCount();
 // Overrides the worker count for this process (1 = serial). 0 restores the default.
 void setWorkerCount(int threads);
