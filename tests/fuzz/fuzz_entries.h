@@ -10,14 +10,24 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "engine/document/expansion.h"
+#include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
+#include "engine/export/contour_scene.h"
+#include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/scene_file.h"
+#include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
+#include "engine/util/progress.h"
 
 namespace strata {
 namespace fuzz {
@@ -148,6 +158,159 @@ inline void runSceneFile(const uint8_t* data, size_t size) {
     parseScene(text, "fuzz.strata.json", "/nonexistent-strata-fuzz-folder", &report);
   } catch (const Error&) {
   }
+}
+
+// Reads fuzz bytes as numbers; zeros once they run out.
+class ByteReader {
+ public:
+  ByteReader(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  uint8_t byte() { return at_ < size_ ? data_[at_++] : 0; }
+  // A number in [lo, hi] in 256 steps.
+  double in(double lo, double hi) { return lo + (hi - lo) * byte() / 255.0; }
+  bool done() const { return at_ >= size_; }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+  size_t at_ = 0;
+};
+
+// A closed octahedron around the origin with its six corners moved by the bytes: a tiny mesh
+// that may fold through itself, prepared as the readers prepare theirs.
+inline std::shared_ptr<const TriangleMesh> jitteredOctahedron(ByteReader& in) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  const glm::dvec3 corners[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const glm::dvec3& c : corners)
+    mesh->positions.push_back(c * in.in(0.2, 1.5) +
+                              glm::dvec3(in.in(-0.6, 0.6), in.in(-0.6, 0.6), in.in(-0.6, 0.6)));
+  mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                     {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  prepareMesh(*mesh);
+  return mesh;
+}
+
+// A node the bytes describe: an operation of 1-3 children (down to `depth` levels) or a leaf
+// (a primitive of the table with scaled default parameters, or a jittered octahedron), placed
+// by a transform of the bytes.
+inline NodePtr fuzzNode(ByteReader& in, int depth, NodeId& nextId) {
+  auto node = std::make_shared<Node>();
+  node->id = nextId++;
+  const uint8_t pick = in.byte();
+  const auto& table = primitiveTable();
+  if (depth > 0 && pick % 3 == 0) {
+    node->kind = NodeKind(pick / 3 % 3);  // Union, Intersection, Difference
+    const int children = 1 + in.byte() % 3;
+    for (int c = 0; c < children; ++c) node->children.push_back(fuzzNode(in, depth - 1, nextId));
+  } else if (pick % 3 == 1) {
+    node->kind = NodeKind::Mesh;
+    node->mesh = jitteredOctahedron(in);
+  } else {
+    const PrimitiveInfo& info = table[size_t(pick / 3) % table.size()];
+    node->kind = info.kind;
+    node->params = scaledPrimitiveParams(info.kind, info.defaults, in.in(0.2, 2.0));
+    node->params.segments = in.byte() % 2 ? 0 : 3 + in.byte() % 20;
+  }
+  node->transform.translate = glm::dvec3(in.in(-1, 1), in.in(-1, 1), in.in(-1, 1));
+  node->transform.rotateDegrees = glm::dvec3(in.in(0, 360), in.in(0, 360), in.in(0, 360));
+  node->transform.scale = glm::dvec3(in.in(0.3, 2), in.in(0.3, 2), in.in(0.3, 2));
+  if (in.byte() % 4 == 0) node->transform.scale.x = -node->transform.scale.x;  // a mirror
+  return node;
+}
+
+// Whole pipeline: the bytes build a small tree (fuzzNode, up to 3 levels), which is sampled,
+// combined and contoured on the CPU at 8 to 47 cells, in tiles of 8 to 23 cells. The property:
+// the result is empty or a closed, manifold, oriented mesh without degenerate triangles; every
+// failure is a strata::Error. Returns whether a mesh came out.
+inline bool runPipeline(const uint8_t* data, size_t size) {
+  ByteReader in(data, size);
+  NodeId nextId = 1;
+  Scene scene;
+  scene.root = fuzzNode(in, 3, nextId);
+  scene.settings.resolution = 8 + in.byte() % 40;
+  ContourOptions options;
+  options.tileCells = 8 + in.byte() % 16;
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  ExportMesh mesh;
+  try {
+    mesh = contourScene(scene, evaluator, options, progress);
+  } catch (const Error&) {
+    return false;
+  }
+  if (mesh.mesh.triangles.empty()) return false;
+  const MeshCheck c = checkMesh(mesh.mesh);
+  if (!c.watertight() || c.degenerateTriangles != 0 || !(c.volume > 0.0)) {
+    std::fprintf(stderr,
+                 "pipeline: not a closed manifold: %zu boundary, %zu non-manifold, %zu misoriented "
+                 "edges, %zu degenerate triangles, volume %g\n",
+                 size_t(c.boundaryEdges), size_t(c.nonManifoldEdges), size_t(c.misorientedEdges),
+                 size_t(c.degenerateTriangles), c.volume);
+    std::abort();
+  }
+  return true;
+}
+
+// Instance expansion: the bytes build a DAG of up to 24 nodes where node k is a box or an
+// operation over 1 to 6 instances of earlier nodes (so instances may multiply exponentially), with a
+// leaf limit of 1 to 1021. The property: checkExpansion answers in O(nodes) and either refuses
+// with strata::Error or returns a count within the limit, which then bounds what an evaluation
+// at 8 cells visits; no evaluation runs longer than the fuzzer's -timeout. Returns whether the
+// scene was accepted (and evaluated).
+inline bool runExpansion(const uint8_t* data, size_t size) {
+  ByteReader in(data, size);
+  const int nodes = 1 + in.byte() % 24;
+  const uint64_t limit = 1 + uint64_t(in.byte()) * 4;
+  std::vector<std::shared_ptr<Node>> made;
+  NodeId nextId = 1;
+  auto top = std::make_shared<Node>();
+  top->id = nextId++;
+  top->kind = NodeKind::Union;
+  for (int k = 0; k < nodes; ++k) {
+    auto node = std::make_shared<Node>();
+    node->id = nextId++;
+    if (made.empty() || in.byte() % 8 == 0) {
+      node->kind = NodeKind::Box;
+      node->transform.translate = glm::dvec3(in.in(-2, 2), in.in(-2, 2), in.in(-2, 2));
+    } else {
+      node->kind = NodeKind(in.byte() % 3);
+      const int children = 1 + in.byte() % 6;
+      for (int c = 0; c < children; ++c) {
+        auto instance = std::make_shared<Node>();
+        instance->id = nextId++;
+        instance->kind = NodeKind::Instance;
+        // Mostly the last few nodes: chains that multiply at every level.
+        const size_t back = in.byte() % (made.size() < 3 ? made.size() : 3);
+        instance->instanceOf = made[made.size() - 1 - back]->id;
+        instance->transform.translate = glm::dvec3(in.in(-1, 1), 0.0, 0.0);
+        node->children.push_back(instance);
+      }
+    }
+    node->visible = in.byte() % 8 != 0;
+    made.push_back(node);
+    top->children.push_back(node);
+  }
+  Scene scene;
+  scene.root = top;
+  scene.settings.resolution = 8;
+  scene.settings.maxLeaves = limit;
+  TreeExpansion measured;
+  try {
+    measured = checkExpansion(scene.root, limit);
+  } catch (const Error&) {
+    return false;  // refused before any work: the expected answer to an explosion
+  }
+  if (measured.leaves > limit) {
+    std::fprintf(stderr, "expansion: %llu leaves accepted over the limit %llu\n",
+                 (unsigned long long)measured.leaves, (unsigned long long)limit);
+    std::abort();
+  }
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  try {
+    evaluator.evaluate(scene, EvalOptions{}, progress);
+  } catch (const Error&) {
+  }
+  return true;
 }
 
 }  // namespace fuzz

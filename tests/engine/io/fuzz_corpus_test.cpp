@@ -219,5 +219,35 @@ TEST(FuzzCorpus, MutatedScenesOnlyThrowErrors) {
   runScene("");
 }
 
+// The whole-pipeline and expansion targets on random byte strings (their inputs are any bytes):
+// every tree they build gives an empty result or a watertight mesh (runPipeline aborts
+// otherwise), every instance DAG is refused or evaluated within its limit.
+TEST(FuzzCorpus, RandomTreesGiveWatertightMeshes) {
+  std::mt19937 rng(kSeed + 2);
+  int meshes = 0;
+  for (int i = 0; i < 40; ++i) {
+    std::string bytes(size_t(8 + rng() % 120), '\0');
+    for (char& c : bytes) c = char(rng());
+    SCOPED_TRACE("tree " + std::to_string(i));
+    meshes += fuzz::runPipeline(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  }
+  fuzz::runPipeline(nullptr, 0);
+  EXPECT_GE(meshes, 20);  // most trees have a surface: the property is really checked
+}
+
+TEST(FuzzCorpus, RandomInstanceDagsAreRefusedOrBounded) {
+  std::mt19937 rng(kSeed + 3);
+  int accepted = 0;
+  for (int i = 0; i < 200; ++i) {
+    std::string bytes(size_t(4 + rng() % 160), '\0');
+    for (char& c : bytes) c = char(rng());
+    SCOPED_TRACE("dag " + std::to_string(i));
+    accepted += fuzz::runExpansion(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  }
+  // Both answers occur: some DAGs fit their limit and are evaluated, others are refused.
+  EXPECT_GE(accepted, 20);
+  EXPECT_LE(accepted, 180);
+}
+
 }  // namespace
 }  // namespace strata
