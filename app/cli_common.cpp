@@ -1,5 +1,7 @@
 #include "app/cli_common.h"
 
+#include "engine/util/memory.h"
+
 #include <cstdint>
 #include <new>
 
@@ -10,9 +12,11 @@
 namespace strata {
 
 const std::vector<std::string> kValuedOptions = {
-    "--resolution", "--report",  "-o",     "--output",     "--backend",    "--threads",
-    "--margin",     "--surfels", "--tile", "--unit-scale", "--max-leaves", "--max-file-size"};
-const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open"};
+    "--resolution", "--report",        "-o",          "--output", "--backend",
+    "--threads",    "--margin",        "--surfels",   "--tile",   "--unit-scale",
+    "--max-leaves", "--max-file-size", "--max-memory"};
+const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open",
+                                               "--force"};
 
 int runGuarded(const std::function<int()>& body) {
   try {
@@ -50,9 +54,10 @@ std::string unitAbbreviation(const std::string& unit) {
   return unit;
 }
 
-void applyInputLimits(const CliArgs& args) {
-  if (!args.has("--max-file-size")) return;
-  const std::string text = args.text("--max-file-size", "");
+namespace {
+// A size option: bytes, or with K, M, G, T (powers of 1024).
+uint64_t sizeOption(const CliArgs& args, const std::string& option) {
+  const std::string text = args.text(option, "");
   size_t used = 0;
   unsigned long long value = 0;
   try {
@@ -68,14 +73,40 @@ void applyInputLimits(const CliArgs& args) {
               : unit == "T"             ? 40
                                         : -1;
   if (used == 0 || shift < 0 || value == 0 || value > (~0ull >> shift))
-    throw Error("--max-file-size: expected a size such as 800M, 16G or 2000000000, got '" + text +
-                "'");
-  setMaxInputFileBytes(uint64_t(value) << shift);
+    throw Error(option + ": expected a size such as 800M, 16G or 2000000000, got '" + text + "'");
+  return uint64_t(value) << shift;
+}
+}  // namespace
+
+void applyInputLimits(const CliArgs& args) {
+  if (!args.has("--max-file-size")) return;
+  setMaxInputFileBytes(sizeOption(args, "--max-file-size"));
 }
 
 void applySceneLimits(const CliArgs& args, Scene* scene) {
   if (args.has("--max-leaves"))
     scene->settings.maxLeaves = uint64_t(args.integer("--max-leaves", 0, 1, INT32_MAX));
+}
+
+void tellOrRefuseEstimate(const JobEstimate& estimate, const CliArgs& args, const std::string& job,
+                          const std::string& outputPath) {
+  std::string folder = ".";
+  if (!outputPath.empty()) {
+    const size_t slash = outputPath.find_last_of('/');
+    if (slash != std::string::npos) folder = slash == 0 ? "/" : outputPath.substr(0, slash);
+  }
+  const uint64_t memory =
+      args.has("--max-memory") ? sizeOption(args, "--max-memory") : availableMemoryBytes();
+  const std::string refusal =
+      estimateRefusal(estimate, memory, outputPath.empty() ? 0 : freeDiskBytes(folder));
+  const bool force = args.has("--force");
+  if (!refusal.empty() && !force)
+    throw Error(job + " " + refusal + " (estimate: " + describeEstimate(estimate) +
+                "). Lower --resolution, or run it anyway with --force");
+  if (!refusal.empty() || (estimateWorthTelling(estimate) && !quietRequested(args)))
+    std::fprintf(stderr, "strata: estimate for %s: %s%s\n", job.c_str(),
+                 describeEstimate(estimate).c_str(),
+                 refusal.empty() ? "" : (" -- " + refusal + "; going on (--force)").c_str());
 }
 
 }  // namespace strata

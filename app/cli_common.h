@@ -9,6 +9,7 @@
 #include "app/backend_choice.h"
 #include "app/cli_args.h"
 #include "engine/document/scene.h"
+#include "engine/export/job_estimate.h"
 
 namespace strata {
 
@@ -30,6 +31,14 @@ void applyInputLimits(const CliArgs& args);
 
 // Applies --max-leaves to the scene's settings (engine/document/expansion.h).
 void applySceneLimits(const CliArgs& args, Scene* scene);
+
+// Before a long job: refuses (strata::Error naming the job, the need and what is available) a
+// job whose estimate does not fit in the memory available (or --max-memory) or, writing
+// `outputPath`, on its disk, unless --force; prints the estimate of a job worth telling about
+// (estimateWorthTelling) or forced, unless --quiet. `job` names it: "export of part.strata.json at
+// 4096 cells".
+void tellOrRefuseEstimate(const JobEstimate& estimate, const CliArgs& args, const std::string& job,
+                          const std::string& outputPath);
 
 // "mm" for "millimetre" and the other units scene files name; anything else unchanged.
 std::string unitAbbreviation(const std::string& unit);

@@ -44,6 +44,18 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
   context.unit = scene.settings.unit;
   context.treeDepth = treeDepth(scene.root);
 
+  {
+    Progress probe;
+    const JobEstimate estimate =
+        estimateEvaluation(scene, options.resolution, choice.backend, probe);
+    tellOrRefuseEstimate(
+        estimate, args,
+        "evaluation of " + context.input + " at " +
+            std::to_string(std::max(estimate.grid.cells.x,
+                                    std::max(estimate.grid.cells.y, estimate.grid.cells.z))) +
+            " cells",
+        "");
+  }
   Evaluator evaluator(choice.backend);
   TerminalProgress terminal(quietRequested(args));
   std::shared_ptr<Backend> used;

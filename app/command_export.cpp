@@ -21,6 +21,15 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
   options.tileCells = args.integer("--tile", 256, 8, kMaxResolution);
 
+  {
+    Progress probe;
+    const JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
+    const glm::ivec3 c = estimate.grid.cells;
+    tellOrRefuseEstimate(estimate, args,
+                         "export of " + input + " at " +
+                             std::to_string(std::max(c.x, std::max(c.y, c.z))) + " cells",
+                         output);
+  }
   ExportSummary summary;
   summary.input = input;
   summary.output = output;

@@ -7,13 +7,25 @@
 namespace strata {
 
 const std::vector<MeshFormat>& meshFormats() {
-  // label, extensions, parser, writer, read note, write note
+  // label, extensions, parser, writer, read note, write note, bytes per triangle written
   static const std::vector<MeshFormat> formats = {
-      {"STL", {"stl"}, meshio::parseStl, meshio::writeStl, "ascii or binary", "binary"},
-      {"OBJ", {"obj"}, meshio::parseObj, meshio::writeObj, "", "+ .mtl, a material per leaf"},
-      {"PLY", {"ply"}, meshio::parsePly, meshio::writePly, "ascii or binary", "vertex colours"},
-      {"OFF", {"off"}, meshio::parseOff, nullptr, "", ""},
-      {"3MF", {"3mf"}, meshio::parse3mf, meshio::write3mf, "", "colour per leaf, the scene's unit"},
+      {"STL", {"stl"}, meshio::parseStl, meshio::writeStl, "ascii or binary", "binary", 50.0},
+      {"OBJ", {"obj"}, meshio::parseObj, meshio::writeObj, "", "+ .mtl, a material per leaf", 38.0},
+      {"PLY",
+       {"ply"},
+       meshio::parsePly,
+       meshio::writePly,
+       "ascii or binary",
+       "vertex colours",
+       27.0},
+      {"OFF", {"off"}, meshio::parseOff, nullptr, "", "", 0.0},
+      {"3MF",
+       {"3mf"},
+       meshio::parse3mf,
+       meshio::write3mf,
+       "",
+       "colour per leaf, the scene's unit",
+       19.0},
   };
   return formats;
 }

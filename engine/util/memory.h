@@ -1,11 +1,19 @@
-// Process memory as the operating system sees it.
+// Process memory, and the room left for more, as the operating system sees it.
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace strata {
 
 // Peak resident set size of this process so far, in bytes (0 where unknown).
 uint64_t peakResidentBytes();
+
+// Memory the system can still give without swapping (MemAvailable), in bytes; 0 where unknown.
+uint64_t availableMemoryBytes();
+
+// Free space for an unprivileged writer in the file system holding `folder`, in bytes; 0 where
+// unknown (the folder does not exist, ...).
+uint64_t freeDiskBytes(const std::string& folder);
 
 }  // namespace strata

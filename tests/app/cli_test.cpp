@@ -238,4 +238,32 @@ TEST(CliExport, SceneExportWithTilesAndErrors) {
   EXPECT_NE(badDir.output.find("/nonexistent/dir/x.stl"), std::string::npos) << badDir.output;
 }
 
+TEST(CliExport, AJobThatCannotFitIsRefusedWithItsEstimate) {
+  // The scaffold at 4096 cells: about 30 million triangles, some GiB; with 1 GiB allowed the
+  // export is refused before any work, naming the job, the estimate and both ways on.
+  const std::string scene = std::string(STRATA_ASSETS) + "/scenes/bone_scaffold.strata.json";
+  const std::string out = temp("refused.stl");
+  std::remove(out.c_str());
+  CliRun r = strata("export " + scene + " --resolution 4096 --max-memory 1G -o " + out);
+  EXPECT_EQ(r.code, 1) << r.output;
+  for (const char* part :
+       {"export of ", "bone_scaffold.strata.json at 4096 cells", "of memory",
+        "1.0 GiB are available", "triangles", "tiles", "--resolution", "--force"})
+    EXPECT_NE(r.output.find(part), std::string::npos) << part << "\n" << r.output;
+  FILE* written = std::fopen(out.c_str(), "rb");
+  EXPECT_EQ(written, nullptr) << "nothing may be written";
+  if (written) std::fclose(written);
+  CliRun eval = strata("eval " + scene + " --resolution 4096 --max-memory 64M");
+  EXPECT_EQ(eval.code, 1) << eval.output;
+  EXPECT_NE(eval.output.find("evaluation of "), std::string::npos) << eval.output;
+  CliRun badSize = strata("eval " + scene + " --max-memory lots");
+  EXPECT_EQ(badSize.code, 1);
+  EXPECT_NE(badSize.output.find("--max-memory: expected a size"), std::string::npos)
+      << badSize.output;
+  // A job that fits says nothing about estimates.
+  CliRun small = strata("eval " + scene + " --resolution 128");
+  EXPECT_EQ(small.code, 0) << small.output;
+  EXPECT_EQ(small.output.find("estimate"), std::string::npos) << small.output;
+}
+
 }  // namespace

@@ -179,7 +179,8 @@ class ByteReader {
 // that may fold through itself, prepared as the readers prepare theirs.
 inline std::shared_ptr<const TriangleMesh> jitteredOctahedron(ByteReader& in) {
   auto mesh = std::make_shared<TriangleMesh>();
-  const glm::dvec3 corners[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const glm::dvec3 corners[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   for (const glm::dvec3& c : corners)
     mesh->positions.push_back(c * in.in(0.2, 1.5) +
                               glm::dvec3(in.in(-0.6, 0.6), in.in(-0.6, 0.6), in.in(-0.6, 0.6)));
@@ -251,8 +252,8 @@ inline bool runPipeline(const uint8_t* data, size_t size) {
 }
 
 // Instance expansion: the bytes build a DAG of up to 24 nodes where node k is a box or an
-// operation over 1 to 6 instances of earlier nodes (so instances may multiply exponentially), with a
-// leaf limit of 1 to 1021. The property: checkExpansion answers in O(nodes) and either refuses
+// operation over 1 to 6 instances of earlier nodes (so instances may multiply exponentially), with
+// a leaf limit of 1 to 1021. The property: checkExpansion answers in O(nodes) and either refuses
 // with strata::Error or returns a count within the limit, which then bounds what an evaluation
 // at 8 cells visits; no evaluation runs longer than the fuzzer's -timeout. Returns whether the
 // scene was accepted (and evaluated).

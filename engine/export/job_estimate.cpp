@@ -1,0 +1,152 @@
+#include "engine/export/job_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/eval/evaluator.h"
+#include "engine/io/mesh_formats.h"
+#include "engine/util/memory.h"
+#include "engine/util/timer.h"
+
+namespace strata {
+namespace {
+
+// Host memory of an export per output triangle, contouring, merging, writing and re-reading for
+// the check included: measured 75 bytes between the bone scaffold's exports at 512 and 2048
+// cells (164 MiB for 0.5 million triangles, 737 MiB for 8.2 million; 2026-11-23, CPU backend),
+// rounded up.
+constexpr double kExportBytesPerTriangle = 100.0;
+
+int tileCount(const Grid& grid, int tileCells) {
+  const int t = std::max(8, tileCells);
+  int64_t n = 1;
+  for (int a = 0; a < 3; ++a) n *= (grid.cells[a] + t - 1) / t;
+  return int(std::min<int64_t>(n, 0x7fffffff));
+}
+
+// How much more surface the job samples than the probe: the square of their cell sizes' ratio.
+double scaleFrom(const Grid& probe, const Grid& job) {
+  const double ratio = probe.h / job.h;
+  return ratio * ratio;
+}
+
+std::string bytesText(double bytes) {
+  char text[64];
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB"};
+  int u = 0;
+  while (bytes >= 1024.0 && u < 5) {
+    bytes /= 1024.0;
+    ++u;
+  }
+  std::snprintf(text, sizeof(text), u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
+  return text;
+}
+
+std::string countText(double n) {
+  char text[64];
+  if (n >= 1e9)
+    std::snprintf(text, sizeof(text), "%.1f billion", n / 1e9);
+  else if (n >= 1e6)
+    std::snprintf(text, sizeof(text), "%.1f million", n / 1e6);
+  else
+    std::snprintf(text, sizeof(text), "%.0f", n);
+  return text;
+}
+
+std::string durationText(double s) {
+  char text[64];
+  if (s < 60.0)
+    std::snprintf(text, sizeof(text), "%.0f s", std::max(1.0, s));
+  else if (s < 3600.0)
+    std::snprintf(text, sizeof(text), "%.0f min", s / 60.0);
+  else if (s < 86400.0 * 2)
+    std::snprintf(text, sizeof(text), "%.1f hours", s / 3600.0);
+  else
+    std::snprintf(text, sizeof(text), "%.0f days", s / 86400.0);
+  return text;
+}
+
+}  // namespace
+
+JobEstimate estimateEvaluation(const Scene& scene, int resolution,
+                               const std::shared_ptr<Backend>& backend, Progress& progress) {
+  JobEstimate e;
+  e.grid = Evaluator::gridFor(scene, resolution);
+  const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
+  if (probeGrid.h <= e.grid.h * 1.5) return e;  // no bigger than the probe
+  Evaluator probe(backend);
+  EvalOptions options;
+  options.resolution = kProbeResolution;
+  Stopwatch clock;
+  const EvalResult r = probe.evaluate(scene, options, progress);
+  const double scale = scaleFrom(r.grid, e.grid);
+  e.probed = true;
+  e.surfels = uint64_t(double(r.measure.surfels) * scale);
+  // Every node's LDI is kept (the cache): the probe's cache, scaled, on top of what the
+  // process holds now.
+  e.peakBytes = peakResidentBytes() + uint64_t(double(r.cacheBytes) * scale);
+  e.seconds = clock.seconds() * scale;
+  return e;
+}
+
+JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
+                           const std::string& path, const std::shared_ptr<Backend>& backend,
+                           Progress& progress) {
+  JobEstimate e;
+  e.grid = Evaluator::gridFor(scene, options.resolution);
+  e.tiles = tileCount(e.grid, options.tileCells);
+  const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
+  if (probeGrid.h <= e.grid.h * 1.5) return e;
+  Evaluator probe(backend);
+  ContourOptions probeOptions;
+  probeOptions.resolution = kProbeResolution;
+  probeOptions.tileCells = kProbeResolution * 2;  // one tile
+  Stopwatch clock;
+  ContourReport report;
+  const ExportMesh mesh = contourScene(scene, probe, probeOptions, progress, &report);
+  const double seconds = clock.seconds();
+  const double scale = scaleFrom(report.grid, e.grid);
+  e.probed = true;
+  e.surfels = uint64_t(double(report.surfels) * scale);
+  e.triangles = uint64_t(double(mesh.mesh.triangles.size()) * scale);
+  e.peakBytes = peakResidentBytes() + uint64_t(double(e.triangles) * kExportBytesPerTriangle);
+  const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
+  e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
+  // Contouring and sampling grow with the surface; writing and checking with the triangles,
+  // measured at about 1 microsecond per triangle; each tile adds a little fixed work.
+  e.seconds = seconds * scale + 1e-6 * double(e.triangles) + 2e-3 * e.tiles;
+  return e;
+}
+
+std::string describeEstimate(const JobEstimate& e) {
+  std::string s = std::to_string(e.grid.cells.x) + " x " + std::to_string(e.grid.cells.y) + " x " +
+                  std::to_string(e.grid.cells.z) + " cells";
+  if (e.tiles > 1) s += ", " + countText(e.tiles) + " tiles";
+  if (!e.probed) return s;
+  if (e.triangles > 0)
+    s += ", about " + countText(double(e.triangles)) + " triangles";
+  else
+    s += ", about " + countText(double(e.surfels)) + " surfels";
+  s += ", " + bytesText(double(e.peakBytes)) + " of memory";
+  if (e.fileBytes > 0) s += ", a " + bytesText(double(e.fileBytes)) + " file";
+  s += ", " + durationText(e.seconds);
+  return s;
+}
+
+std::string estimateRefusal(const JobEstimate& e, uint64_t availableMemory, uint64_t freeDisk) {
+  if (!e.probed) return "";
+  if (availableMemory > 0 && e.peakBytes > availableMemory)
+    return "needs about " + bytesText(double(e.peakBytes)) + " of memory and " +
+           bytesText(double(availableMemory)) + " are available";
+  if (freeDisk > 0 && e.fileBytes > freeDisk)
+    return "writes a file of about " + bytesText(double(e.fileBytes)) + " and the disk has " +
+           bytesText(double(freeDisk)) + " free";
+  return "";
+}
+
+bool estimateWorthTelling(const JobEstimate& e) {
+  return e.probed && (e.seconds > 10.0 || e.tiles > 64 || e.peakBytes > (uint64_t(2) << 30));
+}
+
+}  // namespace strata

@@ -1,0 +1,58 @@
+// What a job at a high resolution will cost, told before it starts: cells, tiles, surface,
+// memory, file size and time, scaled from a quick probe of the same scene at a coarse
+// resolution on the same backend. Surfels, triangles, LDI memory and (to first order) time all
+// grow with the surface, that is with the square of the resolution; the probe measures the
+// constant for this scene. An estimate, good to a factor of about two: enough to tell a job
+// of seconds from one of hours, or one that fits from one that cannot.
+//
+// Synchronous; any thread; runs the probe on `backend` (which the caller must not use
+// meanwhile).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "engine/document/scene.h"
+#include "engine/eval/backend.h"
+#include "engine/export/contour_scene.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+// Cells of the probe along the longest side.
+constexpr int kProbeResolution = 64;
+
+struct JobEstimate {
+  Grid grid;               // of the job
+  int tiles = 1;           // export only
+  uint64_t surfels = 0;    // of the root
+  uint64_t triangles = 0;  // export only
+  uint64_t peakBytes = 0;  // host memory at the peak, the process's present use included
+  uint64_t fileBytes = 0;  // export only: the written file
+  double seconds = 0.0;    // wall time of the job on this backend
+  bool probed = false;     // false: the job is no bigger than the probe; only grid and tiles set
+};
+
+// An evaluation of `scene` at `resolution` (0 = the scene's setting).
+JobEstimate estimateEvaluation(const Scene& scene, int resolution,
+                               const std::shared_ptr<Backend>& backend, Progress& progress);
+
+// An export of `scene` to `path` (its extension picks the format's bytes per triangle).
+JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
+                           const std::string& path, const std::shared_ptr<Backend>& backend,
+                           Progress& progress);
+
+// One line for the user: "4096 x 3600 x 3080 cells, 1,024 tiles, about 52 million triangles,
+// 13 GiB of memory, a 2.6 GB file, 3 minutes".
+std::string describeEstimate(const JobEstimate& estimate);
+
+// Why the job cannot run here ("" when it can): more memory than `availableMemory` bytes, or a
+// file larger than `freeDisk` bytes (0 = unknown: not checked).
+std::string estimateRefusal(const JobEstimate& estimate, uint64_t availableMemory,
+                            uint64_t freeDisk);
+
+// Whether the estimate is worth telling before starting: over 10 s, 64 tiles or 2 GiB.
+bool estimateWorthTelling(const JobEstimate& estimate);
+
+}  // namespace strata

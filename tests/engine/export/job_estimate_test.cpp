@@ -1,0 +1,58 @@
+// Estimates before long jobs: scaled from a 64-cell probe, they must land within a factor of two
+// of what the job then does, and say so in words a user reads.
+#include "engine/export/job_estimate.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/eval/cpu_backend.h"
+#include "engine/io/scene_file.h"
+#include "tests/support/scene_builder.h"
+
+namespace strata {
+namespace {
+
+TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
+  const Scene scene = loadScene(test::assetsDir() + "/scenes/bone_scaffold.strata.json");
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  ContourOptions options;
+  options.resolution = 256;
+  options.tileCells = 64;
+  const JobEstimate e = estimateExport(scene, options, "/tmp/x.3mf", backend, progress);
+  ASSERT_TRUE(e.probed);
+  EXPECT_GT(e.tiles, 1);
+  Evaluator evaluator(backend);
+  const ExportMesh mesh = contourScene(scene, evaluator, options, progress);
+  const double ratio = double(e.triangles) / double(mesh.mesh.triangles.size());
+  EXPECT_GT(ratio, 0.5);
+  EXPECT_LT(ratio, 2.0);
+  EXPECT_NEAR(double(e.fileBytes), 19.0 * double(e.triangles), 1.0 * double(e.triangles));
+  const std::string text = describeEstimate(e);
+  EXPECT_NE(text.find("cells"), std::string::npos) << text;
+  EXPECT_NE(text.find("tiles"), std::string::npos) << text;
+  EXPECT_NE(text.find("triangles"), std::string::npos) << text;
+}
+
+TEST(JobEstimate, SmallJobsAreNotProbedAndRefusalsSayWhy) {
+  const Scene scene = loadScene(test::assetsDir() + "/scenes/demo.strata.json");
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  const JobEstimate small = estimateEvaluation(scene, 64, backend, progress);
+  EXPECT_FALSE(small.probed);
+  EXPECT_FALSE(estimateWorthTelling(small));
+  EXPECT_EQ(estimateRefusal(small, 1, 1), "");
+  JobEstimate big = estimateEvaluation(scene, 1024, backend, progress);
+  ASSERT_TRUE(big.probed);
+  EXPECT_GT(big.surfels, 0u);
+  big.peakBytes = uint64_t(40) << 30;
+  big.fileBytes = uint64_t(3) << 30;
+  EXPECT_EQ(estimateRefusal(big, uint64_t(16) << 30, 0),
+            "needs about 40.0 GiB of memory and 16.0 GiB are available");
+  EXPECT_EQ(estimateRefusal(big, uint64_t(64) << 30, uint64_t(1) << 30),
+            "writes a file of about 3.0 GiB and the disk has 1.0 GiB free");
+  EXPECT_EQ(estimateRefusal(big, 0, 0), "");  // unknown room: not refused
+  EXPECT_TRUE(estimateWorthTelling(big));
+}
+
+}  // namespace
+}  // namespace strata
