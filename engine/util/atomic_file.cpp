@@ -391,15 +391,17 @@ std::string readWholeFile(const std::string& path) {
   size_t done = 0;
   for (;;) {  // the file may change while it is read: read to its end, within the limit
     if (done == bytes.size()) {
-      if (bytes.size() >= limit) {
-        char probe;
-        ssize_t more = ::read(fd, &probe, 1);
-        if (more > 0) throw tooLarge(limit + 1);
-        if (more == 0) break;
-        if (errno == EINTR) continue;
-        throw Error(path + ": read failed: " + std::strerror(errno));
-      }
+      // Full: is there more? Probe with a byte before growing, so that the usual case (the
+      // file as large as fstat said) never allocates and touches a second buffer.
+      char probe;
+      const ssize_t more = ::read(fd, &probe, 1);
+      if (more == 0) break;
+      if (more < 0 && errno == EINTR) continue;
+      if (more < 0) throw Error(path + ": read failed: " + std::strerror(errno));
+      if (bytes.size() >= limit) throw tooLarge(limit + 1);
       bytes.resize(std::min<uint64_t>(limit, std::max<uint64_t>(4096, bytes.size() * 2)));
+      bytes[done++] = probe;
+      continue;
     }
     const ssize_t got = ::read(fd, &bytes[done], bytes.size() - done);
     if (got < 0 && errno == EINTR) continue;
