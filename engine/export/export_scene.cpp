@@ -1,5 +1,7 @@
 #include "engine/export/export_scene.h"
 
+#include "engine/util/atomic_file.h"
+
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"
@@ -30,7 +32,11 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Cont
   // The new file is in place and whole from here on: a cancel during the check leaves it.
   progress.report("check", 0.0);
   Stopwatch check;
-  TriangleMesh written = readMeshFileRaw(path);
+  TriangleMesh written;
+  {
+    const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
+    written = readMeshFileRaw(path);
+  }
   progress.report("check", 0.5);
   report.check = checkMesh(written);
   report.checkSeconds = check.seconds();

@@ -32,6 +32,7 @@
 #include "engine/io/mesh_readers.h"
 #include "engine/io/xml_reader.h"
 #include "engine/io/zip_archive.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -53,7 +54,6 @@ constexpr std::string_view kModelRelationship =
 const char* const kDefaultModelPart = "3D/3dmodel.model";
 const char* const kRelationshipsPart = "_rels/.rels";
 
-constexpr size_t kMaxModelBytes = size_t(2) << 30;  // uncompressed model XML
 constexpr size_t kMaxRelationshipBytes = size_t(16) << 20;
 // Placed triangles in all (components can multiply a small file into a huge mesh).
 constexpr uint64_t kMaxPlacedTriangles = 100'000'000;
@@ -648,7 +648,9 @@ class ModelParser : public XmlReader::Handler {
 TriangleMesh parse3mf(const std::string& name, const std::string& bytes, MeshReadReport* report) {
   const zipio::ZipReader zip(name, bytes);
   const std::string part = findModelPart(zip, name, report);
-  const std::string xml = zip.read(part, kMaxModelBytes);
+  // Uncompressed: a small package may inflate to gigabytes; the input limit bounds it.
+  const std::string xml =
+      zip.read(part, size_t(maxInputFileBytes()), "raise the limit with --max-file-size");
   ModelParser parser(name, part, report);
   return parser.parse(xml);
 }

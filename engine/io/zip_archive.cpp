@@ -113,7 +113,8 @@ bool ZipReader::has(const std::string& member) const {
   return zip_name_locate(zip_, member.c_str(), ZIP_FL_NOCASE) >= 0;
 }
 
-std::string ZipReader::read(const std::string& member, size_t maxBytes) const {
+std::string ZipReader::read(const std::string& member, size_t maxBytes,
+                            const std::string& howToRaise) const {
   const std::string where = name_ + ": " + member;
   const zip_int64_t index = zip_name_locate(zip_, member.c_str(), ZIP_FL_NOCASE);
   if (index < 0) throw Error(where + ": no such part in the zip archive");
@@ -123,8 +124,9 @@ std::string ZipReader::read(const std::string& member, size_t maxBytes) const {
     throw Error(where + ": cannot read the zip entry: " + errorText(zip_get_error(zip_)));
   }
   if ((st.valid & ZIP_STAT_SIZE) && st.size > maxBytes) {
-    throw Error(where + ": part is too large (" + std::to_string(st.size) + " bytes; at most " +
-                std::to_string(maxBytes) + " are read)");
+    throw Error(where + ": part is too large (" + std::to_string(st.size) +
+                " bytes uncompressed; at most " + std::to_string(maxBytes) + " are read" +
+                (howToRaise.empty() ? "" : "; " + howToRaise) + ")");
   }
   zip_file_t* file = zip_fopen_index(zip_, static_cast<zip_uint64_t>(index), 0);
   if (!file) throw Error(where + ": cannot open the zip entry: " + errorText(zip_get_error(zip_)));
@@ -141,7 +143,7 @@ std::string ZipReader::read(const std::string& member, size_t maxBytes) const {
     if (content.size() + static_cast<size_t>(n) > maxBytes) {
       zip_fclose(file);
       throw Error(where + ": part is too large (more than " + std::to_string(maxBytes) +
-                  " bytes when uncompressed)");
+                  " bytes when uncompressed" + (howToRaise.empty() ? "" : "; " + howToRaise) + ")");
     }
     content.append(chunk, static_cast<size_t>(n));
   }

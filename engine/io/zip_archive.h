@@ -39,7 +39,9 @@ class ZipReader {
   bool has(const std::string& member) const;
   // The member's uncompressed content. Throws strata::Error "<name>: <member>: ..." when it
   // is missing, corrupt (bad CRC, bad compressed data), encrypted, or larger than maxBytes.
-  std::string read(const std::string& member, size_t maxBytes) const;
+  // `howToRaise`, when given, ends the message about a part over maxBytes.
+  std::string read(const std::string& member, size_t maxBytes,
+                   const std::string& howToRaise = "") const;
 
  private:
   std::string name_;

@@ -359,7 +359,17 @@ const char* fileTypeName(mode_t mode) {
 }
 }  // namespace
 
+thread_local bool t_inputLimitLifted = false;
+
+InputLimitLifted::InputLimitLifted() : previous_(t_inputLimitLifted) {
+  t_inputLimitLifted = true;
+}
+InputLimitLifted::~InputLimitLifted() {
+  t_inputLimitLifted = previous_;
+}
+
 uint64_t maxInputFileBytes() {
+  if (t_inputLimitLifted) return ~uint64_t(0) >> 1;
   return g_maxInputFileBytes.load();
 }
 

@@ -86,10 +86,24 @@ void abandonAtomicWritesForExit() noexcept;
 // the size and how to raise the limit).
 std::string readWholeFile(const std::string& path);
 
-// The largest file readWholeFile reads (default kDefaultMaxInputFileBytes); process-wide, set by
-// the command line's --max-file-size. Any thread.
+// The largest file readWholeFile reads (default kDefaultMaxInputFileBytes), and the largest
+// uncompressed part of a 3MF package; process-wide, set by the command line's --max-file-size.
+// Any thread.
 uint64_t maxInputFileBytes();
 void setMaxInputFileBytes(uint64_t bytes);
+
+// While alive, lifts the limit on this thread alone: for reading back a file Strata has just
+// written itself (the export's check), which no input limit should refuse.
+class InputLimitLifted {
+ public:
+  InputLimitLifted();
+  ~InputLimitLifted();
+  InputLimitLifted(const InputLimitLifted&) = delete;
+  InputLimitLifted& operator=(const InputLimitLifted&) = delete;
+
+ private:
+  bool previous_;
+};
 constexpr uint64_t kDefaultMaxInputFileBytes = uint64_t(4) << 30;  // 4 GiB
 
 // For tests: stand-ins for what a test cannot otherwise control. Process-wide; a test sets them

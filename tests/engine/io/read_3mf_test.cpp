@@ -11,6 +11,7 @@
 
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "tests/fuzz/fuzz_entries.h"
 
@@ -237,6 +238,27 @@ TEST(Read3mf, NestedComponentsAreCountedBeforeTheyArePlaced) {
   const std::string withTriangles = errorOf(fuzz::packageModel(nestedComponents(8, 20, true)));
   EXPECT_NE(withTriangles.find("places more than 100000000 triangles"), std::string::npos)
       << withTriangles;
+}
+
+// The uncompressed model part is bounded by the input limit (a small package may inflate to
+// gigabytes), and the message says how to raise it; lifted on this thread, the same part reads.
+TEST(Read3mfXml, ModelPartOverTheInputLimitNamesTheOption) {
+  const std::string model = tetraModel(coreDefault(), "");
+  const std::string package = fuzz::packageModel(model);
+  const uint64_t saved = maxInputFileBytes();
+  setMaxInputFileBytes(model.size() - 1);
+  const std::string message = errorOf(package);
+  bool readLifted = false;
+  {
+    const InputLimitLifted lifted;
+    readLifted = !readMeshBytes("part.3mf", package).triangles.empty();
+  }
+  const std::string again = errorOf(package);
+  setMaxInputFileBytes(saved);
+  expectContains(message, {"3D/3dmodel.model", "part is too large", "--max-file-size"});
+  EXPECT_TRUE(readLifted);
+  expectContains(again, {"part is too large"});  // lifted only while alive
+  EXPECT_NE(errorOf(package), again);            // and the default limit reads it
 }
 
 }  // namespace

@@ -588,5 +588,38 @@ TEST(ReadWholeFile, RefusesDevicesFoldersAndFilesOverTheLimit) {
   std::remove(file.c_str());
 }
 
+// The export reads back its own file with the limit lifted on its thread alone.
+TEST(ReadWholeFile, LiftedLimitHoldsOnThisThreadOnly) {
+  const std::string file = testing::TempDir() + "/strata_lifted_test.txt";
+  writeFileAtomically(file, [](std::ostream& out) { out << std::string(3000, 'x'); });
+  const uint64_t saved = maxInputFileBytes();
+  setMaxInputFileBytes(100);
+  size_t liftedSize = 0;
+  bool otherThreadRefused = false;
+  {
+    const InputLimitLifted lifted;
+    liftedSize = readWholeFile(file).size();
+    std::thread other([&] {
+      try {
+        readWholeFile(file);
+      } catch (const Error&) {
+        otherThreadRefused = true;
+      }
+    });
+    other.join();
+  }
+  bool refusedAfter = false;
+  try {
+    readWholeFile(file);
+  } catch (const Error&) {
+    refusedAfter = true;
+  }
+  setMaxInputFileBytes(saved);
+  std::remove(file.c_str());
+  EXPECT_EQ(liftedSize, 3000u);
+  EXPECT_TRUE(otherThreadRefused);
+  EXPECT_TRUE(refusedAfter);
+}
+
 }  // namespace
 }  // namespace strata
