@@ -67,6 +67,35 @@ std::string durationText(double s) {
   return text;
 }
 
+// Time of a job from two probes: a part that does not grow with the resolution (per input
+// triangle: transforms, projections; per node), paid once per tile, and a part that grows with
+// the surface. Fitted to the probes (one tile each) at x = 1 (kProbeResolution) and x = xSmall
+// (half of it) in units of the probe's surface, then taken at xJob with `tiles` tiles.
+double fitSeconds(double tSmall, double xSmall, double tProbe, double xJob, int tiles) {
+  double perSurface = xSmall < 1.0 ? (tProbe - tSmall) / (1.0 - xSmall) : tProbe;
+  perSurface = std::max(0.0, perSurface);
+  double fixed = tProbe - perSurface;
+  if (fixed < 0.0) {
+    fixed = 0.0;
+    perSurface = tProbe;
+  }
+  return fixed * std::max(1, tiles) + perSurface * xJob;
+}
+
+// Runs `probe` (returns the probe's grid) at half and at the whole probe resolution, timing
+// each; returns the fitted seconds of the job on `job` in `tiles` tiles.
+template <typename Probe>
+double timeFromProbes(const Grid& job, int tiles, Probe&& probe) {
+  Stopwatch small;
+  const Grid smallGrid = probe(kProbeResolution / 2);
+  const double tSmall = small.seconds();
+  Stopwatch whole;
+  const Grid probeGrid = probe(kProbeResolution);
+  const double tProbe = whole.seconds();
+  return fitSeconds(tSmall, scaleFrom(probeGrid, smallGrid), tProbe, scaleFrom(probeGrid, job),
+                    tiles);
+}
+
 }  // namespace
 
 JobEstimate estimateEvaluation(const Scene& scene, int resolution,
@@ -75,18 +104,20 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
   e.grid = Evaluator::gridFor(scene, resolution);
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5) return e;  // no bigger than the probe
-  Evaluator probe(backend);
-  EvalOptions options;
-  options.resolution = kProbeResolution;
-  Stopwatch clock;
-  const EvalResult r = probe.evaluate(scene, options, progress);
+  EvalResult r;
+  e.seconds = timeFromProbes(e.grid, 1, [&](int resolution) {
+    Evaluator probe(backend);
+    EvalOptions options;
+    options.resolution = resolution;
+    r = probe.evaluate(scene, options, progress);
+    return r.grid;
+  });
   const double scale = scaleFrom(r.grid, e.grid);
   e.probed = true;
   e.surfels = uint64_t(double(r.measure.surfels) * scale);
   // Every node's LDI is kept (the cache): the probe's cache, scaled, on top of what the
   // process holds now.
   e.peakBytes = peakResidentBytes() + uint64_t(double(r.cacheBytes) * scale);
-  e.seconds = clock.seconds() * scale;
   return e;
 }
 
@@ -98,24 +129,28 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   e.tiles = tileCount(e.grid, options.tileCells);
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5) return e;
-  Evaluator probe(backend);
-  ContourOptions probeOptions;
-  probeOptions.resolution = kProbeResolution;
-  probeOptions.tileCells = kProbeResolution * 2;  // one tile
-  Stopwatch clock;
   ContourReport report;
-  const ExportMesh mesh = contourScene(scene, probe, probeOptions, progress, &report);
-  const double seconds = clock.seconds();
+  size_t probeTriangles = 0;
+  const double seconds = timeFromProbes(e.grid, e.tiles, [&](int resolution) {
+    Evaluator probe(backend);
+    ContourOptions probeOptions;
+    probeOptions.resolution = resolution;
+    probeOptions.tileCells = resolution * 2;  // one tile
+    probeTriangles =
+        contourScene(scene, probe, probeOptions, progress, &report).mesh.triangles.size();
+    return report.grid;
+  });
   const double scale = scaleFrom(report.grid, e.grid);
   e.probed = true;
   e.surfels = uint64_t(double(report.surfels) * scale);
-  e.triangles = uint64_t(double(mesh.mesh.triangles.size()) * scale);
+  e.triangles = uint64_t(double(probeTriangles) * scale);
   e.peakBytes = peakResidentBytes() + uint64_t(double(e.triangles) * kExportBytesPerTriangle);
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
-  // Contouring and sampling grow with the surface; writing and checking with the triangles,
-  // measured at about 1 microsecond per triangle; each tile adds a little fixed work.
-  e.seconds = seconds * scale + 1e-6 * double(e.triangles) + 2e-3 * e.tiles;
+  // Writing and checking grow with the triangles (they are not in the probes' times): measured
+  // 0.9 to 3.2 microseconds per triangle (scaffold at 512 cells here, at 2048 on the H200 host,
+  // 2026-11-23).
+  e.seconds = seconds + 2e-6 * double(e.triangles);
   return e;
 }
 

@@ -2,7 +2,9 @@
 // memory, file size and time, scaled from a quick probe of the same scene at a coarse
 // resolution on the same backend. Surfels, triangles, LDI memory and (to first order) time all
 // grow with the surface, that is with the square of the resolution; the probe measures the
-// constant for this scene. An estimate, good to a factor of about two: enough to tell a job
+// constant for this scene. Time is fitted to two probes (at half and at the whole probe
+// resolution): a part fixed by the input (a big mesh's triangles) plus a part that grows with
+// the surface. An estimate, good to a factor of about two: enough to tell a job
 // of seconds from one of hours, or one that fits from one that cannot.
 //
 // Synchronous; any thread; runs the probe on `backend` (which the caller must not use
