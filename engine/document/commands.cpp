@@ -263,6 +263,21 @@ NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* co
   NodeLocation where;
   locateNode(root, id, &where);
   if (copyId) *copyId = named->id;
+  if (where.parent->kind == NodeKind::Difference && where.index == 0) {
+    // The base of a difference: a copy after it would be a cutter and cut the base away. The
+    // base and its copy are united in a group in the base's place: both add material, and
+    // every other child keeps its role.
+    auto group = std::make_shared<Node>();
+    group->id = maxNodeId(named) + 1;
+    group->kind = NodeKind::Union;
+    group->name = (node->name.empty() ? std::string("base") : node->name) + " + copy";
+    group->children = {node, named};
+    return rewriteOrThrow(root, where.parent->id, [&](const NodePtr& parent) {
+      auto changed = std::make_shared<Node>(*parent);
+      changed->children[0] = group;
+      return NodePtr(changed);
+    });
+  }
   return insertChild(root, where.parent->id, where.index + 1, named);
 }
 

@@ -66,9 +66,13 @@ NodePtr insertChild(const NodePtr& root, NodeId parentId, int index, const NodeP
 // outside it refers to.
 NodePtr removeNode(const NodePtr& root, NodeId id);
 
-// Inserts a deep copy of node `id` right after it, with fresh ids counting up from `firstId`
-// (instances inside the copy that refer into the copied subtree follow the copy). The copy's
-// name gets " copy". Sets *copyId to the copy's id. Refused for the root.
+// Adds a deep copy of node `id` that plays the original's role, leaving every other node's role
+// as it was: right after the original (a union's or intersection's child, a difference's
+// cutter), or, for the base (first child) of a difference, beside the base in a new union group
+// that takes the base's place (a copy after the base would cut it away). Fresh ids count up
+// from `firstId` (instances inside the copy that refer into the copied subtree follow the copy;
+// the group, when made, takes the next id). The copy's name gets " copy". Sets *copyId to the
+// copy's id. Refused for the root.
 NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* copyId);
 
 // Moves node `id` under operation `parentId`, before the child that is at `index` now (index < 0
