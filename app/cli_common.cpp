@@ -1,5 +1,6 @@
 #include "app/cli_common.h"
 
+#include "engine/io/mesh_io.h"
 #include "engine/util/memory.h"
 
 #include <cstdint>
@@ -12,9 +13,9 @@
 namespace strata {
 
 const std::vector<std::string> kValuedOptions = {
-    "--resolution", "--report",        "-o",          "--output", "--backend",
-    "--threads",    "--margin",        "--surfels",   "--tile",   "--unit-scale",
-    "--max-leaves", "--max-file-size", "--max-memory"};
+    "--resolution", "--report",        "-o",           "--output",       "--backend",
+    "--threads",    "--margin",        "--surfels",    "--tile",         "--unit-scale",
+    "--max-leaves", "--max-file-size", "--max-memory", "--max-triangles"};
 const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open",
                                                "--force"};
 
@@ -79,8 +80,9 @@ uint64_t sizeOption(const CliArgs& args, const std::string& option) {
 }  // namespace
 
 void applyInputLimits(const CliArgs& args) {
-  if (!args.has("--max-file-size")) return;
-  setMaxInputFileBytes(sizeOption(args, "--max-file-size"));
+  if (args.has("--max-file-size")) setMaxInputFileBytes(sizeOption(args, "--max-file-size"));
+  if (args.has("--max-triangles"))
+    setMaxInputTriangles(uint64_t(args.integer("--max-triangles", 0, 1, INT32_MAX)));
 }
 
 void applySceneLimits(const CliArgs& args, Scene* scene) {

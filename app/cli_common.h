@@ -25,8 +25,8 @@ BackendChoice setUpBackend(const CliArgs& args);
 
 bool quietRequested(const CliArgs& args);
 
-// Applies --max-file-size (bytes, or with K, M, G, T) to every file read from now on. Call it
-// before reading any input.
+// Applies --max-file-size (bytes, or with K, M, G, T) and --max-triangles to every file read
+// from now on. Call it before reading any input.
 void applyInputLimits(const CliArgs& args);
 
 // Applies --max-leaves to the scene's settings (engine/document/expansion.h).

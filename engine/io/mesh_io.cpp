@@ -4,6 +4,9 @@
 // (mesh_readers.h).
 #include "engine/io/mesh_io.h"
 
+#include <algorithm>
+#include <atomic>
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -19,6 +22,25 @@
 #include "engine/util/error.h"
 
 namespace strata {
+
+namespace {
+std::atomic<uint64_t> g_maxInputTriangles{kDefaultMaxInputTriangles};
+}
+
+uint64_t maxInputTriangles() {
+  return g_maxInputTriangles.load();
+}
+
+void setMaxInputTriangles(uint64_t triangles) {
+  g_maxInputTriangles.store(triangles);
+}
+
+std::string tooManyTrianglesMessage(const std::string& name, uint64_t count) {
+  return name + ": " + std::to_string(count) + " triangles, more than the limit of " +
+         std::to_string(maxInputTriangles()) +
+         "; raise it with --max-triangles (e.g. --max-triangles " +
+         std::to_string(std::max<uint64_t>(count, maxInputTriangles() * 2)) + ")";
+}
 namespace meshio {
 
 void failAtLine(const std::string& name, size_t line, const std::string& what) {
@@ -169,6 +191,8 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
   }
 
   TriangleMesh mesh = parseByExtension(name, bytes, rep);
+  if (mesh.triangles.size() > maxInputTriangles())
+    throw Error(tooManyTrianglesMessage(name, mesh.triangles.size()));
 
   if (options.unitScale != 1.0) {
     for (auto& p : mesh.positions) {

@@ -14,6 +14,7 @@
 // open or non-manifold mesh is rejected unless MeshReadOptions::allowOpen is set.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,15 @@ struct MeshReadReport {
   size_t fileVertices = 0;            // as read, before welding
   size_t fileFaces = 0;               // polygons as read, before triangulation
 };
+
+// The most triangles a mesh file may hold (through 3MF components: place), checked before the
+// mesh is prepared, and for binary STL and 3MF before anything is allocated; process-wide, set
+// by the command line's --max-triangles. Any thread.
+constexpr uint64_t kDefaultMaxInputTriangles = 100'000'000;
+uint64_t maxInputTriangles();
+void setMaxInputTriangles(uint64_t triangles);
+// The error for `count` triangles over the limit: names the file, both numbers and the option.
+std::string tooManyTrianglesMessage(const std::string& name, uint64_t count);
 
 // Reads by extension (case-insensitive; the readable formats of mesh_formats.h). Throws
 // strata::Error, for an unknown extension "<path>: unknown mesh format '.ext' (expected .stl,

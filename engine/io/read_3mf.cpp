@@ -55,8 +55,6 @@ const char* const kDefaultModelPart = "3D/3dmodel.model";
 const char* const kRelationshipsPart = "_rels/.rels";
 
 constexpr size_t kMaxRelationshipBytes = size_t(16) << 20;
-// Placed triangles in all (components can multiply a small file into a huge mesh).
-constexpr uint64_t kMaxPlacedTriangles = 100'000'000;
 // Placed vertices, and objects placed (each component reference is a placement): an object of
 // vertices but no triangles, or of empty components, must not expand unboundedly either.
 constexpr uint64_t kMaxPlacedVertices = 100'000'000;
@@ -117,7 +115,10 @@ std::string quotedUri(std::string_view uri) {
 }
 
 uint64_t saturatingAdd(uint64_t a, uint64_t b) {
-  return a + b > kMaxPlacedTriangles ? kMaxPlacedTriangles + 1 : a + b;
+  // Saturating just above the largest limit any count here is held to (placed triangles,
+  // vertices, placements), so that a sum never wraps.
+  const uint64_t cap = std::max<uint64_t>(maxInputTriangles(), kMaxPlacedVertices);
+  return a + b > cap ? cap + 1 : a + b;
 }
 
 // OPC part names are URIs: drop the leading '/', decode %XX escapes.
@@ -573,9 +574,10 @@ class ModelParser : public XmlReader::Handler {
     placedTriangles_ = saturatingAdd(placedTriangles_, object.placedTriangles);
     placedVertices_ = saturatingAdd(placedVertices_, object.placedVertices);
     placements_ = saturatingAdd(placements_, object.placements);
-    if (placedTriangles_ > kMaxPlacedTriangles) {
-      xml_.fail(element.line,
-                "the build places more than " + std::to_string(kMaxPlacedTriangles) + " triangles");
+    if (placedTriangles_ > maxInputTriangles()) {
+      xml_.fail(element.line, "the build places more than " + std::to_string(maxInputTriangles()) +
+                                  " triangles (components included); raise the limit with "
+                                  "--max-triangles");
     }
     if (placedVertices_ > kMaxPlacedVertices) {
       xml_.fail(element.line,

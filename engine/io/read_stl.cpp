@@ -11,6 +11,7 @@
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_readers.h"
 #include "engine/io/reader_checks.h"
+#include "engine/util/error.h"
 
 namespace strata {
 namespace meshio {
@@ -64,6 +65,7 @@ TriangleMesh parseBinary(const std::string& name, const std::string& bytes,
                    std::to_string(expected) + " bytes, but the file has " +
                    std::to_string(bytes.size()) + " bytes (truncated, or the count is wrong)");
   }
+  if (count > maxInputTriangles()) throw Error(tooManyTrianglesMessage(name, count));
   TriangleMesh mesh;
   mesh.positions.reserve(count * 3);
   mesh.triangles.reserve(count);

@@ -71,7 +71,8 @@ TEST(DuplicateRoles, EveryNodeOfEveryBundledSceneKeepsEveryRole) {
       if (role.direction > 0)
         EXPECT_GE(after, before * (1 - 1e-9)) << "a copy of a part that adds material removed some";
       else
-        EXPECT_LE(after, before * (1 + 1e-9)) << "a copy of a part that removes material added some";
+        EXPECT_LE(after, before * (1 + 1e-9))
+            << "a copy of a part that removes material added some";
       ++checked;
     }
   }

@@ -704,5 +704,34 @@ INSTANTIATE_TEST_SUITE_P(
       return name.substr(0, name.find('.'));
     });
 
+// Every format is held to the triangle limit, before the mesh is prepared; the message names
+// the file, the count, the limit and the option that raises it.
+TEST(MeshIoLimits, TrianglesOverTheLimitAreRefusedInEveryFormat) {
+  const uint64_t saved = maxInputTriangles();
+  setMaxInputTriangles(11);  // a cube has 12
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"c.obj", cubeObj()}, {"c.stl", cubeAsciiStl()}, {"b.stl", cubeBinaryStl()}};
+  std::vector<std::string> messages;
+  for (const auto& [name, bytes] : files) {
+    try {
+      readMeshBytes(name, bytes);
+      messages.push_back("(read)");
+    } catch (const Error& e) {
+      messages.push_back(e.what());
+    }
+  }
+  setMaxInputTriangles(12);
+  const size_t atTheLimit = readMeshBytes("c.obj", cubeObj()).triangles.size();
+  setMaxInputTriangles(saved);
+  for (size_t k = 0; k < files.size(); ++k) {
+    SCOPED_TRACE(files[k].first);
+    EXPECT_NE(messages[k].find(files[k].first + ": 12 triangles, more than the limit of 11"),
+              std::string::npos)
+        << messages[k];
+    EXPECT_NE(messages[k].find("--max-triangles"), std::string::npos) << messages[k];
+  }
+  EXPECT_EQ(atTheLimit, 12u);
+}
+
 }  // namespace
 }  // namespace strata
