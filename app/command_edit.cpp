@@ -217,7 +217,16 @@ int runEdit(const std::vector<std::string>& argv) {
                           "when it was built; see .ci/deps --editor)");
 #else
     std::string why;
-    if (!ui::editorDisplayAvailable(&why)) return fallBackToEval(scene, args, why);
+    if (!ui::editorDisplayAvailable(&why)) {
+      // What only a window can do is an error without one, not an evaluation that exits 0.
+      for (const char* windowOnly : {"--screenshot", "--measure-frames", "--measure-latency"})
+        if (args.has(windowOnly))
+          throw Error(std::string("strata edit ") + windowOnly + " needs a window, and " + why +
+                      (std::string(windowOnly) == "--screenshot"
+                           ? "; `strata render SCENE -o FILE.png` draws the same view without one"
+                           : ""));
+      return fallBackToEval(scene, args, why);
+    }
     ui::EditorOptions options;
     options.scenePath = scene;
     options.sceneAsTemplate = args.positional().empty();  // the demo: never saved over

@@ -266,4 +266,20 @@ TEST(CliExport, AJobThatCannotFitIsRefusedWithItsEstimate) {
   EXPECT_EQ(small.output.find("estimate"), std::string::npos) << small.output;
 }
 
+TEST(Cli, AScreenshotWithoutADisplayIsAnError) {
+  const std::string out = temp("nodisplay.png");
+  std::remove(out.c_str());
+  CliRun r =
+      strata("edit " + std::string(STRATA_ASSETS) + "/scenes/demo.strata.json --screenshot " + out,
+             /*withoutDisplay=*/true);
+  if (r.output.find("this build has no editor") != std::string::npos)
+    GTEST_SKIP() << "built without the editor";
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--screenshot needs a window"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("strata render"), std::string::npos) << r.output;
+  FILE* f = std::fopen(out.c_str(), "rb");
+  EXPECT_EQ(f, nullptr);
+  if (f) std::fclose(f);
+}
+
 }  // namespace
