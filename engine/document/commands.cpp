@@ -368,7 +368,14 @@ NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind) {
   if (!isOperation(kind))
     throw Error(std::string("\"") + kindName(kind) + "\" is not an operation");
   if (node.kind == kind) return root;
-  return editNode(root, id, [&](Node& n) { n.kind = kind; });
+  // A name Strata gave ("difference 4") follows the kind ("intersection 4"); a name the artist
+  // chose stays.
+  const std::string oldDefault = std::string(kindName(node.kind)) + " " + std::to_string(id);
+  const bool defaultName = node.name == oldDefault;
+  return editNode(root, id, [&](Node& n) {
+    n.kind = kind;
+    if (defaultName) n.name = std::string(kindName(kind)) + " " + std::to_string(id);
+  });
 }
 
 namespace {

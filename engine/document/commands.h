@@ -92,7 +92,8 @@ NodePtr moveNodeToTop(const NodePtr& root, NodeId id, NodeId unionId);
 NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind kind,
                    NodeId groupId);
 
-// Changes an operation's kind (union, intersection, difference). Refused for leaves.
+// Changes an operation's kind (union, intersection, difference); a default name ("difference 4")
+// follows it ("intersection 4"), a chosen one stays. Refused for leaves.
 NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind);
 
 // Rewrites relative mesh paths written against `fromDir` (empty: the current directory) as

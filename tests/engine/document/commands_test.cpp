@@ -178,6 +178,15 @@ TEST(DocumentCommands, ChangeOperationKind) {
   EXPECT_THROW(setOperationKind(root, 3, NodeKind::Sphere), Error);
 }
 
+TEST(DocumentCommands, ADefaultNameFollowsTheKindAChosenOneStays) {
+  NodePtr fresh = makeOperationNode(NodeKind::Difference, 4, {});
+  ASSERT_EQ(fresh->name, "difference 4");
+  NodePtr changed = setOperationKind(fresh, 4, NodeKind::Intersection);
+  EXPECT_EQ(changed->name, "intersection 4");
+  NodePtr named = editNode(fresh, 4, [](Node& n) { n.name = "bracket"; });
+  EXPECT_EQ(setOperationKind(named, 4, NodeKind::Union)->name, "bracket");
+}
+
 TEST(DocumentCommands, ValidatesParametersAndTransforms) {
   PrimitiveParams p;
   EXPECT_NO_THROW(validateParams(NodeKind::Torus, p));
