@@ -5,6 +5,7 @@
 #include "engine/ldi/grid_mesh.h"
 #include "gpu/contour/contour_tile.cuh"
 #include "gpu/ldi/combine_ldi.cuh"
+#include "gpu/ldi/csr_build.cuh"
 #include "gpu/ldi/measure_ldi.cuh"
 #include "gpu/ldi/sample_mesh.cuh"
 #include "gpu/ldi/splats.cuh"
@@ -19,6 +20,13 @@ const DeviceLdi& deviceLdi(const LdiHandle& handle) {
   auto* d = dynamic_cast<const DeviceLdi*>(handle.get());
   if (!d) throw Error("internal: an LDI of another backend was passed to the CUDA backend");
   return *d;
+}
+
+// The LDI with every axis whole (a copy when some axis is windowed; see device_ldi.h).
+std::shared_ptr<const DeviceLdi> wholeDeviceLdi(const LdiHandle& handle,
+                                                const DeviceStream& stream) {
+  deviceLdi(handle);  // checks the kind
+  return wholeOnDevice(std::static_pointer_cast<const DeviceLdi>(handle), stream);
 }
 
 // Streams and ownership: the backend owns one stream (stream_) and queues all its work there,
@@ -69,12 +77,12 @@ class CudaBackend : public Backend {
                           const glm::ivec3& begin, const glm::ivec3& end,
                           Progress& progress) override {
     progress.check();
-    return contourTileOnDevice(deviceLdi(root), globalCells, begin, end, stream_);
+    return contourTileOnDevice(*wholeDeviceLdi(root, stream_), globalCells, begin, end, stream_);
   }
 
   SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
     progress.check();
-    return splatsOnDevice(deviceLdi(ldi), stream_);
+    return splatsOnDevice(*wholeDeviceLdi(ldi, stream_), stream_);
   }
 
   // Queued on the LDI's own stream (its buffers' copies), then waited for.
@@ -83,11 +91,13 @@ class CudaBackend : public Backend {
     auto host = std::make_shared<Ldi>();
     host->grid = d.grid();
     for (int a = 0; a < 3; ++a) {
+      host->axes[a].whole = d.axes[a].whole;
+      host->axes[a].window = d.axes[a].window;
       d.axes[a].offsets.downloadAsync(&host->axes[a].offsets);
       d.axes[a].surfels.downloadAsync(&host->axes[a].surfels);
     }
     d.stream().synchronize();
-    return host;
+    return wholeLdi(host);
   }
 
  private:

@@ -96,14 +96,20 @@ double timeFromProbes(const Grid& job, int tiles, Probe&& probe) {
                     tiles);
 }
 
+int longestSide(const Grid& g) {
+  return std::max(g.cells.x, std::max(g.cells.y, g.cells.z));
+}
+
 }  // namespace
 
 JobEstimate estimateEvaluation(const Scene& scene, int resolution,
-                               const std::shared_ptr<Backend>& backend, Progress& progress) {
+                               const std::shared_ptr<Backend>& backend, Progress& progress,
+                               int probeAbove) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, resolution);
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
-  if (probeGrid.h <= e.grid.h * 1.5) return e;  // no bigger than the probe
+  if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove)
+    return e;  // no bigger than the probe
   EvalResult r;
   e.seconds = timeFromProbes(e.grid, 1, [&](int resolution) {
     Evaluator probe(backend);
@@ -123,12 +129,12 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
 
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
-                           Progress& progress) {
+                           Progress& progress, int probeAbove) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
   e.tiles = tileCount(e.grid, options.tileCells);
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
-  if (probeGrid.h <= e.grid.h * 1.5) return e;
+  if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
   ContourReport report;
   size_t probeTriangles = 0;
   const double seconds = timeFromProbes(e.grid, e.tiles, [&](int resolution) {

@@ -24,6 +24,10 @@ namespace strata {
 
 // Cells of the probe along the longest side.
 constexpr int kProbeResolution = 64;
+// Jobs of at most this many cells along the longest side are not probed (the probes would cost
+// a noticeable part of the job itself: a scene of 100,000 small leaves samples each leaf per
+// probe whatever the resolution): only their grid and tiles are set.
+constexpr int kProbeAbove = 512;
 
 struct JobEstimate {
   Grid grid;               // of the job
@@ -38,12 +42,13 @@ struct JobEstimate {
 
 // An evaluation of `scene` at `resolution` (0 = the scene's setting).
 JobEstimate estimateEvaluation(const Scene& scene, int resolution,
-                               const std::shared_ptr<Backend>& backend, Progress& progress);
+                               const std::shared_ptr<Backend>& backend, Progress& progress,
+                               int probeAbove = kProbeAbove);
 
 // An export of `scene` to `path` (its extension picks the format's bytes per triangle).
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
-                           Progress& progress);
+                           Progress& progress, int probeAbove = kProbeAbove);
 
 // One line for the user: "4096 x 3600 x 3080 cells, 1,024 tiles, about 52 million triangles,
 // 13 GiB of memory, a 2.6 GB file, 3 minutes".

@@ -1,5 +1,9 @@
 #include "engine/ldi/grid_mesh.h"
 
+#include <climits>
+
+#include <algorithm>
+
 #include <glm/geometric.hpp>
 
 #include <cmath>
@@ -38,6 +42,28 @@ GridMesh toGridUnits(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, 
     g.normals[t] = len > 0.0 ? n / len : glm::dvec3(0.0);
   }
   return g;
+}
+
+RayWindow meshRayWindow(const GridMesh& mesh, const Grid& grid, int axis) {
+  if (mesh.positions.empty() || mesh.triangles.empty()) return RayWindow{};
+  const int ua = grid.uAxis(axis), va = grid.vAxis(axis);
+  int64_t umin = INT64_MAX, umax = INT64_MIN, vmin = INT64_MAX, vmax = INT64_MIN;
+  for (const glm::dvec3& p : mesh.positions) {
+    const int64_t u = int64_t(llrint(p[ua] * double(kSubcell)));
+    const int64_t v = int64_t(llrint(p[va] * double(kSubcell)));
+    umin = std::min(umin, u);
+    umax = std::max(umax, u);
+    vmin = std::min(vmin, v);
+    vmax = std::max(vmax, v);
+  }
+  const int64_t r0 = std::max<int64_t>(0, ceilDiv(umin, kSubcell) - grid.first[ua]);
+  const int64_t r1 =
+      std::min<int64_t>(grid.raysU(axis) - 1, floorDiv(umax, kSubcell) - grid.first[ua]);
+  const int64_t s0 = std::max<int64_t>(0, ceilDiv(vmin, kSubcell) - grid.first[va]);
+  const int64_t s1 =
+      std::min<int64_t>(grid.raysV(axis) - 1, floorDiv(vmax, kSubcell) - grid.first[va]);
+  if (r0 > r1 || s0 > s1) return RayWindow{};
+  return RayWindow{int(r0), int(s0), int(r1 - r0 + 1), int(s1 - s0 + 1)};
 }
 
 }  // namespace strata

@@ -12,6 +12,7 @@
 
 #include "engine/geometry/mesh.h"
 #include "engine/ldi/grid.h"
+#include "engine/ldi/ldi.h"
 
 namespace strata {
 
@@ -24,5 +25,10 @@ struct GridMesh {
 // Places `mesh` by `objectToWorld` on `grid`. A mirroring matrix reverses the winding so the
 // normals stay outward. Throws strata::Error for non-finite or absurdly distant vertices.
 GridMesh toGridUnits(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid);
+
+// The rays along `axis` that any triangle of `mesh` may hit: from the box of all its vertices,
+// snapped and clamped exactly as projectTriangle snaps and clamps each triangle's corners, so
+// every triangle's candidate rays lie inside. O(vertices).
+RayWindow meshRayWindow(const GridMesh& mesh, const Grid& grid, int axis);
 
 }  // namespace strata

@@ -258,30 +258,58 @@ struct RayEvent {
 
 enum class RayOp : uint8_t { Union = 0, Intersection = 1, Difference = 2 };
 
-// One axis of a child LDI as the per-ray steps read it (CSR, see ldi.h): offsets[r] ..
-// offsets[r + 1] index ray r's surfels. Memory of the side that runs the step.
+// One axis of a child LDI as the per-ray steps read it (CSR, see ldi.h). Whole: offsets[r] ..
+// offsets[r + 1] index grid ray r's surfels. Windowed (whole == false): offsets index the local
+// rays of the window of uCount x vCount rays from (u0, v0); other rays have none. Memory of the
+// side that runs the step.
 struct AxisLdiView {
   const uint32_t* offsets;
   const Surfel* surfels;
+  bool whole = true;
+  int u0 = 0, v0 = 0, uCount = 0, vCount = 0;
 };
 
-// The number of events on ray `ray` of the children (children[c] is child c's axis).
-STRATA_HD uint64_t rayEventCount(const AxisLdiView* children, int childCount, int64_t ray) {
+// Child c's surfels on grid ray `ray`, whose coordinates across the axis are (i, j):
+// [*begin, *end) in surfels (empty outside a window).
+STRATA_HD void viewRayRange(const AxisLdiView& v, int64_t ray, int i, int j, uint32_t* begin,
+                            uint32_t* end) {
+  int64_t local = ray;
+  if (!v.whole) {
+    if (i < v.u0 || j < v.v0 || i >= v.u0 + v.uCount || j >= v.v0 + v.vCount) {
+      *begin = *end = 0;
+      return;
+    }
+    local = int64_t(i - v.u0) + int64_t(j - v.v0) * v.uCount;
+  }
+  *begin = v.offsets[local];
+  *end = v.offsets[local + 1];
+}
+
+// The number of events on grid ray `ray` = (i, j) of the children (children[c] is child c's
+// axis).
+STRATA_HD uint64_t rayEventCount(const AxisLdiView* children, int childCount, int64_t ray, int i,
+                                 int j) {
   uint64_t n = 0;
-  for (int c = 0; c < childCount; ++c) n += children[c].offsets[ray + 1] - children[c].offsets[ray];
+  for (int c = 0; c < childCount; ++c) {
+    uint32_t b, e;
+    viewRayRange(children[c], ray, i, j, &b, &e);
+    n += e - b;
+  }
   return n;
 }
 
-// Gathers the surfels of ray `ray` of every child into `events` (room for rayEventCount), sorted
-// by depth with ties in child order, and within a child in its list's order: a stable insertion
-// of the children's lists one after the other, which orders exactly as a stable sort of their
-// concatenation does. Returns the number of events.
-STRATA_HD int gatherRayEvents(const AxisLdiView* children, int childCount, int64_t ray,
-                              RayEvent* events) {
+// Gathers the surfels of grid ray `ray` = (i, j) of every child into `events` (room for
+// rayEventCount), sorted by depth with ties in child order, and within a child in its list's order:
+// a stable insertion of the children's lists one after the other, which orders exactly as a stable
+// sort of their concatenation does. Returns the number of events.
+STRATA_HD int gatherRayEvents(const AxisLdiView* children, int childCount, int64_t ray, int i,
+                              int j, RayEvent* events) {
   int n = 0;
   for (int c = 0; c < childCount; ++c) {
     const AxisLdiView& v = children[c];
-    for (uint32_t k = v.offsets[ray]; k < v.offsets[ray + 1]; ++k) {
+    uint32_t first, last;
+    viewRayRange(v, ray, i, j, &first, &last);
+    for (uint32_t k = first; k < last; ++k) {
       const Surfel s = v.surfels[k];
       const RayEvent e{s.depth, s.normal, s.tag, uint32_t(c)};
       int m = n - 1;

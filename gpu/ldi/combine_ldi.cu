@@ -12,7 +12,9 @@ __global__ void countEvents(const AxisLdiView* views, int childCount, RaySpace s
     uint64_t n = 0;
     if (r < space.total()) {
       const int axis = space.axisOf(r);
-      n = rayEventCount(views + axis * childCount, childCount, r - space.base[axis]);
+      const int64_t ray = r - space.base[axis];
+      n = rayEventCount(views + axis * childCount, childCount, ray, int(ray % space.raysU[axis]),
+                        int(ray / space.raysU[axis]));
     }
     eventOffsets[r] = n;
   }
@@ -24,8 +26,10 @@ __global__ void combineRays(const AxisLdiView* views, int childCount, RaySpace s
   for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < space.total();
        r += int64_t(gridDim.x) * blockDim.x) {
     const int axis = space.axisOf(r);
+    const int64_t ray = r - space.base[axis];
     RayEvent* ev = events + eventOffsets[r];
-    const int n = gatherRayEvents(views + axis * childCount, childCount, r - space.base[axis], ev);
+    const int n = gatherRayEvents(views + axis * childCount, childCount, ray,
+                                  int(ray % space.raysU[axis]), int(ray / space.raysU[axis]), ev);
     counts[r] = uint32_t(combineRayEvents(op, childCount, ev, n, out + eventOffsets[r]));
   }
 }
@@ -52,8 +56,16 @@ std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op, const std::vector<const Dev
   const int64_t rays = space.total();
   std::vector<AxisLdiView> views;
   for (int axis = 0; axis < 3; ++axis)
-    for (const DeviceLdi* c : children)
-      views.push_back(AxisLdiView{c->axes[axis].offsets.data(), c->axes[axis].surfels.data()});
+    for (const DeviceLdi* c : children) {
+      const DeviceAxisLdi& a = c->axes[axis];
+      AxisLdiView v{a.offsets.data(), a.surfels.data()};
+      v.whole = a.whole;
+      v.u0 = a.window.u0;
+      v.v0 = a.window.v0;
+      v.uCount = a.window.uCount;
+      v.vCount = a.window.vCount;
+      views.push_back(v);
+    }
   const auto deviceViews = DeviceBuffer<AxisLdiView>::upload(views, stream);
 
   DeviceBuffer<uint64_t> eventOffsets(static_cast<size_t>(rays) + 1, stream);

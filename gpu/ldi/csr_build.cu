@@ -36,7 +36,64 @@ __global__ void copyRays(RaySpace space, const uint64_t* wide, const uint32_t* c
   }
 }
 
+// Per grid ray of one axis: its surfel count in a windowed axis (0 outside the window), widened;
+// wide[rays] = 0.
+__global__ void windowCounts(const uint32_t* offsets, RayWindow window, int raysU, int64_t rays,
+                             uint64_t* wide) {
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r <= rays;
+       r += int64_t(gridDim.x) * blockDim.x) {
+    uint64_t n = 0;
+    if (r < rays) {
+      const int i = int(r % raysU), j = int(r / raysU);
+      if (i >= window.u0 && j >= window.v0 && i < window.u0 + window.uCount &&
+          j < window.v0 + window.vCount) {
+        const int64_t local = int64_t(i - window.u0) + int64_t(j - window.v0) * window.uCount;
+        n = offsets[local + 1] - offsets[local];
+      }
+    }
+    wide[r] = n;
+  }
+}
+
+template <typename T>
+DeviceBuffer<T> copyOf(const DeviceBuffer<T>& from, const DeviceStream& stream) {
+  DeviceBuffer<T> to(from.size(), stream);
+  if (from.size())
+    STRATA_CUDA_CHECK(cudaMemcpyAsync(to.data(), from.data(), from.bytes(),
+                                      cudaMemcpyDeviceToDevice, stream.get()));
+  return to;
+}
+
 }  // namespace
+
+std::shared_ptr<const DeviceLdi> wholeOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                               const DeviceStream& stream) {
+  if (ldi->whole()) return ldi;
+  const Grid& grid = ldi->grid();
+  auto out = std::make_shared<DeviceLdi>(grid, stream);
+  for (int a = 0; a < 3; ++a) {
+    const DeviceAxisLdi& from = ldi->axes[a];
+    DeviceAxisLdi& to = out->axes[a];
+    // Window rays keep their order in the grid's (both row by row), so the surfels do too.
+    to.surfels = copyOf(from.surfels, stream);
+    if (from.whole) {
+      to.offsets = copyOf(from.offsets, stream);
+      continue;
+    }
+    const int64_t rays = grid.rayCount(a);
+    DeviceBuffer<uint64_t> wide(static_cast<size_t>(rays) + 1, stream);
+    windowCounts<<<blocksFor(rays + 1, 256), 256, 0, stream.get()>>>(
+        from.offsets.data(), from.window, grid.raysU(a), rays, wide.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+    exclusiveScanAsync(wide.data(), rays + 1, stream);
+    to.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(rays) + 1, stream);
+    axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream.get()>>>(wide.data(), 0, rays,
+                                                                    to.offsets.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  stream.synchronize();
+  return out;
+}
 
 void exclusiveScanAsync(uint64_t* data, int64_t count, const DeviceStream& stream) {
   size_t tempBytes = 0;

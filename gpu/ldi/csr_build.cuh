@@ -14,17 +14,33 @@
 
 namespace strata {
 
-// The three axes' rays, concatenated.
+// The three axes' rays, concatenated: every ray of the grid, or of a window per axis (the ray
+// (i, j) of axis a is base[a] + (i - u0[a]) + (j - v0[a]) * raysU[a]).
 struct RaySpace {
   int64_t base[4];  // first global ray of each axis; base[3] = total rays
-  int raysU[3];
+  int raysU[3];     // rays along u per axis (of the window)
+  int u0[3], v0[3];
 
   explicit RaySpace(const Grid& grid) {
     base[0] = 0;
     for (int a = 0; a < 3; ++a) {
       base[a + 1] = base[a] + grid.rayCount(a);
       raysU[a] = grid.raysU(a);
+      u0[a] = v0[a] = 0;
     }
+  }
+  explicit RaySpace(const RayWindow windows[3]) {
+    base[0] = 0;
+    for (int a = 0; a < 3; ++a) {
+      base[a + 1] = base[a] + windows[a].rayCount();
+      raysU[a] = windows[a].uCount;
+      u0[a] = windows[a].u0;
+      v0[a] = windows[a].v0;
+    }
+  }
+  // The concatenated index of ray (i, j) of `axis` (inside the axis's window).
+  __host__ __device__ int64_t rayOf(int axis, int i, int j) const {
+    return base[axis] + int64_t(i - u0[axis]) + int64_t(j - v0[axis]) * raysU[axis];
   }
   __host__ __device__ int64_t total() const { return base[3]; }
   __host__ __device__ int axisOf(int64_t ray) const {
@@ -51,6 +67,12 @@ void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, const De
 // work is queued on). Throws strata::Error when an axis exceeds 2^32 surfels.
 void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
                const uint64_t* scratchOffsets, DeviceLdi* out, const char* what);
+
+// `ldi` itself when every axis is whole, else a copy with whole axes (offsets for every ray of
+// the grid), made on `stream` and complete on return: for the steps that index rays of the
+// grid directly (splats, contouring).
+std::shared_ptr<const DeviceLdi> wholeOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                               const DeviceStream& stream);
 
 inline unsigned blocksFor(int64_t items, unsigned threads) {
   int64_t blocks = (items + threads - 1) / threads;

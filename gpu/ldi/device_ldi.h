@@ -14,7 +14,11 @@
 
 namespace strata {
 
+// As AxisLdi (engine/ldi/ldi.h): whole (offsets for every ray of the grid) or windowed
+// (offsets for the rays of `window` only, made by sampling a solid small against the grid).
 struct DeviceAxisLdi {
+  bool whole = true;
+  RayWindow window;  // meaningful when !whole
   DeviceBuffer<uint32_t> offsets;
   DeviceBuffer<Surfel> surfels;
 };
@@ -34,6 +38,7 @@ class DeviceLdi : public LdiResource {
   // The stream its buffers are allocated and freed on (each buffer also keeps it).
   const DeviceStream& stream() const { return stream_; }
   std::array<DeviceAxisLdi, 3> axes;  // buffers on stream()
+  bool whole() const { return axes[0].whole && axes[1].whole && axes[2].whole; }
 
  private:
   DeviceStream stream_;

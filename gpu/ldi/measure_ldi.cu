@@ -45,7 +45,8 @@ LdiMeasure measureOnDevice(const DeviceLdi& ldi, const DeviceStream& stream) {
   const Grid& grid = ldi.grid();
   const double h = grid.h;
   for (int axis = 0; axis < 3; ++axis) {
-    const int64_t rays = grid.rayCount(axis);
+    const DeviceAxisLdi& a = ldi.axes[axis];
+    const int64_t rays = a.whole ? grid.rayCount(axis) : a.window.rayCount();  // stored rays
     DeviceBuffer<double> length(static_cast<size_t>(rays), stream),
         area(static_cast<size_t>(rays), stream);
     measureRays<<<blocksFor(rays, 256), 256, 0, stream.get()>>>(ldi.axes[axis].offsets.data(),

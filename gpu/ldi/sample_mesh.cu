@@ -1,5 +1,6 @@
 #include <vector>
 
+#include "engine/ldi/grid_mesh.h"
 #include "engine/ldi/sample_mesh.h"
 #include "engine/ldi/shared_math.h"
 #include "gpu/ldi/csr_build.cuh"
@@ -71,7 +72,7 @@ __global__ void rasterize(const ProjectedTriangle* tris, const uint64_t* scan, i
     const int j = pt.rayVMin + int(local / uint64_t(width));
     double depth;
     if (!hitTriangle(pt, i, j, &depth)) continue;
-    const int64_t ray = space.base[axis] + int64_t(i) + int64_t(j) * space.raysU[axis];
+    const int64_t ray = space.rayOf(axis, i, j);
     const uint32_t slot = atomicAdd(&counters[ray], 1u);
     if (kWrite)
       raw[rawOffsets[ray] + slot] =
@@ -192,13 +193,30 @@ DeviceBuffer<Surfel> rasterizeHits(const RasterWork& w, const RaySpace& space, u
 std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
                                               uint32_t leafId, const DeviceStream& stream) {
   auto ldi = std::make_shared<DeviceLdi>(grid, stream);
-  const RaySpace space(grid);
+  // Per axis, the rays the mesh can reach: an axis whose window covers at most half of the
+  // grid's rays is sampled and kept windowed (a small leaf costs its size, not the grid's), the
+  // others whole, as the CPU backend does.
+  RayWindow windows[3];
+  bool whole[3];
+  for (int a = 0; a < 3; ++a) {
+    windows[a] = meshRayWindow(mesh, grid, a);
+    whole[a] = mesh.triangles.empty() || windows[a].rayCount() * 2 > grid.rayCount(a);
+    if (whole[a]) windows[a] = wholeWindow(grid, a);
+  }
+  const RaySpace space(windows);
   const int64_t rays = space.total();
   const AxisSetup setup = makeAxisSetup(grid);
   DeviceBuffer<uint32_t> counters(static_cast<size_t>(rays), stream);
+  auto settle = [&] {
+    for (int a = 0; a < 3; ++a) {
+      ldi->axes[a].whole = whole[a];
+      ldi->axes[a].window = whole[a] ? RayWindow{} : windows[a];
+    }
+  };
   if (mesh.triangles.empty()) {
     STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream.get()));
     buildAxes(space, counters.data(), nullptr, nullptr, ldi.get(), "sampling");
+    settle();
     stream.synchronize();
     return ldi;
   }
@@ -216,6 +234,7 @@ std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& 
   STRATA_CUDA_CHECK(cudaGetLastError());
   buildAxes(space, counters.data(), normalized.data(), normalizedOffsets.data(), ldi.get(),
             "sampling");
+  settle();
   stream.synchronize();
   return ldi;
 }

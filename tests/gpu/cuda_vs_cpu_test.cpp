@@ -118,6 +118,42 @@ TEST_F(CudaVsCpu, ExportedMeshesAreIdentical) {
   EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
 }
 
+// Leaves small against the grid are stored windowed on both backends (with different windows:
+// exact on the CPU, from the vertex box on the GPU); the results must still be identical: many
+// small parts united and cut, and a root that is one small leaf (splats and contours then read
+// a windowed root).
+TEST_F(CudaVsCpu, SmallPartsOnABigGridMatch) {
+  std::vector<NodePtr> parts, cutters;
+  uint64_t seed = 7;
+  auto next = [&](double lo, double hi) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * double(seed >> 11) / double(1ull << 53);
+  };
+  for (int k = 0; k < 300; ++k)
+    parts.push_back(box(glm::dvec3(next(0.2, 1.5), next(0.2, 1.5), next(0.2, 1.5)),
+                        glm::dvec3(next(-9, 9), next(-9, 9), next(-9, 9))));
+  parts.push_back(box(glm::dvec3(14.0), glm::dvec3(0.0)));  // one part over most of the grid
+  for (int k = 0; k < 60; ++k)
+    cutters.push_back(sphere(next(0.2, 1.0), glm::dvec3(next(-9, 9), next(-9, 9), next(-9, 9))));
+  auto united = std::make_shared<Node>(*op(NodeKind::Union, {}));
+  united->children = parts;
+  auto cut = std::make_shared<Node>(*op(NodeKind::Difference, {}));
+  cut->children = {united};
+  cut->children.insert(cut->children.end(), cutters.begin(), cutters.end());
+  const glm::dvec3 lo(-10.0), hi(10.0);
+  expectIdentical(makeSceneInBox(united, 128, lo, hi), cuda_, "300 small boxes and a big one");
+  expectIdentical(makeSceneInBox(cut, 128, lo, hi), cuda_, "minus 60 small spheres");
+  const Scene single = makeSceneInBox(sphere(0.8, glm::dvec3(2.0, -3.0, 1.0)), 128, lo, hi);
+  expectIdentical(single, cuda_, "one small sphere as the root");
+  Progress progress;
+  Evaluator onCpu(std::make_shared<CpuBackend>()), onGpu(cuda_);
+  ExportMesh a = contourScene(single, onCpu, ContourOptions{0, 64}, progress);
+  ExportMesh b = contourScene(single, onGpu, ContourOptions{0, 64}, progress);
+  EXPECT_TRUE(isWatertight(b.mesh));
+  EXPECT_TRUE(a.mesh.triangles == b.mesh.triangles);
+  EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
+}
+
 TEST_F(CudaVsCpu, AutoChoosesCudaAndCancelWorks) {
   Evaluator evaluator(cuda_);
   Progress progress;

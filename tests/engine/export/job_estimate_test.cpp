@@ -18,7 +18,8 @@ TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
   ContourOptions options;
   options.resolution = 256;
   options.tileCells = 64;
-  const JobEstimate e = estimateExport(scene, options, "/tmp/x.3mf", backend, progress);
+  const JobEstimate e =
+      estimateExport(scene, options, "/tmp/x.3mf", backend, progress, /*probeAbove=*/0);
   ASSERT_TRUE(e.probed);
   EXPECT_GT(e.tiles, 1);
   Evaluator evaluator(backend);
@@ -37,11 +38,12 @@ TEST(JobEstimate, SmallJobsAreNotProbedAndRefusalsSayWhy) {
   const Scene scene = loadScene(test::assetsDir() + "/scenes/demo.strata.json");
   auto backend = std::make_shared<CpuBackend>();
   Progress progress;
-  const JobEstimate small = estimateEvaluation(scene, 64, backend, progress);
+  const JobEstimate small = estimateEvaluation(scene, 64, backend, progress, 0);
   EXPECT_FALSE(small.probed);
+  EXPECT_FALSE(estimateEvaluation(scene, 512, backend, progress).probed);  // kProbeAbove
   EXPECT_FALSE(estimateWorthTelling(small));
   EXPECT_EQ(estimateRefusal(small, 1, 1), "");
-  JobEstimate big = estimateEvaluation(scene, 1024, backend, progress);
+  JobEstimate big = estimateEvaluation(scene, 1024, backend, progress, 0);
   ASSERT_TRUE(big.probed);
   EXPECT_GT(big.surfels, 0u);
   big.peakBytes = uint64_t(40) << 30;

@@ -164,9 +164,10 @@ TEST(SharedMath, GatherRayEventsOrdersAsAStableSortByDepth) {
     }
     std::stable_sort(expected.begin(), expected.end(),
                      [](const RayEvent& x, const RayEvent& y) { return x.depth < y.depth; });
-    ASSERT_EQ(rayEventCount(views.data(), childCount, 1), expected.size());
+    ASSERT_EQ(rayEventCount(views.data(), childCount, 1, 1, 0), expected.size());
     std::vector<RayEvent> events(expected.size());
-    ASSERT_EQ(gatherRayEvents(views.data(), childCount, 1, events.data()), int(expected.size()));
+    ASSERT_EQ(gatherRayEvents(views.data(), childCount, 1, 1, 0, events.data()),
+              int(expected.size()));
     for (size_t k = 0; k < expected.size(); ++k) {
       EXPECT_EQ(events[k].depth, expected[k].depth);
       EXPECT_EQ(events[k].child, expected[k].child);
