@@ -59,6 +59,17 @@ void expectIdentical(const Scene& scene, const std::shared_ptr<Backend>& cuda, c
   EXPECT_EQ(std::memcmp(p->hostData(), onDevice.data(), p->bytes()), 0) << what << ": splats";
 }
 
+// Exports on both backends in tiles of `tile` cells: the same mesh, vertex for vertex.
+void expectSameExport(const Scene& scene, const std::shared_ptr<Backend>& cuda, int tile) {
+  Progress progress;
+  Evaluator onCpu(std::make_shared<CpuBackend>()), onGpu(cuda);
+  ExportMesh a = contourScene(scene, onCpu, ContourOptions{0, tile}, progress);
+  ExportMesh b = contourScene(scene, onGpu, ContourOptions{0, tile}, progress);
+  EXPECT_TRUE(isWatertight(b.mesh));
+  EXPECT_TRUE(a.mesh.triangles == b.mesh.triangles);
+  EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
+}
+
 TEST_F(CudaVsCpu, AnalyticBooleansMatchRayByRay) {
   for (int resolution : {64, 160}) {
     expectIdentical(
@@ -109,13 +120,7 @@ TEST_F(CudaVsCpu, SceneFilesMatch) {
 TEST_F(CudaVsCpu, ExportedMeshesAreIdentical) {
   Scene s = loadScene(assetsDir() + "/scenes/demo.strata.json");
   s.settings.resolution = 192;
-  Progress progress;
-  Evaluator onCpu(std::make_shared<CpuBackend>()), onGpu(cuda_);
-  ExportMesh a = contourScene(s, onCpu, ContourOptions{0, 64}, progress);
-  ExportMesh b = contourScene(s, onGpu, ContourOptions{0, 64}, progress);
-  EXPECT_TRUE(isWatertight(b.mesh));
-  EXPECT_TRUE(a.mesh.triangles == b.mesh.triangles);
-  EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
+  expectSameExport(s, cuda_, 64);
 }
 
 // Leaves small against the grid are stored windowed on both backends (with different windows:
@@ -145,13 +150,7 @@ TEST_F(CudaVsCpu, SmallPartsOnABigGridMatch) {
   expectIdentical(makeSceneInBox(cut, 128, lo, hi), cuda_, "minus 60 small spheres");
   const Scene single = makeSceneInBox(sphere(0.8, glm::dvec3(2.0, -3.0, 1.0)), 128, lo, hi);
   expectIdentical(single, cuda_, "one small sphere as the root");
-  Progress progress;
-  Evaluator onCpu(std::make_shared<CpuBackend>()), onGpu(cuda_);
-  ExportMesh a = contourScene(single, onCpu, ContourOptions{0, 64}, progress);
-  ExportMesh b = contourScene(single, onGpu, ContourOptions{0, 64}, progress);
-  EXPECT_TRUE(isWatertight(b.mesh));
-  EXPECT_TRUE(a.mesh.triangles == b.mesh.triangles);
-  EXPECT_TRUE(a.mesh.positions == b.mesh.positions);
+  expectSameExport(single, cuda_, 64);
 }
 
 TEST_F(CudaVsCpu, AutoChoosesCudaAndCancelWorks) {
