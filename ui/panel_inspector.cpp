@@ -105,7 +105,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, double speed) {
 
 // The kind, id, name, visibility and colour of `node`.
 void nodeIdentity(EditorState& state, const NodePtr& node) {
-  ImGui::Text("%s  %s", kindGlyph(node->kind), kindName(node->kind));
+  ImGui::Text("%s  %s", kindGlyph(node->kind), kindLabel(node->kind));
   ImGui::SameLine();
   ImGui::TextDisabled("id %u%s", node->id,
                       state.selection.size() > 1

@@ -147,7 +147,7 @@ void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* 
   }
   if (isOperation(node->kind)) {
     ImGui::SameLine();
-    ImGui::TextColored(kindColor(node->kind), "%s", kindName(node->kind));
+    ImGui::TextColored(kindColor(node->kind), "%s", kindLabel(node->kind));
   }
   ImGui::SameLine(right - ImGui::GetFrameHeight());
   ImGui::SetCursorPosY(rowStart.y);

@@ -84,6 +84,11 @@ const char* kindName(NodeKind kind) {
   return nodeKindInfo(kind).name;
 }
 
+const char* kindLabel(NodeKind kind) {
+  const NodeKindInfo& info = nodeKindInfo(kind);
+  return info.primitive ? info.primitive->label : info.name;
+}
+
 bool kindFromName(const std::string& name, NodeKind* kind) {
   for (const NodeKindInfo& info : nodeKindTable()) {
     if (name == info.name) {

@@ -41,6 +41,8 @@ bool isOperation(NodeKind kind);
 bool isPrimitive(NodeKind kind);
 // Lower-case name used in files and on the command line ("union", "box", ...).
 const char* kindName(NodeKind kind);
+// For people: a primitive's label ("rounded box"), else the name ("union").
+const char* kindLabel(NodeKind kind);
 // Inverse of kindName; returns false for unknown names.
 bool kindFromName(const std::string& name, NodeKind* kind);
 // The operations, in the order the editor offers them.

@@ -113,5 +113,12 @@ TEST(RoundedBox, EvaluatesToItsVolumeAndRefusesATooLargeRadius) {
   }
 }
 
+TEST(NodeKinds, LabelsAreForPeople) {
+  EXPECT_STREQ(kindLabel(NodeKind::RoundedBox), "rounded box");
+  EXPECT_STREQ(kindName(NodeKind::RoundedBox), "roundedBox");
+  EXPECT_STREQ(kindLabel(NodeKind::Union), "union");
+  for (const NodeKindInfo& info : nodeKindTable()) EXPECT_STRNE(kindLabel(info.kind), "");
+}
+
 }  // namespace
 }  // namespace strata
