@@ -92,15 +92,10 @@ void applySceneLimits(const CliArgs& args, Scene* scene) {
 
 void tellOrRefuseEstimate(const JobEstimate& estimate, const CliArgs& args, const std::string& job,
                           const std::string& outputPath) {
-  std::string folder = ".";
-  if (!outputPath.empty()) {
-    const size_t slash = outputPath.find_last_of('/');
-    if (slash != std::string::npos) folder = slash == 0 ? "/" : outputPath.substr(0, slash);
-  }
   const uint64_t memory =
       args.has("--max-memory") ? sizeOption(args, "--max-memory") : availableMemoryBytes();
   const std::string refusal =
-      estimateRefusal(estimate, memory, outputPath.empty() ? 0 : freeDiskBytes(folder));
+      estimateRefusal(estimate, memory, outputPath.empty() ? 0 : freeDiskBytesForFile(outputPath));
   const bool force = args.has("--force");
   if (!refusal.empty() && !force)
     throw Error(job + " " + refusal + " (estimate: " + describeEstimate(estimate) +

@@ -353,7 +353,7 @@ void discardRecovery(EditorState& state) {
   removeRecoveryFile(state.recoveryPath);
 }
 
-void startExport(EditorState& state, const std::string& path, int resolution) {
+void startExport(EditorState& state, const std::string& path, int resolution, bool insist) {
   if (state.exportJob && state.exportJob->status().running) {
     logWarning(state, "an export is already running");
     return;
@@ -363,7 +363,8 @@ void startExport(EditorState& state, const std::string& path, int resolution) {
     ContourOptions options;
     options.resolution = resolution;
     state.exportJob =
-        std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend());
+        std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),
+                                    nullptr, ExportGuard{insist, 0});
     logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution));
   });
 }

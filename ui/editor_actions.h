@@ -64,7 +64,9 @@ bool saveDocumentAs(EditorState& state, const std::string& path);
 bool recoverDocument(EditorState& state);
 void discardRecovery(EditorState& state);
 // Starts the background export of the current document to `path` at `resolution`.
-void startExport(EditorState& state, const std::string& path, int resolution);
+// Exports the document in the background (ExportJob); `insist` exports a job whose estimate
+// does not fit anyway.
+void startExport(EditorState& state, const std::string& path, int resolution, bool insist = false);
 
 // Runs `body`, turning strata::Error into an error message; returns whether it succeeded.
 bool guarded(EditorState& state, const std::function<void()>& body);

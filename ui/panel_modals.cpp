@@ -75,6 +75,7 @@ void exportWindow(EditorState& state) {
   ImGui::Begin("Export", s.running ? nullptr : &open, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::TextWrapped("%s", s.path.c_str());
   ImGui::TextDisabled("resolution %d", s.resolution);
+  if (!s.estimate.empty()) ImGui::TextWrapped("estimate: %s", s.estimate.c_str());
   if (s.running) {
     char overlay[96];
     std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", s.stage.c_str(), s.fraction * 100.0);
@@ -93,8 +94,16 @@ void exportWindow(EditorState& state) {
   } else if (s.cancelled) {
     ImGui::TextUnformatted("cancelled; nothing was written");
   } else {
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "failed");
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), s.refused ? "not started" : "failed");
     ImGui::TextWrapped("%s", s.error.c_str());
+    if (s.refused && ImGui::Button("Export anyway", ImVec2(160, 0))) {
+      const std::string path = s.path;
+      const int resolution = s.resolution;
+      state.exportJob.reset();
+      startExport(state, path, resolution, /*insist=*/true);
+      ImGui::End();
+      return;
+    }
   }
   if (!s.notice.empty()) ImGui::TextWrapped("%s", s.notice.c_str());
   if (!s.running && ImGui::Button("Close", ImVec2(120, 0))) open = false;

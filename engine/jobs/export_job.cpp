@@ -1,16 +1,19 @@
 #include "engine/jobs/export_job.h"
 
+#include <algorithm>
 #include <new>
 
 #include "engine/export/export_scene.h"
+#include "engine/export/job_estimate.h"
 #include "engine/util/error.h"
+#include "engine/util/memory.h"
 #include "engine/util/timer.h"
 
 namespace strata {
 
 ExportJob::ExportJob(std::shared_ptr<const Scene> scene, std::string path,
                      const ContourOptions& options, std::shared_ptr<Backend> backend,
-                     Listener onChange)
+                     Listener onChange, ExportGuard guard)
     : onChange_(std::move(onChange)) {
   status_.running = true;
   status_.path = std::move(path);
@@ -22,9 +25,8 @@ ExportJob::ExportJob(std::shared_ptr<const Scene> scene, std::string path,
       s.fraction = fraction;
     });
   });
-  thread_ = std::thread([this, scene = std::move(scene), options, backend = std::move(backend)] {
-    run(scene, options, backend);
-  });
+  thread_ = std::thread([this, scene = std::move(scene), options, backend = std::move(backend),
+                         guard] { run(scene, options, backend, guard); });
 }
 
 ExportJob::~ExportJob() {
@@ -48,11 +50,29 @@ void ExportJob::update(const std::function<void(ExportStatus&)>& change) {
 }
 
 void ExportJob::run(std::shared_ptr<const Scene> scene, ContourOptions options,
-                    std::shared_ptr<Backend> backend) {
+                    std::shared_ptr<Backend> backend, ExportGuard guard) {
   Stopwatch clock;
   const std::string path = status().path;
   ExportStatus result;
   try {
+    progress_->report("estimate", 0.0);
+    // The probes report as the one stage "estimate" and stop when the job is cancelled.
+    Progress probe([this](const std::string&, double fraction) {
+      progress_->report("estimate", fraction);  // throws Cancelled once the job is cancelled
+    });
+    const JobEstimate estimate = estimateExport(*scene, options, path, backend, probe);
+    const std::string refusal =
+        estimateRefusal(estimate, guard.memoryBytes ? guard.memoryBytes : availableMemoryBytes(),
+                        freeDiskBytesForFile(path));
+    update([&](ExportStatus& s) {
+      if (estimate.probed) s.estimate = describeEstimate(estimate);
+    });
+    if (!refusal.empty() && !guard.insist) {
+      const glm::ivec3 c = estimate.grid.cells;
+      result.refused = true;
+      throw Error("the export at " + std::to_string(std::max(c.x, std::max(c.y, c.z))) + " cells " +
+                  refusal + ". Lower the resolution, or export anyway");
+    }
     ExportReport report = exportScene(
         *scene, path, options, std::move(backend), *progress_,
         [&](const std::string& line) { update([&](ExportStatus& s) { s.notice = line; }); });
@@ -75,6 +95,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ContourOptions options,
     s.succeeded = result.succeeded;
     s.cancelled = result.cancelled;
     s.error = result.error;
+    s.refused = result.refused;
     s.check = result.check;
     s.seconds = clock.seconds();
   });

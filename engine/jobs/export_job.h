@@ -8,6 +8,7 @@
 // reports it in the status.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -31,10 +32,21 @@ struct ExportStatus {
   double fraction = 0.0;
   std::string error;
   std::string notice;  // the last fallback taken (smaller tiles, the CPU), "" when none
+  // What the export will cost (export/job_estimate.h), "" for a job too small to probe.
+  std::string estimate;
+  // The estimate did not fit (memory or disk; error says which) and the job was not insisted
+  // on: nothing was done. Start it again with insist to export anyway.
+  bool refused = false;
   std::string path;
   MeshCheck check;  // of the file as written (valid when succeeded)
   double seconds = 0.0;
   int resolution = 0;
+};
+
+// When an export may start (see job_estimate.h).
+struct ExportGuard {
+  bool insist = false;       // start even when the estimate does not fit
+  uint64_t memoryBytes = 0;  // memory the job may use; 0: what the system has available
 };
 
 class ExportJob {
@@ -45,9 +57,11 @@ class ExportJob {
   using Listener = std::function<void(const ExportStatus&)>;
 
   // Starts exporting `scene` with `options` (resolution: cells along the longest side, 0 = the
-  // scene's; tile size) to `path` (.stl .obj .ply .3mf).
+  // scene's; tile size) to `path` (.stl .obj .ply .3mf). A job above kProbeAbove cells is first
+  // estimated (stage "estimate"); one that cannot fit the memory (guard.memoryBytes) or the disk
+  // is refused unless guard.insist.
   ExportJob(std::shared_ptr<const Scene> scene, std::string path, const ContourOptions& options,
-            std::shared_ptr<Backend> backend, Listener onChange = {});
+            std::shared_ptr<Backend> backend, Listener onChange = {}, ExportGuard guard = {});
   ~ExportJob();  // cancels and joins
   ExportJob(const ExportJob&) = delete;
   ExportJob& operator=(const ExportJob&) = delete;
@@ -58,7 +72,7 @@ class ExportJob {
 
  private:
   void run(std::shared_ptr<const Scene> scene, ContourOptions options,
-           std::shared_ptr<Backend> backend);
+           std::shared_ptr<Backend> backend, ExportGuard guard);
   // Applies `change` to the status under the lock, then tells the listener.
   void update(const std::function<void(ExportStatus&)>& change);
 

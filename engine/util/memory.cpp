@@ -30,6 +30,12 @@ uint64_t availableMemoryBytes() {
   return kib * 1024u;
 }
 
+uint64_t freeDiskBytesForFile(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return freeDiskBytes(".");
+  return freeDiskBytes(slash == 0 ? "/" : path.substr(0, slash));
+}
+
 uint64_t freeDiskBytes(const std::string& folder) {
   struct statvfs fs {};
   if (statvfs(folder.empty() ? "." : folder.c_str(), &fs) != 0) return 0;

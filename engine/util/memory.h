@@ -15,5 +15,7 @@ uint64_t availableMemoryBytes();
 // Free space for an unprivileged writer in the file system holding `folder`, in bytes; 0 where
 // unknown (the folder does not exist, ...).
 uint64_t freeDiskBytes(const std::string& folder);
+// The same for the folder a file at `path` lives (or would live) in.
+uint64_t freeDiskBytesForFile(const std::string& path);
 
 }  // namespace strata

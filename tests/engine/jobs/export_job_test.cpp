@@ -218,5 +218,44 @@ TEST(ExportJob, FailuresNameTheFileAndLeaveNothing) {
   EXPECT_TRUE(filesIn(folder).empty());
 }
 
+// A job whose estimate does not fit is refused before any work, saying why, with its estimate;
+// insisting exports it anyway.
+TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
+  const std::string folder = freshFolder("refused");
+  const std::string path = folder + "/part.stl";
+  writeText(path, "an older export\n");
+  const ContourOptions big{520, 256};  // above kProbeAbove: estimated first
+  {
+    ExportWatch watch;
+    ExportJob job(boxMinusSphere(32), path, big, std::make_shared<CpuBackend>(), watch.listener(),
+                  ExportGuard{false, uint64_t(1) << 20});
+    ASSERT_TRUE(watch.waitUntilFinished());
+    const ExportStatus s = job.status();
+    EXPECT_TRUE(s.refused);
+    EXPECT_FALSE(s.succeeded);
+    EXPECT_NE(s.error.find("the export at 520 cells needs about"), std::string::npos) << s.error;
+    EXPECT_NE(s.error.find("1.0 MiB are available"), std::string::npos) << s.error;
+    EXPECT_NE(s.estimate.find("triangles"), std::string::npos) << s.estimate;
+    EXPECT_EQ(contentOf(path), "an older export\n");
+  }
+  // Insisted on: past the estimate the export itself starts (then cancelled: the test needs only
+  // to see it begin).
+  ExportWatch watch("evaluate");
+  ExportJob job(boxMinusSphere(32), path, big, std::make_shared<CpuBackend>(), watch.listener(),
+                ExportGuard{true, uint64_t(1) << 20});
+  ASSERT_TRUE(watch.waitUntilHeld());
+  job.cancel();
+  watch.release();
+  ASSERT_TRUE(watch.waitUntilFinished());
+  const ExportStatus s = job.status();
+  EXPECT_FALSE(s.refused);
+  EXPECT_TRUE(s.cancelled);
+  const std::vector<std::string> stages = watch.stages();
+  ASSERT_GE(stages.size(), 2u);
+  EXPECT_EQ(stages[0], "estimate");  // the probes' own stages are not shown
+  EXPECT_EQ(stages[1], "evaluate");
+  EXPECT_EQ(contentOf(path), "an older export\n");
+}
+
 }  // namespace
 }  // namespace strata::test
