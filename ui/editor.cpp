@@ -1,5 +1,7 @@
 #include "ui/editor.h"
 
+#include "engine/util/memory.h"
+
 #include <epoxy/gl.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -225,8 +227,21 @@ static bool sceneHasVisibleLeaves(const NodePtr& node) {
 void Editor::requestPreviewIfNeeded() {
   EditorState& s = *state_;
   const bool interactive = s.document.interacting() || gl_->viewport.gizmoDragging();
-  const int resolution = s.document.scene().settings.resolution;
+  const int wanted = s.document.scene().settings.resolution;
   const uint64_t revision = s.document.revision();
+  // The cap depends on what a full (not coarse) result cost. It is worked out when the wanted
+  // resolution changes, and once more when the first full result arrives if there was none
+  // before; never on every result, which would chase its own tail (each new cap a new pass).
+  const bool fullShown = s.preview && s.preview->ok() && !s.preview->coarse;
+  if (wanted != wantedResolution_ || (!capFromResult_ && fullShown)) {
+    wantedResolution_ = wanted;
+    capFromResult_ = fullShown;
+    cappedResolution_ = previewResolutionFor(
+        wanted, fullShown ? s.preview->resolution : 0, fullShown ? s.preview->stats.cacheBytes : 0,
+        fullShown ? s.preview->stats.seconds : 0.0, availableMemoryBytes());
+    s.previewCappedAt = cappedResolution_ < wanted ? cappedResolution_ : 0;
+  }
+  const int resolution = cappedResolution_;
   if (revision == requestedRevision_ && resolution == requestedResolution_ &&
       interactive == requestedInteractive_)
     return;
@@ -262,8 +277,9 @@ bool Editor::waitForPreview(double timeoutSeconds) {
   while (clock.seconds() < timeoutSeconds) {
     pumpPreview();
     const PreviewResult* p = state_->preview.get();
+    // At the resolution asked of the worker: the document's, or its cap (previewResolutionFor).
     if (p && p->tag == state_->document.revision() && !p->coarse &&
-        p->resolution == state_->document.scene().settings.resolution)
+        p->resolution == requestedResolution_)
       return p->error.empty();
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

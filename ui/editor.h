@@ -96,6 +96,9 @@ class Editor {
   // What the worker was last asked for.
   uint64_t requestedRevision_ = ~uint64_t(0);
   int requestedResolution_ = 0;
+  int wantedResolution_ = 0;    // the document's resolution when the cap was made
+  bool capFromResult_ = false;  // the cap was scaled from a full result
+  int cappedResolution_ = 0;    // what the preview evaluates (previewResolutionFor)
   bool requestedInteractive_ = false;
   bool requestedEmpty_ = false;
   // Leaf colours and selection last given to the renderer.

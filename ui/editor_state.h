@@ -80,6 +80,9 @@ struct EditorState {
   // Preview.
   std::shared_ptr<const PreviewResult> preview;  // shown in the viewport
   std::string previewError;                      // of the newest evaluation, "" when it worked
+  // The preview runs at this many cells instead of the document's resolution, which would not
+  // fit in memory (previewResolutionFor); 0 when it runs at the document's.
+  int previewCappedAt = 0;
   PreviewStatus worker;
   std::string backendDescription;
   std::string glDescription;

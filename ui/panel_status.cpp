@@ -89,7 +89,7 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   ImGui::TextUnformatted("resolution");
   ImGui::SameLine(90.0f);
   ImGui::SetNextItemWidth(-1);
-  bool changed = ImGui::SliderInt("##resolution", &resolution, 16, 1024, "%d cells",
+  bool changed = ImGui::SliderInt("##resolution", &resolution, 16, kSliderMaxResolution, "%d cells",
                                   ImGuiSliderFlags_Logarithmic);
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
   if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
@@ -104,6 +104,14 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
     ImGui::Text("root LDI ~ %s",
                 bytesText(estimateBytes(state, grid, scene.settings.resolution)).c_str());
+    if (state.previewCappedAt > 0) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.35f, 1.0f));
+      ImGui::TextWrapped(
+          "preview at %d cells: %d would not fit in memory or take too long to preview "
+          "(an export tiles, and estimates first)",
+          state.previewCappedAt, scene.settings.resolution);
+      ImGui::PopStyleColor();
+    }
   } else {
     ImGui::TextDisabled("(empty scene: no grid)");
   }

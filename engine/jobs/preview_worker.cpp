@@ -1,13 +1,29 @@
 #include "engine/jobs/preview_worker.h"
 
 #include <algorithm>
+#include <cmath>
 #include <new>
 #include <vector>
 
 #include "engine/util/error.h"
+#include "engine/util/limits.h"
 #include "engine/util/timer.h"
 
 namespace strata {
+
+int previewResolutionFor(int requested, int shownResolution, uint64_t shownCacheBytes,
+                         double shownSeconds, uint64_t availableBytes) {
+  if (shownResolution <= 0 || shownCacheBytes == 0)
+    return availableBytes == 0 ? requested : std::min(requested, kSliderMaxResolution);
+  const double shownSquare = double(shownResolution) * shownResolution;
+  double cap = double(kMaxResolution);
+  if (availableBytes > 0)
+    cap = std::min(cap, std::sqrt(double(availableBytes) / 4.0 / (shownCacheBytes / shownSquare)));
+  if (requested > kSliderMaxResolution && shownSeconds > 0.0)
+    cap = std::min(cap, std::max(double(kSliderMaxResolution),
+                                 std::sqrt(kPreviewSeconds / (shownSeconds / shownSquare))));
+  return std::max(std::min(requested, kMinResolution), std::min(requested, int(cap)));
+}
 
 PreviewWorker::PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution,
                              std::function<void()> onResult)

@@ -63,6 +63,21 @@ struct PreviewStatus {
   int resolution = 0;     // of the running pass
 };
 
+// The resolution a preview is evaluated at when `requested` is asked for. The preview evaluates
+// the whole grid at once (no tiles): a resolution typed far past the slider must neither take
+// all memory nor keep the preview busy for minutes (exports tile, and estimate first). Scaled
+// from the last result shown (`shownResolution`; its LDIs held `shownCacheBytes` and took
+// `shownSeconds`; both grow with the square of the resolution):
+//   - memory: at most a quarter of `availableBytes` (what the system has; 0 = unknown: no cap),
+//     a margin for the transient buffers of sampling and Booleans;
+//   - time, above kSliderMaxResolution only (the slider's range is always honoured): at most
+//     kPreviewSeconds.
+// With nothing shown yet, at most kSliderMaxResolution until a result tells the scene's cost.
+constexpr int kSliderMaxResolution = 1024;
+constexpr double kPreviewSeconds = 5.0;
+int previewResolutionFor(int requested, int shownResolution, uint64_t shownCacheBytes,
+                         double shownSeconds, uint64_t availableBytes);
+
 class PreviewWorker {
  public:
   // `backend` is used by the worker thread alone from now on. `onResult`, when given, is called

@@ -208,5 +208,24 @@ TEST(PreviewWorker, DestructionWithRealWorkInFlightReturns) {
   }
 }
 
+// A resolution typed far past the slider is previewed at what fits in a quarter of the memory
+// the system has and, above the slider's range, in kPreviewSeconds, scaled from the last
+// result; nothing shown yet: at most the slider's maximum.
+TEST(PreviewResolution, CappedToWhatFitsInMemoryAndTime) {
+  const uint64_t gib = uint64_t(1) << 30;
+  // Shown: 256 cells held 64 MiB in 0.01 s; 4 GiB available: 1 GiB of budget fits 1024 cells.
+  EXPECT_EQ(previewResolutionFor(512, 256, 64u << 20, 0.01, 4 * gib), 512);
+  EXPECT_EQ(previewResolutionFor(16384, 256, 64u << 20, 0.01, 4 * gib), 1024);
+  EXPECT_EQ(previewResolutionFor(16384, 1024, 1024u << 20, 0.16, 4 * gib), 1024);  // stable
+  // Plenty of memory: time decides above the slider (0.05 s at 256 -> 5 s at 2560)...
+  EXPECT_EQ(previewResolutionFor(16384, 256, 1u << 20, 0.05, 64 * gib), 2560);
+  // ...but never below the slider's range.
+  EXPECT_EQ(previewResolutionFor(16384, 256, 1u << 20, 10.0, 64 * gib), 1024);
+  EXPECT_EQ(previewResolutionFor(1024, 256, 1u << 20, 10.0, 64 * gib), 1024);
+  EXPECT_EQ(previewResolutionFor(16384, 0, 0, 0.0, 2 * gib), kSliderMaxResolution);
+  EXPECT_EQ(previewResolutionFor(600, 0, 0, 0.0, 2 * gib), 600);
+  EXPECT_EQ(previewResolutionFor(64, 256, uint64_t(1) << 40, 0.01, 1), kMinResolution);
+}
+
 }  // namespace
 }  // namespace strata::test
