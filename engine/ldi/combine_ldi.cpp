@@ -69,14 +69,13 @@ void forEachWindowedRay(const AxisLdi& a, const RayWindow& out, Visit&& visit) {
 
 RayCandidates windowedCandidates(const std::vector<const AxisLdi*>& axes, const RayWindow& out) {
   RayCandidates rc;
+  // All children whole (every Boolean of big parts): no lists, and no counters for every ray.
+  if (std::all_of(axes.begin(), axes.end(), [](const AxisLdi* a) { return a->whole; })) return rc;
   rc.offsets.assign(size_t(out.rayCount()) + 1, 0);
-  bool any = false;
   for (const AxisLdi* a : axes) {
     if (a->whole) continue;
-    any = true;
     forEachWindowedRay(*a, out, [&](size_t ray) { ++rc.offsets[ray + 1]; });
   }
-  if (!any) return RayCandidates{};
   for (size_t r = 0; r + 1 < rc.offsets.size(); ++r) rc.offsets[r + 1] += rc.offsets[r];
   rc.children.resize(size_t(rc.offsets.back()));
   std::vector<uint64_t> cursor(rc.offsets.begin(), rc.offsets.end() - 1);
