@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "engine/document/commands.h"
+#include "engine/document/roles.h"
 #include "engine/io/document_files.h"
 #include "engine/io/user_files.h"
 #include "engine/kinds/primitives.h"
@@ -67,6 +68,18 @@ NodePtr newPrimitive(EditorState& state, NodeKind kind) {
   return node;
 }
 
+std::string displayName(const Node& node) {
+  return "\"" + (node.name.empty() ? std::string(kindName(node.kind)) : node.name) + "\"";
+}
+
+// Places a new part onto the primary selection with the place mode and says what it does.
+NodeId placeNew(EditorState& state, const NodePtr& node, PlaceMode mode) {
+  std::string sentence;
+  const NodeId id = state.document.place(node, primarySelection(state), mode, &sentence);
+  logInfo(state, displayName(*findNode(state.document.root(), id)) + " " + sentence);
+  return id;
+}
+
 }  // namespace
 
 void logInfo(EditorState& state, const std::string& text) {
@@ -128,11 +141,32 @@ void pruneSelection(EditorState& state) {
                         state.selection.end());
 }
 
+PlaceMode dropMode(const EditorState& state, int mods) {
+  if (mods & 2) return PlaceMode::Cut;        // GLFW_MOD_CONTROL
+  if (mods & 1) return PlaceMode::Intersect;  // GLFW_MOD_SHIFT
+  return state.placeMode;
+}
+
+std::string placementSentence(const EditorState& state, NodeId target, PlaceMode mode,
+                              NodeId dragged, bool* refused) {
+  const NodePtr& root = state.document.root();
+  if (refused) *refused = false;
+  try {
+    if (target == 0) target = root->id;
+    if (dragged == 0) return planPlacement(root, target, mode).sentence;
+    const NodeId fresh = state.document.nextId();
+    movePart(root, dragged, target, mode, fresh);  // throws when refused
+    return planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence;
+  } catch (const Error& e) {
+    if (refused) *refused = true;
+    return e.what();
+  }
+}
+
 NodeId addPrimitive(EditorState& state, NodeKind kind) {
   NodeId id = 0;
   guarded(state, [&] {
-    // Keeps the name: same id.
-    id = state.document.addSubtree(newPrimitive(state, kind), primarySelection(state));
+    id = placeNew(state, newPrimitive(state, kind), state.placeMode);
     selectNode(state, id);
   });
   return id;
@@ -142,7 +176,7 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
   NodeId id = 0;
   state.document.beginInteraction();
   guarded(state, [&] {
-    id = state.document.addSubtree(newPrimitive(state, kind), primarySelection(state));
+    id = placeNew(state, newPrimitive(state, kind), state.placeMode);
     placeNode(state, id, placement);
     selectNode(state, id);
   });
@@ -150,20 +184,26 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
   return id;
 }
 
-void dropPaletteItem(EditorState& state, int item, NodeId target) {
-  if (target) selectNode(state, target);
+void dropPaletteItem(EditorState& state, int item, NodeId target, PlaceMode mode) {
+  if (target)
+    selectNode(state, target);
+  else
+    clearSelection(state);
   if (item == kImportMeshItem) {
     state.importPlacement.reset();
     state.dialog.open(DialogPurpose::ImportMesh, "");
     return;
   }
+  const PlaceMode saved = state.placeMode;
+  state.placeMode = mode;
   addPrimitive(state, NodeKind(item));
+  state.placeMode = saved;
 }
 
 NodeId addOperation(EditorState& state, NodeKind kind) {
   NodeId id = 0;
   guarded(state, [&] {
-    id = state.document.addNode(kind, primarySelection(state));
+    id = placeNew(state, makeOperationNode(kind, state.document.nextId(), {}), state.placeMode);
     selectNode(state, id);
   });
   return id;
@@ -176,11 +216,13 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
   if (!why.empty()) logWarning(state, why);
   state.document.beginInteraction();
   guarded(state, [&] {
-    id = importMeshFile(state.document, import.path, primarySelection(state), -1,
-                        importTransform(scale, import.upAxis));
+    std::string sentence;
+    id = importMeshFile(state.document, import.path, primarySelection(state), state.placeMode,
+                        importTransform(scale, import.upAxis), &sentence);
     if (import.placement) placeNode(state, id, *import.placement);
     selectNode(state, id);
-    logInfo(state, "imported " + import.path);
+    logInfo(state, "imported " + import.path + ": " +
+                       displayName(*findNode(state.document.root(), id)) + " " + sentence);
   });
   state.document.endInteraction();
   return id;
@@ -209,6 +251,46 @@ void duplicateSelection(EditorState& state) {
     guarded(state, [&] { copies.push_back(state.document.duplicate(id)); });
   state.document.endInteraction();
   if (!copies.empty()) state.selection = copies;
+}
+
+void copySelection(EditorState& state) {
+  if (state.selection.empty()) return;
+  const NodePtr& root = state.document.root();
+  std::vector<NodePtr> copied;
+  // Tree order; a node inside another selected node goes with it.
+  for (NodeId id : treeOrder(root)) {
+    if (!isSelected(state, id)) continue;
+    bool nested = false;
+    for (NodeId other : state.selection)
+      if (other != id && isInSubtree(root, other, id)) nested = true;
+    if (!nested) copied.push_back(findNode(root, id));
+  }
+  state.clipboard = copied;
+  logInfo(state,
+          "copied " + std::to_string(copied.size()) + (copied.size() == 1 ? " part" : " parts"));
+}
+
+void cutSelection(EditorState& state) {
+  copySelection(state);
+  deleteSelection(state);
+}
+
+void pasteClipboard(EditorState& state) {
+  if (state.clipboard.empty()) {
+    logWarning(state, "nothing to paste: copy a part first (Ctrl+C)");
+    return;
+  }
+  std::vector<NodeId> pasted;
+  state.document.beginInteraction();
+  guarded(state, [&] {
+    for (const NodePtr& part : state.clipboard) {
+      pasted.push_back(placeNew(state, part, state.placeMode));
+      // The next copy lands beside the first, not inside it.
+      if (pasted.size() == 1) state.selection.assign(1, pasted[0]);
+    }
+  });
+  state.document.endInteraction();
+  if (!pasted.empty()) state.selection = pasted;
 }
 
 void instanceSelection(EditorState& state) {
@@ -267,22 +349,12 @@ void renameNode(EditorState& state, NodeId id, const std::string& name) {
   guarded(state, [&] { state.document.rename(id, name); });
 }
 
-void dropNode(EditorState& state, NodeId dragged, NodeId target) {
+void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode) {
   guarded(state, [&] {
-    if (target == 0) {
-      state.document.moveToTop(dragged);
-      return;
-    }
-    NodePtr t = findNode(state.document.root(), target);
-    if (!t) return;
-    if (isOperation(t->kind)) {
-      state.document.move(dragged, target, -1);
-    } else {
-      NodeLocation where;
-      if (!locateNode(state.document.root(), target, &where) || !where.parent)
-        throw Error("cannot drop beside the root");
-      state.document.move(dragged, where.parent->id, where.index);
-    }
+    const std::string sentence = placementSentence(state, target, mode, dragged);
+    state.document.moveOnto(dragged, target, mode);
+    if (NodePtr node = findNode(state.document.root(), dragged))
+      logInfo(state, displayName(*node) + " " + sentence);
   });
 }
 

@@ -18,23 +18,42 @@ void clearSelection(EditorState& state);
 // Drops ids that are no longer in the document (after undo, delete, open).
 void pruneSelection(EditorState& state);
 
-// Adds a primitive sized to the scene (about a quarter of its extent, 1 in an empty scene)
-// under the primary selection (beside it when it is a leaf) or the root; selects it.
+// New parts land on the primary selection (the root when none) with the editor's place mode:
+// they add, cut or intersect as the mode says and no existing part changes its role
+// (engine/document/roles.h); the log says what the new part does. Each is one undo step.
+
+// The mode a drop uses with the modifier keys held (GLFW bits): Ctrl cuts, Shift intersects,
+// otherwise the palette's mode.
+PlaceMode dropMode(const EditorState& state, int mods);
+// What a part placed onto `target` (0 = the root) with `mode` would do, for tooltips ("cuts
+// from \"bracket\""), or, for an existing node `dragged`, what it would do once moved there. Sets
+// *refused (when given) and returns the reason when the drop would be refused.
+std::string placementSentence(const EditorState& state, NodeId target, PlaceMode mode,
+                              NodeId dragged = 0, bool* refused = nullptr);
+
+// Adds a primitive sized to the scene (about a quarter of its extent, 1 in an empty scene);
+// selects it.
 NodeId addPrimitive(EditorState& state, NodeKind kind);
 // Adds an empty operation the same way.
 NodeId addOperation(EditorState& state, NodeKind kind);
 // Adds a primitive as addPrimitive does, placed at `placement` (a palette item dropped in the
-// viewport): its bounds centred on the point, or resting on the ground plane. One undo step.
+// viewport): its bounds centred on the point, or resting on the ground plane.
 NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placement);
-// Adds a mesh file under the primary selection (as addPrimitive), with the import options
-// (unit, up axis) and optional placement. One undo step.
+// Adds a mesh file as addPrimitive does, with the import options (unit, up axis) and optional
+// placement.
 NodeId importMesh(EditorState& state, const PendingImport& import);
-// A palette item dropped onto outliner row `target`: added into it (an operation) or beside it
-// (a leaf). kImportMeshItem opens the file dialog for it.
-void dropPaletteItem(EditorState& state, int item, NodeId target);
+// A palette item dropped onto outliner row `target` (0: empty space, the root) with `mode`.
+// kImportMeshItem opens the file dialog for it.
+void dropPaletteItem(EditorState& state, int item, NodeId target, PlaceMode mode);
 
 void deleteSelection(EditorState& state);
 void duplicateSelection(EditorState& state);
+// The clipboard: copies of the selected subtrees (a node inside another selected one goes with
+// it). Cut is copy, then delete (one undo step). Paste places the copies onto the primary
+// selection (the root when none) with the place mode, selects them; one undo step.
+void copySelection(EditorState& state);
+void cutSelection(EditorState& state);
+void pasteClipboard(EditorState& state);
 // Adds an instance of each selected node (a live copy that follows every edit of the original,
 // with its own transform; it starts where the original is) right after it in its parent, and
 // selects the instances. One undo step. The root cannot be instanced.
@@ -44,9 +63,10 @@ void toggleSelectionHidden(EditorState& state);
 void groupSelection(EditorState& state, NodeKind kind);
 void setSelectionOperation(EditorState& state, NodeKind kind);
 void renameNode(EditorState& state, NodeId id, const std::string& name);
-// Drag and drop in the outliner: onto an operation moves into it (last); onto a leaf moves
-// before it; parent 0 means empty space (to the top).
-void dropNode(EditorState& state, NodeId dragged, NodeId target);
+// Drag and drop in the outliner: node `dragged` onto row `target` (0: empty space, the root)
+// with `mode` (movePart in roles.h: every other part keeps its role); the log says what it does
+// now. One undo step.
+void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode);
 void setResolution(EditorState& state, int resolution);
 
 void undo(EditorState& state);

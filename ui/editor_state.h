@@ -69,6 +69,11 @@ struct KeyPress {
 struct EditorState {
   Document document;
   std::vector<NodeId> selection;  // the primary (inspected, gizmo) node is the last
+  // What new, pasted and dropped parts do where they land (the palette's mode; Ctrl while
+  // dropping cuts, Shift intersects): see engine/document/roles.h.
+  PlaceMode placeMode = PlaceMode::Add;
+  // Copied subtrees (Ctrl+C / Ctrl+X), pasted with fresh ids by Ctrl+V.
+  std::vector<NodePtr> clipboard;
   std::function<std::shared_ptr<Backend>()> makeBackend;  // a fresh backend per thread
 
   // Files outside the document.

@@ -89,6 +89,16 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem(redoText.c_str(), "Ctrl+Y", false, state.document.canRedo())) redo(state);
     ImGui::Separator();
     const bool any = !state.selection.empty();
+    if (ImGui::MenuItem("Cut", "Ctrl+X", false, any)) cutSelection(state);
+    if (ImGui::MenuItem("Copy", "Ctrl+C", false, any)) copySelection(state);
+    if (ImGui::MenuItem("Paste", "Ctrl+V", false, !state.clipboard.empty())) pasteClipboard(state);
+    if (ImGui::BeginMenu("New parts")) {
+      for (PlaceMode mode : {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect})
+        if (ImGui::MenuItem(placeModeName(mode), nullptr, state.placeMode == mode))
+          state.placeMode = mode;
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
     if (ImGui::MenuItem("Duplicate", "Ctrl+D", false, any)) duplicateSelection(state);
     if (ImGui::MenuItem("Instance", "Alt+D", false, any)) instanceSelection(state);
     if (ImGui::MenuItem("Delete", "Del", false, any)) deleteSelection(state);
@@ -141,6 +151,9 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_Z, ctrl | shift) || keyPressed(state, GLFW_KEY_Y, ctrl))
     redo(state);
   if (keyPressed(state, GLFW_KEY_D, ctrl)) duplicateSelection(state);
+  if (keyPressed(state, GLFW_KEY_C, ctrl)) copySelection(state);
+  if (keyPressed(state, GLFW_KEY_X, ctrl)) cutSelection(state);
+  if (keyPressed(state, GLFW_KEY_V, ctrl)) pasteClipboard(state);
   if (keyPressed(state, GLFW_KEY_D, GLFW_MOD_ALT)) instanceSelection(state);
   if (keyPressed(state, GLFW_KEY_G, ctrl)) groupSelection(state, NodeKind::Union);
   if (keyPressed(state, GLFW_KEY_DELETE) || keyPressed(state, GLFW_KEY_BACKSPACE))

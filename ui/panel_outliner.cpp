@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string>
 
 #include "engine/document/commands.h"
+#include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
@@ -22,21 +24,98 @@ struct PendingDrop {
   bool valid = false;
   int paletteItem = 0;  // with paletteDrop: what was dropped from the palette onto `target`
   bool paletteDrop = false;
+  PlaceMode mode = PlaceMode::Add;
+  // What the part being dragged would do where it hovers now (shown by the drag source's
+  // tooltip the next frame); empty when it hovers no target.
+  std::string hint;
+  bool hintRefused = false;
 };
 
-// Accepts a palette item over the last item (a row, or the empty space: target 0).
-void acceptPaletteItem(NodeId target, PendingDrop* drop) {
+// The hint the drag tooltip shows: set by the target hovered last frame (sources and targets
+// are drawn in tree order, so a source above its target would otherwise miss it).
+std::string gShownHint;
+bool gShownHintRefused = false;
+
+int heldModifiers() {
+  const ImGuiIO& io = ImGui::GetIO();
+  return (io.KeyShift ? 1 : 0) | (io.KeyCtrl ? 2 : 0);
+}
+
+// The drop target of the last item (a row, or the empty space: target 0): says what the
+// dragged node or palette item would do there, with the modifiers held now, and accepts it
+// unless it would be refused (a refused target is not highlighted).
+void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
+  const ImGuiPayload* payload = ImGui::GetDragDropPayload();
+  if (!payload) return;
+  const PlaceMode mode = dropMode(state, heldModifiers());
+  NodeId dragged = 0;
+  if (payload->IsDataType(kPayload)) std::memcpy(&dragged, payload->Data, sizeof(NodeId));
+  bool refused = false;
+  const std::string sentence = placementSentence(state, target, mode, dragged, &refused);
+  drop->hint = refused ? "can't drop here: " + sentence : sentence;
+  drop->hintRefused = refused;
+  if (refused) return;
+  if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPayload)) {
+    std::memcpy(&drop->dragged, p->Data, sizeof(NodeId));
+    drop->target = target;
+    drop->valid = true;
+    drop->mode = mode;
+  }
   if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPalettePayload)) {
     std::memcpy(&drop->paletteItem, p->Data, sizeof(int));
     drop->target = target;
     drop->paletteDrop = true;
+    drop->mode = mode;
   }
+}
+
+// The drag tooltip's second part: what the part would do where it hovers.
+void dragHint() {
+  if (gShownHint.empty()) {
+    ImGui::TextDisabled("drop on a row: add (Ctrl: cut, Shift: intersect)");
+    return;
+  }
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
+  if (gShownHintRefused)
+    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s", gShownHint.c_str());
+  else
+    ImGui::TextUnformatted(gShownHint.c_str());
+  ImGui::TextDisabled("Ctrl: cut  Shift: intersect");
+  ImGui::PopTextWrapPos();
+}
+
+// A child's role in its parent, as a short coloured word.
+void roleBadge(ChildRole role, float x) {
+  ImVec4 colour(0.6f, 0.62f, 0.66f, 1.0f);
+  const char* word = "base";
+  switch (role) {
+    case ChildRole::Add:
+      colour = ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
+      word = "add";
+      break;
+    case ChildRole::Cut:
+      colour = ImVec4(1.0f, 0.45f, 0.42f, 1.0f);
+      word = "cut";
+      break;
+    case ChildRole::Intersect:
+      colour = ImVec4(0.75f, 0.6f, 1.0f, 1.0f);
+      word = "intersect";
+      break;
+    case ChildRole::Root:
+      return;
+    default:
+      break;
+  }
+  ImGui::SameLine(x - ImGui::CalcTextSize(word).x);
+  ImGui::TextColored(colour, "%s", word);
 }
 
 // The palette's height: its default, plus a row of buttons for every three primitives beyond six.
 float paletteHeightFor(const PanelLayout& layout) {
   const int rows = int((primitiveTable().size() + 2) / 3);
-  return layout.paletteHeight + float(std::max(0, rows - 2)) * ImGui::GetFrameHeightWithSpacing();
+  // The mode row and the line saying what a click does come on top.
+  return layout.paletteHeight +
+         float(std::max(0, rows - 2) + 1) * ImGui::GetFrameHeightWithSpacing();
 }
 
 // Operations are coloured by the Boolean they apply; leaves are grey.
@@ -101,7 +180,8 @@ void renameField(EditorState& state, const NodePtr& node) {
   }
 }
 
-void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* drop) {
+void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDrop* drop) {
+  const bool isRoot = role == ChildRole::Root;
   ImGui::PushID(static_cast<int>(node->id));
   const bool leaf = node->children.empty();
   ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth |
@@ -114,17 +194,25 @@ void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* 
   const ImVec2 rowStart = ImGui::GetCursorPos();
 
   bool open;
+  float clipRight = 1e9f;
   if (state.renaming == node->id) {
     open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s",
                              kindGlyph(node->kind));
     ImGui::SameLine();
     renameField(state, node);
   } else {
+    // The name (and the operation's kind) end where the role badge's column begins; the full
+    // name is in the row's tooltip.
+    const float badgeColumn = ImGui::CalcTextSize("intersect").x + ImGui::GetFrameHeight() +
+                              2.0f * ImGui::GetStyle().ItemSpacing.x;
+    clipRight = ImGui::GetWindowPos().x + right - badgeColumn;
+    ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
     if (!node->visible) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.5f, 0.52f, 1.0f));
     open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s  %s",
                              kindGlyph(node->kind),
                              node->name.empty() ? "(unnamed)" : node->name.c_str());
     if (!node->visible) ImGui::PopStyleColor();
+    ImGui::PopClipRect();
     if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen())
       selectNode(state, node->id, ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift);
     if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) state.renaming = node->id;
@@ -132,23 +220,26 @@ void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* 
       NodeId id = node->id;
       ImGui::SetDragDropPayload(kPayload, &id, sizeof(id));
       ImGui::Text("%s %s", kindGlyph(node->kind), node->name.c_str());
+      dragHint();
       ImGui::EndDragDropSource();
     }
     if (ImGui::BeginDragDropTarget()) {
-      if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPayload)) {
-        std::memcpy(&drop->dragged, p->Data, sizeof(NodeId));
-        drop->target = node->id;
-        drop->valid = true;
-      }
-      acceptPaletteItem(node->id, drop);
+      dropTarget(state, node->id, drop);
       ImGui::EndDragDropTarget();
     }
+    if (ImGui::IsItemHovered() && !ImGui::GetDragDropPayload() && !isRoot)
+      ImGui::SetTooltip(
+          "%s %s", node->name.c_str(),
+          role == ChildRole::Base ? "is the base: the cutters beside it cut it" : rolePhrase(role));
     contextMenu(state, node);
   }
   if (isOperation(node->kind)) {
     ImGui::SameLine();
+    ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
     ImGui::TextColored(kindColor(node->kind), "%s", kindLabel(node->kind));
+    ImGui::PopClipRect();
   }
+  roleBadge(role, right - ImGui::GetFrameHeight() - ImGui::GetStyle().ItemSpacing.x);
   ImGui::SameLine(right - ImGui::GetFrameHeight());
   ImGui::SetCursorPosY(rowStart.y);
   ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0, 0, 0, 0));
@@ -159,7 +250,8 @@ void nodeRow(EditorState& state, const NodePtr& node, bool isRoot, PendingDrop* 
   if (ImGui::IsItemHovered()) ImGui::SetTooltip(node->visible ? "Hide" : "Show");
 
   if (open && !leaf) {
-    for (const auto& child : node->children) nodeRow(state, child, false, drop);
+    for (size_t i = 0; i < node->children.size(); ++i)
+      nodeRow(state, node->children[i], childRole(*node, static_cast<int>(i)), drop);
     ImGui::TreePop();
   }
   ImGui::PopID();
@@ -170,7 +262,10 @@ void paletteDragSource(int item, const char* label) {
   if (ImGui::BeginDragDropSource()) {
     ImGui::SetDragDropPayload(kPalettePayload, &item, sizeof(item));
     ImGui::Text("%s", label);
-    ImGui::TextDisabled("drop on a surface, the ground, or a tree row");
+    if (gShownHint.empty())
+      ImGui::TextDisabled("drop on a surface, the ground, or a tree row");
+    else
+      dragHint();
     ImGui::EndDragDropSource();
   }
 }
@@ -187,26 +282,20 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   PendingDrop drop;
   const NodePtr root = state.document.root();  // this frame's snapshot
-  if (root) nodeRow(state, root, true, &drop);
-  // Empty space below the tree: a drop here moves the node to the top level.
+  if (root) nodeRow(state, root, ChildRole::Root, &drop);
+  // Empty space below the tree: a drop here places the node onto the root.
   ImVec2 avail = ImGui::GetContentRegionAvail();
   ImGui::InvisibleButton("##empty", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 24.0f)));
   if (ImGui::IsItemClicked(0)) clearSelection(state);
   if (ImGui::BeginDragDropTarget()) {
-    if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPayload)) {
-      std::memcpy(&drop.dragged, p->Data, sizeof(NodeId));
-      drop.target = 0;
-      drop.valid = true;
-    }
-    acceptPaletteItem(0, &drop);
+    dropTarget(state, 0, &drop);
     ImGui::EndDragDropTarget();
   }
   ImGui::End();
-  if (drop.valid) dropNode(state, drop.dragged, drop.target);
-  if (drop.paletteDrop) {
-    if (drop.target == 0) clearSelection(state);
-    dropPaletteItem(state, drop.paletteItem, drop.target);
-  }
+  gShownHint = drop.hint;
+  gShownHintRefused = drop.hintRefused;
+  if (drop.valid) dropNode(state, drop.dragged, drop.target, drop.mode);
+  if (drop.paletteDrop) dropPaletteItem(state, drop.paletteItem, drop.target, drop.mode);
 }
 
 void drawPalette(EditorState& state, const PanelLayout& layout) {
@@ -216,11 +305,20 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   ImGui::SetNextWindowSize(ImVec2(layout.leftWidth, height));
   ImGui::Begin("Add", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-  NodeId target = primarySelection(state);
-  NodePtr targetNode = target ? findNode(state.document.root(), target) : nullptr;
-  ImGui::TextDisabled("click: add %s %s (or drag)",
-                      targetNode && !isOperation(targetNode->kind) ? "beside" : "to",
-                      targetNode ? targetNode->name.c_str() : "the root");
+  // The mode new parts are placed with, and what a click would do now.
+  const PlaceMode modes[] = {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect};
+  const char* modeTips[] = {"New parts add material", "New parts cut (subtract)",
+                            "New parts intersect: only what they share remains"};
+  for (int i = 0; i < 3; ++i) {
+    if (i) ImGui::SameLine();
+    if (ImGui::RadioButton(placeModeName(modes[i]), state.placeMode == modes[i]))
+      state.placeMode = modes[i];
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", modeTips[i]);
+  }
+  const std::string sentence = placementSentence(state, primarySelection(state), state.placeMode);
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("a new part %s", sentence.c_str());
+  ImGui::PopTextWrapPos();
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
   const int count = int(primitiveTable().size());
   const int lastRowStart = (count - 1) / 3 * 3;  // a short last row shares the whole width

@@ -179,7 +179,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       !ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) {
     int item = 0;
     std::memcpy(&item, payload->Data, sizeof(item));
-    drop_ = PendingDrop{mouse, item};
+    drop_ = PendingDrop{mouse, item, dropMode(state, (io.KeyShift ? 1 : 0) | (io.KeyCtrl ? 2 : 0))};
   }
   if (io.WantCaptureMouse && !navigating_) {
     hot_ = -1;
@@ -282,7 +282,10 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
       state.importPlacement = placement;
       state.dialog.open(DialogPurpose::ImportMesh, "");
     } else {
+      const PlaceMode saved = state.placeMode;
+      state.placeMode = drop_->mode;
       addPrimitiveAt(state, NodeKind(drop_->item), placement);
+      state.placeMode = saved;
     }
     drop_.reset();
   }

@@ -61,7 +61,8 @@ class Viewport {
   };
   struct PendingDrop {
     glm::dvec2 mouse;
-    int item = 0;  // palette item: a NodeKind, or kImportMeshItem
+    int item = 0;                     // palette item: a NodeKind, or kImportMeshItem
+    PlaceMode mode = PlaceMode::Add;  // with the modifiers held at the release (dropMode)
   };
 
   // Framing waits for the viewport's shape, known in handleInput and draw.

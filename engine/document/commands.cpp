@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 
@@ -248,7 +249,7 @@ NodePtr removeNode(const NodePtr& root, NodeId id) {
   if (const Node* user = outsideReference(root, inside))
     throw Error("cannot delete " + nodeLabel(node) + ": instance " + nodeLabel(*user) +
                 " refers to it; delete or re-point the instance first");
-  return rewriteOrThrow(root, id, [](const NodePtr&) { return NodePtr(); });
+  return removeKeepingRoles(root, id, maxNodeId(root) + 1);
 }
 
 NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* copyId) {
@@ -260,25 +261,14 @@ NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* co
   NodePtr copy = withFreshIds(node, firstId);
   auto named = std::make_shared<Node>(*copy);
   named->name = node->name.empty() ? "copy" : node->name + " copy";
-  NodeLocation where;
-  locateNode(root, id, &where);
   if (copyId) *copyId = named->id;
-  if (where.parent->kind == NodeKind::Difference && where.index == 0) {
-    // The base of a difference: a copy after it would be a cutter and cut the base away. The
-    // base and its copy are united in a group in the base's place: both add material, and
-    // every other child keeps its role.
-    auto group = std::make_shared<Node>();
-    group->id = maxNodeId(named) + 1;
-    group->kind = NodeKind::Union;
-    group->name = (node->name.empty() ? std::string("base") : node->name) + " + copy";
-    group->children = {node, named};
-    return rewriteOrThrow(root, where.parent->id, [&](const NodePtr& parent) {
-      auto changed = std::make_shared<Node>(*parent);
-      changed->children[0] = group;
-      return NodePtr(changed);
-    });
-  }
-  return insertChild(root, where.parent->id, where.index + 1, named);
+  // The copy plays the original's role: placed onto the original with that role's mode, it lands
+  // beside it, or (the base of a difference) unites with it in a union in the base's place.
+  const ChildRole role = roleOf(root, id);
+  const PlaceMode mode = role == ChildRole::Cut         ? PlaceMode::Cut
+                         : role == ChildRole::Intersect ? PlaceMode::Intersect
+                                                        : PlaceMode::Add;
+  return placePart(root, planPlacement(root, id, mode), named, maxNodeId(named) + 1);
 }
 
 NodePtr moveNode(const NodePtr& root, NodeId id, NodeId parentId, int index) {
@@ -351,6 +341,15 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
       if (other != id && isInSubtree(root, other, id)) nested = true;
     if (!nested) order.push_back(id);
   }
+  // A group takes one role in its parent: members that do different things (the base and a
+  // cutter, a part that adds and one that cuts) would change what some of them do.
+  const ChildRole role = roleOf(root, order[0]);
+  for (NodeId id : order)
+    if (roleOf(root, id) != role)
+      throw Error(nodeLabel(requireNode(root, order[0])) + " " + rolePhrase(role) + " and " +
+                  nodeLabel(requireNode(root, id)) + " " + rolePhrase(roleOf(root, id)) +
+                  ": a group plays one role, so group parts that do the same (or move them "
+                  "first)");
   std::vector<NodePtr> members;
   for (NodeId id : order) members.push_back(findNode(root, id));
   NodePtr group = makeOperationNode(kind, groupId, members);

@@ -63,13 +63,15 @@ NodePtr editNode(const NodePtr& root, NodeId id, const std::function<void(Node&)
 NodePtr insertChild(const NodePtr& root, NodeId parentId, int index, const NodePtr& child);
 
 // Removes a node and its subtree. Refused for the root and for a subtree that an instance
-// outside it refers to.
+// outside it refers to. The base of a difference with cutters leaves an empty base behind
+// (removeKeepingRoles in roles.h): no cutter becomes the base.
 NodePtr removeNode(const NodePtr& root, NodeId id);
 
 // Adds a deep copy of node `id` that plays the original's role, leaving every other node's role
-// as it was: right after the original (a union's or intersection's child, a difference's
-// cutter), or, for the base (first child) of a difference, beside the base in a new union group
-// that takes the base's place (a copy after the base would cut it away). Fresh ids count up
+// as it was (placed onto the original with its role, roles.h): right after the original (a
+// union's or intersection's child, a difference's cutter), or, for the base (first child) of a
+// difference, beside the base in a new union that takes the base's place (a copy after the base
+// would cut it away). Fresh ids count up
 // from `firstId` (instances inside the copy that refer into the copied subtree follow the copy;
 // the group, when made, takes the next id). The copy's name gets " copy". Sets *copyId to the
 // copy's id. Refused for the root.

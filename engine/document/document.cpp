@@ -100,12 +100,29 @@ NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
 }
 
 NodeId Document::addMesh(std::shared_ptr<const TriangleMesh> mesh, const std::string& file,
-                         const std::string& hash, NodeId parent, int index,
-                         const Transform& transform) {
+                         const std::string& hash, NodeId target, PlaceMode mode,
+                         const Transform& transform, std::string* sentence) {
   auto node = std::make_shared<Node>(
       *makeMeshNode(1, fs::path(file).stem().string(), std::move(mesh), file, hash));
   node->transform = transform;
-  return addSubtree(node, parent, index);
+  return place(node, target, mode, sentence);
+}
+
+NodeId Document::place(const NodePtr& node, NodeId target, PlaceMode mode, std::string* sentence) {
+  const NodeId id = nextId();
+  NodePtr fresh = withFreshIds(node, id);
+  if (target == 0) target = root()->id;
+  const PlacePlan plan = planPlacement(root(), target, mode);
+  NodePtr result = placePart(root(), plan, fresh, maxNodeId(fresh) + 1);
+  checkInstances(result);
+  apply("add " + (fresh->name.empty() ? std::string(kindName(fresh->kind)) : fresh->name), result);
+  if (sentence) *sentence = plan.sentence;
+  return id;
+}
+
+void Document::moveOnto(NodeId id, NodeId target, PlaceMode mode) {
+  if (target == 0) target = root()->id;
+  apply("move", movePart(root(), id, target, mode, nextId()));
 }
 
 void Document::remove(NodeId id) {

@@ -73,10 +73,12 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
   if (isPrimitive(node->kind))
     return transformedBox(primitiveLocalBounds(node->kind, node->params), world);
   bool first = true;
+  const RayOp op = nodeKindInfo(node->kind).rayOp;
+  // A hidden base leaves its difference empty (its cutters never become the base).
+  if (op == RayOp::Difference && !node->children.empty() && !node->children[0]->visible) return b;
   for (const auto& child : node->children) {
     if (!child->visible) continue;
     Bounds cb = boundsOf(child, root, world, false, depth + 1);
-    const RayOp op = nodeKindInfo(node->kind).rayOp;
     if (op == RayOp::Union) {
       b.include(cb);
     } else if (op == RayOp::Intersection) {
@@ -318,13 +320,17 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
   }
   if (!isOperation(node->kind)) return visitLeaf(node, world, ctx);
 
+  // Hidden children take no part, except that a hidden base leaves a difference empty: its
+  // first cutter never becomes the base (roles.h).
+  const RayOp op = nodeKindInfo(node->kind).rayOp;
+  const bool hiddenBase =
+      op == RayOp::Difference && !node->children.empty() && !node->children[0]->visible;
   std::vector<Visit> children;
   for (const auto& c : node->children) {
-    if (!c->visible) continue;
+    if (!c->visible || hiddenBase) continue;
     children.push_back(visit(c, world, depth + 1, ctx));
   }
   // Empty operands decide some results without a Boolean.
-  const RayOp op = nodeKindInfo(node->kind).rayOp;
   std::vector<Visit> operands;
   bool resultEmpty = children.empty();
   for (size_t i = 0; i < children.size(); ++i) {

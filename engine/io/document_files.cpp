@@ -35,12 +35,12 @@ void saveDocumentAs(Document& document, const std::string& path) {
   document.markSaved(path);
 }
 
-NodeId importMeshFile(Document& document, const std::string& file, NodeId parent, int index,
-                      const Transform& transform) {
+NodeId importMeshFile(Document& document, const std::string& file, NodeId target, PlaceMode mode,
+                      const Transform& transform, std::string* sentence) {
   auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file));
   const std::string hash = hashFile(file);
   const std::string stored = fs::absolute(file).lexically_normal().generic_string();
-  return document.addMesh(std::move(mesh), stored, hash, parent, index, transform);
+  return document.addMesh(std::move(mesh), stored, hash, target, mode, transform, sentence);
 }
 
 }  // namespace strata

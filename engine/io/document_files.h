@@ -24,9 +24,11 @@ void saveDocument(Document& document);
 void saveDocumentAs(Document& document, const std::string& path);
 
 // Reads a closed mesh file (readMeshFile) and adds it as a mesh leaf named after the file, its
-// path made absolute (see Document's constructor), under `parent` at `index` (Document::addNode)
-// with `transform`. One undo step. Returns the new leaf's id. Throws strata::Error.
-NodeId importMeshFile(Document& document, const std::string& file, NodeId parent = 0,
-                      int index = -1, const Transform& transform = Transform{});
+// path made absolute (see Document's constructor), onto `target` (0 = the root) with `mode`
+// (Document::place) with `transform`; *sentence says what it does. One undo step. Returns the
+// new leaf's id. Throws strata::Error.
+NodeId importMeshFile(Document& document, const std::string& file, NodeId target = 0,
+                      PlaceMode mode = PlaceMode::Add, const Transform& transform = Transform{},
+                      std::string* sentence = nullptr);
 
 }  // namespace strata

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "engine/document/commands.h"
+#include "engine/document/roles.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/scene_queries.h"
@@ -98,6 +99,57 @@ TEST(ImportAndPlace, DroppedPrimitiveIsCentredOnTheSurfacePointOrRestsOnTheGroun
   undo(state);
   EXPECT_FALSE(findNode(state.document.root(), onGround));
   EXPECT_TRUE(findNode(state.document.root(), onSurface));
+}
+
+// The demo's trap, and the modes: a part added onto the base of a difference with the palette
+// in "add" mode adds material (it does not become a cutter); in "cut" mode it cuts; a paste does
+// what the mode says; a drag onto a cutter with Ctrl held cuts beside it, and the drop's
+// tooltip sentence says so before the release. Each is one undo step.
+TEST(Roles, NewPastedAndDroppedPartsDoWhatTheModeSays) {
+  EditorState state;
+  NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  NodeId hole = addPrimitive(state, NodeKind::Cylinder);  // onto the selected plate: cuts it
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), plate), ChildRole::Base);
+  EXPECT_NE(state.log.back().text.find("cuts from"), std::string::npos) << state.log.back().text;
+
+  state.placeMode = PlaceMode::Add;
+  state.selection = {plate};
+  NodeId rib = addPrimitive(state, NodeKind::Box);
+  EXPECT_EQ(roleOf(state.document.root(), rib), ChildRole::Add);
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);   // unchanged
+  EXPECT_EQ(roleOf(state.document.root(), plate), ChildRole::Add);  // inside the new base union
+
+  // Copy the hole, paste onto it in cut mode: a second cutter beside it.
+  state.selection = {hole};
+  copySelection(state);
+  state.placeMode = PlaceMode::Cut;
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId pasted = state.selection[0];
+  EXPECT_NE(pasted, hole);
+  EXPECT_EQ(roleOf(state.document.root(), pasted), ChildRole::Cut);
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), pasted));
+
+  // Drag the rib onto the hole with Ctrl: it becomes a cutter, the sentence says so first.
+  const PlaceMode mode = dropMode(state, 2);
+  EXPECT_EQ(mode, PlaceMode::Cut);
+  bool refused = true;
+  const std::string sentence = placementSentence(state, hole, mode, rib, &refused);
+  EXPECT_FALSE(refused);
+  EXPECT_NE(sentence.find("cuts from"), std::string::npos) << sentence;
+  dropNode(state, rib, hole, mode);
+  EXPECT_EQ(roleOf(state.document.root(), rib), ChildRole::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  undo(state);
+  EXPECT_EQ(roleOf(state.document.root(), rib), ChildRole::Add);
+
+  // A drop into the dragged node's own subtree is refused before the release, with a reason.
+  const NodeId root = state.document.root()->id;
+  placementSentence(state, rib, PlaceMode::Add, root, &refused);
+  EXPECT_TRUE(refused);
 }
 
 TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {

@@ -157,10 +157,15 @@ TEST(DocumentCommands, GroupKeepsTreeOrderAndPlace) {
   NodePtr nested = groupNodes(root, {3, 4}, NodeKind::Intersection, 7);
   EXPECT_EQ(childIds(nested), (std::vector<NodeId>{2, 7, 6}));
   EXPECT_EQ(childIds(findNode(nested, 7)), (std::vector<NodeId>{3}));
-  // Across parents: placed where the first was.
-  NodePtr across = groupNodes(root, {5, 6}, NodeKind::Union, 7);
+  // Across parents, doing the same: placed where the first was.
+  NodePtr nestedUnion = setOperationKind(root, 3, NodeKind::Union);
+  NodePtr across = groupNodes(nestedUnion, {5, 6}, NodeKind::Union, 7);
   EXPECT_EQ(childIds(findNode(across, 3)), (std::vector<NodeId>{4, 7}));
   EXPECT_EQ(childIds(findNode(across, 7)), (std::vector<NodeId>{5, 6}));
+  // Parts that do different things are not grouped: one of them would change what it does (a
+  // cutter would add, a part beside the base would be cut).
+  EXPECT_THROW(groupNodes(root, {5, 6}, NodeKind::Union, 7), Error);
+  EXPECT_THROW(groupNodes(root, {4, 2}, NodeKind::Union, 7), Error);
   // The root alone is wrapped.
   NodePtr wrapped = groupNodes(root, {1}, NodeKind::Union, 7);
   EXPECT_EQ(wrapped->id, 7u);

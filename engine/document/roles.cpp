@@ -1,0 +1,212 @@
+#include "engine/document/roles.h"
+
+#include "engine/document/commands.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+
+std::string quoted(const Node& node) {
+  return "\"" + (node.name.empty() ? std::string(kindName(node.kind)) : node.name) + "\"";
+}
+
+// The nodes from the root down to `id` (both included); false when absent.
+bool pathTo(const NodePtr& node, NodeId id, std::vector<const Node*>* path) {
+  path->push_back(node.get());
+  if (node->id == id) return true;
+  for (const auto& c : node->children)
+    if (pathTo(c, id, path)) return true;
+  path->pop_back();
+  return false;
+}
+
+ChildRole roleForMode(PlaceMode mode) {
+  switch (mode) {
+    case PlaceMode::Cut:
+      return ChildRole::Cut;
+    case PlaceMode::Intersect:
+      return ChildRole::Intersect;
+    default:
+      return ChildRole::Add;
+  }
+}
+
+// What a part placed with `mode` does to `what`, for people.
+std::string verbPhrase(PlaceMode mode, const Node& what) {
+  switch (mode) {
+    case PlaceMode::Cut:
+      return "cuts from " + quoted(what);
+    case PlaceMode::Intersect:
+      return "intersects " + quoted(what);
+    default:
+      return "adds to " + quoted(what);
+  }
+}
+
+NodePtr insertAt(const NodePtr& root, NodeId parentId, int index, const NodePtr& part) {
+  return insertChild(root, parentId, index, part);
+}
+
+}  // namespace
+
+ChildRole childRole(const Node& parent, int index) {
+  switch (nodeKindInfo(parent.kind).rayOp) {
+    case RayOp::Difference:
+      return index == 0 ? ChildRole::Base : ChildRole::Cut;
+    case RayOp::Intersection:
+      return ChildRole::Intersect;
+    default:
+      return ChildRole::Add;
+  }
+}
+
+ChildRole roleOf(const NodePtr& root, NodeId id) {
+  NodeLocation where;
+  if (!locateNode(root, id, &where)) throw Error("there is no node with id " + std::to_string(id));
+  if (!where.parent) return ChildRole::Root;
+  return childRole(*where.parent, where.index);
+}
+
+const char* roleWord(ChildRole role) {
+  switch (role) {
+    case ChildRole::Root:
+      return "root";
+    case ChildRole::Base:
+      return "base";
+    case ChildRole::Cut:
+      return "cuts";
+    case ChildRole::Intersect:
+      return "intersects";
+    default:
+      return "adds";
+  }
+}
+
+const char* rolePhrase(ChildRole role) {
+  switch (role) {
+    case ChildRole::Root:
+      return "is the root";
+    case ChildRole::Base:
+      return "is the base";
+    default:
+      return roleWord(role);
+  }
+}
+
+bool removesMaterial(const NodePtr& root, NodeId id) {
+  std::vector<const Node*> path;
+  if (!pathTo(root, id, &path)) return false;
+  bool removes = false;
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Node& parent = *path[i - 1];
+    for (size_t c = 0; c < parent.children.size(); ++c)
+      if (parent.children[c].get() == path[i] &&
+          childRole(parent, static_cast<int>(c)) == ChildRole::Cut)
+        removes = !removes;
+  }
+  return removes;
+}
+
+const char* placeModeName(PlaceMode mode) {
+  switch (mode) {
+    case PlaceMode::Cut:
+      return "cut";
+    case PlaceMode::Intersect:
+      return "intersect";
+    default:
+      return "add";
+  }
+}
+
+NodeKind operationKindFor(PlaceMode mode) {
+  const RayOp wanted = mode == PlaceMode::Cut         ? RayOp::Difference
+                       : mode == PlaceMode::Intersect ? RayOp::Intersection
+                                                      : RayOp::Union;
+  for (const NodeKindInfo& info : nodeKindTable())
+    if (info.role == KindRole::Operation && info.rayOp == wanted) return info.kind;
+  throw Error("no operation kind applies the Boolean for \"" + std::string(placeModeName(mode)) +
+              "\"");
+}
+
+PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
+  NodeLocation where;
+  if (!locateNode(root, target, &where))
+    throw Error("there is no node with id " + std::to_string(target));
+  const NodePtr node = findNode(root, target);
+  const NodeKind kind = operationKindFor(mode);
+  PlacePlan plan;
+  // 1. Into an operation of the mode's Boolean, or into an empty operation of any.
+  if (isOperation(node->kind) && (node->kind == kind || node->children.empty())) {
+    plan.parent = target;
+    if (node->children.empty() && nodeKindInfo(node->kind).rayOp == RayOp::Difference)
+      plan.sentence = "becomes the base of " + quoted(*node);
+    else if (node->children.empty())
+      plan.sentence = "fills the empty " + quoted(*node);
+    else
+      plan.sentence = verbPhrase(mode, *node);
+    return plan;
+  }
+  // 2. Beside a target that already plays the mode's role.
+  if (where.parent && childRole(*where.parent, where.index) == roleForMode(mode)) {
+    plan.parent = where.parent->id;
+    plan.index = where.index + 1;
+    plan.sentence = verbPhrase(mode, *where.parent);
+    return plan;
+  }
+  // 3. A new operation in the target's place.
+  plan.wrapped = target;
+  plan.wrapKind = kind;
+  plan.sentence = verbPhrase(mode, *node) + " (a new " + kindName(kind) + " takes its place)";
+  return plan;
+}
+
+NodePtr placePart(const NodePtr& root, const PlacePlan& plan, const NodePtr& part, NodeId groupId) {
+  if (plan.wrapped == 0) return insertAt(root, plan.parent, plan.index, part);
+  if (findNode(root, groupId) || findNode(part, groupId))
+    throw Error("place: the new operation's id is in use");
+  NodeLocation where;
+  if (!locateNode(root, plan.wrapped, &where))
+    throw Error("there is no node with id " + std::to_string(plan.wrapped));
+  NodePtr wrapped = findNode(root, plan.wrapped);
+  NodePtr group = makeOperationNode(plan.wrapKind, groupId, {wrapped, part});
+  if (!where.parent) return group;
+  return editNode(root, where.parent->id,
+                  [&](Node& parent) { parent.children[static_cast<size_t>(where.index)] = group; });
+}
+
+NodePtr removeKeepingRoles(const NodePtr& root, NodeId id, NodeId placeholderId) {
+  NodeLocation where;
+  if (!locateNode(root, id, &where)) throw Error("there is no node with id " + std::to_string(id));
+  if (!where.parent) throw Error("the root cannot be removed");
+  const bool baseWithCutters =
+      childRole(*where.parent, where.index) == ChildRole::Base && where.parent->children.size() > 1;
+  return editNode(root, where.parent->id, [&](Node& parent) {
+    auto at = parent.children.begin() + where.index;
+    if (!baseWithCutters) {
+      parent.children.erase(at);
+      return;
+    }
+    auto placeholder =
+        std::make_shared<Node>(*makeOperationNode(NodeKind::Union, placeholderId, {}));
+    placeholder->name = "empty base";
+    *at = placeholder;
+  });
+}
+
+NodePtr movePart(const NodePtr& root, NodeId id, NodeId target, PlaceMode mode, NodeId groupId) {
+  NodePtr moved = findNode(root, id);
+  NodePtr goal = findNode(root, target);
+  if (!moved) throw Error("there is no node with id " + std::to_string(id));
+  if (!goal) throw Error("there is no node with id " + std::to_string(target));
+  if (root->id == id) throw Error("the root " + quoted(*moved) + " cannot be moved");
+  if (isInSubtree(root, id, target))
+    throw Error("cannot move " + quoted(*moved) + " onto " +
+                (target == id ? std::string("itself") : quoted(*goal) + ", which lies inside it"));
+  // The placeholder (when one is needed) and the wrapping operation take two fresh ids.
+  NodePtr without = removeKeepingRoles(root, id, groupId + 1);
+  NodePtr result = placePart(without, planPlacement(without, target, mode), moved, groupId);
+  checkInstances(result);
+  return result;
+}
+
+}  // namespace strata

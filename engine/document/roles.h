@@ -1,0 +1,85 @@
+// What each part does in its parent, and where a new, pasted or moved part goes so that every
+// existing part keeps doing what it did.
+//
+// A child's role follows from its parent's Boolean and its place: every child of a union adds,
+// the first child of a difference is its base and the others cut it, every child of an
+// intersection intersects. Scene files store the tree only; roles are read from it (files of
+// every version mean what they meant).
+//
+// A part is placed onto a target node with a mode the artist chose (add, cut, intersect), and
+// the rule is the same for adding, pasting and dropping:
+//   1. the target is an operation of the mode's Boolean: the part becomes its last child (an
+//      empty operation takes it as its first child);
+//   2. the target already plays the mode's role in its parent (a union's child for add, a
+//      difference's cutter for cut, an intersection's child for intersect): the part goes right
+//      after it, beside it;
+//   3. otherwise the target is wrapped: a new operation of the mode's Boolean takes its place,
+//      with the target as its first child and the part as its second.
+// No rule reorders or removes an existing child, so no existing part changes its role.
+//
+// Threads: any; pure functions of immutable trees.
+#pragma once
+
+#include <string>
+
+#include "engine/document/node.h"
+
+namespace strata {
+
+enum class ChildRole {
+  Root,       // the top of the tree
+  Base,       // first child of a difference: what its cutters cut
+  Add,        // child of a union
+  Cut,        // later child of a difference
+  Intersect,  // child of an intersection
+};
+
+// The role of child `index` of operation `parent`.
+ChildRole childRole(const Node& parent, int index);
+// The role of node `id` in its parent (Root for the root); throws strata::Error when absent.
+ChildRole roleOf(const NodePtr& root, NodeId id);
+// For people: "base", "adds", "cuts", "intersects" ("root" for the root).
+const char* roleWord(ChildRole role);
+// For sentences: "is the root", "is the base", "adds", "cuts", "intersects".
+const char* rolePhrase(ChildRole role);
+// Whether node `id`'s material ends up taken away from the result: an odd number of cutters
+// on its path from the root (itself included). Intersections count as keeping.
+bool removesMaterial(const NodePtr& root, NodeId id);
+
+// What the artist chose a new or moved part to do.
+enum class PlaceMode { Add, Cut, Intersect };
+// "add", "cut", "intersect".
+const char* placeModeName(PlaceMode mode);
+// The operation kind whose Boolean the mode applies (from the kind table).
+NodeKind operationKindFor(PlaceMode mode);
+
+// Where a part placed onto `target` with `mode` goes (the rules above), and a sentence for the
+// artist that says what it will do ("cuts from \"bracket\"", "adds to \"rounded plate\" in a new
+// union"), shown before a drop is released.
+struct PlacePlan {
+  NodeId parent = 0;   // the operation receiving the part; 0 when wrapping
+  int index = -1;      // before this child of `parent` (-1: at the end)
+  NodeId wrapped = 0;  // the node a new operation takes the place of (rule 3)
+  NodeKind wrapKind = NodeKind::Union;
+  std::string sentence;
+};
+// Throws strata::Error when `target` is not in the tree.
+PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode);
+
+// Carries out `plan` for `part` (its ids new to the tree). A wrapping operation gets id
+// `groupId` (unused in the tree and the part). Returns the new root.
+NodePtr placePart(const NodePtr& root, const PlacePlan& plan, const NodePtr& part, NodeId groupId);
+
+// Detaches node `id` and places it onto `target` with `mode`. Refused for the root, for a
+// target inside the moved node, and when it would make an instance cycle. A moved base of a
+// difference with cutters leaves an empty base behind (see removeKeepingRoles). The wrapping
+// operation (when one is made) gets `groupId`, the empty base `groupId + 1`: both must be unused.
+NodePtr movePart(const NodePtr& root, NodeId id, NodeId target, PlaceMode mode, NodeId groupId);
+
+// The tree without node `id` (no instance checks: the caller moves or deletes it). When `id` is
+// the base of a difference that has cutters, an empty union named "empty base" with id
+// `placeholderId` takes its place: the cutters keep cutting nothing instead of the first of them
+// becoming the base.
+NodePtr removeKeepingRoles(const NodePtr& root, NodeId id, NodeId placeholderId);
+
+}  // namespace strata

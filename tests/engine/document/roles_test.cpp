@@ -1,0 +1,285 @@
+// Roles (engine/document/roles.h): what each child does, and placing and moving parts so that
+// no existing part changes what it does. The rules on a small tree, then every (part, target,
+// mode) of every bundled scene checked on the tree and, where a direction is known, on the
+// evaluated volume.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include "engine/document/commands.h"
+#include "engine/document/document.h"
+#include "engine/document/roles.h"
+#include "engine/io/scene_file.h"
+#include "engine/util/error.h"
+#include "tests/support/scene_builder.h"
+
+namespace strata {
+namespace {
+
+// root(1, union) { a(2, box), g(3, difference) { b(4, sphere), c(5, cylinder) }, d(6, torus) }
+NodePtr sampleTree() {
+  NodePtr g = makeOperationNode(
+      NodeKind::Difference, 3,
+      {makePrimitiveNode(NodeKind::Sphere, 4), makePrimitiveNode(NodeKind::Cylinder, 5)});
+  return makeOperationNode(
+      NodeKind::Union, 1,
+      {makePrimitiveNode(NodeKind::Box, 2), g, makePrimitiveNode(NodeKind::Torus, 6)});
+}
+
+std::vector<NodeId> childIds(const NodePtr& node) {
+  std::vector<NodeId> ids;
+  for (const auto& c : node->children) ids.push_back(c->id);
+  return ids;
+}
+
+ChildRole roleFor(PlaceMode mode) {
+  return mode == PlaceMode::Cut         ? ChildRole::Cut
+         : mode == PlaceMode::Intersect ? ChildRole::Intersect
+                                        : ChildRole::Add;
+}
+
+const PlaceMode kModes[] = {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect};
+
+TEST(Roles, ChildRolesFollowTheParentsBoolean) {
+  NodePtr root = sampleTree();
+  EXPECT_EQ(roleOf(root, 1), ChildRole::Root);
+  EXPECT_EQ(roleOf(root, 2), ChildRole::Add);
+  EXPECT_EQ(roleOf(root, 4), ChildRole::Base);
+  EXPECT_EQ(roleOf(root, 5), ChildRole::Cut);
+  EXPECT_TRUE(removesMaterial(root, 5));
+  EXPECT_FALSE(removesMaterial(root, 4));
+  NodePtr inter = setOperationKind(root, 3, NodeKind::Intersection);
+  EXPECT_EQ(roleOf(inter, 4), ChildRole::Intersect);
+  EXPECT_EQ(roleOf(inter, 5), ChildRole::Intersect);
+  EXPECT_THROW(roleOf(root, 99), Error);
+}
+
+TEST(Roles, TheThreePlacementRules) {
+  NodePtr root = sampleTree();
+  NodePtr part = makePrimitiveNode(NodeKind::Cone, 7);
+  // 1. Into an operation of the mode's Boolean: last child.
+  PlacePlan into = planPlacement(root, 3, PlaceMode::Cut);
+  EXPECT_EQ(childIds(findNode(placePart(root, into, part, 8), 3)), (std::vector<NodeId>{4, 5, 7}));
+  EXPECT_EQ(into.sentence, "cuts from \"difference 3\"");
+  // 2. Beside a target playing the mode's role.
+  PlacePlan beside = planPlacement(root, 5, PlaceMode::Cut);
+  EXPECT_EQ(childIds(findNode(placePart(root, beside, part, 8), 3)),
+            (std::vector<NodeId>{4, 5, 7}));
+  PlacePlan besideAdd = planPlacement(root, 2, PlaceMode::Add);
+  EXPECT_EQ(childIds(placePart(root, besideAdd, part, 8)), (std::vector<NodeId>{2, 7, 3, 6}));
+  // 3. Otherwise wrapped: adding to the base unites it with the part in the base's place.
+  PlacePlan wrap = planPlacement(root, 4, PlaceMode::Add);
+  NodePtr wrapped = placePart(root, wrap, part, 8);
+  EXPECT_EQ(childIds(findNode(wrapped, 3)), (std::vector<NodeId>{8, 5}));
+  EXPECT_EQ(findNode(wrapped, 8)->kind, NodeKind::Union);
+  EXPECT_EQ(childIds(findNode(wrapped, 8)), (std::vector<NodeId>{4, 7}));
+  EXPECT_NE(wrap.sentence.find("new union"), std::string::npos);
+  // Cutting the root wraps the whole scene in a difference.
+  NodePtr cutRoot = placePart(root, planPlacement(root, 1, PlaceMode::Cut), part, 8);
+  EXPECT_EQ(cutRoot->id, 8u);
+  EXPECT_EQ(cutRoot->kind, NodeKind::Difference);
+  EXPECT_EQ(childIds(cutRoot), (std::vector<NodeId>{1, 7}));
+  // An empty operation takes the part as its first child, whatever the mode.
+  NodePtr empty = insertChild(root, 1, -1, makeOperationNode(NodeKind::Difference, 9, {}));
+  PlacePlan fill = planPlacement(empty, 9, PlaceMode::Cut);
+  EXPECT_EQ(childIds(findNode(placePart(empty, fill, part, 10), 9)), (std::vector<NodeId>{7}));
+  EXPECT_EQ(fill.sentence, "becomes the base of \"difference 9\"");
+}
+
+TEST(Roles, RemovingABaseWithCuttersLeavesAnEmptyBase) {
+  NodePtr root = sampleTree();
+  NodePtr removed = removeNode(root, 4);
+  ASSERT_EQ(findNode(removed, 3)->children.size(), 2u);
+  const NodePtr& base = findNode(removed, 3)->children[0];
+  EXPECT_EQ(base->kind, NodeKind::Union);
+  EXPECT_TRUE(base->children.empty());
+  EXPECT_EQ(base->name, "empty base");
+  EXPECT_EQ(roleOf(removed, 5), ChildRole::Cut);  // still a cutter
+  // A cutter, or a base alone, just goes.
+  EXPECT_EQ(childIds(findNode(removeNode(root, 5), 3)), (std::vector<NodeId>{4}));
+  EXPECT_TRUE(findNode(removeNode(removeNode(root, 5), 4), 3)->children.empty());
+}
+
+TEST(Roles, HidingABaseEmptiesItsDifferenceInsteadOfPromotingACutter) {
+  Scene scene;
+  // The difference apart from the rest, so that a promoted cutter would show.
+  scene.root = editNode(sampleTree(), 3, [](Node& n) { n.transform.translate.x = 4.0; });
+  scene.settings.resolution = 32;
+  const double whole = test::evaluateCpu(scene).measure.volume;
+  Scene withoutDifference = scene;
+  withoutDifference.root = removeNode(scene.root, 3);
+  withoutDifference.settings.hasBounds = true;
+  withoutDifference.settings.bounds = test::evaluateCpu(scene).grid.bounds();
+  Scene hiddenBase = withoutDifference;
+  hiddenBase.root = editNode(scene.root, 4, [](Node& n) { n.visible = false; });
+  // The cylinder that cut the sphere must not appear as a solid of its own.
+  EXPECT_NEAR(test::evaluateCpu(hiddenBase).measure.volume,
+              test::evaluateCpu(withoutDifference).measure.volume, 1e-9 * whole);
+}
+
+TEST(Roles, MovesAreRefusedIntoThemselves) {
+  NodePtr root = sampleTree();
+  EXPECT_THROW(movePart(root, 3, 4, PlaceMode::Add, 7), Error);
+  EXPECT_THROW(movePart(root, 3, 3, PlaceMode::Add, 7), Error);
+  EXPECT_THROW(movePart(root, 1, 2, PlaceMode::Add, 7), Error);
+  // A cutter dropped onto the base with "add" is united with it: the artist chose it.
+  NodePtr moved = movePart(root, 5, 4, PlaceMode::Add, 7);
+  EXPECT_EQ(childIds(findNode(moved, 3)), (std::vector<NodeId>{7}));
+  EXPECT_EQ(childIds(findNode(moved, 7)), (std::vector<NodeId>{4, 5}));
+}
+
+TEST(Roles, APlacementOrMoveIsOneUndoStep) {
+  Document doc;
+  NodeId box = doc.addNode(NodeKind::Box);
+  std::string sentence;
+  NodeId hole = doc.place(makePrimitiveNode(NodeKind::Sphere, 1), box, PlaceMode::Cut, &sentence);
+  EXPECT_EQ(roleOf(doc.root(), hole), ChildRole::Cut);
+  EXPECT_EQ(roleOf(doc.root(), box), ChildRole::Base);
+  EXPECT_NE(sentence.find("cuts from"), std::string::npos);
+  NodeId other = doc.addNode(NodeKind::Cylinder);
+  doc.moveOnto(other, hole, PlaceMode::Cut);
+  EXPECT_EQ(roleOf(doc.root(), other), ChildRole::Cut);
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(roleOf(doc.root(), other), ChildRole::Add);
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(roleOf(doc.root(), box), ChildRole::Add);
+  EXPECT_EQ(findNode(doc.root(), hole), nullptr);
+}
+
+// Every node of `before` outside the subtree of `except` (the moved part) does what it did:
+// its role is unchanged, or it is now the first child of a new operation that took its place and
+// its role.
+void expectRolesKept(const NodePtr& before, const NodePtr& after, NodeId except,
+                     const std::string& what) {
+  for (NodeId id : treeOrder(before)) {
+    if (!findNode(after, id)) continue;
+    if (except && findNode(before, except) && isInSubtree(before, except, id)) continue;
+    const ChildRole was = roleOf(before, id);
+    ChildRole now = roleOf(after, id);
+    NodeLocation where;
+    locateNode(after, id, &where);
+    if (where.parent && !findNode(before, where.parent->id) && where.index == 0)
+      now = roleOf(after, where.parent->id);  // wrapped: the new operation plays its role
+    if (was == ChildRole::Root) continue;     // a wrapped root: its meaning is the whole scene's
+    EXPECT_EQ(now, was) << what << ": node " << id << " changed its role";
+    EXPECT_EQ(removesMaterial(after, id), removesMaterial(before, id)) << what << ": node " << id;
+  }
+}
+
+std::vector<std::string> bundledScenes() {
+  std::vector<std::string> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(test::assetsDir() + "/scenes"))
+    if (entry.path().string().find(".strata.json") != std::string::npos)
+      paths.push_back(entry.path().string());
+  return paths;
+}
+
+TEST(Roles, EveryMoveInEveryBundledSceneKeepsEveryOtherRole) {
+  int moves = 0;
+  for (const std::string& path : bundledScenes()) {
+    const Scene scene = loadScene(path);
+    const NodePtr& root = scene.root;
+    const NodeId fresh = maxNodeId(root) + 1;
+    const std::vector<NodeId> ids = treeOrder(root);
+    for (NodeId moved : ids) {
+      if (moved == root->id) continue;
+      for (NodeId target : ids) {
+        if (isInSubtree(root, moved, target)) continue;
+        for (PlaceMode mode : kModes) {
+          const std::string what = std::filesystem::path(path).filename().string() + " move " +
+                                   std::to_string(moved) + " onto " + std::to_string(target) + " " +
+                                   placeModeName(mode);
+          NodePtr after;
+          try {
+            after = movePart(root, moved, target, mode, fresh);
+          } catch (const Error&) {
+            continue;  // an instance cycle: refused, nothing changed
+          }
+          expectRolesKept(root, after, moved, what);
+          const ChildRole got = roleOf(after, moved);
+          if (got != roleFor(mode)) {
+            // An operation left empty by the move takes the part as its first child.
+            const NodePtr detached = removeKeepingRoles(root, moved, fresh + 1);
+            EXPECT_TRUE(findNode(detached, target)->children.empty() &&
+                        got == childRole(*findNode(after, target), 0))
+                << what << ": the moved part " << roleWord(got);
+          }
+          ++moves;
+        }
+      }
+    }
+  }
+  EXPECT_GT(moves, 1000);
+}
+
+// The direction a new part placed with `mode` can move the volume: +1 grow, -1 shrink.
+int directionOf(const NodePtr& root, NodeId part) {
+  const ChildRole role = roleOf(root, part);
+  const int own = role == ChildRole::Add || role == ChildRole::Base ? +1 : -1;
+  // Every cutter above flips it (the part's own cut is counted in `own`).
+  const bool flipped = removesMaterial(root, part) != (role == ChildRole::Cut);
+  return flipped ? -own : own;
+}
+
+TEST(Roles, PartsPlacedOnEveryNodeOfEveryBundledSceneDoWhatTheModeSays) {
+  int checked = 0;
+  for (const std::string& path : bundledScenes()) {
+    Scene scene = loadScene(path);
+    scene.settings.resolution = 32;
+    const Bounds grid = test::evaluateCpu(scene).grid.bounds();
+    scene.settings.hasBounds = true;  // one grid for every variant: volumes compare exactly
+    scene.settings.bounds = grid;
+    const double before = test::evaluateCpu(scene).measure.volume;
+    const glm::dvec3 centre = grid.center();
+    const double size = 0.3 * grid.size().x;
+    for (NodeId target : treeOrder(scene.root)) {
+      for (PlaceMode mode : kModes) {
+        SCOPED_TRACE(std::filesystem::path(path).filename().string() + " onto " +
+                     std::to_string(target) + " " + placeModeName(mode));
+        auto part = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 1));
+        part->params.radius = size;
+        part->transform.translate = centre;
+        NodePtr fresh = withFreshIds(part, maxNodeId(scene.root) + 1);
+        Scene placed = scene;
+        placed.root =
+            placePart(scene.root, planPlacement(scene.root, target, mode), fresh, fresh->id + 1);
+        expectRolesKept(scene.root, placed.root, fresh->id, "place");
+        if (!findNode(scene.root, target)->visible) continue;
+        const double after = test::evaluateCpu(placed).measure.volume;
+        if (directionOf(placed.root, fresh->id) > 0)
+          EXPECT_GE(after, before * (1 - 1e-9)) << "a part that adds removed material";
+        else
+          EXPECT_LE(after, before * (1 + 1e-9)) << "a part that removes added material";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(Roles, MovingAPartOntoItsOwnPlaceKeepsTheVolume) {
+  for (const std::string& path : bundledScenes()) {
+    Scene scene = loadScene(path);
+    scene.settings.resolution = 32;
+    const double before = test::evaluateCpu(scene).measure.volume;
+    for (NodeId id : treeOrder(scene.root)) {
+      NodeLocation where;
+      locateNode(scene.root, id, &where);
+      if (!where.parent) continue;
+      const ChildRole role = childRole(*where.parent, where.index);
+      if (role == ChildRole::Base) continue;  // a base moved away leaves an empty base
+      const PlaceMode mode = role == ChildRole::Cut         ? PlaceMode::Cut
+                             : role == ChildRole::Intersect ? PlaceMode::Intersect
+                                                            : PlaceMode::Add;
+      Scene moved = scene;
+      moved.root = movePart(scene.root, id, where.parent->id, mode, maxNodeId(scene.root) + 1);
+      EXPECT_NEAR(test::evaluateCpu(moved).measure.volume, before, 1e-9 * before)
+          << path << " node " << id;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace strata
