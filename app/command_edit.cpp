@@ -8,6 +8,7 @@
 #include "app/cli_common.h"
 #include "app/commands.h"
 #include "app/editor_commands.h"
+#include "engine/document/commands.h"
 #include "engine/eval/evaluator.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/io/scene_file.h"
@@ -32,7 +33,7 @@ namespace {
 std::vector<std::string> editorValuedOptions() {
   std::vector<std::string> valued = kValuedOptions;
   for (const char* o : {"--width", "--height", "--screenshot", "--view", "--measure-latency",
-                        "--move-leaf", "--section", "--measure-frames"})
+                        "--move-leaf", "--section", "--measure-frames", "--select"})
     valued.push_back(o);
   return valued;
 }
@@ -41,6 +42,7 @@ std::vector<std::string> editorFlagOptions() {
   std::vector<std::string> flags = kFlagOptions;
   flags.push_back("--no-interop");
   flags.push_back("--ortho");
+  flags.push_back("--ghosts");
   return flags;
 }
 
@@ -63,6 +65,22 @@ NodePtr findLeaf(const NodePtr& node, const std::string& name) {
   for (const auto& c : node->children)
     if (NodePtr f = findLeaf(c, name)) found = f;
   return found;
+}
+
+// `--select "NAME[,NAME...]"`: selects the nodes with those names (each must exist).
+void selectByNames(ui::EditorState& state, const std::string& list) {
+  if (list.empty()) return;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    NodeId found = 0;
+    for (NodeId id : treeOrder(state.document.root()))
+      if (findNode(state.document.root(), id)->name == name) found = id;
+    if (!found) throw Error("--select: no node named '" + name + "'");
+    state.selection.push_back(found);
+    start = comma + 1;
+  }
 }
 
 // `strata edit SCENE --measure-latency N [--move-leaf NAME]`: N times, moves a leaf by a small
@@ -240,6 +258,8 @@ int runEdit(const std::vector<std::string>& argv) {
     }
     ui::Editor editor(options);
     editor.state().section = parseSection(args);
+    selectByNames(editor.state(), args.text("--select", ""));
+    editor.state().showAllGhosts = args.has("--ghosts");
     if (args.has("--measure-frames"))
       return measureFrames(editor, args.number("--measure-frames", 10.0, 0.1, 3600.0),
                            args.has("--resolution")

@@ -57,6 +57,8 @@ const char* kUsageOptions =
     "  --section AXIS[:AT][:flip] cut across x, y or z at the fraction AT of the bounds, capped\n"
     "  --screenshot F.png         edit: write the whole window once the preview settled, exit\n"
     "  --no-interop               edit: splats through the host instead of CUDA-GL interop\n"
+    "  --select \"A[,B...]\"        edit: select the nodes with these names (with --screenshot)\n"
+    "  --ghosts                   edit: show the ghosts of every part that cuts or intersects\n"
     "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
     "\n";

@@ -22,6 +22,7 @@ uniform vec3 eye;
 uniform vec3 viewForward;
 uniform bool ortho;
 uniform float cellSize;
+uniform vec4 ghostColor;  // a > 0: a ghost (a part that cuts or intersects), translucent, no cap
 
 out vec4 fragColor;
 
@@ -40,6 +41,15 @@ vec3 onSectionPlane() {
 
 void main() {
   if (dot(vCorner, vCorner) > 1.0) discard;
+  if (ghostColor.a > 0.0) {
+    if (sectionOn && dot(sectionPlane.xyz, vWorld) > sectionPlane.w) discard;
+    if (vFacing < 0.0) discard;
+    vec3 gn = normalize(vNormal);
+    float lit = 0.45 + 0.55 * max(dot(gn, keyLight), 0.0);
+    float edge = pow(1.0 - max(dot(gn, vToEye), 0.0), 2.0);  // outlines read through the tint
+    fragColor = vec4(gammaEncode(ghostColor.rgb * lit), min(1.0, ghostColor.a + 0.5 * edge));
+    return;
+  }
   vec3 base = vColor;
   if (vSelected > 0.5) base = mix(base, vec3(1.0, 0.55, 0.12), 0.45);
   if (sectionOn) {

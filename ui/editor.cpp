@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "engine/document/commands.h"
+#include "engine/document/roles.h"
 #include "engine/io/user_files.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
@@ -242,12 +243,21 @@ void Editor::requestPreviewIfNeeded() {
     s.previewCappedAt = cappedResolution_ < wanted ? cappedResolution_ : 0;
   }
   const int resolution = cappedResolution_;
+  // Ghost splats are made for every candidate while any ghost is wanted, so that selecting
+  // another part needs no new pass.
+  if (revision != ghostWantRevision_ || s.selection != ghostWantSelection_) {
+    ghostWantRevision_ = revision;
+    ghostWantSelection_ = s.selection;
+    selectionHasGhosts_ = !ghostsOf(s.document.root(), s.selection, false).empty();
+  }
+  const bool ghosts = s.showAllGhosts || selectionHasGhosts_;
   if (revision == requestedRevision_ && resolution == requestedResolution_ &&
-      interactive == requestedInteractive_)
+      interactive == requestedInteractive_ && (ghosts == requestedGhosts_ || !ghosts))
     return;
   requestedRevision_ = revision;
   requestedResolution_ = resolution;
   requestedInteractive_ = interactive;
+  requestedGhosts_ = ghosts;
   if (!sceneHasVisibleLeaves(s.document.root())) {
     requestedEmpty_ = true;
     auto empty = std::make_shared<PreviewResult>();
@@ -259,7 +269,8 @@ void Editor::requestPreviewIfNeeded() {
     return;
   }
   requestedEmpty_ = false;
-  worker_->request(s.document.snapshot(), resolution, interactive, revision);
+  worker_->request(s.document.snapshot(), resolution, interactive, revision,
+                   ghosts ? ghostCandidates(s.document.root()) : std::vector<NodeId>{});
 }
 
 void Editor::pumpPreview() {
@@ -292,6 +303,29 @@ void Editor::updateLeafStyles() {
   styledRevision_ = s.document.revision();
   styledSelection_ = s.selection;
   gl_->renderer->setLeafStyles(leafStyles(s.document.root(), s.selection));
+}
+
+void Editor::updateGhosts() {
+  EditorState& s = *state_;
+  const PreviewResult* shown = s.preview.get();
+  if (shown == ghostedResult_ && s.selection == ghostedSelection_ && s.showAllGhosts == ghostedAll_)
+    return;
+  ghostedResult_ = shown;
+  ghostedSelection_ = s.selection;
+  ghostedAll_ = s.showAllGhosts;
+  std::vector<Splat> layers[2];  // cutting, intersecting
+  if (shown && shown->scene) {
+    const NodePtr& root = shown->scene->root;  // the tree the ghosts were evaluated from
+    for (NodeId id : ghostsOf(root, s.selection, s.showAllGhosts)) {
+      for (const GhostSplats& ghost : shown->ghosts) {
+        if (ghost.id != id || !ghost.splats) continue;
+        const int layer = roleOf(root, id) == ChildRole::Intersect ? 1 : 0;
+        layers[layer].insert(layers[layer].end(), ghost.splats->splats().begin(),
+                             ghost.splats->splats().end());
+      }
+    }
+  }
+  gl_->renderer->setGhosts(layers[0], layers[1]);
 }
 
 void Editor::autosave() {
@@ -381,12 +415,14 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   ImGui::Render();
 
   updateLeafStyles();
+  updateGhosts();
   int fbWidth = 0, fbHeight = 0, winWidth = 1, winHeight = 1;
   glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
   glfwGetWindowSize(window, &winWidth, &winHeight);
   const double pixelScale = winWidth > 0 ? double(fbWidth) / winWidth : 1.0;
   gl_->viewport.resolvePicks(*gl_->renderer, s, rect, pixelScale);
   updateLeafStyles();  // a pick may have changed the selection
+  updateGhosts();
   glViewport(0, 0, fbWidth, fbHeight);
   glClearColor(0.09f, 0.095f, 0.105f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -448,6 +484,7 @@ std::vector<uint8_t> Editor::renderViewport(int width, int height) {
   RenderTarget target(width, height);
   target.bind();
   updateLeafStyles();
+  updateGhosts();
   ViewRect rect;
   rect.width = width;
   rect.height = height;

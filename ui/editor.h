@@ -86,6 +86,8 @@ class Editor {
   void transferSplats(const PreviewResult& result);
   void dropCopier(const std::string& why);
   void updateLeafStyles();
+  // Gives the renderer the ghosts of the selection (or all) from the shown result.
+  void updateGhosts();
   void autosave();
   void drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height);
 
@@ -100,10 +102,19 @@ class Editor {
   bool capFromResult_ = false;  // the cap was scaled from a full result
   int cappedResolution_ = 0;    // what the preview evaluates (previewResolutionFor)
   bool requestedInteractive_ = false;
+  bool requestedGhosts_ = false;  // the last request asked for every ghost candidate's splats
+  // Whether the selection has ghosts, worked out when the document or the selection changes.
+  uint64_t ghostWantRevision_ = ~uint64_t(0);
+  std::vector<NodeId> ghostWantSelection_;
+  bool selectionHasGhosts_ = false;
   bool requestedEmpty_ = false;
   // Leaf colours and selection last given to the renderer.
   uint64_t styledRevision_ = ~uint64_t(0);
   std::vector<NodeId> styledSelection_;
+  // Ghosts last given to the renderer: of which result, selection and toggle.
+  const PreviewResult* ghostedResult_ = nullptr;
+  std::vector<NodeId> ghostedSelection_;
+  bool ghostedAll_ = false;
   double lastAutosave_ = 0.0;
   double activeUntil_ = 0.0;  // draw without waiting for events until then (seconds)
   uint64_t autosavedRevision_ = 0;

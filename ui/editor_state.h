@@ -101,6 +101,9 @@ struct EditorState {
   GizmoMode gizmoMode = GizmoMode::Move;
   GizmoSnap snap;
   bool showGrid = true;
+  // Ghosts (translucent parts that cut or intersect): those of the selection always, all of
+  // them with this toggle (View > Ghosts of all cutters, G).
+  bool showAllGhosts = false;
   SectionState section;
   bool showDiagnostics = false;
 

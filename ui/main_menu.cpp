@@ -125,6 +125,7 @@ void drawMainMenu(EditorState& state) {
       state.gizmoMode = GizmoMode::Scale;
     ImGui::MenuItem("Snap", nullptr, &state.snap.enabled);
     ImGui::Separator();
+    ImGui::MenuItem("Ghosts of all cutters", "G", &state.showAllGhosts);
     ImGui::MenuItem("Ground grid", nullptr, &state.showGrid);
     ImGui::MenuItem("Diagnostics", nullptr, &state.showDiagnostics);
     ImGui::EndMenu();
@@ -159,6 +160,7 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_DELETE) || keyPressed(state, GLFW_KEY_BACKSPACE))
     deleteSelection(state);
   if (keyPressed(state, GLFW_KEY_H)) toggleSelectionHidden(state);
+  if (keyPressed(state, GLFW_KEY_G)) state.showAllGhosts = !state.showAllGhosts;
   if (keyPressed(state, GLFW_KEY_F2) && !state.selection.empty())
     state.renaming = primarySelection(state);
   if (keyPressed(state, GLFW_KEY_ESCAPE)) clearSelection(state);

@@ -50,27 +50,11 @@ ViewportRenderer::ViewportRenderer()
       backgroundProgram_("background.vert", "background.frag") {
   // Surfels: a unit quad per instance plus the instance buffer.
   const float corners[] = {-1.f, -1.f, 1.f, -1.f, -1.f, 1.f, 1.f, 1.f};
-  glGenVertexArrays(1, &surfelVao_);
-  glBindVertexArray(surfelVao_);
   glGenBuffers(1, &cornerBuffer_);
   glBindBuffer(GL_ARRAY_BUFFER, cornerBuffer_);
   glBufferData(GL_ARRAY_BUFFER, sizeof(corners), corners, GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glGenBuffers(1, &splatBuffer_);
-  glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
-                        reinterpret_cast<void*>(offsetof(Splat, position)));
-  glVertexAttribDivisor(1, 1);
-  glEnableVertexAttribArray(2);
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                         reinterpret_cast<void*>(offsetof(Splat, normal)));
-  glVertexAttribDivisor(2, 1);
-  glEnableVertexAttribArray(3);
-  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                         reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
-  glVertexAttribDivisor(3, 1);
+  makeSplatLayer(&surfelVao_, &splatBuffer_);
+  for (SplatLayer& ghost : ghosts_) makeSplatLayer(&ghost.vao, &ghost.buffer);
 
   glGenVertexArrays(1, &lineVao_);
   glBindVertexArray(lineVao_);
@@ -96,6 +80,43 @@ ViewportRenderer::ViewportRenderer()
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
+void ViewportRenderer::makeSplatLayer(GLuint* vao, GLuint* buffer) {
+  glGenVertexArrays(1, vao);
+  glBindVertexArray(*vao);
+  glBindBuffer(GL_ARRAY_BUFFER, cornerBuffer_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glGenBuffers(1, buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, *buffer);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
+                        reinterpret_cast<void*>(offsetof(Splat, position)));
+  glVertexAttribDivisor(1, 1);
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                         reinterpret_cast<void*>(offsetof(Splat, normal)));
+  glVertexAttribDivisor(2, 1);
+  glEnableVertexAttribArray(3);
+  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                         reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
+  glVertexAttribDivisor(3, 1);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void ViewportRenderer::setGhosts(const std::vector<Splat>& cutting,
+                                 const std::vector<Splat>& intersecting) {
+  const std::vector<Splat>* layers[2] = {&cutting, &intersecting};
+  for (int i = 0; i < 2; ++i) {
+    ghosts_[i].count = layers[i]->size();
+    if (layers[i]->empty()) continue;
+    glBindBuffer(GL_ARRAY_BUFFER, ghosts_[i].buffer);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(layers[i]->size() * sizeof(Splat)), layers[i]->data(),
+                 GL_DYNAMIC_DRAW);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 ViewportRenderer::~ViewportRenderer() {
   if (pickFramebuffer_) {
     glDeleteFramebuffers(1, &pickFramebuffer_);
@@ -103,10 +124,11 @@ ViewportRenderer::~ViewportRenderer() {
     glDeleteRenderbuffers(2, targets);
   }
   glDeleteTextures(1, &leafTexture_);
-  GLuint buffers[] = {cornerBuffer_, splatBuffer_, lineBuffer_};
-  glDeleteBuffers(3, buffers);
-  GLuint vaos[] = {surfelVao_, lineVao_, emptyVao_};
-  glDeleteVertexArrays(3, vaos);
+  GLuint buffers[] = {cornerBuffer_, splatBuffer_, lineBuffer_, ghosts_[0].buffer,
+                      ghosts_[1].buffer};
+  glDeleteBuffers(5, buffers);
+  GLuint vaos[] = {surfelVao_, lineVao_, emptyVao_, ghosts_[0].vao, ghosts_[1].vao};
+  glDeleteVertexArrays(5, vaos);
 }
 
 bool ViewportRenderer::splatBufferFits(size_t count) const {
@@ -201,11 +223,26 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
   glDepthFunc(GL_LESS);
   glm::mat4 viewProjection(f.viewProjection);
 
-  if (splatCount_ > 0) {
+  if (splatCount_ > 0 || ghostCount() > 0) {
     useSurfelProgram(surfelProgram_, f);
     surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
     surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
+    surfelProgram_.set("ghostColor", glm::vec4(0.0f));
+    if (splatCount_ > 0) glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
+    // Ghosts over the result: translucent, hidden where the result is in front.
+    const glm::vec4 tints[2] = {glm::vec4(1.0f, 0.32f, 0.26f, 0.3f),
+                                glm::vec4(0.62f, 0.45f, 1.0f, 0.3f)};
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    for (int i = 0; i < 2; ++i) {
+      if (ghosts_[i].count == 0) continue;
+      surfelProgram_.set("ghostColor", tints[i]);
+      glBindVertexArray(ghosts_[i].vao);
+      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(ghosts_[i].count));
+    }
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
     glBindTexture(GL_TEXTURE_2D, 0);
   }
 

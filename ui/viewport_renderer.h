@@ -78,6 +78,12 @@ class ViewportRenderer {
   size_t splatCount() const { return splatCount_; }
   size_t splatBytes() const { return splatCount_ * sizeof(Splat); }
 
+  // Ghosts: splats of parts that cut (red) or intersect (violet), drawn translucent over the
+  // result (depth-tested against it, not written, not pickable), on the same grid (cellSize of
+  // the last splats). Replaces the previous ghosts; empty vectors draw none.
+  void setGhosts(const std::vector<Splat>& cutting, const std::vector<Splat>& intersecting);
+  size_t ghostCount() const { return ghosts_[0].count + ghosts_[1].count; }
+
   // `lines` are depth-tested against the surfels (grid, boxes); `overlay` is drawn on top
   // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list.
   void draw(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
@@ -94,6 +100,13 @@ class ViewportRenderer {
   // Binds `program` and sets the uniforms surfel.vert needs.
   void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
 
+  // A splat instance buffer with its vertex array (corners + instances).
+  struct SplatLayer {
+    GLuint vao = 0, buffer = 0;
+    size_t count = 0;
+  };
+  void makeSplatLayer(GLuint* vao, GLuint* buffer);
+
   GlProgram surfelProgram_;
   GlProgram pickProgram_;
   GlProgram lineProgram_;
@@ -101,6 +114,7 @@ class ViewportRenderer {
   GLuint surfelVao_ = 0, cornerBuffer_ = 0, splatBuffer_ = 0;
   GLuint lineVao_ = 0, lineBuffer_ = 0;
   GLuint emptyVao_ = 0;
+  SplatLayer ghosts_[2];  // cutting, intersecting
   GLuint leafTexture_ = 0;
   int leafTextureWidth_ = 1;
   int leafCount_ = 1;

@@ -3,6 +3,8 @@
 #include "engine/document/commands.h"
 #include "engine/util/error.h"
 
+#include <unordered_set>
+
 namespace strata {
 namespace {
 
@@ -105,6 +107,65 @@ bool removesMaterial(const NodePtr& root, NodeId id) {
         removes = !removes;
   }
   return removes;
+}
+
+namespace {
+
+bool ghostRole(ChildRole role) {
+  return role == ChildRole::Cut || role == ChildRole::Intersect;
+}
+
+void collectCandidates(const NodePtr& node, std::vector<NodeId>* out) {
+  for (size_t i = 0; i < node->children.size(); ++i) {
+    const NodePtr& child = node->children[i];
+    if (!child->visible) continue;
+    if (ghostRole(childRole(*node, static_cast<int>(i)))) out->push_back(child->id);
+    collectCandidates(child, out);
+  }
+}
+
+}  // namespace
+
+std::vector<NodeId> ghostCandidates(const NodePtr& root) {
+  std::vector<NodeId> out;
+  if (root && root->visible) collectCandidates(root, &out);
+  return out;
+}
+
+std::vector<NodeId> ghostsOf(const NodePtr& root, const std::vector<NodeId>& selection, bool all) {
+  const std::vector<NodeId> candidates = ghostCandidates(root);
+  if (all || selection.empty()) return all ? candidates : std::vector<NodeId>{};
+  std::unordered_set<NodeId> wanted;
+  for (NodeId id : selection) {
+    std::vector<const Node*> path;
+    if (!pathTo(root, id, &path)) continue;
+    // Along the path: what acts on the part the path runs through.
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const Node& parent = *path[i];
+      for (size_t c = 0; c < parent.children.size(); ++c) {
+        const Node* child = parent.children[c].get();
+        if (child == path[i + 1]) continue;
+        const ChildRole role = childRole(parent, static_cast<int>(c));
+        const ChildRole through = [&] {
+          for (size_t k = 0; k < parent.children.size(); ++k)
+            if (parent.children[k].get() == path[i + 1])
+              return childRole(parent, static_cast<int>(k));
+          return ChildRole::Add;
+        }();
+        if ((role == ChildRole::Cut && through == ChildRole::Base) ||
+            (role == ChildRole::Intersect && through == ChildRole::Intersect))
+          wanted.insert(child->id);
+      }
+    }
+    // The node, the parts holding it that cut or intersect (a leaf inside a cutter shows the
+    // whole cutter), and what inside it cuts or intersects.
+    for (const Node* onPath : path) wanted.insert(onPath->id);
+    for (NodeId inside : treeOrder(findNode(root, id))) wanted.insert(inside);
+  }
+  std::vector<NodeId> out;
+  for (NodeId id : candidates)
+    if (wanted.count(id)) out.push_back(id);
+  return out;
 }
 
 const char* placeModeName(PlaceMode mode) {

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/document/node.h"
 
@@ -45,6 +46,16 @@ const char* rolePhrase(ChildRole role);
 // Whether node `id`'s material ends up taken away from the result: an odd number of cutters
 // on its path from the root (itself included). Intersections count as keeping.
 bool removesMaterial(const NodePtr& root, NodeId id);
+
+// Ghosts (parts drawn translucent over the result, from their own LDIs): every visible node
+// that cuts or intersects (its role in its parent), in tree order. A hidden node, or one under a
+// hidden node, has none.
+std::vector<NodeId> ghostCandidates(const NodePtr& root);
+// The ghosts of a selection: what cuts or intersects each selected node (the cutters of every
+// difference whose base holds it, the other children of every intersection that holds it), the
+// selected nodes and the nodes holding them that cut or intersect themselves, and those inside
+// the selected nodes. All of ghostCandidates with `all`. Tree order, no repeats.
+std::vector<NodeId> ghostsOf(const NodePtr& root, const std::vector<NodeId>& selection, bool all);
 
 // What the artist chose a new or moved part to do.
 enum class PlaceMode { Add, Cut, Intersect };

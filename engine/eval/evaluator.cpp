@@ -167,6 +167,8 @@ struct Evaluator::Context {
   int total = 1;
   int done = 0;
   std::unordered_map<uint64_t, NodeId> firstLeafWithContent;  // leaf content key -> leaf id
+  std::unordered_set<NodeId> keep;                            // EvalOptions::keep
+  int insideInstance = 0;  // > 0 while visiting an instance's target
 
   void finishStage(Stage s, double seconds, uint64_t surfels) {
     stages[s].seconds += seconds;
@@ -308,6 +310,17 @@ bool Evaluator::dropDuplicateOperands(RayOp op, std::vector<Visit>* operands) {
 
 Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth,
                                   Context& ctx) {
+  const bool instance = node->kind == NodeKind::Instance;
+  ctx.insideInstance += instance ? 1 : 0;
+  Visit v = visitNode(node, parentWorld, depth, ctx);
+  ctx.insideInstance -= instance ? 1 : 0;
+  if (ctx.insideInstance == 0 && !ctx.keep.empty() && ctx.keep.count(node->id))
+    ctx.result->kept.push_back(KeptLdi{node->id, v.ldi});
+  return v;
+}
+
+Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& parentWorld, int depth,
+                                      Context& ctx) {
   if (depth > kDepthGuard) throw Error("the tree is too deep to evaluate (instance cycle?)");
   ctx.progress->check();
   glm::dmat4 world = parentWorld * node->transform.matrix();
@@ -392,10 +405,11 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
 
 EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options, Progress& progress) {
   if (!scene.root) throw Error("the scene has no root node");
-  return evaluateOn(scene, gridFor(scene, options.resolution), progress);
+  return evaluateOn(scene, gridFor(scene, options.resolution), progress, options.keep);
 }
 
-EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress& progress) {
+EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
+                                 const std::vector<NodeId>& keep) {
   if (!scene.root) throw Error("the scene has no root node");
   Stopwatch total;
   EvalResult result;
@@ -406,6 +420,7 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   ctx.grid = grid;
   ctx.progress = &progress;
   ctx.result = &result;
+  ctx.keep.insert(keep.begin(), keep.end());
   const TreeExpansion expansion = checkExpansion(scene.root, scene.settings.maxLeaves);
   ctx.total = int(std::min<uint64_t>(expansion.nodes, 1u << 30)) + 1;
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];

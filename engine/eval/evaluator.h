@@ -22,6 +22,15 @@ namespace strata {
 
 struct EvalOptions {
   int resolution = 0;  // cells along the longest side; 0 = the scene's setting
+  // Nodes whose own LDIs the result keeps (EvalResult::kept), e.g. the cutters the editor draws
+  // as ghosts. A node reached only through instances is not kept.
+  std::vector<NodeId> keep;
+};
+
+// A node's own LDI, before its parent combined it (world space, on the evaluation's grid).
+struct KeptLdi {
+  NodeId id = 0;
+  LdiHandle ldi;
 };
 
 // Totals of one stage of the pipeline over all nodes of an evaluation.
@@ -57,6 +66,7 @@ struct EvalResult {
   LdiMeasure measure;  // volume and area of the root, from its LDI
   std::vector<StageStats> stages;
   std::vector<NodeRecord> nodes;  // in evaluation order (children before parents)
+  std::vector<KeptLdi> kept;      // of EvalOptions::keep that were evaluated, evaluation order
   int computed = 0;               // nodes with outcome Computed
   int reused = 0;                 // nodes with outcome Cached
   double seconds = 0.0;
@@ -74,7 +84,8 @@ class Evaluator {
   // Evaluates the visible tree. Throws strata::Error (e.g. an empty scene) or Cancelled.
   EvalResult evaluate(const Scene& scene, const EvalOptions& options, Progress& progress);
   // The same on an explicit grid, e.g. one tile (a window) of the scene's grid.
-  EvalResult evaluateOn(const Scene& scene, const Grid& grid, Progress& progress);
+  EvalResult evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
+                        const std::vector<NodeId>& keep = {});
 
   // The grid an evaluation at `resolution` (0 = the scene's) would use.
   static Grid gridFor(const Scene& scene, int resolution);
@@ -94,8 +105,10 @@ class Evaluator {
     LdiHandle ldi;
     uint64_t key = 0;
   };
-  // Visits a node whose visibility the caller has checked (instances show hidden targets).
+  // Visits a node whose visibility the caller has checked (instances show hidden targets), and
+  // keeps its LDI when asked (EvalOptions::keep).
   Visit visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
+  Visit visitNode(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
   Visit visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx);
   static bool dropDuplicateOperands(RayOp op, std::vector<Visit>* operands);
   uint64_t meshHash(const std::shared_ptr<const TriangleMesh>& mesh);

@@ -46,10 +46,10 @@ PreviewWorker::~PreviewWorker() {
 }
 
 void PreviewWorker::request(std::shared_ptr<const Scene> scene, int resolution, bool interactive,
-                            uint64_t tag) {
+                            uint64_t tag, std::vector<NodeId> ghosts) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    pending_ = Request{std::move(scene), resolution, interactive, tag};
+    pending_ = Request{std::move(scene), resolution, interactive, tag, std::move(ghosts)};
     hasRequest_ = true;
     if (running_) running_->cancel();
   }
@@ -141,7 +141,7 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   result->resolution = resolution;
   result->coarse = coarse;
   try {
-    computePass(evaluator, *request.scene, progress, *result);
+    computePass(evaluator, request, progress, *result);
   } catch (const Cancelled&) {
     return false;
   } catch (const Error& e) {
@@ -162,11 +162,12 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   return true;
 }
 
-void PreviewWorker::computePass(Evaluator& evaluator, const Scene& scene, Progress& progress,
+void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Progress& progress,
                                 PreviewResult& result) {
   EvalOptions options;
   options.resolution = result.resolution;
-  result.stats = evaluator.evaluate(scene, options, progress);
+  options.keep = request.ghosts;
+  result.stats = evaluator.evaluate(*request.scene, options, progress);
   Stopwatch splatClock;
   result.surfels = result.stats.root->surfelCount();
   result.ldiBytes = result.stats.root->bytes();
@@ -178,6 +179,14 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Scene& scene, Progre
     splats = std::make_shared<HostSplats>(std::move(host));
   }
   result.splats = std::move(splats);
+  for (KeptLdi& kept : result.stats.kept) {
+    SplatsHandle ghost = backend_->splats(kept.ldi, progress);
+    std::vector<Splat> host(ghost->count());
+    if (!host.empty()) ghost->copyToHost(host.data());
+    result.ghosts.push_back(GhostSplats{kept.id, std::make_shared<HostSplats>(std::move(host))});
+    kept.ldi.reset();
+  }
+  result.stats.kept.clear();
   result.splatSeconds = splatClock.seconds();
 }
 

@@ -32,6 +32,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
@@ -39,6 +40,12 @@
 #include "engine/util/progress.h"
 
 namespace strata {
+
+// The splats of one node's own LDI (a cutter, an intersector), drawn as a translucent ghost.
+struct GhostSplats {
+  NodeId id = 0;
+  std::shared_ptr<const HostSplats> splats;  // always on the host (few; drawn by upload)
+};
 
 struct PreviewResult {
   uint64_t tag = 0;                    // the caller's tag of the request (its document revision)
@@ -50,6 +57,7 @@ struct PreviewResult {
   size_t ldiBytes = 0;                 // held by the root's LDI
   EvalResult stats;                    // stages, nodes, grid (its `root` handle released)
   double splatSeconds = 0.0;           // making the splats (and copying them to the host)
+  std::vector<GhostSplats> ghosts;     // of the request's ghost ids that were evaluated
   std::string error;                   // empty on success
 
   size_t splatCount() const { return splats ? splats->count() : 0; }
@@ -89,8 +97,10 @@ class PreviewWorker {
   PreviewWorker(const PreviewWorker&) = delete;
   PreviewWorker& operator=(const PreviewWorker&) = delete;
 
-  // Replaces any pending request and cancels the running one.
-  void request(std::shared_ptr<const Scene> scene, int resolution, bool interactive, uint64_t tag);
+  // Replaces any pending request and cancels the running one. The result carries the splats of
+  // each of `ghosts`' own LDIs (visible nodes only).
+  void request(std::shared_ptr<const Scene> scene, int resolution, bool interactive, uint64_t tag,
+               std::vector<NodeId> ghosts = {});
   // Drops the pending request and cancels the running one (e.g. nothing is left to show).
   void cancel();
   // The newest finished result not taken yet, or null.
@@ -110,6 +120,7 @@ class PreviewWorker {
     int resolution = 0;
     bool interactive = false;
     uint64_t tag = 0;
+    std::vector<NodeId> ghosts;
   };
   void run();
   // Evaluates one request: its coarse pass where one applies, then its full pass.
@@ -118,7 +129,7 @@ class PreviewWorker {
   bool evaluatePass(Evaluator& evaluator, const Request& request, int resolution, bool coarse,
                     Progress& progress);
   // The evaluation and splats of one pass into `result`. Throws what the engine throws.
-  void computePass(Evaluator& evaluator, const Scene& scene, Progress& progress,
+  void computePass(Evaluator& evaluator, const Request& request, Progress& progress,
                    PreviewResult& result);
 
   std::shared_ptr<Backend> backend_;

@@ -118,6 +118,50 @@ TEST(Roles, HidingABaseEmptiesItsDifferenceInsteadOfPromotingACutter) {
               test::evaluateCpu(withoutDifference).measure.volume, 1e-9 * whole);
 }
 
+TEST(Roles, GhostsAreWhatCutsOrIntersectsTheSelection) {
+  // root(1, union) { a(2, box), g(3, difference) { b(4, sphere), c(5, cylinder),
+  //   i(7, intersection) { e(8, cone), f(9, torus) } }, d(6, torus) }
+  NodePtr root = insertChild(sampleTree(), 3, -1,
+                             makeOperationNode(NodeKind::Intersection, 7,
+                                               {makePrimitiveNode(NodeKind::Cone, 8),
+                                                makePrimitiveNode(NodeKind::Torus, 9)}));
+  EXPECT_EQ(ghostCandidates(root), (std::vector<NodeId>{5, 7, 8, 9}));
+  EXPECT_TRUE(ghostsOf(root, {}, false).empty());
+  EXPECT_EQ(ghostsOf(root, {}, true), (std::vector<NodeId>{5, 7, 8, 9}));
+  // The base: the cutters beside it (not what lies inside them).
+  EXPECT_EQ(ghostsOf(root, {4}, false), (std::vector<NodeId>{5, 7}));
+  // The difference: what it holds. A part that adds elsewhere: none.
+  EXPECT_EQ(ghostsOf(root, {3}, false), (std::vector<NodeId>{5, 7, 8, 9}));
+  EXPECT_TRUE(ghostsOf(root, {2}, false).empty());
+  // A child of an intersection: the other children, and the intersection (it cuts the base).
+  EXPECT_EQ(ghostsOf(root, {8}, false), (std::vector<NodeId>{7, 8, 9}));
+  // Hidden parts have none.
+  NodePtr hidden = editNode(root, 5, [](Node& n) { n.visible = false; });
+  EXPECT_EQ(ghostsOf(hidden, {4}, false), (std::vector<NodeId>{7}));
+}
+
+TEST(Roles, TheEvaluatorKeepsTheLdisOfGhosts) {
+  Scene scene;
+  scene.root = sampleTree();
+  scene.settings.resolution = 32;
+  Scene cutterAlone = scene;
+  cutterAlone.root = findNode(scene.root, 5);  // at the origin, like every part of the tree
+  cutterAlone.settings.hasBounds = true;
+  const EvalResult full = test::evaluateCpu(scene);
+  cutterAlone.settings.bounds = full.grid.bounds();
+  EvalOptions options;
+  options.keep = {5, 99};
+  auto backend = std::make_shared<CpuBackend>();
+  Evaluator evaluator(backend);
+  Progress progress;
+  const EvalResult kept = evaluator.evaluate(scene, options, progress);
+  ASSERT_EQ(kept.kept.size(), 1u);
+  EXPECT_EQ(kept.kept[0].id, 5u);
+  EXPECT_NEAR(backend->measure(kept.kept[0].ldi, progress).volume,
+              test::evaluateCpu(cutterAlone).measure.volume, 1e-9);
+  EXPECT_NEAR(kept.measure.volume, full.measure.volume, 1e-12);
+}
+
 TEST(Roles, MovesAreRefusedIntoThemselves) {
   NodePtr root = sampleTree();
   EXPECT_THROW(movePart(root, 3, 4, PlaceMode::Add, 7), Error);
