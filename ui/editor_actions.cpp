@@ -134,6 +134,24 @@ void clearSelection(EditorState& state) {
   state.selection.clear();
 }
 
+void selectRange(EditorState& state, NodeId id) {
+  const NodeId anchor = primarySelection(state);
+  if (!anchor || !findNode(state.document.root(), anchor)) {
+    selectNode(state, id);
+    return;
+  }
+  const std::vector<NodeId> order = treeOrder(state.document.root());
+  const auto a = std::find(order.begin(), order.end(), anchor);
+  const auto b = std::find(order.begin(), order.end(), id);
+  if (a == order.end() || b == order.end()) return;
+  const bool forward = a <= b;
+  for (auto it = forward ? a : b; it != (forward ? b : a) + 1; ++it)
+    if (*it != id && !isSelected(state, *it)) state.selection.push_back(*it);
+  auto self = std::find(state.selection.begin(), state.selection.end(), id);
+  if (self != state.selection.end()) state.selection.erase(self);
+  state.selection.push_back(id);  // the primary
+}
+
 void pruneSelection(EditorState& state) {
   const NodePtr& root = state.document.root();
   state.selection.erase(std::remove_if(state.selection.begin(), state.selection.end(),

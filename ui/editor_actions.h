@@ -15,6 +15,9 @@ bool isSelected(const EditorState& state, NodeId id);
 // Selects `id` alone, or toggles it in the selection when `extend`.
 void selectNode(EditorState& state, NodeId id, bool extend = false);
 void clearSelection(EditorState& state);
+// Shift+click in the outliner: adds every node from the primary selection to `id` in tree order
+// (`id` becomes the primary); selects `id` alone when nothing is selected.
+void selectRange(EditorState& state, NodeId id);
 // Drops ids that are no longer in the document (after undo, delete, open).
 void pruneSelection(EditorState& state);
 

@@ -1,10 +1,15 @@
-// The inspector: the selected node's name, visibility, colour, transform and parameters. A
-// widget that is held (a drag, a colour picker) makes one undo step from activation to
-// deactivation.
+// The inspector: the selected node's name, visibility, colour, transform and parameters. With
+// several nodes selected, the fields they share edit all of them (a value that differs is shown
+// with "~"): transforms change each by the same amount, the rest set the same value. A widget
+// that is held (a drag, a colour picker) makes one undo step from activation to deactivation, for
+// every node it changes.
 #include <imgui.h>
+#include <imgui_internal.h>  // ImGuiItemFlags_MixedValue: a mixed checkbox
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "engine/document/commands.h"
 #include "engine/kinds/primitives.h"
@@ -24,8 +29,11 @@ void edited(EditorState& state, bool changed, const std::function<void()>& apply
 }
 
 // Three drag fields (x, y, z) on one row; each is its own item, so activation is exact.
+// A component marked in `mixed` differs across the selection: it shows the primary node's value
+// with a "~" in front.
 bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double speed,
-              const std::function<void(const glm::dvec3&)>& apply, const char* format) {
+              const std::function<void(const glm::dvec3&)>& apply, const char* format,
+              const glm::bvec3& mixed = glm::bvec3(false)) {
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
@@ -40,8 +48,11 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     ImGui::SetNextItemWidth(w);
     ImGui::PushStyleColor(ImGuiCol_Text, colors[i]);
     glm::dvec3 next = *value;
+    const std::string shown = mixed[i] ? std::string("~") + format : std::string(format);
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
-                                     nullptr, format);
+                                     nullptr, shown.c_str());
+    if (mixed[i] && ImGui::IsItemHovered())
+      ImGui::SetTooltip("differs across the selection; dragging shifts every one by as much");
     ImGui::PopStyleColor();
     edited(state, changed, [&] { apply(next); });
     if (changed) *value = next;
@@ -53,37 +64,50 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
 }
 
 // A positive length parameter.
-void lengthField(EditorState& state, const NodePtr& node, const char* label,
-                 double PrimitiveParams::*field, double speed, double minimum) {
+void lengthField(EditorState& state, const NodePtr& node, const std::vector<NodePtr>& nodes,
+                 const char* label, double PrimitiveParams::*field, double speed, double minimum) {
   PrimitiveParams p = node->params;
+  bool mixed = false;
+  for (const NodePtr& n : nodes) mixed = mixed || n->params.*field != p.*field;
   ImGui::TextUnformatted(label);
   ImGui::SameLine(110.0f);
   ImGui::SetNextItemWidth(-1);
   double value = p.*field;
-  bool changed = ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double,
-                                   &value, float(speed), &minimum, nullptr, "%.4g");
+  bool changed =
+      ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double, &value,
+                        float(speed), &minimum, nullptr, mixed ? "~%.4g" : "%.4g");
+  if (mixed && ImGui::IsItemHovered())
+    ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
   edited(state, changed, [&] {
-    p.*field = std::max(value, minimum);
-    state.document.setParams(node->id, p);
+    for (const NodePtr& n : nodes) {
+      PrimitiveParams q = n->params;
+      q.*field = std::max(value, minimum);
+      state.document.setParams(n->id, q);
+    }
   });
 }
 
 // The primitive's parameters, as its table entry lists them.
-void primitiveParams(EditorState& state, const NodePtr& node, double speed) {
+// For every selected node of the primary's kind (the caller checks that all are): a change
+// sets the same value on each.
+void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<NodePtr>& nodes,
+                     double speed) {
   const PrimitiveInfo* info = primitiveInfo(node->kind);
   if (!info) return;
   const PrimitiveParams p = node->params;
   for (const PrimitiveParam& param : info->params) {
     const double minimum = param.minimum == ParamMinimum::Positive ? 1e-6 : 0.0;
-    if (param.scalar) lengthField(state, node, param.label, param.scalar, speed, minimum);
+    if (param.scalar) lengthField(state, node, nodes, param.label, param.scalar, speed, minimum);
     if (param.vector) {
       glm::dvec3 value = p.*param.vector;
       dragVec3(
           state, param.label, &value, speed,
           [&](const glm::dvec3& v) {
-            PrimitiveParams q = p;
-            q.*param.vector = glm::max(v, glm::dvec3(minimum));
-            state.document.setParams(node->id, q);
+            for (const NodePtr& n : nodes) {
+              PrimitiveParams q = n->params;
+              q.*param.vector = glm::max(v, glm::dvec3(minimum));
+              state.document.setParams(n->id, q);
+            }
           },
           "%.4g");
     }
@@ -96,23 +120,27 @@ void primitiveParams(EditorState& state, const NodePtr& node, double speed) {
     bool changed = ImGui::DragInt("##segments", &segments, 0.5f, 0, kMaxSegments,
                                   segments == 0 ? "automatic" : "%d");
     edited(state, changed, [&] {
-      PrimitiveParams q = p;
-      q.segments = segments > 0 && segments < 3 ? 3 : segments;
-      state.document.setParams(node->id, q);
+      for (const NodePtr& n : nodes) {
+        PrimitiveParams q = n->params;
+        q.segments = segments > 0 && segments < 3 ? 3 : segments;
+        state.document.setParams(n->id, q);
+      }
     });
   }
 }
 
-// The kind, id, name, visibility and colour of `node`.
-void nodeIdentity(EditorState& state, const NodePtr& node) {
+// The selected nodes, the primary (inspected) one last.
+using NodeList = std::vector<NodePtr>;
+
+// The kind, id, name, visibility and colour of `node`; visibility and colour for all `nodes`.
+void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes) {
   ImGui::Text("%s  %s", kindGlyph(node->kind), kindLabel(node->kind));
   ImGui::SameLine();
-  ImGui::TextDisabled("id %u%s", node->id,
-                      state.selection.size() > 1
-                          ? ("   (" + std::to_string(state.selection.size()) + " selected)").c_str()
-                          : "");
+  ImGui::TextDisabled(
+      "id %u%s", node->id,
+      nodes.size() > 1 ? ("   (" + std::to_string(nodes.size()) + " selected)").c_str() : "");
 
-  // Name: committed when the field is left or Enter is pressed.
+  // Name: committed when the field is left or Enter is pressed. The primary node's only.
   static char name[256];
   static NodeId nameOf = 0;
   if (nameOf != node->id || !ImGui::IsAnyItemActive())
@@ -122,57 +150,109 @@ void nodeIdentity(EditorState& state, const NodePtr& node) {
   if (ImGui::IsItemDeactivatedAfterEdit() && node->name != name) renameNode(state, node->id, name);
 
   bool visible = node->visible;
-  if (ImGui::Checkbox("visible", &visible))
-    guarded(state, [&] { state.document.setVisible(node->id, visible); });
+  bool mixedVisible = false, mixedColor = false;
+  for (const NodePtr& n : nodes) {
+    mixedVisible = mixedVisible || n->visible != node->visible;
+    mixedColor = mixedColor || n->color != node->color;
+  }
+  ImGui::PushItemFlag(ImGuiItemFlags_MixedValue, mixedVisible);
+  const bool toggled = ImGui::Checkbox("visible", &visible);
+  ImGui::PopItemFlag();
+  if (toggled) {
+    state.document.beginInteraction();
+    for (const NodePtr& n : nodes)
+      guarded(state, [&] { state.document.setVisible(n->id, visible); });
+    state.document.endInteraction();
+  }
   ImGui::SameLine();
   glm::vec3 color = node->color;
-  bool colorChanged = ImGui::ColorEdit3("colour", &color.x, ImGuiColorEditFlags_NoInputs);
+  bool colorChanged = ImGui::ColorEdit3(mixedColor ? "colour (mixed)" : "colour", &color.x,
+                                        ImGuiColorEditFlags_NoInputs);
   edited(state, colorChanged, [&] {
-    state.document.setColor(node->id, glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f)));
+    for (const NodePtr& n : nodes)
+      state.document.setColor(n->id, glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f)));
   });
 }
 
-// Move, rotate and scale of `node`; `speed` is the drag step in scene units.
-void nodeTransform(EditorState& state, const NodePtr& node, double speed) {
+// Which components of `field` differ from the primary node's across `nodes`.
+glm::bvec3 mixedComponents(const NodeList& nodes, glm::dvec3 Transform::*field) {
+  glm::bvec3 mixed(false);
+  const glm::dvec3 first = nodes.back()->transform.*field;
+  for (const NodePtr& n : nodes)
+    for (int i = 0; i < 3; ++i) mixed[i] = mixed[i] || (n->transform.*field)[i] != first[i];
+  return mixed;
+}
+
+// Move, rotate and scale of the primary node, applied to every selected node by as much: a
+// move or turn adds the same amount to each, a scale multiplies each by the same factor.
+// `speed` is the drag step in scene units.
+void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& nodes, double speed) {
   if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) {
     Transform t = node->transform;
-    auto applyTransform = [&](const Transform& next) {
-      state.document.setTransform(node->id, next);
+    // Each node from its own current transform, changed as the primary's field changed.
+    // A node inside another selected node moves with it, not on its own as well.
+    auto applyAll = [&](const std::function<Transform(const Transform&)>& change) {
+      for (const NodePtr& n : nodes) {
+        bool nested = false;
+        for (const NodePtr& other : nodes)
+          if (other != n && isInSubtree(state.document.root(), other->id, n->id)) nested = true;
+        if (!nested || n == node) state.document.setTransform(n->id, change(n->transform));
+      }
     };
     dragVec3(
         state, "move", &t.translate, speed,
         [&](const glm::dvec3& v) {
-          Transform n = node->transform;
-          n.translate = v;
-          applyTransform(n);
+          const glm::dvec3 delta = v - node->transform.translate;
+          applyAll([&](Transform n) {
+            n.translate += delta;
+            return n;
+          });
         },
-        "%.4g");
+        "%.4g", mixedComponents(nodes, &Transform::translate));
     dragVec3(
         state, "rotate", &t.rotateDegrees, 0.5,
         [&](const glm::dvec3& v) {
-          Transform n = node->transform;
-          n.rotateDegrees = v;
-          applyTransform(n);
+          const glm::dvec3 delta = v - node->transform.rotateDegrees;
+          applyAll([&](Transform n) {
+            n.rotateDegrees += delta;
+            return n;
+          });
         },
-        "%.2f\u00B0");
+        "%.2f\u00B0", mixedComponents(nodes, &Transform::rotateDegrees));
     dragVec3(
         state, "scale", &t.scale, 0.005,
         [&](const glm::dvec3& v) {
-          Transform n = node->transform;
-          n.scale = v;
+          glm::dvec3 factor(1.0);
           for (int i = 0; i < 3; ++i)
-            if (n.scale[i] == 0.0) n.scale[i] = node->transform.scale[i];
-          applyTransform(n);
+            if (v[i] != 0.0 && node->transform.scale[i] != 0.0)
+              factor[i] = v[i] / node->transform.scale[i];
+          applyAll([&](Transform n) {
+            n.scale *= factor;
+            return n;
+          });
         },
-        "%.4g");
-    if (ImGui::SmallButton("reset")) guarded(state, [&] { applyTransform(Transform()); });
+        "%.4g", mixedComponents(nodes, &Transform::scale));
+    if (ImGui::SmallButton(nodes.size() > 1 ? "reset all" : "reset")) {
+      state.document.beginInteraction();
+      guarded(state, [&] { applyAll([](const Transform&) { return Transform(); }); });
+      state.document.endInteraction();
+    }
   }
 }
 
 // What the node's kind adds: primitive parameters, the operation, the mesh file, the target.
-void nodeKindSections(EditorState& state, const NodePtr& node, double speed) {
+void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& nodes,
+                      double speed) {
+  bool sameKind = true;
+  for (const NodePtr& n : nodes) sameKind = sameKind && n->kind == node->kind;
+  if (!sameKind) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("Parts of different kinds: their shapes are edited one at a time.");
+    ImGui::PopStyleColor();
+    return;
+  }
   if (isPrimitive(node->kind) && ImGui::CollapsingHeader("Shape", ImGuiTreeNodeFlags_DefaultOpen))
-    primitiveParams(state, node, speed);
+    primitiveParams(state, node, nodes, speed);
 
   if (isOperation(node->kind) &&
       ImGui::CollapsingHeader("Operation", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -180,8 +260,12 @@ void nodeKindSections(EditorState& state, const NodePtr& node, double speed) {
     for (NodeKind op : operationKinds()) {
       if (!first) ImGui::SameLine();
       first = false;
-      if (ImGui::RadioButton(kindName(op), node->kind == op))
-        guarded(state, [&] { state.document.setOperation(node->id, op); });
+      if (ImGui::RadioButton(kindName(op), node->kind == op)) {
+        state.document.beginInteraction();
+        for (const NodePtr& n : nodes)
+          guarded(state, [&] { state.document.setOperation(n->id, op); });
+        state.document.endInteraction();
+      }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(op).summary);
     }
     ImGui::TextDisabled("%zu children%s", node->children.size(),
@@ -222,15 +306,20 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
     ImGui::End();
     return;
   }
+  NodeList nodes;  // every selected node still in the tree, the primary last
+  for (NodeId selected : state.selection)
+    if (NodePtr n = findNode(state.document.root(), selected); n && selected != id)
+      nodes.push_back(n);
+  nodes.push_back(node);
   ImGui::PushID(static_cast<int>(node->id));
-  nodeIdentity(state, node);
+  nodeIdentity(state, node, nodes);
   // Drag speeds follow the scene's size.
   Bounds b = sceneBounds(state.document.root());
   double extent = b.empty() ? 1.0 : std::max({b.size().x, b.size().y, b.size().z});
   double speed = std::max(extent * 0.002, 1e-6);
 
-  nodeTransform(state, node, speed);
-  nodeKindSections(state, node, speed);
+  nodeTransform(state, node, nodes, speed);
+  nodeKindSections(state, node, nodes, speed);
   ImGui::PopID();
   ImGui::End();
 }

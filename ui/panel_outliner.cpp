@@ -213,8 +213,12 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
                              node->name.empty() ? "(unnamed)" : node->name.c_str());
     if (!node->visible) ImGui::PopStyleColor();
     ImGui::PopClipRect();
-    if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen())
-      selectNode(state, node->id, ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift);
+    if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen()) {
+      if (ImGui::GetIO().KeyShift)
+        selectRange(state, node->id);
+      else
+        selectNode(state, node->id, ImGui::GetIO().KeyCtrl);
+    }
     if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) state.renaming = node->id;
     if (!isRoot && ImGui::BeginDragDropSource()) {
       NodeId id = node->id;

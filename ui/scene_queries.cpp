@@ -94,6 +94,31 @@ LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& select
   return table;
 }
 
+std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& start,
+                                                              const std::vector<NodeId>& selection,
+                                                              NodeId primary,
+                                                              const Transform& primaryNow) {
+  std::vector<std::pair<NodeId, Transform>> out;
+  const NodePtr node = findNode(start, primary);
+  if (!node) return out;
+  const glm::dmat4 primaryParent = parentWorldMatrix(start, primary);
+  const glm::dmat4 motion =
+      primaryParent * primaryNow.matrix() * glm::inverse(primaryParent * node->transform.matrix());
+  for (NodeId id : selection) {
+    if (id == primary || isInSubtree(start, id, primary) || isInSubtree(start, primary, id))
+      continue;
+    bool nested = false;
+    for (NodeId other : selection)
+      if (other != id && isInSubtree(start, other, id)) nested = true;
+    const NodePtr follower = findNode(start, id);
+    if (nested || !follower) continue;
+    const glm::dmat4 parent = parentWorldMatrix(start, id);
+    const glm::dmat4 world = motion * parent * follower->transform.matrix();
+    out.emplace_back(id, transformFromMatrix(glm::inverse(parent) * world));
+  }
+  return out;
+}
+
 double niceLength(double approximate) {
   if (!(approximate > 0) || !std::isfinite(approximate)) return 1.0;
   double p = std::pow(10.0, std::floor(std::log10(approximate)));

@@ -4,6 +4,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <utility>
 #include <vector>
 
 #include "engine/document/node.h"
@@ -22,6 +23,18 @@ Bounds sceneBounds(const NodePtr& root);
 
 // Per leaf id, its colour and whether it lies under a selected node (following instances).
 LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& selection);
+
+// A gizmo drag with several nodes selected: what every other selected node's transform becomes
+// when the primary node `primary` gets `primaryNow` in the tree `start` (the tree when the drag
+// began). They follow the primary's world motion about its origin: each gets D * (its world
+// matrix in `start`), D taking the primary's world matrix in `start` to its new one, turned back
+// into a Transform (transformFromMatrix: exact for moves and turns; a scale along the primary's
+// axes of a node turned against them is its nearest scale and turn). Left out: nodes inside
+// another selected node (they move with it) and nodes holding or held by the primary.
+std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& start,
+                                                              const std::vector<NodeId>& selection,
+                                                              NodeId primary,
+                                                              const Transform& primaryNow);
 
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);

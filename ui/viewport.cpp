@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "engine/document/commands.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
@@ -163,7 +164,12 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     if (io.MouseDown[0] && placeGizmo(state)) {
       NodeId id = primarySelection(state);
       Transform t = gizmo_.drag(view, mouse, state.snap);
-      guarded(state, [&] { state.document.setTransform(id, t); });
+      guarded(state, [&] {
+        state.document.setTransform(id, t);
+        for (const auto& [follower, transform] :
+             followingTransforms(dragStart_, state.selection, id, t))
+          state.document.setTransform(follower, transform);
+      });
     } else {
       gizmo_.end();
       state.document.endInteraction();
@@ -209,11 +215,29 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     if (hot_ >= 0) {
       state.document.beginInteraction();
       gizmo_.begin(hot_, view, mouse);
+      dragStart_ = state.document.root();
       return;
     }
     clickPending_ = true;
   }
-  if (clickPending_ && ImGui::IsMouseDragging(0, 4.0f)) clickPending_ = false;
+  if (clickPending_ && ImGui::IsMouseDragging(0, 4.0f)) {
+    clickPending_ = false;
+    const ImVec2 delta = ImGui::GetMouseDragDelta(0, 0.0f);
+    boxFrom_ = mouse - glm::dvec2(delta.x, delta.y);
+  }
+  if (boxFrom_) {
+    const ImVec2 a(float(rect.x + boxFrom_->x), float(rect.y + boxFrom_->y));
+    const ImVec2 b(float(rect.x + mouse.x), float(rect.y + mouse.y));
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    draw->AddRectFilled(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
+                        ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(255, 150, 40, 36));
+    draw->AddRect(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
+                  ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(255, 150, 40, 200));
+    if (!io.MouseDown[0]) {
+      box_ = PendingBox{*boxFrom_, mouse, io.KeyCtrl || io.KeyShift};
+      boxFrom_.reset();
+    }
+  }
   if (clickPending_ && ImGui::IsMouseReleased(0)) {
     clickPending_ = false;
     click_ = PendingClick{mouse, io.KeyCtrl || io.KeyShift};
@@ -275,6 +299,20 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
     else if (!click_->extend)
       clearSelection(state);
     click_.reset();
+  }
+  if (box_) {
+    const ViewportFrame frame = makeFrame(state, rect, 0, pixelScale);
+    auto pixel = [&](glm::dvec2 m) {
+      return glm::ivec2(int(std::floor(m.x * pixelScale)),
+                        frame.height - int(std::floor(m.y * pixelScale)));
+    };
+    const glm::ivec2 a = pixel(box_->from), b = pixel(box_->to);
+    const std::vector<uint32_t> leaves = renderer.pickLeaves(frame, a.x, a.y, b.x, b.y);
+    if (!box_->extend) clearSelection(state);
+    for (uint32_t leaf : leaves)
+      if (findNode(state.document.root(), leaf) && !isSelected(state, leaf))
+        state.selection.push_back(leaf);
+    box_.reset();
   }
   if (drop_) {
     const Placement placement = placementAt(renderer, state, rect, drop_->mouse, pixelScale);

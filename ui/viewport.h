@@ -12,6 +12,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "ui/camera.h"
 #include "ui/editor_state.h"
@@ -59,6 +60,11 @@ class Viewport {
     glm::dvec2 mouse;  // window pixels from the view's top-left corner
     bool extend = false;
   };
+  // A rectangle dragged over the view from empty space: box selection on release.
+  struct PendingBox {
+    glm::dvec2 from, to;  // window pixels from the view's top-left corner
+    bool extend = false;  // Shift or Ctrl: add to the selection
+  };
   struct PendingDrop {
     glm::dvec2 mouse;
     int item = 0;                     // palette item: a NodeKind, or kImportMeshItem
@@ -69,6 +75,10 @@ class Viewport {
   void framePending(const ViewRect& rect);
   void handleKeys(EditorState& state);
 
+  // The tree when a gizmo drag began: the other selected nodes follow the primary from it
+  // (followingTransforms), all in the drag's one undo step.
+  NodePtr dragStart_;
+
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;
   int hot_ = -1;
@@ -76,6 +86,8 @@ class Viewport {
   bool clickPending_ = false;
   std::optional<PendingClick> click_;
   std::optional<PendingDrop> drop_;
+  std::optional<glm::dvec2> boxFrom_;  // where a box selection being dragged began
+  std::optional<PendingBox> box_;
 };
 
 // The section plane of `state` over the scene's bounds: unit normal and offset (what lies where

@@ -281,11 +281,7 @@ void ViewportRenderer::useSurfelProgram(const GlProgram& program, const Viewport
   glBindVertexArray(surfelVao_);
 }
 
-std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, int py) {
-  if (splatCount_ == 0 || px < 0 || py < 0 || px >= f.width || py >= f.height) return {};
-  GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
-  glGetIntegerv(GL_VIEWPORT, previousViewport);
+bool ViewportRenderer::drawPickIds(const ViewportFrame& f, int x, int y, int width, int height) {
   if (!pickFramebuffer_ || pickWidth_ != f.width || pickHeight_ != f.height) {
     if (!pickFramebuffer_) {
       glGenFramebuffers(1, &pickFramebuffer_);
@@ -304,28 +300,66 @@ std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, in
     pickHeight_ = f.height;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, pickFramebuffer_);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return false;
+  glViewport(0, 0, f.width, f.height);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x, y, width, height);  // only the pixels read are drawn
+  const GLuint none[4] = {0, 0, 0, 0};
+  glClearBufferuiv(GL_COLOR, 0, none);
+  glClearDepth(1.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  useSurfelProgram(pickProgram_, f);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  return true;
+}
+
+std::vector<uint32_t> ViewportRenderer::pickLeaves(const ViewportFrame& f, int x0, int y0, int x1,
+                                                   int y1) {
+  const int left = std::clamp(std::min(x0, x1), 0, f.width);
+  const int right = std::clamp(std::max(x0, x1), 0, f.width);
+  const int bottom = std::clamp(std::min(y0, y1), 0, f.height);
+  const int top = std::clamp(std::max(y0, y1), 0, f.height);
+  x0 = left, x1 = right, y0 = bottom, y1 = top;
+  std::vector<uint32_t> leaves;
+  if (splatCount_ == 0 || x1 <= x0 || y1 <= y0) return leaves;
+  GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
+  glGetIntegerv(GL_VIEWPORT, previousViewport);
+  if (drawPickIds(f, x0, y0, x1 - x0, y1 - y0)) {
+    std::vector<GLuint> ids(size_t(x1 - x0) * size_t(y1 - y0));
+    glReadPixels(x0, y0, x1 - x0, y1 - y0, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    for (GLuint id : ids)
+      if (id > 0) leaves.push_back((id & 0x7fffffffu) - 1);
+    std::sort(leaves.begin(), leaves.end());
+    leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
+  }
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
+  glViewport(previousViewport[0], previousViewport[1], previousViewport[2], previousViewport[3]);
+  return leaves;
+}
+
+std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, int py) {
+  if (splatCount_ == 0 || px < 0 || py < 0 || px >= f.width || py >= f.height) return {};
+  GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
+  glGetIntegerv(GL_VIEWPORT, previousViewport);
   std::optional<PickHit> hit;
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) {
-    glViewport(0, 0, f.width, f.height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(px, py, 1, 1);  // one pixel is drawn
-    const GLuint none[4] = {0, 0, 0, 0};
-    glClearBufferuiv(GL_COLOR, 0, none);
-    glClearDepth(1.0);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    useSurfelProgram(pickProgram_, f);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glBindVertexArray(0);
-    glUseProgram(0);
+  if (drawPickIds(f, px, py, 1, 1)) {
     GLuint leafPlusOne = 0;
     float depth = 1.0f;
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(px, py, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &leafPlusOne);
     glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
     glDisable(GL_SCISSOR_TEST);

@@ -94,9 +94,15 @@ class ViewportRenderer {
   // bottom-left corner), rendered into an off-screen id buffer; nothing when it shows no splat.
   // Leaves the bound framebuffer and viewport as they were.
   std::optional<PickHit> pick(const ViewportFrame& frame, int px, int py);
+  // The leaves shown in the pixel rectangle [x0, x1) x [y0, y1) of `frame`'s viewport (from its
+  // bottom-left corner; corners in any order), sorted, once each: box selection.
+  std::vector<uint32_t> pickLeaves(const ViewportFrame& frame, int x0, int y0, int x1, int y1);
 
  private:
   void drawLines(const std::vector<LineVertex>& vertices, GLenum mode);
+  // Draws the leaf ids of the pixels in the rectangle into the pick framebuffer (left bound, with
+  // scissoring on) and readies it for glReadPixels; false when the framebuffer is incomplete.
+  bool drawPickIds(const ViewportFrame& frame, int x, int y, int width, int height);
   // Binds `program` and sets the uniforms surfel.vert needs.
   void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
 

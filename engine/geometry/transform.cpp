@@ -3,6 +3,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace strata {
 
 glm::dmat4 Transform::matrix() const {
@@ -13,6 +16,29 @@ glm::dmat4 Transform::matrix() const {
   m = glm::rotate(m, glm::radians(rotateDegrees.x), glm::dvec3(1, 0, 0));
   m = glm::scale(m, scale);
   return m;
+}
+
+Transform transformFromMatrix(const glm::dmat4& m) {
+  Transform t;
+  t.translate = glm::dvec3(m[3]);
+  glm::dvec3 columns[3] = {glm::dvec3(m[0]), glm::dvec3(m[1]), glm::dvec3(m[2])};
+  for (int i = 0; i < 3; ++i) t.scale[i] = glm::length(columns[i]);
+  if (mirrors(m)) t.scale.x = -t.scale.x;
+  glm::dmat3 r(1.0);
+  for (int i = 0; i < 3; ++i)
+    if (t.scale[i] != 0.0) r[i] = columns[i] / t.scale[i];
+  // r = Rz(c) * Ry(b) * Rx(a): r[col][row]; r[0][2] = -sin(b).
+  const double sinB = -std::clamp(r[0][2], -1.0, 1.0);
+  double a, b = std::asin(sinB), c;
+  if (std::fabs(sinB) < 1.0 - 1e-12) {
+    a = std::atan2(r[1][2], r[2][2]);
+    c = std::atan2(r[0][1], r[0][0]);
+  } else {  // gimbal lock: x and z turn about the same axis; all of it on z
+    a = 0.0;
+    c = std::atan2(-r[1][0], r[1][1]);
+  }
+  t.rotateDegrees = glm::degrees(glm::dvec3(a, b, c));
+  return t;
 }
 
 bool mirrors(const glm::dmat4& m) {

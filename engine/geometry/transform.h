@@ -20,6 +20,13 @@ struct Transform {
   bool operator!=(const Transform& o) const { return !(*this == o); }
 };
 
+// The Transform whose matrix() is nearest `m` (an affine object-to-parent matrix): translate from
+// its last column, scale from the lengths of its columns (the x column negated when it mirrors),
+// rotation (Euler, degrees, in the matrix() convention) from the columns divided by them. Exact
+// when the columns are orthogonal (no shear), which rigid motions and per-axis scales of an
+// unsheared matrix keep.
+Transform transformFromMatrix(const glm::dmat4& m);
+
 // True when the matrix mirrors (negative determinant of its linear part): sampling must then
 // reverse triangle winding to keep normals pointing outward.
 bool mirrors(const glm::dmat4& m);

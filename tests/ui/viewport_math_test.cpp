@@ -5,10 +5,12 @@
 #include <cmath>
 
 #include "engine/document/commands.h"
+#include "engine/document/document.h"
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
 #include "ui/camera.h"
 #include "ui/gizmo.h"
+#include "ui/scene_queries.h"
 
 namespace strata::ui {
 namespace {
@@ -102,6 +104,76 @@ TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
   const double r = 90 * 0.85, d = r / std::sqrt(2.0);
   int ring = g.hover(m, glm::dvec2(size.x / 2 + d, size.y / 2 - d));
   EXPECT_EQ(ring, 1);
+}
+
+}  // namespace
+}  // namespace strata::ui
+
+namespace strata::ui {
+namespace {
+
+// root(1, union) { a(2, box at 0), b(3, box at (5,0,0)), g(4, union at (0,5,0)) { c(5, box) } }
+NodePtr threeParts() {
+  auto at = [](NodePtr node, glm::dvec3 p) {
+    auto copy = std::make_shared<Node>(*node);
+    copy->transform.translate = p;
+    return NodePtr(copy);
+  };
+  NodePtr g = at(makeOperationNode(NodeKind::Union, 4, {makePrimitiveNode(NodeKind::Box, 5)}),
+                 {0.0, 5.0, 0.0});
+  return makeOperationNode(NodeKind::Union, 1,
+                           {makePrimitiveNode(NodeKind::Box, 2),
+                            at(makePrimitiveNode(NodeKind::Box, 3), {5.0, 0.0, 0.0}), g});
+}
+
+glm::dvec3 worldOrigin(const NodePtr& root, NodeId id) {
+  return glm::dvec3(parentWorldMatrix(root, id) * findNode(root, id)->transform.matrix() *
+                    glm::dvec4(0, 0, 0, 1));
+}
+
+TEST(GroupDrag, OtherSelectedNodesFollowThePrimaryAboutItsOrigin) {
+  const NodePtr start = threeParts();
+  // A move: every follower moves by as much, whatever its parent.
+  Transform moved;
+  moved.translate = {2.0, 0.0, 1.0};
+  auto follow = followingTransforms(start, {3, 5, 2}, 2, moved);
+  ASSERT_EQ(follow.size(), 2u);
+  NodePtr after = start;
+  for (const auto& [id, t] : follow) after = editNode(after, id, [&](Node& n) { n.transform = t; });
+  expectNear(worldOrigin(after, 3), {7.0, 0.0, 1.0});
+  expectNear(worldOrigin(after, 5), {2.0, 5.0, 1.0});
+  // A quarter turn about z: followers turn about the primary's origin.
+  Transform turned;
+  turned.rotateDegrees = {0.0, 0.0, 90.0};
+  after = start;
+  for (const auto& [id, t] : followingTransforms(start, {3, 2}, 2, turned))
+    after = editNode(after, id, [&](Node& n) { n.transform = t; });
+  expectNear(worldOrigin(after, 3), {0.0, 5.0, 0.0});
+  EXPECT_NEAR(findNode(after, 3)->transform.rotateDegrees.z, 90.0, 1e-9);
+  // Nested nodes go with their selected ancestor; the primary's own ancestors stay.
+  EXPECT_TRUE(followingTransforms(start, {4, 5, 2}, 2, moved).size() == 1u);
+  EXPECT_TRUE(followingTransforms(start, {4, 5}, 5, moved).empty());
+}
+
+TEST(GroupDrag, TheWholeGroupIsOneUndoStep) {
+  Document doc;
+  Scene scene = doc.scene();
+  scene.root = threeParts();
+  doc = Document(scene);
+  Transform moved;
+  moved.translate = {1.0, 0.0, 0.0};
+  doc.beginInteraction();  // as the viewport does for a drag
+  for (int step = 1; step <= 3; ++step) {
+    moved.translate.x = step;
+    doc.setTransform(2, moved);
+    for (const auto& [id, t] : followingTransforms(threeParts(), {3, 2}, 2, moved))
+      doc.setTransform(id, t);
+  }
+  doc.endInteraction();
+  expectNear(worldOrigin(doc.root(), 3), {8.0, 0.0, 0.0});
+  ASSERT_TRUE(doc.undo());
+  expectNear(worldOrigin(doc.root(), 3), {5.0, 0.0, 0.0});
+  expectNear(worldOrigin(doc.root(), 2), {0.0, 0.0, 0.0});
 }
 
 }  // namespace
