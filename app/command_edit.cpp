@@ -126,29 +126,49 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
 int measureFrames(ui::Editor& editor, double seconds, int resolution) {
   ui::EditorState& state = editor.state();
   if (resolution > 0) ui::setResolution(state, resolution);
-  std::vector<double> busy;
+  // Every frame turns the camera a little, as a user orbiting would: first while the engine
+  // evaluates the new resolution, then, once its result is shown, for as long again.
+  std::vector<double> busy, orbiting;
   Stopwatch clock;
   int frames = 0;
-  double busySeconds = 0.0;
-  while (clock.seconds() < seconds) {
+  double busySeconds = 0.0, idleSince = -1.0;
+  while (true) {
     const double before = clock.seconds();
+    editor.camera().orbit(3.0, 0.0);
     editor.frame();
     ++frames;
     if (state.worker.busy) {
       busy.push_back(state.frameMs);
       busySeconds += clock.seconds() - before;
+    } else {
+      if (idleSince < 0.0) idleSince = before;
+      orbiting.push_back(state.frameMs);
     }
+    if (clock.seconds() > seconds && idleSince >= 0.0 && clock.seconds() - idleSince > 3.0) break;
+    if (clock.seconds() > 10.0 * seconds + 60.0) break;
   }
   if (busy.empty()) throw Error("--measure-frames: the evaluation finished before a frame ran");
-  std::sort(busy.begin(), busy.end());
-  auto quantile = [&](double q) {
-    return busy[std::min(busy.size() - 1, size_t(q * busy.size()))];
+  auto report = [&](const char* what, std::vector<double> ms) {
+    if (ms.empty()) return;
+    std::sort(ms.begin(), ms.end());
+    auto quantile = [&](double q) { return ms[std::min(ms.size() - 1, size_t(q * ms.size()))]; };
+    std::printf(
+        "%s: %zu frames; UI thread per frame: median %.2f ms, 99%% %.2f ms, worst %.2f ms\n", what,
+        ms.size(), quantile(0.5), quantile(0.99), ms.back());
   };
-  std::printf(
-      "frames while evaluating at %d (%s): %zu over %.1f s; UI thread per frame: median "
-      "%.2f ms, 99%% %.2f ms, worst %.2f ms (%d frames in all)\n",
-      state.document.scene().settings.resolution, state.backendDescription.c_str(), busy.size(),
-      busySeconds, quantile(0.5), quantile(0.99), busy.back(), frames);
+  std::printf("resolution %d (%s), %d frames in all, %.1f s evaluating\n",
+              state.document.scene().settings.resolution, state.backendDescription.c_str(), frames,
+              busySeconds);
+  report("orbiting while evaluating", busy);
+  report("orbiting the result", orbiting);
+  // The floor: frames that redraw the panels and copy the cached view (a hand on the mouse
+  // over the panels).
+  std::vector<double> still;
+  for (int i = 0; i < 60; ++i) {
+    editor.frame();
+    still.push_back(state.frameMs);
+  }
+  report("still (panels and the cached view)", still);
   return 0;
 }
 

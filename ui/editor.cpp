@@ -21,6 +21,7 @@
 #include "engine/util/timer.h"
 #include "ui/editor_actions.h"
 #include "ui/gl_window.h"
+#include "ui/input_queue.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/theme.h"
@@ -57,6 +58,16 @@ void onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
   if (g_imguiKeyCallback) g_imguiKeyCallback(window, key, scancode, action, mods);
 }
 
+// The mouse, between GLFW and ImGui: every button and cursor event queued with its time, taken
+// by frames so that none is lost (input_queue.h). Replaces ImGui's own mouse button callback.
+InputQueue g_input;
+void onMouseButton(GLFWwindow*, int button, int action, int) {
+  g_input.button(button, action == GLFW_PRESS, glfwGetTime());
+}
+void onCursor(GLFWwindow*, double x, double y) {
+  g_input.cursor(x, y, glfwGetTime());
+}
+
 // Before a frame's events: deliver the releases held back from the previous batch.
 void releaseHeldKeys() {
   for (const HeldRelease& r : g_heldReleases)
@@ -85,6 +96,12 @@ struct Editor::Gl {
     applyTheme(scale > 0.5f ? scale : 1.0f);
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
     g_imguiKeyCallback = glfwSetKeyCallback(window.handle(), onKey);  // in front of ImGui's
+    glfwSetMouseButtonCallback(window.handle(), onMouseButton);       // instead of ImGui's
+    glfwSetCursorPosCallback(window.handle(), onCursor);
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window.handle(), &x, &y);
+    g_input = InputQueue();
+    g_input.cursor(x, y, glfwGetTime());
     ImGui_ImplOpenGL3_Init("#version 330 core");
   }
   ~Gl() {
@@ -381,6 +398,19 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  {
+    // The mouse as this frame's share of the queued events left it (not as it is now).
+    ImGuiIO& io = ImGui::GetIO();
+    const InputQueue::Frame mouse = g_input.takeFrame();
+    io.MousePos = ImVec2(float(mouse.x), float(mouse.y));
+    bool doubleClicked = false;
+    for (int b = 0; b < InputQueue::kButtons; ++b) {
+      io.MouseDown[b] = mouse.down[b];
+      doubleClicked = doubleClicked || mouse.doubleClicked[b];
+    }
+    // Double-clicks are the queue's decision, from the events' times (frames may be slow).
+    io.MouseDoubleClickTime = doubleClicked ? 1e6f : 0.0f;
+  }
   ImGui::NewFrame();
 
   PanelLayout layout;
@@ -424,9 +454,14 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   updateLeafStyles();  // a pick may have changed the selection
   updateGhosts();
   glViewport(0, 0, fbWidth, fbHeight);
-  glClearColor(0.09f, 0.095f, 0.105f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale);
+  // The panels and the view tile the window, so a window frame needs no clear (a software GL
+  // driver spends a millisecond on it); the full draw of a capture uses the window's depth.
+  if (capture) {
+    glClearColor(0.09f, 0.095f, 0.105f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+  // The window's view within the frame budget; a capture shows every splat at once.
+  gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, capture ? -1.0 : s.frameMs);
   glViewport(0, 0, fbWidth, fbHeight);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (capture) {
@@ -450,7 +485,8 @@ bool Editor::frame() {
                io.InputQueueCharacters.Size > 0;
   for (bool down : io.MouseDown) input = input || down;
   for (bool down : io.KeysDown) input = input || down;
-  if (input) activeUntil_ = state_->now + 0.5;
+  // The viewport's full image is drawn a share a frame: keep frames coming until it is shown.
+  if (input || g_input.pending() || gl_->renderer->refining()) activeUntil_ = state_->now + 0.5;
   // An edit made since the last frame without input (a dialog's result, a script, a test) is
   // sent to the worker before sleeping: its result wakes the loop (glfwPostEmptyEvent).
   requestPreviewIfNeeded();

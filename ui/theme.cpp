@@ -35,7 +35,8 @@ void applyTheme(float scale) {
 
   ImGui::StyleColorsDark();
   ImGuiStyle& s = ImGui::GetStyle();
-  s.WindowRounding = 4.0f;
+  s.WindowRounding = 0.0f;  // the panels tile the window, which is not cleared between frames
+  s.PopupRounding = 4.0f;
   s.FrameRounding = 3.0f;
   s.GrabRounding = 3.0f;
   s.TabRounding = 3.0f;

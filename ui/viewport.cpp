@@ -342,17 +342,35 @@ bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) 
   return true;
 }
 
+const Bounds& Viewport::cachedSceneBounds(const EditorState& state) {
+  if (sceneBoundsRevision_ != state.document.revision()) {
+    sceneBoundsRevision_ = state.document.revision();
+    sceneBounds_ = sceneBounds(state.document.root());
+  }
+  return sceneBounds_;
+}
+
+const Bounds& Viewport::cachedSelectionBounds(const EditorState& state) {
+  if (selectionBoundsRevision_ != state.document.revision() ||
+      selectionBoundsOf_ != state.selection) {
+    selectionBoundsRevision_ = state.document.revision();
+    selectionBoundsOf_ = state.selection;
+    selectionBounds_ = selectionBounds(state.document.root(), state.selection);
+  }
+  return selectionBounds_;
+}
+
 void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
-                    int framebufferHeight, double pixelScale) {
+                    int framebufferHeight, double pixelScale, double lastFrameMs) {
   framePending(rect);
   const ViewportFrame frame = makeFrame(state, rect, framebufferHeight, pixelScale);
   const ScreenMapping view = mapping(state, rect);
 
   std::vector<LineVertex> lines, overlay, triangles;
-  if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &lines);
+  if (state.showGrid) appendGrid(cachedSceneBounds(state), &lines);
   if (frame.sectionOn) appendSectionOutline(state, frame, &lines);
   if (!state.selection.empty()) {
-    Bounds b = selectionBounds(state.document.root(), state.selection);
+    const Bounds& b = cachedSelectionBounds(state);
     if (!b.empty()) appendBox(b, glm::vec4(1.0f, 0.62f, 0.2f, 0.55f), &overlay);
   }
   Gizmo gizmo = gizmo_;
@@ -365,7 +383,10 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
       gizmo.appendGeometry(view, hot_, &overlay, &triangles);
     }
   }
-  renderer.draw(frame, lines, overlay, triangles);
+  if (lastFrameMs >= 0.0)
+    renderer.drawCached(frame, lines, overlay, triangles, lastFrameMs);
+  else
+    renderer.draw(frame, lines, overlay, triangles);
 }
 
 }  // namespace strata::ui

@@ -42,9 +42,11 @@ class Viewport {
   Placement placementAt(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
                         glm::dvec2 mouse, double pixelScale);
   // Draws into the bound framebuffer of `framebufferHeight` pixels, `pixelScale` framebuffer
-  // pixels per window pixel.
+  // pixels per window pixel. With `lastFrameMs` >= 0 (the editor's window), within the frame
+  // budget through the renderer's cached image (drawCached); otherwise every splat at once
+  // (screenshots, headless renders).
   void draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
-            int framebufferHeight, double pixelScale);
+            int framebufferHeight, double pixelScale, double lastFrameMs = -1.0);
   // Frame the whole scene / the selection (at the next handleInput or draw).
   void viewAll(const EditorState& state);
   void frameSelected(const EditorState& state);
@@ -78,6 +80,14 @@ class Viewport {
   // The tree when a gizmo drag began: the other selected nodes follow the primary from it
   // (followingTransforms), all in the drag's one undo step.
   NodePtr dragStart_;
+
+  // Bounds drawn each frame (grid, selection box), worked out again only when the document or
+  // the selection changes: a mesh leaf's bounds walk all its vertices.
+  const Bounds& cachedSceneBounds(const EditorState& state);
+  const Bounds& cachedSelectionBounds(const EditorState& state);
+  uint64_t sceneBoundsRevision_ = ~uint64_t(0), selectionBoundsRevision_ = ~uint64_t(0);
+  std::vector<NodeId> selectionBoundsOf_;
+  Bounds sceneBounds_, selectionBounds_;
 
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;

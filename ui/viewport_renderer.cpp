@@ -115,9 +115,13 @@ void ViewportRenderer::setGhosts(const std::vector<Splat>& cutting,
                  GL_DYNAMIC_DRAW);
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  ++contentVersion_;
 }
 
 ViewportRenderer::~ViewportRenderer() {
+  coarse_.reset();
+  shown_.reset();
+  building_.reset();
   if (pickFramebuffer_) {
     glDeleteFramebuffers(1, &pickFramebuffer_);
     GLuint targets[] = {pickIds_, pickDepth_};
@@ -162,6 +166,7 @@ void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double ce
 void ViewportRenderer::setSplatCount(size_t count, double cellSize) {
   splatCount_ = std::min(count, splatCapacity_);
   cellSize_ = cellSize;
+  ++contentVersion_;
 }
 
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
@@ -182,6 +187,7 @@ void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
   glBindTexture(GL_TEXTURE_2D, 0);
   leafTextureWidth_ = width;
   leafCount_ = count;
+  ++contentVersion_;
 }
 
 void ViewportRenderer::drawLines(const std::vector<LineVertex>& vertices, GLenum mode) {
@@ -199,9 +205,7 @@ void ViewportRenderer::drawLines(const std::vector<LineVertex>& vertices, GLenum
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
-void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex>& lines,
-                            const std::vector<LineVertex>& overlay,
-                            const std::vector<LineVertex>& overlayTriangles) {
+void ViewportRenderer::drawBackground(const ViewportFrame& f) {
   glViewport(f.x, f.y, f.width, f.height);
   glEnable(GL_SCISSOR_TEST);
   glScissor(f.x, f.y, f.width, f.height);
@@ -210,56 +214,253 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
-
-  // Background gradient (depth writes off).
-  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_DEPTH_TEST);  // the gradient writes no depth
   backgroundProgram_.use();
   backgroundProgram_.set("bottomColor", glm::vec3(0.13f, 0.14f, 0.16f));
   backgroundProgram_.set("topColor", glm::vec3(0.30f, 0.32f, 0.36f));
   glBindVertexArray(emptyVao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glm::mat4 viewProjection(f.viewProjection);
+}
 
-  if (splatCount_ > 0 || ghostCount() > 0) {
+void ViewportRenderer::drawSplatRange(size_t first, size_t count, size_t stride, float radius) {
+  if (count == 0) return;
+  glBindVertexArray(surfelVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
+  const GLsizei bytes = GLsizei(stride * sizeof(Splat));
+  const size_t base = first * sizeof(Splat);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, bytes,
+                        reinterpret_cast<void*>(base + offsetof(Splat, position)));
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, bytes,
+                         reinterpret_cast<void*>(base + offsetof(Splat, normal)));
+  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, bytes,
+                         reinterpret_cast<void*>(base + offsetof(Splat, leafAxis)));
+  surfelProgram_.set("splatRadius", radius);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
+  // Back to every splat from the first, as pick() and the CUDA-GL copier expect.
+  if (first != 0 || stride != 1) {
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
+                          reinterpret_cast<void*>(offsetof(Splat, position)));
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                           reinterpret_cast<void*>(offsetof(Splat, normal)));
+    glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                           reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  surfelProgram_.set("splatRadius", 1.0f);
+}
+
+void ViewportRenderer::drawGhosts(const ViewportFrame& f) {
+  if (ghostCount() == 0) return;
+  useSurfelProgram(surfelProgram_, f);
+  surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
+  surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
+  // Over the result: translucent, hidden where the result is in front.
+  const glm::vec4 tints[2] = {glm::vec4(1.0f, 0.32f, 0.26f, 0.3f),
+                              glm::vec4(0.62f, 0.45f, 1.0f, 0.3f)};
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  for (int i = 0; i < 2; ++i) {
+    if (ghosts_[i].count == 0) continue;
+    surfelProgram_.set("ghostColor", tints[i]);
+    glBindVertexArray(ghosts_[i].vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(ghosts_[i].count));
+  }
+  surfelProgram_.set("ghostColor", glm::vec4(0.0f));
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void ViewportRenderer::drawOverlay(const ViewportFrame& f, const std::vector<LineVertex>& overlay,
+                                   const std::vector<LineVertex>& overlayTriangles) {
+  glViewport(f.x, f.y, f.width, f.height);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(f.x, f.y, f.width, f.height);
+  lineProgram_.use();
+  lineProgram_.set("viewProjection", glm::mat4(f.viewProjection));
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_DEPTH_TEST);
+  drawLines(overlayTriangles, GL_TRIANGLES);
+  drawLines(overlay, GL_LINES);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glDisable(GL_SCISSOR_TEST);
+}
+
+void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex>& lines,
+                            const std::vector<LineVertex>& overlay,
+                            const std::vector<LineVertex>& overlayTriangles) {
+  drawBackground(f);
+  if (splatCount_ > 0) {
     useSurfelProgram(surfelProgram_, f);
     surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
     surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
     surfelProgram_.set("ghostColor", glm::vec4(0.0f));
-    if (splatCount_ > 0) glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(splatCount_));
-    // Ghosts over the result: translucent, hidden where the result is in front.
-    const glm::vec4 tints[2] = {glm::vec4(1.0f, 0.32f, 0.26f, 0.3f),
-                                glm::vec4(0.62f, 0.45f, 1.0f, 0.3f)};
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glDepthMask(GL_FALSE);
-    for (int i = 0; i < 2; ++i) {
-      if (ghosts_[i].count == 0) continue;
-      surfelProgram_.set("ghostColor", tints[i]);
-      glBindVertexArray(ghosts_[i].vao);
-      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(ghosts_[i].count));
-    }
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
+    drawSplatRange(0, splatCount_, 1, 1.0f);
     glBindTexture(GL_TEXTURE_2D, 0);
   }
-
+  drawGhosts(f);
   lineProgram_.use();
-  lineProgram_.set("viewProjection", viewProjection);
+  lineProgram_.set("viewProjection", glm::mat4(f.viewProjection));
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);
   drawLines(lines, GL_LINES);
-  glDisable(GL_DEPTH_TEST);
-  drawLines(overlayTriangles, GL_TRIANGLES);
-  drawLines(overlay, GL_LINES);
   glDepthMask(GL_TRUE);
+  drawOverlay(f, overlay, overlayTriangles);
+  glDisable(GL_DEPTH_TEST);
+}
 
-  glBindVertexArray(0);
-  glUseProgram(0);
-  glDisable(GL_SCISSOR_TEST);
+uint64_t ViewportRenderer::viewKey(const ViewportFrame& f,
+                                   const std::vector<LineVertex>& lines) const {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const void* data, size_t bytes) {
+    const auto* p = static_cast<const uint8_t*>(data);
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  mix(&f.viewProjection, sizeof(f.viewProjection));
+  mix(&f.eye, sizeof(f.eye));
+  const int ints[6] = {f.x, f.y, f.width, f.height, f.ortho ? 1 : 0, f.sectionOn ? 1 : 0};
+  mix(ints, sizeof(ints));
+  mix(&f.sectionNormal, sizeof(f.sectionNormal));
+  mix(&f.sectionOffset, sizeof(f.sectionOffset));
+  mix(&contentVersion_, sizeof(contentVersion_));
+  if (!lines.empty()) mix(lines.data(), lines.size() * sizeof(LineVertex));
+  return h | 1;  // never 0 (nothing shown)
+}
+
+namespace {
+
+size_t nextPrime(size_t n) {
+  if (n <= 2) return 2;
+  for (size_t k = n | 1;; k += 2) {
+    bool prime = true;
+    for (size_t d = 3; d * d <= k && prime; d += 2) prime = k % d != 0;
+    if (prime) return k;
+  }
+}
+
+// Makes `target` a width x height off-screen image (kept when it already is one).
+void ensureTarget(std::unique_ptr<RenderTarget>* target, int width, int height) {
+  if (*target && (*target)->width() == width && (*target)->height() == height) return;
+  target->reset();
+  *target = std::make_unique<RenderTarget>(width, height);
+}
+
+}  // namespace
+
+void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<LineVertex>& lines,
+                                  const std::vector<LineVertex>& overlay,
+                                  const std::vector<LineVertex>& overlayTriangles,
+                                  double lastFrameMs) {
+  // The share of splats a frame follows the frame time (only frames that drew splats say
+  // what splats cost).
+  if (drewSplatsLastFrame_ && lastFrameMs > 0.0) {
+    const double factor = std::clamp(kTargetFrameMs / lastFrameMs, 0.5, 1.5);
+    splatsPerFrame_ =
+        std::clamp<size_t>(size_t(double(splatsPerFrame_) * factor), 4000, size_t(1) << 26);
+  }
+  drewSplatsLastFrame_ = false;
+  GLint window = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &window);
+  // The image's own frame: the same view, at the image's origin.
+  ViewportFrame local = f;
+  local.x = local.y = 0;
+  const uint64_t key = viewKey(local, lines);
+  const RenderTarget* show = nullptr;
+  bool showCoarse = false;
+
+  auto drawLinesInto = [&](const ViewportFrame& frame) {
+    lineProgram_.use();
+    lineProgram_.set("viewProjection", glm::mat4(frame.viewProjection));
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    drawLines(lines, GL_LINES);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+  };
+  auto beginSplats = [&](const ViewportFrame& frame) {
+    useSurfelProgram(surfelProgram_, frame);
+    surfelProgram_.set("keyLight", cameraLight(frame, -0.5, 0.8, 0.6));
+    surfelProgram_.set("fillLight", cameraLight(frame, 0.7, -0.3, 0.4));
+    surfelProgram_.set("ghostColor", glm::vec4(0.0f));
+  };
+
+  if (key != shownKey_) {
+    shownKey_ = key;
+    buildDone_ = 0;
+    if (splatCount_ <= splatsPerFrame_) {
+      // Everything fits in this frame: the full image at once.
+      ensureTarget(&shown_, f.width, f.height);
+      shown_->bind();
+      drawBackground(local);
+      beginSplats(local);
+      drawSplatRange(0, splatCount_, 1, 1.0f);
+      drawGhosts(local);
+      drawLinesInto(local);
+      refining_ = false;
+      drewSplatsLastFrame_ = splatCount_ > 0;
+      show = shown_.get();
+    } else {
+      // A share of the splats at half resolution now; the full image over the next frames.
+      ViewportFrame half = local;
+      half.width = std::max(1, f.width / 2);
+      half.height = std::max(1, f.height / 2);
+      ensureTarget(&coarse_, half.width, half.height);
+      coarse_->bind();
+      drawBackground(half);
+      beginSplats(half);
+      const size_t stride = nextPrime((splatCount_ + splatsPerFrame_ - 1) / splatsPerFrame_);
+      drawSplatRange(0, (splatCount_ + stride - 1) / stride, stride,
+                     1.25f * float(std::sqrt(double(stride))));  // a little larger: no holes
+      drawGhosts(half);
+      drawLinesInto(half);
+      refining_ = true;
+      drewSplatsLastFrame_ = true;
+      show = coarse_.get();
+      showCoarse = true;
+    }
+  } else if (refining_) {
+    ensureTarget(&building_, f.width, f.height);
+    building_->bind();
+    if (buildDone_ == 0) drawBackground(local);
+    glViewport(0, 0, f.width, f.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    beginSplats(local);
+    const size_t count = std::min(splatsPerFrame_, splatCount_ - buildDone_);
+    drawSplatRange(buildDone_, count, 1, 1.0f);
+    buildDone_ += count;
+    drewSplatsLastFrame_ = true;
+    if (buildDone_ >= splatCount_) {
+      drawGhosts(local);
+      drawLinesInto(local);
+      std::swap(shown_, building_);
+      refining_ = false;
+      show = shown_.get();
+    } else {
+      show = coarse_.get();
+      showCoarse = true;
+    }
+  } else {
+    show = shown_.get();
+  }
+
+  // Into the window: the image, then the overlay.
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(window));
+  if (show) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, show->framebuffer());
+    glDisable(GL_SCISSOR_TEST);
+    glBlitFramebuffer(0, 0, show->width(), show->height(), f.x, f.y, f.x + f.width, f.y + f.height,
+                      GL_COLOR_BUFFER_BIT, showCoarse ? GL_LINEAR : GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(window));
+  }
+  drawOverlay(f, overlay, overlayTriangles);
   glDisable(GL_DEPTH_TEST);
 }
 

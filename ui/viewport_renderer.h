@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -54,6 +55,8 @@ struct PickHit {
   bool cap = false;          // on the section plane's cap (position on the plane)
 };
 
+class RenderTarget;
+
 class ViewportRenderer {
  public:
   ViewportRenderer();
@@ -85,10 +88,30 @@ class ViewportRenderer {
   size_t ghostCount() const { return ghosts_[0].count + ghosts_[1].count; }
 
   // `lines` are depth-tested against the surfels (grid, boxes); `overlay` is drawn on top
-  // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list.
+  // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list. Every splat, at once:
+  // screenshots and headless renders.
   void draw(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
             const std::vector<LineVertex>& overlay,
             const std::vector<LineVertex>& overlayTriangles);
+
+  // The editor's view, within a frame budget. The scene (background, splats, ghosts, `lines`) is
+  // drawn into an off-screen image that is redrawn only when the view (camera, size, section) or
+  // what is shown (splats, colours, selection, ghosts, lines) changes, and copied to the window
+  // each frame with the overlay on top. When the view changes and the splats are more than the
+  // frame's share, an image at half resolution with every k-th splat (k prime, each splat
+  // larger to cover) is shown at once; the full image is then drawn a share a frame and shown
+  // when complete. The share follows `lastFrameMs` (the previous frame's whole time) toward
+  // kTargetFrameMs.
+  void drawCached(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
+                  const std::vector<LineVertex>& overlay,
+                  const std::vector<LineVertex>& overlayTriangles, double lastFrameMs);
+  // The full image is still being drawn: the frame loop must keep frames coming.
+  bool refining() const { return refining_; }
+  // Splats drawn a frame now (drawCached), for the status bar.
+  size_t splatsPerFrame() const { return splatsPerFrame_; }
+  // Whether the last drawCached showed every splat at full resolution.
+  bool showingFull() const { return !refining_; }
+  static constexpr double kTargetFrameMs = 12.0;
 
   // The leaf and point that pixel (px, py) of `frame`'s viewport shows (pixels from its
   // bottom-left corner), rendered into an off-screen id buffer; nothing when it shows no splat.
@@ -100,6 +123,16 @@ class ViewportRenderer {
 
  private:
   void drawLines(const std::vector<LineVertex>& vertices, GLenum mode);
+  // Clears the bound target's viewport and draws the background gradient.
+  void drawBackground(const ViewportFrame& f);
+  // Splats [first, first + count * stride) of the instance buffer, every `stride`-th, with the
+  // disc radius `radius` cells; the surfel program must be in use.
+  void drawSplatRange(size_t first, size_t count, size_t stride, float radius);
+  void drawGhosts(const ViewportFrame& f);
+  // The key of what the scene image shows: the view and the content version.
+  uint64_t viewKey(const ViewportFrame& f, const std::vector<LineVertex>& lines) const;
+  void drawOverlay(const ViewportFrame& f, const std::vector<LineVertex>& overlay,
+                   const std::vector<LineVertex>& overlayTriangles);
   // Draws the leaf ids of the pixels in the rectangle into the pick framebuffer (left bound, with
   // scissoring on) and readies it for glReadPixels; false when the framebuffer is incomplete.
   bool drawPickIds(const ViewportFrame& frame, int x, int y, int width, int height);
@@ -130,6 +163,16 @@ class ViewportRenderer {
   double cellSize_ = 1.0;
   GLuint pickFramebuffer_ = 0, pickIds_ = 0, pickDepth_ = 0;
   int pickWidth_ = 0, pickHeight_ = 0;
+
+  // drawCached's images: the coarse one (half resolution), the full one shown and the full one
+  // being drawn.
+  uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
+  std::unique_ptr<RenderTarget> coarse_, shown_, building_;
+  uint64_t shownKey_ = 0;  // what shown_ (or coarse_, while refining) holds
+  bool refining_ = false;  // building_ is being drawn for shownKey_
+  size_t buildDone_ = 0;   // splats drawn into building_ so far
+  size_t splatsPerFrame_ = 150000;
+  bool drewSplatsLastFrame_ = false;
 };
 
 // An off-screen colour + depth target for rendering the viewport alone (headless renders,
@@ -141,6 +184,7 @@ class RenderTarget {
   RenderTarget(const RenderTarget&) = delete;
   RenderTarget& operator=(const RenderTarget&) = delete;
   void bind();
+  GLuint framebuffer() const { return framebuffer_; }
   // RGBA8 pixels, top row first (width * height * 4 bytes). Unbinds the target.
   std::vector<uint8_t> read();
   int width() const { return width_; }

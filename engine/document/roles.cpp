@@ -1,9 +1,9 @@
 #include "engine/document/roles.h"
 
+#include <unordered_set>
+
 #include "engine/document/commands.h"
 #include "engine/util/error.h"
-
-#include <unordered_set>
 
 namespace strata {
 namespace {

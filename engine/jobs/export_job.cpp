@@ -7,6 +7,7 @@
 #include "engine/export/job_estimate.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
+#include "engine/util/thread_priority.h"
 #include "engine/util/timer.h"
 
 namespace strata {
@@ -25,8 +26,11 @@ ExportJob::ExportJob(std::shared_ptr<const Scene> scene, std::string path,
       s.fraction = fraction;
     });
   });
-  thread_ = std::thread([this, scene = std::move(scene), options, backend = std::move(backend),
-                         guard] { run(scene, options, backend, guard); });
+  thread_ =
+      std::thread([this, scene = std::move(scene), options, backend = std::move(backend), guard] {
+        lowerThisThreadPriority();  // the editor stays smooth while it exports: thread_priority.h
+        run(scene, options, backend, guard);
+      });
 }
 
 ExportJob::~ExportJob() {

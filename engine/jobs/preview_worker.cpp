@@ -7,6 +7,7 @@
 
 #include "engine/util/error.h"
 #include "engine/util/limits.h"
+#include "engine/util/thread_priority.h"
 #include "engine/util/timer.h"
 
 namespace strata {
@@ -82,6 +83,7 @@ bool PreviewWorker::waitUntilIdle(std::chrono::milliseconds timeout) {
 }
 
 void PreviewWorker::run() {
+  lowerThisThreadPriority();  // the UI (and a software GL driver) first: thread_priority.h
   Evaluator evaluator(backend_);
   for (;;) {
     Request request;

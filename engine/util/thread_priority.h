@@ -1,0 +1,16 @@
+// Background work that yields to the user: the editor's engine threads (the preview worker, a
+// background export) run at a lower CPU priority than the UI thread and the GL driver's threads,
+// so that on a machine with few cores (a software GL driver draws on the CPU too) frames stay
+// smooth while the engine works, and the engine still gets every cycle the UI leaves.
+//
+// Threads: affects the calling thread only, and the threads it creates from then on (Linux
+// threads inherit their creator's nice value: parallelFor's workers follow).
+#pragma once
+
+namespace strata {
+
+// Raises the calling thread's nice value by `steps` (Linux; elsewhere nothing). Returns whether
+// it changed.
+bool lowerThisThreadPriority(int steps = 10);
+
+}  // namespace strata
