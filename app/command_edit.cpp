@@ -104,7 +104,7 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
     for (;;) {
       editor.frame();
       const auto& p = editor.state().preview;
-      if (p && p->tag == revision && !p->coarse) break;
+      if (p && p->tag == revision && !p->coarse && editor.viewSettled()) break;
       if (clock.seconds() > 60.0) throw Error("an edit did not reach the screen within 60 s");
     }
     ms.push_back(clock.seconds() * 1e3);
@@ -274,6 +274,7 @@ int runEdit(const std::vector<std::string>& argv) {
     const std::string screenshot = args.text("--screenshot", "");
     if (screenshot.empty()) {
       options.recentFilesPath = defaultRecentFilesPath();
+      if (!userConfigDir().empty()) options.layoutPath = userConfigDir() + "/layout.txt";
       options.recoveryPath = defaultRecoveryPath();
     }
     ui::Editor editor(options);

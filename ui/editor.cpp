@@ -22,6 +22,7 @@
 #include "ui/editor_actions.h"
 #include "ui/gl_window.h"
 #include "ui/input_queue.h"
+#include "ui/panel_splitters.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/theme.h"
@@ -125,6 +126,7 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   EditorState& s = *state_;
   s.makeBackend = options_.makeBackend;
   s.recentFilesPath = options_.recentFilesPath;
+  if (!options_.layoutPath.empty()) layout_ = readPanelLayout(options_.layoutPath, layout_);
   s.recoveryPath = options_.recoveryPath;
   if (!s.recentFilesPath.empty()) s.recentFiles = readRecentFiles(s.recentFilesPath);
   s.offerRecovery = recoveryFileExists(s.recoveryPath);
@@ -314,6 +316,10 @@ bool Editor::waitForPreview(double timeoutSeconds) {
   return false;
 }
 
+bool Editor::viewSettled() const {
+  return !gl_->renderer->refining();
+}
+
 void Editor::updateLeafStyles() {
   EditorState& s = *state_;
   if (styledRevision_ == s.document.revision() && styledSelection_ == s.selection) return;
@@ -413,9 +419,10 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   }
   ImGui::NewFrame();
 
-  PanelLayout layout;
+  PanelLayout& layout = layout_;
   layout.menuHeight = ImGui::GetFrameHeight();
   layout.statusHeight = ImGui::GetFrameHeight() + 8.0f;
+  clampLayout(layout, ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
   drawMainMenu(s);
   drawOutliner(s, layout);
   drawPalette(s, layout);
@@ -423,7 +430,15 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   drawPreviewPanel(s, layout);
   drawStatusBar(s, layout);
   drawDiagnostics(s);
+  if (drawSplitters(layout) && !options_.layoutPath.empty()) {
+    try {
+      writePanelLayout(options_.layoutPath, layout);
+    } catch (const Error& e) {
+      logWarning(s, std::string("panel sizes not remembered: ") + e.what());
+    }
+  }
   drawModals(s);
+  drawShortcutSheet(s);
   s.dialog.draw();
   handleShortcuts(s);
 
@@ -434,6 +449,10 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   rect.width = std::max(1.0, double(vp->Size.x - layout.leftWidth - layout.rightWidth));
   rect.height = std::max(1.0, double(vp->Size.y - layout.menuHeight - layout.statusHeight));
   gl_->viewport.handleInput(s, rect);
+  if (s.requestAxisView >= 0) gl_->viewport.camera.setAxisView(AxisView(s.requestAxisView));
+  if (s.requestToggleOrtho) gl_->viewport.camera.ortho = !gl_->viewport.camera.ortho;
+  s.requestAxisView = -1;
+  s.requestToggleOrtho = false;
   if (s.requestViewAll) gl_->viewport.viewAll(s);
   if (s.requestFrameSelected) gl_->viewport.frameSelected(s);
   s.requestViewAll = s.requestFrameSelected = false;

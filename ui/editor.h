@@ -19,6 +19,7 @@
 #include "ui/camera.h"
 #include "ui/device_splat_copier.h"
 #include "ui/editor_state.h"
+#include "ui/panels.h"
 #include "ui/viewport_renderer.h"
 
 namespace strata::ui {
@@ -34,6 +35,7 @@ struct EditorOptions {
   bool visible = true;  // false: an invisible window for off-screen rendering
   int width = 1600, height = 1000;
   std::string recentFilesPath;  // "" = none
+  std::string layoutPath;       // the panel sizes remembered between runs; "" = the defaults
   std::string recoveryPath;     // "" = no autosave and no recovery offer
   double autosaveSeconds = 120.0;
   int coarseResolution = 96;  // of previews while dragging
@@ -63,6 +65,9 @@ class Editor {
   // Waits (polling the worker, no drawing) until the viewport shows the current document at its
   // full resolution, or it failed, or `timeoutSeconds` passed. Returns whether it is shown.
   bool waitForPreview(double timeoutSeconds);
+  // Whether the window's view shows every splat of the current preview (not a coarse image of
+  // a moving view, or one still being refined).
+  bool viewSettled() const;
   // Points the camera at the whole scene.
   void viewAll();
   // Renders the 3D view alone (no panels) off-screen: width * height * 4 RGBA bytes, top row
@@ -119,6 +124,7 @@ class Editor {
   double activeUntil_ = 0.0;  // draw without waiting for events until then (seconds)
   uint64_t autosavedRevision_ = 0;
   double startTime_ = 0.0;
+  PanelLayout layout_;  // the panels' sizes (splitters), read from options_.layoutPath
 };
 
 }  // namespace strata::ui

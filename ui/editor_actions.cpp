@@ -46,6 +46,15 @@ double sceneScale(const EditorState& state) {
   return niceLength(std::max({size.x, size.y, size.z}) / 4.0);
 }
 
+// The scene's visible bounds without node `id` (what an imported part is placed beside).
+Bounds sceneBoundsWithout(const EditorState& state, NodeId id) {
+  try {
+    return sceneBounds(removeNode(state.document.root(), id));
+  } catch (const Error&) {
+    return Bounds();
+  }
+}
+
 // Moves the just-added node `id` so that its world bounds are centred on the placement's point
 // (or rest on the ground below it). Part of the caller's interaction (one undo step).
 void placeNode(EditorState& state, NodeId id, const Placement& placement) {
@@ -237,8 +246,26 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
     std::string sentence;
     id = importMeshFile(state.document, import.path, primarySelection(state), state.placeMode,
                         importTransform(scale, import.upAxis), &sentence);
-    if (import.placement) placeNode(state, id, *import.placement);
+    // Where it was dropped; otherwise resting on the ground beside the scene (right of it, a
+    // tenth of its size away; at the origin in an empty scene), never inside another part or
+    // around the camera. Then framed.
+    Placement where;
+    if (import.placement) {
+      where = *import.placement;
+    } else {
+      const Bounds others = sceneBoundsWithout(state, id);
+      const Bounds own = selectionBounds(state.document.root(), {id});
+      where.onGround = true;
+      if (!others.empty() && !own.empty()) {
+        const glm::dvec3 size = others.size();
+        where.point =
+            glm::dvec3(others.max.x + 0.1 * std::max({size.x, size.y, size.z}) + own.size().x * 0.5,
+                       others.center().y, 0.0);
+      }
+    }
+    placeNode(state, id, where);
     selectNode(state, id);
+    state.requestFrameSelected = true;
     logInfo(state, "imported " + import.path + ": " +
                        displayName(*findNode(state.document.root(), id)) + " " + sentence);
   });

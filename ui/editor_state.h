@@ -121,6 +121,9 @@ struct EditorState {
   // Requests to the frame loop.
   bool requestViewAll = false;
   bool requestFrameSelected = false;
+  int requestAxisView = -1;  // an AxisView (camera.h) from the View menu; -1 none
+  bool requestToggleOrtho = false;
+  bool showShortcuts = false;  // the shortcut sheet (F1, Help menu)
   bool quitNow = false;
 
   // This frame's key presses, collected from GLFW as they happened: ImGui 1.86 samples key

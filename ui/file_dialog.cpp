@@ -8,9 +8,12 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
@@ -182,36 +185,139 @@ void FileDialog::draw() {
     }
     return;
   }
-  const char* title = dialogTitle(purpose_);
+  // The built-in browser: a folder's listing (folders first, then the files this dialog
+  // takes), a path field that a click on a file fills and Enter or Open accepts. Its popup id
+  // is its own: the import options that follow an import share no id with it.
+  const std::string title = std::string(dialogTitle(purpose_)) + "###strata file browser";
   if (justOpened_) {
-    ImGui::OpenPopup(title);
+    ImGui::OpenPopup(title.c_str());
     justOpened_ = false;
+    listFolder(folderOf(field_));
   }
-  ImGui::SetNextWindowSize(ImVec2(620, 0), ImGuiCond_Appearing);
-  if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::TextUnformatted(
-        forcedBuiltIn_ ? "Path:" : "Path (no zenity or kdialog found for a file browser):");
-    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    ImGui::SetNextItemWidth(-1);
-    bool enter =
-        ImGui::InputText("##path", field_, sizeof(field_), ImGuiInputTextFlags_EnterReturnsTrue);
-    bool ok = ImGui::Button(saving(purpose_) ? "Save" : "Open", ImVec2(100, 0)) || enter;
-    ImGui::SameLine();
-    bool cancel = ImGui::Button("Cancel", ImVec2(100, 0)) ||
-                  ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
-    if (ok && field_[0] != '\0') {
-      chosen_ = field_;
+  ImGui::SetNextWindowSize(ImVec2(680, 520), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(title.c_str(), nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    open_ = false;  // closed from outside
+    return;
+  }
+  if (ImGui::Button("Up")) listFolder(std::filesystem::path(folder_).parent_path().string());
+  ImGui::SameLine();
+  ImGui::TextDisabled("%s", folder_.c_str());
+  const float footer = ImGui::GetFrameHeightWithSpacing() * (listError_.empty() ? 3.0f : 4.5f);
+  ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
+  std::string enter;  // a folder double-clicked (entered after the loop)
+  bool accept = false;
+  for (const Entry& e : entries_) {
+    const std::string label = (e.folder ? "[folder]  " : "") + e.name;
+    const bool selected = !e.folder && field_ == (std::filesystem::path(folder_) / e.name).string();
+    if (ImGui::Selectable(label.c_str(), selected, ImGuiSelectableFlags_AllowDoubleClick)) {
+      if (e.folder) {
+        if (ImGui::IsMouseDoubleClicked(0))
+          enter = (std::filesystem::path(folder_) / e.name).string();
+      } else {
+        std::snprintf(field_, sizeof(field_), "%s",
+                      (std::filesystem::path(folder_) / e.name).string().c_str());
+        accept = ImGui::IsMouseDoubleClicked(0);
+      }
+    }
+  }
+  if (entries_.empty())
+    ImGui::TextDisabled("(no folders or %s here)", isMeshDialog(purpose_) ? "meshes" : "scenes");
+  ImGui::EndChild();
+  if (!enter.empty()) listFolder(enter);
+  if (!listError_.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.5f, 0.45f, 1.0f));
+    ImGui::TextWrapped("%s", listError_.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::SetNextItemWidth(-1);
+  const bool typed =
+      ImGui::InputText("##path", field_, sizeof(field_), ImGuiInputTextFlags_EnterReturnsTrue);
+  bool ok = ImGui::Button(saving(purpose_) ? "Save" : "Open", ImVec2(100, 0)) || typed || accept;
+  ImGui::SameLine();
+  const bool cancel = ImGui::Button("Cancel", ImVec2(100, 0)) ||
+                      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
+  ImGui::SameLine();
+  ImGui::TextDisabled(forcedBuiltIn_ ? "" : "(zenity or kdialog give the desktop's browser)");
+  // A folder typed into the field is entered, not chosen.
+  std::error_code ec;
+  if (ok && field_[0] != '\0' && std::filesystem::is_directory(field_, ec)) {
+    listFolder(field_);
+    ok = false;
+  }
+  if (ok && field_[0] != '\0') {
+    // A name alone is in the folder shown; a file saved must go into a folder that exists.
+    std::filesystem::path path(field_);
+    if (path.is_relative()) path = std::filesystem::path(folder_) / path;
+    const std::filesystem::path parent = path.parent_path();
+    if (saving(purpose_) && !std::filesystem::is_directory(parent, ec)) {
+      listError_ = "the folder " + parent.string() + " does not exist: choose another";
+      ok = false;
+    } else if (!saving(purpose_) && !std::filesystem::exists(path, ec)) {
+      listError_ = "there is no file " + path.string();
+      ok = false;
+    }
+    if (ok) {
+      chosen_ = path.lexically_normal().string();
       hasChosen_ = true;
       open_ = false;
       ImGui::CloseCurrentPopup();
-    } else if (cancel) {
-      open_ = false;
-      ImGui::CloseCurrentPopup();
     }
-    ImGui::EndPopup();
-  } else {
-    open_ = false;  // closed from outside
+  } else if (cancel) {
+    open_ = false;
+    ImGui::CloseCurrentPopup();
   }
+  ImGui::EndPopup();
+}
+
+std::string FileDialog::folderOf(const std::string& suggestion) const {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (suggestion.empty()) return fs::current_path(ec).string();
+  fs::path p = fs::absolute(suggestion, ec);
+  if (fs::is_directory(p, ec)) return p.string();
+  if (fs::is_directory(p.parent_path(), ec)) return p.parent_path().string();
+  return fs::current_path(ec).string();
+}
+
+void FileDialog::listFolder(const std::string& folder) {
+  namespace fs = std::filesystem;
+  entries_.clear();
+  listError_.clear();
+  std::error_code ec;
+  const fs::path dir = fs::absolute(folder.empty() ? "." : folder, ec).lexically_normal();
+  folder_ = dir.string();
+  std::vector<std::string> extensions;
+  if (isMeshDialog(purpose_)) extensions = meshExtensions(meshAccess(purpose_));
+  fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec);
+  if (ec) {
+    listError_ = "cannot list " + folder_ + ": " + ec.message();
+    return;
+  }
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (ec) break;
+    const std::string name = it->path().filename().string();
+    if (name.empty() || name[0] == '.') continue;  // hidden files
+    std::error_code typeError;
+    const bool folder = it->is_directory(typeError);
+    if (!folder) {
+      std::string lower = name;
+      for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+      bool wanted = false;
+      if (extensions.empty()) {
+        wanted = lower.size() > 5 && lower.compare(lower.size() - 5, 5, ".json") == 0;
+      } else {
+        for (const std::string& ext : extensions)
+          wanted = wanted ||
+                   (lower.size() > ext.size() + 1 &&
+                    lower.compare(lower.size() - ext.size() - 1, ext.size() + 1, "." + ext) == 0);
+      }
+      if (!wanted) continue;
+    }
+    entries_.push_back(Entry{name, folder});
+  }
+  std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+    return a.folder != b.folder ? a.folder : a.name < b.name;
+  });
 }
 
 bool FileDialog::takeResult(std::string* path) {

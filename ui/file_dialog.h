@@ -1,6 +1,7 @@
 // Choosing a file: zenity or kdialog when installed (a child process read by a helper thread,
-// so the editor keeps drawing; the tool is looked for at the first open()), otherwise an ImGui
-// window with a path field.
+// so the editor keeps drawing; the tool is looked for at the first open()), otherwise a built-in
+// ImGui browser: the folder's listing (folders, then the files the dialog takes: scenes, or the
+// mesh formats it reads or writes), a path field, Up, double-click to enter or choose.
 //
 // Threads: the UI thread; the helper thread only waits for the child process and its output,
 // in state it shares (not the dialog object), then wakes the UI (glfwPostEmptyEvent). A dialog
@@ -10,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 namespace strata::ui {
 
@@ -53,6 +55,17 @@ class FileDialog {
   std::string chosen_;
   bool hasChosen_ = false;
   std::shared_ptr<External> external_;  // of the running native dialog
+
+  // The built-in browser's folder and listing.
+  struct Entry {
+    std::string name;
+    bool folder = false;
+  };
+  std::string folderOf(const std::string& suggestion) const;
+  void listFolder(const std::string& folder);
+  std::string folder_;
+  std::vector<Entry> entries_;
+  std::string listError_;
 };
 
 // "Open scene", "Save scene as", ... for titles and labels.

@@ -95,7 +95,10 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
     window_ = nullptr;
     samples = 0;
   }
-  glfwSwapInterval(1);
+  // No vertical sync: a swap must not wait up to a refresh (16.7 ms at 60 Hz) before an edit's
+  // result shows. The editor draws only while there is input or work (Editor::frame sleeps in
+  // glfwWaitEvents otherwise), so frames are not drawn for nothing.
+  glfwSwapInterval(0);
   description_ +=
       samples > 0 ? ", " + std::to_string(samples) + "x multisampling" : ", no multisampling";
 }

@@ -116,6 +116,15 @@ void drawMainMenu(EditorState& state) {
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("View all", "Home")) state.requestViewAll = true;
     if (ImGui::MenuItem("Frame selected", "F")) state.requestFrameSelected = true;
+    // AxisView order: front, back, right, left, top, bottom (camera.h).
+    const char* views[6] = {"Front", "Back", "Right", "Left", "Top", "Bottom"};
+    const char* keys[6] = {"1", "Ctrl+1", "3", "Ctrl+3", "7", "Ctrl+7"};
+    if (ImGui::BeginMenu("Look from")) {
+      for (int v = 0; v < 6; ++v)
+        if (ImGui::MenuItem(views[v], keys[v])) state.requestAxisView = v;
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Orthographic / perspective", "5")) state.requestToggleOrtho = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Move", "W", state.gizmoMode == GizmoMode::Move))
       state.gizmoMode = GizmoMode::Move;
@@ -128,6 +137,10 @@ void drawMainMenu(EditorState& state) {
     ImGui::MenuItem("Ghosts of all cutters", "G", &state.showAllGhosts);
     ImGui::MenuItem("Ground grid", nullptr, &state.showGrid);
     ImGui::MenuItem("Diagnostics", nullptr, &state.showDiagnostics);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Help")) {
+    if (ImGui::MenuItem("Shortcuts", "F1")) state.showShortcuts = true;
     ImGui::EndMenu();
   }
   ImGui::SameLine(ImGui::GetWindowWidth() - 360.0f);
@@ -160,6 +173,7 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_DELETE) || keyPressed(state, GLFW_KEY_BACKSPACE))
     deleteSelection(state);
   if (keyPressed(state, GLFW_KEY_H)) toggleSelectionHidden(state);
+  if (keyPressed(state, GLFW_KEY_F1)) state.showShortcuts = !state.showShortcuts;
   if (keyPressed(state, GLFW_KEY_G)) state.showAllGhosts = !state.showAllGhosts;
   if (keyPressed(state, GLFW_KEY_F2) && !state.selection.empty())
     state.renaming = primarySelection(state);

@@ -296,7 +296,8 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
       ImVec2(layout.rightWidth,
              vp->Size.y - layout.menuHeight - layout.statusHeight - layout.previewHeight));
   ImGui::Begin("Inspector", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   const NodeId id = primarySelection(state);
   const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
   if (!node) {

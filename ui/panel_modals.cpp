@@ -113,7 +113,7 @@ void exportWindow(EditorState& state) {
 
 // The import dialog: the chosen file's unit and up axis, then import or cancel.
 void importDialog(EditorState& state) {
-  const char* title = "Import mesh";
+  const char* title = "Import mesh: options###import options";
   if (state.pendingImport && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   centreNext();
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;

@@ -115,7 +115,7 @@ float paletteHeightFor(const PanelLayout& layout) {
   const int rows = int((primitiveTable().size() + 2) / 3);
   // The mode row and the line saying what a click does come on top.
   return layout.paletteHeight +
-         float(std::max(0, rows - 2) + 1) * ImGui::GetFrameHeightWithSpacing();
+         float(std::max(0, rows - 2) + 2) * ImGui::GetFrameHeightWithSpacing();
 }
 
 // Operations are coloured by the Boolean they apply; leaves are grey.
@@ -180,13 +180,33 @@ void renameField(EditorState& state, const NodePtr& node) {
   }
 }
 
-void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDrop* drop) {
+// Chains: an operation nested in one of the same associative kind (a union in a union, an
+// intersection in an intersection) means the same flattened, so a chain of them (three or more
+// deep, such as a scaffold's 27 nested unions) is shown at one indent: its links as thin rows,
+// their children beside each other. Shorter nestings are groups the artist made: shown as trees.
+bool sameAssociativeKind(const Node& parent, const Node& child) {
+  const RayOp op = nodeKindInfo(parent.kind).rayOp;
+  return isOperation(parent.kind) && child.kind == parent.kind &&
+         (op == RayOp::Union || op == RayOp::Intersection);
+}
+
+// Whether `node` continues a chain at least `depth` links below it.
+bool chainBelow(const Node& node, int depth) {
+  if (depth <= 0) return true;
+  for (const auto& c : node.children)
+    if (sameAssociativeKind(node, *c) && chainBelow(*c, depth - 1)) return true;
+  return false;
+}
+
+void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDrop* drop,
+             bool chained = false) {
   const bool isRoot = role == ChildRole::Root;
   ImGui::PushID(static_cast<int>(node->id));
   const bool leaf = node->children.empty();
   ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth |
                              ImGuiTreeNodeFlags_DefaultOpen | ImGuiTreeNodeFlags_FramePadding;
-  if (leaf) flags |= ImGuiTreeNodeFlags_Leaf | ImGuiTreeNodeFlags_NoTreePushOnOpen;
+  if (leaf || chained) flags |= ImGuiTreeNodeFlags_Leaf | ImGuiTreeNodeFlags_NoTreePushOnOpen;
+  if (chained) flags &= ~ImGuiTreeNodeFlags_FramePadding;  // a thin row
   if (isSelected(state, node->id)) flags |= ImGuiTreeNodeFlags_Selected;
 
   // Visibility toggle at the right edge.
@@ -208,9 +228,11 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
     clipRight = ImGui::GetWindowPos().x + right - badgeColumn;
     ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
     if (!node->visible) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.5f, 0.52f, 1.0f));
-    open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s  %s",
-                             kindGlyph(node->kind),
+    if (chained) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.55f, 0.6f, 0.68f, 1.0f));
+    open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap,
+                             chained ? "%s  \u2026 %s" : "%s  %s", kindGlyph(node->kind),
                              node->name.empty() ? "(unnamed)" : node->name.c_str());
+    if (chained) ImGui::PopStyleColor();
     if (!node->visible) ImGui::PopStyleColor();
     ImGui::PopClipRect();
     if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen()) {
@@ -237,7 +259,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
           role == ChildRole::Base ? "is the base: the cutters beside it cut it" : rolePhrase(role));
     contextMenu(state, node);
   }
-  if (isOperation(node->kind)) {
+  if (isOperation(node->kind) && !chained) {
     ImGui::SameLine();
     ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
     ImGui::TextColored(kindColor(node->kind), "%s", kindLabel(node->kind));
@@ -253,10 +275,13 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
   ImGui::PopStyleColor();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip(node->visible ? "Hide" : "Show");
 
-  if (open && !leaf) {
-    for (size_t i = 0; i < node->children.size(); ++i)
-      nodeRow(state, node->children[i], childRole(*node, static_cast<int>(i)), drop);
-    ImGui::TreePop();
+  if ((open || chained) && !leaf) {
+    for (size_t i = 0; i < node->children.size(); ++i) {
+      const NodePtr& child = node->children[i];
+      const bool link = sameAssociativeKind(*node, *child) && (chained || chainBelow(*child, 2));
+      nodeRow(state, child, childRole(*node, static_cast<int>(i)), drop, link);
+    }
+    if (!chained) ImGui::TreePop();
   }
   ImGui::PopID();
 }
@@ -283,7 +308,8 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
   ImGui::SetNextWindowSize(ImVec2(
       layout.leftWidth, vp->Size.y - layout.menuHeight - layout.statusHeight - paletteHeight));
   ImGui::Begin("Scene", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   PendingDrop drop;
   const NodePtr root = state.document.root();  // this frame's snapshot
   if (root) nodeRow(state, root, ChildRole::Root, &drop);
@@ -308,7 +334,8 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - layout.statusHeight - height));
   ImGui::SetNextWindowSize(ImVec2(layout.leftWidth, height));
   ImGui::Begin("Add", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   // The mode new parts are placed with, and what a click would do now.
   const PlaceMode modes[] = {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect};
   const char* modeTips[] = {"New parts add material", "New parts cut (subtract)",

@@ -83,7 +83,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
              vp->Pos.y + vp->Size.y - layout.statusHeight - layout.previewHeight));
   ImGui::SetNextWindowSize(ImVec2(layout.rightWidth, layout.previewHeight));
   ImGui::Begin("Preview", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
   const Scene& scene = state.document.scene();
   int resolution = scene.settings.resolution;
   ImGui::TextUnformatted("resolution");
@@ -110,6 +111,16 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
           "preview at %d cells: %d would not fit in memory or take too long to preview "
           "(an export tiles, and estimates first)",
           state.previewCappedAt, scene.settings.resolution);
+      ImGui::PopStyleColor();
+    }
+    // What the evaluation said about parts too small or too thin for the cell size.
+    if (state.preview && !state.preview->stats.warnings.empty()) {
+      const auto& warnings = state.preview->stats.warnings;
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.35f, 1.0f));
+      for (size_t i = 0; i < warnings.size() && i < 3; ++i)
+        ImGui::TextWrapped("%s", warnings[i].c_str());
+      if (warnings.size() > 3)
+        ImGui::TextWrapped("and %zu more (View > Diagnostics)", warnings.size() - 3);
       ImGui::PopStyleColor();
     }
   } else {

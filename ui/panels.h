@@ -43,5 +43,7 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout);
 void drawDiagnostics(EditorState& state);
 // Modal questions (recovery, unsaved changes) and the export progress window.
 void drawModals(EditorState& state);
+// The shortcut sheet (F1): every key and mouse gesture of the editor, while showShortcuts.
+void drawShortcutSheet(EditorState& state);
 
 }  // namespace strata::ui

@@ -56,7 +56,8 @@ void applyTheme(float scale) {
   c[ImGuiCol_FrameBgActive] = ImVec4(0.28f, 0.30f, 0.34f, 1.0f);
   const ImVec4 accent(0.95f, 0.56f, 0.18f, 1.0f);
   c[ImGuiCol_Header] = ImVec4(0.95f, 0.56f, 0.18f, 0.30f);
-  c[ImGuiCol_HeaderHovered] = ImVec4(0.95f, 0.56f, 0.18f, 0.45f);
+  // Hover is a neutral grey-blue, selection orange: the two never look alike.
+  c[ImGuiCol_HeaderHovered] = ImVec4(0.55f, 0.62f, 0.75f, 0.22f);
   c[ImGuiCol_HeaderActive] = ImVec4(0.95f, 0.56f, 0.18f, 0.60f);
   c[ImGuiCol_Button] = ImVec4(0.21f, 0.225f, 0.255f, 1.0f);
   c[ImGuiCol_ButtonHovered] = ImVec4(0.95f, 0.56f, 0.18f, 0.55f);

@@ -127,11 +127,23 @@ void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds&
 }
 
 // "part 'X' (0.001 across) is smaller than a cell (0.01); ..." when the leaf's largest extent is
-// below the cell size h, so that it may vanish or break up at this resolution; "" otherwise.
+// below the cell size h, so that it may vanish or break up at this resolution; "... is only 1.4
+// cells thick ..." when its smallest extent (of its world bounds) is below 2 h; "" otherwise.
 std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, double h) {
   if (bounds.empty()) return "";
   const glm::dvec3 size = bounds.size();
   const double extent = std::max({size.x, size.y, size.z});
+  const double thickness = std::min({size.x, size.y, size.z});
+  if (extent >= h && thickness < 2.0 * h) {
+    // Big enough to show, too thin to keep its shape: say by how much the resolution must grow
+    // for it to be four cells thick.
+    char text[240];
+    std::snprintf(text, sizeof(text),
+                  " is only %.2g cells thick (%.3g; a cell is %.3g): its shape is lost at this "
+                  "resolution; about %.2gx the resolution makes it 4 cells thick",
+                  thickness / h, thickness, h, 4.0 * h / std::max(thickness, 1e-300));
+    return std::string(kindName(node.kind)) + " '" + node.name + "'" + text;
+  }
   if (extent >= h) return "";
   char text[160];
   std::snprintf(text, sizeof(text),

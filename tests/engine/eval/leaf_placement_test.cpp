@@ -65,3 +65,25 @@ TEST(LeafPlacement, APartSmallerThanACellIsNamedInTheWarnings) {
 
 }  // namespace
 }  // namespace strata
+
+namespace strata {
+namespace {
+
+TEST(LeafPlacement, APartThinnerThanTwoCellsIsNamedWithTheResolutionItNeeds) {
+  auto big = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  auto sheet = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  sheet->name = "sheet";
+  sheet->params.size = glm::dvec3(0.8, 0.8, 0.02);  // a cell is about 1/32 of the box
+  EvalResult r =
+      test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, sheet}), 32));
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("box 'sheet' is only"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("cells thick"), std::string::npos) << r.warnings[0];
+  // At a resolution that makes it thick enough, nothing is said.
+  EXPECT_TRUE(
+      test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, sheet}), 256))
+          .warnings.empty());
+}
+
+}  // namespace
+}  // namespace strata

@@ -1,0 +1,50 @@
+// The panel sizes set by the splitters: remembered in a file between runs, and kept within the
+// window (ui/panel_splitters.h).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "ui/panel_splitters.h"
+
+namespace strata::ui {
+namespace {
+
+TEST(PanelLayout, SizesRoundTripThroughTheFileAndBadLinesKeepTheDefaults) {
+  const std::string dir = ::testing::TempDir() + "/strata_layout_test/config";
+  std::filesystem::remove_all(dir);
+  PanelLayout layout;
+  layout.leftWidth = 411.0f;
+  layout.previewHeight = 222.0f;
+  writePanelLayout(dir + "/layout.txt", layout);  // creates the folder
+  const PanelLayout back = readPanelLayout(dir + "/layout.txt", PanelLayout());
+  EXPECT_EQ(back.leftWidth, 411.0f);
+  EXPECT_EQ(back.previewHeight, 222.0f);
+  EXPECT_EQ(back.rightWidth, PanelLayout().rightWidth);
+
+  std::ofstream(dir + "/layout.txt") << "leftWidth -5\nrightWidth nonsense\nfuture 3\n"
+                                     << "paletteHeight 1e30\n";
+  const PanelLayout bad = readPanelLayout(dir + "/layout.txt", PanelLayout());
+  EXPECT_EQ(bad.leftWidth, PanelLayout().leftWidth);
+  EXPECT_EQ(bad.rightWidth, PanelLayout().rightWidth);
+  EXPECT_EQ(bad.paletteHeight, PanelLayout().paletteHeight);
+  EXPECT_EQ(readPanelLayout(dir + "/missing.txt", PanelLayout()).leftWidth,
+            PanelLayout().leftWidth);
+}
+
+TEST(PanelLayout, SizesStayWithinTheWindow) {
+  PanelLayout layout;
+  layout.menuHeight = 20.0f;
+  layout.statusHeight = 28.0f;
+  layout.leftWidth = 5000.0f;
+  layout.rightWidth = 10.0f;
+  layout.paletteHeight = 5000.0f;
+  clampLayout(layout, 1600.0f, 1000.0f);
+  EXPECT_LE(layout.leftWidth, 1600.0f * 0.45f);
+  EXPECT_GE(layout.rightWidth, 240.0f);
+  EXPECT_LE(layout.paletteHeight, 1000.0f - 48.0f - 120.0f);
+  EXPECT_GT(1600.0f - layout.leftWidth - layout.rightWidth, 100.0f);  // the view keeps room
+}
+
+}  // namespace
+}  // namespace strata::ui

@@ -1,0 +1,92 @@
+// The shortcut sheet (F1, Help > Shortcuts): every key and mouse gesture of the editor in one
+// window, grouped as the menus are. The keys themselves are handled where they act
+// (main_menu.cpp, viewport.cpp, panel_outliner.cpp); this list is kept beside them.
+#include <imgui.h>
+
+#include <initializer_list>
+
+#include "ui/panels.h"
+
+namespace strata::ui {
+namespace {
+
+struct Shortcut {
+  const char* keys;
+  const char* what;
+};
+
+struct ShortcutGroup {
+  const char* title;
+  std::initializer_list<Shortcut> items;
+};
+
+const ShortcutGroup kGroups[] = {
+    {"Files",
+     {{"Ctrl+N", "new document"},
+      {"Ctrl+O", "open"},
+      {"Ctrl+S / Ctrl+Shift+S", "save / save as"},
+      {"Ctrl+E", "export a watertight mesh"},
+      {"Ctrl+Q", "quit (asks about unsaved changes)"}}},
+    {"Edit",
+     {{"Ctrl+Z / Ctrl+Y", "undo / redo (Ctrl+Shift+Z too)"},
+      {"Ctrl+C / Ctrl+X / Ctrl+V", "copy / cut / paste onto the selection"},
+      {"Ctrl+D", "duplicate: the copy does what the original does"},
+      {"Alt+D", "instance: a live copy"},
+      {"Del", "delete"},
+      {"H", "hide / show"},
+      {"F2, double-click", "rename"},
+      {"Ctrl+G", "group as union (parts that do the same)"},
+      {"Esc", "select none"}}},
+    {"New parts: add, cut or intersect",
+     {{"palette mode", "what a click on the palette adds"},
+      {"drag onto a row", "adds there; the tooltip says what it will do"},
+      {"Ctrl while dropping", "cuts"},
+      {"Shift while dropping", "intersects"}}},
+    {"Select",
+     {{"click", "select a part (in the view or the tree)"},
+      {"Ctrl+click", "add or remove one"},
+      {"Shift+click (tree)", "select a range"},
+      {"drag on empty space", "box select (Shift/Ctrl: add)"}}},
+    {"View",
+     {{"middle drag, Alt+left drag", "orbit"},
+      {"Shift+middle drag", "pan"},
+      {"wheel", "zoom"},
+      {"F / Home", "frame the selection / everything"},
+      {"1 3 7 (Ctrl: opposite)", "front, right, top"},
+      {"5", "orthographic / perspective"},
+      {"G", "ghosts of every part that cuts or intersects"},
+      {"W E R", "move, rotate, scale gizmo"},
+      {"F1", "this sheet"}}},
+};
+
+}  // namespace
+
+void drawShortcutSheet(EditorState& state) {
+  if (!state.showShortcuts) return;
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.5f),
+                          ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(560.0f, 0.0f), ImGuiCond_Appearing);
+  if (!ImGui::Begin("Shortcuts (F1)", &state.showShortcuts,
+                    ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::End();
+    return;
+  }
+  for (const ShortcutGroup& group : kGroups) {
+    ImGui::TextColored(ImVec4(0.95f, 0.62f, 0.25f, 1.0f), "%s", group.title);
+    if (ImGui::BeginTable(group.title, 2, ImGuiTableFlags_SizingStretchProp)) {
+      for (const Shortcut& s : group.items) {
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextUnformatted(s.keys);
+        ImGui::TableSetColumnIndex(1);
+        ImGui::TextDisabled("%s", s.what);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::Spacing();
+  }
+  ImGui::End();
+}
+
+}  // namespace strata::ui

@@ -1,0 +1,108 @@
+#include "ui/panel_splitters.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/util/atomic_file.h"
+
+namespace strata::ui {
+namespace {
+
+constexpr float kHandle = 6.0f;  // pixels: the grab strip of a splitter
+
+// One handle: a small window over the strip (above the tiled panels, which never come to the
+// front) holding an invisible button; returns the drag of this frame along `vertical` (x when
+// true), and sets *ended when the drag was released.
+float handle(const char* id, ImVec2 pos, ImVec2 size, bool vertical, bool* ended) {
+  ImGui::SetNextWindowPos(pos);
+  ImGui::SetNextWindowSize(size);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1, 1));
+  ImGui::Begin(id, nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoBackground |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoNav);
+  ImGui::InvisibleButton("##grip", size);
+  float delta = 0.0f;
+  const bool hot = ImGui::IsItemHovered() || ImGui::IsItemActive();
+  if (hot) ImGui::SetMouseCursor(vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
+  if (ImGui::IsItemActive())
+    delta = vertical ? ImGui::GetIO().MouseDelta.x : ImGui::GetIO().MouseDelta.y;
+  if (ImGui::IsItemDeactivated()) *ended = true;
+  if (hot) {
+    ImGui::GetWindowDrawList()->AddRectFilled(
+        pos, ImVec2(pos.x + size.x, pos.y + size.y),
+        IM_COL32(240, 145, 45, ImGui::IsItemActive() ? 170 : 90));
+  }
+  ImGui::End();
+  ImGui::PopStyleVar(2);
+  return delta;
+}
+
+}  // namespace
+
+void clampLayout(PanelLayout& layout, float width, float height) {
+  const float column = height - layout.menuHeight - layout.statusHeight;
+  layout.leftWidth = std::clamp(layout.leftWidth, 200.0f, std::max(200.0f, width * 0.45f));
+  layout.rightWidth = std::clamp(layout.rightWidth, 240.0f, std::max(240.0f, width * 0.45f));
+  layout.paletteHeight =
+      std::clamp(layout.paletteHeight, 120.0f, std::max(120.0f, column - 120.0f));
+  layout.previewHeight =
+      std::clamp(layout.previewHeight, 150.0f, std::max(150.0f, column - 120.0f));
+}
+
+bool drawSplitters(PanelLayout& layout) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  const float top = vp->Pos.y + layout.menuHeight;
+  const float bottom = vp->Pos.y + vp->Size.y - layout.statusHeight;
+  const float column = bottom - top;
+  bool ended = false;
+  // Column edges: on the view's side of each edge (the view is not an ImGui window).
+  layout.leftWidth += handle("##split left", ImVec2(vp->Pos.x + layout.leftWidth, top),
+                             ImVec2(kHandle, column), true, &ended);
+  layout.rightWidth -=
+      handle("##split right", ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth - kHandle, top),
+             ImVec2(kHandle, column), true, &ended);
+  // The palette's and the preview panel's top edges.
+  layout.paletteHeight -=
+      handle("##split palette", ImVec2(vp->Pos.x, bottom - layout.paletteHeight - kHandle / 2),
+             ImVec2(layout.leftWidth, kHandle), false, &ended);
+  layout.previewHeight -= handle("##split preview",
+                                 ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth,
+                                        bottom - layout.previewHeight - kHandle / 2),
+                                 ImVec2(layout.rightWidth, kHandle), false, &ended);
+  clampLayout(layout, vp->Size.x, vp->Size.y);
+  return ended;
+}
+
+PanelLayout readPanelLayout(const std::string& path, PanelLayout layout) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string name;
+    float value = 0.0f;
+    if (!(words >> name >> value) || !(value > 0.0f) || value > 100000.0f) continue;
+    if (name == "leftWidth") layout.leftWidth = value;
+    if (name == "rightWidth") layout.rightWidth = value;
+    if (name == "paletteHeight") layout.paletteHeight = value;
+    if (name == "previewHeight") layout.previewHeight = value;
+  }
+  return layout;
+}
+
+void writePanelLayout(const std::string& path, const PanelLayout& layout) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out << "leftWidth " << layout.leftWidth << "\n"
+        << "rightWidth " << layout.rightWidth << "\n"
+        << "paletteHeight " << layout.paletteHeight << "\n"
+        << "previewHeight " << layout.previewHeight << "\n";
+  });
+}
+
+}  // namespace strata::ui
