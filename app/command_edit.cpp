@@ -286,9 +286,13 @@ int runEdit(const std::vector<std::string>& argv) {
                            args.has("--resolution")
                                ? args.integer("--resolution", 0, kMinResolution, kMaxResolution)
                                : 0);
-    if (args.has("--measure-latency"))
+    if (args.has("--measure-latency")) {
+      if (args.has("--resolution"))
+        ui::setResolution(editor.state(),
+                          args.integer("--resolution", 0, kMinResolution, kMaxResolution));
       return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
                             args.text("--move-leaf", ""));
+    }
     if (screenshot.empty()) return editor.run();
     // Documentation screenshots: the whole window once the preview has settled.
     editor.waitForPreview(600.0);

@@ -39,11 +39,21 @@ void replaceDocument(EditorState& state, Document document) {
   state.requestViewAll = true;
 }
 
-double sceneScale(const EditorState& state) {
-  Bounds b = sceneBounds(state.document.root());
-  if (b.empty()) return 1.0;
-  glm::dvec3 size = b.size();
-  return niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+// The size new parts get: a quarter of the scene's largest extent, or in an empty scene a
+// quarter of what the view shows, rounded (niceLength); *from says which.
+double sceneScale(const EditorState& state, std::string* from = nullptr) {
+  const Bounds b = sceneBounds(state.document.root());
+  if (!b.empty()) {
+    const glm::dvec3 size = b.size();
+    if (from) *from = "a quarter of the scene";
+    return niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+  }
+  if (state.viewExtent > 0.0) {
+    if (from) *from = "a quarter of the view";
+    return niceLength(state.viewExtent / 4.0);
+  }
+  if (from) *from = "the default size";
+  return 1.0;
 }
 
 // The scene's visible bounds without node `id` (what an imported part is placed beside).
@@ -70,10 +80,19 @@ void placeNode(EditorState& state, NodeId id, const Placement& placement) {
   state.document.setTransform(id, t);
 }
 
-// The primitive node `addPrimitive` adds: sized to the scene.
-NodePtr newPrimitive(EditorState& state, NodeKind kind) {
+// The primitive node `addPrimitive` adds: sized to the scene (or the view); *sizeNote says how
+// ("1 mm, a quarter of the scene").
+NodePtr newPrimitive(EditorState& state, NodeKind kind, std::string* sizeNote = nullptr) {
   auto node = std::make_shared<Node>(*makePrimitiveNode(kind, state.document.nextId()));
-  node->params = scaledPrimitiveParams(kind, node->params, sceneScale(state));
+  std::string from;
+  const double scale = sceneScale(state, &from);
+  node->params = scaledPrimitiveParams(kind, node->params, scale);
+  if (sizeNote) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%.4g %s", scale,
+                  unitSymbol(state.document.scene().settings.unit));
+    *sizeNote = std::string(text) + ", " + from;
+  }
   return node;
 }
 
@@ -82,10 +101,12 @@ std::string displayName(const Node& node) {
 }
 
 // Places a new part onto the primary selection with the place mode and says what it does.
-NodeId placeNew(EditorState& state, const NodePtr& node, PlaceMode mode) {
+NodeId placeNew(EditorState& state, const NodePtr& node, PlaceMode mode,
+                const std::string& note = "") {
   std::string sentence;
   const NodeId id = state.document.place(node, primarySelection(state), mode, &sentence);
-  logInfo(state, displayName(*findNode(state.document.root(), id)) + " " + sentence);
+  logInfo(state, displayName(*findNode(state.document.root(), id)) + " " + sentence +
+                     (note.empty() ? "" : " (" + note + ")"));
   return id;
 }
 
@@ -193,7 +214,9 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
 NodeId addPrimitive(EditorState& state, NodeKind kind) {
   NodeId id = 0;
   guarded(state, [&] {
-    id = placeNew(state, newPrimitive(state, kind), state.placeMode);
+    std::string note;
+    NodePtr node = newPrimitive(state, kind, &note);
+    id = placeNew(state, node, state.placeMode, note);
     selectNode(state, id);
   });
   return id;
@@ -203,7 +226,9 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
   NodeId id = 0;
   state.document.beginInteraction();
   guarded(state, [&] {
-    id = placeNew(state, newPrimitive(state, kind), state.placeMode);
+    std::string note;
+    NodePtr node = newPrimitive(state, kind, &note);
+    id = placeNew(state, node, state.placeMode, note);
     placeNode(state, id, placement);
     selectNode(state, id);
   });

@@ -100,6 +100,10 @@ struct EditorState {
   // Viewport settings.
   GizmoMode gizmoMode = GizmoMode::Move;
   GizmoSnap snap;
+  bool snapFollowsGrid = true;  // snap.step is the ground grid's spacing (groundGridStep)
+  // The height of the world the view shows at the point it orbits (scene units), set by the
+  // viewport each frame: new parts in an empty scene are sized from it.
+  double viewExtent = 0.0;
   bool showGrid = true;
   // Ghosts (translucent parts that cut or intersect): those of the selection always, all of
   // them with this toggle (View > Ghosts of all cutters, G).

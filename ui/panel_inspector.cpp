@@ -21,6 +21,9 @@
 namespace strata::ui {
 namespace {
 
+// The format of length fields: the number and the scene's unit ("%.4g mm"), set per frame.
+std::string gLengthFormat = "%.4g";
+
 // Brackets an edit made by the last ImGui item in begin/end interaction and applies it.
 void edited(EditorState& state, bool changed, const std::function<void()>& apply) {
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
@@ -73,9 +76,9 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   ImGui::SameLine(110.0f);
   ImGui::SetNextItemWidth(-1);
   double value = p.*field;
-  bool changed =
-      ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double, &value,
-                        float(speed), &minimum, nullptr, mixed ? "~%.4g" : "%.4g");
+  bool changed = ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double,
+                                   &value, float(speed), &minimum, nullptr,
+                                   (mixed ? "~" + gLengthFormat : gLengthFormat).c_str());
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
   edited(state, changed, [&] {
@@ -109,7 +112,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
               state.document.setParams(n->id, q);
             }
           },
-          "%.4g");
+          gLengthFormat.c_str());
     }
   }
   if (info->usesSegments) {
@@ -208,7 +211,7 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
             return n;
           });
         },
-        "%.4g", mixedComponents(nodes, &Transform::translate));
+        gLengthFormat.c_str(), mixedComponents(nodes, &Transform::translate));
     dragVec3(
         state, "rotate", &t.rotateDegrees, 0.5,
         [&](const glm::dvec3& v) {
@@ -312,6 +315,7 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
     if (NodePtr n = findNode(state.document.root(), selected); n && selected != id)
       nodes.push_back(n);
   nodes.push_back(node);
+  gLengthFormat = std::string("%.4g ") + unitSymbol(state.document.scene().settings.unit);
   ImGui::PushID(static_cast<int>(node->id));
   nodeIdentity(state, node, nodes);
   // Drag speeds follow the scene's size.

@@ -10,6 +10,7 @@
 #include "engine/util/error.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
+#include "ui/scene_queries.h"
 
 namespace strata::ui {
 namespace {
@@ -32,14 +33,6 @@ std::string countText(uint64_t n) {
     out += digits[i];
   }
   return out;
-}
-
-const char* unitShort(const std::string& unit) {
-  if (unit == "millimetre" || unit == "millimeter") return "mm";
-  if (unit == "centimetre" || unit == "centimeter") return "cm";
-  if (unit == "metre" || unit == "meter") return "m";
-  if (unit == "inch") return "in";
-  return unit.c_str();
 }
 
 // The grid an evaluation at `resolution` would use, remembered per document revision.
@@ -101,7 +94,7 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
         "preview at once; it refines when you let go.");
   Grid grid;
   if (gridAt(state, scene.settings.resolution, &grid)) {
-    ImGui::Text("cell h = %.4g %s", grid.h, unitShort(scene.settings.unit));
+    ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
     ImGui::Text("root LDI ~ %s",
                 bytesText(estimateBytes(state, grid, scene.settings.resolution)).c_str());
@@ -139,17 +132,40 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   ImGui::SameLine();
   ImGui::Checkbox("flip", &state.section.flip);
   ImGui::SetNextItemWidth(-1);
-  float at = float(state.section.at);
-  if (ImGui::SliderFloat("##sectionAt", &at, 0.0f, 1.0f, "at %.3f of the bounds"))
-    state.section.at = at;
+  // The plane's place in scene units along its axis (stored as a fraction of the bounds, so
+  // that it stays inside them as the scene changes).
+  const Bounds bounds = sceneBounds(state.document.root());
+  const int axis = std::clamp(state.section.axis, 0, 2);
+  const double lo = bounds.empty() ? 0.0 : bounds.min[axis];
+  const double hi = bounds.empty() ? 1.0 : bounds.max[axis];
+  double where = lo + state.section.at * (hi - lo);
+  const std::string format = std::string("at %s = %.4g ") + unitSymbol(scene.settings.unit);
+  char label[96];
+  std::snprintf(label, sizeof(label), format.c_str(), axes[axis], where);
+  std::string sliderFormat = label;
+  // ImGui formats the value itself: the label is shown through a %% free format string.
+  for (size_t i = sliderFormat.find('%'); i != std::string::npos; i = sliderFormat.find('%', i + 2))
+    sliderFormat.insert(i, "%");
+  if (ImGui::SliderScalar("##sectionAt", ImGuiDataType_Double, &where, &lo, &hi,
+                          sliderFormat.c_str()) &&
+      hi > lo)
+    state.section.at = std::clamp((where - lo) / (hi - lo), 0.0, 1.0);
   ImGui::EndDisabled();
   ImGui::Checkbox("ground grid", &state.showGrid);
   ImGui::SameLine();
   ImGui::Checkbox("snap", &state.snap.enabled);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Gizmo snapping: move step, 15\u00B0, scale 0.1");
+  // The move step follows the ground grid shown unless a step is typed.
+  const std::string stepFormat = std::string("%.3g ") + unitSymbol(scene.settings.unit);
   ImGui::SetNextItemWidth(100.0f);
-  ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, "%.3g");
+  if (ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str()))
+    state.snapFollowsGrid = false;
   state.snap.step = std::max(state.snap.step, 1e-9);
+  ImGui::SameLine();
+  if (ImGui::Checkbox("= grid", &state.snapFollowsGrid) && state.snapFollowsGrid)
+    state.snap.step = groundGridStep(sceneBounds(state.document.root()));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The move step is the ground grid's spacing, which follows the scene's size");
   const char* modes[] = {"move (W)", "rotate (E)", "scale (R)"};
   int mode = int(state.gizmoMode);
   ImGui::SetNextItemWidth(-1);
@@ -171,7 +187,7 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
     const Grid& g = shown->stats.grid;
     ImGui::SameLine();
     ImGui::Text("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
-                unitShort(shown->scene->settings.unit));
+                unitSymbol(shown->scene->settings.unit));
     ImGui::SameLine();
     ImGui::Text("|  surfels %s (%s splats, %s, %s)", countText(shown->surfels).c_str(),
                 countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),

@@ -119,6 +119,19 @@ std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& sta
   return out;
 }
 
+double groundGridStep(const Bounds& scene) {
+  const glm::dvec3 size = scene.empty() ? glm::dvec3(10.0) : scene.size();
+  return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);
+}
+
+const char* unitSymbol(const std::string& unit) {
+  if (unit == "millimetre" || unit == "millimeter") return "mm";
+  if (unit == "centimetre" || unit == "centimeter") return "cm";
+  if (unit == "metre" || unit == "meter") return "m";
+  if (unit == "inch") return "in";
+  return unit.c_str();
+}
+
 double niceLength(double approximate) {
   if (!(approximate > 0) || !std::isfinite(approximate)) return 1.0;
   double p = std::pow(10.0, std::floor(std::log10(approximate)));

@@ -4,6 +4,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,5 +39,13 @@ std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& sta
 
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);
+
+// The spacing of the ground grid drawn under a scene with these bounds (an eighth of its
+// largest extent, rounded by niceLength; 1 for an empty scene's 10-unit grid). The move snap
+// follows it.
+double groundGridStep(const Bounds& scene);
+
+// "mm", "cm", "m", "in" for a scene's unit name; the name itself otherwise.
+const char* unitSymbol(const std::string& unit);
 
 }  // namespace strata::ui

@@ -32,9 +32,7 @@ void appendBox(const Bounds& b, const glm::vec4& color, std::vector<LineVertex>*
 // The ground grid in the z = 0 plane around the scene, fading out towards its rim, with the x
 // (red) and y (green) axes.
 void appendGrid(const Bounds& scene, std::vector<LineVertex>* lines) {
-  glm::dvec3 size = scene.empty() ? glm::dvec3(10.0) : scene.size();
-  double extent = std::max({size.x, size.y, size.z, 1e-9});
-  double step = niceLength(extent / 8.0);
+  const double step = groundGridStep(scene);
   glm::dvec3 centre = scene.empty() ? glm::dvec3(0.0) : scene.center();
   double cx = std::round(centre.x / step) * step, cy = std::round(centre.y / step) * step;
   const int n = 14;
@@ -158,6 +156,9 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   const ScreenMapping view = mapping(state, rect);
 
   if (!io.WantCaptureKeyboard && !io.WantTextInput) handleKeys(state);
+  // What new parts and the snap are sized from.
+  state.viewExtent = camera.unitsPerPixel(rect.height) * rect.height;
+  if (state.snapFollowsGrid) state.snap.step = groundGridStep(cachedSceneBounds(state));
 
   // An ongoing gizmo drag keeps the mouse wherever it goes.
   if (gizmo_.dragging()) {

@@ -6,6 +6,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
+#include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/scene_queries.h"
@@ -205,6 +206,34 @@ TEST(Instances, TheRootCannotBeInstanced) {
   EXPECT_EQ(state.document.revision(), revision);
   ASSERT_FALSE(state.log.empty());
   EXPECT_NE(state.log.back().text.find("root cannot be instanced"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace strata::ui
+
+namespace strata::ui {
+namespace {
+
+// New parts are sized from the scene (a quarter of its largest extent) or, in an empty scene,
+// from the view (a quarter of what it shows), and the log says which; the move snap follows the
+// ground grid.
+TEST(ScaleAwareDefaults, NewPartsAreSizedFromTheViewOrTheSceneAndSaySo) {
+  EditorState state;
+  state.viewExtent = 400.0;  // an empty scene seen 400 mm high
+  const NodeId first = addPrimitive(state, NodeKind::Box);
+  const Bounds a = selectionBounds(state.document.root(), {first});
+  EXPECT_NEAR(a.size().x, 100.0, 1e-9);
+  EXPECT_NE(state.log.back().text.find("a quarter of the view"), std::string::npos)
+      << state.log.back().text;
+  const NodeId second = addPrimitive(state, NodeKind::Sphere);
+  const Bounds b = selectionBounds(state.document.root(), {second});
+  // A quarter of the 100 mm scene, rounded (20), times the default sphere.
+  const double defaultSize =
+      primitiveLocalBounds(NodeKind::Sphere, primitiveInfo(NodeKind::Sphere)->defaults).size().x;
+  EXPECT_NEAR(b.size().x, niceLength(25.0) * defaultSize, 1e-6);
+  EXPECT_NE(state.log.back().text.find("a quarter of the scene"), std::string::npos)
+      << state.log.back().text;
+  EXPECT_EQ(groundGridStep(sceneBounds(state.document.root())), 10.0);  // 100 / 8, rounded
 }
 
 }  // namespace
