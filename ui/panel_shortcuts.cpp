@@ -74,7 +74,10 @@ void drawShortcutSheet(EditorState& state) {
   }
   for (const ShortcutGroup& group : kGroups) {
     ImGui::TextColored(ImVec4(0.95f, 0.62f, 0.25f, 1.0f), "%s", group.title);
-    if (ImGui::BeginTable(group.title, 2, ImGuiTableFlags_SizingStretchProp)) {
+    if (ImGui::BeginTable(group.title, 2)) {
+      // The same key column in every group, so that the sheet reads as one table.
+      ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, 220.0f);
+      ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
       for (const Shortcut& s : group.items) {
         ImGui::TableNextRow();
         ImGui::TableSetColumnIndex(0);

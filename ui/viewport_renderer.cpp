@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "engine/util/error.h"
+#include "engine/util/timer.h"
 
 namespace strata::ui {
 namespace {
@@ -154,6 +155,7 @@ bool ViewportRenderer::reserveSplats(size_t count) {
 }
 
 void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double cellSize) {
+  Stopwatch clock;
   reserveSplats(count);
   if (count > 0) {
     glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
@@ -161,6 +163,7 @@ void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double ce
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
   setSplatCount(count, cellSize);
+  uploadMsThisFrame_ += clock.seconds() * 1000.0;
 }
 
 void ViewportRenderer::setSplatCount(size_t count, double cellSize) {
@@ -328,7 +331,6 @@ uint64_t ViewportRenderer::viewKey(const ViewportFrame& f,
   mix(ints, sizeof(ints));
   mix(&f.sectionNormal, sizeof(f.sectionNormal));
   mix(&f.sectionOffset, sizeof(f.sectionOffset));
-  mix(&contentVersion_, sizeof(contentVersion_));
   if (!lines.empty()) mix(lines.data(), lines.size() * sizeof(LineVertex));
   return h | 1;  // never 0 (nothing shown)
 }
@@ -359,18 +361,30 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
                                   double lastFrameMs) {
   // The share of splats a frame follows the frame time (only frames that drew splats say
   // what splats cost).
-  if (drewSplatsLastFrame_ && lastFrameMs > 0.0) {
-    const double factor = std::clamp(kTargetFrameMs / lastFrameMs, 0.5, 1.5);
+  // An upload in the last frame is not what its splats cost to draw.
+  const double drawMs = lastFrameMs - uploadMsLastFrame_;
+  uploadMsLastFrame_ = uploadMsThisFrame_;
+  uploadMsThisFrame_ = 0.0;
+  if (drewSplatsLastFrame_ > 0 && drawMs > 0.0) {
+    const double factor = std::clamp(kTargetFrameMs / drawMs, 0.5, 1.5);
     splatsPerFrame_ =
-        std::clamp<size_t>(size_t(double(splatsPerFrame_) * factor), 4000, size_t(1) << 26);
+        std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), 4000, size_t(1) << 26);
   }
-  drewSplatsLastFrame_ = false;
+  drewSplatsLastFrame_ = 0;
   GLint window = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &window);
   // The image's own frame: the same view, at the image's origin.
   ViewportFrame local = f;
   local.x = local.y = 0;
-  const uint64_t key = viewKey(local, lines);
+  // What is shown: the view (camera, size, section, lines) and the content (splats, colours,
+  // ghosts). A new content seen from a view at rest (an edit's result) is drawn whole at once
+  // when that fits about two and a half frames' share (a fast GPU: one frame from the edit to
+  // the screen); a moving view keeps to the share.
+  const uint64_t view = viewKey(local, lines);
+  const bool viewMoved = view != shownView_;
+  const uint64_t key = view ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
+  shownView_ = view;
+  const size_t allowed = viewMoved ? splatsPerFrame_ : splatsPerFrame_ * 5 / 2;
   const RenderTarget* show = nullptr;
   bool showCoarse = false;
 
@@ -394,7 +408,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   if (key != shownKey_) {
     shownKey_ = key;
     buildDone_ = 0;
-    if (splatCount_ <= splatsPerFrame_) {
+    if (splatCount_ <= allowed) {
       // Everything fits in this frame: the full image at once.
       ensureTarget(&shown_, f.width, f.height);
       shown_->bind();
@@ -404,24 +418,28 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       drawGhosts(local);
       drawLinesInto(local);
       refining_ = false;
-      drewSplatsLastFrame_ = splatCount_ > 0;
+      drewSplatsLastFrame_ = splatCount_;
       show = shown_.get();
     } else {
       // A share of the splats at half resolution now; the full image over the next frames.
+      // Half resolution; a quarter when the share is so small that each splat stands for many
+      // (what a software GL driver draws in a frame): fewer pixels to fill for the same image.
+      const size_t stride = nextPrime((splatCount_ + splatsPerFrame_ - 1) / splatsPerFrame_);
+      const int shrink = stride > 64 ? 4 : 2;
       ViewportFrame half = local;
-      half.width = std::max(1, f.width / 2);
-      half.height = std::max(1, f.height / 2);
+      half.width = std::max(1, f.width / shrink);
+      half.height = std::max(1, f.height / shrink);
       ensureTarget(&coarse_, half.width, half.height);
       coarse_->bind();
       drawBackground(half);
       beginSplats(half);
-      const size_t stride = nextPrime((splatCount_ + splatsPerFrame_ - 1) / splatsPerFrame_);
-      drawSplatRange(0, (splatCount_ + stride - 1) / stride, stride,
+      const size_t drawn = (splatCount_ + stride - 1) / stride;
+      drawSplatRange(0, drawn, stride,
                      1.25f * float(std::sqrt(double(stride))));  // a little larger: no holes
       drawGhosts(half);
       drawLinesInto(half);
       refining_ = true;
-      drewSplatsLastFrame_ = true;
+      drewSplatsLastFrame_ = drawn;
       show = coarse_.get();
       showCoarse = true;
     }
@@ -436,7 +454,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     const size_t count = std::min(splatsPerFrame_, splatCount_ - buildDone_);
     drawSplatRange(buildDone_, count, 1, 1.0f);
     buildDone_ += count;
-    drewSplatsLastFrame_ = true;
+    drewSplatsLastFrame_ = count;
     if (buildDone_ >= splatCount_) {
       drawGhosts(local);
       drawLinesInto(local);

@@ -129,7 +129,7 @@ class ViewportRenderer {
   // disc radius `radius` cells; the surfel program must be in use.
   void drawSplatRange(size_t first, size_t count, size_t stride, float radius);
   void drawGhosts(const ViewportFrame& f);
-  // The key of what the scene image shows: the view and the content version.
+  // The key of the view the scene image shows: camera, viewport, section and lines.
   uint64_t viewKey(const ViewportFrame& f, const std::vector<LineVertex>& lines) const;
   void drawOverlay(const ViewportFrame& f, const std::vector<LineVertex>& overlay,
                    const std::vector<LineVertex>& overlayTriangles);
@@ -168,11 +168,13 @@ class ViewportRenderer {
   // being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  uint64_t shownKey_ = 0;  // what shown_ (or coarse_, while refining) holds
-  bool refining_ = false;  // building_ is being drawn for shownKey_
-  size_t buildDone_ = 0;   // splats drawn into building_ so far
+  uint64_t shownKey_ = 0;   // what shown_ (or coarse_, while refining) holds
+  uint64_t shownView_ = 0;  // its view alone (viewKey)
+  bool refining_ = false;   // building_ is being drawn for shownKey_
+  size_t buildDone_ = 0;    // splats drawn into building_ so far
   size_t splatsPerFrame_ = 150000;
-  bool drewSplatsLastFrame_ = false;
+  double uploadMsThisFrame_ = 0.0, uploadMsLastFrame_ = 0.0;  // host uploads, by frame
+  size_t drewSplatsLastFrame_ = 0;  // splats the last drawCached drew (what its time bought)
 };
 
 // An off-screen colour + depth target for rendering the viewport alone (headless renders,
