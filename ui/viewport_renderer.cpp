@@ -359,13 +359,14 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
                                   const std::vector<LineVertex>& overlay,
                                   const std::vector<LineVertex>& overlayTriangles,
                                   double lastFrameMs) {
-  // The share of splats a frame follows the frame time (only frames that drew splats say
-  // what splats cost).
-  // An upload in the last frame is not what its splats cost to draw.
+  // The share follows the frame time: scaled by target / time from the splats the last frame
+  // drew, when they were at least half a share (a small draw, such as a coarse result of a few
+  // thousand splats, costs mostly the frame's base and says little about splats). An upload in
+  // the last frame is not drawing.
   const double drawMs = lastFrameMs - uploadMsLastFrame_;
   uploadMsLastFrame_ = uploadMsThisFrame_;
   uploadMsThisFrame_ = 0.0;
-  if (drewSplatsLastFrame_ > 0 && drawMs > 0.0) {
+  if (drewSplatsLastFrame_ >= splatsPerFrame_ / 2 && drawMs > 0.0) {
     const double factor = std::clamp(kTargetFrameMs / drawMs, 0.5, 1.5);
     splatsPerFrame_ =
         std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), 4000, size_t(1) << 26);

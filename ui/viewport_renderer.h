@@ -168,11 +168,11 @@ class ViewportRenderer {
   // being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  uint64_t shownKey_ = 0;   // what shown_ (or coarse_, while refining) holds
-  uint64_t shownView_ = 0;  // its view alone (viewKey)
-  bool refining_ = false;   // building_ is being drawn for shownKey_
-  size_t buildDone_ = 0;    // splats drawn into building_ so far
-  size_t splatsPerFrame_ = 150000;
+  uint64_t shownKey_ = 0;          // what shown_ (or coarse_, while refining) holds
+  uint64_t shownView_ = 0;         // its view alone (viewKey)
+  bool refining_ = false;          // building_ is being drawn for shownKey_
+  size_t buildDone_ = 0;           // splats drawn into building_ so far
+  size_t splatsPerFrame_ = 30000;  // a safe start for a software GL driver; grows 1.5x a frame
   double uploadMsThisFrame_ = 0.0, uploadMsLastFrame_ = 0.0;  // host uploads, by frame
   size_t drewSplatsLastFrame_ = 0;  // splats the last drawCached drew (what its time bought)
 };
