@@ -23,8 +23,15 @@ void recoveryQuestion(EditorState& state) {
   if (state.offerRecovery && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   centreNext();
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-  ImGui::TextUnformatted("The last session ended without saving its changes.");
+  // Which document, and from when: read once when the question opens.
+  static RecoveryInfo info;
+  if (ImGui::IsWindowAppearing()) info = describeRecoveryFile(state.recoveryPath);
+  const std::string what = info.origin.empty() ? "an untitled document" : info.origin;
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);
+  ImGui::TextWrapped("The last session ended without saving its changes to %s.", what.c_str());
+  if (!info.writtenAt.empty()) ImGui::TextWrapped("Last autosaved %s.", info.writtenAt.c_str());
   ImGui::TextDisabled("%s", state.recoveryPath.c_str());
+  ImGui::PopTextWrapPos();
   if (ImGui::Button("Recover", ImVec2(120, 0))) {
     recoverDocument(state);
     removeRecoveryFile(state.recoveryPath);

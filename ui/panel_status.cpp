@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "engine/eval/evaluator.h"
 #include "engine/ldi/grid.h"
@@ -221,6 +222,16 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
                    : last.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
                                                      : ImVec4(0.6f, 0.85f, 0.6f, 1.0f);
     ImGui::TextColored(color, "|  %s", last.text.c_str());
+    // The bar cuts a long message: the whole of it on hover, and a click opens the messages.
+    if (ImGui::IsItemHovered()) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+      ImGui::TextUnformatted(last.text.c_str());
+      ImGui::TextDisabled("click: all messages, to read or copy");
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
+    if (ImGui::IsItemClicked()) state.showDiagnostics = true;
   }
   ImGui::End();
   ImGui::PopStyleVar();
@@ -292,12 +303,40 @@ void drawDiagnostics(EditorState& state) {
   }
   ImGui::Separator();
   ImGui::Text("messages");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("copy all")) {
+    std::string all;
+    if (shown)
+      for (const std::string& w : shown->stats.warnings) all += "warning: " + w + "\n";
+    for (const auto& line : state.log) all += line.text + "\n";
+    ImGui::SetClipboardText(all.c_str());
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("(click a line to copy it)");
   ImGui::BeginChild("log", ImVec2(0, 0), true);
-  for (const auto& line : state.log) {
-    ImVec4 color = line.level == LogLevel::Error     ? ImVec4(1.0f, 0.45f, 0.45f, 1.0f)
-                   : line.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.35f, 1.0f)
-                                                     : ImVec4(0.8f, 0.8f, 0.8f, 1.0f);
-    ImGui::TextColored(color, "%7.1f s  %s", line.time, line.text.c_str());
+  // Whole, wrapped; the evaluation's warnings first.
+  auto line = [](const ImVec4& color, const std::string& text, int id) {
+    ImGui::PushID(id);
+    ImGui::PushStyleColor(ImGuiCol_Text, color);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemClicked()) ImGui::SetClipboardText(text.c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("click to copy");
+    ImGui::PopID();
+  };
+  int id = 0;
+  if (shown)
+    for (const std::string& w : shown->stats.warnings)
+      line(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), w, id++);
+  for (const auto& entry : state.log) {
+    ImVec4 color = entry.level == LogLevel::Error     ? ImVec4(1.0f, 0.45f, 0.45f, 1.0f)
+                   : entry.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.35f, 1.0f)
+                                                      : ImVec4(0.8f, 0.8f, 0.8f, 1.0f);
+    char when[32];
+    std::snprintf(when, sizeof(when), "%7.1f s  ", entry.time);
+    line(color, when + entry.text, id++);
   }
   if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
   ImGui::EndChild();

@@ -1,6 +1,9 @@
 #include "engine/io/user_files.h"
 
+#include <sys/stat.h>
+
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -101,6 +104,22 @@ Document readRecoveryFile(const std::string& recoveryPath, std::vector<std::stri
   Document document(std::move(scene), origin);
   document.markDirty();
   return document;
+}
+
+RecoveryInfo describeRecoveryFile(const std::string& recoveryPath) {
+  RecoveryInfo info;
+  std::ifstream in(originPath(recoveryPath));
+  std::getline(in, info.origin);
+  struct stat st {};
+  if (::stat(recoveryPath.c_str(), &st) == 0) {
+    std::tm local{};
+    const std::time_t when = st.st_mtime;
+    if (localtime_r(&when, &local)) {
+      char text[32];
+      if (std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M", &local)) info.writtenAt = text;
+    }
+  }
+  return info;
 }
 
 void removeRecoveryFile(const std::string& recoveryPath) {

@@ -42,6 +42,15 @@ bool recoveryFileExists(const std::string& recoveryPath);
 // strata::Error for a damaged file.
 Document readRecoveryFile(const std::string& recoveryPath,
                           std::vector<std::string>* warnings = nullptr);
+// What a recovery file is of, for the question at start: the document it was made from ("" for
+// an untitled one) and when it was written (local time, "2026-11-23 06:12"; "" when unknown).
+// Never throws.
+struct RecoveryInfo {
+  std::string origin;
+  std::string writtenAt;
+};
+RecoveryInfo describeRecoveryFile(const std::string& recoveryPath);
+
 // Removes the recovery file and its companion (a clean exit). Never throws.
 void removeRecoveryFile(const std::string& recoveryPath);
 

@@ -58,6 +58,11 @@ TEST(DocumentRecovery, RoundTripKeepsContentOriginAndMeshes) {
   writeRecoveryFile(doc, recovery);
   EXPECT_TRUE(recoveryFileExists(recovery));
 
+  // The question at start names the document and when it was written.
+  const RecoveryInfo info = describeRecoveryFile(recovery);
+  EXPECT_EQ(info.origin, dir + "/project/part.strata.json");
+  EXPECT_EQ(info.writtenAt.size(), std::string("2026-11-23 06:12").size()) << info.writtenAt;
+
   Document recovered = readRecoveryFile(recovery);
   EXPECT_TRUE(recovered.dirty());
   EXPECT_EQ(recovered.path(), dir + "/project/part.strata.json");
@@ -77,6 +82,7 @@ TEST(DocumentRecovery, UntitledDocument) {
   Document doc;
   doc.addNode(NodeKind::Torus);
   writeRecoveryFile(doc, recovery);
+  EXPECT_EQ(describeRecoveryFile(recovery).origin, "");
   Document recovered = readRecoveryFile(recovery);
   EXPECT_EQ(recovered.path(), "");
   EXPECT_TRUE(recovered.dirty());
