@@ -181,6 +181,10 @@ void Editor::viewAll() {
   gl_->viewport.viewAll(*state_);
 }
 
+void Editor::windowOrigin(int* x, int* y) const {
+  glfwGetWindowPos(gl_->window.handle(), x, y);
+}
+
 Camera& Editor::camera() {
   return gl_->viewport.camera;
 }
@@ -489,6 +493,8 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
     *height = fbHeight;
   }
   if (swap) glfwSwapBuffers(window);
+  if (options_.slowFrameSeconds > 0.0)
+    std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));
   s.frameMs = gl_->frameClock.seconds() * 1000.0;
 
   gl_->window.setTitle("Strata \u2014 " + s.document.title());

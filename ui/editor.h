@@ -38,6 +38,9 @@ struct EditorOptions {
   std::string layoutPath;       // the panel sizes remembered between runs; "" = the defaults
   std::string recoveryPath;     // "" = no autosave and no recovery offer
   double autosaveSeconds = 120.0;
+  // Tests: every frame takes at least this long (a slow machine), to show that input made
+  // during a slow frame is still handled.
+  double slowFrameSeconds = 0.0;
   int coarseResolution = 96;  // of previews while dragging
 };
 
@@ -62,6 +65,8 @@ class Editor {
 
   EditorState& state() { return *state_; }
   Camera& camera();
+  // The window's client area on the screen (pixels from the screen's top-left corner).
+  void windowOrigin(int* x, int* y) const;
   // Waits (polling the worker, no drawing) until the viewport shows the current document at its
   // full resolution, or it failed, or `timeoutSeconds` passed. Returns whether it is shown.
   bool waitForPreview(double timeoutSeconds);

@@ -34,12 +34,13 @@ void InputQueue::button(int button, bool pressed, double time) {
 
 InputQueue::Frame InputQueue::takeFrame() {
   Frame frame;
-  bool changed[kButtons] = {};
+  bool tookAny = false;
   while (!events_.empty()) {
     const Event& e = events_.front();
     if (e.kind != Event::Move) {
-      if (changed[e.button]) break;  // the next frame's
-      changed[e.button] = true;
+      // A button change opens its own frame: what came before it (moves of a drag) is seen
+      // with the button as it was, and what follows is the next frame's.
+      if (tookAny) break;
       down_[e.button] = e.kind == Event::Press;
       if (e.kind == Event::Press) {
         const double dx = e.x - lastPressX_[e.button], dy = e.y - lastPressY_[e.button];
@@ -56,7 +57,10 @@ InputQueue::Frame InputQueue::takeFrame() {
     }
     x_ = e.x;
     y_ = e.y;
+    const bool buttonChange = e.kind != Event::Move;
     events_.pop_front();
+    tookAny = true;
+    if (buttonChange) break;
   }
   frame.x = x_;
   frame.y = y_;

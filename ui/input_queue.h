@@ -3,11 +3,13 @@
 // press and release somewhere else, that arrive between two frames become one click at the
 // wrong place, and a double-click made during a 300 ms frame is never seen as one.
 //
-// The queue keeps every button and cursor event with its time. Each frame takes events in order
-// until one would change a button that already changed this frame (ImGui 1.87's "input
-// trickling"): a click made during a slow frame is seen as a press in one frame and a release in
-// the next, at the cursor position it had when it happened. Double-clicks are recognised from
-// the events' own times and positions, not from frame times.
+// The queue keeps every button and cursor event with its time. A frame takes the moves in order
+// up to the next button change, or that one change alone (as ImGui 1.87's "input trickling"
+// does, one step further): a click made during a slow frame is a press in one frame and a
+// release in the next, at the cursor position it had when it happened, and a drag pressed,
+// moved and released within one slow frame is a press, a frame of moves with the button down,
+// and a release. Double-clicks are recognised from the events' own times and positions, not
+// from frame times.
 //
 // Threads: the UI thread (GLFW callbacks run inside glfwPollEvents there). No GL, no ImGui: the
 // editor copies what a frame takes into ImGui's IO.
@@ -34,7 +36,7 @@ class InputQueue {
   };
   // Takes this frame's events (see above) and returns the state after them.
   Frame takeFrame();
-  // Events not taken yet (a frame takes at most one change per button).
+  // Events not taken yet (a frame takes at most one button change).
   bool pending() const { return !events_.empty(); }
 
  private:

@@ -188,6 +188,21 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     std::memcpy(&item, payload->Data, sizeof(item));
     drop_ = PendingDrop{mouse, item, dropMode(state, (io.KeyShift ? 1 : 0) | (io.KeyCtrl ? 2 : 0))};
   }
+  // A box selection keeps the mouse until released, over panels too.
+  if (boxFrom_) {
+    const ImVec2 a(float(rect.x + boxFrom_->x), float(rect.y + boxFrom_->y));
+    const ImVec2 b(float(rect.x + mouse.x), float(rect.y + mouse.y));
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    draw->AddRectFilled(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
+                        ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(255, 150, 40, 36));
+    draw->AddRect(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
+                  ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(255, 150, 40, 200));
+    if (!io.MouseDown[0]) {
+      box_ = PendingBox{*boxFrom_, mouse, io.KeyCtrl || io.KeyShift};
+      boxFrom_.reset();
+    }
+    return;
+  }
   if (io.WantCaptureMouse && !navigating_) {
     hot_ = -1;
     clickPending_ = false;
@@ -225,19 +240,6 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     clickPending_ = false;
     const ImVec2 delta = ImGui::GetMouseDragDelta(0, 0.0f);
     boxFrom_ = mouse - glm::dvec2(delta.x, delta.y);
-  }
-  if (boxFrom_) {
-    const ImVec2 a(float(rect.x + boxFrom_->x), float(rect.y + boxFrom_->y));
-    const ImVec2 b(float(rect.x + mouse.x), float(rect.y + mouse.y));
-    ImDrawList* draw = ImGui::GetForegroundDrawList();
-    draw->AddRectFilled(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
-                        ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(255, 150, 40, 36));
-    draw->AddRect(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
-                  ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(255, 150, 40, 200));
-    if (!io.MouseDown[0]) {
-      box_ = PendingBox{*boxFrom_, mouse, io.KeyCtrl || io.KeyShift};
-      boxFrom_.reset();
-    }
   }
   if (clickPending_ && ImGui::IsMouseReleased(0)) {
     clickPending_ = false;

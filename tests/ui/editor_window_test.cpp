@@ -14,13 +14,21 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <thread>
 
 #include "engine/document/commands.h"
 #include "engine/eval/cpu_backend.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
+#include "ui/png_file.h"
 #include "ui/scene_queries.h"
+
+#if defined(STRATA_HAVE_XTEST)
+#include <X11/Xlib.h>
+#include <X11/extensions/XTest.h>
+#include <X11/keysym.h>
+#endif
 
 namespace strata::ui {
 namespace {
@@ -356,6 +364,108 @@ TEST_F(SphereAndBox, PaletteDropLandsOnTheSurfaceOrTheGround) {
   EXPECT_NEAR(b.center().x, ground.point.x, 1e-9);
   EXPECT_NEAR(b.center().y, ground.point.y, 1e-9);
 }
+
+#if defined(STRATA_HAVE_XTEST)
+// Input made while frames are slow (250 ms each, as on a loaded software-GL machine), through the
+// X server as a user's hand would make it (XTest): a Ctrl+Z tapped within one frame undoes, a
+// double-click on a tree row within one frame starts renaming it, and a box drag pressed, moved
+// and released within one frame selects what it covers. Each must be handled, once.
+class XInput {
+ public:
+  XInput() : display_(XOpenDisplay(nullptr)) {}
+  ~XInput() {
+    if (display_) XCloseDisplay(display_);
+  }
+  bool ok() const { return display_ != nullptr; }
+  void move(int x, int y) {
+    XTestFakeMotionEvent(display_, -1, x, y, 0);
+    XFlush(display_);
+  }
+  void button(bool down) {
+    XTestFakeButtonEvent(display_, 1, down ? True : False, 0);
+    XFlush(display_);
+  }
+  void key(KeySym symbol, bool down) {
+    XTestFakeKeyEvent(display_, XKeysymToKeycode(display_, symbol), down ? True : False, 0);
+    XFlush(display_);
+  }
+
+ private:
+  Display* display_;
+};
+
+// Runs frames until `done` or 5 s.
+bool framesUntil(Editor& editor, const std::function<bool()>& done) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (std::chrono::steady_clock::now() < end) {
+    editor.frame();
+    if (done()) return true;
+  }
+  return false;
+}
+
+TEST(EditorWindow, ClicksKeysAndDoubleClicksDuringSlowFramesAreAllHandled) {
+  REQUIRE_DISPLAY();
+  XInput input;
+  if (!input.ok()) GTEST_SKIP() << "cannot open the display for XTest";
+  EditorOptions options = testOptions();
+  options.visible = true;
+  options.slowFrameSeconds = 0.25;
+  Editor editor(options);
+  EditorState& state = editor.state();
+  int wx = 0, wy = 0;
+  editor.windowOrigin(&wx, &wy);
+  input.move(wx + 700, wy + 400);  // keys go where the pointer is (no window manager)
+  for (int i = 0; i < 3; ++i) editor.frame();
+
+  // A Ctrl+Z tapped between two frames.
+  const NodeId box = addPrimitive(state, NodeKind::Box);
+  ASSERT_TRUE(findNode(state.document.root(), box));
+  editor.frame();
+  input.key(XK_Control_L, true);
+  input.key(XK_z, true);
+  input.key(XK_z, false);
+  input.key(XK_Control_L, false);
+  EXPECT_TRUE(framesUntil(editor, [&] { return !findNode(state.document.root(), box); }))
+      << "the Ctrl+Z made during a slow frame was lost";
+
+  // A double-click on the tree's first row (the root), both clicks within one frame.
+  input.move(wx + 90, wy + 66);
+  editor.frame();
+  for (int click = 0; click < 2; ++click) {
+    input.button(true);
+    input.button(false);
+  }
+  const NodeId root = state.document.root()->id;
+  EXPECT_TRUE(framesUntil(editor, [&] { return state.renaming == root; }))
+      << "the double-click made during a slow frame was not seen as one";
+  input.key(XK_Escape, true);
+  input.key(XK_Escape, false);
+  framesUntil(editor, [&] { return state.renaming == 0; });
+
+  // A box drag across the view, pressed, moved and released within one frame: it selects the
+  // parts it covers (two boxes side by side).
+  addPrimitive(state, NodeKind::Box);
+  clearSelection(state);
+  ASSERT_TRUE(editor.waitForPreview(60.0));
+  for (int i = 0; i < 3; ++i) editor.frame();
+  input.move(wx + 340, wy + 60);
+  editor.frame();
+  input.button(true);
+  for (int step = 1; step <= 8; ++step) input.move(wx + 340 + step * 110, wy + 60 + step * 85);
+  input.button(false);
+  const bool selected = framesUntil(editor, [&] { return !state.selection.empty(); });
+  if (!selected) {
+    int w = 0, h = 0;
+    auto px = editor.screenshot(&w, &h);
+    writePng("/tmp/slowframes.png", w, h, px);
+  }
+  EXPECT_TRUE(selected) << "the box drag made during a slow frame selected nothing; window at "
+                        << wx << ", " << wy
+                        << "; last message: " << (state.log.empty() ? "" : state.log.back().text)
+                        << " (the window is in /tmp/slowframes.png)";
+}
+#endif
 
 }  // namespace
 }  // namespace strata::ui

@@ -22,11 +22,13 @@ TEST(InputQueue, TwoClicksInOneSlowFrameAreTwoClicksAtTheirPlaces) {
     seen.emplace_back(f.down[0], f.x);
     EXPECT_FALSE(f.doubleClicked[0]) << "200 px apart: not a double-click";
   }
-  ASSERT_EQ(seen.size(), 4u);
-  EXPECT_EQ(seen[0], std::make_pair(true, 10.0));    // press at the first place
-  EXPECT_EQ(seen[1], std::make_pair(false, 200.0));  // release, then the move
-  EXPECT_EQ(seen[2], std::make_pair(true, 200.0));   // the second press
-  EXPECT_EQ(seen[3], std::make_pair(false, 200.0));
+  ASSERT_EQ(seen.size(), 6u);
+  EXPECT_EQ(seen[0], std::make_pair(false, 10.0));   // the move to the first place
+  EXPECT_EQ(seen[1], std::make_pair(true, 10.0));    // the press there
+  EXPECT_EQ(seen[2], std::make_pair(false, 10.0));   // its release, there
+  EXPECT_EQ(seen[3], std::make_pair(false, 200.0));  // the move
+  EXPECT_EQ(seen[4], std::make_pair(true, 200.0));   // the second press, at the second place
+  EXPECT_EQ(seen[5], std::make_pair(false, 200.0));
 }
 
 TEST(InputQueue, ADoubleClickDuringASlowFrameIsADoubleClick) {
@@ -55,28 +57,37 @@ TEST(InputQueue, ADoubleClickDuringASlowFrameIsADoubleClick) {
   EXPECT_FALSE(q.takeFrame().doubleClicked[0]);
 }
 
-TEST(InputQueue, ButtonsChangeIndependentlyAndMovesCollapse) {
+TEST(InputQueue, ADragWithinOneSlowFrameIsPressMovesRelease) {
   InputQueue q;
-  q.button(0, true, 0.0);
-  q.button(2, true, 0.0);  // another button: the same frame
-  for (int i = 0; i < 100; ++i) q.cursor(i, i, 0.001 * i);
-  const InputQueue::Frame f = q.takeFrame();
-  EXPECT_TRUE(f.down[0]);
-  EXPECT_TRUE(f.down[2]);
+  for (int i = 0; i < 100; ++i) q.cursor(i, i, 0.001 * i);  // moves collapse into one
+  InputQueue::Frame f = q.takeFrame();
   EXPECT_EQ(f.x, 99.0);
   EXPECT_FALSE(q.pending());
-  // A drag: press, moves, release in one batch: the press frame sees the start position.
-  q.button(0, false, 1.0);
-  q.takeFrame();
+  // Pressed at (5, 5), dragged to (50, 5), released: three frames, the middle one with the
+  // button down at the end of the drag (what a drag needs to be seen as one).
   q.cursor(5, 5, 2.0);
   q.button(0, true, 2.01);
+  q.cursor(30, 5, 2.05);
   q.cursor(50, 5, 2.1);
   q.button(0, false, 2.2);
-  const InputQueue::Frame press = q.takeFrame();
-  EXPECT_TRUE(press.down[0]);
-  EXPECT_EQ(press.x, 50.0);  // the moves before the release come with the press
-  const InputQueue::Frame release = q.takeFrame();
-  EXPECT_FALSE(release.down[0]);
+  f = q.takeFrame();  // the move to the press point
+  EXPECT_EQ(f.x, 5.0);
+  EXPECT_FALSE(f.down[0]);
+  f = q.takeFrame();
+  EXPECT_TRUE(f.down[0]);
+  EXPECT_EQ(f.x, 5.0);
+  f = q.takeFrame();
+  EXPECT_TRUE(f.down[0]);
+  EXPECT_EQ(f.x, 50.0);
+  f = q.takeFrame();
+  EXPECT_FALSE(f.down[0]);
+  EXPECT_FALSE(q.pending());
+  // Two buttons change in consecutive frames.
+  q.button(0, true, 3.0);
+  q.button(2, true, 3.0);
+  EXPECT_TRUE(q.takeFrame().down[0]);
+  f = q.takeFrame();
+  EXPECT_TRUE(f.down[0] && f.down[2]);
 }
 
 }  // namespace
