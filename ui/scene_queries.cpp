@@ -10,15 +10,6 @@
 namespace strata::ui {
 namespace {
 
-bool pathTo(const NodePtr& node, NodeId id, std::vector<const Node*>* path) {
-  path->push_back(node.get());
-  if (node->id == id) return true;
-  for (const auto& c : node->children)
-    if (pathTo(c, id, path)) return true;
-  path->pop_back();
-  return false;
-}
-
 Bounds computeSceneBounds(const NodePtr& root);
 
 }  // namespace
@@ -26,7 +17,7 @@ Bounds computeSceneBounds(const NodePtr& root);
 glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id) {
   std::vector<const Node*> path;
   glm::dmat4 m(1.0);
-  if (!root || !pathTo(root, id, &path)) return m;
+  if (!root || !pathToNode(root, id, &path)) return m;
   for (size_t i = 0; i + 1 < path.size(); ++i) m = m * path[i]->transform.matrix();
   return m;
 }

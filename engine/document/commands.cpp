@@ -157,6 +157,15 @@ bool locateNode(const NodePtr& root, NodeId id, NodeLocation* location) {
   return false;
 }
 
+bool pathToNode(const NodePtr& root, NodeId id, std::vector<const Node*>* path) {
+  path->push_back(root.get());
+  if (root->id == id) return true;
+  for (const auto& c : root->children)
+    if (pathToNode(c, id, path)) return true;
+  path->pop_back();
+  return false;
+}
+
 bool isInSubtree(const NodePtr& root, NodeId ancestor, NodeId id) {
   NodePtr top = findNode(root, ancestor);
   return top && findNode(top, id) != nullptr;

@@ -39,6 +39,9 @@ struct NodeLocation {
 // False when `id` is not in the tree.
 bool locateNode(const NodePtr& root, NodeId id, NodeLocation* location);
 
+// The nodes from `root` down to `id`, both included (tree edges only); false when absent.
+bool pathToNode(const NodePtr& root, NodeId id, std::vector<const Node*>* path);
+
 // True when `id` is `ancestor` itself or lies in its subtree (tree edges only).
 bool isInSubtree(const NodePtr& root, NodeId ancestor, NodeId id);
 

@@ -12,16 +12,6 @@ std::string quoted(const Node& node) {
   return "\"" + (node.name.empty() ? std::string(kindName(node.kind)) : node.name) + "\"";
 }
 
-// The nodes from the root down to `id` (both included); false when absent.
-bool pathTo(const NodePtr& node, NodeId id, std::vector<const Node*>* path) {
-  path->push_back(node.get());
-  if (node->id == id) return true;
-  for (const auto& c : node->children)
-    if (pathTo(c, id, path)) return true;
-  path->pop_back();
-  return false;
-}
-
 ChildRole roleForMode(PlaceMode mode) {
   switch (mode) {
     case PlaceMode::Cut:
@@ -97,7 +87,7 @@ const char* rolePhrase(ChildRole role) {
 
 bool removesMaterial(const NodePtr& root, NodeId id) {
   std::vector<const Node*> path;
-  if (!pathTo(root, id, &path)) return false;
+  if (!pathToNode(root, id, &path)) return false;
   bool removes = false;
   for (size_t i = 1; i < path.size(); ++i) {
     const Node& parent = *path[i - 1];
@@ -138,7 +128,7 @@ std::vector<NodeId> ghostsOf(const NodePtr& root, const std::vector<NodeId>& sel
   std::unordered_set<NodeId> wanted;
   for (NodeId id : selection) {
     std::vector<const Node*> path;
-    if (!pathTo(root, id, &path)) continue;
+    if (!pathToNode(root, id, &path)) continue;
     // Along the path: what acts on the part the path runs through.
     for (size_t i = 0; i + 1 < path.size(); ++i) {
       const Node& parent = *path[i];
