@@ -131,12 +131,13 @@ int measureFrames(ui::Editor& editor, double seconds, int resolution) {
   std::vector<double> busy, orbiting;
   Stopwatch clock;
   int frames = 0;
-  double busySeconds = 0.0, idleSince = -1.0;
+  double busySeconds = 0.0, idleSince = -1.0, worstUploadMs = 0.0;
   while (true) {
     const double before = clock.seconds();
     editor.camera().orbit(3.0, 0.0);
     editor.frame();
     ++frames;
+    worstUploadMs = std::max(worstUploadMs, state.uploadMs);
     if (state.worker.busy) {
       busy.push_back(state.frameMs);
       busySeconds += clock.seconds() - before;
@@ -159,6 +160,7 @@ int measureFrames(ui::Editor& editor, double seconds, int resolution) {
   std::printf("resolution %d (%s), %d frames in all, %.1f s evaluating\n",
               state.document.scene().settings.resolution, state.backendDescription.c_str(), frames,
               busySeconds);
+  std::printf("largest splat transfer of a result: %.1f ms\n", worstUploadMs);
   report("orbiting while evaluating", busy);
   report("orbiting the result", orbiting);
   // The floor: frames that redraw the panels and copy the cached view (a hand on the mouse

@@ -8,6 +8,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
@@ -372,6 +373,13 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     state.importPlacement.reset();
     state.dialog.open(DialogPurpose::ImportMesh, "");
   }
+  if (ImGui::IsItemHovered()) {
+    std::string formats;  // from the one table of formats
+    for (const MeshFormat& format : meshFormats())
+      if (format.supports(MeshAccess::Read))
+        formats += (formats.empty() ? "" : ", ") + std::string(format.label);
+    ImGui::SetTooltip("A closed mesh file (%s); asks its unit and up axis", formats.c_str());
+  }
   paletteDragSource(kImportMeshItem, importLabel.c_str());
   ImGui::Separator();
   ImGui::TextDisabled("empty operation");
@@ -390,6 +398,11 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     char label[64];
     std::snprintf(label, sizeof(label), "%s %s##group%zu", kindGlyph(ops[i]), kindName(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) groupSelection(state, ops[i]);
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(
+          "Put the selected parts in a new %s in the first one's place (parts that "
+          "do the same: all add, or all cut)",
+          kindName(ops[i]));
   }
   ImGui::EndDisabled();
   ImGui::End();

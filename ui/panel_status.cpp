@@ -130,8 +130,10 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(50.0f);
   ImGui::Combo("##sectionAxis", &state.section.axis, axes, 3);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The axis the section plane lies across");
   ImGui::SameLine();
   ImGui::Checkbox("flip", &state.section.flip);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Cut away the other side of the plane");
   ImGui::SetNextItemWidth(-1);
   // The plane's place in scene units along its axis (stored as a fraction of the bounds, so
   // that it stays inside them as the scene changes).
@@ -153,6 +155,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     state.section.at = std::clamp((where - lo) / (hi - lo), 0.0, 1.0);
   ImGui::EndDisabled();
   ImGui::Checkbox("ground grid", &state.showGrid);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The grid on z = 0; its spacing follows the scene's size (the move step)");
   ImGui::SameLine();
   ImGui::Checkbox("snap", &state.snap.enabled);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Gizmo snapping: move step, 15\u00B0, scale 0.1");
@@ -171,6 +175,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   int mode = int(state.gizmoMode);
   ImGui::SetNextItemWidth(-1);
   if (ImGui::Combo("##gizmo", &mode, modes, 3)) state.gizmoMode = GizmoMode(mode);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("What the gizmo on the selection does: move (W), rotate (E), scale (R)");
   ImGui::End();
 }
 
