@@ -101,14 +101,28 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
     editor.state().document.setTransform(leaf->id, t);
     leaf = findNode(editor.state().document.root(), leaf->id);
     const uint64_t revision = editor.state().document.revision();
+    // Where the time goes: the engine's passes (evaluation and splats, as the results report
+    // them), the transfer of the full result into GL, and the frames drawn meanwhile.
+    int frames = 0, framesAfterResult = 0;
+    double resultAtMs = -1.0;
     for (;;) {
       editor.frame();
+      ++frames;
       const auto& p = editor.state().preview;
-      if (p && p->tag == revision && !p->coarse && editor.viewSettled()) break;
+      if (p && p->tag == revision && !p->coarse) {
+        if (resultAtMs < 0.0) resultAtMs = clock.seconds() * 1e3;
+        ++framesAfterResult;
+        if (editor.viewSettled()) break;
+      }
       if (clock.seconds() > 60.0) throw Error("an edit did not reach the screen within 60 s");
     }
     ms.push_back(clock.seconds() * 1e3);
-    std::printf("edit %d: %.1f ms from the edit to its surfels on screen\n", k + 1, ms.back());
+    const auto& shown = *editor.state().preview;
+    std::printf(
+        "edit %d: %.1f ms from the edit to its surfels on screen (full result in the UI at %.1f "
+        "ms: engine %.1f + splats %.1f ms, transfer %.1f ms; %d frames, %d from the result on)\n",
+        k + 1, ms.back(), resultAtMs, shown.stats.seconds * 1e3, shown.splatSeconds * 1e3,
+        editor.state().uploadMs, frames, framesAfterResult);
   }
   std::sort(ms.begin(), ms.end());
   std::printf("latency: median %.1f ms, best %.1f ms, worst %.1f ms over %d edits of '%s' (%s)\n",

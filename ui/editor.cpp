@@ -248,7 +248,7 @@ static bool sceneHasVisibleLeaves(const NodePtr& node) {
   return false;
 }
 
-void Editor::requestPreviewIfNeeded() {
+bool Editor::requestPreviewIfNeeded() {
   EditorState& s = *state_;
   const bool interactive = s.document.interacting() || gl_->viewport.gizmoDragging();
   const int wanted = s.document.scene().settings.resolution;
@@ -276,7 +276,7 @@ void Editor::requestPreviewIfNeeded() {
   const bool ghosts = s.showAllGhosts || selectionHasGhosts_;
   if (revision == requestedRevision_ && resolution == requestedResolution_ &&
       interactive == requestedInteractive_ && (ghosts == requestedGhosts_ || !ghosts))
-    return;
+    return false;
   requestedRevision_ = revision;
   requestedResolution_ = resolution;
   requestedInteractive_ = interactive;
@@ -289,11 +289,12 @@ void Editor::requestPreviewIfNeeded() {
     empty->resolution = resolution;
     applyResult(empty);
     worker_->cancel();  // an evaluation of an older scene is of no use now
-    return;
+    return false;
   }
   requestedEmpty_ = false;
   worker_->request(s.document.snapshot(), resolution, interactive, revision,
                    ghosts ? ghostCandidates(s.document.root()) : std::vector<NodeId>{});
+  return true;
 }
 
 void Editor::pumpPreview() {
@@ -514,11 +515,16 @@ bool Editor::frame() {
   if (input || g_input.pending() || gl_->renderer->refining()) activeUntil_ = state_->now + 0.5;
   // An edit made since the last frame without input (a dialog's result, a script, a test) is
   // sent to the worker before sleeping: its result wakes the loop (glfwPostEmptyEvent).
-  requestPreviewIfNeeded();
+  const bool requested = requestPreviewIfNeeded();
   const bool working =
       state_->worker.busy || (state_->exportJob && state_->exportJob->status().running);
   releaseHeldKeys();
-  if (state_->now < activeUntil_)
+  if (requested && !input)
+    // An edit just went to the engine and nothing else moves: a frame now would show the old
+    // result. Wait a little for the new one (its arrival wakes the loop): on a fast engine the
+    // edit then reaches the screen in this frame instead of the next.
+    glfwWaitEventsTimeout(0.008);
+  else if (state_->now < activeUntil_)
     glfwPollEvents();
   else
     glfwWaitEventsTimeout(working ? 0.05 : 0.5);  // progress shows at 20 frames a second

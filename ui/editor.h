@@ -89,7 +89,8 @@ class Editor {
  private:
   struct Gl;
   void pumpPreview();
-  void requestPreviewIfNeeded();
+  // Sends the worker what the document needs now; returns whether a request went out.
+  bool requestPreviewIfNeeded();
   void applyResult(std::shared_ptr<const PreviewResult> result);
   // Puts the result's splats into the renderer's buffer: device to device through the copier,
   // or a host upload. Falls back to the host path for good when the copier fails.

@@ -27,10 +27,11 @@ int previewResolutionFor(int requested, int shownResolution, uint64_t shownCache
 }
 
 PreviewWorker::PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution,
-                             std::function<void()> onResult)
+                             std::function<void()> onResult, double quickPassSeconds)
     : backend_(std::move(backend)),
       backendDescription_(backend_->description()),
       coarse_(std::max(coarseResolution, 8)),
+      quickPassSeconds_(quickPassSeconds),
       onResult_(std::move(onResult)) {
   thread_ = std::thread([this] { run(); });
 }
@@ -124,7 +125,10 @@ void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress
   // A coarse pass first, unless the coarse result of this very snapshot is already shown (the
   // hand just stopped) or there is nothing coarser. A request that arrives meanwhile cancels
   // `progress`, and with it the refinement.
-  if (coarse < full && lastShown_ != request.scene) {
+  // Nor when the last full pass was quick: the full result follows at once, and a coarse one
+  // first would only cost a frame (on a GPU the edit then reaches the screen a frame later).
+  const bool quick = lastFullSeconds_ >= 0.0 && lastFullSeconds_ < quickPassSeconds_;
+  if (coarse < full && lastShown_ != request.scene && !quick) {
     if (!evaluatePass(evaluator, request, coarse, true, progress)) return;
   }
   evaluatePass(evaluator, request, full, false, progress);
@@ -156,6 +160,8 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     result->error = "unexpected error";
   }
   lastShown_ = request.scene;
+  if (!coarse && result->error.empty())
+    lastFullSeconds_ = result->stats.seconds + result->splatSeconds;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     finished_ = std::move(result);

@@ -7,7 +7,8 @@
 //     evaluated.
 //   - An interactive request (the user is dragging) is evaluated only at a coarse resolution,
 //     min(requested, coarseResolution); the request made when the hand stops refines it. A
-//     calm request for a new scene shows the coarse result first, then the full one.
+//     calm request for a new scene shows the coarse result first, then the full one, unless the
+//     last full pass took less than quickPassSeconds (then the full one comes at once).
 //   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the root's
 //     splats (Backend::splats: made where the backend keeps its LDIs, on the device for CUDA)
 //     and the evaluation's statistics. A pass that finished before it was superseded still
@@ -92,7 +93,7 @@ class PreviewWorker {
   // on the worker thread each time a result is ready (e.g. to wake the UI's event loop); it may
   // call takeResult().
   explicit PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96,
-                         std::function<void()> onResult = {});
+                         std::function<void()> onResult = {}, double quickPassSeconds = 0.05);
   ~PreviewWorker();  // cancels the running evaluation, drops the pending one, and joins
   PreviewWorker(const PreviewWorker&) = delete;
   PreviewWorker& operator=(const PreviewWorker&) = delete;
@@ -135,6 +136,7 @@ class PreviewWorker {
   std::shared_ptr<Backend> backend_;
   std::string backendDescription_;
   int coarse_;
+  double quickPassSeconds_;
   std::function<void()> onResult_;
   std::atomic<bool> hostSplats_{true};
 
@@ -148,6 +150,7 @@ class PreviewWorker {
   std::shared_ptr<const PreviewResult> finished_;
   PreviewStatus status_;
   std::shared_ptr<const Scene> lastShown_;  // worker thread only
+  double lastFullSeconds_ = -1.0;           // worker thread only: the last full pass; -1 none yet
   std::thread thread_;
 };
 

@@ -227,5 +227,23 @@ TEST(PreviewResolution, CappedToWhatFitsInMemoryAndTime) {
   EXPECT_EQ(previewResolutionFor(64, 256, uint64_t(1) << 40, 0.01, 1), kMinResolution);
 }
 
+// After a quick full pass, a calm edit skips the coarse pass: its full result comes at once
+// (a coarse one first would only delay the edit on the screen by a frame).
+TEST(PreviewWorker, AfterAQuickFullPassACalmEditGoesStraightToTheFullResult) {
+  ResultLog log;
+  // Everything counts as quick here, whatever the machine (sanitizers included).
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 1e9);
+  log.attach(&worker);
+  worker.request(boxMinusSphere(64, 0), 64, false, 1);
+  ASSERT_TRUE(log.waitFor(2));  // the first: coarse, then full (nothing measured yet)
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  worker.request(boxMinusSphere(64, 1), 64, false, 2);
+  ASSERT_TRUE(log.waitFor(3));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 3u);
+  expectShows(r[2], 2, 64, false);
+}
+
 }  // namespace
 }  // namespace strata::test
