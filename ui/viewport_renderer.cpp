@@ -366,10 +366,15 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   const double drawMs = lastFrameMs - uploadMsLastFrame_;
   uploadMsLastFrame_ = uploadMsThisFrame_;
   uploadMsThisFrame_ = 0.0;
-  if (drewSplatsLastFrame_ >= splatsPerFrame_ / 2 && drawMs > 0.0) {
+  // Two shares, one per kind of drawing, since a splat drawn at full resolution costs far more
+  // than one of the coarse image: mixing them made the share swing between a cheap coarse frame
+  // and a full one many times dearer.
+  if (drawMs > 0.0 && drewSplatsLastFrame_ > 0) {
     const double factor = std::clamp(kTargetFrameMs / drawMs, 0.5, 1.5);
-    splatsPerFrame_ =
-        std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), 4000, size_t(1) << 26);
+    size_t& share = lastDrawFull_ ? fullShare_ : splatsPerFrame_;
+    if (drewSplatsLastFrame_ >= share / 2)
+      share =
+          std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), 4000, size_t(1) << 26);
   }
   drewSplatsLastFrame_ = 0;
   GLint window = 0;
@@ -385,7 +390,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   const bool viewMoved = view != shownView_;
   const uint64_t key = view ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
   shownView_ = view;
-  const size_t allowed = viewMoved ? splatsPerFrame_ : splatsPerFrame_ * 5 / 2;
+  const size_t allowed = viewMoved ? fullShare_ : fullShare_ * 5 / 2;
   const RenderTarget* show = nullptr;
   bool showCoarse = false;
 
@@ -420,12 +425,14 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       drawLinesInto(local);
       refining_ = false;
       drewSplatsLastFrame_ = splatCount_;
+      lastDrawFull_ = true;
       show = shown_.get();
     } else {
       // A share of the splats at half resolution now; the full image over the next frames.
       // Half resolution; a quarter when the share is so small that each splat stands for many
       // (what a software GL driver draws in a frame): fewer pixels to fill for the same image.
-      const size_t stride = nextPrime((splatCount_ + splatsPerFrame_ - 1) / splatsPerFrame_);
+      const size_t ratio = (splatCount_ + splatsPerFrame_ - 1) / splatsPerFrame_;
+      const size_t stride = ratio <= 1 ? 1 : nextPrime(ratio);
       const int shrink = stride > 64 ? 4 : 2;
       ViewportFrame half = local;
       half.width = std::max(1, f.width / shrink);
@@ -441,6 +448,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       drawLinesInto(half);
       refining_ = true;
       drewSplatsLastFrame_ = drawn;
+      lastDrawFull_ = false;
       show = coarse_.get();
       showCoarse = true;
     }
@@ -452,10 +460,11 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     beginSplats(local);
-    const size_t count = std::min(splatsPerFrame_, splatCount_ - buildDone_);
+    const size_t count = std::min(fullShare_, splatCount_ - buildDone_);
     drawSplatRange(buildDone_, count, 1, 1.0f);
     buildDone_ += count;
     drewSplatsLastFrame_ = count;
+    lastDrawFull_ = true;
     if (buildDone_ >= splatCount_) {
       drawGhosts(local);
       drawLinesInto(local);

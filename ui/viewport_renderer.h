@@ -107,7 +107,7 @@ class ViewportRenderer {
                   const std::vector<LineVertex>& overlayTriangles, double lastFrameMs);
   // The full image is still being drawn: the frame loop must keep frames coming.
   bool refining() const { return refining_; }
-  // Splats drawn a frame now (drawCached), for the status bar.
+  // Splats of the coarse image drawn a frame now (drawCached), for the status bar.
   size_t splatsPerFrame() const { return splatsPerFrame_; }
   // Whether the last drawCached showed every splat at full resolution.
   bool showingFull() const { return !refining_; }
@@ -168,11 +168,16 @@ class ViewportRenderer {
   // being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  uint64_t shownKey_ = 0;          // what shown_ (or coarse_, while refining) holds
-  uint64_t shownView_ = 0;         // its view alone (viewKey)
-  bool refining_ = false;          // building_ is being drawn for shownKey_
-  size_t buildDone_ = 0;           // splats drawn into building_ so far
-  size_t splatsPerFrame_ = 30000;  // a safe start for a software GL driver; grows 1.5x a frame
+  uint64_t shownKey_ = 0;   // what shown_ (or coarse_, while refining) holds
+  uint64_t shownView_ = 0;  // its view alone (viewKey)
+  bool refining_ = false;   // building_ is being drawn for shownKey_
+  size_t buildDone_ = 0;    // splats drawn into building_ so far
+  // Splats a frame: of the coarse image (every k-th, reduced resolution) and at full resolution
+  // (whole images and the refining shares). Safe starts for a software GL driver; each grows
+  // 1.5x a frame while frames are quick.
+  size_t splatsPerFrame_ = 30000;
+  size_t fullShare_ = 30000;
+  bool lastDrawFull_ = false;  // the last drawCached's splats were at full resolution
   double uploadMsThisFrame_ = 0.0, uploadMsLastFrame_ = 0.0;  // host uploads, by frame
   size_t drewSplatsLastFrame_ = 0;  // splats the last drawCached drew (what its time bought)
 };
