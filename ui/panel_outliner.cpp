@@ -348,9 +348,14 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", modeTips[i]);
   }
   const std::string sentence = placementSentence(state, primarySelection(state), state.placeMode);
+  // Two lines, always: the buttons below must not move when the sentence grows (a click aimed
+  // at one would land on another).
+  const float top = ImGui::GetCursorPosY();
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("a new part %s", sentence.c_str());
   ImGui::PopTextWrapPos();
+  const float twoLines = 2.0f * ImGui::GetTextLineHeightWithSpacing();
+  if (ImGui::GetCursorPosY() < top + twoLines) ImGui::SetCursorPosY(top + twoLines);
   const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3.0f;
   const int count = int(primitiveTable().size());
   const int lastRowStart = (count - 1) / 3 * 3;  // a short last row shares the whole width
