@@ -158,7 +158,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   if (!io.WantCaptureKeyboard && !io.WantTextInput) handleKeys(state);
   // What new parts and the snap are sized from.
   state.viewExtent = camera.unitsPerPixel(rect.height) * rect.height;
-  if (state.snapFollowsGrid) state.snap.step = groundGridStep(cachedSceneBounds(state));
+  if (state.snapFollowsGrid) state.snap.step = groundGridStep(sceneBounds(state.document.root()));
 
   // An ongoing gizmo drag keeps the mouse wherever it goes.
   if (gizmo_.dragging()) {
@@ -345,14 +345,6 @@ bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) 
   return true;
 }
 
-const Bounds& Viewport::cachedSceneBounds(const EditorState& state) {
-  if (sceneBoundsRevision_ != state.document.revision()) {
-    sceneBoundsRevision_ = state.document.revision();
-    sceneBounds_ = sceneBounds(state.document.root());
-  }
-  return sceneBounds_;
-}
-
 const Bounds& Viewport::cachedSelectionBounds(const EditorState& state) {
   if (selectionBoundsRevision_ != state.document.revision() ||
       selectionBoundsOf_ != state.selection) {
@@ -370,7 +362,7 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
   const ScreenMapping view = mapping(state, rect);
 
   std::vector<LineVertex> lines, overlay, triangles;
-  if (state.showGrid) appendGrid(cachedSceneBounds(state), &lines);
+  if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &lines);
   if (frame.sectionOn) appendSectionOutline(state, frame, &lines);
   if (!state.selection.empty()) {
     const Bounds& b = cachedSelectionBounds(state);

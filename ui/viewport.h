@@ -81,13 +81,12 @@ class Viewport {
   // (followingTransforms), all in the drag's one undo step.
   NodePtr dragStart_;
 
-  // Bounds drawn each frame (grid, selection box), worked out again only when the document or
-  // the selection changes: a mesh leaf's bounds walk all its vertices.
-  const Bounds& cachedSceneBounds(const EditorState& state);
+  // The selection box drawn each frame, worked out again only when the document or the
+  // selection changes: a mesh leaf's bounds walk all its vertices (sceneBounds remembers its own).
   const Bounds& cachedSelectionBounds(const EditorState& state);
-  uint64_t sceneBoundsRevision_ = ~uint64_t(0), selectionBoundsRevision_ = ~uint64_t(0);
+  uint64_t selectionBoundsRevision_ = ~uint64_t(0);
   std::vector<NodeId> selectionBoundsOf_;
-  Bounds sceneBounds_, selectionBounds_;
+  Bounds selectionBounds_;
 
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;

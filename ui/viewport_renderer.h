@@ -109,8 +109,6 @@ class ViewportRenderer {
   bool refining() const { return refining_; }
   // Splats of the coarse image drawn a frame now (drawCached), for the status bar.
   size_t splatsPerFrame() const { return splatsPerFrame_; }
-  // Whether the last drawCached showed every splat at full resolution.
-  bool showingFull() const { return !refining_; }
   static constexpr double kTargetFrameMs = 12.0;
 
   // The leaf and point that pixel (px, py) of `frame`'s viewport shows (pixels from its

@@ -35,10 +35,6 @@ std::string verbPhrase(PlaceMode mode, const Node& what) {
   }
 }
 
-NodePtr insertAt(const NodePtr& root, NodeId parentId, int index, const NodePtr& part) {
-  return insertChild(root, parentId, index, part);
-}
-
 }  // namespace
 
 ChildRole childRole(const Node& parent, int index) {
@@ -212,7 +208,7 @@ PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
 }
 
 NodePtr placePart(const NodePtr& root, const PlacePlan& plan, const NodePtr& part, NodeId groupId) {
-  if (plan.wrapped == 0) return insertAt(root, plan.parent, plan.index, part);
+  if (plan.wrapped == 0) return insertChild(root, plan.parent, plan.index, part);
   if (findNode(root, groupId) || findNode(part, groupId))
     throw Error("place: the new operation's id is in use");
   NodeLocation where;
