@@ -68,6 +68,13 @@ std::string formatExportText(const ExportSummary& summary) {
                   static_cast<unsigned long long>(r.synthesizedCrossings));
     out << line;
   }
+  if (r.unfoldedShells) {
+    std::snprintf(line, sizeof(line),
+                  "          %d shell%s folded inside out by vertex placement (parts thinner than "
+                  "a cell) pulled back towards the cell centres\n",
+                  r.unfoldedShells, r.unfoldedShells == 1 ? "" : "s");
+    out << line;
+  }
   out << "result    " << (exportCheckPassed(c) ? "passed" : "FAILED") << " the watertight check\n";
   for (const auto& w : s.warnings) out << "warning   " << w << "\n";
   return out.str();
@@ -111,6 +118,7 @@ std::string formatExportJson(const ExportSummary& s) {
   j["max_plane_distance"] = r.maxPlaneDistance;
   j["synthesized_crossings"] = r.synthesizedCrossings;
   j["sign_disagreements"] = r.signDisagreements;
+  j["unfolded_shells"] = r.unfoldedShells;
   j["warnings"] = s.warnings;
   return j.dump(2) + "\n";
 }

@@ -1,4 +1,5 @@
 #include "engine/export/contour_scene.h"
+#include "engine/export/unfold_shells.h"
 
 #include <algorithm>
 #include <cmath>
@@ -164,6 +165,7 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   Stopwatch merge;
   mergeTiles(&contour, progress);
   ExportMesh out = indexedMesh(scene, grid, contour, r);
+  r.unfoldedShells = unfoldInvertedShells(grid, contour.vertices, &out.mesh);
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;
   r.peakBytes = peakResidentBytes();

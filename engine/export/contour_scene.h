@@ -38,6 +38,9 @@ struct ContourReport {
   // Measured: the largest distance of a vertex from the tangent planes of its own Hermite data
   // (scene units); small where the QEF could fit the planes (flat parts, sharp features).
   double maxPlaneDistance = 0.0;
+  // Shells that vertex placement had turned inside out (a part thinner than a cell), pulled
+  // back towards their cells' centres (unfold_shells.h).
+  int unfoldedShells = 0;
   // Said once each over all tiles: parts smaller than a cell, ... (EvalResult::warnings).
   std::vector<std::string> warnings;
 };

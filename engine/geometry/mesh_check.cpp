@@ -6,6 +6,7 @@
 #include "engine/geometry/mesh_check.h"
 
 #include "engine/geometry/box_tree.h"
+#include "engine/util/union_find.h"
 
 #include <glm/geometric.hpp>
 
@@ -120,23 +121,6 @@ void forEachEdge(const std::vector<HalfEdge>& edges, Visit visit) {
     i = j;
   }
 }
-
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
-    }
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // An axis-aligned box grown point by point, empty (lo > hi) until the first. NaN coordinates
 // are left out: glm::min and glm::max keep their first argument then.

@@ -167,6 +167,15 @@ class ByteReader {
   uint8_t byte() { return at_ < size_ ? data_[at_++] : 0; }
   // A number in [lo, hi] in 256 steps.
   double in(double lo, double hi) { return lo + (hi - lo) * byte() / 255.0; }
+  // Three numbers in [lo, hi], read x, y, z in that order. (Reads inside one call's argument
+  // list would be unordered: gcc and clang would build different trees from the same bytes,
+  // and a finding of the clang-built fuzzer would not reproduce in the gcc-built tests.)
+  glm::dvec3 vec(double lo, double hi) {
+    const double x = in(lo, hi);
+    const double y = in(lo, hi);
+    const double z = in(lo, hi);
+    return {x, y, z};
+  }
   bool done() const { return at_ >= size_; }
 
  private:
@@ -181,9 +190,10 @@ inline std::shared_ptr<const TriangleMesh> jitteredOctahedron(ByteReader& in) {
   auto mesh = std::make_shared<TriangleMesh>();
   const glm::dvec3 corners[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                  {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
-  for (const glm::dvec3& c : corners)
-    mesh->positions.push_back(c * in.in(0.2, 1.5) +
-                              glm::dvec3(in.in(-0.6, 0.6), in.in(-0.6, 0.6), in.in(-0.6, 0.6)));
+  for (const glm::dvec3& c : corners) {
+    const double scale = in.in(0.2, 1.5);
+    mesh->positions.push_back(c * scale + in.vec(-0.6, 0.6));
+  }
   mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                      {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   prepareMesh(*mesh);
@@ -211,9 +221,9 @@ inline NodePtr fuzzNode(ByteReader& in, int depth, NodeId& nextId) {
     node->params = scaledPrimitiveParams(info.kind, info.defaults, in.in(0.2, 2.0));
     node->params.segments = in.byte() % 2 ? 0 : 3 + in.byte() % 20;
   }
-  node->transform.translate = glm::dvec3(in.in(-1, 1), in.in(-1, 1), in.in(-1, 1));
-  node->transform.rotateDegrees = glm::dvec3(in.in(0, 360), in.in(0, 360), in.in(0, 360));
-  node->transform.scale = glm::dvec3(in.in(0.3, 2), in.in(0.3, 2), in.in(0.3, 2));
+  node->transform.translate = in.vec(-1, 1);
+  node->transform.rotateDegrees = in.vec(0, 360);
+  node->transform.scale = in.vec(0.3, 2);
   if (in.byte() % 4 == 0) node->transform.scale.x = -node->transform.scale.x;  // a mirror
   return node;
 }
@@ -271,7 +281,7 @@ inline bool runExpansion(const uint8_t* data, size_t size) {
     node->id = nextId++;
     if (made.empty() || in.byte() % 8 == 0) {
       node->kind = NodeKind::Box;
-      node->transform.translate = glm::dvec3(in.in(-2, 2), in.in(-2, 2), in.in(-2, 2));
+      node->transform.translate = in.vec(-2, 2);
     } else {
       node->kind = NodeKind(in.byte() % 3);
       const int children = 1 + in.byte() % 6;

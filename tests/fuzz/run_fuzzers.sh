@@ -9,6 +9,10 @@
 #   TARGET    fuzz_mesh_readers fuzz_scene_file fuzz_pipeline fuzz_expansion (default: all)
 # Environment: FUZZ_DIR (default build-fuzz) holds the build, the growing corpora and findings;
 # JOBS (default nproc) build jobs.
+# -timeout=60: the instrumented engine runs 100-250x slower than a Release build (coverage
+# callbacks on every compare), and libFuzzer runs an input twice when it suspects a leak; a
+# 48-tile export of a smooth torus (seeds/pipeline/many_tiles_smooth_torus, 0.1 s in Release)
+# took 25 s here. A hang runs forever, so it is still caught.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:?usage: tests/fuzz/run_fuzzers.sh SECONDS [TARGET...]}
@@ -31,10 +35,11 @@ for t in "${targets[@]}"; do
   case $t in
     fuzz_mesh_readers) cp -n tests/fuzz/seeds/mesh_readers/* "$corpus/" ;;
     fuzz_scene_file) cp -n assets/scenes/*.strata.json "$corpus/" ;;
+    fuzz_pipeline) cp -n tests/fuzz/seeds/pipeline/* "$corpus/" ;;
   esac
   log="$dir/$t.log"
   set +e
-  "$dir/tests/fuzz/$t" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 \
+  "$dir/tests/fuzz/$t" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" >"$log" 2>&1
   rc=$?
   set -e

@@ -76,6 +76,8 @@ TEST_P(ContourAnalytic, WatertightWithVolumeAndTopology) {
     EXPECT_TRUE(isWatertight(r.mesh.mesh)) << c.name;
     EXPECT_NEAR(r.check.volume, c.volume, 0.25 * r.report.grid.h * c.boundArea) << c.name;
     EXPECT_EQ(r.check.components, c.components) << c.name;
+    // Thick shapes never fold; the cavity's shell keeps its negative volume.
+    EXPECT_EQ(r.report.unfoldedShells, 0) << c.name;
     if (c.genus >= 0) {
       EXPECT_EQ(r.check.genus, c.genus) << c.name;
     }
@@ -256,6 +258,31 @@ TEST(ContourRegression, ScaffoldWithMovedOffsetHasNoPinchedVertices) {
   Contoured r = contour(s);
   EXPECT_TRUE(isWatertight(r.mesh.mesh));
   EXPECT_TRUE(r.check.manifold());  // checkMesh welds identical positions first
+}
+
+// Found by fuzz_pipeline (tests/fuzz/seeds/pipeline/folded_sliver): an octahedron folded into
+// a sliver thinner than a cell, mirrored, at 8 cells. Its one inside node gave a closed shell of
+// 12 triangles whose QEF vertices crowded onto the sliver and turned it inside out (volume
+// -5.6e-6 mm^3: a void to a slicer). The shell is pulled back towards its cell centres.
+TEST(ContourRegression, FoldedSliverShellIsTurnedRightSideOut) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->positions = {{0.961176, 0.501176, 0.501176},
+                     {-1.72941, -0.6, -0.581176},
+                     {-0.6, -0.236863, -0.6},
+                     {-0.6, -0.8, -0.6},
+                     {-0.6, -0.6, -0.4},
+                     {-0.6, -0.6, -0.8}};
+  mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                     {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  prepareMesh(*mesh);
+  Transform t;
+  t.translate = glm::dvec3(-1.0);
+  t.scale = glm::dvec3(-0.3, 0.3, 0.3);
+  Contoured r = contour(makeScene(withTransform(meshLeaf(mesh), t), 8), 8);
+  EXPECT_TRUE(isWatertight(r.mesh.mesh));
+  EXPECT_EQ(r.report.unfoldedShells, 1);
+  EXPECT_GT(r.check.volume, 0.0);
+  EXPECT_EQ(r.check.degenerateTriangles, 0u);
 }
 
 }  // namespace
