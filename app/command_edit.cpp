@@ -155,6 +155,7 @@ int measureFrames(ui::Editor& editor, double seconds, int resolution) {
     if (state.worker.busy) {
       busy.push_back(state.frameMs);
       busySeconds += clock.seconds() - before;
+      idleSince = -1.0;  // a pause between the coarse and the full pass is not the end
     } else {
       if (idleSince < 0.0) idleSince = before;
       orbiting.push_back(state.frameMs);
