@@ -3,6 +3,7 @@
 //   1. sampling and Boolean times, surfels, LDI memory and peak memory;
 //   2. the watertight export of the same Boolean (contourScene, tiled dual contouring): stage
 //      times, triangles, whether the result is closed, manifold and oriented, peak memory;
+//   4. (after 3) the mesh alone grown by 2% and 10% of its diagonal: offsetLdi's time;
 //   3. when built with OpenVDB: the same Boolean through OpenVDB (mesh to narrow-band level set
 //      with Strata's cell size, CSG difference, volume to mesh), the same columns.
 // Each row runs in a forked child process, so its peak resident memory is its own, and a row
@@ -15,6 +16,7 @@
 // The results and the command that made them are recorded in tests/bench/RESULTS.md.
 #include <sys/wait.h>
 #include <unistd.h>
+#include <glm/geometric.hpp>
 
 #include <cerrno>
 #include <csignal>
@@ -33,6 +35,7 @@
 #include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
+#include "engine/ldi/offset_ldi.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
@@ -176,6 +179,33 @@ std::string exportRow(const std::string& name, int resolution, int tile) {
       name.c_str(), resolution, report.tiles, report.evaluateSeconds, report.contourSeconds,
       report.mergeSeconds, total, out.mesh.triangles.size(), check.volume,
       watertightText(check).c_str(), mib(peak));
+}
+
+// Table 4: the mesh alone grown by `fraction` of its diagonal (offsetLdi, engine/ldi/offset_ldi.h).
+std::string offsetRow(const std::string& name, int resolution, double fraction) {
+  auto mesh = loadMesh(name);
+  Bounds bounds;
+  for (const auto& p : mesh->positions) bounds.include(p);
+  const double distance = fraction * glm::length(bounds.max - bounds.min);
+  auto leaf = std::make_shared<Node>();
+  leaf->id = 1;
+  leaf->kind = NodeKind::Mesh;
+  leaf->mesh = mesh;
+  Scene scene;
+  scene.root = leaf;
+  scene.settings.resolution = resolution;
+  // Room for the growth: the grid's box is the mesh's grown by the distance (and its margin).
+  scene.settings.margin = fraction * 1.8;
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  EvalResult r = evaluator.evaluate(scene, EvalOptions{}, progress);
+  std::shared_ptr<const Ldi> ldi = evaluator.backend().download(r.root);
+  Stopwatch clock;
+  std::shared_ptr<Ldi> grown = offsetLdi(*ldi, distance, &progress);
+  const double seconds = clock.seconds();
+  return format("| %-9s | %5d | %8.1f%% | %9.1f | %9.3f | %14zu | %12.1f |", name.c_str(),
+                resolution, fraction * 100.0, distance / ldi->grid.h, seconds, grown->surfelCount(),
+                mib(peakResidentBytes()));
 }
 
 #ifdef STRATA_BENCH_OPENVDB
@@ -440,5 +470,25 @@ int main(int argc, char** argv) {
         "(install libopenvdb-dev and reconfigure).\n");
 #endif
   }
+  std::printf(
+      "\n### 4. Offsets (offsetLdi on the CPU: a distance transform, cost independent of "
+      "the distance)\n\n");
+  printHeader({{"mesh", 9, false},
+               {"res", 5, true},
+               {"distance", 9, true},
+               {"cells", 9, true},
+               {"offset s", 9, true},
+               {"result surfels", 14, true},
+               {"peak RSS MiB", 12, true}});
+  for (const auto& m : meshes)
+    for (int r : tableResolutions(m, false)) {
+      if (r > 512) continue;  // 13 bytes a node of the grid: 1.7 GB at 512
+      for (double fraction : {0.02, 0.10})
+        std::printf("%s\n", forkRow(m, r, [&] { return offsetRow(m, r, fraction); }).c_str());
+    }
+  std::printf(
+      "\ndistance: of the mesh's bounding-box diagonal; cells: the same in cells. "
+      "Offset s: offsetLdi alone (sampling not included).\n");
+
   return 0;
 }
