@@ -13,9 +13,10 @@
 namespace strata {
 
 const std::vector<std::string> kValuedOptions = {
-    "--resolution", "--report",        "-o",           "--output",       "--backend",
-    "--threads",    "--margin",        "--surfels",    "--tile",         "--unit-scale",
-    "--max-leaves", "--max-file-size", "--max-memory", "--max-triangles"};
+    "--resolution", "--report",        "-o",           "--output",        "--backend",
+    "--threads",    "--margin",        "--surfels",    "--tile",          "--unit-scale",
+    "--max-leaves", "--max-file-size", "--max-memory", "--max-triangles", "--distance",
+    "--thickness",  "--radius",        "--fillet"};
 const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open",
                                                "--force"};
 

@@ -1,6 +1,7 @@
 // `strata eval SCENE` and `strata boolean OP A B...`: evaluate a CSG tree on the LDI engine and
 // report per stage. `boolean` with -o exports the result as a watertight mesh (see
 // command_export.cpp); --surfels writes the root's surfels as a point cloud.
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 
@@ -10,6 +11,7 @@
 #include "app/eval_report.h"
 #include "app/scene_from_meshes.h"
 #include "app/terminal_progress.h"
+#include "engine/document/commands.h"
 #include "engine/document/expansion.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/fallback.h"
@@ -159,6 +161,59 @@ int runBoolean(const std::vector<std::string>& argv) {
     applySceneLimits(args, &scene);
     for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
     std::string input = pos[0] + " of";
+    for (const auto& f : files) input += " " + f;
+    if (args.has("-o") || args.has("--output"))
+      return exportAndReport(scene, args, input, warnings);
+    ReportContext context;
+    context.input = input;
+    context.warnings = warnings;
+    return evaluateAndReport(scene, args, context);
+  });
+}
+
+int runModifier(const std::string& command, const std::vector<std::string>& argv) {
+  return runGuarded([&] {
+    // The CUDA backend does not evaluate modifiers yet: auto means the CPU here.
+    std::vector<std::string> withBackend = argv;
+    if (std::find(argv.begin(), argv.end(), "--backend") == argv.end())
+      withBackend.insert(withBackend.end(), {"--backend", "cpu"});
+    CliArgs args(withBackend, kValuedOptions, kFlagOptions);
+    const auto& files = args.positional();
+    NodeKind kind = NodeKind::Offset;
+    std::string option = "--distance";
+    if (command == "shell") {
+      kind = NodeKind::Shell;
+      option = "--thickness";
+    } else if (command == "round") {
+      const bool fillet = args.has("--fillet");
+      if (fillet == args.has("--radius"))
+        throw Error(
+            "round: give --radius R (round convex edges) or --fillet R (fill concave "
+            "edges and seams), one of them");
+      kind = fillet ? NodeKind::Fillet : NodeKind::Round;
+      option = fillet ? "--fillet" : "--radius";
+    }
+    if (files.empty() || !args.has(option))
+      throw Error("usage: strata " + command + " A [B...] " + option +
+                  " VALUE [--resolution N] [-o " + outputAlternatives("out") +
+                  "] [--report FILE] [--backend cpu]");
+    const double amount = args.number(option, 0.0, -1e300, 1e300);
+    applyInputLimits(args);
+    MeshReadOptions meshOptions;
+    meshOptions.allowOpen = args.has("--allow-open");
+    meshOptions.unitScale = args.number("--unit-scale", 1.0, 1e-9, 1e9);
+    std::vector<std::string> warnings;
+    Scene scene = sceneFromMeshFiles("union", files, meshOptions,
+                                     args.number("--margin", 0.05, 0.0, 10.0), &warnings);
+    checkModifierAmount(kind, amount, command + " " + option);
+    auto modifier =
+        std::make_shared<Node>(*makeOperationNode(kind, NodeId(files.size() + 2), {scene.root}));
+    modifier->name = kindName(kind);
+    modifier->amount = amount;
+    scene.root = modifier;
+    applySceneLimits(args, &scene);
+    for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
+    std::string input = std::string(kindName(kind)) + " " + args.text(option, "") + " of";
     for (const auto& f : files) input += " " + f;
     if (args.has("-o") || args.has("--output"))
       return exportAndReport(scene, args, input, warnings);

@@ -21,6 +21,14 @@ const char* kUsageHead =
     "  strata eval SCENE.strata.json  evaluate a scene file\n"
     "  strata boolean OP A B [C...]   apply union|intersection|difference to mesh files\n"
     "                                 (difference: A minus all the others)\n"
+    "  strata offset A [B...] --distance D\n"
+    "                                 the meshes' union grown (D > 0) or shrunk (D < 0) by D\n"
+    "  strata shell A [B...] --thickness T\n"
+    "                                 a wall of thickness T inside the union's surface\n"
+    "  strata round A [B...] --radius R | --fillet R\n"
+    "                                 convex edges rounded (--radius) or concave edges and\n"
+    "                                 seams filled (--fillet) with radius R; these three take\n"
+    "                                 boolean's options and run on the CPU backend\n"
     "  strata export SCENE -o FILE    write the scene's result as a watertight mesh\n"
     "  strata render SCENE -o F.png   render the editor's view of the scene to a PNG\n"
     "                                 (--width W --height H, --view iso|front|right|top...)\n"
@@ -112,6 +120,8 @@ int runCommand(const std::vector<std::string>& args) {
   if (command == "eval") return strata::runEval(rest);
   if (command == "boolean") return strata::runBoolean(rest);
   if (command == "export") return strata::runExport(rest);
+  if (command == "offset" || command == "shell" || command == "round")
+    return strata::runModifier(command, rest);
   if (command == "edit") return strata::runEdit(rest);
   if (command == "render") return strata::runRender(rest);
   if (strata::looksLikeScenePath(command)) return strata::runEdit(args);

@@ -8,7 +8,7 @@ Scene sceneFromMeshFiles(const std::string& operation, const std::vector<std::st
                          const MeshReadOptions& options, double margin,
                          std::vector<std::string>* warnings) {
   NodeKind kind;
-  if (!kindFromName(operation, &kind) || !isOperation(kind))
+  if (!kindFromName(operation, &kind) || !isOperation(kind) || modifierOf(kind) != Modifier::None)
     throw Error("boolean: unknown operation '" + operation +
                 "' (expected union, intersection or difference)");
   static const glm::vec3 kPalette[] = {{0.85f, 0.55f, 0.3f}, {0.3f, 0.6f, 0.85f},

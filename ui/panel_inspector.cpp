@@ -260,9 +260,13 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
   if (isOperation(node->kind) &&
       ImGui::CollapsingHeader("Operation", ImGuiTreeNodeFlags_DefaultOpen)) {
     bool first = true;
+    Modifier previous = Modifier::None;
     for (NodeKind op : operationKinds()) {
-      if (!first) ImGui::SameLine();
+      // Booleans on one row, modifiers on the next.
+      if (!first && !(previous == Modifier::None && modifierOf(op) != Modifier::None))
+        ImGui::SameLine();
       first = false;
+      previous = modifierOf(op);
       if (ImGui::RadioButton(kindName(op), node->kind == op)) {
         state.document.beginInteraction();
         for (const NodePtr& n : nodes)
@@ -273,6 +277,24 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
     }
     ImGui::TextDisabled("%zu children%s", node->children.size(),
                         node->kind == NodeKind::Difference ? "; the first minus the others" : "");
+    if (const char* key = nodeKindInfo(node->kind).amountKey) {
+      // A modifier's distance, thickness or radius: dragged, the preview follows.
+      ImGui::TextUnformatted(key);
+      ImGui::SameLine(110.0f);
+      ImGui::SetNextItemWidth(-1);
+      double amount = node->amount;
+      const bool signedAmount = modifierOf(node->kind) == Modifier::Offset;
+      const double lo = signedAmount ? -1e300 : 1e-6, hi = 1e300;
+      const bool changed =
+          ImGui::DragScalar("##amount", ImGuiDataType_Double, &amount, float(speed), &lo, &hi,
+                            gLengthFormat.c_str(), ImGuiSliderFlags_AlwaysClamp);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", signedAmount ? "Grows the children (> 0) or shrinks them (< 0)"
+                                             : nodeKindInfo(node->kind).summary);
+      edited(state, changed, [&] {
+        for (const NodePtr& n : nodes) state.document.setAmount(n->id, amount);
+      });
+    }
   }
 
   if (node->kind == NodeKind::Mesh &&

@@ -119,6 +119,7 @@ NodePtr makeOperationNode(NodeKind kind, NodeId id, std::vector<NodePtr> childre
   node->id = id;
   node->kind = kind;
   node->name = std::string(kindName(kind)) + " " + std::to_string(id);
+  node->amount = nodeKindInfo(kind).defaultAmount;
   node->children = std::move(children);
   return node;
 }
@@ -382,6 +383,9 @@ NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind) {
   const bool defaultName = node.name == oldDefault;
   return editNode(root, id, [&](Node& n) {
     n.kind = kind;
+    // A modifier's amount: kept between modifiers, the kind's default when it becomes one.
+    if (modifierOf(kind) != Modifier::None && modifierOf(node.kind) == Modifier::None)
+      n.amount = nodeKindInfo(kind).defaultAmount;
     if (defaultName) n.name = std::string(kindName(kind)) + " " + std::to_string(id);
   });
 }

@@ -168,6 +168,18 @@ void Document::setParams(NodeId id, const PrimitiveParams& params) {
   apply("parameters", editNode(root(), id, [&](Node& n) { n.params = params; }));
 }
 
+void Document::setAmount(NodeId id, double amount) {
+  NodePtr node = findNode(root(), id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  if (modifierOf(node->kind) == Modifier::None)
+    throw Error(std::string("a ") + kindName(node->kind) + " node has no distance");
+  checkModifierAmount(node->kind, amount,
+                      std::string(kindName(node->kind)) + " '" + node->name + "'");
+  if (node->amount == amount) return;
+  apply(nodeKindInfo(node->kind).amountKey,
+        editNode(root(), id, [&](Node& n) { n.amount = amount; }));
+}
+
 void Document::setVisible(NodeId id, bool visible) {
   NodePtr node = findNode(root(), id);
   if (node && node->visible == visible) return;

@@ -79,6 +79,8 @@ class Document {
   void setTransform(NodeId id, const Transform& transform);
   void setColor(NodeId id, const glm::vec3& color);
   void setParams(NodeId id, const PrimitiveParams& params);
+  // A modifier's distance, thickness or radius (Node::amount); checked as the kind requires.
+  void setAmount(NodeId id, double amount);
   void setVisible(NodeId id, bool visible);
   void setResolution(int resolution);
   // Drag and drop: under `parent` before child `index`; never into the node's own subtree.

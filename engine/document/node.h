@@ -33,6 +33,9 @@ struct Node {
   bool visible = true;                // hidden nodes take no part in evaluation
 
   PrimitiveParams params;  // primitives only
+  // Modifiers (offset, shell, round, fillet): the distance, thickness or radius, scene units,
+  // measured in the world (the node's own scale does not change it).
+  double amount = 0.0;
 
   // Mesh leaves: the file's path (absolute in a Document; in a scene file relative to its
   // folder or absolute), the content hash of the file, and the loaded, checked mesh (shared,

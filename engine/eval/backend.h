@@ -15,6 +15,7 @@
 
 #include "engine/contour/contour_tile.h"
 #include "engine/geometry/mesh.h"
+#include "engine/kinds/node_kind.h"
 #include "engine/ldi/ldi.h"
 #include "engine/ldi/splats.h"
 #include "engine/util/progress.h"
@@ -49,6 +50,11 @@ class Backend {
   virtual TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                   const glm::ivec3& begin, const glm::ivec3& end,
                                   Progress& progress);
+  // `ldi` changed by a modifier (engine/kinds/node_kinds.h: offset, shell, round, fillet) by
+  // `amount` scene units, on the LDI's grid. The default throws strata::Error: a backend that
+  // cannot evaluate modifiers says so (the CPU backend can).
+  virtual LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi,
+                           Progress& progress);
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
   // The default downloads the LDI and builds them on the host.
   virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);

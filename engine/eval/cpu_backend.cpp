@@ -1,6 +1,7 @@
 #include "engine/eval/cpu_backend.h"
 
 #include "engine/ldi/combine_ldi.h"
+#include "engine/ldi/offset_ldi.h"
 #include "engine/ldi/sample_mesh.h"
 #include "engine/util/error.h"
 #include "engine/util/parallel_for.h"
@@ -42,6 +43,35 @@ LdiHandle CpuBackend::combine(RayOp op, const std::vector<LdiHandle>& children, 
   inputs.reserve(children.size());
   for (const auto& c : children) inputs.push_back(hostLdi(c));
   return std::make_shared<CpuLdi>(combineLdis(op, inputs, grid, &progress));
+}
+
+LdiHandle CpuBackend::modify(Modifier modifier, double amount, const LdiHandle& ldi,
+                             Progress& progress) {
+  const std::shared_ptr<const Ldi> in = wholeLdi(hostLdi(ldi));
+  switch (modifier) {
+    case Modifier::Offset:
+      return std::make_shared<CpuLdi>(offsetLdi(*in, amount, &progress));
+    case Modifier::Shell: {
+      std::shared_ptr<const Ldi> core = offsetLdi(*in, -amount, &progress);
+      return std::make_shared<CpuLdi>(
+          combineLdis(RayOp::Difference, {in, core}, in->grid, &progress));
+    }
+    case Modifier::Round:
+      return std::make_shared<CpuLdi>(
+          offsetLdi(*offsetLdi(*in, -amount, &progress), amount, &progress));
+    case Modifier::Fillet:
+      return std::make_shared<CpuLdi>(
+          offsetLdi(*offsetLdi(*in, amount, &progress), -amount, &progress));
+    case Modifier::None:
+      break;
+  }
+  return ldi;
+}
+
+LdiHandle Backend::modify(Modifier, double, const LdiHandle&, Progress&) {
+  throw Error("the " + description() +
+              " backend cannot evaluate offset, shell, round and fillet nodes yet: run with "
+              "--backend cpu");
 }
 
 LdiHandle CpuBackend::empty(const Grid& grid) {

@@ -88,6 +88,13 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
     }
     first = false;
   }
+  // A modifier may reach beyond its children (an offset grows, a fillet grows before it
+  // shrinks): room for it.
+  const double growth = modifierGrowth(node->kind, node->amount);
+  if (growth > 0.0 && !b.empty()) {
+    b.min -= glm::dvec3(growth);
+    b.max += glm::dvec3(growth);
+  }
   return b;
 }
 
@@ -213,6 +220,14 @@ const char* outcomeName(NodeOutcome outcome) {
 }
 
 Evaluator::Evaluator(std::shared_ptr<Backend> backend) : backend_(std::move(backend)) {}
+
+bool hasModifier(const NodePtr& node) {
+  if (!node) return false;
+  if (modifierOf(node->kind) != Modifier::None) return true;
+  for (const auto& c : node->children)
+    if (hasModifier(c)) return true;
+  return false;
+}
 
 Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld) {
   return boundsOf(node, root, parentWorld, false, 0);
@@ -404,6 +419,30 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
       v.ldi = backend_->combine(op, inputs, ctx.grid, *ctx.progress);
       record.seconds = watch.seconds();
       ctx.finishStage(kBoolean, record.seconds, v.ldi->surfelCount());
+      cache_[v.key] = CacheEntry{v.ldi, generation_, {}};
+    }
+  }
+  const Modifier modifier = modifierOf(node->kind);
+  if (modifier != Modifier::None && v.ldi->surfelCount() > 0 &&
+      !(modifier == Modifier::Offset && node->amount == 0.0)) {
+    // The children's union, changed by the modifier: keyed on it, the kind and the amount.
+    checkModifierAmount(node->kind, node->amount,
+                        std::string(kindName(node->kind)) + " '" + node->name + "'");
+    Hasher key;
+    key.add(uint8_t(0xA0)).add(uint8_t(node->kind)).add(node->amount).add(v.key);
+    hashGrid(key, ctx.grid);
+    v.key = key.digest();
+    auto hit = cache_.find(v.key);
+    if (hit != cache_.end()) {
+      hit->second.generation = generation_;
+      v.ldi = hit->second.ldi;
+      record.outcome = NodeOutcome::Cached;
+    } else {
+      Stopwatch watch;
+      v.ldi = backend_->modify(modifier, node->amount, v.ldi, *ctx.progress);
+      record.seconds += watch.seconds();
+      record.outcome = NodeOutcome::Computed;
+      ctx.finishStage(kBoolean, watch.seconds(), v.ldi->surfelCount());
       cache_[v.key] = CacheEntry{v.ldi, generation_, {}};
     }
   }

@@ -123,6 +123,12 @@ class Evaluator {
   std::unordered_map<const TriangleMesh*, MeshHashMemo> meshHashes_;
 };
 
+// Whether the tree holds a modifier (offset, shell, round, fillet). A modifier reads its
+// children around each point up to its amount away, which a tile's window does not hold: such
+// scenes are exported in one tile (for now), and their memory follows the whole grid
+// (engine/ldi/offset_ldi.h: 13 bytes a node).
+bool hasModifier(const NodePtr& node);
+
 // World-space bounds of a node's visible result (union: all children; intersection: the
 // overlap of the children's; difference: the first child's). Empty when nothing is visible.
 Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld);

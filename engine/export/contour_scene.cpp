@@ -148,7 +148,12 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   r = ContourReport();
   const Grid grid = Evaluator::gridFor(scene, options.resolution);
   r.grid = grid;
-  const glm::ivec3 tiles = tileCounts(grid, options.tileCells);
+  // One tile where a modifier needs the whole grid (hasModifier).
+  const int tileCells =
+      hasModifier(scene.root)
+          ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, options.tileCells})
+          : options.tileCells;
+  const glm::ivec3 tiles = tileCounts(grid, tileCells);
   r.tiles = tiles.x * tiles.y * tiles.z;
 
   TiledContour contour;
@@ -156,8 +161,8 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   for (int tz = 0; tz < tiles.z; ++tz)
     for (int ty = 0; ty < tiles.y; ++ty)
       for (int tx = 0; tx < tiles.x; ++tx) {
-        const glm::ivec3 begin = glm::ivec3(tx, ty, tz) * options.tileCells;
-        const glm::ivec3 end = glm::min(begin + options.tileCells, grid.cells);
+        const glm::ivec3 begin = glm::ivec3(tx, ty, tz) * tileCells;
+        const glm::ivec3 end = glm::min(begin + tileCells, grid.cells);
         contourOneTile(scene, evaluator, grid, begin, end, progress, r, &contour);
         progress.report("export", double(++done) / r.tiles);
       }

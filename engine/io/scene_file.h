@@ -16,7 +16,8 @@
 
 namespace strata {
 
-constexpr int kSceneFormatVersion = 1;
+// 2: offset, shell, round and fillet nodes. Version 1 files read unchanged.
+constexpr int kSceneFormatVersion = 2;
 
 struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving

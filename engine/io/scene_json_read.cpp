@@ -486,6 +486,14 @@ class SceneReader {
     }
     if (auto f = v.find("visible"); f != v.end()) node->visible = boolean(*f, at + "/visible");
 
+    if (const char* key = nodeKindInfo(node->kind).amountKey) {
+      // A modifier's amount (version 2): required, a distance (offset) or a positive length.
+      auto f = v.find(key);
+      const std::string p = at + "/" + key;
+      if (f == v.end()) fail(p, std::string("missing required field (the ") + key + ")");
+      node->amount =
+          modifierOf(node->kind) == Modifier::Offset ? number(*f, p, "a number") : positive(*f, p);
+    }
     if (isOperation(node->kind)) {
       if (auto f = v.find("children"); f != v.end()) {
         if (!f->is_array())
@@ -528,7 +536,7 @@ class SceneReader {
     std::string p = at + "/" + pointerToken(key);
     if (key == "children")
       fail(p, std::string("a ") + kindName(kind) +
-                  " node cannot have children (only union, intersection and difference can)");
+                  " node cannot have children (only operations and modifiers can)");
     if (anyTypeHasField(key))
       fail(p, "field \"" + key + "\" does not apply to a " + kindName(kind) + " node");
     fail(p, "unknown field \"" + key + "\"");

@@ -107,6 +107,8 @@ ojson nodeToJson(const Node& node, int depth) {
     if (!node.meshHash.empty()) j["hash"] = node.meshHash;
   } else if (node.kind == NodeKind::Instance) {
     j["of"] = node.instanceOf;
+  } else if (const char* key = nodeKindInfo(node.kind).amountKey) {
+    j[key] = finite(node.amount, label + " " + key);
   }
 
   ojson transform;
@@ -132,13 +134,24 @@ ojson nodeToJson(const Node& node, int depth) {
 
 }  // namespace
 
+namespace {
+bool holdsModifier(const Node& node) {
+  if (modifierOf(node.kind) != Modifier::None) return true;
+  for (const NodePtr& child : node.children)
+    if (child && holdsModifier(*child)) return true;
+  return false;
+}
+}  // namespace
+
 std::string sceneToJson(const Scene& scene) {
   if (!scene.root) throw Error("cannot save the scene: it has no root node");
   if (scene.settings.unit.empty()) throw Error("cannot save the scene: its unit is empty");
   const SceneSettings& s = scene.settings;
   ojson doc;
   doc["format"] = "strata-scene";
-  doc["version"] = kSceneFormatVersion;
+  // The oldest version that holds the scene: files without modifiers stay readable by
+  // builds that read version 1.
+  doc["version"] = holdsModifier(*scene.root) ? kSceneFormatVersion : 1;
   doc["unit"] = s.unit;
   ojson settings;
   settings["resolution"] = s.resolution;

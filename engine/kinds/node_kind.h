@@ -12,6 +12,12 @@ enum class NodeKind : uint8_t {
   Union,
   Intersection,
   Difference,  // first child minus all the others
+  // Modifiers: operations whose children, united, are then offset by the node's amount
+  // (node_kinds.h: Modifier).
+  Offset,
+  Shell,
+  Round,
+  Fillet,
   // Primitive leaves (primitives.h), centred at the origin, axis along z.
   Box,
   Sphere,
@@ -23,6 +29,16 @@ enum class NodeKind : uint8_t {
   // Other leaves.
   Mesh,      // an imported closed triangle mesh
   Instance,  // a reference to another node of the document (by id), with its own transform
+};
+
+// What a modifier (an operation that unites its children and then changes the solid by a
+// distance, `Node::amount`, in scene units) does; engine/ldi/offset_ldi.h computes it.
+enum class Modifier : uint8_t {
+  None,
+  Offset,  // grown by amount (> 0) or shrunk (< 0): the Euclidean offset
+  Shell,   // a wall of thickness amount (> 0) inside the surface: S minus offset(S, -amount)
+  Round,   // convex edges rounded with radius amount (> 0): offset(offset(S, -r), r), an opening
+  Fillet,  // concave edges and seams filled with radius amount (> 0): offset(offset(S, r), -r)
 };
 
 }  // namespace strata

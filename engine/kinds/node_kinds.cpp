@@ -1,5 +1,9 @@
 #include "engine/kinds/node_kinds.h"
 
+#include <cmath>
+
+#include "engine/util/error.h"
+
 namespace strata {
 namespace {
 
@@ -29,6 +33,54 @@ std::vector<NodeKindInfo> buildTable() {
        "Intersection: only what every child covers",
        RayOp::Intersection,
        {"children"}},
+      {NodeKind::Offset,
+       "offset",
+       KindRole::Operation,
+       "\u25CC",
+       "O",
+       "Offset: the children grown (distance > 0) or shrunk (< 0) by a distance",
+       RayOp::Union,
+       {"children", "distance"},
+       nullptr,
+       Modifier::Offset,
+       "distance",
+       0.1},
+      {NodeKind::Shell,
+       "shell",
+       KindRole::Operation,
+       "\u25CE",
+       "S",
+       "Shell: a wall of the given thickness inside the children's surface",
+       RayOp::Union,
+       {"children", "thickness"},
+       nullptr,
+       Modifier::Shell,
+       "thickness",
+       0.1},
+      {NodeKind::Round,
+       "round",
+       KindRole::Operation,
+       "\u25E0",
+       "R",
+       "Round: convex edges of the children rounded with a radius",
+       RayOp::Union,
+       {"children", "radius"},
+       nullptr,
+       Modifier::Round,
+       "radius",
+       0.1},
+      {NodeKind::Fillet,
+       "fillet",
+       KindRole::Operation,
+       "\u25E1",
+       "F",
+       "Fillet: concave edges and the seams between the children filled with a radius",
+       RayOp::Union,
+       {"children", "radius"},
+       nullptr,
+       Modifier::Fillet,
+       "radius",
+       0.1},
   };
   for (const PrimitiveInfo& p : primitiveTable()) {
     std::vector<std::string> fields;
@@ -97,6 +149,30 @@ bool kindFromName(const std::string& name, NodeKind* kind) {
     }
   }
   return false;
+}
+
+Modifier modifierOf(NodeKind kind) {
+  return nodeKindInfo(kind).modifier;
+}
+
+double modifierGrowth(NodeKind kind, double amount) {
+  switch (modifierOf(kind)) {
+    case Modifier::Offset:
+      return amount > 0.0 ? amount : 0.0;
+    case Modifier::Fillet:  // grown by the radius before it shrinks back
+      return amount;
+    default:
+      return 0.0;
+  }
+}
+
+void checkModifierAmount(NodeKind kind, double amount, const std::string& who) {
+  const NodeKindInfo& info = nodeKindInfo(kind);
+  if (info.modifier == Modifier::None) return;
+  if (!std::isfinite(amount))
+    throw Error(who + ": its " + info.amountKey + " is not a finite number");
+  if (info.modifier != Modifier::Offset && !(amount > 0.0))
+    throw Error(who + ": its " + info.amountKey + " must be greater than 0");
 }
 
 std::vector<NodeKind> operationKinds() {

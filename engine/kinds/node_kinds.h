@@ -30,7 +30,17 @@ struct NodeKindInfo {
   RayOp rayOp = RayOp::Union;                // operations only
   std::vector<std::string> fields;           // scene-file fields besides the common ones
   const PrimitiveInfo* primitive = nullptr;  // primitives only
+  Modifier modifier = Modifier::None;        // modifiers only (role Operation, rayOp Union)
+  const char* amountKey = nullptr;           // modifiers: the amount's scene-file field
+  double defaultAmount = 0.0;                // modifiers: of a new node, in scene units
 };
+
+// The modifier of `kind` (Modifier::None for every other kind).
+Modifier modifierOf(NodeKind kind);
+// How far a modifier's result may reach beyond its children's bounds (scene units, >= 0).
+double modifierGrowth(NodeKind kind, double amount);
+// Throws strata::Error (naming `who`) when `amount` is not valid for the modifier `kind`.
+void checkModifierAmount(NodeKind kind, double amount, const std::string& who);
 
 // Every kind: operations, then primitives in palette order, then mesh and instance.
 const std::vector<NodeKindInfo>& nodeKindTable();

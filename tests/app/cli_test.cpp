@@ -223,6 +223,30 @@ TEST(CliExport, EveryFormatPassesTheCheck) {
   }
 }
 
+// strata offset / shell / round: the meshes' union under a modifier, with boolean's options.
+TEST(CliExport, OffsetShellRoundAndFilletOfMeshFiles) {
+  const std::string bunny = data("bunny.obj");
+  const std::string out = temp("modified.stl");
+  for (const std::string& command :
+       {"offset " + bunny + " --distance 2", "offset " + bunny + " --distance -1",
+        "shell " + bunny + " --thickness 1", "round " + bunny + " --radius 1",
+        "round " + bunny + " " + data("eight.obj") + " --fillet 1"}) {
+    CliRun r = strata(command + " --resolution 64 -q -o " + out);
+    ASSERT_EQ(r.code, 0) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("passed the watertight check"), std::string::npos) << r.output;
+  }
+  CliRun missing = strata("shell " + bunny + " --resolution 32");
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.output.find("usage: strata shell A [B...] --thickness"), std::string::npos)
+      << missing.output;
+  CliRun both = strata("round " + bunny + " --radius 1 --fillet 1");
+  EXPECT_EQ(both.code, 1);
+  EXPECT_NE(both.output.find("--radius R"), std::string::npos) << both.output;
+  CliRun zero = strata("shell " + bunny + " --thickness 0");
+  EXPECT_EQ(zero.code, 1);
+  EXPECT_NE(zero.output.find("must be greater than 0"), std::string::npos) << zero.output;
+}
+
 TEST(CliExport, SceneExportWithTilesAndErrors) {
   std::string out = temp("demo.stl");
   CliRun r = strata("export " + std::string(STRATA_ASSETS) +
