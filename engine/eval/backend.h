@@ -55,6 +55,9 @@ class Backend {
   // cannot evaluate modifiers says so (the CPU backend can).
   virtual LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi,
                            Progress& progress);
+  // Whether modify() works here. Where it does not, the editor's preview and exports evaluate
+  // scenes holding a modifier on a CPU backend instead, and say so.
+  virtual bool evaluatesModifiers() const { return false; }
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
   // The default downloads the LDI and builds them on the host.
   virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);

@@ -16,6 +16,7 @@ class CpuBackend : public Backend {
   LdiHandle empty(const Grid& grid) override;
   LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi,
                    Progress& progress) override;
+  bool evaluatesModifiers() const override { return true; }
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override;
   std::shared_ptr<const Ldi> download(const LdiHandle& ldi) override;
 };

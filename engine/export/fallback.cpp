@@ -28,6 +28,13 @@ EvalResult evaluateWithFallback(Evaluator& evaluator, const Scene& scene,
 ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
                                const ContourOptions& options, Progress& progress,
                                ContourReport* report, const FallbackNotice& notice) {
+  if (hasModifier(scene.root) && !evaluator.backend().evaluatesModifiers()) {
+    if (notice)
+      notice("offset, shell, round and fillet nodes are evaluated on the CPU (the " +
+             evaluator.backend().description() + " backend cannot yet)");
+    Evaluator cpu(std::make_shared<CpuBackend>());
+    return contourScene(scene, cpu, options, progress, report);
+  }
   ContourOptions attempt = options;
   for (;;) {
     try {

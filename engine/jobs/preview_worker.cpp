@@ -5,6 +5,7 @@
 #include <new>
 #include <vector>
 
+#include "engine/eval/cpu_backend.h"
 #include "engine/util/error.h"
 #include "engine/util/limits.h"
 #include "engine/util/thread_priority.h"
@@ -175,11 +176,24 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   EvalOptions options;
   options.resolution = result.resolution;
   options.keep = request.ghosts;
-  result.stats = evaluator.evaluate(*request.scene, options, progress);
+  // Modifiers on a backend that cannot evaluate them: this pass on the CPU (its own evaluator,
+  // so that each cache keeps LDIs of its own backend).
+  Backend* backend = backend_.get();
+  if (hasModifier(request.scene->root) && !backend_->evaluatesModifiers()) {
+    if (!modifierEvaluator_)
+      modifierEvaluator_ = std::make_unique<Evaluator>(std::make_shared<CpuBackend>());
+    result.stats = modifierEvaluator_->evaluate(*request.scene, options, progress);
+    result.stats.warnings.push_back(
+        "offset, shell, round and fillet nodes are evaluated on the CPU (the " +
+        backend_->description() + " backend cannot yet)");
+    backend = &modifierEvaluator_->backend();
+  } else {
+    result.stats = evaluator.evaluate(*request.scene, options, progress);
+  }
   Stopwatch splatClock;
   result.surfels = result.stats.root->surfelCount();
   result.ldiBytes = result.stats.root->bytes();
-  SplatsHandle splats = backend_->splats(result.stats.root, progress);
+  SplatsHandle splats = backend->splats(result.stats.root, progress);
   result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
   if (hostSplats_ && !splats->hostData()) {
     std::vector<Splat> host(splats->count());
@@ -188,7 +202,7 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   }
   result.splats = std::move(splats);
   for (KeptLdi& kept : result.stats.kept) {
-    SplatsHandle ghost = backend_->splats(kept.ldi, progress);
+    SplatsHandle ghost = backend->splats(kept.ldi, progress);
     std::vector<Splat> host(ghost->count());
     if (!host.empty()) ghost->copyToHost(host.data());
     result.ghosts.push_back(GhostSplats{kept.id, std::make_shared<HostSplats>(std::move(host))});

@@ -139,6 +139,7 @@ class PreviewWorker {
   double quickPassSeconds_;
   std::function<void()> onResult_;
   std::atomic<bool> hostSplats_{true};
+  std::unique_ptr<Evaluator> modifierEvaluator_;  // worker thread only: see computePass
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // the worker: a request arrived, or stop

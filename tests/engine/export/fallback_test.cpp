@@ -3,7 +3,9 @@
 
 #include <algorithm>
 
+#include "engine/document/commands.h"
 #include "engine/export/fallback.h"
+#include "engine/jobs/preview_worker.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
 
@@ -62,6 +64,47 @@ TEST(Fallback, ExportAndEvaluationFallBackToTheCpu) {
   ASSERT_TRUE(used);
   EXPECT_NE(used->description().find("cpu"), std::string::npos);
   EXPECT_GT(r.measure.volume, 4.0);
+}
+
+// A backend that cannot evaluate modifiers (as the CUDA backend today).
+class NoModifierBackend : public CpuBackend {
+ public:
+  std::string description() const override { return "no-modifier test backend"; }
+  LdiHandle modify(Modifier m, double a, const LdiHandle& l, Progress& p) override {
+    return Backend::modify(m, a, l, p);  // throws, saying what to do
+  }
+  bool evaluatesModifiers() const override { return false; }
+};
+
+TEST(Fallback, ModifiersAreEvaluatedOnTheCpuWhereTheBackendCannot) {
+  auto round = std::make_shared<Node>(*makeOperationNode(NodeKind::Round, 50, {box({2, 2, 2})}));
+  round->amount = 0.25;
+  Scene s = makeScene(round, 64);
+  Progress progress;
+  Evaluator plain(std::make_shared<NoModifierBackend>());
+  try {
+    plain.evaluate(s, EvalOptions{}, progress);
+    ADD_FAILURE() << "the backend evaluated a modifier";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--backend cpu"), std::string::npos) << e.what();
+  }
+  std::vector<std::string> notices;
+  ExportMesh mesh = contourWithFallback(s, plain, ContourOptions{0, 256}, progress, nullptr,
+                                        [&](const std::string& n) { notices.push_back(n); });
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_NE(notices[0].find("on the CPU"), std::string::npos) << notices[0];
+  EXPECT_TRUE(isWatertight(mesh.mesh));
+
+  PreviewWorker worker(std::make_shared<NoModifierBackend>(), 32);
+  worker.request(std::make_shared<Scene>(s), 64, false, 1);
+  ASSERT_TRUE(worker.waitUntilIdle(std::chrono::seconds(60)));
+  std::shared_ptr<const PreviewResult> result = worker.takeResult();
+  ASSERT_TRUE(result);
+  EXPECT_TRUE(result->error.empty()) << result->error;
+  EXPECT_GT(result->splats->count(), 0u);
+  bool said = false;
+  for (const auto& w : result->stats.warnings) said |= w.find("on the CPU") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 }  // namespace
