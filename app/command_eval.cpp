@@ -141,6 +141,23 @@ int runEval(const std::vector<std::string>& argv) {
   });
 }
 
+namespace {
+// The end of `boolean`, `offset`, `shell` and `round`: the scene built from mesh files (`what`
+// of `files`) exported with -o, else evaluated; either way reported.
+int runMeshScene(Scene& scene, const CliArgs& args, const std::string& what,
+                 const std::vector<std::string>& files, const std::vector<std::string>& warnings) {
+  applySceneLimits(args, &scene);
+  for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
+  std::string input = what + " of";
+  for (const auto& f : files) input += " " + f;
+  if (args.has("-o") || args.has("--output")) return exportAndReport(scene, args, input, warnings);
+  ReportContext context;
+  context.input = input;
+  context.warnings = warnings;
+  return evaluateAndReport(scene, args, context);
+}
+}  // namespace
+
 int runBoolean(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
@@ -158,16 +175,7 @@ int runBoolean(const std::vector<std::string>& argv) {
     std::vector<std::string> files(pos.begin() + 1, pos.end());
     Scene scene = sceneFromMeshFiles(pos[0], files, meshOptions,
                                      args.number("--margin", 0.05, 0.0, 10.0), &warnings);
-    applySceneLimits(args, &scene);
-    for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
-    std::string input = pos[0] + " of";
-    for (const auto& f : files) input += " " + f;
-    if (args.has("-o") || args.has("--output"))
-      return exportAndReport(scene, args, input, warnings);
-    ReportContext context;
-    context.input = input;
-    context.warnings = warnings;
-    return evaluateAndReport(scene, args, context);
+    return runMeshScene(scene, args, pos[0], files, warnings);
   });
 }
 
@@ -211,16 +219,8 @@ int runModifier(const std::string& command, const std::vector<std::string>& argv
     modifier->name = kindName(kind);
     modifier->amount = amount;
     scene.root = modifier;
-    applySceneLimits(args, &scene);
-    for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
-    std::string input = std::string(kindName(kind)) + " " + args.text(option, "") + " of";
-    for (const auto& f : files) input += " " + f;
-    if (args.has("-o") || args.has("--output"))
-      return exportAndReport(scene, args, input, warnings);
-    ReportContext context;
-    context.input = input;
-    context.warnings = warnings;
-    return evaluateAndReport(scene, args, context);
+    return runMeshScene(scene, args, std::string(kindName(kind)) + " " + args.text(option, ""),
+                        files, warnings);
   });
 }
 

@@ -335,6 +335,20 @@ bool Evaluator::dropDuplicateOperands(RayOp op, std::vector<Visit>* operands) {
   return true;
 }
 
+LdiHandle Evaluator::cachedOr(uint64_t key, NodeRecord& record,
+                              const std::function<LdiHandle()>& compute) {
+  auto hit = cache_.find(key);
+  if (hit != cache_.end()) {
+    hit->second.generation = generation_;
+    record.outcome = NodeOutcome::Cached;
+    return hit->second.ldi;
+  }
+  LdiHandle ldi = compute();
+  record.outcome = NodeOutcome::Computed;
+  cache_[key] = CacheEntry{ldi, generation_, {}};
+  return ldi;
+}
+
 Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth,
                                   Context& ctx) {
   const bool instance = node->kind == NodeKind::Instance;
@@ -407,20 +421,15 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
     hashGrid(key, ctx.grid);
     for (const auto& c : operands) key.add(c.key);
     v.key = key.digest();
-    auto hit = cache_.find(v.key);
-    if (hit != cache_.end()) {
-      hit->second.generation = generation_;
-      v.ldi = hit->second.ldi;
-      record.outcome = NodeOutcome::Cached;
-    } else {
+    v.ldi = cachedOr(v.key, record, [&] {
       std::vector<LdiHandle> inputs;
       for (const auto& c : operands) inputs.push_back(c.ldi);
       Stopwatch watch;
-      v.ldi = backend_->combine(op, inputs, ctx.grid, *ctx.progress);
+      LdiHandle out = backend_->combine(op, inputs, ctx.grid, *ctx.progress);
       record.seconds = watch.seconds();
-      ctx.finishStage(kBoolean, record.seconds, v.ldi->surfelCount());
-      cache_[v.key] = CacheEntry{v.ldi, generation_, {}};
-    }
+      ctx.finishStage(kBoolean, record.seconds, out->surfelCount());
+      return out;
+    });
   }
   const Modifier modifier = modifierOf(node->kind);
   if (modifier != Modifier::None && v.ldi->surfelCount() > 0 &&
@@ -432,19 +441,14 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
     key.add(uint8_t(0xA0)).add(uint8_t(node->kind)).add(node->amount).add(v.key);
     hashGrid(key, ctx.grid);
     v.key = key.digest();
-    auto hit = cache_.find(v.key);
-    if (hit != cache_.end()) {
-      hit->second.generation = generation_;
-      v.ldi = hit->second.ldi;
-      record.outcome = NodeOutcome::Cached;
-    } else {
+    const LdiHandle united = v.ldi;
+    v.ldi = cachedOr(v.key, record, [&] {
       Stopwatch watch;
-      v.ldi = backend_->modify(modifier, node->amount, v.ldi, *ctx.progress);
+      LdiHandle out = backend_->modify(modifier, node->amount, united, *ctx.progress);
       record.seconds += watch.seconds();
-      record.outcome = NodeOutcome::Computed;
-      ctx.finishStage(kBoolean, watch.seconds(), v.ldi->surfelCount());
-      cache_[v.key] = CacheEntry{v.ldi, generation_, {}};
-    }
+      ctx.finishStage(kBoolean, watch.seconds(), out->surfelCount());
+      return out;
+    });
   }
   if (record.outcome == NodeOutcome::Cached) ++ctx.result->reused;
   if (record.outcome == NodeOutcome::Computed) ++ctx.result->computed;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -109,6 +110,9 @@ class Evaluator {
   // keeps its LDI when asked (EvalOptions::keep).
   Visit visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
   Visit visitNode(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
+  // The LDI cached under `key` (kept for this generation), or what compute() makes, cached under
+  // it; record.outcome says which.
+  LdiHandle cachedOr(uint64_t key, NodeRecord& record, const std::function<LdiHandle()>& compute);
   Visit visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx);
   static bool dropDuplicateOperands(RayOp op, std::vector<Visit>* operands);
   uint64_t meshHash(const std::shared_ptr<const TriangleMesh>& mesh);
