@@ -1,6 +1,7 @@
 #include "ui/editor_actions.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "engine/document/commands.h"
@@ -252,10 +253,26 @@ void dropPaletteItem(EditorState& state, int item, NodeId target, PlaceMode mode
   state.placeMode = saved;
 }
 
+namespace {
+// A new modifier's distance from what it will hold (`bounds`: the grouped parts, or the scene):
+// 3% of its largest side, to two significant digits; the kind's default when there is nothing.
+double modifierAmountFor(NodeKind kind, const Bounds& bounds) {
+  if (bounds.empty()) return nodeKindInfo(kind).defaultAmount;
+  const glm::dvec3 size = bounds.max - bounds.min;
+  const double x = 0.03 * std::max({size.x, size.y, size.z});
+  if (!(x > 0.0) || !std::isfinite(x)) return nodeKindInfo(kind).defaultAmount;
+  const double step = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+  return std::max(step, std::round(x / step) * step);
+}
+}  // namespace
+
 NodeId addOperation(EditorState& state, NodeKind kind) {
   NodeId id = 0;
   guarded(state, [&] {
-    id = placeNew(state, makeOperationNode(kind, state.document.nextId(), {}), state.placeMode);
+    auto node = std::make_shared<Node>(*makeOperationNode(kind, state.document.nextId(), {}));
+    if (modifierOf(kind) != Modifier::None)
+      node->amount = modifierAmountFor(kind, sceneBounds(state.document.root()));
+    id = placeNew(state, node, state.placeMode);
     selectNode(state, id);
   });
   return id;
@@ -400,10 +417,15 @@ void toggleSelectionHidden(EditorState& state) {
 
 void groupSelection(EditorState& state, NodeKind kind) {
   if (state.selection.empty()) return;
+  const Bounds bounds = selectionBounds(state.document.root(), state.selection);
+  state.document.beginInteraction();  // the group and its modifier's distance: one undo step
   guarded(state, [&] {
     NodeId id = state.document.group(state.selection, kind);
+    if (modifierOf(kind) != Modifier::None)
+      state.document.setAmount(id, modifierAmountFor(kind, bounds));
     selectNode(state, id);
   });
+  state.document.endInteraction();
 }
 
 void setSelectionOperation(EditorState& state, NodeKind kind) {

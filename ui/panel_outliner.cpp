@@ -389,8 +389,9 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   ImGui::Separator();
   ImGui::TextDisabled("empty operation");
   const std::vector<NodeKind> ops = operationKinds();
+  // Three to a row: the Booleans, then the modifiers.
   for (size_t i = 0; i < ops.size(); ++i) {
-    if (i) ImGui::SameLine();
+    if (i % 3) ImGui::SameLine();
     char label[64];
     std::snprintf(label, sizeof(label), "%s##add%zu", kindName(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) addOperation(state, ops[i]);
@@ -399,7 +400,7 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   ImGui::TextDisabled("group selection as");
   ImGui::BeginDisabled(state.selection.empty());
   for (size_t i = 0; i < ops.size(); ++i) {
-    if (i) ImGui::SameLine();
+    if (i % 3) ImGui::SameLine();
     char label[64];
     std::snprintf(label, sizeof(label), "%s %s##group%zu", kindGlyph(ops[i]), kindName(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) groupSelection(state, ops[i]);

@@ -19,6 +19,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/eval/cpu_backend.h"
+#include "engine/io/scene_file.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
 #include "ui/png_file.h"
@@ -243,6 +244,35 @@ Span spanInRow(const std::vector<uint8_t>& image, int width, int y, Match match)
 
 // A red sphere (radius 0.5) at the origin and a blue unit box at x = 3, evaluated at 48, no
 // grid, nothing selected; look() renders it 320 x 200 from an axis.
+// Grouping the selection as a modifier (the palette's "group selection as round"): one undo
+// step, a radius from the parts' size (3% of the largest side), the preview rounds them.
+TEST(EditorWindow, GroupAsRoundIsOneUndoStepWithARadiusFromTheParts) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  NodeId block = addPrimitive(state, NodeKind::Box);
+  ASSERT_TRUE(guarded(state, [&] {
+    PrimitiveParams box;
+    box.size = glm::dvec3(10.0, 10.0, 4.0);
+    state.document.setParams(block, box);
+  }));
+  setResolution(state, 64);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  const double plain = state.preview->stats.measure.volume;
+  const std::string before = sceneToJson(state.document.scene());
+  state.selection = {block};
+  groupSelection(state, NodeKind::Round);
+  ASSERT_EQ(state.selection.size(), 1u);
+  NodePtr round = findNode(state.document.root(), state.selection[0]);
+  ASSERT_TRUE(round);
+  EXPECT_EQ(round->kind, NodeKind::Round);
+  EXPECT_DOUBLE_EQ(round->amount, 0.3);  // 3% of 10
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  EXPECT_LT(state.preview->stats.measure.volume, plain - 0.1);  // its edges were rounded
+  undo(state);
+  EXPECT_EQ(sceneToJson(state.document.scene()), before);
+}
+
 class SphereAndBox : public testing::Test {
  protected:
   static constexpr int w = 320, h = 200;
