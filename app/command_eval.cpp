@@ -181,11 +181,7 @@ int runBoolean(const std::vector<std::string>& argv) {
 
 int runModifier(const std::string& command, const std::vector<std::string>& argv) {
   return runGuarded([&] {
-    // The CUDA backend does not evaluate modifiers yet: auto means the CPU here.
-    std::vector<std::string> withBackend = argv;
-    if (std::find(argv.begin(), argv.end(), "--backend") == argv.end())
-      withBackend.insert(withBackend.end(), {"--backend", "cpu"});
-    CliArgs args(withBackend, kValuedOptions, kFlagOptions);
+    CliArgs args(argv, kValuedOptions, kFlagOptions);
     const auto& files = args.positional();
     NodeKind kind = NodeKind::Offset;
     std::string option = "--distance";
@@ -204,7 +200,7 @@ int runModifier(const std::string& command, const std::vector<std::string>& argv
     if (files.empty() || !args.has(option))
       throw Error("usage: strata " + command + " A [B...] " + option +
                   " VALUE [--resolution N] [-o " + outputAlternatives("out") +
-                  "] [--report FILE] [--backend cpu]");
+                  "] [--report FILE] [--backend auto|cpu|cuda]");
     const double amount = args.number(option, 0.0, -1e300, 1e300);
     applyInputLimits(args);
     MeshReadOptions meshOptions;

@@ -7,6 +7,7 @@
 #include "gpu/ldi/combine_ldi.cuh"
 #include "gpu/ldi/csr_build.cuh"
 #include "gpu/ldi/measure_ldi.cuh"
+#include "gpu/ldi/offset_ldi.cuh"
 #include "gpu/ldi/sample_mesh.cuh"
 #include "gpu/ldi/splats.cuh"
 #include "gpu/util/cuda_check.h"
@@ -67,6 +68,12 @@ class CudaBackend : public Backend {
   }
 
   LdiHandle empty(const Grid& grid) override { return emptyOnDevice(grid, stream_); }
+
+  LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override {
+    progress.check();
+    return offsetOnDevice(*wholeDeviceLdi(ldi, stream_), distance, stream_);
+  }
+  bool evaluatesModifiers() const override { return true; }
 
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override {
     progress.check();

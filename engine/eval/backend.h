@@ -50,12 +50,15 @@ class Backend {
   virtual TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                   const glm::ivec3& begin, const glm::ivec3& end,
                                   Progress& progress);
+  // `ldi`'s solid grown (distance > 0) or shrunk (distance < 0) by |distance| scene units, on
+  // its grid (engine/ldi/offset_ldi.h; the CUDA twin gives the same bits). The default throws
+  // strata::Error: a backend that cannot offset says so.
+  virtual LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress);
   // `ldi` changed by a modifier (engine/kinds/node_kinds.h: offset, shell, round, fillet) by
-  // `amount` scene units, on the LDI's grid. The default throws strata::Error: a backend that
-  // cannot evaluate modifiers says so (the CPU backend can).
-  virtual LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi,
-                           Progress& progress);
-  // Whether modify() works here. Where it does not, the editor's preview and exports evaluate
+  // `amount` scene units, on the LDI's grid: composed from offset() and combine(), the same on
+  // every backend.
+  LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi, Progress& progress);
+  // Whether offset() works here. Where it does not, the editor's preview and exports evaluate
   // scenes holding a modifier on a CPU backend instead, and say so.
   virtual bool evaluatesModifiers() const { return false; }
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.

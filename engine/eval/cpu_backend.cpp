@@ -45,33 +45,32 @@ LdiHandle CpuBackend::combine(RayOp op, const std::vector<LdiHandle>& children, 
   return std::make_shared<CpuLdi>(combineLdis(op, inputs, grid, &progress));
 }
 
-LdiHandle CpuBackend::modify(Modifier modifier, double amount, const LdiHandle& ldi,
-                             Progress& progress) {
-  const std::shared_ptr<const Ldi> in = wholeLdi(hostLdi(ldi));
+LdiHandle CpuBackend::offset(const LdiHandle& ldi, double distance, Progress& progress) {
+  return std::make_shared<CpuLdi>(offsetLdi(*wholeLdi(hostLdi(ldi)), distance, &progress));
+}
+
+LdiHandle Backend::offset(const LdiHandle&, double, Progress&) {
+  throw Error("the " + description() +
+              " backend cannot evaluate offset, shell, round and fillet nodes: run with "
+              "--backend cpu");
+}
+
+LdiHandle Backend::modify(Modifier modifier, double amount, const LdiHandle& ldi,
+                          Progress& progress) {
   switch (modifier) {
     case Modifier::Offset:
-      return std::make_shared<CpuLdi>(offsetLdi(*in, amount, &progress));
-    case Modifier::Shell: {
-      std::shared_ptr<const Ldi> core = offsetLdi(*in, -amount, &progress);
-      return std::make_shared<CpuLdi>(
-          combineLdis(RayOp::Difference, {in, core}, in->grid, &progress));
-    }
-    case Modifier::Round:
-      return std::make_shared<CpuLdi>(
-          offsetLdi(*offsetLdi(*in, -amount, &progress), amount, &progress));
-    case Modifier::Fillet:
-      return std::make_shared<CpuLdi>(
-          offsetLdi(*offsetLdi(*in, amount, &progress), -amount, &progress));
+      return offset(ldi, amount, progress);
+    case Modifier::Shell:  // the solid minus its inward offset
+      return combine(RayOp::Difference, {ldi, offset(ldi, -amount, progress)}, ldi->grid(),
+                     progress);
+    case Modifier::Round:  // opening
+      return offset(offset(ldi, -amount, progress), amount, progress);
+    case Modifier::Fillet:  // closing
+      return offset(offset(ldi, amount, progress), -amount, progress);
     case Modifier::None:
       break;
   }
   return ldi;
-}
-
-LdiHandle Backend::modify(Modifier, double, const LdiHandle&, Progress&) {
-  throw Error("the " + description() +
-              " backend cannot evaluate offset, shell, round and fillet nodes yet: run with "
-              "--backend cpu");
 }
 
 LdiHandle CpuBackend::empty(const Grid& grid) {

@@ -14,8 +14,7 @@ class CpuBackend : public Backend {
   LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
                     Progress& progress) override;
   LdiHandle empty(const Grid& grid) override;
-  LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi,
-                   Progress& progress) override;
+  LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override;
   bool evaluatesModifiers() const override { return true; }
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override;
   std::shared_ptr<const Ldi> download(const LdiHandle& ldi) override;

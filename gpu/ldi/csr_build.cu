@@ -20,13 +20,9 @@ __global__ void axisOffsets(const uint64_t* wide, int64_t first, int64_t rays, u
     out[r] = uint32_t(wide[first + r] - wide[first]);
 }
 
-struct AxisTargets {
-  Surfel* surfels[3];
-};
-
 __global__ void copyRays(RaySpace space, const uint64_t* wide, const uint32_t* counts,
                          const Surfel* scratch, const uint64_t* scratchOffsets,
-                         AxisTargets targets) {
+                         AxisSurfelTargets targets) {
   for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < space.total();
        r += int64_t(gridDim.x) * blockDim.x) {
     const int a = space.axisOf(r);
@@ -118,6 +114,30 @@ void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide,
   STRATA_CUDA_CHECK(cudaGetLastError());
 }
 
+AxisSurfelTargets allocateAxes(const RaySpace& space, const uint64_t* wide, DeviceLdi* out,
+                               const char* what) {
+  const DeviceStream& stream = out->stream();
+  const uint64_t* at[4] = {wide + space.base[0], wide + space.base[1], wide + space.base[2],
+                           wide + space.base[3]};
+  uint64_t starts[4];
+  readBack(at, starts, 4, stream);
+  AxisSurfelTargets targets;
+  targets.total = starts[3];
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t n = starts[a + 1] - starts[a];
+    checkSurfelCount(n, what);
+    const int64_t rays = space.base[a + 1] - space.base[a];
+    DeviceAxisLdi& axis = out->axes[a];
+    axis.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(rays) + 1, stream);
+    axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream.get()>>>(wide, space.base[a], rays,
+                                                                    axis.offsets.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+    axis.surfels = DeviceBuffer<Surfel>(static_cast<size_t>(n), stream);
+    targets.surfels[a] = axis.surfels.data();
+  }
+  return targets;
+}
+
 void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
                const uint64_t* scratchOffsets, DeviceLdi* out, const char* what) {
   const DeviceStream& stream = out->stream();
@@ -125,24 +145,8 @@ void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scra
   DeviceBuffer<uint64_t> wide(static_cast<size_t>(total) + 1, stream);
   widenCounts(counts, total, wide.data(), stream);
   exclusiveScanAsync(wide.data(), total + 1, stream);
-  const uint64_t* at[4] = {wide.data() + space.base[0], wide.data() + space.base[1],
-                           wide.data() + space.base[2], wide.data() + space.base[3]};
-  uint64_t starts[4];
-  readBack(at, starts, 4, stream);
-  AxisTargets targets;
-  for (int a = 0; a < 3; ++a) {
-    const uint64_t n = starts[a + 1] - starts[a];
-    checkSurfelCount(n, what);
-    const int64_t rays = space.base[a + 1] - space.base[a];
-    DeviceAxisLdi& axis = out->axes[a];
-    axis.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(rays) + 1, stream);
-    axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream.get()>>>(wide.data(), space.base[a],
-                                                                    rays, axis.offsets.data());
-    STRATA_CUDA_CHECK(cudaGetLastError());
-    axis.surfels = DeviceBuffer<Surfel>(static_cast<size_t>(n), stream);
-    targets.surfels[a] = axis.surfels.data();
-  }
-  if (starts[3] > 0) {
+  const AxisSurfelTargets targets = allocateAxes(space, wide.data(), out, what);
+  if (targets.total > 0) {
     copyRays<<<blocksFor(total, 256), 256, 0, stream.get()>>>(space, wide.data(), counts, scratch,
                                                               scratchOffsets, targets);
     STRATA_CUDA_CHECK(cudaGetLastError());

@@ -61,6 +61,20 @@ void readBack(const uint64_t* const* addresses, uint64_t* values, int n,
 // Writes counts[R] widened to 64 bits into wide[R] (and 0 at wide[total]).
 void widenCounts(const uint32_t* counts, int64_t total, uint64_t* wide, const DeviceStream& stream);
 
+// Where each axis's surfels start on the device: ray R of axis a writes its list at
+// surfels[a] + (wide[R] - wide[space.base[a]]), wide being the scan allocateAxes was given.
+struct AxisSurfelTargets {
+  Surfel* surfels[3];
+  uint64_t total;  // surfels of all three axes
+};
+
+// Given `wide`, the exclusive scan of per-ray surfel counts over `space` (total + 1 values, on
+// the device), reads the three axis totals back (one wait), allocates out's axes on
+// out->stream() and writes their offsets; the surfels are left to the caller. Throws
+// strata::Error (naming `what`) when an axis exceeds 2^32 surfels.
+AxisSurfelTargets allocateAxes(const RaySpace& space, const uint64_t* wide, DeviceLdi* out,
+                               const char* what);
+
 // Given per-ray counts (concatenated rays) and each ray's start in a scratch buffer, builds the
 // three axes of `out`: scans the counts, reads the three axis totals back (one wait), and
 // copies each ray's list to its place, allocating out's buffers on out->stream() (the one the

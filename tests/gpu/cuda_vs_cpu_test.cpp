@@ -153,6 +153,59 @@ TEST_F(CudaVsCpu, SmallPartsOnABigGridMatch) {
   expectSameExport(single, cuda_, 64);
 }
 
+// Offsets (engine/ldi/offset_ldi.h and its twin gpu/ldi/offset_ldi.cu) and the modifiers built
+// from them: the analytic cases of OffsetAnalytic at two resolutions, real meshes, a modifier
+// inside a tree, and one export.
+TEST_F(CudaVsCpu, ModifiersMatchRayByRay) {
+  ASSERT_TRUE(cuda_->evaluatesModifiers());
+  for (int resolution : {48, 96}) {
+    expectIdentical(makeScene(modifier(NodeKind::Offset, 0.25, {sphere(1)}), resolution), cuda_,
+                    "sphere grown");
+    expectIdentical(makeScene(modifier(NodeKind::Offset, -0.25, {sphere(1)}), resolution), cuda_,
+                    "sphere shrunk");
+    expectIdentical(makeScene(modifier(NodeKind::Offset, 0.25, {box({2, 2, 2})}), resolution),
+                    cuda_, "cube grown");
+    expectIdentical(makeScene(modifier(NodeKind::Offset, -0.25, {box({2, 2, 2})}), resolution),
+                    cuda_, "cube shrunk");
+    expectIdentical(makeScene(modifier(NodeKind::Shell, 0.1, {sphere(1)}), resolution), cuda_,
+                    "sphere shelled");
+    expectIdentical(makeScene(modifier(NodeKind::Round, 0.25, {box({2, 2, 2})}), resolution), cuda_,
+                    "cube rounded");
+    expectIdentical(
+        makeScene(modifier(NodeKind::Fillet, 0.2,
+                           {op(NodeKind::Union, {box({2, 1, 1}), sphere(0.7, {1, 0.5, 0})})}),
+                  resolution),
+        cuda_, "fillet of a seam");
+  }
+  auto bunny = dataMesh("bunny.obj");
+  auto armadillo = dataMesh("armadillo.obj");
+  const double bunnySize = glm::length(meshBounds(*bunny).size());
+  const double armadilloSize = glm::length(meshBounds(*armadillo).size());
+  for (int resolution : {128, 256}) {
+    expectIdentical(
+        makeScene(modifier(NodeKind::Offset, 0.02 * armadilloSize, {meshLeaf(armadillo)}),
+                  resolution),
+        cuda_, "armadillo grown by 2%");
+    expectIdentical(
+        makeScene(modifier(NodeKind::Offset, -0.01 * armadilloSize, {meshLeaf(armadillo)}),
+                  resolution),
+        cuda_, "armadillo shrunk by 1%");
+    expectIdentical(makeScene(op(NodeKind::Difference,
+                                 {modifier(NodeKind::Shell, 0.02 * bunnySize, {meshLeaf(bunny)}),
+                                  box(meshBounds(*bunny).size() * glm::dvec3(1.0, 0.4, 1.0),
+                                      meshBounds(*bunny).center() +
+                                          glm::dvec3(0.0, 0.5, 0.0) * meshBounds(*bunny).size())}),
+                              resolution),
+                    cuda_, "bunny shelled and cut open");
+  }
+  // A cube with a spherical bite out of one corner, rounded: convex and concave edges.
+  Scene rounded =
+      makeScene(modifier(NodeKind::Round, 0.2,
+                         {op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2, {1, 1, 1})})}),
+                96);
+  expectSameExport(rounded, cuda_, 64);
+}
+
 TEST_F(CudaVsCpu, AutoChoosesCudaAndCancelWorks) {
   Evaluator evaluator(cuda_);
   Progress progress;

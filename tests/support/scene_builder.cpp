@@ -58,6 +58,12 @@ NodePtr op(NodeKind kind, std::initializer_list<NodePtr> children) {
   return n;
 }
 
+NodePtr modifier(NodeKind kind, double amount, std::initializer_list<NodePtr> children) {
+  auto n = std::make_shared<Node>(*op(kind, children));
+  n->amount = amount;
+  return n;
+}
+
 NodePtr withTransform(const NodePtr& node, const Transform& transform) {
   auto n = std::make_shared<Node>(*node);
   n->transform = transform;

@@ -19,6 +19,8 @@ NodePtr cylinder(double radius, double height, glm::dvec3 at = glm::dvec3(0.0),
 NodePtr torus(double major, double minor, glm::dvec3 at = glm::dvec3(0.0));
 NodePtr meshLeaf(std::shared_ptr<const TriangleMesh> mesh, glm::dvec3 at = glm::dvec3(0.0));
 NodePtr op(NodeKind kind, std::initializer_list<NodePtr> children);
+// An offset, shell, round or fillet node of `amount` scene units over the children.
+NodePtr modifier(NodeKind kind, double amount, std::initializer_list<NodePtr> children);
 NodePtr withTransform(const NodePtr& node, const Transform& transform);
 
 Scene makeScene(NodePtr root, int resolution, double margin = 0.05);

@@ -18,12 +18,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-NodePtr modifier(NodeKind kind, double amount, std::initializer_list<NodePtr> children) {
-  auto node = std::make_shared<Node>(*makeOperationNode(kind, 100, children));
-  node->amount = amount;
-  return node;
-}
-
 double evaluatedVolume(const NodePtr& root, int resolution) {
   return evaluateCpu(makeScene(root, resolution)).measure.volume;
 }

@@ -66,12 +66,12 @@ TEST(Fallback, ExportAndEvaluationFallBackToTheCpu) {
   EXPECT_GT(r.measure.volume, 4.0);
 }
 
-// A backend that cannot evaluate modifiers (as the CUDA backend today).
+// A backend that cannot evaluate modifiers.
 class NoModifierBackend : public CpuBackend {
  public:
   std::string description() const override { return "no-modifier test backend"; }
-  LdiHandle modify(Modifier m, double a, const LdiHandle& l, Progress& p) override {
-    return Backend::modify(m, a, l, p);  // throws, saying what to do
+  LdiHandle offset(const LdiHandle& l, double d, Progress& p) override {
+    return Backend::offset(l, d, p);  // throws, saying what to do
   }
   bool evaluatesModifiers() const override { return false; }
 };

@@ -1,0 +1,211 @@
+// The per-line math of offsets (engine/ldi/offset_ldi.h), shared by the CPU reference and its
+// CUDA twin (gpu/ldi/offset_ldi.cu): plain inline functions on plain types, __host__ __device__
+// under nvcc, so both backends compute every distance, sign and surfel with the same arithmetic
+// (the GPU tests require bitwise-equal results).
+//
+// Units: distances in cells (grid units); squared distances in cells^2. Nodes of the grid
+// window are indexed x + nx * (y + ny * z) (OffsetLattice); a "line" along an axis is the nodes
+// sharing the two other coordinates, and is also the ray of that axis through them.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/ldi/shared_math.h"
+
+namespace strata {
+
+STRATA_HD float offsetFar() {
+  return __builtin_huge_valf();  // a node with no surface sample on its line(s)
+}
+
+// The window's nodes: per axis cells + 1.
+struct OffsetLattice {
+  int64_t n[3];
+  int64_t stride[3];
+  int64_t count;
+  int first[3];  // global index of the window's first node (Grid::first)
+
+  // The first node of the line along `axis` through window coordinates (i, j) on the axes
+  // u = (axis + 1) % 3 and v = (axis + 2) % 3 (also that axis's ray i + j * n[u]).
+  STRATA_HD int64_t lineStart(int axis, int64_t i, int64_t j) const {
+    return i * stride[(axis + 1) % 3] + j * stride[(axis + 2) % 3];
+  }
+  STRATA_HD int64_t lineCount(int axis) const { return n[(axis + 1) % 3] * n[(axis + 2) % 3]; }
+};
+
+inline OffsetLattice makeOffsetLattice(const int cells[3], const int first[3]) {
+  OffsetLattice lat{};
+  for (int a = 0; a < 3; ++a) {
+    lat.n[a] = int64_t(cells[a]) + 1;
+    lat.first[a] = first[a];
+  }
+  lat.stride[0] = 1;
+  lat.stride[1] = lat.n[0];
+  lat.stride[2] = lat.n[0] * lat.n[1];
+  lat.count = lat.n[0] * lat.n[1] * lat.n[2];
+  return lat;
+}
+
+// Step 1 for one line of `n` nodes (`stride` apart, the first at global depth `first`): each
+// node's squared distance along the line to the nearest of the ray's `count` surfels `s` (sorted
+// by depth) and that surfel's leaf; with `inside` non-null also whether the node is inside (the
+// ray's last surfel at or before it enters). Nodes of a line without surfels get offsetFar().
+STRATA_HD void offsetSeedLine(const Surfel* s, int64_t count, int first, int64_t n, int64_t stride,
+                              float* d, uint32_t* leaf, uint8_t* inside) {
+  int64_t next = 0;  // the first surfel deeper than the node
+  for (int64_t k = 0; k < n; ++k) {
+    const double depth = double(first + k);
+    while (next < count && double(s[next].depth) <= depth) ++next;
+    double best = double(offsetFar());
+    uint32_t bestLeaf = 0;
+    if (next > 0) {
+      best = depth - double(s[next - 1].depth);
+      bestLeaf = surfelLeaf(s[next - 1].tag);
+    }
+    if (next < count && double(s[next].depth) - depth < best) {
+      best = double(s[next].depth) - depth;
+      bestLeaf = surfelLeaf(s[next].tag);
+    }
+    d[k * stride] = best == double(offsetFar()) ? offsetFar() : float(best * best);
+    leaf[k * stride] = bestLeaf;
+    if (inside) inside[k * stride] = next > 0 && surfelEnters(s[next - 1].tag) ? 1 : 0;
+  }
+}
+
+// Step 2 for one line: out[q] = min_i (q - i)^2 + in[i] over the line's n samples (spacing one
+// cell), each node's leaf following its minimiser; samples at offsetFar() take no part (a line
+// without any keeps them). The lower envelope of parabolas (Felzenszwalb and Huttenlocher,
+// "Distance Transforms of Sampled Functions", 2012): O(n), whatever the distances.
+// `in`/`inLeaf` are read at q * inStride, `out`/`outLeaf` written at q * outStride (they may
+// not overlap the input); the scratch `v` and `z` (n entries each) at q * scratchStride.
+STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64_t inStride,
+                                  float* out, uint32_t* outLeaf, int64_t outStride, int64_t n,
+                                  int32_t* v, double* z, int64_t scratchStride) {
+  const double minusInfinity = -__builtin_huge_val();
+  int64_t k = -1;
+  for (int64_t q = 0; q < n; ++q) {
+    const float f = in[q * inStride];
+    if (f == offsetFar()) continue;
+    const double fq = double(f) + double(q) * double(q);
+    double s = minusInfinity;
+    while (k >= 0) {
+      const int64_t p = v[k * scratchStride];
+      s = (fq - (double(in[p * inStride]) + double(p) * double(p))) / (2.0 * double(q - p));
+      if (s > z[k * scratchStride]) break;
+      --k;
+    }
+    ++k;
+    v[k * scratchStride] = int32_t(q);
+    z[k * scratchStride] = k == 0 ? minusInfinity : s;
+  }
+  if (k < 0) {  // no sample on this line: every node stays far
+    for (int64_t q = 0; q < n; ++q) {
+      out[q * outStride] = offsetFar();
+      outLeaf[q * outStride] = inLeaf[q * inStride];
+    }
+    return;
+  }
+  const int64_t last = k;
+  k = 0;
+  for (int64_t q = 0; q < n; ++q) {
+    while (k < last && z[(k + 1) * scratchStride] < double(q)) ++k;
+    const int64_t p = v[k * scratchStride];
+    const double dq = double(q - p);
+    out[q * outStride] = float(dq * dq + double(in[p * inStride]));
+    outLeaf[q * outStride] = inLeaf[p * inStride];
+  }
+}
+
+// The signed distance in cells at a node from the smallest squared distance: negative inside.
+STRATA_HD float offsetSignedDistance(float bestSquared, uint8_t inside) {
+  const float m = sqrtf(bestSquared);
+  return inside ? -m : m;
+}
+
+// Whether a node belongs to the offset solid {sd - offsetCells < 0}.
+STRATA_HD bool offsetInside(const float* sd, int64_t node, double offsetCells) {
+  return double(sd[node]) - offsetCells < 0.0;
+}
+
+// The number of surfels of the offset on the line along `axis` through (i, j): one per change
+// of offsetInside between neighbouring nodes, plus the cuts at the window's faces.
+STRATA_HD uint32_t offsetRayCount(const OffsetLattice& lat, const float* sd, int axis, int64_t i,
+                                  int64_t j, double offsetCells) {
+  const int64_t start = lat.lineStart(axis, i, j), step = lat.stride[axis], n = lat.n[axis];
+  bool previous = false;
+  uint32_t c = 0;
+  for (int64_t k = 0; k < n; ++k) {
+    const bool now = offsetInside(sd, start + k * step, offsetCells);
+    c += now != previous ? 1u : 0u;
+    previous = now;
+  }
+  return c + (previous ? 1u : 0u);
+}
+
+// sd's gradient at window node p, central differences (one-sided at the window's faces).
+STRATA_HD void offsetGradient(const OffsetLattice& lat, const float* sd, const int64_t p[3],
+                              double out[3]) {
+  const int64_t node = p[0] * lat.stride[0] + p[1] * lat.stride[1] + p[2] * lat.stride[2];
+  for (int a = 0; a < 3; ++a) {
+    const int64_t lo = p[a] > 0 ? 1 : 0, hi = p[a] + 1 < lat.n[a] ? 1 : 0;
+    if (lo + hi == 0) {
+      out[a] = 0.0;
+      continue;
+    }
+    out[a] = (double(sd[node + hi * lat.stride[a]]) - double(sd[node - lo * lat.stride[a]])) /
+             double(lo + hi);
+  }
+}
+
+// Writes the offsetRayCount surfels of the line along `axis` through (i, j) to `out`, in depth
+// order: each at the linear interpolation of sd - offsetCells between the two nodes where it
+// changes sign, with the normal of sd's interpolated gradient and the leaf of the nearer node's
+// nearest surface sample (`leaf`); cuts at the window's faces face along the axis.
+STRATA_HD void offsetWriteRay(const OffsetLattice& lat, const float* sd, const uint32_t* leaf,
+                              int axis, int64_t i, int64_t j, double offsetCells, Surfel* out) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const int64_t start = lat.lineStart(axis, i, j), step = lat.stride[axis], n = lat.n[axis];
+  bool previous = false;
+  for (int64_t k = 0; k <= n; ++k) {
+    const bool now = k < n && offsetInside(sd, start + k * step, offsetCells);
+    if (now == previous) continue;
+    previous = now;
+    Surfel& x = *out++;
+    if (k == 0 || k == n) {  // cut at the window's face
+      const int64_t node = start + (k == 0 ? 0 : n - 1) * step;
+      x.depth = float(lat.first[axis] + (k == 0 ? 0 : n - 1));
+      float normal[3] = {0.0f, 0.0f, 0.0f};
+      normal[axis] = now ? -1.0f : 1.0f;
+      x.normal = encodeNormal(normal[0], normal[1], normal[2]);
+      x.tag = makeSurfelTag(leaf[node], now);
+      continue;
+    }
+    const int64_t a = start + (k - 1) * step, b = start + k * step;
+    const double fa = double(sd[a]) - offsetCells, fb = double(sd[b]) - offsetCells;
+    double t = fa / (fa - fb);
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    x.depth = float(double(lat.first[axis] + k - 1) + t);
+    int64_t pa[3], pb[3];
+    pa[axis] = k - 1;
+    pb[axis] = k;
+    pa[u] = pb[u] = i;
+    pa[v] = pb[v] = j;
+    double ga[3], gb[3];
+    offsetGradient(lat, sd, pa, ga);
+    offsetGradient(lat, sd, pb, gb);
+    float normal[3];
+    for (int c = 0; c < 3; ++c) normal[c] = float(ga[c] + t * (gb[c] - ga[c]));
+    const float length =
+        sqrtf(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    if (length > 0.0f) {
+      for (float& c : normal) c /= length;
+    } else {
+      normal[0] = normal[1] = normal[2] = 0.0f;
+      normal[axis] = now ? -1.0f : 1.0f;
+    }
+    x.normal = encodeNormal(normal[0], normal[1], normal[2]);
+    x.tag = makeSurfelTag(leaf[t < 0.5 ? a : b], now);
+  }
+}
+
+}  // namespace strata
