@@ -28,7 +28,7 @@ const char* kUsageHead =
     "  strata round A [B...] --radius R | --fillet R\n"
     "                                 convex edges rounded (--radius) or concave edges and\n"
     "                                 seams filled (--fillet) with radius R; these three take\n"
-    "                                 boolean's options and run on the CPU backend\n"
+    "                                 boolean's options\n"
     "  strata export SCENE -o FILE    write the scene's result as a watertight mesh\n"
     "  strata render SCENE -o F.png   render the editor's view of the scene to a PNG\n"
     "                                 (--width W --height H, --view iso|front|right|top...)\n"

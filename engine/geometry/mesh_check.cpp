@@ -505,14 +505,24 @@ ShellPlacement placeShell(const TriangleMesh& mesh, const LocalFrame& frame, con
   return placement;
 }
 
-// How many closed shells other than shell s contain its probe point. containers indexes the
-// closed shells' bounds, so a shell meets only the shells whose boxes hold its probe.
+// Whether box outer holds box inner.
+bool holds(const Bounds& outer, const Bounds& inner) {
+  return glm::all(glm::lessThanEqual(outer.min, inner.min)) &&
+         glm::all(glm::lessThanEqual(inner.max, outer.max));
+}
+
+// How many closed shells other than shell s contain it: hold its probe point and its bounds (a
+// shell nested in another lies within the other's box; one that merely crosses another, as the
+// struts of a lattice unioned by winding do, does not, even where its probe falls inside the
+// other). containers indexes the closed shells' bounds, so a shell meets only the shells whose
+// boxes hold its probe.
 int nestingDepth(const TriangleMesh& mesh, const LocalFrame& frame,
                  const std::vector<Shell>& shells, const std::vector<ShellPlacement>& placements,
                  const BoxTree& containers, size_t s) {
   int depth = 0;
   containers.forEachContaining(placements[s].probe, [&](uint32_t o) {
-    if (o != s) depth += insideShell(mesh, frame, shells[o].triangles, placements[s].probe);
+    if (o != s && holds(placements[o].bounds, placements[s].bounds))
+      depth += insideShell(mesh, frame, shells[o].triangles, placements[s].probe);
   });
   return depth;
 }

@@ -11,18 +11,23 @@
 namespace strata {
 namespace {
 
-// Axis-aligned cube [lo, lo+size]^3, outward (counter-clockwise seen from outside).
-TriangleMesh cube(glm::dvec3 lo = glm::dvec3(0.0), double size = 1.0) {
+// Axis-aligned box [lo, hi], outward (counter-clockwise seen from outside).
+TriangleMesh box(glm::dvec3 lo, glm::dvec3 hi) {
   TriangleMesh m;
   for (int i = 0; i < 8; ++i) {
     const int x = (i == 1 || i == 2 || i == 5 || i == 6);
     const int y = (i == 2 || i == 3 || i == 6 || i == 7);
     const int z = i >= 4;
-    m.positions.push_back(lo + size * glm::dvec3(x, y, z));
+    m.positions.push_back(lo + (hi - lo) * glm::dvec3(x, y, z));
   }
   m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                  {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
   return m;
+}
+
+// Axis-aligned cube [lo, lo+size]^3, outward.
+TriangleMesh cube(glm::dvec3 lo = glm::dvec3(0.0), double size = 1.0) {
+  return box(lo, lo + glm::dvec3(size));
 }
 
 void flip(std::array<uint32_t, 3>& t) {
@@ -236,6 +241,18 @@ TEST(MeshCheckPrepare, ShellInsideCavityIsSolidAgain) {
   const PrepareReport r = prepareMesh(m);
   EXPECT_TRUE(r.flippedInsideOut);
   EXPECT_DOUBLE_EQ(r.check.volume, 216.0 - 64.0 + 8.0);
+}
+
+// Overlapping closed shells (struts of a lattice, parts modelled as a union by winding) are not
+// cavities of one another, even where one's probe point lies inside the other: a pin through a
+// slab, with the pin's probe (on its longest side) inside the slab, stays outward.
+TEST(MeshCheckPrepare, CrossingShellsAreNotCavities) {
+  TriangleMesh m = box(glm::dvec3(0.0, 0.0, 2.0), glm::dvec3(10.0, 10.0, 8.0));  // slab
+  append(m, box(glm::dvec3(4.0, 4.0, 0.0), glm::dvec3(6.0, 6.0, 10.0)));         // pin through it
+  const PrepareReport r = prepareMesh(m);
+  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_EQ(r.check.components, 2);
+  EXPECT_DOUBLE_EQ(r.check.volume, 600.0 + 40.0);
 }
 
 TEST(MeshCheckPrepare, SeparateInvertedShellsAreEachFlipped) {
