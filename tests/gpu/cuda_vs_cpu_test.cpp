@@ -111,7 +111,8 @@ TEST_F(CudaVsCpu, RealMeshesMatch) {
 }
 
 TEST_F(CudaVsCpu, SceneFilesMatch) {
-  for (const char* name : {"demo.strata.json", "bone_scaffold.strata.json"}) {
+  for (const char* name :
+       {"demo.strata.json", "bone_scaffold.strata.json", "bone_scaffold_scaled_copy.strata.json"}) {
     Scene s = loadScene(assetsDir() + "/scenes/" + name);
     expectIdentical(s, cuda_, name);
   }

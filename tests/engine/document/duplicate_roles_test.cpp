@@ -3,7 +3,9 @@
 // copy coincides with the original), and moving the copy away changes the volume in the
 // direction of the original's role: a part that adds material (a union's child, a difference's
 // base) can only grow the result, one that removes material (a cutter, an intersection's child)
-// can only shrink it, with the direction flipped under every cutter above it.
+// can only shrink it, with the direction flipped under every cutter above it. Parts that act in
+// both directions (inside a subtree that instances use in another role, or under a shell) have no
+// direction to check and are skipped (tests/support/part_directions.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +13,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/io/scene_file.h"
+#include "tests/support/part_directions.h"
 #include "tests/support/scene_builder.h"
 
 namespace strata {
@@ -18,27 +21,6 @@ namespace {
 
 double volumeOf(const Scene& scene) {
   return test::evaluateCpu(scene).measure.volume;
-}
-
-// +1 when moving a copy of `id` away can only grow the result, -1 when it can only shrink it;
-// 0 for a hidden node (or one under a hidden operation), whose copy changes nothing.
-struct NodeRole {
-  NodeId id;
-  int direction;
-};
-
-void collectRoles(const NodePtr& node, int sign, std::vector<NodeRole>* out) {
-  if (!node->visible) return;
-  for (size_t i = 0; i < node->children.size(); ++i) {
-    const NodePtr& child = node->children[i];
-    int direction = sign;
-    if (node->kind == NodeKind::Intersection) direction = -sign;
-    if (node->kind == NodeKind::Difference && i > 0) direction = -sign;
-    if (child->visible) out->push_back({child->id, direction});
-    // Below a cutter, adding material to it removes material from the result.
-    const int childSign = node->kind == NodeKind::Difference && i > 0 ? -sign : sign;
-    collectRoles(child, childSign, out);
-  }
 }
 
 TEST(DuplicateRoles, EveryNodeOfEveryBundledSceneKeepsEveryRole) {
@@ -53,14 +35,14 @@ TEST(DuplicateRoles, EveryNodeOfEveryBundledSceneKeepsEveryRole) {
     scene.settings.hasBounds = true;
     scene.settings.bounds = grid;
     const double before = volumeOf(scene);
-    std::vector<NodeRole> roles;
-    collectRoles(scene.root, +1, &roles);
     const double size = scene.settings.bounds.size().x;
-    for (const NodeRole& role : roles) {
-      SCOPED_TRACE(entry.path().filename().string() + " node " + std::to_string(role.id));
+    for (const auto& [id, directions] : test::partDirections(scene.root)) {
+      if (directions.size() != 1) continue;
+      const int direction = *directions.begin();
+      SCOPED_TRACE(entry.path().filename().string() + " node " + std::to_string(id));
       NodeId copyId = 0;
       Scene duplicated = scene;
-      duplicated.root = duplicateNode(scene.root, role.id, maxNodeId(scene.root) + 1, &copyId);
+      duplicated.root = duplicateNode(scene.root, id, maxNodeId(scene.root) + 1, &copyId);
       EXPECT_NEAR(volumeOf(duplicated), before, 1e-9 * before) << "the duplicate changed the part";
       Scene moved = duplicated;
       moved.root = editNode(duplicated.root, copyId, [&](Node& n) {
@@ -68,7 +50,7 @@ TEST(DuplicateRoles, EveryNodeOfEveryBundledSceneKeepsEveryRole) {
         n.transform.translate.y += 0.07 * size;
       });
       const double after = volumeOf(moved);
-      if (role.direction > 0)
+      if (direction > 0)
         EXPECT_GE(after, before * (1 - 1e-9)) << "a copy of a part that adds material removed some";
       else
         EXPECT_LE(after, before * (1 + 1e-9))

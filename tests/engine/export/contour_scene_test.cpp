@@ -238,11 +238,12 @@ TEST(ContourScene, CancelledExportThrows) {
 namespace strata::test {
 namespace {
 
-// Regression: in the bone scaffold with its offset moved by a fraction of a cell, two surface
+// Regression: in the bone scaffold of scaled copies (the bundled scaffold before it had a true
+// offset) with its offset moved by a fraction of a cell, two surface
 // components of one cell had their vertices clamped to the same corner; welded by position the
 // mesh was pinched there. Every vertex must have its own position.
 TEST(ContourRegression, ScaffoldWithMovedOffsetHasNoPinchedVertices) {
-  Scene s = loadScene(assetsDir() + "/scenes/bone_scaffold.strata.json");
+  Scene s = loadScene(assetsDir() + "/scenes/bone_scaffold_scaled_copy.strata.json");
   const Grid grid = Evaluator::gridFor(s, 256);
   auto root = std::make_shared<Node>(*s.root);
   for (auto& child : root->children) {

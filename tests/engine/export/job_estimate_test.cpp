@@ -11,8 +11,10 @@
 namespace strata {
 namespace {
 
+// The scaffold of scaled copies: no modifier, so it is exported in tiles.
 TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
-  const Scene scene = loadScene(test::assetsDir() + "/scenes/bone_scaffold.strata.json");
+  const Scene scene =
+      loadScene(test::assetsDir() + "/scenes/bone_scaffold_scaled_copy.strata.json");
   auto backend = std::make_shared<CpuBackend>();
   Progress progress;
   ContourOptions options;
