@@ -36,9 +36,11 @@ void seedAlongAxis(const Ldi& ldi, const OffsetLattice& lat, int axis, float* d,
   });
 }
 
-// Step 2 along `axis` for every line of the lattice, in place (through a contiguous copy).
-void envelopeAlongAxis(const OffsetLattice& lat, int axis, float* d, uint32_t* leaf,
-                       Progress* progress) {
+// Step 2 along `axis` for every line of the lattice: the envelope of d (and its leaves) into out
+// (which may be d itself: each line is copied first); with onlySmaller, out keeps its value
+// where that is smaller (offsetEnvelopeLine).
+void envelopeAlongAxis(const OffsetLattice& lat, int axis, const float* d, const uint32_t* leaf,
+                       float* out, uint32_t* outLeaf, bool onlySmaller, Progress* progress) {
   const int u = (axis + 1) % 3;
   const int64_t linesU = lat.n[u], lines = lat.lineCount(axis), n = lat.n[axis];
   const int64_t step = lat.stride[axis];
@@ -54,8 +56,8 @@ void envelopeAlongAxis(const OffsetLattice& lat, int axis, float* d, uint32_t* l
         in[size_t(q)] = d[start + q * step];
         inLeaf[size_t(q)] = leaf[start + q * step];
       }
-      offsetEnvelopeLine(in.data(), inLeaf.data(), 1, d + start, leaf + start, step, n, v.data(),
-                         z.data(), 1);
+      offsetEnvelopeLine(in.data(), inLeaf.data(), 1, out + start, outLeaf + start, step, n,
+                         v.data(), z.data(), 1, onlySmaller);
     }
   });
 }
@@ -71,23 +73,27 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
   const OffsetLattice lat = latticeOf(g);
   const double offsetCells = distance / g.h;
 
-  // Steps 1 and 2: the smallest over the three axes' samplings.
-  std::vector<float> best(size_t(lat.count), offsetFar()), d(size_t(lat.count));
-  std::vector<uint32_t> bestLeaf(size_t(lat.count), 0), leaf(size_t(lat.count));
+  // Steps 1 and 2: the smallest over the three axes' samplings. The samples of the x rays need
+  // envelopes along y and z, those of the y rays along z and x, those of the z rays along x and
+  // y. An envelope is a min-plus convolution: it distributes over the minimum, so the x and y
+  // rays share their z envelope: best = min(Ez(min(Ey Sx, Ex Sy)), Ey Ex Sz), five envelopes
+  // instead of six (offset_math.h: the CUDA twin runs the same passes in the same order).
+  std::vector<float> best(size_t(lat.count)), d(size_t(lat.count));
+  std::vector<uint32_t> bestLeaf(size_t(lat.count)), leaf(size_t(lat.count));
   std::vector<uint8_t> inside(size_t(lat.count), 0);
-  for (int axis = 0; axis < 3; ++axis) {
-    seedAlongAxis(ldi, lat, axis, d.data(), leaf.data(), axis == 0 ? inside.data() : nullptr,
-                  progress);
-    envelopeAlongAxis(lat, (axis + 1) % 3, d.data(), leaf.data(), progress);
-    envelopeAlongAxis(lat, (axis + 2) % 3, d.data(), leaf.data(), progress);
-    parallelFor(0, lat.count, 1 << 16, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i)
-        if (d[size_t(i)] < best[size_t(i)]) {
-          best[size_t(i)] = d[size_t(i)];
-          bestLeaf[size_t(i)] = leaf[size_t(i)];
-        }
-    });
-  }
+  // best = Ey Sx (and the inside flags, from the x rays).
+  seedAlongAxis(ldi, lat, 0, d.data(), leaf.data(), inside.data(), progress);
+  envelopeAlongAxis(lat, 1, d.data(), leaf.data(), best.data(), bestLeaf.data(), false, progress);
+  // best = min(best, Ex Sy).
+  seedAlongAxis(ldi, lat, 1, d.data(), leaf.data(), nullptr, progress);
+  envelopeAlongAxis(lat, 0, d.data(), leaf.data(), best.data(), bestLeaf.data(), true, progress);
+  // best = Ez best.
+  envelopeAlongAxis(lat, 2, best.data(), bestLeaf.data(), best.data(), bestLeaf.data(), false,
+                    progress);
+  // best = min(best, Ey Ex Sz).
+  seedAlongAxis(ldi, lat, 2, d.data(), leaf.data(), nullptr, progress);
+  envelopeAlongAxis(lat, 0, d.data(), leaf.data(), d.data(), leaf.data(), false, progress);
+  envelopeAlongAxis(lat, 1, d.data(), leaf.data(), best.data(), bestLeaf.data(), true, progress);
   // Signed distance in cells (reusing d): negative inside; far everywhere without a surface.
   float* sd = d.data();
   parallelFor(0, lat.count, 1 << 16, [&](int64_t begin, int64_t end) {

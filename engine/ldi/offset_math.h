@@ -78,27 +78,43 @@ STRATA_HD void offsetSeedLine(const Surfel* s, int64_t count, int first, int64_t
 // "Distance Transforms of Sampled Functions", 2012): O(n), whatever the distances.
 // `in`/`inLeaf` are read at q * inStride, `out`/`outLeaf` written at q * outStride (they may
 // not overlap the input); the scratch `v` and `z` (n entries each) at q * scratchStride.
+// With `onlySmaller`, a node's out and outLeaf are replaced only where the new value is smaller
+// than the one there (a line without samples writes nothing): the envelope and the minimum over
+// the axes' samplings in one pass.
+// The parabola on top of the stack and, when reading the envelope, the current one are kept in
+// locals: scratch and input are read again only when the stack pops or the envelope moves on
+// (on the GPU those reads are scattered across a warp's lines; the values are the same).
 STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64_t inStride,
                                   float* out, uint32_t* outLeaf, int64_t outStride, int64_t n,
-                                  int32_t* v, double* z, int64_t scratchStride) {
+                                  int32_t* v, double* z, int64_t scratchStride,
+                                  bool onlySmaller = false) {
   const double minusInfinity = -__builtin_huge_val();
   int64_t k = -1;
+  int64_t topP = 0;                           // the top parabola's node
+  double topKey = 0.0, topZ = minusInfinity;  // its in[p] + p^2, and where it starts
   for (int64_t q = 0; q < n; ++q) {
     const float f = in[q * inStride];
     if (f == offsetFar()) continue;
     const double fq = double(f) + double(q) * double(q);
     double s = minusInfinity;
     while (k >= 0) {
-      const int64_t p = v[k * scratchStride];
-      s = (fq - (double(in[p * inStride]) + double(p) * double(p))) / (2.0 * double(q - p));
-      if (s > z[k * scratchStride]) break;
-      --k;
+      s = (fq - topKey) / (2.0 * double(q - topP));
+      if (s > topZ) break;
+      if (--k >= 0) {
+        topP = v[k * scratchStride];
+        topKey = double(in[topP * inStride]) + double(topP) * double(topP);
+        topZ = z[k * scratchStride];
+      }
     }
     ++k;
+    topP = q;
+    topKey = fq;
+    topZ = k == 0 ? minusInfinity : s;
     v[k * scratchStride] = int32_t(q);
-    z[k * scratchStride] = k == 0 ? minusInfinity : s;
+    z[k * scratchStride] = topZ;
   }
   if (k < 0) {  // no sample on this line: every node stays far
+    if (onlySmaller) return;
     for (int64_t q = 0; q < n; ++q) {
       out[q * outStride] = offsetFar();
       outLeaf[q * outStride] = inLeaf[q * inStride];
@@ -106,13 +122,25 @@ STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64
     return;
   }
   const int64_t last = k;
+  const double plusInfinity = __builtin_huge_val();
   k = 0;
+  int64_t p = v[0];
+  double fp = double(in[p * inStride]);
+  uint32_t leafP = inLeaf[p * inStride];
+  double zNext = last > 0 ? z[scratchStride] : plusInfinity;  // where parabola k + 1 starts
   for (int64_t q = 0; q < n; ++q) {
-    while (k < last && z[(k + 1) * scratchStride] < double(q)) ++k;
-    const int64_t p = v[k * scratchStride];
+    while (k < last && zNext < double(q)) {
+      ++k;
+      p = v[k * scratchStride];
+      fp = double(in[p * inStride]);
+      leafP = inLeaf[p * inStride];
+      zNext = k < last ? z[(k + 1) * scratchStride] : plusInfinity;
+    }
     const double dq = double(q - p);
-    out[q * outStride] = float(dq * dq + double(in[p * inStride]));
-    outLeaf[q * outStride] = inLeaf[p * inStride];
+    const float value = float(dq * dq + fp);
+    if (onlySmaller && !(value < out[q * outStride])) continue;
+    out[q * outStride] = value;
+    outLeaf[q * outStride] = leafP;
   }
 }
 

@@ -49,7 +49,8 @@ __global__ void seedLines(OffsetLattice lat, int axis, const uint32_t* offsets,
 
 // Scratch of line t is at t + q * lines (interleaved: coalesced across threads).
 __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, const uint32_t* inLeaf,
-                              float* out, uint32_t* outLeaf, int32_t* v, double* z) {
+                              float* out, uint32_t* outLeaf, bool onlySmaller, int32_t* v,
+                              double* z) {
   const int64_t lines = lat.lineCount(axis);
   for (int64_t t = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; t < lines;
        t += int64_t(gridDim.x) * blockDim.x) {
@@ -57,7 +58,7 @@ __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, cons
     lineCoords(lat, axis, t, &i, &j);
     const int64_t start = lat.lineStart(axis, i, j), step = lat.stride[axis];
     offsetEnvelopeLine(in + start, inLeaf + start, step, out + start, outLeaf + start, step,
-                       lat.n[axis], v + t, z + t, lines);
+                       lat.n[axis], v + t, z + t, lines, onlySmaller);
   }
 }
 
@@ -93,15 +94,44 @@ void transpose(const OffsetLattice& lat, bool toYFastest, const T* in, T* out, c
   STRATA_CUDA_CHECK(cudaGetLastError());
 }
 
-// best = min(best, d) with its leaf (best = d on the first axis).
-__global__ void keepSmaller(int64_t count, bool first, const float* d, const uint32_t* leaf,
-                            float* best, uint32_t* bestLeaf) {
-  for (int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; i < count;
-       i += int64_t(gridDim.x) * blockDim.x)
-    if (first || d[i] < best[i]) {
-      best[i] = d[i];
-      bestLeaf[i] = leaf[i];
+// The distances d and their leaves l (x-fastest when toYFastest, else y-fastest) copied to
+// outD and outL in the other layout, as transposeXY; with onlySmaller only where d is smaller
+// than outD (the minimum of two samplings, as offsetEnvelopeLine's onlySmaller).
+__global__ void transposeValues(OffsetLattice lat, bool toYFastest, const float* d,
+                                const uint32_t* l, float* outD, uint32_t* outL, bool onlySmaller) {
+  __shared__ float tileD[kTile][kTile + 1];
+  __shared__ uint32_t tileL[kTile][kTile + 1];
+  const int64_t nx = lat.n[0], ny = lat.n[1], z = blockIdx.z;
+  const int64_t slab = z * nx * ny;
+  const int64_t x0 = int64_t(blockIdx.x) * kTile, y0 = int64_t(blockIdx.y) * kTile;
+  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {
+    const int64_t fast = (toYFastest ? x0 : y0) + threadIdx.x, slow = (toYFastest ? y0 : x0) + r;
+    const int64_t nFast = toYFastest ? nx : ny, nSlow = toYFastest ? ny : nx;
+    if (fast < nFast && slow < nSlow) {
+      tileD[r][threadIdx.x] = d[slab + fast + slow * nFast];
+      tileL[r][threadIdx.x] = l[slab + fast + slow * nFast];
     }
+  }
+  __syncthreads();
+  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {
+    const int64_t fast = (toYFastest ? y0 : x0) + threadIdx.x, slow = (toYFastest ? x0 : y0) + r;
+    const int64_t nFast = toYFastest ? ny : nx, nSlow = toYFastest ? nx : ny;
+    if (fast < nFast && slow < nSlow) {
+      const int64_t at = slab + fast + slow * nFast;
+      const float value = tileD[threadIdx.x][r];
+      if (onlySmaller && !(value < outD[at])) continue;
+      outD[at] = value;
+      outL[at] = tileL[threadIdx.x][r];
+    }
+  }
+}
+
+void transposeValues(const OffsetLattice& lat, bool toYFastest, const float* d, const uint32_t* l,
+                     float* outD, uint32_t* outL, bool onlySmaller, cudaStream_t s) {
+  const dim3 blocks(unsigned((lat.n[0] + kTile - 1) / kTile),
+                    unsigned((lat.n[1] + kTile - 1) / kTile), unsigned(lat.n[2]));
+  transposeValues<<<blocks, dim3(kTile, 8), 0, s>>>(lat, toYFastest, d, l, outD, outL, onlySmaller);
+  STRATA_CUDA_CHECK(cudaGetLastError());
 }
 
 __global__ void signedDistances(int64_t count, const float* best, const uint8_t* inside,
@@ -170,9 +200,8 @@ std::shared_ptr<DeviceLdi> offsetOnDevice(const DeviceLdi& whole, double distanc
   const size_t count = static_cast<size_t>(lat.count);
   cudaStream_t s = stream.get();
 
-  // Steps 1 and 2, as the CPU: seed along each axis, envelope along the two others in the same
-  // order, keep the smallest. Buffers A and B (distance and leaf) take turns as input and output;
-  // passes along x run on the y-fastest layout.
+  // Steps 1 and 2, as the CPU (offset_ldi.cpp): best = min(Ez(min(Ey Sx, Ex Sy)), Ey Ex Sz),
+  // the same five envelopes in the same order. Passes along x run on the y-fastest layout.
   const OffsetLattice latY = yFastest(lat);
   DeviceBuffer<float> best(count, stream), da(count, stream), db(count, stream);
   DeviceBuffer<uint32_t> bestLeaf(count, stream), la(count, stream), lb(count, stream);
@@ -180,57 +209,55 @@ std::shared_ptr<DeviceLdi> offsetOnDevice(const DeviceLdi& whole, double distanc
   {
     DeviceBuffer<int32_t> v(count, stream);
     DeviceBuffer<double> z(count, stream);  // also the inside flags' y-fastest copy
-    float* d[2] = {da.data(), db.data()};
-    uint32_t* l[2] = {la.data(), lb.data()};
-    int cur = 0;  // the buffer holding the current values
-    auto swapTo = [&](bool toYFastest) {
-      transpose(lat, toYFastest, d[cur], d[1 - cur], s);
-      transpose(lat, toYFastest, l[cur], l[1 - cur], s);
-      cur = 1 - cur;
-    };
-    auto envelope = [&](int axis) {
-      const OffsetLattice& on = axis == 0 ? latY : lat;
-      if (axis == 0) swapTo(true);
-      envelopeLines<<<blocksFor(lat.lineCount(axis), kThreads), kThreads, 0, s>>>(
-          on, axis, d[cur], l[cur], d[1 - cur], l[1 - cur], v.data(), z.data());
-      STRATA_CUDA_CHECK(cudaGetLastError());
-      cur = 1 - cur;
-      if (axis == 0) swapTo(false);
-    };
-    for (int axis = 0; axis < 3; ++axis) {
-      const DeviceAxisLdi& a = whole.axes[axis];
-      const OffsetLattice& on = axis == 0 ? latY : lat;
-      uint8_t* insideHere = axis == 0 ? reinterpret_cast<uint8_t*>(z.data()) : nullptr;
+    auto seed = [&](int axis, float* d, uint32_t* l, uint8_t* in) {
       seedLines<<<blocksFor(lat.lineCount(axis), kThreads), kThreads, 0, s>>>(
-          on, axis, a.offsets.data(), a.surfels.data(), d[cur], l[cur], insideHere);
+          axis == 0 ? latY : lat, axis, whole.axes[axis].offsets.data(),
+          whole.axes[axis].surfels.data(), d, l, in);
       STRATA_CUDA_CHECK(cudaGetLastError());
-      if (axis == 0) {
-        transpose(lat, false, insideHere, inside.data(), s);
-        swapTo(false);
-      }
-      envelope((axis + 1) % 3);
-      envelope((axis + 2) % 3);
-      keepSmaller<<<blocksFor(lat.count, kThreads), kThreads, 0, s>>>(
-          lat.count, axis == 0, d[cur], l[cur], best.data(), bestLeaf.data());
+    };
+    auto envelope = [&](int axis, const float* d, const uint32_t* l, float* out, uint32_t* outL,
+                        bool onlySmaller) {
+      envelopeLines<<<blocksFor(lat.lineCount(axis), kThreads), kThreads, 0, s>>>(
+          axis == 0 ? latY : lat, axis, d, l, out, outL, onlySmaller, v.data(), z.data());
       STRATA_CUDA_CHECK(cudaGetLastError());
-    }
+    };
+    // best = Ey Sx; the inside flags from the x rays.
+    uint8_t* insideY = reinterpret_cast<uint8_t*>(z.data());
+    seed(0, da.data(), la.data(), insideY);
+    transpose(lat, false, insideY, inside.data(), s);
+    transposeValues(lat, false, da.data(), la.data(), db.data(), lb.data(), false, s);
+    envelope(1, db.data(), lb.data(), best.data(), bestLeaf.data(), false);
+    // best = min(best, Ex Sy).
+    seed(1, da.data(), la.data(), nullptr);
+    transposeValues(lat, true, da.data(), la.data(), db.data(), lb.data(), false, s);
+    envelope(0, db.data(), lb.data(), da.data(), la.data(), false);
+    transposeValues(lat, false, da.data(), la.data(), best.data(), bestLeaf.data(), true, s);
+    // a = Ez best.
+    envelope(2, best.data(), bestLeaf.data(), da.data(), la.data(), false);
+    // a = min(a, Ey Ex Sz).
+    seed(2, db.data(), lb.data(), nullptr);
+    transposeValues(lat, true, db.data(), lb.data(), best.data(), bestLeaf.data(), false, s);
+    envelope(0, best.data(), bestLeaf.data(), db.data(), lb.data(), false);
+    transposeValues(lat, false, db.data(), lb.data(), best.data(), bestLeaf.data(), false, s);
+    envelope(1, best.data(), bestLeaf.data(), da.data(), la.data(), true);
   }
-  // Signed distances in da (x-fastest) and db (y-fastest), the leaves in bestLeaf and lb.
-  signedDistances<<<blocksFor(lat.count, kThreads), kThreads, 0, s>>>(lat.count, best.data(),
-                                                                      inside.data(), da.data());
+  // The smallest squared distances and their leaves are in da and la (x-fastest). Signed
+  // distances into best (x-fastest) and db (y-fastest), the leaves in la and lb.
+  signedDistances<<<blocksFor(lat.count, kThreads), kThreads, 0, s>>>(lat.count, da.data(),
+                                                                      inside.data(), best.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  transpose(lat, true, da.data(), db.data(), s);
-  transpose(lat, true, bestLeaf.data(), lb.data(), s);
-  best.reset();
-  la.reset();
+  transpose(lat, true, best.data(), db.data(), s);
+  transpose(lat, true, la.data(), lb.data(), s);
+  da.reset();
+  bestLeaf.reset();
   inside.reset();
 
   // Step 3: count each ray's crossings, scan, allocate, write.
   RayInputs in;
   for (int a = 0; a < 3; ++a) {
     in.lat[a] = a == 0 ? latY : lat;
-    in.sd[a] = a == 0 ? db.data() : da.data();
-    in.leaf[a] = a == 0 ? lb.data() : bestLeaf.data();
+    in.sd[a] = a == 0 ? db.data() : best.data();
+    in.leaf[a] = a == 0 ? lb.data() : la.data();
   }
   auto out = std::make_shared<DeviceLdi>(g, stream);
   const RaySpace space(g);
