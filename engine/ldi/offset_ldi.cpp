@@ -19,8 +19,8 @@ OffsetLattice latticeOf(const Grid& g) {
 
 // Step 1 for `axis`: each node's squared distance (cells^2) along its line to the nearest surfel
 // of that line, and that surfel's leaf; for axis 0 also whether the node is inside.
-void seedAlongAxis(const Ldi& ldi, const OffsetLattice& lat, int axis, float* d, uint32_t* leaf,
-                   uint8_t* inside, Progress* progress) {
+void seedAlongAxis(const Ldi& ldi, const OffsetLattice& lat, int axis, float bandSquared, float* d,
+                   uint32_t* leaf, uint8_t* inside, Progress* progress) {
   const int u = (axis + 1) % 3;
   const AxisLdi& a = ldi.axes[size_t(axis)];
   const int64_t raysU = lat.n[u], rays = lat.lineCount(axis);
@@ -30,8 +30,8 @@ void seedAlongAxis(const Ldi& ldi, const OffsetLattice& lat, int axis, float* d,
       const int64_t start = lat.lineStart(axis, ray % raysU, ray / raysU);
       const uint32_t from = a.offsets[size_t(ray)];
       offsetSeedLine(a.surfels.data() + from, int64_t(a.offsets[size_t(ray) + 1]) - int64_t(from),
-                     lat.first[axis], lat.n[axis], lat.stride[axis], d + start, leaf + start,
-                     inside ? inside + start : nullptr);
+                     lat.first[axis], lat.n[axis], lat.stride[axis], bandSquared, d + start,
+                     leaf + start, inside ? inside + start : nullptr);
     }
   });
 }
@@ -39,8 +39,9 @@ void seedAlongAxis(const Ldi& ldi, const OffsetLattice& lat, int axis, float* d,
 // Step 2 along `axis` for every line of the lattice: the envelope of d (and its leaves) into out
 // (which may be d itself: each line is copied first); with onlySmaller, out keeps its value
 // where that is smaller (offsetEnvelopeLine).
-void envelopeAlongAxis(const OffsetLattice& lat, int axis, const float* d, const uint32_t* leaf,
-                       float* out, uint32_t* outLeaf, bool onlySmaller, Progress* progress) {
+void envelopeAlongAxis(const OffsetLattice& lat, int axis, float bandSquared, const float* d,
+                       const uint32_t* leaf, float* out, uint32_t* outLeaf, bool onlySmaller,
+                       Progress* progress) {
   const int u = (axis + 1) % 3;
   const int64_t linesU = lat.n[u], lines = lat.lineCount(axis), n = lat.n[axis];
   const int64_t step = lat.stride[axis];
@@ -57,7 +58,7 @@ void envelopeAlongAxis(const OffsetLattice& lat, int axis, const float* d, const
         inLeaf[size_t(q)] = leaf[start + q * step];
       }
       offsetEnvelopeLine(in.data(), inLeaf.data(), 1, out + start, outLeaf + start, step, n,
-                         v.data(), z.data(), 1, onlySmaller);
+                         v.data(), z.data(), 1, bandSquared, onlySmaller);
     }
   });
 }
@@ -75,25 +76,27 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
 
   // Steps 1 and 2: the smallest over the three axes' samplings. The samples of the x rays need
   // envelopes along y and z, those of the y rays along z and x, those of the z rays along x and
-  // y. An envelope is a min-plus convolution: it distributes over the minimum, so the x and y
-  // rays share their z envelope: best = min(Ez(min(Ey Sx, Ex Sy)), Ey Ex Sz), five envelopes
-  // instead of six (offset_math.h: the CUDA twin runs the same passes in the same order).
+  // y. An envelope is a min-plus convolution: it distributes over the minimum, so the x and z
+  // rays share their y envelope: best = min(Ey(min(Ez Sx, Ex Sz)), Ez Ex Sy), five envelopes
+  // instead of six, in the order the CUDA twin needs for its layouts (gpu/ldi/offset_ldi.cu runs
+  // the same passes in the same order). Distances beyond the band are far (offsetBandSquared).
+  const float band = offsetBandSquared(offsetCells);
   std::vector<float> best(size_t(lat.count)), d(size_t(lat.count));
   std::vector<uint32_t> bestLeaf(size_t(lat.count)), leaf(size_t(lat.count));
   std::vector<uint8_t> inside(size_t(lat.count), 0);
-  // best = Ey Sx (and the inside flags, from the x rays).
-  seedAlongAxis(ldi, lat, 0, d.data(), leaf.data(), inside.data(), progress);
-  envelopeAlongAxis(lat, 1, d.data(), leaf.data(), best.data(), bestLeaf.data(), false, progress);
-  // best = min(best, Ex Sy).
-  seedAlongAxis(ldi, lat, 1, d.data(), leaf.data(), nullptr, progress);
-  envelopeAlongAxis(lat, 0, d.data(), leaf.data(), best.data(), bestLeaf.data(), true, progress);
-  // best = Ez best.
-  envelopeAlongAxis(lat, 2, best.data(), bestLeaf.data(), best.data(), bestLeaf.data(), false,
-                    progress);
-  // best = min(best, Ey Ex Sz).
-  seedAlongAxis(ldi, lat, 2, d.data(), leaf.data(), nullptr, progress);
-  envelopeAlongAxis(lat, 0, d.data(), leaf.data(), d.data(), leaf.data(), false, progress);
-  envelopeAlongAxis(lat, 1, d.data(), leaf.data(), best.data(), bestLeaf.data(), true, progress);
+  float *bd = best.data(), *dd = d.data();
+  uint32_t *bl = bestLeaf.data(), *dl = leaf.data();
+  // best = Ez Sx (and the inside flags, from the x rays).
+  seedAlongAxis(ldi, lat, 0, band, dd, dl, inside.data(), progress);
+  envelopeAlongAxis(lat, 2, band, dd, dl, bd, bl, false, progress);
+  // best = Ey min(best, Ex Sz).
+  seedAlongAxis(ldi, lat, 2, band, dd, dl, nullptr, progress);
+  envelopeAlongAxis(lat, 0, band, dd, dl, bd, bl, true, progress);
+  envelopeAlongAxis(lat, 1, band, bd, bl, bd, bl, false, progress);
+  // best = min(best, Ez Ex Sy).
+  seedAlongAxis(ldi, lat, 1, band, dd, dl, nullptr, progress);
+  envelopeAlongAxis(lat, 0, band, dd, dl, dd, dl, false, progress);
+  envelopeAlongAxis(lat, 2, band, dd, dl, bd, bl, true, progress);
   // Signed distance in cells (reusing d): negative inside; far everywhere without a surface.
   float* sd = d.data();
   parallelFor(0, lat.count, 1 << 16, [&](int64_t begin, int64_t end) {

@@ -46,12 +46,23 @@ inline OffsetLattice makeOffsetLattice(const int cells[3], const int first[3]) {
   return lat;
 }
 
+// The band of the distance transform: squared distances (cells^2) above this bound are stored
+// as offsetFar(). The result reads sd only at the nodes on both sides of its surface (within a
+// cell of |offsetCells|, the distance being 1-Lipschitz) and at their neighbours (one more cell,
+// for the gradient), so every value it reads is below the bound and exact; lines far from the
+// surface on both sides are then empty to the envelopes, which skip them.
+STRATA_HD float offsetBandSquared(double offsetCells) {
+  const double band = (offsetCells < 0.0 ? -offsetCells : offsetCells) + 4.0;
+  return float(band * band);
+}
+
 // Step 1 for one line of `n` nodes (`stride` apart, the first at global depth `first`): each
 // node's squared distance along the line to the nearest of the ray's `count` surfels `s` (sorted
 // by depth) and that surfel's leaf; with `inside` non-null also whether the node is inside (the
-// ray's last surfel at or before it enters). Nodes of a line without surfels get offsetFar().
+// ray's last surfel at or before it enters). Nodes of a line without surfels, and nodes beyond
+// the band (offsetBandSquared), get offsetFar().
 STRATA_HD void offsetSeedLine(const Surfel* s, int64_t count, int first, int64_t n, int64_t stride,
-                              float* d, uint32_t* leaf, uint8_t* inside) {
+                              float bandSquared, float* d, uint32_t* leaf, uint8_t* inside) {
   int64_t next = 0;  // the first surfel deeper than the node
   for (int64_t k = 0; k < n; ++k) {
     const double depth = double(first + k);
@@ -66,7 +77,8 @@ STRATA_HD void offsetSeedLine(const Surfel* s, int64_t count, int first, int64_t
       best = double(s[next].depth) - depth;
       bestLeaf = surfelLeaf(s[next].tag);
     }
-    d[k * stride] = best == double(offsetFar()) ? offsetFar() : float(best * best);
+    const float squared = best == double(offsetFar()) ? offsetFar() : float(best * best);
+    d[k * stride] = squared > bandSquared ? offsetFar() : squared;
     leaf[k * stride] = bestLeaf;
     if (inside) inside[k * stride] = next > 0 && surfelEnters(s[next - 1].tag) ? 1 : 0;
   }
@@ -80,14 +92,14 @@ STRATA_HD void offsetSeedLine(const Surfel* s, int64_t count, int first, int64_t
 // not overlap the input); the scratch `v` and `z` (n entries each) at q * scratchStride.
 // With `onlySmaller`, a node's out and outLeaf are replaced only where the new value is smaller
 // than the one there (a line without samples writes nothing): the envelope and the minimum over
-// the axes' samplings in one pass.
+// the axes' samplings in one pass. Values above bandSquared are written as offsetFar().
 // The parabola on top of the stack and, when reading the envelope, the current one are kept in
 // locals: scratch and input are read again only when the stack pops or the envelope moves on
 // (on the GPU those reads are scattered across a warp's lines; the values are the same).
 STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64_t inStride,
                                   float* out, uint32_t* outLeaf, int64_t outStride, int64_t n,
-                                  int32_t* v, double* z, int64_t scratchStride,
-                                  bool onlySmaller = false) {
+                                  int32_t* v, double* z, int64_t scratchStride, float bandSquared,
+                                  bool onlySmaller) {
   const double minusInfinity = -__builtin_huge_val();
   int64_t k = -1;
   int64_t topP = 0;                           // the top parabola's node
@@ -137,7 +149,8 @@ STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64
       zNext = k < last ? z[(k + 1) * scratchStride] : plusInfinity;
     }
     const double dq = double(q - p);
-    const float value = float(dq * dq + fp);
+    float value = float(dq * dq + fp);
+    if (value > bandSquared) value = offsetFar();
     if (onlySmaller && !(value < out[q * outStride])) continue;
     out[q * outStride] = value;
     outLeaf[q * outStride] = leafP;

@@ -33,7 +33,8 @@ __device__ void lineCoords(const OffsetLattice& lat, int axis, int64_t t, int64_
 }
 
 __global__ void seedLines(OffsetLattice lat, int axis, const uint32_t* offsets,
-                          const Surfel* surfels, float* d, uint32_t* leaf, uint8_t* inside) {
+                          const Surfel* surfels, float bandSquared, float* d, uint32_t* leaf,
+                          uint8_t* inside) {
   const int64_t lines = lat.lineCount(axis), raysU = lat.n[(axis + 1) % 3];
   for (int64_t t = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; t < lines;
        t += int64_t(gridDim.x) * blockDim.x) {
@@ -42,15 +43,15 @@ __global__ void seedLines(OffsetLattice lat, int axis, const uint32_t* offsets,
     const int64_t ray = i + j * raysU, start = lat.lineStart(axis, i, j);
     const uint32_t from = offsets[ray];
     offsetSeedLine(surfels + from, int64_t(offsets[ray + 1]) - int64_t(from), lat.first[axis],
-                   lat.n[axis], lat.stride[axis], d + start, leaf + start,
+                   lat.n[axis], lat.stride[axis], bandSquared, d + start, leaf + start,
                    inside ? inside + start : nullptr);
   }
 }
 
 // Scratch of line t is at t + q * lines (interleaved: coalesced across threads).
 __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, const uint32_t* inLeaf,
-                              float* out, uint32_t* outLeaf, bool onlySmaller, int32_t* v,
-                              double* z) {
+                              float* out, uint32_t* outLeaf, float bandSquared, bool onlySmaller,
+                              int32_t* v, double* z) {
   const int64_t lines = lat.lineCount(axis);
   for (int64_t t = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; t < lines;
        t += int64_t(gridDim.x) * blockDim.x) {
@@ -58,7 +59,7 @@ __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, cons
     lineCoords(lat, axis, t, &i, &j);
     const int64_t start = lat.lineStart(axis, i, j), step = lat.stride[axis];
     offsetEnvelopeLine(in + start, inLeaf + start, step, out + start, outLeaf + start, step,
-                       lat.n[axis], v + t, z + t, lines, onlySmaller);
+                       lat.n[axis], v + t, z + t, lines, bandSquared, onlySmaller);
   }
 }
 
@@ -179,6 +180,7 @@ __global__ void writeRays(RayInputs in, RaySpace space, double offsetCells, cons
     int64_t i, j;
     rayCoords(space, in, r, &axis, &i, &j);
     const int64_t ray = space.rayOf(axis, int(i), int(j));
+    if (wide[ray + 1] == wide[ray]) continue;  // no crossing: nothing to write
     offsetWriteRay(in.lat[axis], in.sd[axis], in.leaf[axis], axis, i, j, offsetCells,
                    targets.surfels[axis] + (wide[ray] - wide[space.base[axis]]));
   }
@@ -200,64 +202,64 @@ std::shared_ptr<DeviceLdi> offsetOnDevice(const DeviceLdi& whole, double distanc
   const size_t count = static_cast<size_t>(lat.count);
   cudaStream_t s = stream.get();
 
-  // Steps 1 and 2, as the CPU (offset_ldi.cpp): best = min(Ez(min(Ey Sx, Ex Sy)), Ey Ex Sz),
-  // the same five envelopes in the same order. Passes along x run on the y-fastest layout.
+  // Steps 1 and 2, as the CPU (offset_ldi.cpp): best = min(Ey(min(Ez Sx, Ex Sz)), Ez Ex Sy),
+  // the same five envelopes in the same order. Passes along x run on the y-fastest layout,
+  // along y on the x-fastest one, along z on either (z is the slowest axis of both); the x rays
+  // seed on the y-fastest layout, the y rays on the x-fastest one, the z rays on either.
   const OffsetLattice latY = yFastest(lat);
+  const float band = offsetBandSquared(offsetCells);
   DeviceBuffer<float> best(count, stream), da(count, stream), db(count, stream);
   DeviceBuffer<uint32_t> bestLeaf(count, stream), la(count, stream), lb(count, stream);
   DeviceBuffer<uint8_t> inside(count, stream);
   {
     DeviceBuffer<int32_t> v(count, stream);
     DeviceBuffer<double> z(count, stream);  // also the inside flags' y-fastest copy
-    auto seed = [&](int axis, float* d, uint32_t* l, uint8_t* in) {
+    auto seed = [&](const OffsetLattice& on, int axis, float* d, uint32_t* l, uint8_t* in) {
       seedLines<<<blocksFor(lat.lineCount(axis), kThreads), kThreads, 0, s>>>(
-          axis == 0 ? latY : lat, axis, whole.axes[axis].offsets.data(),
-          whole.axes[axis].surfels.data(), d, l, in);
+          on, axis, whole.axes[axis].offsets.data(), whole.axes[axis].surfels.data(), band, d, l,
+          in);
       STRATA_CUDA_CHECK(cudaGetLastError());
     };
-    auto envelope = [&](int axis, const float* d, const uint32_t* l, float* out, uint32_t* outL,
-                        bool onlySmaller) {
+    auto envelope = [&](const OffsetLattice& on, int axis, const float* d, const uint32_t* l,
+                        float* out, uint32_t* outL, bool onlySmaller) {
       envelopeLines<<<blocksFor(lat.lineCount(axis), kThreads), kThreads, 0, s>>>(
-          axis == 0 ? latY : lat, axis, d, l, out, outL, onlySmaller, v.data(), z.data());
+          on, axis, d, l, out, outL, band, onlySmaller, v.data(), z.data());
       STRATA_CUDA_CHECK(cudaGetLastError());
     };
-    // best = Ey Sx; the inside flags from the x rays.
+    // db = Ez Sx (y-fastest); the inside flags from the x rays.
     uint8_t* insideY = reinterpret_cast<uint8_t*>(z.data());
-    seed(0, da.data(), la.data(), insideY);
+    seed(latY, 0, da.data(), la.data(), insideY);
     transpose(lat, false, insideY, inside.data(), s);
-    transposeValues(lat, false, da.data(), la.data(), db.data(), lb.data(), false, s);
-    envelope(1, db.data(), lb.data(), best.data(), bestLeaf.data(), false);
-    // best = min(best, Ex Sy).
-    seed(1, da.data(), la.data(), nullptr);
+    envelope(latY, 2, da.data(), la.data(), db.data(), lb.data(), false);
+    // db = min(db, Ex Sz); best = Ey db (x-fastest).
+    seed(latY, 2, da.data(), la.data(), nullptr);
+    envelope(latY, 0, da.data(), la.data(), db.data(), lb.data(), true);
+    transposeValues(lat, false, db.data(), lb.data(), da.data(), la.data(), false, s);
+    envelope(lat, 1, da.data(), la.data(), best.data(), bestLeaf.data(), false);
+    // best = min(best, Ez Ex Sy).
+    seed(lat, 1, da.data(), la.data(), nullptr);
     transposeValues(lat, true, da.data(), la.data(), db.data(), lb.data(), false, s);
-    envelope(0, db.data(), lb.data(), da.data(), la.data(), false);
-    transposeValues(lat, false, da.data(), la.data(), best.data(), bestLeaf.data(), true, s);
-    // a = Ez best.
-    envelope(2, best.data(), bestLeaf.data(), da.data(), la.data(), false);
-    // a = min(a, Ey Ex Sz).
-    seed(2, db.data(), lb.data(), nullptr);
-    transposeValues(lat, true, db.data(), lb.data(), best.data(), bestLeaf.data(), false, s);
-    envelope(0, best.data(), bestLeaf.data(), db.data(), lb.data(), false);
-    transposeValues(lat, false, db.data(), lb.data(), best.data(), bestLeaf.data(), false, s);
-    envelope(1, best.data(), bestLeaf.data(), da.data(), la.data(), true);
+    envelope(latY, 0, db.data(), lb.data(), da.data(), la.data(), false);
+    envelope(latY, 2, da.data(), la.data(), db.data(), lb.data(), false);
+    transposeValues(lat, false, db.data(), lb.data(), best.data(), bestLeaf.data(), true, s);
   }
-  // The smallest squared distances and their leaves are in da and la (x-fastest). Signed
-  // distances into best (x-fastest) and db (y-fastest), the leaves in la and lb.
-  signedDistances<<<blocksFor(lat.count, kThreads), kThreads, 0, s>>>(lat.count, da.data(),
-                                                                      inside.data(), best.data());
+  // The smallest squared distances and their leaves are in best and bestLeaf (x-fastest).
+  // Signed distances into da (x-fastest) and db (y-fastest), the leaves in bestLeaf and lb.
+  signedDistances<<<blocksFor(lat.count, kThreads), kThreads, 0, s>>>(lat.count, best.data(),
+                                                                      inside.data(), da.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  transpose(lat, true, best.data(), db.data(), s);
-  transpose(lat, true, la.data(), lb.data(), s);
-  da.reset();
-  bestLeaf.reset();
+  transpose(lat, true, da.data(), db.data(), s);
+  transpose(lat, true, bestLeaf.data(), lb.data(), s);
+  best.reset();
+  la.reset();
   inside.reset();
 
   // Step 3: count each ray's crossings, scan, allocate, write.
   RayInputs in;
   for (int a = 0; a < 3; ++a) {
     in.lat[a] = a == 0 ? latY : lat;
-    in.sd[a] = a == 0 ? db.data() : best.data();
-    in.leaf[a] = a == 0 ? lb.data() : la.data();
+    in.sd[a] = a == 0 ? db.data() : da.data();
+    in.leaf[a] = a == 0 ? lb.data() : bestLeaf.data();
   }
   auto out = std::make_shared<DeviceLdi>(g, stream);
   const RaySpace space(g);
