@@ -63,40 +63,18 @@ __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, cons
   }
 }
 
-// Copies `in` (x-fastest when toYFastest, else y-fastest) to `out` in the other layout, through
-// 32 x 32 tiles of shared memory. Blocks of 32 x 8 threads; grid (x tiles, y tiles, z).
+// Layout changes go through 32 x 32 tiles of shared memory: blocks of 32 x 8 threads, grid
+// (x tiles, y tiles, z); each tile is read along the input's fast axis and written along the
+// output's, so both are coalesced.
 constexpr int kTile = 32;
-template <typename T>
-__global__ void transposeXY(OffsetLattice lat, bool toYFastest, const T* in, T* out) {
-  __shared__ T tile[kTile][kTile + 1];
-  const int64_t nx = lat.n[0], ny = lat.n[1], z = blockIdx.z;
-  const int64_t slab = z * nx * ny;
-  const int64_t x0 = int64_t(blockIdx.x) * kTile, y0 = int64_t(blockIdx.y) * kTile;
-  // Read: along the input's fast axis.
-  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {
-    const int64_t fast = (toYFastest ? x0 : y0) + threadIdx.x, slow = (toYFastest ? y0 : x0) + r;
-    const int64_t nFast = toYFastest ? nx : ny, nSlow = toYFastest ? ny : nx;
-    if (fast < nFast && slow < nSlow) tile[r][threadIdx.x] = in[slab + fast + slow * nFast];
-  }
-  __syncthreads();
-  // Write: along the output's fast axis (the input's slow one).
-  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {
-    const int64_t fast = (toYFastest ? y0 : x0) + threadIdx.x, slow = (toYFastest ? x0 : y0) + r;
-    const int64_t nFast = toYFastest ? ny : nx, nSlow = toYFastest ? nx : ny;
-    if (fast < nFast && slow < nSlow) out[slab + fast + slow * nFast] = tile[threadIdx.x][r];
-  }
-}
 
-template <typename T>
-void transpose(const OffsetLattice& lat, bool toYFastest, const T* in, T* out, cudaStream_t s) {
-  const dim3 blocks(unsigned((lat.n[0] + kTile - 1) / kTile),
-                    unsigned((lat.n[1] + kTile - 1) / kTile), unsigned(lat.n[2]));
-  transposeXY<T><<<blocks, dim3(kTile, 8), 0, s>>>(lat, toYFastest, in, out);
-  STRATA_CUDA_CHECK(cudaGetLastError());
+dim3 tileBlocks(const OffsetLattice& lat) {
+  return dim3(unsigned((lat.n[0] + kTile - 1) / kTile), unsigned((lat.n[1] + kTile - 1) / kTile),
+              unsigned(lat.n[2]));
 }
 
 // The distances d and their leaves l (x-fastest when toYFastest, else y-fastest) copied to
-// outD and outL in the other layout, as transposeXY; with onlySmaller only where d is smaller
+// outD and outL in the other layout; with onlySmaller only where d is smaller
 // than outD (the minimum of two samplings, as offsetEnvelopeLine's onlySmaller).
 __global__ void transposeValues(OffsetLattice lat, bool toYFastest, const float* d,
                                 const uint32_t* l, float* outD, uint32_t* outL, bool onlySmaller) {
@@ -129,17 +107,61 @@ __global__ void transposeValues(OffsetLattice lat, bool toYFastest, const float*
 
 void transposeValues(const OffsetLattice& lat, bool toYFastest, const float* d, const uint32_t* l,
                      float* outD, uint32_t* outL, bool onlySmaller, cudaStream_t s) {
-  const dim3 blocks(unsigned((lat.n[0] + kTile - 1) / kTile),
-                    unsigned((lat.n[1] + kTile - 1) / kTile), unsigned(lat.n[2]));
-  transposeValues<<<blocks, dim3(kTile, 8), 0, s>>>(lat, toYFastest, d, l, outD, outL, onlySmaller);
+  transposeValues<<<tileBlocks(lat), dim3(kTile, 8), 0, s>>>(lat, toYFastest, d, l, outD, outL,
+                                                             onlySmaller);
   STRATA_CUDA_CHECK(cudaGetLastError());
 }
 
-__global__ void signedDistances(int64_t count, const float* best, const uint8_t* inside,
-                                float* sd) {
-  for (int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; i < count;
-       i += int64_t(gridDim.x) * blockDim.x)
-    sd[i] = offsetSignedDistance(best[i], inside[i]);
+// The last step of the distance transform, through tiles: best = min(best, d) with its leaf
+// (strictly smaller replaces, as the CPU's envelope with onlySmaller), then the signed distance
+// from best and the inside flags, written in both layouts. best and bestLeaf are x-fastest and take
+// the signed distance's x-fastest copy in sdX and the leaves in place; d, l and insideY are
+// y-fastest, and d and l take the signed distances and leaves in place.
+__global__ void finishDistances(OffsetLattice lat, const float* best, uint32_t* bestLeaf, float* d,
+                                uint32_t* l, const uint8_t* insideY, float* sdX) {
+  __shared__ float tileD[kTile][kTile + 1];
+  __shared__ uint32_t tileL[kTile][kTile + 1];
+  __shared__ uint8_t tileIn[kTile][kTile + 1];
+  const int64_t nx = lat.n[0], ny = lat.n[1], z = blockIdx.z;
+  const int64_t slab = z * nx * ny;
+  const int64_t x0 = int64_t(blockIdx.x) * kTile, y0 = int64_t(blockIdx.y) * kTile;
+  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {  // read y-fastest
+    const int64_t y = y0 + threadIdx.x, x = x0 + r;
+    if (y < ny && x < nx) {
+      const int64_t at = slab + y + x * ny;
+      tileD[r][threadIdx.x] = d[at];
+      tileL[r][threadIdx.x] = l[at];
+      tileIn[r][threadIdx.x] = insideY[at];
+    }
+  }
+  __syncthreads();
+  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {  // x-fastest
+    const int64_t x = x0 + threadIdx.x, y = y0 + r;
+    if (x < nx && y < ny) {
+      const int64_t at = slab + x + y * nx;
+      float b = best[at];
+      uint32_t leaf = bestLeaf[at];
+      const float other = tileD[threadIdx.x][r];
+      if (other < b) {
+        b = other;
+        leaf = tileL[threadIdx.x][r];
+      }
+      const float sd = offsetSignedDistance(b, tileIn[threadIdx.x][r]);
+      sdX[at] = sd;
+      bestLeaf[at] = leaf;
+      tileD[threadIdx.x][r] = sd;
+      tileL[threadIdx.x][r] = leaf;
+    }
+  }
+  __syncthreads();
+  for (int r = threadIdx.y; r < kTile; r += blockDim.y) {  // write y-fastest
+    const int64_t y = y0 + threadIdx.x, x = x0 + r;
+    if (y < ny && x < nx) {
+      const int64_t at = slab + y + x * ny;
+      d[at] = tileD[r][threadIdx.x];
+      l[at] = tileL[r][threadIdx.x];
+    }
+  }
 }
 
 // The per-node arrays as the rays of each axis read them: x rays from the y-fastest copies.
@@ -210,10 +232,10 @@ std::shared_ptr<DeviceLdi> offsetOnDevice(const DeviceLdi& whole, double distanc
   const float band = offsetBandSquared(offsetCells);
   DeviceBuffer<float> best(count, stream), da(count, stream), db(count, stream);
   DeviceBuffer<uint32_t> bestLeaf(count, stream), la(count, stream), lb(count, stream);
-  DeviceBuffer<uint8_t> inside(count, stream);
+  DeviceBuffer<uint8_t> insideY(count, stream);  // y-fastest
   {
     DeviceBuffer<int32_t> v(count, stream);
-    DeviceBuffer<double> z(count, stream);  // also the inside flags' y-fastest copy
+    DeviceBuffer<double> z(count, stream);
     auto seed = [&](const OffsetLattice& on, int axis, float* d, uint32_t* l, uint8_t* in) {
       seedLines<<<blocksFor(lat.lineCount(axis), kThreads), kThreads, 0, s>>>(
           on, axis, whole.axes[axis].offsets.data(), whole.axes[axis].surfels.data(), band, d, l,
@@ -227,9 +249,7 @@ std::shared_ptr<DeviceLdi> offsetOnDevice(const DeviceLdi& whole, double distanc
       STRATA_CUDA_CHECK(cudaGetLastError());
     };
     // db = Ez Sx (y-fastest); the inside flags from the x rays.
-    uint8_t* insideY = reinterpret_cast<uint8_t*>(z.data());
-    seed(latY, 0, da.data(), la.data(), insideY);
-    transpose(lat, false, insideY, inside.data(), s);
+    seed(latY, 0, da.data(), la.data(), insideY.data());
     envelope(latY, 2, da.data(), la.data(), db.data(), lb.data(), false);
     // db = min(db, Ex Sz); best = Ey db (x-fastest).
     seed(latY, 2, da.data(), la.data(), nullptr);
@@ -241,18 +261,15 @@ std::shared_ptr<DeviceLdi> offsetOnDevice(const DeviceLdi& whole, double distanc
     transposeValues(lat, true, da.data(), la.data(), db.data(), lb.data(), false, s);
     envelope(latY, 0, db.data(), lb.data(), da.data(), la.data(), false);
     envelope(latY, 2, da.data(), la.data(), db.data(), lb.data(), false);
-    transposeValues(lat, false, db.data(), lb.data(), best.data(), bestLeaf.data(), true, s);
   }
-  // The smallest squared distances and their leaves are in best and bestLeaf (x-fastest).
-  // Signed distances into da (x-fastest) and db (y-fastest), the leaves in bestLeaf and lb.
-  signedDistances<<<blocksFor(lat.count, kThreads), kThreads, 0, s>>>(lat.count, best.data(),
-                                                                      inside.data(), da.data());
+  // best = min(best, db), then the signed distances: into da (x-fastest) and db (y-fastest),
+  // the leaves into bestLeaf and lb.
+  finishDistances<<<tileBlocks(lat), dim3(kTile, 8), 0, s>>>(
+      lat, best.data(), bestLeaf.data(), db.data(), lb.data(), insideY.data(), da.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  transpose(lat, true, da.data(), db.data(), s);
-  transpose(lat, true, bestLeaf.data(), lb.data(), s);
   best.reset();
   la.reset();
-  inside.reset();
+  insideY.reset();
 
   // Step 3: count each ray's crossings, scan, allocate, write.
   RayInputs in;
