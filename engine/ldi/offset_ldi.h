@@ -13,13 +13,17 @@
 //      a-line. Taking the smallest over the three axes measures the distance to a sampling of
 //      the surface that is dense everywhere (each patch is sampled at most a cell apart along the
 //      axis its normal is closest to), so for a node at distance D the error is about
-//      (h / sqrt 2)^2 / (2 D) at worst.
+//      (h / sqrt 2)^2 / (2 D) at worst. An envelope is a min-plus convolution and distributes
+//      over the minimum, so the x and z rays share their y envelope: five envelopes in all,
+//      min(Ey(min(Ez Sx, Ex Sz)), Ez Ex Sy). Distances beyond a band of |d| + 4 cells are
+//      stored as far (offsetBandSquared): the result never reads them, and lines that lie
+//      wholly beyond it cost the envelopes nothing.
 //   3. Signs from the x-rays (inside where the ray's last surfel before the node enters), and
 //      the result's surfels where sd - d changes sign between neighbouring nodes of each ray,
 //      at the linear interpolation, with the normal of sd's central-difference gradient and the
 //      leaf of the nearest surface sample (for colours).
-// Memory: 12 bytes per node of the grid window (the distance, the leaf, a scratch copy), on top
-// of the LDIs: 1.6 GB at 512^3, so large grids are evaluated in tiles.
+// Memory: 17 bytes per node of the grid window (the running minimum and a working copy, each a
+// distance and a leaf, and the inside flags), on top of the LDIs: 2.3 GB at 512^3.
 //
 // Threads: runs on all worker threads (parallelFor); `progress` is checked between lines.
 #pragma once
