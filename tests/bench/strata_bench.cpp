@@ -5,12 +5,15 @@
 //      times, triangles, whether the result is closed, manifold and oriented, peak memory;
 //   4. (after 3) the mesh alone grown by 2% and 10% of its diagonal: offsetLdi's time;
 //   3. when built with OpenVDB: the same Boolean through OpenVDB (mesh to narrow-band level set
-//      with Strata's cell size, CSG difference, volume to mesh), the same columns.
+//      with Strata's cell size, CSG difference, volume to mesh), the same columns;
+//   5. (after 4) the same offsets through OpenSCAD's minkowski() with a sphere, where an
+//      `openscad` binary is found (Debian's `openscad`; bench only), each capped in time.
 // Each row runs in a forked child process, so its peak resident memory is its own, and a row
 // that fails or crashes prints its error instead of ending the table.
 //
 // usage: strata_bench [--meshes bunny,armadillo] [--resolutions 256,512,1024] [--threads N]
 //                     [--tile 256] [--no-export] [--no-openvdb] [--openvdb-max-resolution 1024]
+//                     [--openscad PATH|none] [--openscad-timeout 600] [--openscad-fn 16]
 // --resolutions applies to every table; without it table 1 uses 256,512,1024 and tables 2 and 3
 // use 256..2048 for the armadillo and 256..1024 for other meshes.
 // The results and the command that made them are recorded in tests/bench/RESULTS.md.
@@ -36,6 +39,7 @@
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/ldi/offset_ldi.h"
+#include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
@@ -208,6 +212,73 @@ std::string offsetRow(const std::string& name, int resolution, double fraction) 
                 mib(peakResidentBytes()));
 }
 
+// Table 5: the mesh grown by `fraction` of its diagonal through OpenSCAD: minkowski() of the mesh
+// (written as ASCII STL) with a sphere of that radius and `fn` segments, run as
+// `timeout T openscad -o out.stl in.scad` in a fresh folder. The time is the command's wall time,
+// including OpenSCAD's own import and export (its minkowski dominates by far).
+std::string openScadRow(const std::string& name, double fraction, const std::string& openscad,
+                        int timeoutSeconds, int fn) {
+  auto mesh = loadMesh(name);
+  Bounds bounds;
+  for (const auto& p : mesh->positions) bounds.include(p);
+  const double distance = fraction * glm::length(bounds.max - bounds.min);
+  char folderTemplate[] = "/tmp/strata_bench_openscad_XXXXXX";
+  const char* folderName = mkdtemp(folderTemplate);
+  if (!folderName) throw Error(std::string("mkdtemp: ") + std::strerror(errno));
+  const std::string folder = folderName;
+  {
+    FILE* stl = std::fopen((folder + "/mesh.stl").c_str(), "w");
+    if (!stl) throw Error("cannot write " + folder + "/mesh.stl");
+    std::fprintf(stl, "solid mesh\n");
+    for (const auto& t : mesh->triangles) {
+      std::fprintf(stl, " facet normal 0 0 0\n  outer loop\n");
+      for (uint32_t v : t)
+        std::fprintf(stl, "   vertex %.9g %.9g %.9g\n", mesh->positions[v].x, mesh->positions[v].y,
+                     mesh->positions[v].z);
+      std::fprintf(stl, "  endloop\n endfacet\n");
+    }
+    std::fprintf(stl, "endsolid mesh\n");
+    std::fclose(stl);
+    FILE* scad = std::fopen((folder + "/grow.scad").c_str(), "w");
+    if (!scad) throw Error("cannot write " + folder + "/grow.scad");
+    std::fprintf(scad, "minkowski() {\n  import(\"mesh.stl\");\n  sphere(r = %.9g, $fn = %d);\n}\n",
+                 distance, fn);
+    std::fclose(scad);
+  }
+  const std::string command = "cd " + folder + " && timeout " + std::to_string(timeoutSeconds) +
+                              " " + openscad + " -o out.stl grow.scad > log.txt 2>&1";
+  Stopwatch clock;
+  const int status = std::system(command.c_str());
+  const double seconds = clock.seconds();
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::string outcome;
+  if (code == 124) {
+    outcome = format("| %-9s | %8.1f%% | %9d | > %7d | not finished in %d s (stopped) |",
+                     name.c_str(), fraction * 100.0, fn, timeoutSeconds, timeoutSeconds);
+  } else if (code != 0) {
+    outcome = format("| %-9s | %8.1f%% | %9d | %9.1f | failed: exit status %d (%s/log.txt) |",
+                     name.c_str(), fraction * 100.0, fn, seconds, code, folder.c_str());
+    return outcome;  // the folder stays for the log
+  } else {
+    const TriangleMesh result = readMeshFileRaw(folder + "/out.stl");
+    const MeshCheck check = checkMesh(result);
+    outcome = format("| %-9s | %8.1f%% | %9d | %9.1f | %10zu | %10.4g | %-10s |", name.c_str(),
+                     fraction * 100.0, fn, seconds, result.triangles.size(), check.volume,
+                     watertightText(check).c_str());
+  }
+  if (std::system(("rm -rf " + folder).c_str()) != 0) outcome += " (" + folder + " left behind)";
+  return outcome;
+}
+
+// The openscad binary to run: `requested` when given ("none": no table), else `openscad` on the
+// PATH; empty when there is none.
+std::string findOpenScad(const std::string& requested) {
+  if (requested == "none") return "";
+  if (!requested.empty()) return requested;
+  if (std::system("command -v openscad > /dev/null 2>&1") == 0) return "openscad";
+  return "";
+}
+
 #ifdef STRATA_BENCH_OPENVDB
 // Table 3: the same Boolean through OpenVDB, on Strata's lattice (same cell size and origin).
 std::string openVdbRow(const std::string& name, int resolution) {
@@ -279,7 +350,8 @@ std::string openVdbRow(const std::string& name, int resolution) {
 // Runs `row` in a child process and returns its line, or the row's failure.
 std::string forkRow(const std::string& name, int resolution,
                     const std::function<std::string()>& row) {
-  const std::string prefix = format("| %-9s | %5d | ", name.c_str(), resolution);
+  const std::string prefix = resolution > 0 ? format("| %-9s | %5d | ", name.c_str(), resolution)
+                                            : format("| %-9s | ", name.c_str());
   std::fflush(stdout);
   int fds[2];
   if (pipe(fds) != 0) return prefix + "failed: pipe: " + std::strerror(errno) + " |";
@@ -334,7 +406,8 @@ void usage() {
   std::fprintf(stderr,
                "usage: strata_bench [--meshes bunny,armadillo] [--resolutions 256,512,1024]\n"
                "                    [--threads N] [--tile 256] [--no-export] [--no-openvdb]\n"
-               "                    [--openvdb-max-resolution 1024]\n");
+               "                    [--openvdb-max-resolution 1024] [--openscad PATH|none]\n"
+               "                    [--openscad-timeout 600] [--openscad-fn 16]\n");
 }
 }  // namespace
 
@@ -345,6 +418,9 @@ int main(int argc, char** argv) {
   bool doExport = true;
   bool doOpenVdb = true;
   int openVdbMax = 1024;
+  std::string openScadRequested;  // empty: `openscad` on the PATH, if any
+  int openScadTimeout = 600;
+  int openScadFn = 16;
   for (int i = 1; i < argc; ++i) {
     const std::string key = argv[i];
     const bool hasValue = i + 1 < argc;
@@ -369,6 +445,12 @@ int main(int argc, char** argv) {
       tile = std::atoi(argv[++i]);
     else if (key == "--openvdb-max-resolution")
       openVdbMax = std::atoi(argv[++i]);
+    else if (key == "--openscad")
+      openScadRequested = argv[++i];
+    else if (key == "--openscad-timeout")
+      openScadTimeout = std::atoi(argv[++i]);
+    else if (key == "--openscad-fn")
+      openScadFn = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr, "unknown option %s\n", argv[i]);
       usage();
@@ -489,6 +571,33 @@ int main(int argc, char** argv) {
   std::printf(
       "\ndistance: of the mesh's bounding-box diagonal; cells: the same in cells. "
       "Offset s: offsetLdi alone (sampling not included).\n");
+
+  const std::string openscad = findOpenScad(openScadRequested);
+  if (openscad.empty()) {
+    std::printf(
+        "\nNo openscad binary (apt-get install openscad, or --openscad PATH): no minkowski() "
+        "comparison.\n");
+    return 0;
+  }
+  std::printf("\n### 5. The same offsets through OpenSCAD's minkowski() with a sphere\n\n");
+  printHeader({{"mesh", 9, false},
+               {"distance", 9, true},
+               {"sphere fn", 9, true},
+               {"wall s", 9, true},
+               {"triangles", 10, true},
+               {"volume", 10, true},
+               {"watertight", 10, false}});
+  for (const auto& m : meshes)
+    for (double fraction : {0.02, 0.10})
+      std::printf("%s\n", forkRow(m, 0, [&] {
+                            return openScadRow(m, fraction, openscad, openScadTimeout, openScadFn);
+                          }).c_str());
+  std::printf(
+      "\n`timeout %d %s -o out.stl grow.scad` where grow.scad is minkowski() { import(mesh.stl); "
+      "sphere(r = distance, $fn = fn); }: wall time of the whole command (one thread: OpenSCAD's "
+      "CGAL path is sequential), stopped at %d s. Its result is the offset up to the sphere's "
+      "polygonization; Strata's (table 4) is the exact Euclidean offset up to the cell size.\n",
+      openScadTimeout, openscad.c_str(), openScadTimeout);
 
   return 0;
 }
