@@ -198,25 +198,41 @@ int runModifier(const std::string& command, const std::vector<std::string>& argv
       option = fillet ? "--fillet" : "--radius";
     }
     if (files.empty() || !args.has(option))
-      throw Error("usage: strata " + command + " A [B...] " + option +
-                  " VALUE [--resolution N] [-o " + outputAlternatives("out") +
-                  "] [--report FILE] [--backend auto|cpu|cuda]");
+      throw Error("usage: strata " + command + " A [B...] " + option + " VALUE" +
+                  (kind == NodeKind::Shell ? " [--opening C]" : "") + " [--resolution N] [-o " +
+                  outputAlternatives("out") + "] [--report FILE] [--backend auto|cpu|cuda]");
+    if (args.has("--opening") && kind != NodeKind::Shell)
+      throw Error(command + ": --opening applies to shell only");
     const double amount = args.number(option, 0.0, -1e300, 1e300);
     applyInputLimits(args);
     MeshReadOptions meshOptions;
     meshOptions.allowOpen = args.has("--allow-open");
     meshOptions.unitScale = args.number("--unit-scale", 1.0, 1e-9, 1e9);
     std::vector<std::string> warnings;
-    Scene scene = sceneFromMeshFiles("union", files, meshOptions,
+    // With --opening C: the shell of (the union minus C), open where C cuts it.
+    std::vector<std::string> meshes = files;
+    if (args.has("--opening")) meshes.push_back(args.text("--opening", ""));
+    Scene scene = sceneFromMeshFiles("union", meshes, meshOptions,
                                      args.number("--margin", 0.05, 0.0, 10.0), &warnings);
     checkModifierAmount(kind, amount, command + " " + option);
+    NodePtr solid = scene.root;
+    NodeId opening = 0;
+    if (args.has("--opening")) {
+      NodePtr cutter = solid->children.back();
+      auto body = std::make_shared<Node>(*solid);
+      body->children.pop_back();
+      solid = makeOperationNode(NodeKind::Difference, NodeId(meshes.size() + 3), {body, cutter});
+      opening = cutter->id;
+    }
     auto modifier =
-        std::make_shared<Node>(*makeOperationNode(kind, NodeId(files.size() + 2), {scene.root}));
+        std::make_shared<Node>(*makeOperationNode(kind, NodeId(meshes.size() + 2), {solid}));
     modifier->name = kindName(kind);
     modifier->amount = amount;
+    modifier->opening = opening;
     scene.root = modifier;
-    return runMeshScene(scene, args, std::string(kindName(kind)) + " " + args.text(option, ""),
-                        files, warnings);
+    std::string what = std::string(kindName(kind)) + " " + args.text(option, "");
+    if (opening) what += " open where " + meshes.back() + " cuts it,";
+    return runMeshScene(scene, args, what, files, warnings);
   });
 }
 

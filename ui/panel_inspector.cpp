@@ -244,6 +244,45 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
 }
 
 // What the node's kind adds: primitive parameters, the operation, the mesh file, the target.
+// The parts strictly inside `node` (tree order, not through instances), each with its depth.
+void partsInside(const NodePtr& node, int depth, std::vector<std::pair<NodePtr, int>>* out) {
+  for (const NodePtr& c : node->children) {
+    out->push_back({c, depth});
+    partsInside(c, depth + 1, out);
+  }
+}
+
+// A shell's opening: none, or a part inside it whose cut the wall does not follow.
+void shellOpeningField(EditorState& state, const NodePtr& shell) {
+  ImGui::TextUnformatted("opening");
+  ImGui::SameLine(110.0f);
+  ImGui::SetNextItemWidth(-1);
+  const NodePtr current = findNode(shell, shell->opening);
+  std::string preview = "none (closed wall)";
+  if (shell->opening != 0) preview = current ? current->name : "(a part no longer inside: closed)";
+  if (ImGui::BeginCombo("##opening", preview.c_str())) {
+    if (ImGui::Selectable("none (closed wall)", shell->opening == 0))
+      guarded(state, [&] { state.document.setOpening(shell->id, 0); });
+    std::vector<std::pair<NodePtr, int>> parts;
+    partsInside(shell, 0, &parts);
+    for (const auto& [part, depth] : parts) {
+      ImGui::PushID(int(part->id));
+      const std::string label = std::string(size_t(2 * depth), ' ') + part->name;
+      if (ImGui::Selectable(label.c_str(), part->id == shell->opening))
+        guarded(state, [&] { state.document.setOpening(shell->id, part->id); });
+      ImGui::PopID();
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "A part inside the shell where the wall opens: the wall follows the shell's children "
+        "as they would be without it, so where it cuts them the hollow reaches the outside "
+        "(a drain hole, a mouth)");
+  if (shell->opening != 0 && current && !shellOpening(shell))
+    ImGui::TextDisabled("the opening is hidden: the wall is closed");
+}
+
 void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& nodes,
                       double speed) {
   bool sameKind = true;
@@ -295,6 +334,7 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
         for (const NodePtr& n : nodes) state.document.setAmount(n->id, amount);
       });
     }
+    if (node->kind == NodeKind::Shell && nodes.size() == 1) shellOpeningField(state, node);
   }
 
   if (node->kind == NodeKind::Mesh &&

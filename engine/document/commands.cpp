@@ -90,13 +90,17 @@ NodePtr copyWithFreshIds(const NodePtr& node, NodeId* next,
   return copy;
 }
 
-NodePtr remapInstances(const NodePtr& node, const std::unordered_map<NodeId, NodeId>& mapping) {
+NodePtr remapReferences(const NodePtr& node, const std::unordered_map<NodeId, NodeId>& mapping) {
   auto copy = std::make_shared<Node>(*node);
   if (copy->kind == NodeKind::Instance) {
     auto it = mapping.find(copy->instanceOf);
     if (it != mapping.end()) copy->instanceOf = it->second;
   }
-  for (auto& c : copy->children) c = remapInstances(c, mapping);
+  if (copy->opening != 0) {  // a shell's opening names a part of the copy too
+    auto it = mapping.find(copy->opening);
+    if (it != mapping.end()) copy->opening = it->second;
+  }
+  for (auto& c : copy->children) c = remapReferences(c, mapping);
   return copy;
 }
 
@@ -139,7 +143,7 @@ NodePtr makeMeshNode(NodeId id, const std::string& name, std::shared_ptr<const T
 NodePtr withFreshIds(const NodePtr& node, NodeId firstId) {
   NodeId next = firstId;
   std::unordered_map<NodeId, NodeId> mapping;
-  return remapInstances(copyWithFreshIds(node, &next, &mapping), mapping);
+  return remapReferences(copyWithFreshIds(node, &next, &mapping), mapping);
 }
 
 bool locateNode(const NodePtr& root, NodeId id, NodeLocation* location) {

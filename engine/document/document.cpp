@@ -180,6 +180,18 @@ void Document::setAmount(NodeId id, double amount) {
         editNode(root(), id, [&](Node& n) { n.amount = amount; }));
 }
 
+void Document::setOpening(NodeId id, NodeId opening) {
+  NodePtr node = findNode(root(), id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  if (node->kind != NodeKind::Shell)
+    throw Error(std::string("a ") + kindName(node->kind) + " node has no opening");
+  if (opening != 0 && (opening == id || !findNode(node, opening)))
+    throw Error("node " + std::to_string(opening) + " is not a part inside shell '" + node->name +
+                "'");
+  if (node->opening == opening) return;
+  apply("opening", editNode(root(), id, [&](Node& n) { n.opening = opening; }));
+}
+
 void Document::setVisible(NodeId id, bool visible) {
   NodePtr node = findNode(root(), id);
   if (node && node->visible == visible) return;

@@ -81,6 +81,8 @@ class Document {
   void setParams(NodeId id, const PrimitiveParams& params);
   // A modifier's distance, thickness or radius (Node::amount); checked as the kind requires.
   void setAmount(NodeId id, double amount);
+  // A shell's opening (Node::opening): a part inside the shell, or 0 for a closed wall.
+  void setOpening(NodeId id, NodeId opening);
   void setVisible(NodeId id, bool visible);
   void setResolution(int resolution);
   // Drag and drop: under `parent` before child `index`; never into the node's own subtree.

@@ -36,6 +36,12 @@ struct Node {
   // Modifiers (offset, shell, round, fillet): the distance, thickness or radius, scene units,
   // measured in the world (the node's own scale does not change it).
   double amount = 0.0;
+  // Shells only: a part inside the shell (by id, in its subtree, not through instances) where
+  // the wall opens. The wall follows the children as they would be without that part, so where
+  // the part cuts them the cavity reaches the outside (a drain hole for a resin print, a hollow
+  // pot's mouth). 0: a closed wall everywhere. A reference that no longer names a visible part
+  // inside the shell leaves the wall closed (the inspector says so).
+  NodeId opening = 0;
 
   // Mesh leaves: the file's path (absolute in a Document; in a scene file relative to its
   // folder or absolute), the content hash of the file, and the loaded, checked mesh (shared,
@@ -55,5 +61,13 @@ int treeDepth(const NodePtr& root);
 NodePtr findNode(const NodePtr& root, NodeId id);
 // Largest id used in the subtree.
 NodeId maxNodeId(const NodePtr& root);
+
+// A shell's opening (Node::opening), when it names a visible part strictly inside the shell's
+// own visible subtree (not through instances); nullptr otherwise (no opening, or a reference
+// that no longer names such a part: the wall stays closed).
+NodePtr shellOpening(const NodePtr& shell);
+// What a shell's wall follows when it has an opening: a union of the shell's children (the
+// shell's id, name and transform) with the opening part hidden; nullptr without an opening.
+NodePtr withoutOpening(const NodePtr& shell);
 
 }  // namespace strata

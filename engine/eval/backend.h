@@ -57,7 +57,10 @@ class Backend {
   // `ldi` changed by a modifier (engine/kinds/node_kinds.h: offset, shell, round, fillet) by
   // `amount` scene units, on the LDI's grid: composed from offset() and combine(), the same on
   // every backend.
-  LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi, Progress& progress);
+  // For a shell, `wallOf` (on the same grid) is the solid whose inward offset is taken away,
+  // when it is not `ldi` itself: the solid without the shell's opening (Node::opening).
+  LdiHandle modify(Modifier modifier, double amount, const LdiHandle& ldi, Progress& progress,
+                   const LdiHandle& wallOf = nullptr);
   // Whether offset() works here. Where it does not, the editor's preview and exports evaluate
   // scenes holding a modifier on a CPU backend instead, and say so.
   virtual bool evaluatesModifiers() const { return false; }

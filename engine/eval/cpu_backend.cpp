@@ -56,13 +56,13 @@ LdiHandle Backend::offset(const LdiHandle&, double, Progress&) {
 }
 
 LdiHandle Backend::modify(Modifier modifier, double amount, const LdiHandle& ldi,
-                          Progress& progress) {
+                          Progress& progress, const LdiHandle& wallOf) {
   switch (modifier) {
     case Modifier::Offset:
       return offset(ldi, amount, progress);
-    case Modifier::Shell:  // the solid minus its inward offset
-      return combine(RayOp::Difference, {ldi, offset(ldi, -amount, progress)}, ldi->grid(),
-                     progress);
+    case Modifier::Shell:  // the solid minus its inward offset (or that of wallOf)
+      return combine(RayOp::Difference, {ldi, offset(wallOf ? wallOf : ldi, -amount, progress)},
+                     ldi->grid(), progress);
     case Modifier::Round:  // opening
       return offset(offset(ldi, -amount, progress), amount, progress);
     case Modifier::Fillet:  // closing

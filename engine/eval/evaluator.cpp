@@ -439,12 +439,21 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
                         std::string(kindName(node->kind)) + " '" + node->name + "'");
     Hasher key;
     key.add(uint8_t(0xA0)).add(uint8_t(node->kind)).add(node->amount).add(v.key);
+    // A shell's opening: the wall follows the children without the opening part.
+    LdiHandle wallOf;
+    if (modifier == Modifier::Shell) {
+      if (NodePtr without = withoutOpening(node)) {
+        const Visit wall = visit(without, parentWorld, depth, ctx);
+        key.add(uint8_t(0x0B)).add(wall.key);
+        wallOf = wall.ldi;
+      }
+    }
     hashGrid(key, ctx.grid);
     v.key = key.digest();
     const LdiHandle united = v.ldi;
     v.ldi = cachedOr(v.key, record, [&] {
       Stopwatch watch;
-      LdiHandle out = backend_->modify(modifier, node->amount, united, *ctx.progress);
+      LdiHandle out = backend_->modify(modifier, node->amount, united, *ctx.progress, wallOf);
       record.seconds += watch.seconds();
       ctx.finishStage(kBoolean, watch.seconds(), out->surfelCount());
       return out;

@@ -17,7 +17,8 @@
 namespace strata {
 
 // 2: offset, shell, round and fillet nodes. Version 1 files read unchanged.
-constexpr int kSceneFormatVersion = 2;
+// 3: a shell's opening (the `opening` member).
+constexpr int kSceneFormatVersion = 3;
 
 struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving

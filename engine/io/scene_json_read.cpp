@@ -505,6 +505,15 @@ class SceneReader {
           node->children.push_back(entries_[child].node);
         }
       }
+      if (auto f = v.find("opening"); f != v.end()) {
+        // A shell's opening (version 3): the id of a part inside the shell.
+        node->opening = static_cast<NodeId>(
+            integer(*f, at + "/opening", 1, UINT32_MAX, "a positive integer id"));
+        if (node->opening == node->id || !findNode(node, node->opening))
+          fail(at + "/opening", "names node " + std::to_string(node->opening) +
+                                    ", which is not inside this shell (an opening must be a "
+                                    "part the shell holds)");
+      }
     } else if (isPrimitive(node->kind)) {
       readPrimitiveParams(v, at, node->kind, &node->params);
     } else if (node->kind == NodeKind::Mesh) {

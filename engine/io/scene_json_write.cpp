@@ -18,6 +18,21 @@
 
 namespace strata {
 namespace {
+// Whether node (a descendant of it, not itself) has the id.
+bool holdsId(const Node& node, NodeId id) {
+  for (const NodePtr& child : node.children)
+    if (child && (child->id == id || holdsId(*child, id))) return true;
+  return false;
+}
+
+// A shell's opening is written when it names a part inside the shell (hidden or not); a
+// reference left behind by a deleted part is not (the inspector shows it as gone).
+bool writesOpening(const Node& node) {
+  return node.kind == NodeKind::Shell && node.opening != 0 && holdsId(node, node.opening);
+}
+}  // namespace
+
+namespace {
 
 using ojson = nlohmann::ordered_json;
 
@@ -109,6 +124,7 @@ ojson nodeToJson(const Node& node, int depth) {
     j["of"] = node.instanceOf;
   } else if (const char* key = nodeKindInfo(node.kind).amountKey) {
     j[key] = finite(node.amount, label + " " + key);
+    if (writesOpening(node)) j["opening"] = node.opening;
   }
 
   ojson transform;
@@ -141,6 +157,13 @@ bool holdsModifier(const Node& node) {
     if (child && holdsModifier(*child)) return true;
   return false;
 }
+
+bool holdsOpening(const Node& node) {
+  if (writesOpening(node)) return true;
+  for (const NodePtr& child : node.children)
+    if (child && holdsOpening(*child)) return true;
+  return false;
+}
 }  // namespace
 
 std::string sceneToJson(const Scene& scene) {
@@ -150,8 +173,8 @@ std::string sceneToJson(const Scene& scene) {
   ojson doc;
   doc["format"] = "strata-scene";
   // The oldest version that holds the scene: files without modifiers stay readable by
-  // builds that read version 1.
-  doc["version"] = holdsModifier(*scene.root) ? kSceneFormatVersion : 1;
+  // builds that read version 1, files without a shell's opening by those that read 2.
+  doc["version"] = holdsOpening(*scene.root) ? 3 : holdsModifier(*scene.root) ? 2 : 1;
   doc["unit"] = s.unit;
   ojson settings;
   settings["resolution"] = s.resolution;

@@ -52,7 +52,7 @@ std::vector<NodeKindInfo> buildTable() {
        "S",
        "Shell: a wall of the given thickness inside the children's surface",
        RayOp::Union,
-       {"children", "thickness"},
+       {"children", "thickness", "opening"},
        nullptr,
        Modifier::Shell,
        "thickness",

@@ -247,6 +247,39 @@ TEST(CliExport, OffsetShellRoundAndFilletOfMeshFiles) {
   EXPECT_NE(zero.output.find("must be greater than 0"), std::string::npos) << zero.output;
 }
 
+// `shell A --thickness T --opening C`: A minus C, hollowed, the hollow open where C cuts: the
+// outer and inner surfaces are one (one component, genus 0), where the closed shell of the
+// same part has its cavity as a separate surface.
+TEST(CliExport, ShellWithAnOpening) {
+  const std::string bunny = data("bunny.obj");
+  const std::string top = temp("bunny_top.obj");
+  {
+    // A box over the bunny's back (the file is y-up, 9.7 tall): y from 7 to 11.
+    FILE* f = std::fopen(top.c_str(), "w");
+    ASSERT_TRUE(f);
+    std::fprintf(f,
+                 "v -6 7 -5\nv 6 7 -5\nv -6 11 -5\nv 6 11 -5\nv -6 7 5\nv 6 7 5\nv -6 11 5\n"
+                 "v 6 11 5\nf 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\n"
+                 "f 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n");
+    std::fclose(f);
+  }
+  const std::string out = temp("opened.stl");
+  CliRun opened =
+      strata("shell " + bunny + " --thickness 0.3 --opening " + top + " --resolution 96 -o " + out);
+  ASSERT_EQ(opened.code, 0) << opened.output;
+  EXPECT_NE(opened.output.find("passed the watertight check"), std::string::npos);
+  EXPECT_NE(opened.output.find("components 1, genus 0"), std::string::npos) << opened.output;
+  EXPECT_NE(opened.output.find("open where " + top + " cuts it"), std::string::npos)
+      << opened.output;
+  CliRun closed = strata("shell " + bunny + " --thickness 0.3 --resolution 96 -o " + out);
+  ASSERT_EQ(closed.code, 0) << closed.output;
+  EXPECT_EQ(closed.output.find("components 1,"), std::string::npos) << closed.output;
+  CliRun wrong = strata("offset " + bunny + " --distance 1 --opening " + top);
+  EXPECT_EQ(wrong.code, 1);
+  EXPECT_NE(wrong.output.find("--opening applies to shell only"), std::string::npos)
+      << wrong.output;
+}
+
 TEST(CliExport, SceneExportWithTilesAndErrors) {
   std::string out = temp("demo.stl");
   CliRun r = strata("export " + std::string(STRATA_ASSETS) +

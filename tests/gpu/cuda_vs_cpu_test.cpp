@@ -170,6 +170,14 @@ TEST_F(CudaVsCpu, ModifiersMatchRayByRay) {
                     cuda_, "cube shrunk");
     expectIdentical(makeScene(modifier(NodeKind::Shell, 0.1, {sphere(1)}), resolution), cuda_,
                     "sphere shelled");
+    {
+      // Shelled, open where a box cuts its top (Node::opening).
+      NodePtr top = box({4, 4, 1}, {0, 0, 1});
+      auto opened = std::make_shared<Node>(
+          *modifier(NodeKind::Shell, 0.1, {op(NodeKind::Difference, {sphere(1), top})}));
+      opened->opening = top->id;
+      expectIdentical(makeScene(opened, resolution), cuda_, "sphere shelled, open where cut");
+    }
     expectIdentical(makeScene(modifier(NodeKind::Round, 0.25, {box({2, 2, 2})}), resolution), cuda_,
                     "cube rounded");
     expectIdentical(

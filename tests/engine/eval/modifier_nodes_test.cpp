@@ -1,6 +1,7 @@
 // Modifier nodes (offset, shell, round, fillet: engine/kinds/node_kinds.h) evaluated through the
 // evaluator: volumes of analytic solids, the grid's room for a growth, caching by amount, bad
-// amounts, scene files (version 2 only when needed), and a watertight export.
+// amounts, scene files (version 2 only when needed, 3 for a shell's opening), a shell opened
+// where a chosen part cuts it, and a watertight export.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -71,6 +72,99 @@ TEST(ModifierNodes, CachedByAmountAndBadAmountsNameTheNode) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("thickness must be greater than 0"), std::string::npos)
         << e.what();
+  }
+}
+
+// The unit sphere with its top cut off by a box (z > 0.5), shelled by 0.1 (scene builder ids).
+NodePtr cappedSphereShell(NodeId* cutter) {
+  NodePtr top = box(glm::dvec3(4.0, 4.0, 1.0), glm::dvec3(0.0, 0.0, 1.0));
+  *cutter = top->id;
+  return modifier(NodeKind::Shell, 0.1, {op(NodeKind::Difference, {sphere(1.0), top})});
+}
+
+// The number of surfels on the z ray nearest the z axis.
+size_t surfelsOnTheAxis(const Ldi& ldi) {
+  const Grid& g = ldi.grid;
+  const AxisLdi& a = ldi.axes[2];
+  const int64_t raysU = g.cells.x + 1;
+  int64_t bestRay = 0;
+  double bestDistance = 1e300;
+  for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray) {
+    const double x = g.origin.x + g.h * double(g.first.x + ray % raysU);
+    const double y = g.origin.y + g.h * double(g.first.y + ray / raysU);
+    if (std::abs(x) + std::abs(y) < bestDistance) {
+      bestDistance = std::abs(x) + std::abs(y);
+      bestRay = ray;
+    }
+  }
+  return a.offsets[size_t(bestRay) + 1] - a.offsets[size_t(bestRay)];
+}
+
+// A shell whose opening is the cutter: the wall follows the sphere, not the cut, so the cavity
+// reaches out through the cut. Along the axis: the closed shell has a bottom wall and a top
+// wall under the cut (four surfels), the opened one only the bottom wall (two). Volumes: the
+// sphere below z = 0.5 minus the sphere of 0.9 below z = 0.5 (0.866033) against the closed
+// shell's 1.056622.
+TEST(ModifierNodes, AShellOpensWhereItsOpeningCuts) {
+  constexpr double kOpened = 0.866033, kClosed = 1.056622;
+  for (int resolution : {48, 96}) {
+    NodeId cutter = 0;
+    NodePtr closed = cappedSphereShell(&cutter);
+    auto opened = std::make_shared<Node>(*closed);
+    opened->opening = cutter;
+    EXPECT_EQ(shellOpening(opened)->id, cutter);
+    const EvalResult a = evaluateCpu(makeScene(closed, resolution));
+    const EvalResult b = evaluateCpu(makeScene(opened, resolution));
+    const auto closedLdi = CpuBackend().download(a.root);
+    const auto openedLdi = CpuBackend().download(b.root);
+    const double h = closedLdi->grid.h;
+    EXPECT_EQ(surfelsOnTheAxis(*closedLdi), 4u) << resolution;
+    EXPECT_EQ(surfelsOnTheAxis(*openedLdi), 2u) << resolution;
+    // Half a cell times the area: the outer and inner spherical zones, and the ring at the cut
+    // (opened) or the two disks of the top wall (closed).
+    EXPECT_NEAR(b.measure.volume, kOpened, 0.5 * h * (3.0 * kPi + 2.8 * kPi * 0.9 + 0.6));
+    EXPECT_NEAR(a.measure.volume, kClosed, 0.5 * h * (3.0 * kPi + 2.6 * kPi * 0.9 + 4.4));
+    EXPECT_GT(a.measure.volume - b.measure.volume, 0.1);  // the top wall, about 0.19
+  }
+  // An opening that names no part inside the shell leaves the wall closed.
+  NodeId cutter = 0;
+  auto dangling = std::make_shared<Node>(*cappedSphereShell(&cutter));
+  dangling->opening = 999999;
+  EXPECT_EQ(shellOpening(dangling), nullptr);
+  EXPECT_EQ(withoutOpening(dangling), nullptr);
+}
+
+TEST(ModifierNodes, AShellsOpeningIsSavedAsVersion3AndFollowsCopies) {
+  NodeId cutter = 0;
+  auto shell = std::make_shared<Node>(*cappedSphereShell(&cutter));
+  shell->opening = cutter;
+  const std::string text = sceneToJson(makeScene(shell, 64));
+  EXPECT_NE(text.find("\"version\": 3"), std::string::npos);
+  EXPECT_NE(text.find("\"opening\": " + std::to_string(cutter)), std::string::npos) << text;
+  Scene back = parseScene(text, "opened.strata.json", ".");
+  EXPECT_EQ(back.root->opening, cutter);
+  // A copy's opening names the copy of the part, not the original.
+  auto root = op(NodeKind::Union, {shell});
+  NodeId copyId = 0;
+  NodePtr after = duplicateNode(root, shell->id, maxNodeId(root) + 1, &copyId);
+  NodePtr copy = findNode(after, copyId);
+  ASSERT_TRUE(copy);
+  ASSERT_TRUE(shellOpening(copy));
+  EXPECT_NE(copy->opening, cutter);
+  EXPECT_EQ(findNode(copy, copy->opening)->kind, NodeKind::Box);
+  // An opening outside the shell (or the shell itself) is refused, naming the field.
+  for (const char* opening : {"1", "7"}) {
+    const std::string file =
+        std::string(R"({"format": "strata-scene", "version": 3, "root": {"id": 1, "type": )") +
+        R"("shell", "thickness": 0.1, "opening": )" + opening +
+        R"(, "children": [{"id": 2, "type": "sphere"}]}})";
+    try {
+      parseScene(file, "bad.strata.json", ".");
+      ADD_FAILURE() << "accepted opening " << opening;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("/root/opening"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("not inside this shell"), std::string::npos) << e.what();
+    }
   }
 }
 
