@@ -38,6 +38,16 @@ std::vector<int> parseList(const std::string& s) {
   return out;
 }
 
+// A mesh leaf.
+NodePtr meshNode(NodeId id, const char* name, std::shared_ptr<const TriangleMesh> mesh) {
+  auto leaf = std::make_shared<Node>();
+  leaf->id = id;
+  leaf->kind = NodeKind::Mesh;
+  leaf->name = name;
+  leaf->mesh = std::move(mesh);
+  return leaf;
+}
+
 // The id of the first node called name in the subtree (0 where there is none).
 NodeId idNamed(const Node& node, const std::string& name) {
   if (node.name == name) return node.id;
@@ -140,11 +150,7 @@ OffsetRow runOffset(const std::shared_ptr<TriangleMesh>& mesh, int resolution, d
                     std::shared_ptr<const Ldi>* bits) {
   Bounds bounds = meshBounds(*mesh);
   const double distance = fraction * glm::length(bounds.size());
-  auto leaf = std::make_shared<Node>();
-  leaf->id = 2;
-  leaf->kind = NodeKind::Mesh;
-  leaf->name = "mesh";
-  leaf->mesh = mesh;
+  NodePtr leaf = meshNode(2, "mesh", mesh);
   auto root = std::make_shared<Node>();
   root->id = 1;
   root->kind = NodeKind::Offset;
@@ -267,16 +273,8 @@ int main(int argc, char** argv) {
     pair.name = "armadillo - bunny";
     auto arm = std::make_shared<TriangleMesh>(readMeshFile(data + "/armadillo.obj"));
     auto bunny = std::make_shared<TriangleMesh>(readMeshFile(data + "/bunny.obj"));
-    auto a = std::make_shared<Node>();
-    a->id = 2;
-    a->kind = NodeKind::Mesh;
-    a->name = "armadillo";
-    a->mesh = arm;
-    auto c = std::make_shared<Node>();
-    c->id = 3;
-    c->kind = NodeKind::Mesh;
-    c->name = "bunny";
-    c->mesh = bunny;
+    NodePtr a = meshNode(2, "armadillo", arm);
+    auto c = std::make_shared<Node>(*meshNode(3, "bunny", bunny));
     c->transform.scale = glm::dvec3(6.0);
     c->transform.translate = {0, 10, 20};
     auto root = std::make_shared<Node>();
