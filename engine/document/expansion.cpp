@@ -119,6 +119,12 @@ class ExpansionCounter {
     const Node& n = *f.key.node;
     if (n.kind == NodeKind::Instance) return f.sum;  // the target's totals, as evaluated
     if (!isOperation(n.kind)) return {1, 1, 1};
+    if (n.kind == NodeKind::Shell && n.opening != 0) {
+      // A shell with an opening evaluates its children twice: as they are, and without the
+      // opening for its wall (evaluator.cpp; an upper bound, most of it from the cache).
+      return {saturatingAdd(f.sum.leaves, f.sum.leaves),
+              saturatingAdd(saturatingAdd(f.sum.nodes, f.sum.nodes), 2), f.sum.depth + 1};
+    }
     return {f.sum.leaves, saturatingAdd(f.sum.nodes, 1), f.sum.depth + 1};
   }
 

@@ -96,4 +96,17 @@ TEST(Expansion, TheEvaluatorRefusesBeforeWorkAndTheLimitCanBeRaised) {
 }
 
 }  // namespace
+// A shell with an opening evaluates its children twice (as they are, and without the opening for
+// its wall): the count, which bounds the work and the progress, says so.
+TEST(Expansion, AShellWithAnOpeningCountsItsChildrenTwice) {
+  NodePtr body = test::sphere(1.0), hole = test::box(glm::dvec3(0.5));
+  auto shell = std::make_shared<Node>(
+      *test::modifier(NodeKind::Shell, 0.1, {test::op(NodeKind::Difference, {body, hole})}));
+  EXPECT_EQ(measureExpansion(shell).leaves, 2u);
+  EXPECT_EQ(measureExpansion(shell).nodes, 4u);
+  shell->opening = hole->id;
+  EXPECT_EQ(measureExpansion(shell).leaves, 4u);
+  EXPECT_EQ(measureExpansion(shell).nodes, 8u);
+}
+
 }  // namespace strata
