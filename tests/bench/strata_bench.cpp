@@ -38,6 +38,7 @@
 #include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
+#include "engine/io/mesh_writers.h"
 #include "engine/ldi/offset_ldi.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
@@ -185,12 +186,15 @@ std::string exportRow(const std::string& name, int resolution, int tile) {
       watertightText(check).c_str(), mib(peak));
 }
 
+// `fraction` of the mesh's bounding-box diagonal: the growth of tables 4 and 5.
+double diagonalFraction(const TriangleMesh& mesh, double fraction) {
+  return fraction * glm::length(meshBounds(mesh).size());
+}
+
 // Table 4: the mesh alone grown by `fraction` of its diagonal (offsetLdi, engine/ldi/offset_ldi.h).
 std::string offsetRow(const std::string& name, int resolution, double fraction) {
   auto mesh = loadMesh(name);
-  Bounds bounds;
-  for (const auto& p : mesh->positions) bounds.include(p);
-  const double distance = fraction * glm::length(bounds.max - bounds.min);
+  const double distance = diagonalFraction(*mesh, fraction);
   auto leaf = std::make_shared<Node>();
   leaf->id = 1;
   leaf->kind = NodeKind::Mesh;
@@ -213,32 +217,23 @@ std::string offsetRow(const std::string& name, int resolution, double fraction) 
 }
 
 // Table 5: the mesh grown by `fraction` of its diagonal through OpenSCAD: minkowski() of the mesh
-// (written as ASCII STL) with a sphere of that radius and `fn` segments, run as
+// (written as binary STL) with a sphere of that radius and `fn` segments, run as
 // `timeout T openscad -o out.stl in.scad` in a fresh folder. The time is the command's wall time,
 // including OpenSCAD's own import and export (its minkowski dominates by far).
 std::string openScadRow(const std::string& name, double fraction, const std::string& openscad,
                         int timeoutSeconds, int fn) {
   auto mesh = loadMesh(name);
-  Bounds bounds;
-  for (const auto& p : mesh->positions) bounds.include(p);
-  const double distance = fraction * glm::length(bounds.max - bounds.min);
+  const double distance = diagonalFraction(*mesh, fraction);
   char folderTemplate[] = "/tmp/strata_bench_openscad_XXXXXX";
   const char* folderName = mkdtemp(folderTemplate);
   if (!folderName) throw Error(std::string("mkdtemp: ") + std::strerror(errno));
   const std::string folder = folderName;
   {
-    FILE* stl = std::fopen((folder + "/mesh.stl").c_str(), "w");
-    if (!stl) throw Error("cannot write " + folder + "/mesh.stl");
-    std::fprintf(stl, "solid mesh\n");
-    for (const auto& t : mesh->triangles) {
-      std::fprintf(stl, " facet normal 0 0 0\n  outer loop\n");
-      for (uint32_t v : t)
-        std::fprintf(stl, "   vertex %.9g %.9g %.9g\n", mesh->positions[v].x, mesh->positions[v].y,
-                     mesh->positions[v].z);
-      std::fprintf(stl, "  endloop\n endfacet\n");
-    }
-    std::fprintf(stl, "endsolid mesh\n");
-    std::fclose(stl);
+    ExportMesh stl;  // binary STL through the project's own writer
+    stl.mesh = *mesh;
+    stl.triangleLeaf.assign(mesh->triangles.size(), 0);
+    stl.leaves[0] = LeafStyle{name, glm::vec3(0.8f)};
+    writeMeshFile(folder + "/mesh.stl", stl);
     FILE* scad = std::fopen((folder + "/grow.scad").c_str(), "w");
     if (!scad) throw Error("cannot write " + folder + "/grow.scad");
     std::fprintf(scad, "minkowski() {\n  import(\"mesh.stl\");\n  sphere(r = %.9g, $fn = %d);\n}\n",
