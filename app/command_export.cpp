@@ -54,7 +54,7 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     std::string json = formatExportJson(summary);
     writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
   }
-  return exportCheckPassed(summary.result.check) ? 0 : 3;
+  return summary.result.passed() ? 0 : 3;
 }
 
 }  // namespace strata

@@ -19,10 +19,6 @@ std::string mib(uint64_t bytes) {
 }
 }  // namespace
 
-bool exportCheckPassed(const MeshCheck& c) {
-  return c.watertight() && c.volume > 0.0 && c.degenerateTriangles == 0;
-}
-
 std::string formatExportText(const ExportSummary& summary) {
   ExportSummary s = summary;
   s.unit = unitAbbreviation(s.unit);
@@ -75,7 +71,9 @@ std::string formatExportText(const ExportSummary& summary) {
                   r.unfoldedShells, r.unfoldedShells == 1 ? "" : "s");
     out << line;
   }
-  out << "result    " << (exportCheckPassed(c) ? "passed" : "FAILED") << " the watertight check\n";
+  if (!s.result.fileDifference.empty())
+    out << "          the file differs from the mesh written: " << s.result.fileDifference << "\n";
+  out << "result    " << (s.result.passed() ? "passed" : "FAILED") << " the watertight check\n";
   for (const auto& w : s.warnings) out << "warning   " << w << "\n";
   return out.str();
 }
@@ -100,7 +98,7 @@ std::string formatExportJson(const ExportSummary& s) {
                                      {{"name", "check"}, {"seconds", s.result.checkSeconds}}});
   j["peak_bytes"] = r.peakBytes;
   j["surfels"] = r.surfels;
-  j["check"] = {{"passed", exportCheckPassed(c)},
+  j["check"] = {{"passed", s.result.passed()},
                 {"triangles", c.triangles},
                 {"vertices", c.vertices},
                 {"closed", c.closed()},
@@ -111,7 +109,9 @@ std::string formatExportJson(const ExportSummary& s) {
                 {"volume", c.volume},
                 {"area", c.area},
                 {"smallest_triangle_area", c.smallestTriangleArea},
-                {"degenerate_triangles", c.degenerateTriangles}};
+                {"degenerate_triangles", c.degenerateTriangles},
+                {"file_matches", s.result.fileDifference.empty()}};
+  if (!s.result.fileDifference.empty()) j["check"]["file_difference"] = s.result.fileDifference;
   j["volume"] = c.volume;
   j["area"] = c.area;
   j["deviation_bound"] = r.deviationBound;

@@ -18,10 +18,6 @@ struct ExportSummary {
   std::vector<std::string> warnings;  // of the input, then the export's notices
 };
 
-// True when the re-read file is a closed, manifold, consistently oriented mesh with positive
-// volume, finite coordinates and no degenerate triangles.
-bool exportCheckPassed(const MeshCheck& check);
-
 std::string formatExportText(const ExportSummary& s);
 std::string formatExportJson(const ExportSummary& s);
 

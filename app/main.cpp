@@ -5,6 +5,7 @@
 
 #include "app/commands.h"
 #include "app/editor_commands.h"
+#include "app/huge_pages.h"
 #include "app/signal_cancellation.h"
 #include "engine/io/mesh_formats.h"
 
@@ -132,6 +133,7 @@ int runCommand(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  strata::restartWithHugePageMalloc(argv);  // first: it may re-execute the process
   // For the whole command, loading included (app/signal_cancellation.h).
   strata::SignalCancellation signals;
   return strata::exitCodeAfterSignals(runCommand(std::vector<std::string>(argv + 1, argv + argc)));

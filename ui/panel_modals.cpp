@@ -90,9 +90,12 @@ void exportWindow(EditorState& state) {
     if (ImGui::Button("Cancel", ImVec2(120, 0))) state.exportJob->cancel();
   } else if (s.succeeded) {
     const MeshCheck& c = s.check;
-    ImGui::TextColored(
-        c.watertight() ? ImVec4(0.5f, 0.9f, 0.5f, 1.0f) : ImVec4(1.0f, 0.5f, 0.4f, 1.0f),
-        c.watertight() ? "written and checked: watertight" : "written, but NOT watertight");
+    const bool passed = s.checkPassed();
+    ImGui::TextColored(passed ? ImVec4(0.5f, 0.9f, 0.5f, 1.0f) : ImVec4(1.0f, 0.5f, 0.4f, 1.0f),
+                       passed           ? "written and checked: watertight"
+                       : c.watertight() ? "written, but the check FAILED"
+                                        : "written, but NOT watertight");
+    if (!s.fileDifference.empty()) ImGui::TextWrapped("%s", s.fileDifference.c_str());
     ImGui::Text("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles, c.vertices,
                 c.components, c.genus);
     ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,

@@ -1,8 +1,6 @@
 #include "engine/export/export_scene.h"
 
-#include "engine/util/atomic_file.h"
-
-#include "engine/io/mesh_io.h"
+#include "engine/export/check_written.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
@@ -27,20 +25,13 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Cont
   Stopwatch write;
   writeMeshFile(path, mesh, &progress);
   report.writeSeconds = write.seconds();
-  mesh = ExportMesh();
 
   // The new file is in place and whole from here on: a cancel during the check leaves it.
-  progress.report("check", 0.0);
   Stopwatch check;
-  TriangleMesh written;
-  {
-    const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-    written = readMeshFileRaw(path);
-  }
-  progress.report("check", 0.5);
-  report.check = checkMesh(written);
+  const WrittenCheck written = checkWrittenFile(path, mesh.mesh, progress);
+  report.check = written.check;
+  report.fileDifference = written.fileDifference;
   report.checkSeconds = check.seconds();
-  progress.report("check", 1.0);
   return report;
 }
 

@@ -1,7 +1,7 @@
 // Watertight export of a scene to a mesh file, the one pipeline behind `strata export` (and
 // `strata boolean ... -o`) and the editor's Export: contour (with the out-of-memory fallbacks of
-// fallback.h) -> write (engine/io/mesh_writers.h) -> read the file back raw and check it
-// (readMeshFileRaw, checkMesh).
+// fallback.h) -> write (engine/io/mesh_writers.h) -> check the mesh as stored and that the
+// file holds it (check_written.h).
 //
 // The file (and, for OBJ, its MTL, together) is written atomically (engine/util/atomic_file.h):
 // a failure or a cancellation while evaluating, contouring or writing leaves nothing behind and
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/eval/backend.h"
+#include "engine/export/check_written.h"
 #include "engine/export/contour_scene.h"
 #include "engine/export/fallback.h"
 #include "engine/geometry/mesh_check.h"
@@ -29,8 +30,10 @@ struct ExportReport {
   ContourReport contour;             // how the mesh was made
   double writeSeconds = 0.0;         // writing the file
   double checkSeconds = 0.0;         // reading it back and checking it
-  MeshCheck check;                   // of the file as written, re-read without repairs
+  MeshCheck check;                   // of the file as written (check_written.h)
+  std::string fileDifference;        // "" when the file holds the mesh meant (check_written.h)
   std::vector<std::string> notices;  // the fallbacks taken, in order (each also sent to notice)
+  bool passed() const { return writtenCheckPassed(check, fileDifference); }
 };
 
 // Exports the visible tree of `scene` to `path` (.stl .obj .ply .3mf, see mesh_writers.h),

@@ -7,17 +7,36 @@
 namespace strata {
 
 const std::vector<MeshFormat>& meshFormats() {
-  // label, extensions, parser, writer, read note, write note, bytes per triangle written
+  // label, extensions, parser, writer, read note, write note, bytes per triangle written,
+  // unindexed, the stored coordinate
   static const std::vector<MeshFormat> formats = {
-      {"STL", {"stl"}, meshio::parseStl, meshio::writeStl, "ascii or binary", "binary", 50.0},
-      {"OBJ", {"obj"}, meshio::parseObj, meshio::writeObj, "", "+ .mtl, a material per leaf", 38.0},
+      {"STL",
+       {"stl"},
+       meshio::parseStl,
+       meshio::writeStl,
+       "ascii or binary",
+       "binary",
+       50.0,
+       true,
+       meshio::storedAsFloat},
+      {"OBJ",
+       {"obj"},
+       meshio::parseObj,
+       meshio::writeObj,
+       "",
+       "+ .mtl, a material per leaf",
+       38.0,
+       false,
+       meshio::storedAsNineDigits},
       {"PLY",
        {"ply"},
        meshio::parsePly,
        meshio::writePly,
        "ascii or binary",
        "vertex colours",
-       27.0},
+       27.0,
+       false,
+       meshio::storedExactly},
       {"OFF", {"off"}, meshio::parseOff, nullptr, "", "", 0.0},
       {"3MF",
        {"3mf"},
@@ -25,7 +44,9 @@ const std::vector<MeshFormat>& meshFormats() {
        meshio::write3mf,
        "",
        "colour per leaf, the scene's unit",
-       19.0},
+       19.0,
+       false,
+       meshio::storedAsNineDigits},
   };
   return formats;
 }

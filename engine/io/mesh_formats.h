@@ -35,6 +35,10 @@ using MeshParser = TriangleMesh (*)(const std::string& name, const std::string& 
 // Writes a validated ExportMesh to `path` atomically (see mesh_writer_formats.h).
 using MeshWriter = void (*)(const std::string& path, const ExportMesh& mesh, Progress* progress);
 
+// A coordinate as the format stores it: what reading the written file back gives for `value`
+// (float32 for STL, "%.9g" for the text formats, double for PLY).
+using StoredCoordinate = double (*)(double value);
+
 // Reading a format (import, readMeshFile) or writing it (export, writeMeshFile).
 enum class MeshAccess { Read, Write };
 
@@ -49,6 +53,10 @@ struct MeshFormat {
   // estimate before an export; measured on Strata's own exports (bone scaffold and
   // armadillo - bunny at 256 cells, 2026-11-23). 0 when not writable.
   double bytesPerTriangle = 0.0;
+  // The file lists each triangle's corners by position, not by index (STL): its parser gives
+  // every triangle three vertices of its own, and the readers of mesh_io.h weld them.
+  bool unindexed = false;
+  StoredCoordinate stored = nullptr;  // nullptr when not writable
   bool supports(MeshAccess access) const {
     return access == MeshAccess::Read ? parse != nullptr : write != nullptr;
   }

@@ -153,10 +153,13 @@ std::string plural(size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+enum class Corners { Verbatim, WeldUnindexed };
+
 // The parser the extension names (mesh_formats.h), exactly as the file describes the mesh (no
-// repairs).
+// repairs); with Corners::WeldUnindexed, the corners of an unindexed format (STL) are welded
+// where their positions are identical, so that triangles share vertices as in the other formats.
 TriangleMesh parseByExtension(const std::string& name, const std::string& bytes,
-                              MeshReadReport* report) {
+                              MeshReadReport* report, Corners corners) {
   const MeshFormat* format = meshFormatFor(name, MeshAccess::Read);
   if (!format) {
     const std::string ext = lowerExtension(name);
@@ -165,6 +168,7 @@ TriangleMesh parseByExtension(const std::string& name, const std::string& bytes,
   }
   TriangleMesh mesh = format->parse(name, bytes, report);
   if (mesh.triangles.empty()) throw Error(name + ": contains no triangles");
+  if (format->unindexed && corners == Corners::WeldUnindexed) weldIdenticalPositions(mesh);
   return mesh;
 }
 
@@ -172,7 +176,13 @@ TriangleMesh parseByExtension(const std::string& name, const std::string& bytes,
 
 TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report) {
   MeshReadReport local;
-  return parseByExtension(path, readWholeFile(path), report ? report : &local);
+  return parseByExtension(path, readWholeFile(path), report ? report : &local,
+                          Corners::WeldUnindexed);
+}
+
+TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report) {
+  MeshReadReport local;
+  return parseByExtension(path, readWholeFile(path), report ? report : &local, Corners::Verbatim);
 }
 
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,
@@ -190,7 +200,7 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
                 std::to_string(options.unitScale));
   }
 
-  TriangleMesh mesh = parseByExtension(name, bytes, rep);
+  TriangleMesh mesh = parseByExtension(name, bytes, rep, Corners::WeldUnindexed);
   if (mesh.triangles.size() > maxInputTriangles())
     throw Error(tooManyTrianglesMessage(name, mesh.triangles.size()));
 

@@ -60,4 +60,9 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
 // be read or parsed, or that holds no triangles.
 TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report = nullptr);
 
+// The same without even STL's weld: the triangles as the file lists them, each STL facet with
+// three vertices of its own. For comparing a written file with the mesh meant (check_written.h)
+// without the cost of welding.
+TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report = nullptr);
+
 }  // namespace strata

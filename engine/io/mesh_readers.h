@@ -19,7 +19,7 @@ namespace strata {
 namespace meshio {
 
 TriangleMesh parseObj(const std::string& name, const std::string& bytes, MeshReadReport* report);
-// STL positions are unindexed in the file; identical positions are welded into shared vertices.
+// STL positions are unindexed in the file: each facet gets three vertices of its own.
 TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshReadReport* report);
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report);
 TriangleMesh parseOff(const std::string& name, const std::string& bytes, MeshReadReport* report);

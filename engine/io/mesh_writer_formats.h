@@ -35,6 +35,12 @@ void reportEvery(Progress* progress, const std::string& stage, size_t index, siz
 // Appends `value` as printf's "%.9g" would, independent of the C locale.
 void appendNumber(std::string& out, double value);
 
+// The coordinates the writers store (StoredCoordinate, mesh_formats.h): as float32 (STL),
+// as appendNumber prints them (OBJ, 3MF), or exactly (PLY's doubles).
+double storedAsFloat(double value);
+double storedAsNineDigits(double value);
+double storedExactly(double value);
+
 // A linear RGB channel in [0, 1] (clamped) encoded as sRGB: in [0, 1], and in 0..255.
 double linearToSrgb(double linear);
 std::array<uint8_t, 3> srgb8(const glm::vec3& linear);

@@ -8,6 +8,7 @@
 #include "engine/io/mesh_formats.h"
 #include "engine/io/mesh_writer_formats.h"
 #include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 namespace meshio {
@@ -22,6 +23,23 @@ void appendNumber(std::string& out, double value) {
   const auto result =
       std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general, 9);
   out.append(buffer, result.ptr);
+}
+
+double storedAsFloat(double value) {
+  return double(float(value));
+}
+
+double storedAsNineDigits(double value) {
+  char buffer[32];
+  const auto printed =
+      std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general, 9);
+  double parsed = 0.0;
+  std::from_chars(buffer, printed.ptr, parsed);
+  return parsed;
+}
+
+double storedExactly(double value) {
+  return value;
 }
 
 double linearToSrgb(double linear) {
@@ -78,16 +96,39 @@ void validate(const std::string& path, const ExportMesh& mesh) {
 
 }  // namespace
 
-void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress) {
+namespace {
+
+const MeshFormat& writableFormat(const std::string& path) {
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   if (!format) {
     const std::string ext = lowerExtension(path);
     throw Error(path + ": cannot write mesh format '" + (ext.empty() ? "" : "." + ext) +
                 "' (supported: " + meshExtensionList(MeshAccess::Write, ", ") + ")");
   }
+  return *format;
+}
+
+}  // namespace
+
+void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress) {
+  const MeshFormat& format = writableFormat(path);
   if (progress) progress->check();
   validate(path, mesh);
-  format->write(path, mesh, progress);
+  format.write(path, mesh, progress);
+}
+
+TriangleMesh storedMesh(const std::string& path, const TriangleMesh& mesh) {
+  const StoredCoordinate stored = writableFormat(path).stored;
+  TriangleMesh out;
+  out.triangles = mesh.triangles;
+  out.positions.resize(mesh.positions.size());
+  parallelFor(0, int64_t(mesh.positions.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) {
+      const glm::dvec3& p = mesh.positions[size_t(i)];
+      out.positions[size_t(i)] = glm::dvec3(stored(p.x), stored(p.y), stored(p.z));
+    }
+  });
+  return out;
 }
 
 }  // namespace strata

@@ -25,8 +25,9 @@
 // (may be null) is checked every 65536 elements and before anything is written, and receives stage
 // "write <format>" with its fraction.
 //
-// To verify a written file, read it back with readMeshFileRaw (engine/io/mesh_io.h), which
-// repairs nothing, and run checkMesh on it.
+// To verify a written file: engine/export/check_written.h (checkMesh on storedMesh below, and
+// the file read back with readMeshFileVerbatim compared with it), or read it back with
+// readMeshFileRaw (engine/io/mesh_io.h), which repairs nothing, and run checkMesh on it.
 #pragma once
 
 #include <string>
@@ -42,5 +43,10 @@ namespace strata {
 // triangleLeaf of the wrong size), a unit 3MF cannot express, or a file that cannot be written;
 // throws Cancelled when `progress` is cancelled.
 void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* progress = nullptr);
+
+// `mesh` as reading the file writeMeshFile(path, ...) wrote gives it back: the same triangles,
+// positions rounded as the format stores them (float32 for .stl, %.9g for .obj and .3mf, exact
+// for .ply). In parallel. Throws strata::Error for an extension no format writes.
+TriangleMesh storedMesh(const std::string& path, const TriangleMesh& mesh);
 
 }  // namespace strata

@@ -3,8 +3,9 @@
 // account for the file size exactly. ASCII: solid / facet normal / outer loop / vertex x3 /
 // endloop / endfacet / endsolid, keywords case-insensitive, several solids allowed.
 // A file is binary when its count matches its size, or when it does not start with "solid"
-// followed by text. Facet normals are ignored (winding decides orientation). Identical
-// positions are welded into shared vertices.
+// followed by text. Facet normals are ignored (winding decides orientation). Every facet has
+// three vertices of its own; the readers of mesh_io.h weld identical positions (the format's
+// `unindexed` flag).
 #include <cstdint>
 #include <cstring>
 
@@ -227,7 +228,6 @@ TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshRea
     mesh = AsciiStlParser(name, report).parse(lf ? *lf : bytes);
   }
   report->fileVertices = mesh.positions.size();
-  weldIdenticalPositions(mesh);
   requireMeasurableExtent(name, mesh);
   return mesh;
 }

@@ -82,6 +82,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ContourOptions options,
         [&](const std::string& line) { update([&](ExportStatus& s) { s.notice = line; }); });
     result.succeeded = true;
     result.check = report.check;
+    result.fileDifference = report.fileDifference;
   } catch (const Cancelled&) {
     result.cancelled = true;
   } catch (const Error& e) {
@@ -101,6 +102,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ContourOptions options,
     s.error = result.error;
     s.refused = result.refused;
     s.check = result.check;
+    s.fileDifference = result.fileDifference;
     s.seconds = clock.seconds();
   });
 }

@@ -17,6 +17,7 @@
 
 #include "engine/document/scene.h"
 #include "engine/eval/backend.h"
+#include "engine/export/check_written.h"
 #include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/util/progress.h"
@@ -38,7 +39,9 @@ struct ExportStatus {
   // on: nothing was done. Start it again with insist to export anyway.
   bool refused = false;
   std::string path;
-  MeshCheck check;  // of the file as written (valid when succeeded)
+  MeshCheck check;             // of the file as written (valid when succeeded)
+  std::string fileDifference;  // "" when the file holds the mesh meant (check_written.h)
+  bool checkPassed() const { return writtenCheckPassed(check, fileDifference); }
   double seconds = 0.0;
   int resolution = 0;
 };

@@ -1,0 +1,87 @@
+#include "engine/export/check_written.h"
+
+#include <atomic>
+#include <cstring>
+
+#include "engine/io/mesh_io.h"
+#include "engine/io/mesh_writers.h"
+#include "engine/util/atomic_file.h"
+#include "engine/util/parallel_for.h"
+
+namespace strata {
+namespace {
+
+uint64_t mix(uint64_t x) {  // splitmix64's finaliser: a bijection that spreads every bit
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ull;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebull;
+  x ^= x >> 31;
+  return x;
+}
+
+uint64_t bitsOf(double v) {
+  if (v == 0.0) v = 0.0;  // -0.0 is the same coordinate
+  uint64_t bits;
+  std::memcpy(&bits, &v, sizeof(bits));
+  return bits;
+}
+
+}  // namespace
+
+TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
+  TriangleFingerprint f;
+  f.triangles = mesh.triangles.size();
+  std::atomic<uint64_t> sum{0}, mixedSum{0};  // sums commute: the order of chunks does not matter
+  parallelFor(0, int64_t(mesh.triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    uint64_t s = 0, m = 0;
+    for (int64_t t = b; t < e; ++t) {
+      uint64_t h = 0x243f6a8885a308d3ull, g = 0x13198a2e03707344ull;
+      for (uint32_t v : mesh.triangles[size_t(t)]) {
+        const glm::dvec3& p = mesh.positions[v];
+        for (int k = 0; k < 3; ++k) {
+          const uint64_t x = bitsOf(p[k]);
+          h = mix(h ^ x);
+          g = mix(g + x * 0x9e3779b97f4a7c15ull);
+        }
+      }
+      s += h;
+      m += g;
+    }
+    sum += s;
+    mixedSum += m;
+  });
+  f.sum = sum.load();
+  f.mixedSum = mixedSum.load();
+  return f;
+}
+
+WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
+                              Progress& progress) {
+  WrittenCheck result;
+  progress.report("check", 0.0);
+  const TriangleMesh meant = storedMesh(path, written);
+  const TriangleFingerprint expected = fingerprintTriangles(meant);
+  progress.report("check", 0.1);
+  result.check = checkMesh(meant);
+  progress.report("check", 0.5);
+  const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
+  const TriangleMesh file = readMeshFileVerbatim(path);
+  progress.report("check", 0.9);
+  const TriangleFingerprint found = fingerprintTriangles(file);
+  if (!(found == expected)) {
+    result.fileDifference =
+        found.triangles != expected.triangles
+            ? path + ": the file holds " + std::to_string(found.triangles) +
+                  " triangles, not the " + std::to_string(expected.triangles) + " written"
+            : path +
+                  ": the file's triangles are not those written (a coordinate or a winding "
+                  "differs)";
+    progress.check();
+    result.check = checkMesh(readMeshFileRaw(path));
+  }
+  progress.report("check", 1.0);
+  return result;
+}
+
+}  // namespace strata
