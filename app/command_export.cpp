@@ -19,7 +19,7 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   BackendChoice choice = setUpBackend(args);
   ContourOptions options;
   options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
-  options.tileCells = args.integer("--tile", 256, 8, kMaxResolution);
+  options.tileCells = args.integer("--tile", 0, 8, kMaxTileCells);  // 0: sized to memory
 
   {
     Progress probe;

@@ -39,7 +39,8 @@ const char* kUsageHead =
     "  --resolution N    cells along the longest side (default: the scene's, 256 for boolean)\n"
     "  --report FILE     write the report as JSON\n";
 const char* kUsageOptions =
-    "  --tile N          export: tile edge in cells (default 256; memory follows the tile)\n"
+    "  --tile N          export: tile edge in cells, at most 1024 (default: the fewest tiles\n"
+    "                    whose arrays take a quarter of the backend's free memory)\n"
     "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"
     "  --backend B       auto | cpu | cuda (default auto)\n"
     "  --threads N       worker threads (default: all cores, or STRATA_THREADS)\n"

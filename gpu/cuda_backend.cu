@@ -75,6 +75,13 @@ class CudaBackend : public Backend {
   }
   bool evaluatesModifiers() const override { return true; }
 
+  // Free device memory, as the driver sees it (the pool's kept blocks not counted).
+  uint64_t memoryAvailable() const override {
+    size_t free = 0, total = 0;
+    if (cudaMemGetInfo(&free, &total) != cudaSuccess) return 0;
+    return uint64_t(free);
+  }
+
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override {
     progress.check();
     return measureOnDevice(deviceLdi(ldi), stream_);

@@ -9,6 +9,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,6 +65,10 @@ class Backend {
   // Whether offset() works here. Where it does not, the editor's preview and exports evaluate
   // scenes holding a modifier on a CPU backend instead, and say so.
   virtual bool evaluatesModifiers() const { return false; }
+  // Bytes of the memory this backend keeps its LDIs and contours in that it could still take
+  // now (0 = unknown). Sizes export tiles (contour_scene.h). The default: the host's
+  // (availableMemoryBytes, engine/util/memory.h).
+  virtual uint64_t memoryAvailable() const;
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
   // The default downloads the LDI and builds them on the host.
   virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);

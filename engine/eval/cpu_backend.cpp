@@ -4,6 +4,7 @@
 #include "engine/ldi/offset_ldi.h"
 #include "engine/ldi/sample_mesh.h"
 #include "engine/util/error.h"
+#include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
@@ -90,6 +91,10 @@ SplatsHandle Backend::splats(const LdiHandle& ldi, Progress& progress) {
   progress.check();
   std::shared_ptr<const Ldi> host = download(ldi);
   return std::make_shared<HostSplats>(buildSplats(*host));
+}
+
+uint64_t Backend::memoryAvailable() const {
+  return availableMemoryBytes();
 }
 
 TileContour Backend::contourTile(const LdiHandle& root, const glm::ivec3& globalCells,

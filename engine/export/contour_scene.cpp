@@ -141,6 +141,18 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
 
 }  // namespace
 
+int exportTileCells(const Grid& grid, uint64_t memoryBytes) {
+  if (memoryBytes == 0) return 256;
+  const int longest = std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8});
+  for (int parts = 1;; ++parts) {
+    const int tile = std::max(8, (longest + parts - 1) / parts);
+    uint64_t nodes = 1;
+    for (int a = 0; a < 3; ++a) nodes *= uint64_t(std::min(tile, grid.cells[a]) + 3);
+    if (tile == 8 || (tile <= kMaxTileCells && nodes * kContourBytesPerNode <= memoryBytes / 4))
+      return tile;
+  }
+}
+
 ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
                         Progress& progress, ContourReport* report) {
   ContourReport local;
@@ -150,9 +162,10 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   r.grid = grid;
   // One tile where a modifier needs the whole grid (hasModifier).
   const int tileCells =
-      hasModifier(scene.root)
-          ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, options.tileCells})
-          : options.tileCells;
+      hasModifier(scene.root) ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8})
+      : options.tileCells > 0 ? options.tileCells
+                              : exportTileCells(grid, evaluator.backend().memoryAvailable());
+  r.tileCells = tileCells;
   const glm::ivec3 tiles = tileCounts(grid, tileCells);
   r.tiles = tiles.x * tiles.y * tiles.z;
 

@@ -18,13 +18,27 @@
 namespace strata {
 
 struct ContourOptions {
-  int resolution = 0;   // cells along the longest side; 0 = the scene's setting
-  int tileCells = 256;  // tile edge in cells (>= 8); tiles of the whole grid are one tile
+  int resolution = 0;  // cells along the longest side; 0 = the scene's setting
+  int tileCells = 0;   // tile edge in cells (>= 8; 0 = exportTileCells below); tiles of the
+                       // whole grid are one tile
 };
+
+// The largest tile edge: a tile's window of cells is indexed in 32 bits (contour_cells.h).
+constexpr int kMaxTileCells = 1024;
+// Device or host bytes per window node that contouring a tile holds at once (node votes and
+// signs, cell masks and flags; both backends), for sizing tiles.
+constexpr uint64_t kContourBytesPerNode = 4;
+
+// The tile edge an export uses when none is given: the longest side of `grid` split into the
+// fewest equal parts whose tiles are at most kMaxTileCells and whose contouring arrays take at
+// most a quarter of `memoryBytes` (the backend's memoryAvailable(); the rest is for the tile's
+// LDIs and the mesh). Fewer tiles evaluate the tree fewer times. 0 bytes (unknown): 256.
+int exportTileCells(const Grid& grid, uint64_t memoryBytes);
 
 struct ContourReport {
   Grid grid;
   int tiles = 0;
+  int tileCells = 0;             // the tile edge used
   double evaluateSeconds = 0.0;  // sampling and Booleans, all tiles
   double contourSeconds = 0.0;   // signs, vertices, quads, all tiles
   double mergeSeconds = 0.0;     // stitching and indexing

@@ -28,6 +28,8 @@ EvalResult evaluateWithFallback(Evaluator& evaluator, const Scene& scene,
 ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
                                const ContourOptions& options, Progress& progress,
                                ContourReport* report, const FallbackNotice& notice) {
+  ContourReport local;
+  if (!report) report = &local;  // the tile size tried, for halving it
   if (hasModifier(scene.root) && !evaluator.backend().evaluatesModifiers()) {
     if (notice)
       notice("offset, shell, round and fillet nodes are evaluated on the CPU (the " +
@@ -41,8 +43,9 @@ ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
       return contourScene(scene, evaluator, attempt, progress, report);
     } catch (const BackendOutOfMemory& e) {
       evaluator.clearCache();
-      if (attempt.tileCells / 2 < 64) break;
-      attempt.tileCells /= 2;
+      const int tried = report->tileCells > 0 ? report->tileCells : attempt.tileCells;
+      if (tried / 2 < 64) break;
+      attempt.tileCells = tried / 2;
       if (notice)
         notice(evaluator.backend().description() + " ran out of memory; retrying with tiles of " +
                std::to_string(attempt.tileCells) + " cells");

@@ -132,7 +132,9 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            Progress& progress, int probeAbove) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
-  e.tiles = tileCount(e.grid, options.tileCells);
+  e.tiles = tileCount(e.grid, options.tileCells > 0
+                                  ? options.tileCells
+                                  : exportTileCells(e.grid, backend->memoryAvailable()));
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
   ContourReport report;

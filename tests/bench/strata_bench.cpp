@@ -12,7 +12,7 @@
 // that fails or crashes prints its error instead of ending the table.
 //
 // usage: strata_bench [--meshes bunny,armadillo] [--resolutions 256,512,1024] [--threads N]
-//                     [--tile 256] [--no-export] [--no-openvdb] [--openvdb-max-resolution 1024]
+//                     [--tile N] [--no-export] [--no-openvdb] [--openvdb-max-resolution 1024]
 //                     [--openscad PATH|none] [--openscad-timeout 600] [--openscad-fn 16]
 // --resolutions applies to every table; without it table 1 uses 256,512,1024 and tables 2 and 3
 // use 256..2048 for the armadillo and 256..1024 for other meshes.
@@ -400,7 +400,7 @@ std::vector<int> toInts(const std::vector<std::string>& items) {
 void usage() {
   std::fprintf(stderr,
                "usage: strata_bench [--meshes bunny,armadillo] [--resolutions 256,512,1024]\n"
-               "                    [--threads N] [--tile 256] [--no-export] [--no-openvdb]\n"
+               "                    [--threads N] [--tile N] [--no-export] [--no-openvdb]\n"
                "                    [--openvdb-max-resolution 1024] [--openscad PATH|none]\n"
                "                    [--openscad-timeout 600] [--openscad-fn 16]\n");
 }
@@ -409,7 +409,7 @@ void usage() {
 int main(int argc, char** argv) {
   std::vector<std::string> meshes = {"bunny", "armadillo"};
   std::vector<int> resolutions;  // empty: the defaults of each table
-  int tile = 256;
+  int tile = 0;                  // as the command line: sized to memory (exportTileCells)
   bool doExport = true;
   bool doOpenVdb = true;
   int openVdbMax = 1024;
@@ -479,7 +479,10 @@ int main(int argc, char** argv) {
       std::printf("%s\n", forkRow(m, r, [&] { return sampleRow(m, r); }).c_str());
 
   if (doExport) {
-    std::printf("\n### 2. Watertight export (Strata: contourScene, tiles of %d cells)\n\n", tile);
+    if (tile > 0)
+      std::printf("\n### 2. Watertight export (Strata: contourScene, tiles of %d cells)\n\n", tile);
+    else
+      std::printf("\n### 2. Watertight export (Strata: contourScene, tiles sized to memory)\n\n");
     printHeader({{"mesh", 9, false},
                  {"res", 5, true},
                  {"tiles", 5, true},

@@ -288,3 +288,55 @@ TEST(ContourRegression, FoldedSliverShellIsTurnedRightSideOut) {
 
 }  // namespace
 }  // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+Grid cubeGrid(int cells) {
+  Grid g;
+  g.cells = glm::ivec3(cells);
+  g.h = 1.0;
+  return g;
+}
+
+// Bytes of the contouring arrays of one tile of `tile` cells on a grid of `cells` a side.
+uint64_t tileArrayBytes(int tile, int cells) {
+  const uint64_t side = uint64_t(std::min(tile, cells) + 3);
+  return side * side * side * kContourBytesPerNode;
+}
+
+TEST(ExportTiles, AsFewAsMemoryAllowsAndNeverLargerThanTheLimit) {
+  const uint64_t plenty = uint64_t(1) << 40;
+  EXPECT_EQ(exportTileCells(cubeGrid(512), plenty), 512);  // one tile
+  EXPECT_EQ(exportTileCells(cubeGrid(1000), plenty), 1000);
+  EXPECT_EQ(exportTileCells(cubeGrid(2048), plenty), 1024);  // 8 tiles
+  EXPECT_EQ(exportTileCells(cubeGrid(1536), plenty), 768);
+  EXPECT_EQ(exportTileCells(cubeGrid(512), 0), 256);  // memory unknown: the old default
+  // Just too little memory for one tile of 512: two parts a side.
+  const uint64_t budget = 4 * tileArrayBytes(512, 512) - 1;
+  EXPECT_EQ(exportTileCells(cubeGrid(512), budget), 256);
+  EXPECT_LE(4 * tileArrayBytes(256, 512), budget);
+  // Almost nothing: the smallest tile.
+  EXPECT_EQ(exportTileCells(cubeGrid(512), 1), 8);
+  // A flat grid: the short sides bound the arrays.
+  Grid flat = cubeGrid(1024);
+  flat.cells.z = 16;
+  EXPECT_EQ(exportTileCells(flat, 4 * tileArrayBytes(1024, 1024) / 40), 1024);
+}
+
+TEST(ExportTiles, TheDefaultTileGivesTheMeshOfAnyOtherTiling) {
+  const Scene s = makeScene(op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.1, {1, 1, 1})}), 40);
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  ContourReport sized, tiled;
+  const ExportMesh a = contourScene(s, evaluator, ContourOptions{}, progress, &sized);
+  const ExportMesh b = contourScene(s, evaluator, ContourOptions{0, 8}, progress, &tiled);
+  EXPECT_EQ(sized.tiles, 1);  // 40 cells: this machine has room for one tile
+  EXPECT_EQ(sized.tileCells, 40);
+  EXPECT_EQ(tiled.tiles, 125);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+}
+
+}  // namespace
+}  // namespace strata::test
