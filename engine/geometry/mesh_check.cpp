@@ -9,6 +9,9 @@
 #include "engine/util/parallel_for.h"
 #include "engine/util/union_find.h"
 
+#include <atomic>
+#include <tuple>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -48,32 +51,60 @@ struct PositionKeyHash {
 };
 
 // canonical[i]: the first vertex with exactly the position of vertex i (i itself if none).
-// Open addressing over vertex indices (8 bytes per vertex, linear probing), compared through
-// the positions themselves: a node-based map took 56 bytes per vertex and a cache miss each.
+// Open addressing over vertex indices (4 bytes per slot, linear probing), compared through the
+// positions themselves: a node-based map took 56 bytes per vertex and a cache miss each. In
+// parallel: every finite position leaves the smallest index holding it in its slot (a slot,
+// once taken, only ever changes to a smaller index of the same position), then every vertex
+// reads its slot. The result does not depend on the thread count.
 std::vector<uint32_t> canonicalVertices(const std::vector<glm::dvec3>& positions) {
-  std::vector<uint32_t> canonical(positions.size());
+  const size_t n = positions.size();
+  std::vector<uint32_t> canonical(n);
   size_t capacity = 16;
-  while (capacity < 2 * positions.size()) capacity *= 2;
-  std::vector<uint32_t> slots(capacity, kNone);
+  while (capacity < 2 * n) capacity *= 2;
+  std::vector<std::atomic<uint32_t>> slots(capacity);
+  parallelFor(0, int64_t(capacity), 1 << 18, [&](int64_t b, int64_t e) {
+    for (int64_t at = b; at < e; ++at) slots[size_t(at)].store(kNone, std::memory_order_relaxed);
+  });
   const size_t mask = capacity - 1;
-  for (size_t i = 0; i < positions.size(); ++i) {
-    const glm::dvec3& p = positions[i];
-    canonical[i] = static_cast<uint32_t>(i);
-    if (!isFinite(p)) continue;
-    const PositionKey key{bitsOf(p.x), bitsOf(p.y), bitsOf(p.z)};
-    for (size_t at = PositionKeyHash()(key) & mask;; at = (at + 1) & mask) {
-      const uint32_t there = slots[at];
-      if (there == kNone) {
-        slots[at] = static_cast<uint32_t>(i);
-        break;
-      }
-      const glm::dvec3& q = positions[there];
-      if (PositionKey{bitsOf(q.x), bitsOf(q.y), bitsOf(q.z)} == key) {
-        canonical[i] = there;
-        break;
+  auto keyOf = [&](uint32_t v) {
+    const glm::dvec3& p = positions[v];
+    return PositionKey{bitsOf(p.x), bitsOf(p.y), bitsOf(p.z)};
+  };
+  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) {
+      const uint32_t v = uint32_t(i);
+      if (!isFinite(positions[v])) continue;
+      const PositionKey key = keyOf(v);
+      for (size_t at = PositionKeyHash()(key) & mask;; at = (at + 1) & mask) {
+        uint32_t there = slots[at].load(std::memory_order_acquire);
+        if (there == kNone) {
+          if (slots[at].compare_exchange_strong(there, v, std::memory_order_acq_rel)) break;
+          // Taken meanwhile: `there` now holds the taker; look at it below.
+        }
+        if (keyOf(there) == key) {
+          while (v < there &&
+                 !slots[at].compare_exchange_weak(there, v, std::memory_order_acq_rel)) {
+          }
+          break;
+        }
       }
     }
-  }
+  });
+  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) {
+      const uint32_t v = uint32_t(i);
+      canonical[v] = v;
+      if (!isFinite(positions[v])) continue;
+      const PositionKey key = keyOf(v);
+      for (size_t at = PositionKeyHash()(key) & mask;; at = (at + 1) & mask) {
+        const uint32_t there = slots[at].load(std::memory_order_relaxed);
+        if (keyOf(there) == key) {
+          canonical[v] = there;
+          break;
+        }
+      }
+    }
+  });
   return canonical;
 }
 
@@ -86,13 +117,21 @@ struct HalfEdge {
 };
 
 // Half-edges of all triangles (through `canonical` when given), sorted by (lo, hi) so that the
-// half-edges of one undirected edge are adjacent, in increasing triangle order within an edge.
-// Edges whose ends coincide are left out. A counting sort on lo (stable, so triangle order
-// holds within a bucket) and an insertion sort on hi within each bucket (a vertex's few
-// edges): O(n), where a comparison sort of the 3n half-edges took most of a check's time.
-std::vector<HalfEdge> sortedHalfEdges(const TriangleMesh& mesh,
-                                      const std::vector<uint32_t>* canonical) {
+// half-edges of one undirected edge are adjacent, in increasing triangle order within an edge;
+// bucketEnd[v] is the end of the half-edges whose lo is v (bucket v starts at bucketEnd[v - 1],
+// or 0). Edges whose ends coincide are left out. A counting sort on lo (in parallel: counts
+// and the scatter by atomic increments) and a sort of each bucket (a vertex's few edges) on
+// (hi, triangle, corner): O(n), where a comparison sort of the 3n half-edges took most of a
+// check's time. The result does not depend on the thread count.
+struct SortedHalfEdges {
+  std::vector<HalfEdge> edges;
+  std::vector<uint32_t> bucketEnd;  // one per vertex
+  size_t bucketBegin(size_t v) const { return v == 0 ? 0 : bucketEnd[v - 1]; }
+};
+
+SortedHalfEdges sortedHalfEdges(const TriangleMesh& mesh, const std::vector<uint32_t>* canonical) {
   const auto& triangles = mesh.triangles;
+  const size_t vertices = mesh.positions.size();
   auto ends = [&](size_t t, int k, uint32_t& a, uint32_t& b) {
     a = triangles[t][size_t(k)];
     b = triangles[t][size_t((k + 1) % 3)];
@@ -101,50 +140,72 @@ std::vector<HalfEdge> sortedHalfEdges(const TriangleMesh& mesh,
       b = (*canonical)[b];
     }
   };
-  std::vector<uint32_t> bucketEnd(mesh.positions.size() + 1, 0);  // counts, then ends
-  size_t count = 0;
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      uint32_t a, b;
-      ends(t, k, a, b);
-      if (a == b) continue;
-      ++bucketEnd[std::min(a, b) + 1];
-      ++count;
-    }
-  for (size_t v = 1; v < bucketEnd.size(); ++v) bucketEnd[v] += bucketEnd[v - 1];
-  std::vector<HalfEdge> edges(count);
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      uint32_t a, b;
-      ends(t, k, a, b);
-      if (a == b) continue;
-      const uint32_t lo = std::min(a, b);
-      edges[bucketEnd[lo]++] = {lo, std::max(a, b), static_cast<uint32_t>(t), uint8_t(k), a < b};
-    }
-  // bucketEnd[v] is now the end of bucket v, and the start of bucket v + 1.
-  for (size_t v = 0; v + 1 < bucketEnd.size(); ++v) {
-    const size_t begin = v == 0 ? 0 : bucketEnd[v - 1];
-    const size_t end = bucketEnd[v];
-    for (size_t i = begin + 1; i < end; ++i) {
-      const HalfEdge e = edges[i];
-      size_t j = i;
-      for (; j > begin && edges[j - 1].hi > e.hi; --j) edges[j] = edges[j - 1];
-      edges[j] = e;
-    }
+  std::vector<std::atomic<uint32_t>> cursor(vertices);
+  parallelFor(0, int64_t(vertices), 1 << 18, [&](int64_t b, int64_t e) {
+    for (int64_t v = b; v < e; ++v) cursor[size_t(v)].store(0, std::memory_order_relaxed);
+  });
+  parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t)
+      for (int k = 0; k < 3; ++k) {
+        uint32_t x, y;
+        ends(size_t(t), k, x, y);
+        if (x != y) cursor[std::min(x, y)].fetch_add(1, std::memory_order_relaxed);
+      }
+  });
+  SortedHalfEdges sorted;
+  sorted.bucketEnd.resize(vertices);
+  uint32_t total = 0;
+  for (size_t v = 0; v < vertices; ++v) {
+    const uint32_t count = cursor[v].load(std::memory_order_relaxed);
+    cursor[v].store(total, std::memory_order_relaxed);
+    total += count;
+    sorted.bucketEnd[v] = total;
   }
-  return edges;
+  sorted.edges.resize(total);
+  parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t)
+      for (int k = 0; k < 3; ++k) {
+        uint32_t x, y;
+        ends(size_t(t), k, x, y);
+        if (x == y) continue;
+        const uint32_t lo = std::min(x, y);
+        sorted.edges[cursor[lo].fetch_add(1, std::memory_order_relaxed)] = {
+            lo, std::max(x, y), static_cast<uint32_t>(t), uint8_t(k), x < y};
+      }
+  });
+  parallelFor(0, int64_t(vertices), 4096, [&](int64_t b, int64_t e) {
+    for (int64_t v = b; v < e; ++v) {
+      HalfEdge* first = sorted.edges.data() + sorted.bucketBegin(size_t(v));
+      HalfEdge* last = sorted.edges.data() + sorted.bucketEnd[size_t(v)];
+      for (HalfEdge* i = first + 1; i < last; ++i) {  // insertion sort: a handful of edges
+        const HalfEdge h = *i;
+        HalfEdge* j = i;
+        for (; j > first && std::tie(j[-1].hi, j[-1].triangle, j[-1].corner) >
+                                std::tie(h.hi, h.triangle, h.corner);
+             --j)
+          *j = j[-1];
+        *j = h;
+      }
+    }
+  });
+  return sorted;
 }
 
 // Calls visit(begin, end) for each run of half-edges sharing one undirected edge.
 template <typename Visit>
-void forEachEdge(const std::vector<HalfEdge>& edges, Visit visit) {
-  size_t i = 0;
-  while (i < edges.size()) {
+void forEachEdge(const std::vector<HalfEdge>& edges, size_t begin, size_t end, Visit visit) {
+  size_t i = begin;
+  while (i < end) {
     size_t j = i + 1;
-    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    while (j < end && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
     visit(i, j);
     i = j;
   }
+}
+
+template <typename Visit>
+void forEachEdge(const std::vector<HalfEdge>& edges, Visit visit) {
+  forEachEdge(edges, 0, edges.size(), visit);
 }
 
 // An axis-aligned box grown point by point, empty (lo > hi) until the first. NaN coordinates
@@ -353,22 +414,39 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
 
   measureTriangles(mesh, canonical, c);
 
-  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh, &canonical);
-  UnionFind components(mesh.triangles.size());
-  forEachEdge(edges, [&](size_t begin, size_t end) {
-    const size_t n = end - begin;
-    if (n == 1) ++c.boundaryEdges;
-    if (n > 2) ++c.nonManifoldEdges;
-    if (n == 2 && edges[begin].forward == edges[begin + 1].forward) ++c.misorientedEdges;
-    for (size_t i = begin + 1; i < end; ++i)
-      components.unite(edges[begin].triangle, edges[i].triangle);
+  const SortedHalfEdges sorted = sortedHalfEdges(mesh, &canonical);
+  const std::vector<HalfEdge>& edges = sorted.edges;
+  // Edge counts and components, in parallel over the buckets of half-edges.
+  ConcurrentUnionFind components(mesh.triangles.size());
+  std::atomic<size_t> boundary{0}, nonManifold{0}, misoriented{0};
+  parallelFor(0, int64_t(sorted.bucketEnd.size()), 4096, [&](int64_t b, int64_t e) {
+    size_t localBoundary = 0, localNonManifold = 0, localMisoriented = 0;
+    forEachEdge(edges, sorted.bucketBegin(size_t(b)), sorted.bucketEnd[size_t(e - 1)],
+                [&](size_t begin, size_t end) {
+                  const size_t n = end - begin;
+                  if (n == 1) ++localBoundary;
+                  if (n > 2) ++localNonManifold;
+                  if (n == 2 && edges[begin].forward == edges[begin + 1].forward)
+                    ++localMisoriented;
+                  for (size_t i = begin + 1; i < end; ++i)
+                    components.unite(edges[begin].triangle, edges[i].triangle);
+                });
+    boundary += localBoundary;
+    nonManifold += localNonManifold;
+    misoriented += localMisoriented;
   });
+  c.boundaryEdges = boundary.load();
+  c.nonManifoldEdges = nonManifold.load();
+  c.misorientedEdges = misoriented.load();
 
   // Number the components densely, in order of their first triangle.
   std::vector<uint32_t> componentOf(mesh.triangles.size());
+  parallelFor(0, int64_t(mesh.triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t) componentOf[size_t(t)] = components.find(uint32_t(t));
+  });
   std::vector<uint32_t> denseId(mesh.triangles.size(), kNone);
   for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    const uint32_t root = components.find(t);
+    const uint32_t root = componentOf[t];
     if (denseId[root] == kNone) denseId[root] = static_cast<uint32_t>(c.components++);
     componentOf[t] = denseId[root];
   }
@@ -445,7 +523,7 @@ Adjacency manifoldAdjacency(const TriangleMesh& mesh) {
   Adjacency adjacency;
   adjacency.neighbour.assign(mesh.triangles.size() * 3, kNone);
   adjacency.sameWay.assign(mesh.triangles.size() * 3, 0);
-  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh, nullptr);
+  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh, nullptr).edges;
   forEachEdge(edges, [&](size_t begin, size_t end) {
     if (end - begin != 2) return;
     const HalfEdge& x = edges[begin];

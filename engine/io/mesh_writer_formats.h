@@ -10,6 +10,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <ostream>
 #include <string>
 
 #include "engine/geometry/export_mesh.h"
@@ -31,6 +33,16 @@ constexpr size_t kProgressStride = 65536;
 // When index is a multiple of kProgressStride (0 included): progress->report(stage,
 // index / total), which throws Cancelled if cancelled. No-op when progress is null.
 void reportEvery(Progress* progress, const std::string& stage, size_t index, size_t total);
+
+// Writes the bytes of `count` records (vertices, triangles) to `out` in order, serialised in
+// parallel: append(first, last, bytes) appends the bytes of records [first, last) to `bytes`
+// and must depend on nothing but those records. Blocks of kProgressStride records are filled by
+// all workers (parallel_for.h) a group at a time and written in order, so memory stays a few
+// blocks per worker; after each group progress->report(stage, (done + records written) /
+// total), which throws Cancelled if cancelled. Called from one thread.
+using AppendRecords = std::function<void(size_t first, size_t last, std::string& bytes)>;
+void writeRecords(std::ostream& out, size_t count, const AppendRecords& append, Progress* progress,
+                  const std::string& stage, size_t done, size_t total);
 
 // Appends `value` as printf's "%.9g" would, independent of the C locale.
 void appendNumber(std::string& out, double value);

@@ -2,8 +2,10 @@
 // mesh_formats.h). Also the helpers the format writers share (mesh_writer_formats.h).
 #include "engine/io/mesh_writers.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <vector>
 
 #include "engine/io/mesh_formats.h"
 #include "engine/io/mesh_writer_formats.h"
@@ -16,6 +18,33 @@ namespace meshio {
 void reportEvery(Progress* progress, const std::string& stage, size_t index, size_t total) {
   if (!progress || index % kProgressStride != 0) return;
   progress->report(stage, total == 0 ? 1.0 : double(index) / double(total));
+}
+
+void writeRecords(std::ostream& out, size_t count, const AppendRecords& append, Progress* progress,
+                  const std::string& stage, size_t done, size_t total) {
+  const size_t blocks = (count + kProgressStride - 1) / kProgressStride;
+  const size_t perGroup = size_t(std::max(1, workerCount())) * 2;
+  std::vector<std::string> buffers(std::min(blocks, perGroup));
+  for (size_t group = 0; group < blocks; group += perGroup) {
+    const size_t groupEnd = std::min(blocks, group + perGroup);
+    parallelFor(int64_t(group), int64_t(groupEnd), 1, [&](int64_t first, int64_t last) {
+      for (int64_t block = first; block < last; ++block) {
+        std::string& bytes = buffers[size_t(block) - group];
+        bytes.clear();
+        append(size_t(block) * kProgressStride,
+               std::min(count, size_t(block + 1) * kProgressStride), bytes);
+      }
+    });
+    for (size_t block = group; block < groupEnd; ++block) {
+      const std::string& bytes = buffers[block - group];
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    }
+    if (progress)
+      progress->report(
+          stage, total == 0
+                     ? 1.0
+                     : double(done + std::min(count, groupEnd * kProgressStride)) / double(total));
+  }
 }
 
 void appendNumber(std::string& out, double value) {

@@ -6,6 +6,8 @@
 // followed by text. Facet normals are ignored (winding decides orientation). Every facet has
 // three vertices of its own; the readers of mesh_io.h weld identical positions (the format's
 // `unindexed` flag).
+#include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -13,6 +15,7 @@
 #include "engine/io/mesh_readers.h"
 #include "engine/io/reader_checks.h"
 #include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 namespace meshio {
@@ -67,22 +70,36 @@ TriangleMesh parseBinary(const std::string& name, const std::string& bytes,
                    std::to_string(bytes.size()) + " bytes (truncated, or the count is wrong)");
   }
   if (count > maxInputTriangles()) throw Error(tooManyTrianglesMessage(name, count));
+  // Facets are fixed-size: decoded in parallel; the first non-finite coordinate (in file order)
+  // is then reported exactly as a sequential read would.
   TriangleMesh mesh;
-  mesh.positions.reserve(count * 3);
-  mesh.triangles.reserve(count);
-  for (uint64_t f = 0; f < count; ++f) {
-    const size_t facet = kHeaderBytes + 4 + kFacetBytes * f;
-    for (int v = 0; v < 3; ++v) {
-      glm::dvec3 p;
-      for (int k = 0; k < 3; ++k) {
-        const size_t at = facet + 12 + 12 * v + 4 * k;
-        p[k] = readF32(bytes, at);
-        requireFiniteAtByte(name, at, p[k]);
+  mesh.positions.resize(count * 3);
+  mesh.triangles.resize(count);
+  std::atomic<uint64_t> firstBad{count};
+  parallelFor(0, int64_t(count), 65536, [&](int64_t first, int64_t last) {
+    for (int64_t f = first; f < last; ++f) {
+      const size_t facet = kHeaderBytes + 4 + kFacetBytes * size_t(f);
+      bool finite = true;
+      for (int v = 0; v < 3; ++v) {
+        glm::dvec3& p = mesh.positions[3 * size_t(f) + size_t(v)];
+        for (int k = 0; k < 3; ++k) {
+          p[k] = readF32(bytes, facet + 12 + 12 * size_t(v) + 4 * size_t(k));
+          finite = finite && std::isfinite(p[k]);
+        }
       }
-      mesh.positions.push_back(p);
+      const uint32_t base = static_cast<uint32_t>(3 * f);
+      mesh.triangles[size_t(f)] = {base, base + 1, base + 2};
+      if (!finite) {
+        uint64_t seen = firstBad.load();
+        while (uint64_t(f) < seen && !firstBad.compare_exchange_weak(seen, uint64_t(f))) {
+        }
+      }
     }
-    const uint32_t base = static_cast<uint32_t>(3 * f);
-    mesh.triangles.push_back({base, base + 1, base + 2});
+  });
+  if (firstBad.load() < count) {
+    const size_t facet = kHeaderBytes + 4 + kFacetBytes * size_t(firstBad.load());
+    for (size_t at = facet + 12; at < facet + 48; at += 4)
+      requireFiniteAtByte(name, at, readF32(bytes, at));
   }
   report->fileFaces = count;
   return mesh;

@@ -4,6 +4,7 @@
 // `newmtl`, a comment with the leaf's id and name, Ka 0, Kd = the colour sRGB-encoded, Ks 0,
 // d 1, illum 1. Both files are one atomic set (writeFilesAtomically): both are replaced or
 // neither, the OBJ (written first) replaced after the MTL it refers to.
+#include <charconv>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -91,38 +92,45 @@ void writeObj(const std::string& path, const ExportMesh& em, Progress* progress)
             std::to_string(mesh.triangles.size()) + " triangles, " + std::to_string(byLeaf.size()) +
             " materials (one per CSG leaf)\n";
     text += "mtllib " + mtlName + "\n";
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
     const size_t total = mesh.positions.size() + mesh.triangles.size();
-    size_t done = 0;
-    auto flush = [&] {
-      out.write(text.data(), static_cast<std::streamsize>(text.size()));
-      text.clear();
-    };
-    for (const glm::dvec3& p : mesh.positions) {
-      if (done % kProgressStride == 0) flush();
-      reportEvery(progress, "write OBJ", done++, total);
-      text += "v ";
-      appendNumber(text, p.x);
-      text += ' ';
-      appendNumber(text, p.y);
-      text += ' ';
-      appendNumber(text, p.z);
-      text += '\n';
-    }
+    writeRecords(
+        out, mesh.positions.size(),
+        [&](size_t first, size_t last, std::string& bytes) {
+          for (size_t v = first; v < last; ++v) {
+            const glm::dvec3& p = mesh.positions[v];
+            bytes += "v ";
+            appendNumber(bytes, p.x);
+            bytes += ' ';
+            appendNumber(bytes, p.y);
+            bytes += ' ';
+            appendNumber(bytes, p.z);
+            bytes += '\n';
+          }
+        },
+        progress, "write OBJ", 0, total);
+    size_t done = mesh.positions.size();
     for (const auto& [leaf, triangles] : byLeaf) {
-      text += "usemtl " + names.at(leaf) + "\n";
-      for (uint32_t t : triangles) {
-        if (done % kProgressStride == 0) flush();
-        reportEvery(progress, "write OBJ", done++, total);
-        const auto& tri = mesh.triangles[t];
-        text += 'f';
-        for (uint32_t v : tri) {
-          text += ' ';
-          text += std::to_string(uint64_t(v) + 1);
-        }
-        text += '\n';
-      }
+      const std::string group = "usemtl " + names.at(leaf) + "\n";
+      out.write(group.data(), static_cast<std::streamsize>(group.size()));
+      writeRecords(
+          out, triangles.size(),
+          [&, &triangles = triangles](size_t first, size_t last, std::string& bytes) {
+            char number[16];
+            for (size_t i = first; i < last; ++i) {
+              bytes += 'f';
+              for (uint32_t v : mesh.triangles[triangles[i]]) {
+                bytes += ' ';
+                const auto printed =
+                    std::to_chars(number, number + sizeof(number), uint64_t(v) + 1);
+                bytes.append(number, printed.ptr);
+              }
+              bytes += '\n';
+            }
+          },
+          progress, "write OBJ", done, total);
+      done += triangles.size();
     }
-    flush();
     if (progress) progress->check();
   };
   writeFilesAtomically({{path, writeObjText}, {mtlPath, writeMtl}});

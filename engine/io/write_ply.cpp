@@ -65,24 +65,26 @@ void writePly(const std::string& path, const ExportMesh& em, Progress* progress)
     buffer += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     buffer += "element face " + std::to_string(mesh.triangles.size()) + "\n";
     buffer += "property list uchar int vertex_indices\nend_header\n";
-    auto step = [&] {
-      if (done % kProgressStride == 0) {
-        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        buffer.clear();
-      }
-      reportEvery(progress, "write PLY", done++, total);
-    };
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      step();
-      for (int k = 0; k < 3; ++k) putLittle(buffer, mesh.positions[v][k]);
-      buffer.append(reinterpret_cast<const char*>(colours[v].data()), 3);
-    }
-    for (const auto& tri : mesh.triangles) {
-      step();
-      buffer += static_cast<char>(3);
-      for (uint32_t v : tri) putLittle(buffer, static_cast<int32_t>(v));
-    }
     out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    writeRecords(
+        out, mesh.positions.size(),
+        [&](size_t first, size_t last, std::string& bytes) {
+          for (size_t v = first; v < last; ++v) {
+            for (int k = 0; k < 3; ++k) putLittle(bytes, mesh.positions[v][k]);
+            bytes.append(reinterpret_cast<const char*>(colours[v].data()), 3);
+          }
+        },
+        progress, "write PLY", done, total);
+    done += mesh.positions.size();
+    writeRecords(
+        out, mesh.triangles.size(),
+        [&](size_t first, size_t last, std::string& bytes) {
+          for (size_t t = first; t < last; ++t) {
+            bytes += static_cast<char>(3);
+            for (uint32_t v : mesh.triangles[t]) putLittle(bytes, static_cast<int32_t>(v));
+          }
+        },
+        progress, "write PLY", done, total);
     if (progress) progress->check();  // a cancel during the write replaces nothing
   });
 }

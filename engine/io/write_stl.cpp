@@ -16,7 +16,9 @@ namespace meshio {
 namespace {
 
 void putU32(std::string& out, uint32_t value) {
-  for (int i = 0; i < 4; ++i) out += static_cast<char>((value >> (8 * i)) & 0xff);
+  const char bytes[4] = {char(value & 0xff), char((value >> 8) & 0xff), char((value >> 16) & 0xff),
+                         char((value >> 24) & 0xff)};
+  out.append(bytes, 4);
 }
 
 void putF32(std::string& out, double value) {
@@ -45,29 +47,30 @@ void writeStl(const std::string& path, const ExportMesh& em, Progress* progress)
   writeFileAtomically(path, [&](std::ostream& out) {
     std::string header = "Strata binary STL, unit: " + oneLine(em.unit);
     header.resize(80, '\0');
-    std::string buffer = header;
-    putU32(buffer, static_cast<uint32_t>(mesh.triangles.size()));
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      if (t % kProgressStride == 0) {
-        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        buffer.clear();
-        reportEvery(progress, "write STL", t, mesh.triangles.size());
-      }
-      const auto& tri = mesh.triangles[t];
-      const glm::dvec3& a = mesh.positions[tri[0]];
-      const glm::dvec3& b = mesh.positions[tri[1]];
-      const glm::dvec3& c = mesh.positions[tri[2]];
-      glm::dvec3 normal = glm::cross(b - a, c - a);
-      const double length = glm::length(normal);
-      normal = length > 0.0 && std::isfinite(length) ? normal / length : glm::dvec3(0.0);
-      for (int k = 0; k < 3; ++k) putF32(buffer, normal[k]);
-      for (const glm::dvec3* p : {&a, &b, &c}) {
-        for (int k = 0; k < 3; ++k) putF32(buffer, (*p)[k]);
-      }
-      buffer += '\0';
-      buffer += '\0';
-    }
-    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    putU32(header, static_cast<uint32_t>(mesh.triangles.size()));
+    out.write(header.data(), static_cast<std::streamsize>(header.size()));
+    if (progress) progress->report("write STL", 0.0);
+    writeRecords(
+        out, mesh.triangles.size(),
+        [&](size_t first, size_t last, std::string& bytes) {
+          bytes.reserve((last - first) * 50);
+          for (size_t t = first; t < last; ++t) {
+            const auto& tri = mesh.triangles[t];
+            const glm::dvec3& a = mesh.positions[tri[0]];
+            const glm::dvec3& b = mesh.positions[tri[1]];
+            const glm::dvec3& c = mesh.positions[tri[2]];
+            glm::dvec3 normal = glm::cross(b - a, c - a);
+            const double length = glm::length(normal);
+            normal = length > 0.0 && std::isfinite(length) ? normal / length : glm::dvec3(0.0);
+            for (int k = 0; k < 3; ++k) putF32(bytes, normal[k]);
+            for (const glm::dvec3* p : {&a, &b, &c}) {
+              for (int k = 0; k < 3; ++k) putF32(bytes, (*p)[k]);
+            }
+            bytes += '\0';
+            bytes += '\0';
+          }
+        },
+        progress, "write STL", 0, mesh.triangles.size());
     if (progress) progress->check();  // a cancel during the write replaces nothing
   });
 }

@@ -1,8 +1,11 @@
 // Disjoint sets over 0..n-1 (path halving; the smaller index becomes the root, so a set's root
-// is its smallest member). Not thread-safe.
+// is its smallest member). UnionFind is not thread-safe; ConcurrentUnionFind may be used from
+// many threads at once (lock-free: a root is linked under a smaller root by compare-and-swap),
+// and ends with the same sets and roots whatever the order of the unions.
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
@@ -24,6 +27,34 @@ struct UnionFind {
     a = find(a);
     b = find(b);
     if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+struct ConcurrentUnionFind {
+  std::vector<std::atomic<uint32_t>> parent;
+  explicit ConcurrentUnionFind(size_t n) : parent(n) {
+    for (size_t i = 0; i < n; ++i) parent[i].store(uint32_t(i), std::memory_order_relaxed);
+  }
+  // Parents only ever point to smaller indices of the same set, so halving a path (pointing a
+  // node at its grandparent) by compare-and-swap never loses a union.
+  uint32_t find(uint32_t x) {
+    for (;;) {
+      uint32_t p = parent[x].load(std::memory_order_acquire);
+      if (p == x) return x;
+      const uint32_t grand = parent[p].load(std::memory_order_acquire);
+      if (grand != p) parent[x].compare_exchange_weak(p, grand, std::memory_order_acq_rel);
+      x = grand;
+    }
+  }
+  void unite(uint32_t a, uint32_t b) {
+    for (;;) {
+      a = find(a);
+      b = find(b);
+      if (a == b) return;
+      if (a < b) std::swap(a, b);  // link the larger root under the smaller
+      uint32_t expected = a;
+      if (parent[a].compare_exchange_strong(expected, b, std::memory_order_acq_rel)) return;
+    }
   }
 };
 

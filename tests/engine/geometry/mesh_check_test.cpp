@@ -7,6 +7,9 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 namespace {
@@ -382,6 +385,73 @@ TEST(MeshCheckRange, CubeFarFromTheOrigin) {
   const PrepareReport r = prepareMesh(m);
   EXPECT_TRUE(r.flippedInsideOut);
   EXPECT_EQ(r.check.volume, 1.0);
+}
+
+}  // namespace
+}  // namespace strata
+
+namespace strata {
+namespace {
+
+// Many shells, unwelded (every triangle with corners of its own, as STL lists them), in a
+// shuffled order, with a few defects: more triangles than one parallel chunk (65536), so the
+// parallel weld, edge sort and union-find run on several threads.
+TriangleMesh manyUnweldedShells() {
+  TriangleMesh indexed;
+  for (int i = 0; i < 6400; ++i) {
+    TriangleMesh c = cube(glm::dvec3(2.0 * (i % 80), 2.0 * (i / 80), 0.0), 1.0 + 0.001 * (i % 7));
+    const uint32_t base = uint32_t(indexed.positions.size());
+    indexed.positions.insert(indexed.positions.end(), c.positions.begin(), c.positions.end());
+    for (auto t : c.triangles) indexed.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  }
+  flip(indexed.triangles[12 * 17 + 3]);                          // a misoriented triangle
+  indexed.triangles.erase(indexed.triangles.begin() + 12 * 40);  // an open cube
+  TriangleMesh m;
+  uint64_t state = 12345;
+  std::vector<size_t> order(indexed.triangles.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for (size_t i = order.size() - 1; i > 0; --i) {  // a fixed shuffle
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    std::swap(order[i], order[size_t(state >> 33) % (i + 1)]);
+  }
+  for (size_t t : order) {
+    const uint32_t base = uint32_t(m.positions.size());
+    for (uint32_t v : indexed.triangles[t]) m.positions.push_back(indexed.positions[v]);
+    m.triangles.push_back({base, base + 1, base + 2});
+  }
+  return m;
+}
+
+TEST(MeshCheck, TheSameOnOneThreadAndOnMany) {
+  const TriangleMesh m = manyUnweldedShells();
+  setWorkerCount(1);
+  const MeshCheck one = checkMesh(m);
+  setWorkerCount(8);
+  const MeshCheck many = checkMesh(m);
+  setWorkerCount(0);
+  EXPECT_EQ(one.triangles, 6400u * 12 - 1);
+  EXPECT_EQ(one.components, 6400);
+  EXPECT_EQ(one.boundaryEdges, 3u);
+  EXPECT_EQ(one.misorientedEdges, 3u);
+  EXPECT_EQ(many.components, one.components);
+  EXPECT_EQ(many.boundaryEdges, one.boundaryEdges);
+  EXPECT_EQ(many.nonManifoldEdges, one.nonManifoldEdges);
+  EXPECT_EQ(many.misorientedEdges, one.misorientedEdges);
+  EXPECT_EQ(many.genus, one.genus);
+  EXPECT_EQ(many.volume, one.volume);  // fixed blocks added in order: the same bits
+  EXPECT_EQ(many.area, one.area);
+}
+
+TEST(MeshCheck, WeldingOnManyThreadsKeepsTheFirstVertexOfEachPosition) {
+  TriangleMesh m = manyUnweldedShells();
+  const size_t before = m.positions.size();
+  setWorkerCount(8);
+  const size_t merged = weldIdenticalPositions(m);
+  setWorkerCount(0);
+  EXPECT_EQ(before - merged, 6400u * 8);  // eight corners a cube
+  EXPECT_EQ(m.positions.size(), 6400u * 8);
+  const MeshCheck c = checkMesh(m);
+  EXPECT_EQ(c.components, 6400);
 }
 
 }  // namespace

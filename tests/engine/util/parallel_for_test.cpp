@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/util/error.h"
+#include "engine/util/union_find.h"
 
 namespace strata {
 namespace {
@@ -64,6 +65,34 @@ TEST(ParallelFor, LoopsFromSeveralThreadsAtOnce) {
     });
   for (auto& c : callers) c.join();
   for (int64_t s : sums) EXPECT_EQ(s, int64_t(20000) * 19999 / 2);
+}
+
+}  // namespace
+}  // namespace strata
+
+namespace strata {
+namespace {
+
+TEST(ConcurrentUnionFind, ManyThreadsEndWithTheSetsAndRootsOfOne) {
+  constexpr uint32_t n = 200000;
+  std::vector<std::pair<uint32_t, uint32_t>> unions;
+  uint64_t state = 99;
+  for (int i = 0; i < 150000; ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const uint32_t a = uint32_t(state >> 33) % n;
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    unions.push_back({a, uint32_t(state >> 33) % n});
+  }
+  UnionFind sequential(n);
+  for (auto [a, b] : unions) sequential.unite(a, b);
+  ConcurrentUnionFind concurrent(n);
+  setWorkerCount(8);
+  parallelFor(0, int64_t(unions.size()), 997, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i)
+      concurrent.unite(unions[size_t(i)].first, unions[size_t(i)].second);
+  });
+  setWorkerCount(0);
+  for (uint32_t x = 0; x < n; ++x) ASSERT_EQ(concurrent.find(x), sequential.find(x)) << x;
 }
 
 }  // namespace
