@@ -71,6 +71,14 @@ std::string formatExportText(const ExportSummary& summary) {
                   r.unfoldedShells, r.unfoldedShells == 1 ? "" : "s");
     out << line;
   }
+  if (r.droppedSpecks.components) {
+    std::snprintf(line, sizeof(line),
+                  "          %d speck%s the grid cannot resolve left out (%zu triangles: closed "
+                  "components within one cell, or around nodes the rays disagree on)\n",
+                  r.droppedSpecks.components, r.droppedSpecks.components == 1 ? "" : "s",
+                  r.droppedSpecks.triangles);
+    out << line;
+  }
   if (!s.result.fileDifference.empty())
     out << "          the file differs from the mesh written: " << s.result.fileDifference << "\n";
   out << "result    " << (s.result.passed() ? "passed" : "FAILED") << " the watertight check\n";
@@ -98,6 +106,8 @@ std::string formatExportJson(const ExportSummary& s) {
                                      {{"name", "check"}, {"seconds", s.result.checkSeconds}}});
   j["peak_bytes"] = r.peakBytes;
   j["surfels"] = r.surfels;
+  j["dropped_specks"] = {{"components", r.droppedSpecks.components},
+                         {"triangles", r.droppedSpecks.triangles}};
   j["check"] = {{"passed", s.result.passed()},
                 {"triangles", c.triangles},
                 {"vertices", c.vertices},

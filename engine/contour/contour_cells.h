@@ -22,7 +22,16 @@ struct CellTriangle {
   uint64_t vertex[3];  // vertex keys, counter-clockwise seen from outside
   uint64_t order;      // global edge key * 8 + triangle: a tiling-independent order
   uint32_t leaf;       // leaf id of the surfel the edge's crossing came from
+  uint8_t resolved;    // kInsideResolved | kOutsideResolved of the edge's two nodes
 };
+
+// CellTriangle::resolved: whether the grid resolves the sides of the sign-changing edge the
+// triangle is dual to. The edge's inside node is inside by all three of its rays; its outside
+// node is outside by all three, or lies on the grid's outer faces. A closed component none of
+// whose triangles has one of the bits encloses (or excludes) only nodes the rays disagree on:
+// a speck thinner than a cell that the grid cannot resolve (export/drop_specks.h).
+constexpr uint8_t kInsideResolved = 1;
+constexpr uint8_t kOutsideResolved = 2;
 
 // At most 3 owned edges per cell, each a polygon of at most 8 vertices (4 cells and up to 4
 // face-segment vertices): 6 triangles and 4 face vertices per edge.
@@ -40,6 +49,7 @@ struct TileView {
   const uint32_t* offsets[3];  // the root LDI of the window, per axis (CSR)
   const Surfel* surfels[3];
   const uint8_t* inside;     // per window node: 1 inside
+  const uint8_t* votes;      // per window node: how many of its three rays say inside
   const uint8_t* masks;      // per window cell: bit c set when corner c is inside
   const uint32_t* boundary;  // boundary cells (mixed corners), increasing index
   int64_t boundaryCount;
@@ -430,14 +440,15 @@ STRATA_HD void reverseEdgePolygon(EdgePolygon* p) {
 // to tris when not null; returns their number. Four vertices: the better-agreeing diagonal
 // split. More: a fan from the first inserted face vertex (its spokes are unique to this polygon).
 STRATA_HD int edgePolygonTriangles(const EdgePolygon& p, uint64_t order, uint32_t leaf,
-                                   CellTriangle* tris) {
+                                   uint8_t resolved, CellTriangle* tris) {
   if (p.firstInserted < 0) {
     const double splitA = splitAgreement(p.pos[0], p.pos[1], p.pos[2], p.pos[3]);
     const double splitB = splitAgreement(p.pos[1], p.pos[2], p.pos[3], p.pos[0]);
     const int s = splitA >= splitB ? 0 : 1;
     if (tris) {
-      tris[0] = CellTriangle{{p.keys[s], p.keys[s + 1], p.keys[s + 2]}, order, leaf};
-      tris[1] = CellTriangle{{p.keys[s], p.keys[s + 2], p.keys[(s + 3) % 4]}, order + 1, leaf};
+      tris[0] = CellTriangle{{p.keys[s], p.keys[s + 1], p.keys[s + 2]}, order, leaf, resolved};
+      tris[1] =
+          CellTriangle{{p.keys[s], p.keys[s + 2], p.keys[(s + 3) % 4]}, order + 1, leaf, resolved};
     }
     return 2;
   }
@@ -445,11 +456,31 @@ STRATA_HD int edgePolygonTriangles(const EdgePolygon& p, uint64_t order, uint32_
   int count = 0;
   for (int k = 1; k + 1 < m; ++k) {
     if (tris)
-      tris[count] = CellTriangle{
-          {p.keys[f], p.keys[(f + k) % m], p.keys[(f + k + 1) % m]}, order + uint64_t(k - 1), leaf};
+      tris[count] = CellTriangle{{p.keys[f], p.keys[(f + k) % m], p.keys[(f + k + 1) % m]},
+                                 order + uint64_t(k - 1),
+                                 leaf,
+                                 resolved};
     ++count;
   }
   return count;
+}
+
+// CellTriangle::resolved of the sign-changing edge along `axis` from window node n (in0: the
+// side of n).
+STRATA_HD uint8_t edgeResolved(const TileView& t, const int n[3], int axis, bool in0) {
+  int m[3] = {n[0], n[1], n[2]};
+  m[axis] += 1;
+  const int* insideNode = in0 ? n : m;
+  const int* outsideNode = in0 ? m : n;
+  bool onOuterFace = false;
+  for (int k = 0; k < 3; ++k) {
+    const int g = outsideNode[k] + t.first[k];
+    onOuterFace = onOuterFace || g == 0 || g == t.globalCells[k];
+  }
+  const uint8_t insideVotes = t.votes[tileNode(t, insideNode[0], insideNode[1], insideNode[2])];
+  const uint8_t outsideVotes = t.votes[tileNode(t, outsideNode[0], outsideNode[1], outsideNode[2])];
+  return uint8_t((insideVotes == 3 ? kInsideResolved : 0) |
+                 (onOuterFace || outsideVotes == 0 ? kOutsideResolved : 0));
 }
 
 // The polygons of the sign-changing edges owned by boundary cell number b (those running from
@@ -481,8 +512,8 @@ STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_
     *synthesized += x.synthesized ? 1 : 0;
     const int g[3] = {n[0] + t.first[0], n[1] + t.first[1], n[2] + t.first[2]};
     const uint64_t order = globalEdgeKey(t.globalCells, axis, g) * 8;
-    triangleCount +=
-        edgePolygonTriangles(polygon, order, x.leaf, tris ? tris + triangleCount : nullptr);
+    triangleCount += edgePolygonTriangles(polygon, order, x.leaf, edgeResolved(t, n, axis, in0),
+                                          tris ? tris + triangleCount : nullptr);
   }
   return triangleCount;
 }

@@ -15,6 +15,7 @@ constexpr CellCaseTable kCellCases = buildCellCaseTable();
 
 // The tile's arrays on the host, and the view the shared per-cell steps read.
 struct HostTile {
+  std::vector<uint8_t> votes;      // per window node: rays saying inside
   std::vector<uint8_t> inside;     // per window node
   std::vector<uint8_t> masks;      // per window cell
   std::vector<uint32_t> boundary;  // boundary cells, increasing index
@@ -74,7 +75,8 @@ uint64_t decideNodeSigns(HostTile& tile, Progress* progress) {
   const TileView& t = tile.view;
   const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
   const int64_t plane = int64_t(nx) * ny;
-  std::vector<uint8_t> votes(size_t(plane * nz), 0);
+  std::vector<uint8_t>& votes = tile.votes;
+  votes.assign(size_t(plane * nz), 0);
   voteAlongXAndY(t, votes, progress);
   addVotesAlongZ(t, votes, progress);
   std::atomic<uint64_t> disagreements{0};
@@ -100,6 +102,7 @@ uint64_t decideNodeSigns(HostTile& tile, Progress* progress) {
     disagreements += local;
   });
   tile.view.inside = tile.inside.data();
+  tile.view.votes = tile.votes.data();
   return disagreements.load();
 }
 

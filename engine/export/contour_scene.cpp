@@ -1,4 +1,5 @@
 #include "engine/export/contour_scene.h"
+#include "engine/export/drop_specks.h"
 #include "engine/export/unfold_shells.h"
 
 #include <algorithm>
@@ -97,7 +98,7 @@ void mergeTiles(TiledContour* c, Progress& progress) {
 
 // The indexed mesh in scene units, each triangle tagged with its leaf.
 ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour& c,
-                       ContourReport& r) {
+                       ContourReport& r, std::vector<uint8_t>* resolved) {
   const auto& vertices = c.vertices;
   const auto& triangles = c.triangles;
   ExportMesh out;
@@ -115,6 +116,7 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
     r.maxPlaneDistance = std::max(r.maxPlaneDistance, v.planeDistance * grid.h);
   out.mesh.triangles.resize(triangles.size());
   out.triangleLeaf.resize(triangles.size());
+  resolved->resize(triangles.size());
   auto indexOf = [&](uint64_t key) {
     auto it = std::lower_bound(vertices.begin(), vertices.end(), key,
                                [](const ContourVertex& v, uint64_t k) { return v.key < k; });
@@ -128,6 +130,7 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
       out.mesh.triangles[size_t(i)] = {indexOf(t.vertex[0]), indexOf(t.vertex[1]),
                                        indexOf(t.vertex[2])};
       out.triangleLeaf[size_t(i)] = t.leaf;
+      (*resolved)[size_t(i)] = t.resolved;
     }
   });
   uint32_t previous = 0xffffffffu;  // neighbouring triangles mostly share a leaf
@@ -182,8 +185,10 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
 
   Stopwatch merge;
   mergeTiles(&contour, progress);
-  ExportMesh out = indexedMesh(scene, grid, contour, r);
+  std::vector<uint8_t> resolved;
+  ExportMesh out = indexedMesh(scene, grid, contour, r, &resolved);
   r.unfoldedShells = unfoldInvertedShells(grid, contour.vertices, &out.mesh);
+  r.droppedSpecks = dropUnresolvedSpecks(&out, &resolved, grid.h);
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;
   r.peakBytes = peakResidentBytes();

@@ -12,6 +12,7 @@
 
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
+#include "engine/export/drop_specks.h"
 #include "engine/geometry/export_mesh.h"
 #include "engine/util/progress.h"
 
@@ -55,6 +56,8 @@ struct ContourReport {
   // Shells that vertex placement had turned inside out (a part thinner than a cell), pulled
   // back towards their cells' centres (unfold_shells.h).
   int unfoldedShells = 0;
+  // Closed components the grid does not resolve, left out (drop_specks.h).
+  DroppedSpecks droppedSpecks;
   // Said once each over all tiles: parts smaller than a cell, ... (EvalResult::warnings).
   std::vector<std::string> warnings;
 };

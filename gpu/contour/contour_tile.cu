@@ -142,14 +142,15 @@ struct DeviceTile {
   TileView t{};
   int64_t nodes = 0, cells = 0;
   DeviceBuffer<unsigned long long> counters;  // disagreements, synthesised crossings
-  DeviceBuffer<uint8_t> inside, masks;
+  DeviceBuffer<uint8_t> votes, inside, masks;
   DeviceBuffer<uint32_t> boundary, vertexStart;
   DeviceBuffer<CellVertex> vertices;
 };
 
 // Node sides: votes of the three axes, then majority and the outer faces.
 void decideNodeSides(DeviceTile& d, const DeviceStream& stream) {
-  DeviceBuffer<uint8_t> votes(static_cast<size_t>(d.nodes), stream);
+  d.votes = DeviceBuffer<uint8_t>(static_cast<size_t>(d.nodes), stream);
+  DeviceBuffer<uint8_t>& votes = d.votes;
   d.inside = DeviceBuffer<uint8_t>(static_cast<size_t>(d.nodes), stream);
   STRATA_CUDA_CHECK(cudaMemsetAsync(votes.data(), 0, votes.bytes(), stream.get()));
   for (int axis = 0; axis < 3; ++axis) {
@@ -161,6 +162,7 @@ void decideNodeSides(DeviceTile& d, const DeviceStream& stream) {
                                                                  d.counters.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
   d.t.inside = d.inside.data();
+  d.t.votes = d.votes.data();
 }
 
 // Cell masks and the boundary cells, in increasing index (room for exactly those: they follow

@@ -1,0 +1,123 @@
+#include "engine/export/drop_specks.h"
+
+#include <glm/common.hpp>
+
+#include <atomic>
+#include <limits>
+#include <unordered_map>
+
+#include "engine/contour/contour_cells.h"
+#include "engine/util/parallel_for.h"
+#include "engine/util/union_find.h"
+
+namespace strata {
+namespace {
+
+// A component that fits in a box of side h touches at most 2 x 2 x 2 cells, with at most four
+// vertices each and a face vertex per split face segment: far fewer than this. Only components
+// this small have their boxes measured.
+constexpr uint32_t kMeasuredVertices = 256;
+
+struct Box {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+  glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+};
+
+}  // namespace
+
+DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resolved, double cell) {
+  DroppedSpecks dropped;
+  auto& triangles = mesh->mesh.triangles;
+  auto& positions = mesh->mesh.positions;
+  const size_t n = positions.size();
+  if (triangles.empty() || resolved->size() != triangles.size()) return dropped;
+  // Components over vertices; per root: the resolved bits (OR over its triangles) and the
+  // vertex count.
+  ConcurrentUnionFind sets(n);
+  parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t) {
+      const auto& tri = triangles[size_t(t)];
+      sets.unite(tri[0], tri[1]);
+      sets.unite(tri[0], tri[2]);
+    }
+  });
+  std::vector<uint32_t> rootOf(n);
+  std::vector<std::atomic<uint8_t>> bits(n);
+  std::vector<std::atomic<uint32_t>> count(n);
+  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t v = b; v < e; ++v) {
+      rootOf[size_t(v)] = sets.find(uint32_t(v));
+      bits[size_t(v)].store(0, std::memory_order_relaxed);
+      count[size_t(v)].store(0, std::memory_order_relaxed);
+    }
+  });
+  constexpr uint8_t kHasTriangle = 4;
+  parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t)
+      bits[rootOf[triangles[size_t(t)][0]]].fetch_or(uint8_t((*resolved)[size_t(t)] | kHasTriangle),
+                                                     std::memory_order_relaxed);
+  });
+  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t v = b; v < e; ++v)
+      count[rootOf[size_t(v)]].fetch_add(1, std::memory_order_relaxed);
+  });
+  // The boxes of the small components.
+  std::unordered_map<uint32_t, Box> boxes;
+  for (size_t v = 0; v < n; ++v) {
+    const uint32_t root = rootOf[v];
+    if (count[root].load(std::memory_order_relaxed) > kMeasuredVertices) continue;
+    Box& box = boxes[root];
+    box.lo = glm::min(box.lo, positions[v]);
+    box.hi = glm::max(box.hi, positions[v]);
+  }
+  // Which roots stay.
+  constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
+  std::vector<uint8_t> keepRoot(n, 0);
+  for (size_t v = 0; v < n; ++v) {
+    if (rootOf[v] != v) continue;
+    const uint8_t b = bits[v].load(std::memory_order_relaxed);
+    if (!(b & kHasTriangle)) continue;  // a vertex no triangle uses
+    bool keep = (b & kBoth) == kBoth;
+    const auto box = boxes.find(uint32_t(v));
+    if (keep && box != boxes.end()) {
+      const glm::dvec3 side = box->second.hi - box->second.lo;
+      keep = side.x >= cell || side.y >= cell || side.z >= cell;
+    }
+    keepRoot[v] = keep ? 1 : 0;
+    dropped.components += keep ? 0 : 1;
+  }
+  if (dropped.components == 0) return dropped;
+  // Where nothing would be left, the whole result is thinner than a cell: keep it, so that the
+  // export says what it is (the evaluation warns of parts smaller than a cell) rather than fail.
+  bool anyKept = false;
+  for (size_t v = 0; v < n && !anyKept; ++v) anyKept = rootOf[v] == v && keepRoot[v];
+  if (!anyKept) return DroppedSpecks();
+  // Compact: triangles (with their leaves and bits), then vertices, in order.
+  size_t kept = 0;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    if (!keepRoot[rootOf[triangles[t][0]]]) continue;
+    triangles[kept] = triangles[t];
+    mesh->triangleLeaf[kept] = mesh->triangleLeaf[t];
+    (*resolved)[kept] = (*resolved)[t];
+    ++kept;
+  }
+  dropped.triangles = triangles.size() - kept;
+  triangles.resize(kept);
+  mesh->triangleLeaf.resize(kept);
+  resolved->resize(kept);
+  std::vector<uint32_t> remap(n, UINT32_MAX);
+  uint32_t next = 0;
+  for (size_t v = 0; v < n; ++v) {
+    if (!keepRoot[rootOf[v]]) continue;
+    remap[v] = next;
+    positions[next++] = positions[v];
+  }
+  positions.resize(next);
+  parallelFor(0, int64_t(kept), 65536, [&](int64_t b, int64_t e) {
+    for (int64_t t = b; t < e; ++t)
+      for (uint32_t& v : triangles[size_t(t)]) v = remap[v];
+  });
+  return dropped;
+}
+
+}  // namespace strata

@@ -1,0 +1,40 @@
+// Specks the grid cannot resolve, left out of an export.
+//
+// Where a solid is thinner than a cell, dual contouring can wrap a node or two in a closed
+// component of a dozen triangles and no volume to speak of (1e-10 of the part), or leave such
+// a bubble in a solid. A component is left out when the grid does not resolve it, by either
+// of two rules that name no tuned size:
+//   - its sides are not resolved: none of its triangles is dual to an edge whose inside node
+//     all three rays agree is inside (a speck that encloses no node the grid is sure of), or
+//     none to an edge whose outside node all three agree is outside, or that lies on the
+//     grid's outer faces (a bubble that excludes none): CellTriangle::resolved
+//     (contour_cells.h);
+//   - it fits within one cell: its vertices span less than the cell size h along every axis.
+// A feature at least a cell across along some axis, with a node the grid is sure of on each
+// side, is kept, whatever its shape; what was left out is counted in the export's report.
+// Where every component would go (the whole result is thinner than a cell), none does.
+//
+// Synchronous; parallel inside (parallel_for.h); the result does not depend on the thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/geometry/export_mesh.h"
+
+namespace strata {
+
+struct DroppedSpecks {
+  int components = 0;    // closed components left out
+  size_t triangles = 0;  // their triangles
+};
+
+// Removes from `mesh` every component (triangles joined through shared vertices) that the grid
+// does not resolve (see above), given each triangle's CellTriangle::resolved bits, and the
+// vertices only those used (and any no triangle uses); the rest keep their order. `resolved`
+// and mesh->triangleLeaf are shortened alike.
+// `cell` is h in the mesh's units.
+DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resolved, double cell);
+
+}  // namespace strata

@@ -1,0 +1,129 @@
+// dropUnresolvedSpecks: closed components the grid does not resolve (sides no node is sure of,
+// or within one cell) are left out of an export; everything a cell across with sure nodes on
+// both sides stays, vertices keeping their order. And on a real Boolean of faceted meshes whose
+// surfaces nearly touch (a sphere minus a torus), where the contour made hundreds of specks of a
+// dozen triangles, the export keeps one closed part of the same volume.
+#include "engine/export/drop_specks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/contour/contour_cells.h"
+#include "engine/eval/cpu_backend.h"
+#include "engine/export/contour_scene.h"
+#include "engine/geometry/mesh_check.h"
+#include "tests/support/scene_builder.h"
+
+namespace strata::test {
+namespace {
+
+// A closed octahedron around `at` with half-diagonal r, `leaf`, every triangle's bits `bits`.
+void addOctahedron(ExportMesh& m, std::vector<uint8_t>& resolved, glm::dvec3 at, double r,
+                   uint32_t leaf, uint8_t bits) {
+  const uint32_t b = uint32_t(m.mesh.positions.size());
+  for (glm::dvec3 d : {glm::dvec3(r, 0, 0), glm::dvec3(-r, 0, 0), glm::dvec3(0, r, 0),
+                       glm::dvec3(0, -r, 0), glm::dvec3(0, 0, r), glm::dvec3(0, 0, -r)})
+    m.mesh.positions.push_back(at + d);
+  const uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : faces) {
+    m.mesh.triangles.push_back({b + f[0], b + f[1], b + f[2]});
+    m.triangleLeaf.push_back(leaf);
+    resolved.push_back(bits);
+  }
+}
+
+TEST(DropSpecks, LeavesOutWhatTheGridDoesNotResolveAndKeepsTheRestInOrder) {
+  const double h = 1.0;
+  constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
+  ExportMesh m;
+  std::vector<uint8_t> resolved;
+  addOctahedron(m, resolved, {0, 0, 0}, 5.0, 1, kBoth);              // a part: kept
+  addOctahedron(m, resolved, {20, 0, 0}, 0.3, 2, kBoth);             // within one cell
+  addOctahedron(m, resolved, {40, 0, 0}, 3.0, 3, kOutsideResolved);  // encloses no sure node
+  addOctahedron(m, resolved, {60, 0, 0}, 3.0, 4, kInsideResolved);   // excludes none
+  addOctahedron(m, resolved, {80, 0, 0}, 0.6, 5, kBoth);             // 1.2 cells across: kept
+  resolved[8 * 4 + 3] = 0;  // one triangle of the last without bits: its others carry them
+  ExportMesh expected;
+  std::vector<uint8_t> unused;
+  addOctahedron(expected, unused, {0, 0, 0}, 5.0, 1, kBoth);
+  addOctahedron(expected, unused, {80, 0, 0}, 0.6, 5, kBoth);
+
+  const DroppedSpecks dropped = dropUnresolvedSpecks(&m, &resolved, h);
+  EXPECT_EQ(dropped.components, 3);
+  EXPECT_EQ(dropped.triangles, 24u);
+  EXPECT_EQ(m.mesh.positions, expected.mesh.positions);
+  EXPECT_EQ(m.mesh.triangles, expected.mesh.triangles);
+  EXPECT_EQ(m.triangleLeaf, expected.triangleLeaf);
+  EXPECT_EQ(resolved.size(), m.mesh.triangles.size());
+  EXPECT_TRUE(checkMesh(m.mesh).watertight());
+}
+
+TEST(DropSpecks, NothingToDropChangesNothing) {
+  ExportMesh m;
+  std::vector<uint8_t> resolved;
+  addOctahedron(m, resolved, {0, 0, 0}, 5.0, 1, kInsideResolved | kOutsideResolved);
+  const ExportMesh before = m;
+  const DroppedSpecks dropped = dropUnresolvedSpecks(&m, &resolved, 1.0);
+  EXPECT_EQ(dropped.components, 0);
+  EXPECT_EQ(m.mesh.positions, before.mesh.positions);
+  EXPECT_EQ(m.mesh.triangles, before.mesh.triangles);
+}
+
+// A UV sphere and a faceted torus whose tube pokes out of it: their faceted surfaces meet at
+// grazing angles, where slivers thinner than a cell hold single grid nodes.
+std::shared_ptr<const TriangleMesh> facetedTorus(double major, double minor, int around,
+                                                 int across) {
+  auto m = std::make_shared<TriangleMesh>();
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      const double u = 2 * M_PI * i / around, v = 2 * M_PI * j / across;
+      const double r = major + minor * std::cos(v);
+      m->positions.push_back({r * std::cos(u), r * std::sin(u), minor * std::sin(v)});
+    }
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      const uint32_t a = uint32_t(i * across + j), b = uint32_t(((i + 1) % around) * across + j),
+                     c = uint32_t(((i + 1) % around) * across + (j + 1) % across),
+                     d = uint32_t(i * across + (j + 1) % across);
+      m->triangles.push_back({a, b, c});
+      m->triangles.push_back({a, c, d});
+    }
+  return m;
+}
+
+TEST(DropSpecks, ASphereMinusAGrazingTorusExportsOnePart) {
+  const Scene scene = makeScene(
+      op(NodeKind::Difference, {sphere(0.42), meshLeaf(facetedTorus(0.33, 0.12, 96, 48))}), 64);
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  ContourReport report;
+  const ExportMesh mesh = contourScene(scene, evaluator, ContourOptions{}, progress, &report);
+  const MeshCheck c = checkMesh(mesh.mesh);
+  EXPECT_TRUE(c.watertight());
+  EXPECT_GT(report.droppedSpecks.components, 0);
+  EXPECT_EQ(c.components, 1);
+  // What was left out is no volume to speak of: each speck lies within one cell.
+  EXPECT_LT(double(report.droppedSpecks.components) * std::pow(report.grid.h, 3), 1e-2 * c.volume);
+}
+
+}  // namespace
+}  // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+TEST(DropSpecks, AResultThatIsAllSpecksIsKept) {
+  ExportMesh m;
+  std::vector<uint8_t> resolved;
+  addOctahedron(m, resolved, {0, 0, 0}, 0.3, 1, kInsideResolved | kOutsideResolved);
+  addOctahedron(m, resolved, {5, 0, 0}, 3.0, 2, kOutsideResolved);
+  const ExportMesh before = m;
+  const DroppedSpecks dropped = dropUnresolvedSpecks(&m, &resolved, 1.0);
+  EXPECT_EQ(dropped.components, 0);
+  EXPECT_EQ(m.mesh.triangles, before.mesh.triangles);
+}
+
+}  // namespace
+}  // namespace strata::test
