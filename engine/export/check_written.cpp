@@ -36,17 +36,19 @@ TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   parallelFor(0, int64_t(mesh.triangles.size()), 65536, [&](int64_t b, int64_t e) {
     uint64_t s = 0, m = 0;
     for (int64_t t = b; t < e; ++t) {
+      // Two order-sensitive chains over the nine coordinates (each step a bijection of the
+      // chain: a changed coordinate changes it), finished by a full avalanche.
       uint64_t h = 0x243f6a8885a308d3ull, g = 0x13198a2e03707344ull;
       for (uint32_t v : mesh.triangles[size_t(t)]) {
         const glm::dvec3& p = mesh.positions[v];
         for (int k = 0; k < 3; ++k) {
           const uint64_t x = bitsOf(p[k]);
-          h = mix(h ^ x);
-          g = mix(g + x * 0x9e3779b97f4a7c15ull);
+          h = (h ^ x) * 0x100000001b3ull;
+          g = (g + x) * 0x9e3779b97f4a7c15ull;
         }
       }
-      s += h;
-      m += g;
+      s += mix(h);
+      m += mix(g ^ 0xa4093822299f31d0ull);
     }
     sum += s;
     mixedSum += m;

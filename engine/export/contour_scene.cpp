@@ -96,6 +96,59 @@ void mergeTiles(TiledContour* c, Progress& progress) {
   progress.check();
 }
 
+// The index of a vertex key among the merged vertices (sorted by key): a table of where each
+// bucket of cell keys starts, then a search within the bucket (a few vertices), where a binary
+// search over all vertices took most of the merge. Face-segment keys (the top bit) sort after
+// every cell key and are few: searched among themselves.
+class KeyIndex {
+ public:
+  static constexpr uint32_t kMissing = 0xffffffffu;
+
+  explicit KeyIndex(const std::vector<ContourVertex>& vertices) : vertices_(vertices) {
+    constexpr uint64_t kFaceBit = uint64_t(1) << 63;
+    faceBegin_ = size_t(
+        std::partition_point(vertices.begin(), vertices.end(),
+                             [](const ContourVertex& v) { return (v.key & kFaceBit) == 0; }) -
+        vertices.begin());
+    if (faceBegin_ == 0) return;
+    lo_ = vertices[0].key;
+    const uint64_t span = vertices[faceBegin_ - 1].key - lo_;
+    size_t buckets = 1;
+    while (buckets < faceBegin_) buckets *= 2;
+    while ((span >> shift_) >= buckets) ++shift_;
+    start_.assign(buckets + 1, uint32_t(faceBegin_));
+    // start_[b]: the first vertex whose bucket is b or later.
+    size_t b = 0;
+    for (size_t i = 0; i < faceBegin_; ++i) {
+      const size_t bucket = size_t((vertices[i].key - lo_) >> shift_);
+      while (b <= bucket) start_[b++] = uint32_t(i);
+    }
+  }
+
+  uint32_t find(uint64_t key) const {
+    size_t first = faceBegin_, last = vertices_.size();
+    if (!(key >> 63)) {
+      if (faceBegin_ == 0 || key < lo_) return kMissing;
+      const uint64_t bucket = (key - lo_) >> shift_;
+      if (bucket + 1 >= start_.size()) return kMissing;
+      first = start_[size_t(bucket)];
+      last = start_[size_t(bucket) + 1];
+    }
+    const auto it =
+        std::lower_bound(vertices_.begin() + int64_t(first), vertices_.begin() + int64_t(last), key,
+                         [](const ContourVertex& v, uint64_t k) { return v.key < k; });
+    if (it == vertices_.begin() + int64_t(last) || it->key != key) return kMissing;
+    return uint32_t(it - vertices_.begin());
+  }
+
+ private:
+  const std::vector<ContourVertex>& vertices_;
+  size_t faceBegin_ = 0;  // cell keys before, face-segment keys from here
+  uint64_t lo_ = 0;       // the smallest cell key
+  int shift_ = 0;         // bucket = (key - lo_) >> shift_
+  std::vector<uint32_t> start_;
+};
+
 // The indexed mesh in scene units, each triangle tagged with its leaf.
 ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour& c,
                        ContourReport& r, std::vector<uint8_t>* resolved) {
@@ -117,12 +170,12 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
   out.mesh.triangles.resize(triangles.size());
   out.triangleLeaf.resize(triangles.size());
   resolved->resize(triangles.size());
+  const KeyIndex keys(vertices);
   auto indexOf = [&](uint64_t key) {
-    auto it = std::lower_bound(vertices.begin(), vertices.end(), key,
-                               [](const ContourVertex& v, uint64_t k) { return v.key < k; });
-    if (it == vertices.end() || it->key != key)
+    const uint32_t index = keys.find(key);
+    if (index == KeyIndex::kMissing)
       throw Error("internal: a triangle refers to a vertex no tile produced");
-    return uint32_t(it - vertices.begin());
+    return index;
   };
   parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {

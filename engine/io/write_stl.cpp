@@ -21,13 +21,6 @@ void putU32(std::string& out, uint32_t value) {
   out.append(bytes, 4);
 }
 
-void putF32(std::string& out, double value) {
-  const float f = static_cast<float>(value);
-  uint32_t bits;
-  std::memcpy(&bits, &f, sizeof(bits));
-  putU32(out, bits);
-}
-
 }  // namespace
 
 void writeStl(const std::string& path, const ExportMesh& em, Progress* progress) {
@@ -53,8 +46,11 @@ void writeStl(const std::string& path, const ExportMesh& em, Progress* progress)
     writeRecords(
         out, mesh.triangles.size(),
         [&](size_t first, size_t last, std::string& bytes) {
-          bytes.reserve((last - first) * 50);
-          for (size_t t = first; t < last; ++t) {
+          static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "STL floats are written as-is");
+          const size_t at = bytes.size();
+          bytes.resize(at + (last - first) * 50);
+          char* out = &bytes[at];
+          for (size_t t = first; t < last; ++t, out += 50) {
             const auto& tri = mesh.triangles[t];
             const glm::dvec3& a = mesh.positions[tri[0]];
             const glm::dvec3& b = mesh.positions[tri[1]];
@@ -62,12 +58,11 @@ void writeStl(const std::string& path, const ExportMesh& em, Progress* progress)
             glm::dvec3 normal = glm::cross(b - a, c - a);
             const double length = glm::length(normal);
             normal = length > 0.0 && std::isfinite(length) ? normal / length : glm::dvec3(0.0);
-            for (int k = 0; k < 3; ++k) putF32(bytes, normal[k]);
-            for (const glm::dvec3* p : {&a, &b, &c}) {
-              for (int k = 0; k < 3; ++k) putF32(bytes, (*p)[k]);
-            }
-            bytes += '\0';
-            bytes += '\0';
+            const float facet[12] = {float(normal.x), float(normal.y), float(normal.z), float(a.x),
+                                     float(a.y),      float(a.z),      float(b.x),      float(b.y),
+                                     float(b.z),      float(c.x),      float(c.y),      float(c.z)};
+            std::memcpy(out, facet, sizeof(facet));
+            out[48] = out[49] = '\0';  // attribute 0
           }
         },
         progress, "write STL", 0, mesh.triangles.size());
