@@ -1,33 +1,15 @@
 #include "engine/export/check_written.h"
 
 #include <atomic>
-#include <cstring>
+#include <utility>
 
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/atomic_file.h"
+#include "engine/util/hash.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
-namespace {
-
-uint64_t mix(uint64_t x) {  // splitmix64's finaliser: a bijection that spreads every bit
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ull;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebull;
-  x ^= x >> 31;
-  return x;
-}
-
-uint64_t bitsOf(double v) {
-  if (v == 0.0) v = 0.0;  // -0.0 is the same coordinate
-  uint64_t bits;
-  std::memcpy(&bits, &v, sizeof(bits));
-  return bits;
-}
-
-}  // namespace
 
 TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   TriangleFingerprint f;
@@ -42,13 +24,13 @@ TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
       for (uint32_t v : mesh.triangles[size_t(t)]) {
         const glm::dvec3& p = mesh.positions[v];
         for (int k = 0; k < 3; ++k) {
-          const uint64_t x = bitsOf(p[k]);
+          const uint64_t x = coordinateBits(p[k]);
           h = (h ^ x) * 0x100000001b3ull;
           g = (g + x) * 0x9e3779b97f4a7c15ull;
         }
       }
-      s += mix(h);
-      m += mix(g ^ 0xa4093822299f31d0ull);
+      s += avalanche64(h);
+      m += avalanche64(g ^ 0xa4093822299f31d0ull);
     }
     sum += s;
     mixedSum += m;
@@ -58,11 +40,10 @@ TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   return f;
 }
 
-WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
-                              Progress& progress) {
+WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Progress& progress) {
   WrittenCheck result;
   progress.report("check", 0.0);
-  const TriangleMesh meant = storedMesh(path, written);
+  const TriangleMesh meant = storedMesh(path, std::move(written));
   const TriangleFingerprint expected = fingerprintTriangles(meant);
   progress.report("check", 0.1);
   result.check = checkMesh(meant);

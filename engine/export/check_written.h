@@ -34,9 +34,10 @@ struct WrittenCheck {
 };
 
 // Checks the file at `path`, just written from `written` (scene units, as given to
-// writeMeshFile). Throws strata::Error when the file cannot be read or parsed, Cancelled.
-WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
-                              Progress& progress);
+// writeMeshFile; taken by value and rounded in place: std::move it in where it is not needed
+// after, so that the check holds no copy). Throws strata::Error when the file cannot be read or
+// parsed, Cancelled.
+WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Progress& progress);
 
 // The fingerprint both halves compare: the triangle count, and two sums over triangles of
 // different 64-bit hashes of the bits of their corners' coordinates in order (-0.0 as 0.0).

@@ -29,13 +29,6 @@ bool isFinite(const glm::dvec3& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
-uint64_t bitsOf(double v) {
-  if (v == 0.0) v = 0.0;  // -0.0 and 0.0 are the same position
-  uint64_t bits;
-  std::memcpy(&bits, &v, sizeof(bits));
-  return bits;
-}
-
 struct PositionKey {
   uint64_t x, y, z;
   bool operator==(const PositionKey& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -68,7 +61,7 @@ std::vector<uint32_t> canonicalVertices(const std::vector<glm::dvec3>& positions
   const size_t mask = capacity - 1;
   auto keyOf = [&](uint32_t v) {
     const glm::dvec3& p = positions[v];
-    return PositionKey{bitsOf(p.x), bitsOf(p.y), bitsOf(p.z)};
+    return PositionKey{coordinateBits(p.x), coordinateBits(p.y), coordinateBits(p.z)};
   };
   parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {

@@ -1,6 +1,8 @@
 // Topological and geometric checks of triangle meshes, and the repairs that are safe to make.
 #pragma once
 
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,15 @@ struct MeshCheck {
 };
 
 MeshCheck checkMesh(const TriangleMesh& mesh);
+
+// The bits of a coordinate, -0.0 as 0.0: two positions weld (checkMesh, prepareMesh) exactly
+// when their coordinates' bits are equal.
+inline uint64_t coordinateBits(double v) {
+  if (v == 0.0) v = 0.0;
+  uint64_t bits;
+  std::memcpy(&bits, &v, sizeof(bits));
+  return bits;
+}
 
 // The largest and smallest span of coordinates whose volumes (up to span^3) and areas a double
 // holds without overflow or underflow: 2^340 (about 2.2e102) and 2^-340 (about 4.5e-103).

@@ -146,18 +146,15 @@ void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* pr
   format.write(path, mesh, progress);
 }
 
-TriangleMesh storedMesh(const std::string& path, const TriangleMesh& mesh) {
+TriangleMesh storedMesh(const std::string& path, TriangleMesh mesh) {
   const StoredCoordinate stored = writableFormat(path).stored;
-  TriangleMesh out;
-  out.triangles = mesh.triangles;
-  out.positions.resize(mesh.positions.size());
   parallelFor(0, int64_t(mesh.positions.size()), 65536, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {
-      const glm::dvec3& p = mesh.positions[size_t(i)];
-      out.positions[size_t(i)] = glm::dvec3(stored(p.x), stored(p.y), stored(p.z));
+      glm::dvec3& p = mesh.positions[size_t(i)];
+      p = glm::dvec3(stored(p.x), stored(p.y), stored(p.z));
     }
   });
-  return out;
+  return mesh;
 }
 
 }  // namespace strata

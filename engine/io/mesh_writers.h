@@ -46,7 +46,8 @@ void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* pr
 
 // `mesh` as reading the file writeMeshFile(path, ...) wrote gives it back: the same triangles,
 // positions rounded as the format stores them (float32 for .stl, %.9g for .obj and .3mf, exact
-// for .ply). In parallel. Throws strata::Error for an extension no format writes.
-TriangleMesh storedMesh(const std::string& path, const TriangleMesh& mesh);
+// for .ply). In place, in parallel: pass the mesh by std::move where it is not needed after.
+// Throws strata::Error for an extension no format writes.
+TriangleMesh storedMesh(const std::string& path, TriangleMesh mesh);
 
 }  // namespace strata

@@ -10,6 +10,17 @@
 
 namespace strata {
 
+// MurmurHash3's 64-bit finaliser: a bijection in which every input bit flips about half the
+// output bits.
+inline uint64_t avalanche64(uint64_t x) {
+  x ^= x >> 33;
+  x *= 0xff51afd7ed558ccdull;
+  x ^= x >> 33;
+  x *= 0xc4ceb9fe1a85ec53ull;
+  x ^= x >> 33;
+  return x;
+}
+
 class Hasher {
  public:
   void bytes(const void* data, size_t size) {
@@ -30,15 +41,7 @@ class Hasher {
     bytes(text.data(), text.size());
     return *this;
   }
-  uint64_t digest() const {
-    uint64_t x = state_;
-    x ^= x >> 33;
-    x *= 0xff51afd7ed558ccdull;
-    x ^= x >> 33;
-    x *= 0xc4ceb9fe1a85ec53ull;
-    x ^= x >> 33;
-    return x;
-  }
+  uint64_t digest() const { return avalanche64(state_); }
 
  private:
   uint64_t state_ = 0xcbf29ce484222325ull;
