@@ -16,7 +16,7 @@ const std::vector<std::string> kValuedOptions = {
     "--resolution", "--report",        "-o",           "--output",        "--backend",
     "--threads",    "--margin",        "--surfels",    "--tile",          "--unit-scale",
     "--max-leaves", "--max-file-size", "--max-memory", "--max-triangles", "--distance",
-    "--thickness",  "--radius",        "--fillet",     "--opening"};
+    "--thickness",  "--radius",        "--fillet",     "--opening",       "--simplify"};
 const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open",
                                                "--force"};
 

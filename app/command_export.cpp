@@ -17,9 +17,10 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     throw Error(output + ": unknown export format '" + lowerExtension(output) + "' (expected " +
                 meshExtensionList(MeshAccess::Write) + ")");
   BackendChoice choice = setUpBackend(args);
-  ContourOptions options;
+  ExportOptions options;
   options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
   options.tileCells = args.integer("--tile", 0, 8, kMaxTileCells);  // 0: sized to memory
+  options.simplifyCells = args.number("--simplify", 0.0, 0.0, 8.0);
 
   {
     Progress probe;

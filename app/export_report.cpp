@@ -37,6 +37,25 @@ std::string formatExportText(const ExportSummary& summary) {
                 r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.result.writeSeconds,
                 s.result.checkSeconds, mib(r.peakBytes).c_str());
   out << line;
+  const SimplifyReport& sr = s.result.simplify;
+  if (sr.refused) {
+    out << "simplify  not done: " << sr.refusedWhy << "\n";
+  } else if (sr.trianglesBefore) {
+    std::snprintf(line, sizeof(line),
+                  "simplify  %zu -> %zu triangles (%.1f%%) in %.3f s; every vertex of the "
+                  "unsimplified mesh within %.6g %s (%.3g h) of the file's surface\n",
+                  sr.trianglesBefore, sr.trianglesAfter,
+                  100.0 * double(sr.trianglesAfter) / double(sr.trianglesBefore), sr.seconds,
+                  sr.tolerance, s.unit.c_str(), r.grid.h > 0 ? sr.tolerance / r.grid.h : 0.0);
+    out << line;
+    const SurfaceDeviation& d = sr.measured;
+    std::snprintf(line, sizeof(line),
+                  "          measured deviation %.3g h (unsimplified -> simplified %.3g h, back "
+                  "%.3g h; %zu samples %.3g h apart%s)\n",
+                  d.largest() / r.grid.h, d.aToB / r.grid.h, d.bToA / r.grid.h, d.samples,
+                  d.spacing / r.grid.h, d.capped ? "; some beyond the search radius" : "");
+    out << line;
+  }
   out << "wrote     " << s.output << "\n";
   const MeshCheck& c = s.result.check;
   std::snprintf(line, sizeof(line),
@@ -106,6 +125,20 @@ std::string formatExportJson(const ExportSummary& s) {
                                      {{"name", "check"}, {"seconds", s.result.checkSeconds}}});
   j["peak_bytes"] = r.peakBytes;
   j["surfels"] = r.surfels;
+  if (s.result.simplify.trianglesBefore || s.result.simplify.refused) {
+    const SimplifyReport& sr = s.result.simplify;
+    j["simplify"] = {{"done", !sr.refused},
+                     {"why_not", sr.refusedWhy},
+                     {"triangles_before", sr.trianglesBefore},
+                     {"triangles_after", sr.trianglesAfter},
+                     {"tolerance", sr.tolerance},
+                     {"seconds", sr.seconds},
+                     {"measured_deviation", sr.measured.largest()},
+                     {"measured_to_simplified", sr.measured.aToB},
+                     {"measured_to_unsimplified", sr.measured.bToA},
+                     {"sample_spacing", sr.measured.spacing},
+                     {"samples", sr.measured.samples}};
+  }
   j["dropped_specks"] = {{"components", r.droppedSpecks.components},
                          {"triangles", r.droppedSpecks.triangles}};
   j["check"] = {{"passed", s.result.passed()},

@@ -41,6 +41,9 @@ const char* kUsageHead =
 const char* kUsageOptions =
     "  --tile N          export: tile edge in cells, at most 1024 (default: the fewest tiles\n"
     "                    whose arrays take a quarter of the backend's free memory)\n"
+    "  --simplify E      export, boolean -o: fewer triangles by edge collapses, the surface\n"
+    "                    kept within E cells of the unsimplified one (e.g. 0.25), topology,\n"
+    "                    orientation and sharp edges kept; the deviation is measured\n"
     "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"
     "  --backend B       auto | cpu | cuda (default auto)\n"
     "  --threads N       worker threads (default: all cores, or STRATA_THREADS)\n"

@@ -524,7 +524,7 @@ void startExport(EditorState& state, const std::string& path, int resolution, bo
   }
   guarded(state, [&] {
     if (!state.makeBackend) throw Error("no backend to export with");
-    ContourOptions options;
+    ExportOptions options;
     options.resolution = resolution;
     state.exportJob =
         std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),

@@ -9,7 +9,7 @@
 
 namespace strata {
 
-ExportReport exportScene(const Scene& scene, const std::string& path, const ContourOptions& options,
+ExportReport exportScene(const Scene& scene, const std::string& path, const ExportOptions& options,
                          std::shared_ptr<Backend> backend, Progress& progress,
                          const FallbackNotice& notice) {
   ExportReport report;
@@ -22,6 +22,8 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Cont
                                  if (notice) notice(line);
                                });
   }  // the evaluator's cached LDIs go before the file is written
+  if (options.simplifyCells > 0.0)
+    report.simplify = simplifyMesh(&mesh, options.simplifyCells * report.contour.grid.h, progress);
   // Written atomically (engine/util/atomic_file.h): a cancel or a failure while writing leaves
   // the previous file(s) as they were; an OBJ and its MTL are replaced together.
   Stopwatch write;

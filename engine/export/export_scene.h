@@ -10,7 +10,7 @@
 // not an error).
 //
 // Synchronous; any thread. `progress` receives the stages "evaluate", "export" (one step per
-// tile), "write <format>" and "check", and is checked between them.
+// tile), "simplify" (when asked), "write <format>" and "check", and is checked between them.
 #pragma once
 
 #include <memory>
@@ -21,13 +21,23 @@
 #include "engine/export/check_written.h"
 #include "engine/export/contour_scene.h"
 #include "engine/export/fallback.h"
+#include "engine/export/simplify_mesh.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/util/progress.h"
 
 namespace strata {
 
+struct ExportOptions : ContourOptions {
+  ExportOptions() = default;
+  ExportOptions(const ContourOptions& contour) : ContourOptions(contour) {}  // NOLINT: implicit
+  // > 0: the contoured mesh is simplified (simplify_mesh.h) with every vertex of the
+  // unsimplified surface kept within simplifyCells * h of the file's surface.
+  double simplifyCells = 0.0;
+};
+
 struct ExportReport {
   ContourReport contour;             // how the mesh was made
+  SimplifyReport simplify;           // trianglesBefore == trianglesAfter == 0: not simplified
   double writeSeconds = 0.0;         // writing the file
   double checkSeconds = 0.0;         // reading it back and checking it
   MeshCheck check;                   // of the file as written (check_written.h)
@@ -40,7 +50,7 @@ struct ExportReport {
 // evaluating on a fresh Evaluator over `backend` whose LDIs are released before the file is
 // written. `notice` (may be empty) is called with one line for the user each time a fallback is
 // taken. Throws strata::Error naming `path`, or Cancelled.
-ExportReport exportScene(const Scene& scene, const std::string& path, const ContourOptions& options,
+ExportReport exportScene(const Scene& scene, const std::string& path, const ExportOptions& options,
                          std::shared_ptr<Backend> backend, Progress& progress,
                          const FallbackNotice& notice = {});
 

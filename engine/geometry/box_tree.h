@@ -21,19 +21,43 @@ class BoxTree {
   template <typename Visit>
   void forEachContaining(const glm::dvec3& p, Visit&& visit) const {
     if (nodes_.empty()) return;
-    std::vector<uint32_t> stack{0};
-    while (!stack.empty()) {
-      const Node& node = nodes_[stack.back()];
-      stack.pop_back();
+    // Median splits keep the tree balanced: depth <= log2(items) + 1, and the stack holds at
+    // most one pending sibling per level.
+    uint32_t stack[80];
+    int size = 0;
+    stack[size++] = 0;
+    while (size > 0) {
+      const Node& node = nodes_[stack[--size]];
       if (!contains(node.box, p)) continue;
       if (node.count > 0) {
         for (uint32_t k = node.first; k < node.first + node.count; ++k)
           if (contains(boxes_[items_[k]], p)) visit(items_[k]);
       } else {
-        stack.push_back(node.first);
-        stack.push_back(node.first + 1);
+        stack[size++] = node.first;
+        stack[size++] = node.first + 1;
       }
     }
+  }
+
+  // True when accept(i) is true for some item whose box contains p; stops at the first.
+  template <typename Accept>
+  bool anyContaining(const glm::dvec3& p, Accept&& accept) const {
+    if (nodes_.empty()) return false;
+    uint32_t stack[80];  // as in forEachContaining
+    int size = 0;
+    stack[size++] = 0;
+    while (size > 0) {
+      const Node& node = nodes_[stack[--size]];
+      if (!contains(node.box, p)) continue;
+      if (node.count > 0) {
+        for (uint32_t k = node.first; k < node.first + node.count; ++k)
+          if (contains(boxes_[items_[k]], p) && accept(items_[k])) return true;
+      } else {
+        stack[size++] = node.first;
+        stack[size++] = node.first + 1;
+      }
+    }
+    return false;
   }
 
   static bool contains(const Bounds& b, const glm::dvec3& p) {

@@ -13,7 +13,7 @@
 namespace strata {
 
 ExportJob::ExportJob(std::shared_ptr<const Scene> scene, std::string path,
-                     const ContourOptions& options, std::shared_ptr<Backend> backend,
+                     const ExportOptions& options, std::shared_ptr<Backend> backend,
                      Listener onChange, ExportGuard guard)
     : onChange_(std::move(onChange)) {
   status_.running = true;
@@ -53,7 +53,7 @@ void ExportJob::update(const std::function<void(ExportStatus&)>& change) {
   if (onChange_) onChange_(copy);
 }
 
-void ExportJob::run(std::shared_ptr<const Scene> scene, ContourOptions options,
+void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
                     std::shared_ptr<Backend> backend, ExportGuard guard) {
   Stopwatch clock;
   const std::string path = status().path;

@@ -18,7 +18,7 @@
 #include "engine/document/scene.h"
 #include "engine/eval/backend.h"
 #include "engine/export/check_written.h"
-#include "engine/export/contour_scene.h"
+#include "engine/export/export_scene.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/util/progress.h"
 
@@ -63,7 +63,7 @@ class ExportJob {
   // scene's; tile size) to `path` (.stl .obj .ply .3mf). A job above kProbeAbove cells is first
   // estimated (stage "estimate"); one that cannot fit the memory (guard.memoryBytes) or the disk
   // is refused unless guard.insist.
-  ExportJob(std::shared_ptr<const Scene> scene, std::string path, const ContourOptions& options,
+  ExportJob(std::shared_ptr<const Scene> scene, std::string path, const ExportOptions& options,
             std::shared_ptr<Backend> backend, Listener onChange = {}, ExportGuard guard = {});
   ~ExportJob();  // cancels and joins
   ExportJob(const ExportJob&) = delete;
@@ -74,7 +74,7 @@ class ExportJob {
   void cancel() { progress_->cancel(); }
 
  private:
-  void run(std::shared_ptr<const Scene> scene, ContourOptions options,
+  void run(std::shared_ptr<const Scene> scene, ExportOptions options,
            std::shared_ptr<Backend> backend, ExportGuard guard);
   // Applies `change` to the status under the lock, then tells the listener.
   void update(const std::function<void(ExportStatus&)>& change);

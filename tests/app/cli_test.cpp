@@ -223,6 +223,32 @@ TEST(CliExport, EveryFormatPassesTheCheck) {
   }
 }
 
+// --simplify: fewer triangles, the same check passed, the deviation measured and reported.
+TEST(CliExport, SimplifyKeepsTheCheckAndReportsTheDeviation) {
+  const std::string out = temp("simplified.stl"), report = temp("simplified.json");
+  CliRun r = strata("boolean difference " + data("bunny.obj") + " " + data("eight.obj") +
+                    " --unit-scale 1 --resolution 96 -q --simplify 0.25 -o " + out + " --report " +
+                    report);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("simplify "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("measured deviation"), std::string::npos) << r.output;
+  std::ifstream in(report);
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["check"]["passed"].get<bool>());
+  EXPECT_EQ(j["check"]["components"].get<int>(), 1);
+  const auto& s = j["simplify"];
+  EXPECT_TRUE(s["done"].get<bool>());
+  EXPECT_LT(s["triangles_after"].get<double>(), 0.3 * s["triangles_before"].get<double>());
+  EXPECT_EQ(s["triangles_after"].get<size_t>(), j["check"]["triangles"].get<size_t>());
+  EXPECT_GT(s["samples"].get<size_t>(), 0u);
+  EXPECT_LT(s["measured_deviation"].get<double>(), j["grid"]["h"].get<double>());
+  // A bad value is an error naming the option.
+  r = strata("boolean union " + data("bunny.obj") + " " + data("eight.obj") +
+             " -q --simplify none -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("--simplify"), std::string::npos) << r.output;
+}
+
 // strata offset / shell / round: the meshes' union under a modifier, with boolean's options.
 TEST(CliExport, OffsetShellRoundAndFilletOfMeshFiles) {
   const std::string bunny = data("bunny.obj");
