@@ -6,11 +6,7 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
-#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
-#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
-#include <OpenMesh/Tools/Decimater/Observer.hh>
+#include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
 #include <glm/vec4.hpp>
 
@@ -18,11 +14,12 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <mutex>
+#include <queue>
 #include <vector>
 
 #include "engine/geometry/triangle_distance.h"
+#include "engine/geometry/triangle_grid.h"
 #include "engine/util/hash.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
@@ -39,190 +36,17 @@ struct Traits : OpenMesh::DefaultTraits {
   FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
 };
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
-using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
 using Points = std::vector<glm::dvec3>;
 
 glm::dvec3 toGlm(const OpenMesh::Vec3d& p) {
   return {p[0], p[1], p[2]};
 }
 
-// The deviation bound, as OpenMesh's ModHausdorffT but with the points of removed vertices
-// loadable (they are carried from the chunks into the final pass) and a point-triangle distance
-// that is robust for degenerate triangles. Every face keeps the original vertices it covers; a
-// collapse is legal only if every point around the removed vertex stays within the tolerance
-// of one of the faces that replace the old ones.
-constexpr int kBackSteps = 6;
-
-template <class MeshT>
-class ModDeviationT : public OpenMesh::Decimater::ModBaseT<MeshT> {
- public:
-  DECIMATING_MODULE(ModDeviationT, MeshT, Deviation);
-  explicit ModDeviationT(MeshT& mesh) : Base(mesh, true), mesh_(mesh) {
-    mesh_.add_property(points_);
-  }
-  ~ModDeviationT() override { mesh_.remove_property(points_); }
-  void setTolerance(double tolerance) { tolerance2_ = tolerance * tolerance; }
-  // The unsimplified surface: near(p) is true when p lies within the tolerance of it.
-  void setSurface(const std::function<bool(const glm::dvec3&)>* near) { near_ = near; }
-  Points& points(typename MeshT::FaceHandle f) { return mesh_.property(points_, f); }
-
-  void initialize() override {}  // points are loaded by the caller, or start empty
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    faces_.clear();
-    tested_.clear();
-    for (const auto f : mesh_.vf_range(ci.v0)) {
-      if (f != ci.fl && f != ci.fr) faces_.push_back(f);
-      const Points& p = mesh_.property(points_, f);
-      tested_.insert(tested_.end(), p.begin(), p.end());
-    }
-    tested_.push_back(toGlm(ci.p0));
-    mesh_.set_point(ci.v0, ci.p1);  // simulate the collapse
-    bool ok = true;
-    for (const glm::dvec3& p : tested_) {
-      bool near = false;
-      for (const auto f : faces_)
-        if (distance2(p, f) <= tolerance2_) {
-          near = true;
-          break;
-        }
-      if (!near) {
-        ok = false;
-        break;
-      }
-    }
-    // The other way: the new faces stay near the unsimplified surface, tested on a grid of
-    // points at most twice the tolerance apart (at most kBackSteps per edge; the corners are
-    // vertices of it).
-    if (ok && near_)
-      for (const auto f : faces_) {
-        auto v = mesh_.cfv_begin(f);
-        const glm::dvec3 a = toGlm(mesh_.point(*v)), b = toGlm(mesh_.point(*++v)),
-                         c = toGlm(mesh_.point(*++v));
-        const double longest2 =
-            std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
-        const int n = int(std::clamp(std::ceil(std::sqrt(longest2 / (9.0 * tolerance2_))), 2.0,
-                                     double(kBackSteps)));
-        for (int i = 0; ok && i <= n; ++i)
-          for (int j = 0; i + j <= n; ++j) {
-            if ((i == 0 && j == 0) || i == n || j == n) continue;  // a corner
-            const glm::dvec3 p = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
-            if (!(*near_)(p)) {
-              ok = false;
-              break;
-            }
-          }
-        if (!ok) break;
-      }
-    mesh_.set_point(ci.v0, ci.p0);
-    return ok ? float(Base::LEGAL_COLLAPSE) : float(Base::ILLEGAL_COLLAPSE);
-  }
-
-  void postprocess_collapse(const CollapseInfo& ci) override {
-    faces_.clear();
-    tested_.clear();
-    auto take = [&](typename MeshT::FaceHandle f) {
-      Points& p = mesh_.property(points_, f);
-      tested_.insert(tested_.end(), p.begin(), p.end());
-      p.clear();
-    };
-    for (const auto f : mesh_.vf_range(ci.v1)) {
-      faces_.push_back(f);
-      take(f);
-    }
-    if (faces_.empty()) return;
-    if (ci.fl.is_valid()) take(ci.fl);
-    if (ci.fr.is_valid()) take(ci.fr);
-    tested_.push_back(toGlm(ci.p0));
-    for (const glm::dvec3& p : tested_) {  // each to the face nearest to it
-      double best = INFINITY;
-      auto nearest = faces_.front();
-      for (const auto f : faces_) {
-        const double d = distance2(p, f);
-        if (d < best) {
-          best = d;
-          nearest = f;
-        }
-      }
-      mesh_.property(points_, nearest).push_back(p);
-    }
-  }
-
- private:
-  double distance2(const glm::dvec3& p, typename MeshT::FaceHandle f) const {
-    auto v = mesh_.cfv_begin(f);
-    const glm::dvec3 a = toGlm(mesh_.point(*v)), b = toGlm(mesh_.point(*++v)),
-                     c = toGlm(mesh_.point(*++v));
-    return pointTriangleDistanceSquared(p, a, b, c);
-  }
-
-  MeshT& mesh_;
-  double tolerance2_ = 0.0;
-  const std::function<bool(const glm::dvec3&)>* near_ = nullptr;
-  OpenMesh::FPropHandleT<Points> points_;
-  std::vector<typename MeshT::FaceHandle> faces_;
-  Points tested_;
-};
-
-// Keeps the seams between chunks as they were: a vertex on a seam is locked, and a collapse
-// onto one may not join it to another seam vertex it was not joined to (two chunks could make
-// the same new edge, and the stitched mesh would hold it four times).
-template <class MeshT>
-class ModSeamT : public OpenMesh::Decimater::ModBaseT<MeshT> {
- public:
-  DECIMATING_MODULE(ModSeamT, MeshT, Seam);
-  explicit ModSeamT(MeshT& mesh) : Base(mesh, true), mesh_(mesh) {}
-  void setSeam(OpenMesh::VPropHandleT<uint8_t> seam) { seam_ = seam; }
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    if (!mesh_.property(seam_, ci.v1)) return float(Base::LEGAL_COLLAPSE);
-    for (const auto w : mesh_.vv_range(ci.v0))
-      if (w != ci.v1 && w != ci.vl && w != ci.vr && mesh_.property(seam_, w))
-        return float(Base::ILLEGAL_COLLAPSE);
-    return float(Base::LEGAL_COLLAPSE);
-  }
-
- private:
-  MeshT& mesh_;
-  OpenMesh::VPropHandleT<uint8_t> seam_;
-};
-
 // The collapses of all pieces, reported as one fraction that never goes back.
 struct CollapseCount {
   std::mutex mutex;
   size_t collapses = 0;
   double reported = 0.0;
-};
-
-// Reports collapses as progress and stops the decimater on a cancel.
-class ProgressObserver : public OpenMesh::Decimater::Observer {
- public:
-  ProgressObserver(Progress& progress, CollapseCount& count, size_t expected, double from,
-                   double to)
-      : Observer(1024),
-        progress_(progress),
-        count_(count),
-        expected_(std::max<size_t>(expected, 1)),
-        from_(from),
-        to_(to) {}
-  void notify(size_t) override {
-    // How many collapses an export allows is not known beforehand (most lose 80-95% of their
-    // vertices): the fraction approaches `to` and never goes back.
-    std::lock_guard<std::mutex> lock(count_.mutex);
-    count_.collapses += 1024;
-    const double fraction =
-        from_ + (to_ - from_) * std::min(0.99, double(count_.collapses) / double(expected_));
-    if (fraction <= count_.reported || progress_.cancelled()) return;
-    count_.reported = fraction;
-    progress_.report("simplify", fraction);
-  }
-  bool abort() const override { return progress_.cancelled(); }
-
- private:
-  Progress& progress_;
-  CollapseCount& count_;
-  size_t expected_;
-  double from_, to_;
 };
 
 // A triangle mesh in OpenMesh, with each vertex's index in the export and each face's leaf.
@@ -309,142 +133,384 @@ void markFeatures(Piece& piece) {
       mesh.status(v).set_locked(true);
 }
 
-// Runs the decimater on `piece` until no collapse is legal; `points` (may be null) are the
-// original vertices each face covers so far, in face order. Leaves the carried points of every
-// face (deleted ones included) in `carried`, indexed by face.
-void decimatePiece(Piece& piece, double tolerance,
-                   const std::function<bool(const glm::dvec3&)>& near, bool seams,
-                   const std::vector<Points>* points, std::vector<Points>* carried,
-                   Progress& progress, CollapseCount& collapses, size_t expected, double from,
-                   double to) {
-  Decimater decimater(piece.mesh);
-  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
-  ModDeviationT<Mesh>::Handle deviation;
-  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle flipping;
-  ModSeamT<Mesh>::Handle seam;
-  decimater.add(quadric);
-  decimater.add(deviation);
-  decimater.add(flipping);
-  if (seams) decimater.add(seam);
-  decimater.module(quadric).unset_max_err();  // the priority only; the bound is the deviation's
-  decimater.module(deviation).setTolerance(tolerance);
-  decimater.module(deviation).setSurface(&near);
-  decimater.module(flipping).set_max_normal_deviation(kMaxNormalTurnDegrees);
-  if (seams) decimater.module(seam).setSeam(piece.seam);
-  decimater.initialize();
-  if (points)
-    for (const auto f : piece.mesh.faces())
-      decimater.module(deviation).points(f) = (*points)[size_t(f.idx())];
-  ProgressObserver observer(progress, collapses, expected, from, to);
-  decimater.set_observer(&observer);
-  decimater.decimate(0);
-  decimater.set_observer(nullptr);
-  progress.check();
-  carried->assign(piece.mesh.n_faces(), {});
-  for (const auto f : piece.mesh.all_faces())
-    if (!piece.mesh.status(f).deleted())
-      (*carried)[size_t(f.idx())] = std::move(decimater.module(deviation).points(f));
-}
+// The sum of squared distances to a set of planes (Garland and Heckbert's error quadric):
+// q(p) = p.A.p + 2 b.p + c, A symmetric.
+struct Quadric {
+  double a[6] = {0, 0, 0, 0, 0, 0};  // xx xy xz yy yz zz
+  double b[3] = {0, 0, 0};
+  double c = 0.0;
+  Quadric() = default;
+  Quadric(const OpenMesh::Vec3d& n, double d)  // the plane n.p + d = 0, |n| = 1
+      : a{n[0] * n[0], n[0] * n[1], n[0] * n[2], n[1] * n[1], n[1] * n[2], n[2] * n[2]},
+        b{n[0] * d, n[1] * d, n[2] * d},
+        c(d * d) {}
+  Quadric& operator+=(const Quadric& o) {
+    for (int i = 0; i < 6; ++i) a[i] += o.a[i];
+    for (int i = 0; i < 3; ++i) b[i] += o.b[i];
+    c += o.c;
+    return *this;
+  }
+  double evaluate(const OpenMesh::Vec3d& p) const {
+    const double x = p[0], y = p[1], z = p[2];
+    return a[0] * x * x + 2 * a[1] * x * y + 2 * a[2] * x * z + a[3] * y * y + 2 * a[4] * y * z +
+           a[5] * z * z + 2 * (b[0] * x + b[1] * y + b[2] * z) + c;
+  }
+};
 
-// The unsimplified surface for "is this point within the tolerance of it": triangles bucketed
-// by the cells of a uniform grid that their boxes, grown by the tolerance, overlap; cells found
-// through an open-addressing table. Immutable after construction; any number of threads.
-class NearSurface {
+constexpr int kBackSteps = 6;
+
+// Edge collapses until none is allowed, cheapest quadric error first (Garland and Heckbert, onto
+// the remaining vertex). Each vertex offers its cheapest collapse that its flags allow (locked,
+// features, boundaries); the rules are tested only when a collapse is due, on the mesh as it is
+// then: the topology rules of OpenMesh's decimater, the seams between chunks, no face normal
+// turning by more than kMaxNormalTurnDegrees, then the deviation. A refused collapse is not
+// offered again until the vertex's neighbourhood changes.
+class Collapser {
  public:
-  NearSurface(const std::vector<glm::dvec3>& positions,
-              const std::vector<std::array<uint32_t, 3>>& triangles, double tolerance)
-      : positions_(positions), triangles_(triangles), tolerance2_(tolerance * tolerance) {
-    const Bounds bounds = meshBounds(TriangleMeshView{positions, triangles});
-    double edges = 0.0;
-    for (const auto& t : triangles) edges += glm::length(positions[t[1]] - positions[t[0]]);
-    // Cells about a triangle across: a triangle lands in a few cells, a cell holds a few dozen.
-    cell_ = std::max(edges / double(std::max<size_t>(triangles.size(), 1)), 2.0 * tolerance);
-    origin_ = bounds.min - glm::dvec3(tolerance + cell_);
-    spheres_.resize(triangles.size());
-    std::vector<std::pair<uint64_t, uint32_t>> pairs;
-    pairs.reserve(triangles.size() * 4);
-    for (uint32_t t = 0; t < triangles.size(); ++t) {
-      Bounds box;
-      for (uint32_t v : triangles[t]) box.include(positions[v]);
-      const glm::dvec3 centre = box.center();
-      const double reach = 0.5 * glm::length(box.size()) + tolerance;
-      spheres_[t] = glm::dvec4(centre, reach * reach);
-      const glm::ivec3 lo = cellOf(box.min - glm::dvec3(tolerance));
-      const glm::ivec3 hi = cellOf(box.max + glm::dvec3(tolerance));
-      for (int z = lo.z; z <= hi.z; ++z)
-        for (int y = lo.y; y <= hi.y; ++y)
-          for (int x = lo.x; x <= hi.x; ++x) pairs.emplace_back(key({x, y, z}), t);
+  Collapser(Piece& piece, double tolerance, const TriangleGrid& surface, bool seams)
+      : piece_(piece),
+        m_(piece.mesh),
+        tolerance_(tolerance),
+        tolerance2_(tolerance * tolerance),
+        sampleSpacing_(3.0 * tolerance),
+        surface_(surface),
+        seams_(seams),
+        minCos_(std::cos(kMaxNormalTurnDegrees * M_PI / 180.0)) {
+    quadric_.assign(m_.n_vertices(), Quadric());
+    for (const auto f : m_.faces()) {
+      auto v = m_.cfv_begin(f);
+      const auto a = *v, b = *++v, c = *++v;
+      OpenMesh::Vec3d n = (m_.point(b) - m_.point(a)) % (m_.point(c) - m_.point(a));
+      const double area = n.norm();
+      if (!(area > 0.0)) continue;
+      n /= area;
+      const Quadric q(n, -(n | m_.point(a)));
+      for (const auto u : {a, b, c}) quadric_[size_t(u.idx())] += q;
     }
-    std::sort(pairs.begin(), pairs.end());
-    items_.resize(pairs.size());
-    size_t cells = 0;
-    for (size_t k = 0; k < pairs.size(); ++k) {
-      items_[k] = pairs[k].second;
-      if (k == 0 || pairs[k].first != pairs[k - 1].first) ++cells;
-    }
-    size_t slots = 16;
-    while (slots < 2 * cells) slots *= 2;
-    table_.assign(slots, Slot{});
-    for (size_t k = 0; k < pairs.size();) {
-      size_t end = k;
-      while (end < pairs.size() && pairs[end].first == pairs[k].first) ++end;
-      size_t slot = avalanche64(pairs[k].first) & (slots - 1);
-      while (table_[slot].end != 0) slot = (slot + 1) & (slots - 1);
-      table_[slot] = {pairs[k].first, uint32_t(k), uint32_t(end)};
-      k = end;
-    }
+    points_.assign(m_.n_faces(), {});
+    version_.assign(m_.n_vertices(), 0);
+    epoch_.assign(m_.n_vertices(), 0);
+    refusedAt_.assign(m_.n_halfedges(), 0);
+    target_.assign(m_.n_vertices(), Mesh::HalfedgeHandle());
   }
 
-  bool near(const glm::dvec3& p) const {
-    const uint64_t k = key(cellOf(p));
-    const size_t mask = table_.size() - 1;
-    for (size_t slot = avalanche64(k) & mask; table_[slot].end != 0; slot = (slot + 1) & mask) {
-      if (table_[slot].key != k) continue;
-      for (uint32_t i = table_[slot].begin; i < table_[slot].end; ++i) {
-        const glm::dvec4& sphere = spheres_[items_[i]];
-        const glm::dvec3 d = p - glm::dvec3(sphere);
-        if (glm::dot(d, d) > sphere.w) continue;  // beyond the box's sphere grown by the tolerance
-        const auto& t = triangles_[items_[i]];
-        if (pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]) <=
-            tolerance2_)
-          return true;
-      }
-      return false;
+  // The unsimplified points each face covers so far (by face index), from an earlier pass.
+  void loadPoints(std::vector<Points>&& points) { points_ = std::move(points); }
+  // A first pass covers, besides the vertices it removes, the centre of every face and the
+  // midpoint of every edge (kept by the face on its halfedge 0's side): the unsimplified
+  // surface sampled about half a triangle apart.
+  void coverFaceCentresAndEdgeMidpoints() {
+    for (const auto f : m_.faces()) {
+      auto it = m_.cfv_begin(f);
+      const glm::dvec3 a = toGlm(m_.point(*it)), b = toGlm(m_.point(*++it)),
+                       c = toGlm(m_.point(*++it));
+      points_[size_t(f.idx())].push_back((a + b + c) / 3.0);
     }
-    return false;
+    for (const auto e : m_.edges()) {
+      const auto h = m_.halfedge_handle(e, 0);
+      auto f = m_.face_handle(h);
+      if (!f.is_valid()) f = m_.face_handle(m_.halfedge_handle(e, 1));
+      if (!f.is_valid()) continue;
+      points_[size_t(f.idx())].push_back(0.5 * (toGlm(m_.point(m_.from_vertex_handle(h))) +
+                                                toGlm(m_.point(m_.to_vertex_handle(h)))));
+    }
+  }
+  // The same after run(), by face index (deleted faces hold none).
+  std::vector<Points> takePoints() { return std::move(points_); }
+
+  void run(Progress& progress, CollapseCount& count, size_t expected, double from, double to) {
+    for (const auto v : m_.vertices()) offer(v);
+    size_t pops = 0, collapses = 0;
+    std::vector<Mesh::VertexHandle> support;
+    while (!heap_.empty()) {
+      const Entry e = heap_.top();
+      heap_.pop();
+      const Mesh::VertexHandle v(int(e.vertex));
+      if (e.version != version_[e.vertex] || m_.status(v).deleted()) continue;
+      if ((++pops & 1023) == 0) {
+        progress.check();
+        report(progress, count, collapses, expected, from, to);
+        collapses = 0;
+      }
+      const Mesh::HalfedgeHandle h = target_[e.vertex];
+      const CollapseInfo ci(m_, h);
+      if (!allowed(ci) || !deviationKept(ci)) {
+        refusedAt_[size_t(h.idx())] = epoch_[e.vertex] + 1;
+        offer(v);
+        continue;
+      }
+      support.clear();
+      for (const auto w : m_.vv_range(ci.v0))
+        if (w != ci.v1) support.push_back(w);
+      m_.collapse(h);
+      ++collapses;
+      afterCollapse(ci);
+      support.push_back(ci.v1);
+      for (const auto w : support) {
+        ++epoch_[size_t(w.idx())];
+        offer(w);
+      }
+    }
+    report(progress, count, collapses, expected, from, to);
   }
 
  private:
-  struct TriangleMeshView {
-    const std::vector<glm::dvec3>& positions;
-    const std::vector<std::array<uint32_t, 3>>& triangles;
+  using CollapseInfo = OpenMesh::Decimater::CollapseInfoT<Mesh>;
+  struct Entry {
+    double priority;
+    uint32_t vertex, version;
+    bool operator>(const Entry& o) const {
+      return priority > o.priority || (priority == o.priority && vertex > o.vertex);
+    }
   };
-  static Bounds meshBounds(const TriangleMeshView& mesh) {
-    Bounds b;
-    for (const auto& p : mesh.positions) b.include(p);
-    return b;
-  }
-  struct Slot {
-    uint64_t key = 0;
-    uint32_t begin = 0, end = 0;  // end == 0: empty
-  };
-  glm::ivec3 cellOf(const glm::dvec3& p) const {
-    return glm::ivec3(glm::floor((p - origin_) / cell_));
-  }
-  static uint64_t key(const glm::ivec3& c) {
-    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
-           uint64_t(uint32_t(c.z) & 0x1fffff);
+
+  void report(Progress& progress, CollapseCount& count, size_t collapses, size_t expected,
+              double from, double to) {
+    std::lock_guard<std::mutex> lock(count.mutex);
+    count.collapses += collapses;
+    // How many collapses an export allows is not known beforehand (most lose 80-95% of their
+    // vertices): the fraction approaches `to` and never goes back.
+    const double fraction =
+        from + (to - from) *
+                   std::min(0.99, double(count.collapses) / double(std::max<size_t>(expected, 1)));
+    if (fraction <= count.reported || progress.cancelled()) return;
+    count.reported = fraction;
+    progress.report("simplify", fraction);
   }
 
-  const std::vector<glm::dvec3>& positions_;
-  const std::vector<std::array<uint32_t, 3>>& triangles_;
+  // Puts v's cheapest allowed collapse on the heap (or none).
+  void offer(Mesh::VertexHandle v) {
+    const size_t i = size_t(v.idx());
+    ++version_[i];
+    if (m_.status(v).deleted() || m_.status(v).locked()) return;
+    double best = INFINITY;
+    Mesh::HalfedgeHandle bestHalfedge;
+    for (const auto h : m_.voh_range(v)) {
+      if (refusedAt_[size_t(h.idx())] == epoch_[i] + 1) continue;
+      const CollapseInfo ci(m_, h);
+      if (!flagsAllow(ci)) continue;
+      Quadric q = quadric_[i];
+      q += quadric_[size_t(ci.v1.idx())];
+      const double cost = q.evaluate(ci.p1);
+      if (cost < best) {
+        best = cost;
+        bestHalfedge = h;
+      }
+    }
+    if (!bestHalfedge.is_valid()) return;
+    target_[i] = bestHalfedge;
+    heap_.push({best, uint32_t(i), version_[i]});
+  }
+
+  // The cheap rules: topology (as OpenMesh's BaseDecimaterT::is_collapse_legal), features,
+  // seams, folds.
+  // The flags: what offer() tests.
+  bool flagsAllow(const CollapseInfo& ci) const {
+    if (m_.status(ci.v0).locked()) return false;
+    if (m_.status(ci.v0).feature() && !m_.status(m_.edge_handle(ci.v0v1)).feature()) return false;
+    if (m_.is_boundary(ci.v0) && (!m_.is_boundary(ci.v1) || (ci.vl.is_valid() && ci.vr.is_valid())))
+      return false;
+    return m_.cw_rotated_halfedge_handle(m_.cw_rotated_halfedge_handle(ci.v0v1)) != ci.v0v1;
+  }
+
+  // The flags, then the folds (arithmetic on the ring), then OpenMesh's link test: what a
+  // collapse must pass when it is due.
+  bool allowed(const CollapseInfo& ci) const {
+    if (!flagsAllow(ci)) return false;
+    // No face around v0 turns by more than the limit (or loses its area).
+    for (const auto f : m_.vf_range(ci.v0)) {
+      if (f == ci.fl || f == ci.fr) continue;
+      auto it = m_.cfv_begin(f);
+      OpenMesh::Vec3d p[3];
+      for (auto& q : p) {
+        q = *it == ci.v0 ? ci.p1 : m_.point(*it);
+        ++it;
+      }
+      OpenMesh::Vec3d n = (p[1] - p[0]) % (p[2] - p[0]);
+      const double length = n.norm();
+      if (!(length > 0.0) || (m_.normal(f) | n) < minCos_ * length) return false;
+    }
+    if (!m_.is_collapse_ok(ci.v0v1)) return false;
+    if (ci.vl.is_valid() && ci.vr.is_valid() && m_.find_halfedge(ci.vl, ci.vr).is_valid() &&
+        m_.valence(ci.vl) == 3 && m_.valence(ci.vr) == 3)
+      return false;  // a tetrahedron would collapse flat
+    // A seam vertex may not be joined to another seam vertex it was not joined to: two chunks
+    // could make the same new edge, and the stitched mesh would hold it four times.
+    if (seams_ && m_.property(piece_.seam, ci.v1))
+      for (const auto w : m_.vv_range(ci.v0))
+        if (w != ci.v1 && w != ci.vl && w != ci.vr && m_.property(piece_.seam, w)) return false;
+    return true;
+  }
+
+  double distance2(const glm::dvec3& p, Mesh::FaceHandle f, Mesh::VertexHandle moved,
+                   const glm::dvec3& to) const {
+    auto it = m_.cfv_begin(f);
+    glm::dvec3 c[3];
+    for (auto& q : c) {
+      q = *it == moved ? to : toGlm(m_.point(*it));
+      ++it;
+    }
+    return pointTriangleDistanceSquared(p, c[0], c[1], c[2]);
+  }
+
+  // The costly rules, on the mesh as it is: every unsimplified vertex covered by the faces
+  // around v0 stays within the tolerance of the faces that replace them, and those faces stay
+  // within it of the unsimplified surface on a grid of points at most sampleSpacing_ apart (at
+  // most kBackSteps per edge; their corners are vertices of it).
+  bool deviationKept(const CollapseInfo& ci) {
+    changed_.clear();
+    for (const auto f : m_.vf_range(ci.v0))
+      if (f != ci.fl && f != ci.fr) changed_.push_back(f);
+    const glm::dvec3 p1 = toGlm(ci.p1);
+    auto nearSome = [&](const glm::dvec3& p) {
+      for (const auto f : changed_)
+        if (distance2(p, f, ci.v0, p1) <= tolerance2_) return true;
+      return false;
+    };
+    // Each covered point is within the tolerance of its own face: test that face first.
+    for (const auto f : changed_)
+      for (const glm::dvec3& p : points_[size_t(f.idx())])
+        if (distance2(p, f, ci.v0, p1) > tolerance2_ && !nearSome(p)) return false;
+    for (const auto f : {ci.fl, ci.fr})
+      if (f.is_valid())
+        for (const glm::dvec3& p : points_[size_t(f.idx())])
+          if (!nearSome(p)) return false;
+    if (!nearSome(toGlm(ci.p0))) return false;
+    for (const auto f : changed_)
+      if (!faceNearSurface(f, ci.v0, p1)) return false;
+    return true;
+  }
+
+  // Whether face f (with `moved` at `to`) lies within the tolerance of the unsimplified surface
+  // on a grid of points at most sampleSpacing_ apart (at most kBackSteps per edge; its corners
+  // are tested by the caller or are vertices of the surface).
+  bool faceNearSurface(Mesh::FaceHandle f, Mesh::VertexHandle moved, const glm::dvec3& to) const {
+    auto it = m_.cfv_begin(f);
+    glm::dvec3 c[3];
+    for (auto& q : c) {
+      q = *it == moved ? to : toGlm(m_.point(*it));
+      ++it;
+    }
+    const double longest =
+        std::sqrt(std::max({glm::dot(c[1] - c[0], c[1] - c[0]), glm::dot(c[2] - c[1], c[2] - c[1]),
+                            glm::dot(c[0] - c[2], c[0] - c[2])}));
+    const int n = int(std::clamp(std::ceil(longest / sampleSpacing_), 2.0, double(kBackSteps)));
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        if ((i == 0 && j == 0) || i == n || j == n) continue;  // a corner
+        if (!surface_.within(
+                c[0] + (c[1] - c[0]) * (double(i) / n) + (c[2] - c[0]) * (double(j) / n),
+                tolerance_))
+          return false;
+      }
+    return true;
+  }
+
+ public:
+  // Moves each free vertex (not locked, not on a feature) along its normal by the mean signed
+  // distance of the unsimplified vertices its faces cover, so that the surface runs through
+  // them rather than along their chords (a collapse keeps a vertex where it was: on a curved
+  // surface the faces cut inside it, and the volume shrinks). A move is kept only if every rule
+  // still holds around the vertex (no face turning by more than the limit, every covered vertex
+  // within the tolerance of the faces around it, the faces near the unsimplified surface, the
+  // moved vertex itself within the tolerance of it). In vertex order, each move seeing the ones
+  // before it.
+  void relocate(Progress& progress) {
+    for (const auto v : m_.vertices()) {
+      if ((v.idx() & 4095) == 0) progress.check();
+      if (m_.status(v).locked() || m_.status(v).feature()) continue;
+      double sum = 0.0;
+      size_t count = 0;
+      OpenMesh::Vec3d normal(0.0, 0.0, 0.0);
+      for (const auto f : m_.vf_range(v)) {
+        const OpenMesh::Vec3d n = m_.normal(f);
+        const glm::dvec3 nf = toGlm(n), a = toGlm(m_.point(*m_.cfv_begin(f)));
+        for (const glm::dvec3& p : points_[size_t(f.idx())]) sum += glm::dot(nf, p - a);
+        count += points_[size_t(f.idx())].size();
+        normal += n;
+      }
+      const double length = normal.norm();
+      if (count == 0 || !(length > 0.0)) continue;
+      const double delta = std::clamp(sum / double(count), -tolerance_, tolerance_);
+      const OpenMesh::Vec3d from = m_.point(v), to = from + normal * (delta / length);
+      if (!surface_.within(toGlm(to), tolerance_)) continue;
+      m_.set_point(v, to);
+      if (ringKept(v)) {
+        for (const auto f : m_.vf_range(v)) m_.set_normal(f, m_.calc_face_normal(f));
+      } else {
+        m_.set_point(v, from);
+      }
+    }
+  }
+
+ private:
+  // After moving v: the rules around it (see relocate()).
+  bool ringKept(Mesh::VertexHandle v) {
+    for (const auto f : m_.vf_range(v)) {
+      const OpenMesh::Vec3d n = m_.calc_face_normal(f);
+      if (!(n.norm() > 0.0) || (m_.normal(f) | n) < minCos_) return false;
+      for (const glm::dvec3& p : points_[size_t(f.idx())])
+        if (distance2(p, f, Mesh::VertexHandle(), glm::dvec3(0.0)) > tolerance2_) return false;
+      if (!faceNearSurface(f, Mesh::VertexHandle(), glm::dvec3(0.0))) return false;
+    }
+    return true;
+  }
+
+  // The points of the faces that changed (changed_, from deviationKept) stay on their face
+  // while within the tolerance of it; the others, those of the two deleted faces and the removed
+  // vertex go to the nearest changed face (deviationKept found one within the tolerance).
+  void afterCollapse(const CollapseInfo& ci) {
+    quadric_[size_t(ci.v1.idx())] += quadric_[size_t(ci.v0.idx())];
+    for (const auto f : m_.vf_range(ci.v1)) m_.set_normal(f, m_.calc_face_normal(f));
+    tested_.clear();
+    for (const auto f : changed_) {
+      Points& own = points_[size_t(f.idx())];
+      size_t kept = 0;
+      for (const glm::dvec3& p : own) {
+        if (distance2(p, f, Mesh::VertexHandle(), glm::dvec3(0.0)) <= tolerance2_)
+          own[kept++] = p;
+        else
+          tested_.push_back(p);
+      }
+      own.resize(kept);
+    }
+    for (const auto f : {ci.fl, ci.fr})
+      if (f.is_valid()) {
+        Points& gone = points_[size_t(f.idx())];
+        tested_.insert(tested_.end(), gone.begin(), gone.end());
+        gone = Points();
+      }
+    tested_.push_back(toGlm(ci.p0));
+    if (changed_.empty()) return;
+    for (const glm::dvec3& p : tested_) {
+      double best = INFINITY;
+      Mesh::FaceHandle nearest = changed_.front();
+      for (const auto f : changed_) {
+        const double d = distance2(p, f, Mesh::VertexHandle(), glm::dvec3(0.0));
+        if (d < best) {
+          best = d;
+          nearest = f;
+        }
+      }
+      points_[size_t(nearest.idx())].push_back(p);
+    }
+  }
+
+  Piece& piece_;
+  Mesh& m_;
+  double tolerance_;
   double tolerance2_;
-  double cell_ = 1.0;
-  glm::dvec3 origin_{0.0};
-  std::vector<glm::dvec4>
-      spheres_;  // per triangle: its box's centre, (half diagonal + tolerance)^2
-  std::vector<uint32_t> items_;
-  std::vector<Slot> table_;
+  double sampleSpacing_;
+  const TriangleGrid& surface_;
+  bool seams_;
+  double minCos_;
+  std::vector<Quadric> quadric_;
+  std::vector<Points> points_;
+  std::vector<uint32_t> version_, epoch_, refusedAt_;
+  std::vector<Mesh::HalfedgeHandle> target_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
+  std::vector<Mesh::FaceHandle> changed_;
+  Points tested_;
 };
 
 constexpr int kMaxChunks = 64;
@@ -471,10 +537,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
       int(std::clamp<size_t>((count + trianglesPerChunk / 2) / trianglesPerChunk, 1, kMaxChunks));
   CollapseCount collapses;
   // The unsimplified surface, for the deviation's other way.
-  const NearSurface surface(positions, triangles, tolerance);
-  const std::function<bool(const glm::dvec3&)> near = [&](const glm::dvec3& p) {
-    return surface.near(p);
-  };
+  const TriangleGrid surface(positions, triangles, kMeasureReachPerTolerance * tolerance);
 
   const size_t expected = positions.size() * 9 / 10;
 
@@ -527,8 +590,10 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
         }
         members[size_t(c)] = {};
         markFeatures(piece);
-        decimatePiece(piece, tolerance, near, true, nullptr, &carried[size_t(c)], progress,
-                      collapses, expected, 0.02, 0.8);
+        Collapser collapser(piece, tolerance, surface, true);
+        collapser.coverFaceCentresAndEdgeMidpoints();
+        collapser.run(progress, collapses, expected, 0.02, 0.8);
+        carried[size_t(c)] = collapser.takePoints();
       }
     });
     if (!built) {
@@ -568,10 +633,15 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   stitched = {};
   stitchedLeaf = {};
   markFeatures(whole);
-  std::vector<Points> carried;
-  decimatePiece(whole, tolerance, near, false, chunks > 1 ? &points : nullptr, &carried, progress,
-                collapses, expected, chunks > 1 ? 0.8 : 0.02, 0.98);
-  carried = {};
+  {
+    Collapser collapser(whole, tolerance, surface, false);
+    if (chunks > 1)
+      collapser.loadPoints(std::move(points));
+    else
+      collapser.coverFaceCentresAndEdgeMidpoints();
+    collapser.run(progress, collapses, expected, chunks > 1 ? 0.8 : 0.02, 0.98);
+    collapser.relocate(progress);
+  }
   points = {};
   whole.mesh.garbage_collection();
 
@@ -592,7 +662,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   }
   report.measured =
       measureDeviation(mesh->mesh, simplified.mesh, kSampleSpacingPerTolerance * tolerance,
-                       8.0 * tolerance, progress, "simplify");
+                       surface.reach(), progress, "simplify", &surface);
   *mesh = std::move(simplified);
   report.trianglesAfter = mesh->mesh.triangles.size();
   report.seconds = clock.seconds();

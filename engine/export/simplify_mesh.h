@@ -1,26 +1,30 @@
 // Simplification of an export's mesh that keeps every guarantee of the export: edge collapses
-// chosen by quadric error (OpenMesh's decimater, Debian's libopenmesh-dev), each refused when
-// it would
-//   - change the topology: OpenMesh's link condition (no non-manifold edge or vertex, no genus
-//     or component change; a tetrahedron is never collapsed flat);
+// onto the remaining vertex, cheapest quadric error first (Garland and Heckbert), on OpenMesh's
+// halfedge mesh (Debian's libopenmesh-dev: its collapse and link test; the loop and the rules
+// are ours, so that the costly rules run once per collapse that is due rather than for every
+// candidate), each refused when it would
+//   - change the topology: OpenMesh's link condition and its decimater's rules (no non-manifold
+//     edge or vertex, no genus or component change; a tetrahedron is never collapsed flat);
 //   - fold a face over: no face normal may turn by more than kMaxNormalTurnDegrees;
-//   - move the surface more than `tolerance`: every vertex of the unsimplified mesh stays within
-//     `tolerance` of the simplified surface (as OpenMesh's Hausdorff module: the points of
-//     removed vertices carried along on the faces that cover them), every simplified vertex is
-//     one of the original ones, and the new faces stay within `tolerance` of the unsimplified
-//     surface on a grid of points at most 3 tolerances apart. Between those points a face may
-//     stray further: the deviation is then measured both ways (mesh_distance.h) and reported;
+//   - move the surface more than `tolerance`: every vertex of the unsimplified mesh, the centre
+//     of each of its triangles and the midpoint of each of its edges stays within `tolerance`
+//     of the simplified face that covers it (the points carried along on the faces, as in
+//     OpenMesh's Hausdorff module), and the new faces stay within `tolerance` of the
+//     unsimplified surface on a grid of points at most 3 tolerances apart. Between those points
+//     either surface may stray a little further: the deviation is measured both ways
+//     (mesh_distance.h) and reported;
 //   - blur a sharp feature: edges whose faces meet at more than kFeatureAngleDegrees, and edges
 //     between triangles of different leaves (where one part meets another, which keeps each
 //     part's colour on its own triangles), are features: a vertex on a feature may only slide
 //     along a feature edge, and vertices where features meet or end do not move.
-// Halfedge collapses keep the orientation; the leaf of every surviving triangle is kept.
-// Flat regions collapse to a few large triangles (their quadric error is zero).
+// Then each free vertex moves along its normal onto the points its faces cover (the surface
+// through them, not along their chords: the volume is kept), where every rule still holds.
+// Halfedge collapses keep the orientation; the leaf of every surviving triangle is kept. Flat
+// regions collapse to a few large triangles (their quadric error is zero).
 //
-// Synchronous; parallel over chunks of the mesh (below), each through OpenMesh's sequential
-// decimater; the result does not depend on the thread count. Progress stage
-// "simplify"; a cancel is honoured within a few thousand collapses (milliseconds) and leaves
-// `mesh` unchanged.
+// Synchronous; parallel over chunks of the mesh (below), each collapsed on one thread; the
+// result does not depend on the thread count. Progress stage "simplify", never going back; a
+// cancel is honoured within 1024 collapses (milliseconds) and leaves `mesh` unchanged.
 #pragma once
 
 #include <cstddef>
@@ -34,6 +38,8 @@ namespace strata {
 constexpr double kFeatureAngleDegrees = 40.0;
 constexpr double kMaxNormalTurnDegrees = 60.0;
 constexpr double kSampleSpacingPerTolerance = 2.0;
+// The deviation is measured up to this many tolerances; beyond, it is reported as capped.
+constexpr double kMeasureReachPerTolerance = 2.0;
 
 struct SimplifyReport {
   size_t trianglesBefore = 0;

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/geometry/box_tree.h"
-#include "engine/geometry/triangle_distance.h"
+#include <glm/geometric.hpp>
+
+#include "engine/geometry/triangle_grid.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
@@ -20,23 +21,10 @@ struct OneWay {
   bool capped = false;
 };
 
-// The largest distance of samples of `from` to `to`, each capped at `cap`.
-OneWay measureOneWay(const TriangleMesh& from, const TriangleMesh& to, double spacing, double cap,
+// The largest distance of samples of `from` to the surface `to` (found through its grid), each
+// capped at the grid's reach.
+OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double spacing,
                      Progress& progress, const char* stage, double progressBase) {
-  // Boxes of `to` grown by the cap: the triangles within `cap` of a point are among those whose
-  // grown box holds it.
-  std::vector<Bounds> boxes(to.triangles.size());
-  parallelFor(0, int64_t(to.triangles.size()), 1 << 14, [&](int64_t begin, int64_t end) {
-    for (int64_t t = begin; t < end; ++t) {
-      Bounds box;
-      for (uint32_t v : to.triangles[t]) box.include(to.positions[v]);
-      box.min -= glm::dvec3(cap);
-      box.max += glm::dvec3(cap);
-      boxes[t] = box;
-    }
-  });
-  const BoxTree tree(boxes);
-  const double cap2 = cap * cap;
   const int64_t count = int64_t(from.triangles.size());
   constexpr int64_t kBlock = 1 << 12;
   const int64_t blocks = (count + kBlock - 1) / kBlock;
@@ -48,7 +36,7 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleMesh& to, double sp
       OneWay result;
       const int64_t end = std::min(count, (block + 1) * kBlock);
       for (int64_t t = block * kBlock; t < end; ++t) {
-        const auto& tri = from.triangles[t];
+        const auto& tri = from.triangles[size_t(t)];
         const glm::dvec3 p0 = from.positions[tri[0]], p1 = from.positions[tri[1]],
                          p2 = from.positions[tri[2]];
         const double longest = std::sqrt(std::max(
@@ -57,21 +45,10 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleMesh& to, double sp
         const int n = int(std::clamp(std::ceil(longest / spacing), 1.0, double(kMaxSteps)));
         for (int i = 0; i <= n; ++i)
           for (int j = 0; i + j <= n; ++j) {
-            const double u = double(i) / n, v = double(j) / n;
-            const glm::dvec3 p = p0 + u * (p1 - p0) + v * (p2 - p0);
-            double best = cap2;
-            bool found = false;
-            tree.forEachContaining(p, [&](uint32_t k) {
-              const auto& other = to.triangles[k];
-              const double d2 = pointTriangleDistanceSquared(
-                  p, to.positions[other[0]], to.positions[other[1]], to.positions[other[2]]);
-              if (d2 <= best) {
-                best = d2;
-                found = true;
-              }
-            });
-            result.largest = std::max(result.largest, std::sqrt(best));
-            result.capped = result.capped || !found;
+            const glm::dvec3 p = p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n);
+            const double d = to.nearest(p);
+            result.largest = std::max(result.largest, d);
+            result.capped = result.capped || d >= to.reach();
             ++result.samples;
           }
       }
@@ -93,12 +70,22 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleMesh& to, double sp
 }  // namespace
 
 SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double spacing,
-                                  double cap, Progress& progress, const char* stage) {
+                                  double cap, Progress& progress, const char* stage,
+                                  const TriangleGrid* aGrid) {
   SurfaceDeviation deviation;
   deviation.spacing = spacing;
   if (a.empty() || b.empty() || !(spacing > 0.0) || !(cap > 0.0)) return deviation;
-  const OneWay ab = measureOneWay(a, b, spacing, cap, progress, stage, 0.0);
-  const OneWay ba = measureOneWay(b, a, spacing, cap, progress, stage, 0.5);
+  OneWay ab, ba;
+  {
+    const TriangleGrid bGrid(b.positions, b.triangles, cap);
+    ab = measureOneWay(a, bGrid, spacing, progress, stage, 0.0);
+  }
+  if (aGrid) {
+    ba = measureOneWay(b, *aGrid, spacing, progress, stage, 0.5);
+  } else {
+    const TriangleGrid grid(a.positions, a.triangles, cap);
+    ba = measureOneWay(b, grid, spacing, progress, stage, 0.5);
+  }
   deviation.aToB = ab.largest;
   deviation.bToA = ba.largest;
   deviation.samples = ab.samples + ba.samples;

@@ -9,6 +9,7 @@
 #include <cstddef>
 
 #include "engine/geometry/mesh.h"
+#include "engine/geometry/triangle_grid.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -26,9 +27,11 @@ struct SurfaceDeviation {
 
 // `spacing` and `cap` are in the meshes' units (> 0). A point of a triangle is at most
 // spacing / sqrt(3) from its nearest sample, so the true deviation exceeds the measured one by
-// at most that. Progress stage `stage`, checked between blocks; throws Cancelled.
+// at most that. `aGrid` (may be null): a's triangles already in a grid whose reach is the cap.
+// Progress stage `stage`, checked between blocks; throws Cancelled.
 SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double spacing,
                                   double cap, Progress& progress,
-                                  const char* stage = "measure deviation");
+                                  const char* stage = "measure deviation",
+                                  const TriangleGrid* aGrid = nullptr);
 
 }  // namespace strata

@@ -43,9 +43,10 @@ void expectGuaranteesKept(const ExportMesh& before, const ExportMesh& after, dou
   EXPECT_TRUE(a.oriented());
   EXPECT_EQ(a.genus, b.genus);
   EXPECT_EQ(a.components, b.components);
-  // Every point of either surface lies within the tolerance of the other (up to the faces'
-  // interiors between their test points): the solids differ by at most a shell that thick.
-  EXPECT_NEAR(a.volume, b.volume, b.area * tolerance);
+  // Vertices moved off the chords onto the covered surface: the volume is kept to a small part
+  // of the shell the tolerance allows (a surface on the chords of a sphere 6 cells across loses
+  // about a third of it).
+  EXPECT_NEAR(a.volume, b.volume, 0.1 * b.area * tolerance);
   ASSERT_EQ(after.triangleLeaf.size(), after.mesh.triangles.size());
   // Every vertex of the unsimplified mesh within the tolerance of the simplified surface
   // (corners only: a spacing longer than any edge).
@@ -54,8 +55,8 @@ void expectGuaranteesKept(const ExportMesh& before, const ExportMesh& after, dou
       measureDeviation(before.mesh, after.mesh, 1e9, 8 * tolerance, progress);
   EXPECT_LE(corners.aToB, tolerance * (1 + 1e-9));
   EXPECT_FALSE(corners.capped);
-  // Every simplified vertex is one of the unsimplified ones.
-  EXPECT_LE(corners.bToA, 1e-12);
+  // Every simplified vertex lies within the tolerance of the unsimplified surface.
+  EXPECT_LE(corners.bToA, tolerance * (1 + 1e-9));
 }
 
 TEST(SimplifyMesh, ABoxCollapsesToAFewTrianglesAndKeepsItsCornersAndVolume) {

@@ -1,0 +1,112 @@
+#include "engine/geometry/triangle_grid.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "engine/geometry/mesh.h"
+#include "engine/geometry/triangle_distance.h"
+#include "engine/util/hash.h"
+
+namespace strata {
+namespace {
+
+uint64_t cellKey(const glm::ivec3& c) {
+  return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+         uint64_t(uint32_t(c.z) & 0x1fffff);
+}
+
+}  // namespace
+
+TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
+                           const std::vector<std::array<uint32_t, 3>>& triangles, double reach)
+    : positions_(positions), triangles_(triangles), reach_(reach) {
+  Bounds bounds;
+  for (const auto& t : triangles)
+    for (uint32_t v : t) bounds.include(positions[v]);
+  double edges = 0.0;
+  for (const auto& t : triangles) edges += glm::length(positions[t[1]] - positions[t[0]]);
+  cell_ = std::max(edges / double(std::max<size_t>(triangles.size(), 1)), 2.0 * reach);
+  if (!(cell_ > 0.0)) cell_ = 1.0;
+  origin_ = bounds.empty() ? glm::dvec3(0.0) : bounds.min - glm::dvec3(reach + cell_);
+  spheres_.resize(triangles.size());
+  std::vector<std::pair<uint64_t, uint32_t>> pairs;
+  pairs.reserve(triangles.size() * 8);
+  for (uint32_t t = 0; t < triangles.size(); ++t) {
+    Bounds box;
+    for (uint32_t v : triangles[t]) box.include(positions[v]);
+    const double grown = 0.5 * glm::length(box.size()) + reach;
+    spheres_[t] = glm::dvec4(box.center(), grown * grown);
+    const glm::ivec3 lo = cellOf(box.min - glm::dvec3(reach));
+    const glm::ivec3 hi = cellOf(box.max + glm::dvec3(reach));
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) pairs.emplace_back(cellKey({x, y, z}), t);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  items_.resize(pairs.size());
+  size_t cells = 0;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    items_[k] = pairs[k].second;
+    if (k == 0 || pairs[k].first != pairs[k - 1].first) ++cells;
+  }
+  size_t slots = 16;
+  while (slots < 2 * cells) slots *= 2;
+  table_.assign(slots, Slot{});
+  for (size_t k = 0; k < pairs.size();) {
+    size_t end = k;
+    while (end < pairs.size() && pairs[end].first == pairs[k].first) ++end;
+    size_t slot = avalanche64(pairs[k].first) & (slots - 1);
+    while (table_[slot].end != 0) slot = (slot + 1) & (slots - 1);
+    table_[slot] = {pairs[k].first, uint32_t(k), uint32_t(end)};
+    k = end;
+  }
+}
+
+glm::ivec3 TriangleGrid::cellOf(const glm::dvec3& p) const {
+  return glm::ivec3(glm::floor((p - origin_) / cell_));
+}
+
+const TriangleGrid::Slot* TriangleGrid::cell(const glm::dvec3& p) const {
+  const uint64_t key = cellKey(cellOf(p));
+  const size_t mask = table_.size() - 1;
+  for (size_t slot = avalanche64(key) & mask; table_[slot].end != 0; slot = (slot + 1) & mask)
+    if (table_[slot].key == key) return &table_[slot];
+  return nullptr;
+}
+
+bool TriangleGrid::within(const glm::dvec3& p, double distance) const {
+  const Slot* s = cell(p);
+  if (!s) return false;
+  const double distance2 = distance * distance;
+  for (uint32_t i = s->begin; i < s->end; ++i) {
+    const glm::dvec4& sphere = spheres_[items_[i]];
+    const glm::dvec3 d = p - glm::dvec3(sphere);
+    if (glm::dot(d, d) > sphere.w) continue;  // beyond its box's sphere grown by the reach
+    const auto& t = triangles_[items_[i]];
+    if (pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]) <=
+        distance2)
+      return true;
+  }
+  return false;
+}
+
+double TriangleGrid::nearest(const glm::dvec3& p) const {
+  const Slot* s = cell(p);
+  double best = reach_ * reach_;
+  if (s)
+    for (uint32_t i = s->begin; i < s->end; ++i) {
+      const glm::dvec4& sphere = spheres_[items_[i]];
+      const glm::dvec3 d = p - glm::dvec3(sphere);
+      if (glm::dot(d, d) > sphere.w) continue;
+      const auto& t = triangles_[items_[i]];
+      best = std::min(best, pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]],
+                                                         positions_[t[2]]));
+    }
+  return std::sqrt(best);
+}
+
+}  // namespace strata
