@@ -517,7 +517,8 @@ void discardRecovery(EditorState& state) {
   removeRecoveryFile(state.recoveryPath);
 }
 
-void startExport(EditorState& state, const std::string& path, int resolution, bool insist) {
+void startExport(EditorState& state, const std::string& path, int resolution, double simplifyCells,
+                 bool insist) {
   if (state.exportJob && state.exportJob->status().running) {
     logWarning(state, "an export is already running");
     return;
@@ -526,10 +527,12 @@ void startExport(EditorState& state, const std::string& path, int resolution, bo
     if (!state.makeBackend) throw Error("no backend to export with");
     ExportOptions options;
     options.resolution = resolution;
+    options.simplifyCells = simplifyCells;
     state.exportJob =
         std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),
                                     nullptr, ExportGuard{insist, 0});
-    logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution));
+    logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
+                       (simplifyCells > 0.0 ? ", simplified" : ""));
   });
 }
 

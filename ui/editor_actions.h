@@ -89,7 +89,8 @@ void discardRecovery(EditorState& state);
 // Starts the background export of the current document to `path` at `resolution`.
 // Exports the document in the background (ExportJob); `insist` exports a job whose estimate
 // does not fit anyway.
-void startExport(EditorState& state, const std::string& path, int resolution, bool insist = false);
+void startExport(EditorState& state, const std::string& path, int resolution,
+                 double simplifyCells = 0.0, bool insist = false);
 
 // Runs `body`, turning strata::Error into an error message; returns whether it succeeded.
 bool guarded(EditorState& state, const std::function<void()>& body);

@@ -17,6 +17,7 @@
 #include "engine/eval/backend.h"
 #include "engine/jobs/export_job.h"
 #include "engine/jobs/preview_worker.h"
+#include "engine/jobs/triangle_estimate_job.h"
 #include "ui/file_dialog.h"
 #include "ui/gizmo.h"
 
@@ -113,6 +114,13 @@ struct EditorState {
 
   // Jobs and dialogs.
   std::unique_ptr<ExportJob> exportJob;
+  // The export dialog (panel_modals.cpp): open while a path waits for its options. The choices
+  // are the export's own (not the preview's resolution) and stay for the next export.
+  std::optional<std::string> pendingExportPath;
+  int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
+  bool exportSimplify = false;
+  float exportSimplifyCells = 0.25f;
+  std::unique_ptr<TriangleEstimateJob> exportEstimate;  // the dialog's triangle counts
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
   std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds

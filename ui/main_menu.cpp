@@ -201,7 +201,8 @@ void handleDialogResult(EditorState& state) {
       break;
     }
     case DialogPurpose::Export:
-      startExport(state, path, state.document.scene().settings.resolution);
+      state.pendingExportPath = path;  // the export dialog asks for its options
+      state.exportEstimate.reset();
       break;
     case DialogPurpose::ImportMesh: {
       // The import dialog (panel_modals.cpp) asks for the unit and up axis.

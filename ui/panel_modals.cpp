@@ -1,10 +1,16 @@
 // Questions that block the document (recover the last session? discard unsaved changes?) and
 // the export progress window.
 #include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "engine/eval/evaluator.h"
 #include "engine/io/user_files.h"
+#include "engine/util/limits.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"
@@ -81,7 +87,11 @@ void exportWindow(EditorState& state) {
   ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
   ImGui::Begin("Export", s.running ? nullptr : &open, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::TextWrapped("%s", s.path.c_str());
-  ImGui::TextDisabled("resolution %d", s.resolution);
+  if (s.simplifyCells > 0.0)
+    ImGui::TextDisabled("resolution %d, simplified within %.2f cells", s.resolution,
+                        s.simplifyCells);
+  else
+    ImGui::TextDisabled("resolution %d", s.resolution);
   if (!s.estimate.empty()) ImGui::TextWrapped("estimate: %s", s.estimate.c_str());
   if (s.running) {
     char overlay[96];
@@ -98,6 +108,16 @@ void exportWindow(EditorState& state) {
     if (!s.fileDifference.empty()) ImGui::TextWrapped("%s", s.fileDifference.c_str());
     ImGui::Text("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles, c.vertices,
                 c.components, c.genus);
+    const SimplifyReport& r = s.simplify;
+    if (r.refused)
+      ImGui::TextWrapped("not simplified: %s", r.refusedWhy);
+    else if (r.trianglesBefore > 0)
+      ImGui::TextWrapped(
+          "simplified from %zu triangles (%.1f%%); measured deviation %.3g "
+          "(%.2f cells)",
+          r.trianglesBefore, 100.0 * double(r.trianglesAfter) / double(r.trianglesBefore),
+          r.measured.largest(),
+          s.simplifyCells * r.measured.largest() / std::max(r.tolerance, 1e-300));
     ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
                 c.nonManifoldEdges, c.misorientedEdges);
     ImGui::Text("volume %.6g, area %.6g, %.2f s", c.volume, c.area, s.seconds);
@@ -109,8 +129,9 @@ void exportWindow(EditorState& state) {
     if (s.refused && ImGui::Button("Export anyway", ImVec2(160, 0))) {
       const std::string path = s.path;
       const int resolution = s.resolution;
+      const double simplifyCells = s.simplifyCells;
       state.exportJob.reset();
-      startExport(state, path, resolution, /*insist=*/true);
+      startExport(state, path, resolution, simplifyCells, /*insist=*/true);
       ImGui::End();
       return;
     }
@@ -119,6 +140,101 @@ void exportWindow(EditorState& state) {
   if (!s.running && ImGui::Button("Close", ImVec2(120, 0))) open = false;
   ImGui::End();
   if (!open) state.exportJob.reset();
+}
+
+std::string countText(uint64_t n) {
+  char text[32];
+  if (n >= 10000000)
+    std::snprintf(text, sizeof(text), "%.0f million", double(n) / 1e6);
+  else if (n >= 1000000)
+    std::snprintf(text, sizeof(text), "%.1f million", double(n) / 1e6);
+  else if (n >= 10000)
+    std::snprintf(text, sizeof(text), "%.0f,000", std::floor(double(n) / 1000.0));
+  else
+    std::snprintf(text, sizeof(text), "%llu", static_cast<unsigned long long>(n));
+  return text;
+}
+
+// The export dialog: the export's own resolution and simplification, with the triangles they
+// will make (estimated on a background thread, triangle_estimate_job.h), then export or cancel.
+void exportOptionsDialog(EditorState& state) {
+  const char* title = "Export: options###export options";
+  if (state.pendingExportPath && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  centreNext();
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  if (!state.pendingExportPath) {
+    ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;
+  }
+  const Scene& scene = state.document.scene();
+  int& resolution = state.exportResolution;
+  if (resolution <= 0) resolution = scene.settings.resolution;
+  ImGui::TextUnformatted(state.pendingExportPath->c_str());
+  ImGui::SetNextItemWidth(160);
+  ImGui::InputInt("cells along the longest side", &resolution, 64, 256);
+  resolution = std::clamp(resolution, kMinResolution, kMaxResolution);
+  for (int preset : {256, 512, 1024, 2048}) {
+    char label[16];
+    std::snprintf(label, sizeof(label), "%d", preset);
+    if (ImGui::Button(label, ImVec2(56, 0))) resolution = preset;
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+  const Grid grid = Evaluator::gridFor(scene, resolution);
+  ImGui::TextDisabled("cell %.4g %s; the preview is at %d cells", grid.h,
+                      scene.settings.unit.c_str(), scene.settings.resolution);
+  ImGui::Checkbox("simplify", &state.exportSimplify);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Fewer triangles: edges collapsed where the surface stays within the\n"
+        "tolerance; topology, orientation, sharp edges and seams between\n"
+        "parts kept. Flat faces become a few large triangles.");
+  if (state.exportSimplify) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(160);
+    ImGui::SliderFloat("within cells", &state.exportSimplifyCells, 0.05f, 2.0f, "%.2f");
+    state.exportSimplifyCells = std::clamp(state.exportSimplifyCells, 0.05f, 2.0f);
+    ImGui::SameLine();
+    ImGui::TextDisabled("= %.3g %s", double(state.exportSimplifyCells) * grid.h,
+                        scene.settings.unit.c_str());
+  }
+  // The triangles: the newest finished estimate for this choice; a new one starts once the
+  // last has finished (never waiting on the UI thread).
+  const double cells = state.exportSimplify ? double(state.exportSimplifyCells) : 0.0;
+  TriangleEstimateJob* estimate = state.exportEstimate.get();
+  const bool current =
+      estimate && estimate->resolution() == resolution && estimate->simplifyCells() == cells;
+  if ((!estimate || (estimate->done() && !current)) && state.makeBackend)
+    state.exportEstimate = std::make_unique<TriangleEstimateJob>(
+        state.document.snapshot(), resolution, cells, state.makeBackend());
+  estimate = state.exportEstimate.get();
+  if (estimate && estimate->done() && current) {
+    const TriangleEstimate e = estimate->result();
+    if (!estimate->error().empty())
+      ImGui::TextDisabled("no estimate: %s", estimate->error().c_str());
+    else if (cells > 0.0)
+      ImGui::Text("about %s triangles, simplified from about %s", countText(e.simplified).c_str(),
+                  countText(e.triangles).c_str());
+    else
+      ImGui::Text("about %s triangles", countText(e.triangles).c_str());
+  } else {
+    ImGui::TextDisabled("estimating the triangles...");
+  }
+  ImGui::Separator();
+  if (ImGui::Button("Export", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ENTER)) {
+    const std::string path = *state.pendingExportPath;
+    state.pendingExportPath.reset();
+    ImGui::CloseCurrentPopup();
+    startExport(state, path, resolution, cells);
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ESCAPE)) {
+    state.pendingExportPath.reset();
+    ImGui::CloseCurrentPopup();
+  }
+  if (!state.pendingExportPath) state.exportEstimate.reset();
+  ImGui::EndPopup();
 }
 
 // The import dialog: the chosen file's unit and up axis, then import or cancel.
@@ -177,6 +293,7 @@ void drawModals(EditorState& state) {
   recoveryQuestion(state);
   unsavedQuestion(state);
   importDialog(state);
+  exportOptionsDialog(state);
   exportWindow(state);
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "engine/eval/evaluator.h"
+#include "engine/export/simplify_mesh.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/util/memory.h"
 #include "engine/util/timer.h"
@@ -159,6 +160,27 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   // 0.9 to 3.2 microseconds per triangle (scaffold at 512 cells here, at 2048 on the H200 host,
   // 2026-11-23).
   e.seconds = seconds + 2e-6 * double(e.triangles);
+  return e;
+}
+
+TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, double simplifyCells,
+                                         const std::shared_ptr<Backend>& backend,
+                                         Progress& progress) {
+  const Grid grid = Evaluator::gridFor(scene, resolution);
+  const int probeResolution = std::min(longestSide(grid), kProbeResolution);
+  Evaluator probe(backend);
+  ContourOptions options;
+  options.resolution = probeResolution;
+  options.tileCells = probeResolution * 2;  // one tile
+  ContourReport report;
+  ExportMesh mesh = contourScene(scene, probe, options, progress, &report);
+  const double linear = double(longestSide(grid)) / double(longestSide(report.grid));
+  TriangleEstimate e;
+  e.triangles = uint64_t(double(mesh.mesh.triangles.size()) * linear * linear);
+  if (simplifyCells > 0.0 && !mesh.mesh.triangles.empty()) {
+    const SimplifyReport r = simplifyMesh(&mesh, simplifyCells * report.grid.h, progress);
+    e.simplified = std::min(e.triangles, uint64_t(double(r.trianglesAfter) * linear));
+  }
   return e;
 }
 

@@ -256,11 +256,17 @@ class Collapser {
 
  private:
   using CollapseInfo = OpenMesh::Decimater::CollapseInfoT<Mesh>;
+  // Cheapest error first; among equal errors (a flat region: all zero) the shortest edge, so
+  // that flat regions coarsen evenly instead of one fan sweeping across them (which would carry
+  // ever more covered points along, quadratic in the region's size); then the vertex index.
   struct Entry {
     double priority;
+    double length2;
     uint32_t vertex, version;
     bool operator>(const Entry& o) const {
-      return priority > o.priority || (priority == o.priority && vertex > o.vertex);
+      if (priority != o.priority) return priority > o.priority;
+      if (length2 != o.length2) return length2 > o.length2;
+      return vertex > o.vertex;
     }
   };
 
@@ -283,7 +289,7 @@ class Collapser {
     const size_t i = size_t(v.idx());
     ++version_[i];
     if (m_.status(v).deleted() || m_.status(v).locked()) return;
-    double best = INFINITY;
+    double best = INFINITY, bestLength2 = INFINITY;
     Mesh::HalfedgeHandle bestHalfedge;
     for (const auto h : m_.voh_range(v)) {
       if (refusedAt_[size_t(h.idx())] == epoch_[i] + 1) continue;
@@ -292,14 +298,16 @@ class Collapser {
       Quadric q = quadric_[i];
       q += quadric_[size_t(ci.v1.idx())];
       const double cost = q.evaluate(ci.p1);
-      if (cost < best) {
+      const double length2 = (ci.p1 - ci.p0).sqrnorm();
+      if (cost < best || (cost == best && length2 < bestLength2)) {
         best = cost;
+        bestLength2 = length2;
         bestHalfedge = h;
       }
     }
     if (!bestHalfedge.is_valid()) return;
     target_[i] = bestHalfedge;
-    heap_.push({best, uint32_t(i), version_[i]});
+    heap_.push({best, bestLength2, uint32_t(i), version_[i]});
   }
 
   // The cheap rules: topology (as OpenMesh's BaseDecimaterT::is_collapse_legal), features,
@@ -592,7 +600,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
         markFeatures(piece);
         Collapser collapser(piece, tolerance, surface, true);
         collapser.coverFaceCentresAndEdgeMidpoints();
-        collapser.run(progress, collapses, expected, 0.02, 0.8);
+        collapser.run(progress, collapses, expected, 0.02, 0.7);
         carried[size_t(c)] = collapser.takePoints();
       }
     });
@@ -639,7 +647,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
       collapser.loadPoints(std::move(points));
     else
       collapser.coverFaceCentresAndEdgeMidpoints();
-    collapser.run(progress, collapses, expected, chunks > 1 ? 0.8 : 0.02, 0.98);
+    collapser.run(progress, collapses, expected, chunks > 1 ? 0.7 : 0.02, 0.88);
     collapser.relocate(progress);
   }
   points = {};
@@ -662,7 +670,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   }
   report.measured =
       measureDeviation(mesh->mesh, simplified.mesh, kSampleSpacingPerTolerance * tolerance,
-                       surface.reach(), progress, "simplify", &surface);
+                       surface.reach(), progress, "simplify", &surface, 0.9, 1.0);
   *mesh = std::move(simplified);
   report.trianglesAfter = mesh->mesh.triangles.size();
   report.seconds = clock.seconds();

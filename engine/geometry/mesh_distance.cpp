@@ -24,7 +24,8 @@ struct OneWay {
 // The largest distance of samples of `from` to the surface `to` (found through its grid), each
 // capped at the grid's reach.
 OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double spacing,
-                     Progress& progress, const char* stage, double progressBase) {
+                     Progress& progress, const char* stage, double fractionFrom,
+                     double fractionTo) {
   const int64_t count = int64_t(from.triangles.size());
   constexpr int64_t kBlock = 1 << 12;
   const int64_t blocks = (count + kBlock - 1) / kBlock;
@@ -55,7 +56,8 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double sp
       perBlock[size_t(block)] = result;
       const int64_t finished = done.fetch_add(1) + 1;
       if ((finished & 15) == 0 && !progress.cancelled())
-        progress.report(stage, progressBase + 0.5 * double(finished) / double(blocks));
+        progress.report(
+            stage, fractionFrom + (fractionTo - fractionFrom) * double(finished) / double(blocks));
     }
   });
   OneWay total;
@@ -71,20 +73,20 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double sp
 
 SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double spacing,
                                   double cap, Progress& progress, const char* stage,
-                                  const TriangleGrid* aGrid) {
+                                  const TriangleGrid* aGrid, double from, double to) {
   SurfaceDeviation deviation;
   deviation.spacing = spacing;
   if (a.empty() || b.empty() || !(spacing > 0.0) || !(cap > 0.0)) return deviation;
   OneWay ab, ba;
   {
     const TriangleGrid bGrid(b.positions, b.triangles, cap);
-    ab = measureOneWay(a, bGrid, spacing, progress, stage, 0.0);
+    ab = measureOneWay(a, bGrid, spacing, progress, stage, from, 0.5 * (from + to));
   }
   if (aGrid) {
-    ba = measureOneWay(b, *aGrid, spacing, progress, stage, 0.5);
+    ba = measureOneWay(b, *aGrid, spacing, progress, stage, 0.5 * (from + to), to);
   } else {
     const TriangleGrid grid(a.positions, a.triangles, cap);
-    ba = measureOneWay(b, grid, spacing, progress, stage, 0.5);
+    ba = measureOneWay(b, grid, spacing, progress, stage, 0.5 * (from + to), to);
   }
   deviation.aToB = ab.largest;
   deviation.bToA = ba.largest;

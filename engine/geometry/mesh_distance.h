@@ -28,10 +28,11 @@ struct SurfaceDeviation {
 // `spacing` and `cap` are in the meshes' units (> 0). A point of a triangle is at most
 // spacing / sqrt(3) from its nearest sample, so the true deviation exceeds the measured one by
 // at most that. `aGrid` (may be null): a's triangles already in a grid whose reach is the cap.
-// Progress stage `stage`, checked between blocks; throws Cancelled.
+// Progress stage `stage` from `from` to `to`, checked between blocks; throws Cancelled.
 SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double spacing,
                                   double cap, Progress& progress,
                                   const char* stage = "measure deviation",
-                                  const TriangleGrid* aGrid = nullptr);
+                                  const TriangleGrid* aGrid = nullptr, double from = 0.0,
+                                  double to = 1.0);
 
 }  // namespace strata

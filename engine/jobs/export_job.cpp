@@ -1,6 +1,7 @@
 #include "engine/jobs/export_job.h"
 
 #include <algorithm>
+#include <iterator>
 #include <new>
 
 #include "engine/export/export_scene.h"
@@ -12,6 +13,28 @@
 
 namespace strata {
 
+double overallExportFraction(const std::string& stage, double fraction, bool simplifying) {
+  struct Part {
+    const char* prefix;
+    double from, to;
+  };
+  static const Part kPlain[] = {{"estimate", 0.0, 0.05},
+                                {"evaluate", 0.05, 0.1},
+                                {"export", 0.1, 0.7},
+                                {"write", 0.7, 0.8},
+                                {"check", 0.8, 1.0}};
+  static const Part kSimplifying[] = {{"estimate", 0.0, 0.03}, {"evaluate", 0.03, 0.05},
+                                      {"export", 0.05, 0.3},   {"simplify", 0.3, 0.9},
+                                      {"write", 0.9, 0.93},    {"check", 0.93, 1.0}};
+  const double f = std::clamp(fraction, 0.0, 1.0);
+  const Part* begin = simplifying ? std::begin(kSimplifying) : std::begin(kPlain);
+  const Part* end = simplifying ? std::end(kSimplifying) : std::end(kPlain);
+  for (const Part* part = begin; part != end; ++part)
+    if (stage.rfind(part->prefix, 0) == 0)  // (the ends exactly: one stage's end, the next's start)
+      return f >= 1.0 ? part->to : std::min(part->to, part->from + (part->to - part->from) * f);
+  return 0.0;  // "start" and anything unknown
+}
+
 ExportJob::ExportJob(std::shared_ptr<const Scene> scene, std::string path,
                      const ExportOptions& options, std::shared_ptr<Backend> backend,
                      Listener onChange, ExportGuard guard)
@@ -19,13 +42,17 @@ ExportJob::ExportJob(std::shared_ptr<const Scene> scene, std::string path,
   status_.running = true;
   status_.path = std::move(path);
   status_.resolution = options.resolution;
+  status_.simplifyCells = options.simplifyCells;
   status_.stage = "start";
-  progress_ = std::make_shared<Progress>([this](const std::string& stage, double fraction) {
-    update([&](ExportStatus& s) {
-      s.stage = stage;
-      s.fraction = fraction;
-    });
-  });
+  const bool simplifying = options.simplifyCells > 0.0;
+  progress_ =
+      std::make_shared<Progress>([this, simplifying](const std::string& stage, double fraction) {
+        update([&](ExportStatus& s) {
+          s.stage = stage;
+          s.stageFraction = fraction;
+          s.fraction = std::max(s.fraction, overallExportFraction(stage, fraction, simplifying));
+        });
+      });
   thread_ =
       std::thread([this, scene = std::move(scene), options, backend = std::move(backend), guard] {
         lowerThisThreadPriority();  // the editor stays smooth while it exports: thread_priority.h
@@ -81,6 +108,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
         *scene, path, options, std::move(backend), *progress_,
         [&](const std::string& line) { update([&](ExportStatus& s) { s.notice = line; }); });
     result.succeeded = true;
+    result.simplify = report.simplify;
     result.check = report.check;
     result.fileDifference = report.fileDifference;
   } catch (const Cancelled&) {
@@ -102,6 +130,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     s.error = result.error;
     s.refused = result.refused;
     s.check = result.check;
+    s.simplify = result.simplify;
     s.fileDifference = result.fileDifference;
     s.seconds = clock.seconds();
   });

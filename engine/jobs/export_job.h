@@ -29,8 +29,12 @@ struct ExportStatus {
   bool finished = false;   // ended (succeeded, failed or cancelled)
   bool succeeded = false;  // written, re-read and checked
   bool cancelled = false;
-  std::string stage;  // "start", "evaluate", "export", "write <format>", "check"
+  // "start", "estimate", "evaluate", "export", "simplify", "write <format>", "check"
+  std::string stage;
+  // The whole job done, in [0, 1]: the stages as parts of one bar (overallExportFraction);
+  // never goes back while the job runs.
   double fraction = 0.0;
+  double stageFraction = 0.0;  // the current stage's own fraction
   std::string error;
   std::string notice;  // the last fallback taken (smaller tiles, the CPU), "" when none
   // What the export will cost (export/job_estimate.h), "" for a job too small to probe.
@@ -44,7 +48,13 @@ struct ExportStatus {
   bool checkPassed() const { return writtenCheckPassed(check, fileDifference); }
   double seconds = 0.0;
   int resolution = 0;
+  double simplifyCells = 0.0;  // as asked (0: not simplified)
+  SimplifyReport simplify;     // valid when succeeded and simplifyCells > 0
 };
+
+// Where a stage's own `fraction` falls on the job's one bar: each stage a fixed part, in the
+// order they run, larger for the stages that take longer (contouring; simplifying when asked).
+double overallExportFraction(const std::string& stage, double fraction, bool simplifying);
 
 // When an export may start (see job_estimate.h).
 struct ExportGuard {

@@ -53,11 +53,16 @@ class ExportWatch {
     std::lock_guard<std::mutex> lock(mutex_);
     return stages_;
   }
+  std::vector<double> fractions() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return fractions_;
+  }
 
  private:
   void onChange(const ExportStatus& s) {
     std::unique_lock<std::mutex> lock(mutex_);
     if (stages_.empty() || stages_.back() != s.stage) stages_.push_back(s.stage);
+    if (s.running) fractions_.push_back(s.fraction);
     finished_ = s.finished;
     if (!holdAt_.empty() && !held_ && s.stage.rfind(holdAt_, 0) == 0) {
       held_ = true;
@@ -74,6 +79,7 @@ class ExportWatch {
   bool released_ = false;
   bool finished_ = false;
   std::vector<std::string> stages_;
+  std::vector<double> fractions_;
 };
 
 // An empty folder of its own for each test.
@@ -140,6 +146,49 @@ TEST(ExportJob, FinishedExportLeavesACheckedFile) {
         if (stage.rfind(name, 0) == 0 && std::find(order.begin(), order.end(), name) == order.end())
           order.push_back(name);
     EXPECT_EQ(order, (std::vector<std::string>{"evaluate", "export", "write", "check"}));
+  }
+}
+
+// A simplified export: the file holds the simplified mesh, checked; the status says what the
+// simplification did; the one progress bar never goes back, through every stage.
+TEST(ExportJob, SimplifiedExportAndAProgressBarThatNeverGoesBack) {
+  const std::string folder = freshFolder("simplified");
+  const std::string path = folder + "/part.stl";
+  ExportOptions options = smallTiles();
+  options.simplifyCells = 0.25;
+  ExportWatch watch;
+  ExportJob job(boxMinusSphere(32), path, options, std::make_shared<CpuBackend>(),
+                watch.listener());
+  ASSERT_TRUE(watch.waitUntilFinished());
+  const ExportStatus s = job.status();
+  ASSERT_TRUE(s.succeeded) << s.error;
+  EXPECT_TRUE(s.checkPassed());
+  EXPECT_EQ(s.simplifyCells, 0.25);
+  EXPECT_GT(s.simplify.trianglesBefore, s.simplify.trianglesAfter);
+  EXPECT_EQ(s.simplify.trianglesAfter, s.check.triangles);
+  EXPECT_EQ(readMeshFileRaw(path).triangles.size(), s.check.triangles);
+  const std::vector<double> f = watch.fractions();
+  ASSERT_GT(f.size(), 3u);
+  for (size_t k = 1; k < f.size(); ++k) EXPECT_GE(f[k], f[k - 1]) << k;
+  EXPECT_GT(f.back(), 0.9);
+  bool simplified = false;
+  for (const auto& stage : watch.stages()) simplified = simplified || stage == "simplify";
+  EXPECT_TRUE(simplified);
+}
+
+TEST(ExportJob, TheStagesFillOneBarInOrder) {
+  for (bool simplifying : {false, true}) {
+    double last = 0.0;
+    for (const std::string stage :
+         {"estimate", "evaluate", "export", "simplify", "write STL", "check"}) {
+      if (!simplifying && stage == "simplify") continue;
+      for (double f : {0.0, 0.5, 1.0}) {
+        const double overall = overallExportFraction(stage, f, simplifying);
+        EXPECT_GE(overall, last) << stage << " " << f;
+        last = overall;
+      }
+    }
+    EXPECT_DOUBLE_EQ(last, 1.0);
   }
 }
 
