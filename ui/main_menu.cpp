@@ -14,7 +14,12 @@ namespace {
 
 std::string documentFolder(const EditorState& state) {
   if (state.document.path().empty()) return "";
-  return std::filesystem::path(state.document.path()).parent_path().string() + "/";
+  // Absolute: the file dialog resolves a relative name in the folder it shows, which for a
+  // document opened by a relative path would double that path.
+  std::error_code error;
+  const std::filesystem::path path =
+      std::filesystem::absolute(std::filesystem::path(state.document.path()), error);
+  return (error ? std::filesystem::path(state.document.path()) : path).parent_path().string() + "/";
 }
 
 std::string exportSuggestion(const EditorState& state) {
