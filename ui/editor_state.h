@@ -121,6 +121,9 @@ struct EditorState {
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;
   std::unique_ptr<TriangleEstimateJob> exportEstimate;  // the dialog's triangle counts
+  // Estimates cancelled (the choice changed, the dialog closed) and not yet finished: dropped
+  // once done(), so that the UI never joins a running one.
+  std::vector<std::unique_ptr<TriangleEstimateJob>> retiredEstimates;
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
   std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds

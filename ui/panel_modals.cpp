@@ -155,6 +155,19 @@ std::string countText(uint64_t n) {
   return text;
 }
 
+// Cancels the dialog's estimate and keeps it until it has stopped; drops the stopped ones.
+void retireEstimate(EditorState& state) {
+  if (state.exportEstimate) {
+    state.exportEstimate->cancel();
+    state.retiredEstimates.push_back(std::move(state.exportEstimate));
+  }
+  auto& retired = state.retiredEstimates;
+  retired.erase(
+      std::remove_if(retired.begin(), retired.end(),
+                     [](const std::unique_ptr<TriangleEstimateJob>& job) { return job->done(); }),
+      retired.end());
+}
+
 // The export dialog: the export's own resolution and simplification, with the triangles they
 // will make (estimated on a background thread, triangle_estimate_job.h), then export or cancel.
 void exportOptionsDialog(EditorState& state) {
@@ -199,15 +212,17 @@ void exportOptionsDialog(EditorState& state) {
     ImGui::TextDisabled("= %.3g %s", double(state.exportSimplifyCells) * grid.h,
                         scene.settings.unit.c_str());
   }
-  // The triangles: the newest finished estimate for this choice; a new one starts once the
-  // last has finished (never waiting on the UI thread).
+  // The triangles, estimated off the UI thread for this choice; one for an older choice is
+  // cancelled and retired (never joined here).
   const double cells = state.exportSimplify ? double(state.exportSimplifyCells) : 0.0;
   TriangleEstimateJob* estimate = state.exportEstimate.get();
   const bool current =
       estimate && estimate->resolution() == resolution && estimate->simplifyCells() == cells;
-  if ((!estimate || (estimate->done() && !current)) && state.makeBackend)
+  if (!current && !ImGui::IsAnyItemActive()) {  // not while a field or slider is held
+    retireEstimate(state);
     state.exportEstimate = std::make_unique<TriangleEstimateJob>(
-        state.document.snapshot(), resolution, cells, state.makeBackend());
+        state.document.snapshot(), resolution, cells, state.makeBackend);
+  }
   estimate = state.exportEstimate.get();
   if (estimate && estimate->done() && current) {
     const TriangleEstimate e = estimate->result();
@@ -233,7 +248,7 @@ void exportOptionsDialog(EditorState& state) {
     state.pendingExportPath.reset();
     ImGui::CloseCurrentPopup();
   }
-  if (!state.pendingExportPath) state.exportEstimate.reset();
+  if (!state.pendingExportPath) retireEstimate(state);
   ImGui::EndPopup();
 }
 
@@ -290,6 +305,11 @@ void importDialog(EditorState& state) {
 }  // namespace
 
 void drawModals(EditorState& state) {
+  auto& retired = state.retiredEstimates;  // those that have stopped go
+  retired.erase(
+      std::remove_if(retired.begin(), retired.end(),
+                     [](const std::unique_ptr<TriangleEstimateJob>& job) { return job->done(); }),
+      retired.end());
   recoveryQuestion(state);
   unsavedQuestion(state);
   importDialog(state);

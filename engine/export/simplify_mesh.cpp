@@ -63,9 +63,8 @@ struct Piece {
 };
 
 // Builds a piece from `triangles` (indices into `positions`), with `isSeam` vertices locked.
-// A seam vertex whose triangles in this piece form several fans gets one copy per fan (it never
-// moves, and the copies are one vertex again once stitched). False when a face cannot be added
-// (the mesh is not a 2-manifold).
+// False when a face cannot be added: the mesh is not a 2-manifold, or (a chunk) OpenMesh could
+// not join the fans a seam vertex has in it.
 bool buildPiece(Piece& piece, const std::vector<glm::dvec3>& positions,
                 const std::vector<std::array<uint32_t, 3>>& allTriangles,
                 const std::vector<uint32_t>& triangles, const std::vector<uint32_t>& leaves,
@@ -96,13 +95,8 @@ bool buildPiece(Piece& piece, const std::vector<glm::dvec3>& positions,
     if ((k & 0xffff) == 0) progress.check();
     const auto& tri = allTriangles[triangles[k]];
     Mesh::VertexHandle corner[3] = {local(tri[0]), local(tri[1]), local(tri[2])};
-    auto face = m.add_face(corner[0], corner[1], corner[2]);
-    if (!face.is_valid()) {  // fans meeting at a seam vertex: fresh copies of the seam corners
-      for (auto& c : corner)
-        if (m.property(piece.seam, c)) c = addVertex(m.property(piece.original, c));
-      face = m.add_face(corner[0], corner[1], corner[2]);
-      if (!face.is_valid()) return false;
-    }
+    const auto face = m.add_face(corner[0], corner[1], corner[2]);
+    if (!face.is_valid()) return false;
     m.property(piece.leaf, face) = leaves.empty() ? 0u : leaves[triangles[k]];
   }
   return true;
@@ -189,7 +183,11 @@ class Collapser {
     }
     points_.assign(m_.n_faces(), {});
     version_.assign(m_.n_vertices(), 0);
-    epoch_.assign(m_.n_vertices(), 0);
+    // Epochs are drawn from one clock, so that no two vertices ever share one: a refusal stamp
+    // stays with its halfedge when a collapse hands the halfedge to another vertex, and must
+    // not match that vertex's epoch.
+    epoch_.resize(m_.n_vertices());
+    for (auto& e : epoch_) e = ++clock_;
     refusedAt_.assign(m_.n_halfedges(), 0);
     target_.assign(m_.n_vertices(), Mesh::HalfedgeHandle());
   }
@@ -235,7 +233,7 @@ class Collapser {
       const Mesh::HalfedgeHandle h = target_[e.vertex];
       const CollapseInfo ci(m_, h);
       if (!allowed(ci) || !deviationKept(ci)) {
-        refusedAt_[size_t(h.idx())] = epoch_[e.vertex] + 1;
+        refusedAt_[size_t(h.idx())] = epoch_[e.vertex];
         offer(v);
         continue;
       }
@@ -247,7 +245,7 @@ class Collapser {
       afterCollapse(ci);
       support.push_back(ci.v1);
       for (const auto w : support) {
-        ++epoch_[size_t(w.idx())];
+        epoch_[size_t(w.idx())] = ++clock_;
         offer(w);
       }
     }
@@ -292,7 +290,7 @@ class Collapser {
     double best = INFINITY, bestLength2 = INFINITY;
     Mesh::HalfedgeHandle bestHalfedge;
     for (const auto h : m_.voh_range(v)) {
-      if (refusedAt_[size_t(h.idx())] == epoch_[i] + 1) continue;
+      if (refusedAt_[size_t(h.idx())] == epoch_[i]) continue;
       const CollapseInfo ci(m_, h);
       if (!flagsAllow(ci)) continue;
       Quadric q = quadric_[i];
@@ -402,7 +400,8 @@ class Collapser {
     const double longest =
         std::sqrt(std::max({glm::dot(c[1] - c[0], c[1] - c[0]), glm::dot(c[2] - c[1], c[2] - c[1]),
                             glm::dot(c[0] - c[2], c[0] - c[2])}));
-    const int n = int(std::clamp(std::ceil(longest / sampleSpacing_), 2.0, double(kBackSteps)));
+    const double steps = std::ceil(longest / sampleSpacing_);
+    const int n = steps >= 2.0 ? int(std::min(steps, double(kBackSteps))) : 2;
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {
         if ((i == 0 && j == 0) || i == n || j == n) continue;  // a corner
@@ -514,7 +513,9 @@ class Collapser {
   double minCos_;
   std::vector<Quadric> quadric_;
   std::vector<Points> points_;
-  std::vector<uint32_t> version_, epoch_, refusedAt_;
+  std::vector<uint32_t> version_;
+  std::vector<uint64_t> epoch_, refusedAt_;  // refusedAt_: the epoch of the refusal, 0 none
+  uint64_t clock_ = 0;
   std::vector<Mesh::HalfedgeHandle> target_;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
   std::vector<Mesh::FaceHandle> changed_;
@@ -534,8 +535,8 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   report.trianglesAfter = report.trianglesBefore;
   if (mesh->mesh.triangles.empty() || !(tolerance > 0.0)) return report;
   progress.report("simplify", 0.0);
-  // OpenMesh prints every face it cannot add; buildPiece handles those (copies of seam vertices,
-  // or a refusal in the report).
+  // OpenMesh prints every face it cannot add; buildPiece reports those (the chunks then give way
+  // to the whole mesh at once, or the report says why nothing was done).
   omerr().disable();
   const auto& positions = mesh->mesh.positions;
   const auto& triangles = mesh->mesh.triangles;
@@ -555,7 +556,8 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   std::vector<Points> points;  // per face of the stitched mesh
   std::vector<std::array<uint32_t, 3>> stitched;
   std::vector<uint32_t> stitchedLeaf;
-  if (chunks > 1) {
+  bool chunked = chunks > 1;
+  if (chunked) {
     const Bounds bounds = meshBounds(mesh->mesh);
     const glm::dvec3 size = bounds.size();
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
@@ -586,43 +588,42 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
           isSeam[v] = 1;
       }
     std::vector<Piece> pieces(static_cast<size_t>(chunks));
-    std::vector<std::vector<Points>> carried(static_cast<size_t>(chunks));
     std::atomic<bool> built{true};
     parallelFor(0, chunks, 1, [&](int64_t first, int64_t last) {
-      for (int64_t c = first; c < last; ++c) {
-        Piece& piece = pieces[size_t(c)];
-        if (!buildPiece(piece, positions, triangles, members[size_t(c)], mesh->triangleLeaf, isSeam,
-                        progress)) {
+      for (int64_t c = first; c < last && built; ++c)
+        if (!buildPiece(pieces[size_t(c)], positions, triangles, members[size_t(c)],
+                        mesh->triangleLeaf, isSeam, progress))
           built = false;
-          return;
-        }
-        members[size_t(c)] = {};
-        markFeatures(piece);
-        Collapser collapser(piece, tolerance, surface, true);
-        collapser.coverFaceCentresAndEdgeMidpoints();
-        collapser.run(progress, collapses, expected, 0.02, 0.7);
-        carried[size_t(c)] = collapser.takePoints();
-      }
     });
-    if (!built) {
-      report.refused = true;
-      report.refusedWhy = "the mesh is not a 2-manifold OpenMesh can hold";
-      report.seconds = clock.seconds();
-      return report;
-    }
-    for (size_t c = 0; c < pieces.size(); ++c) {
-      const Mesh& m = pieces[c].mesh;
-      for (const auto f : m.faces()) {
-        std::array<uint32_t, 3> tri{};
-        int k = 0;
-        for (const auto v : m.fv_range(f)) tri[k++] = m.property(pieces[c].original, v);
-        stitched.push_back(tri);
-        stitchedLeaf.push_back(m.property(pieces[c].leaf, f));
-        points.push_back(std::move(carried[c][size_t(f.idx())]));
+    members = {};
+    chunked = built;  // else a seam vertex OpenMesh could not take: the whole mesh at once
+    if (chunked) {
+      std::vector<std::vector<Points>> carried(static_cast<size_t>(chunks));
+      parallelFor(0, chunks, 1, [&](int64_t first, int64_t last) {
+        for (int64_t c = first; c < last; ++c) {
+          Piece& piece = pieces[size_t(c)];
+          markFeatures(piece);
+          Collapser collapser(piece, tolerance, surface, true);
+          collapser.coverFaceCentresAndEdgeMidpoints();
+          collapser.run(progress, collapses, expected, 0.02, 0.7);
+          carried[size_t(c)] = collapser.takePoints();
+        }
+      });
+      for (size_t c = 0; c < pieces.size(); ++c) {
+        const Mesh& m = pieces[c].mesh;
+        for (const auto f : m.faces()) {
+          std::array<uint32_t, 3> tri{};
+          int k = 0;
+          for (const auto v : m.fv_range(f)) tri[k++] = m.property(pieces[c].original, v);
+          stitched.push_back(tri);
+          stitchedLeaf.push_back(m.property(pieces[c].leaf, f));
+          points.push_back(std::move(carried[c][size_t(f.idx())]));
+        }
+        pieces[c] = Piece();
       }
-      pieces[c] = Piece();
     }
-  } else {
+  }
+  if (!chunked) {
     stitched = triangles;
     stitchedLeaf = mesh->triangleLeaf;
   }
@@ -631,7 +632,16 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   std::vector<uint32_t> all(stitched.size());
   for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
   Piece whole;
-  if (!buildPiece(whole, positions, stitched, all, stitchedLeaf, {}, progress)) {
+  bool builtWhole = buildPiece(whole, positions, stitched, all, stitchedLeaf, {}, progress);
+  if (!builtWhole && chunked) {  // the chunks did not stitch into a 2-manifold: start again
+    chunked = false;
+    points = {};
+    whole = Piece();
+    all.resize(count);
+    for (size_t t = 0; t < count; ++t) all[t] = uint32_t(t);
+    builtWhole = buildPiece(whole, positions, triangles, all, mesh->triangleLeaf, {}, progress);
+  }
+  if (!builtWhole) {
     report.refused = true;
     report.refusedWhy = "the mesh is not a 2-manifold OpenMesh can hold";
     report.seconds = clock.seconds();
@@ -643,11 +653,11 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   markFeatures(whole);
   {
     Collapser collapser(whole, tolerance, surface, false);
-    if (chunks > 1)
+    if (chunked)
       collapser.loadPoints(std::move(points));
     else
       collapser.coverFaceCentresAndEdgeMidpoints();
-    collapser.run(progress, collapses, expected, chunks > 1 ? 0.7 : 0.02, 0.88);
+    collapser.run(progress, collapses, expected, chunked ? 0.7 : 0.02, 0.88);
     collapser.relocate(progress);
   }
   points = {};

@@ -10,7 +10,8 @@
 //     of each of its triangles and the midpoint of each of its edges stays within `tolerance`
 //     of the simplified face that covers it (the points carried along on the faces, as in
 //     OpenMesh's Hausdorff module), and the new faces stay within `tolerance` of the
-//     unsimplified surface on a grid of points at most 3 tolerances apart. Between those points
+//     unsimplified surface on a grid of points 3 tolerances apart (at most 6 steps along an
+//     edge: a large face is tested more coarsely). Between those points
 //     either surface may stray a little further: the deviation is measured both ways
 //     (mesh_distance.h) and reported;
 //   - blur a sharp feature: edges whose faces meet at more than kFeatureAngleDegrees, and edges

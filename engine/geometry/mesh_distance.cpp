@@ -43,7 +43,8 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double sp
         const double longest = std::sqrt(std::max(
             {glm::dot(p1 - p0, p1 - p0), glm::dot(p2 - p1, p2 - p1), glm::dot(p0 - p2, p0 - p2)}));
         // At most kMaxSteps per edge (a triangle 4096 spacings long is sampled more coarsely).
-        const int n = int(std::clamp(std::ceil(longest / spacing), 1.0, double(kMaxSteps)));
+        const double steps = std::ceil(longest / spacing);  // NaN for a non-finite corner: 1
+        const int n = steps >= 1.0 ? int(std::min(steps, double(kMaxSteps))) : 1;
         for (int i = 0; i <= n; ++i)
           for (int j = 0; i + j <= n; ++j) {
             const glm::dvec3 p = p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n);

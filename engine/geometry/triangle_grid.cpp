@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "engine/geometry/mesh.h"
 #include "engine/geometry/triangle_distance.h"
+#include "engine/util/error.h"
 #include "engine/util/hash.h"
 
 namespace strata {
@@ -30,7 +32,7 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
   double edges = 0.0;
   for (const auto& t : triangles) edges += glm::length(positions[t[1]] - positions[t[0]]);
   cell_ = std::max(edges / double(std::max<size_t>(triangles.size(), 1)), 2.0 * reach);
-  if (!(cell_ > 0.0)) cell_ = 1.0;
+  if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = 1.0;
   origin_ = bounds.empty() ? glm::dvec3(0.0) : bounds.min - glm::dvec3(reach + cell_);
   spheres_.resize(triangles.size());
   std::vector<std::pair<uint64_t, uint32_t>> pairs;
@@ -42,10 +44,25 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
     spheres_[t] = glm::dvec4(box.center(), grown * grown);
     const glm::ivec3 lo = cellOf(box.min - glm::dvec3(reach));
     const glm::ivec3 hi = cellOf(box.max + glm::dvec3(reach));
+    // Only the cells the triangle's plane passes within reach of: a large tilted triangle
+    // (a simplified mesh has some) would otherwise fill the cube of its box.
+    const glm::dvec3 a = positions[triangles[t][0]];
+    glm::dvec3 normal = glm::cross(positions[triangles[t][1]] - a, positions[triangles[t][2]] - a);
+    const double length = glm::length(normal);
+    const bool planar = length > 0.0 && std::isfinite(length);
+    if (planar) normal /= length;
+    const double slab = reach + 0.5 * std::sqrt(3.0) * cell_;  // plane to a cell's centre
     for (int z = lo.z; z <= hi.z; ++z)
       for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) pairs.emplace_back(cellKey({x, y, z}), t);
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const glm::dvec3 centre = origin_ + (glm::dvec3(x, y, z) + 0.5) * cell_;
+          if (planar && std::abs(glm::dot(centre - a, normal)) > slab) continue;
+          pairs.emplace_back(cellKey({x, y, z}), t);
+        }
   }
+  if (pairs.size() >= size_t(UINT32_MAX))
+    throw Error("a triangle grid of " + std::to_string(pairs.size()) +
+                " cell entries is beyond its 32-bit index");
   std::sort(pairs.begin(), pairs.end());
   items_.resize(pairs.size());
   size_t cells = 0;
@@ -67,7 +84,14 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
 }
 
 glm::ivec3 TriangleGrid::cellOf(const glm::dvec3& p) const {
-  return glm::ivec3(glm::floor((p - origin_) / cell_));
+  // Clamped before the conversion (a far or non-finite point lands in an outer cell, which
+  // holds no triangle or only ones the exact test then rejects).
+  glm::ivec3 c;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double v = std::floor((p[axis] - origin_[axis]) / cell_);
+    c[axis] = v >= -1e9 && v <= 1e9 ? int(v) : (v > 0.0 ? int(1e9) : int(-1e9));
+  }
+  return c;
 }
 
 const TriangleGrid::Slot* TriangleGrid::cell(const glm::dvec3& p) const {

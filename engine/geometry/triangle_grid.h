@@ -1,7 +1,8 @@
 // Triangles of a mesh bucketed by the cells of a uniform grid, for "how far is this point from
 // the surface, up to `reach`" queries in about constant time: each triangle is listed in every
-// cell that its box, grown by `reach`, overlaps; cells are found through an open-addressing
-// table. Cells are about a triangle across (the mean edge) and at least 2 * reach.
+// cell that its box, grown by `reach`, overlaps and its plane passes within reach of; cells are
+// found through an open-addressing table. Cells are about a triangle across (the mean edge) and
+// at least 2 * reach. Coordinates must be finite; throws strata::Error beyond 2^32 entries.
 //
 // Threads: immutable after construction; queries may run on any number of threads at once. The
 // mesh's arrays must outlive the grid (they are referenced, not copied).

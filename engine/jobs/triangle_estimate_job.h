@@ -3,11 +3,13 @@
 // waits: it asks again when the choice changes and shows the newest finished answer.
 //
 // Threads: constructed, polled and destroyed on one thread (the UI's); the work runs on its own
-// thread, at a lower priority, with its own backend. Destruction cancels and joins (the probe
-// stops at its next progress check: milliseconds).
+// thread, at a lower priority, with a backend it makes there (a CUDA backend takes a moment to
+// start). cancel() asks it to stop and returns at once; destruction cancels and joins (the probe
+// stops at its next progress check: milliseconds; the UI keeps a cancelled job until done()).
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -23,11 +25,12 @@ namespace strata {
 class TriangleEstimateJob {
  public:
   TriangleEstimateJob(std::shared_ptr<const Scene> scene, int resolution, double simplifyCells,
-                      std::shared_ptr<Backend> backend);
+                      std::function<std::shared_ptr<Backend>()> makeBackend);
   ~TriangleEstimateJob();
   TriangleEstimateJob(const TriangleEstimateJob&) = delete;
   TriangleEstimateJob& operator=(const TriangleEstimateJob&) = delete;
 
+  void cancel() { progress_.cancel(); }
   int resolution() const { return resolution_; }
   double simplifyCells() const { return simplifyCells_; }
   bool done() const { return done_.load(std::memory_order_acquire); }
