@@ -39,27 +39,6 @@ class BoxTree {
     }
   }
 
-  // True when accept(i) is true for some item whose box contains p; stops at the first.
-  template <typename Accept>
-  bool anyContaining(const glm::dvec3& p, Accept&& accept) const {
-    if (nodes_.empty()) return false;
-    uint32_t stack[80];  // as in forEachContaining
-    int size = 0;
-    stack[size++] = 0;
-    while (size > 0) {
-      const Node& node = nodes_[stack[--size]];
-      if (!contains(node.box, p)) continue;
-      if (node.count > 0) {
-        for (uint32_t k = node.first; k < node.first + node.count; ++k)
-          if (contains(boxes_[items_[k]], p) && accept(items_[k])) return true;
-      } else {
-        stack[size++] = node.first;
-        stack[size++] = node.first + 1;
-      }
-    }
-    return false;
-  }
-
   static bool contains(const Bounds& b, const glm::dvec3& p) {
     return p.x >= b.min.x && p.y >= b.min.y && p.z >= b.min.z && p.x <= b.max.x && p.y <= b.max.y &&
            p.z <= b.max.z;
