@@ -8,8 +8,6 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
-#include <glm/vec4.hpp>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -20,7 +18,6 @@
 
 #include "engine/geometry/triangle_distance.h"
 #include "engine/geometry/triangle_grid.h"
-#include "engine/util/hash.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
 
@@ -308,9 +305,8 @@ class Collapser {
     heap_.push({best, bestLength2, uint32_t(i), version_[i]});
   }
 
-  // The cheap rules: topology (as OpenMesh's BaseDecimaterT::is_collapse_legal), features,
-  // seams, folds.
-  // The flags: what offer() tests.
+  // The flags (locked, features, boundaries; as OpenMesh's BaseDecimaterT::is_collapse_legal):
+  // what offer() tests.
   bool flagsAllow(const CollapseInfo& ci) const {
     if (m_.status(ci.v0).locked()) return false;
     if (m_.status(ci.v0).feature() && !m_.status(m_.edge_handle(ci.v0v1)).feature()) return false;

@@ -38,6 +38,7 @@ namespace strata {
 
 constexpr double kFeatureAngleDegrees = 40.0;
 constexpr double kMaxNormalTurnDegrees = 60.0;
+// The measured deviation samples each triangle this many tolerances apart (SimplifyReport).
 constexpr double kSampleSpacingPerTolerance = 2.0;
 // The deviation is measured up to this many tolerances; beyond, it is reported as capped.
 constexpr double kMeasureReachPerTolerance = 2.0;
