@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <string>
 
 namespace strata {
 namespace {
@@ -41,19 +42,23 @@ std::string formatExportText(const ExportSummary& summary) {
   if (sr.refused) {
     out << "simplify  not done: " << sr.refusedWhy << "\n";
   } else if (sr.trianglesBefore) {
-    std::snprintf(line, sizeof(line),
-                  "simplify  %zu -> %zu triangles (%.1f%%) in %.3f s; every vertex of the "
-                  "unsimplified mesh within %.6g %s (%.3g h) of the file's surface\n",
-                  sr.trianglesBefore, sr.trianglesAfter,
-                  100.0 * double(sr.trianglesAfter) / double(sr.trianglesBefore), sr.seconds,
-                  sr.tolerance, s.unit.c_str(), r.grid.h > 0 ? sr.tolerance / r.grid.h : 0.0);
+    std::snprintf(
+        line, sizeof(line),
+        "simplify  %zu -> %zu triangles (%.1f%%) in %.3f s (measuring %.3f s); "
+        "rules' tolerance %.3g h%s\n",
+        sr.trianglesBefore, sr.trianglesAfter,
+        100.0 * double(sr.trianglesAfter) / double(sr.trianglesBefore), sr.seconds,
+        sr.measureSeconds, r.grid.h > 0 ? sr.rulesTolerance / r.grid.h : 0.0,
+        sr.attempts > 1 ? (" (attempt " + std::to_string(sr.attempts) + ")").c_str() : "");
     out << line;
     const SurfaceDeviation& d = sr.measured;
     std::snprintf(line, sizeof(line),
-                  "          measured deviation %.3g h (unsimplified -> simplified %.3g h, back "
-                  "%.3g h; %zu samples %.3g h apart%s)\n",
-                  d.largest() / r.grid.h, d.aToB / r.grid.h, d.bToA / r.grid.h, d.samples,
-                  d.spacing / r.grid.h, d.capped ? "; some beyond the search radius" : "");
+                  "          deviation (Hausdorff, both ways) %.3g h, proven at most %.3g h of "
+                  "the %.3g h asked (unsimplified -> simplified %.3g h, back %.3g h; %zu "
+                  "points%s)\n",
+                  d.largest() / r.grid.h, d.bound() / r.grid.h, sr.tolerance / r.grid.h,
+                  d.aToB / r.grid.h, d.bToA / r.grid.h, d.samples,
+                  d.capped ? "; some beyond the search radius" : "");
     out << line;
   }
   out << "wrote     " << s.output << "\n";
@@ -133,10 +138,16 @@ std::string formatExportJson(const ExportSummary& s) {
                      {"triangles_after", sr.trianglesAfter},
                      {"tolerance", sr.tolerance},
                      {"seconds", sr.seconds},
+                     {"measure_seconds", sr.measureSeconds},
+                     {"attempts", sr.attempts},
+                     {"rules_tolerance", sr.rulesTolerance},
                      {"measured_deviation", sr.measured.largest()},
                      {"measured_to_simplified", sr.measured.aToB},
                      {"measured_to_unsimplified", sr.measured.bToA},
-                     {"sample_spacing", sr.measured.spacing},
+                     {"deviation_bound", sr.measured.bound()},
+                     {"bound_to_simplified", sr.measured.aToBBound},
+                     {"bound_to_unsimplified", sr.measured.bToABound},
+                     {"accuracy", sr.measured.accuracy},
                      {"samples", sr.measured.samples}};
   }
   j["dropped_specks"] = {{"components", r.droppedSpecks.components},

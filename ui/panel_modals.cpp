@@ -113,11 +113,10 @@ void exportWindow(EditorState& state) {
       ImGui::TextWrapped("not simplified: %s", r.refusedWhy);
     else if (r.trianglesBefore > 0)
       ImGui::TextWrapped(
-          "simplified from %zu triangles (%.1f%%); measured deviation %.3g "
-          "(%.2f cells)",
+          "simplified from %zu triangles (%.1f%%); deviation from the unsimplified surface "
+          "at most %.3g (%.2f cells, measured)",
           r.trianglesBefore, 100.0 * double(r.trianglesAfter) / double(r.trianglesBefore),
-          r.measured.largest(),
-          s.simplifyCells * r.measured.largest() / std::max(r.tolerance, 1e-300));
+          r.measured.bound(), s.simplifyCells * r.measured.bound() / std::max(r.tolerance, 1e-300));
     ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
                 c.nonManifoldEdges, c.misorientedEdges);
     ImGui::Text("volume %.6g, area %.6g, %.2f s", c.volume, c.area, s.seconds);

@@ -43,7 +43,10 @@ glm::dvec3 toGlm(const OpenMesh::Vec3d& p) {
 struct CollapseCount {
   std::mutex mutex;
   size_t collapses = 0;
-  double reported = 0.0;
+  double reported = 0.0;  // the stage's fraction last reported (never goes back)
+  // This attempt's share of the stage's bar (simplifyMesh may try again, tighter).
+  double spanFrom = 0.0, spanTo = 1.0;
+  double at(double fraction) const { return spanFrom + (spanTo - spanFrom) * fraction; }
 };
 
 // A triangle mesh in OpenMesh, with each vertex's index in the export and each face's leaf.
@@ -272,8 +275,8 @@ class Collapser {
     // How many collapses an export allows is not known beforehand (most lose 80-95% of their
     // vertices): the fraction approaches `to` and never goes back.
     const double fraction =
-        from + (to - from) *
-                   std::min(0.99, double(count.collapses) / double(std::max<size_t>(expected, 1)));
+        count.at(from + (to - from) * std::min(0.99, double(count.collapses) /
+                                                         double(std::max<size_t>(expected, 1))));
     if (fraction <= count.reported || progress.cancelled()) return;
     count.reported = fraction;
     progress.report("simplify", fraction);
@@ -410,8 +413,9 @@ class Collapser {
   }
 
  public:
-  // Moves each free vertex (not locked, not on a feature) along its normal by the mean signed
-  // distance of the unsimplified vertices its faces cover, so that the surface runs through
+  // Moves each vertex that is not locked (free, or inside a feature line: on a sharp edge or a
+  // seam between leaves the chords cut inside just as well) along its normal by the mean signed
+  // distance of the unsimplified points its faces cover, so that the surface runs through
   // them rather than along their chords (a collapse keeps a vertex where it was: on a curved
   // surface the faces cut inside it, and the volume shrinks). A move is kept only if every rule
   // still holds around the vertex (no face turning by more than the limit, every covered vertex
@@ -421,7 +425,7 @@ class Collapser {
   void relocate(Progress& progress) {
     for (const auto v : m_.vertices()) {
       if ((v.idx() & 4095) == 0) progress.check();
-      if (m_.status(v).locked() || m_.status(v).feature()) continue;
+      if (m_.status(v).locked()) continue;
       double sum = 0.0;
       size_t count = 0;
       OpenMesh::Vec3d normal(0.0, 0.0, 0.0);
@@ -520,30 +524,18 @@ class Collapser {
 
 constexpr int kMaxChunks = 64;
 
-}  // namespace
-
-SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progress,
-                            size_t trianglesPerChunk) {
-  Stopwatch clock;
-  SimplifyReport report;
-  report.tolerance = tolerance;
-  report.trianglesBefore = mesh->mesh.triangles.size();
-  report.trianglesAfter = report.trianglesBefore;
-  if (mesh->mesh.triangles.empty() || !(tolerance > 0.0)) return report;
-  progress.report("simplify", 0.0);
-  // OpenMesh prints every face it cannot add; buildPiece reports those (the chunks then give way
-  // to the whole mesh at once, or the report says why nothing was done).
-  omerr().disable();
-  const auto& positions = mesh->mesh.positions;
-  const auto& triangles = mesh->mesh.triangles;
+// One attempt: `original` simplified by the collapse rules within `tolerance` (scene units) into
+// `*out`, the bar's span from `collapses`; false when the mesh is not a 2-manifold OpenMesh can
+// hold (then `*out` is unspecified). `surface`: `original`'s triangles, reach >= tolerance.
+bool simplifyOnce(const ExportMesh& original, double tolerance, const TriangleGrid& surface,
+                  size_t trianglesPerChunk, Progress& progress, CollapseCount& collapses,
+                  ExportMesh* out) {
+  const auto& positions = original.mesh.positions;
+  const auto& triangles = original.mesh.triangles;
   const size_t count = triangles.size();
   trianglesPerChunk = std::max<size_t>(trianglesPerChunk, 1);
   const int chunks =
       int(std::clamp<size_t>((count + trianglesPerChunk / 2) / trianglesPerChunk, 1, kMaxChunks));
-  CollapseCount collapses;
-  // The unsimplified surface, for the deviation's other way.
-  const TriangleGrid surface(positions, triangles, kMeasureReachPerTolerance * tolerance);
-
   const size_t expected = positions.size() * 9 / 10;
 
   // Pass 1: the chunks, their seams locked, in parallel.
@@ -554,7 +546,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   std::vector<uint32_t> stitchedLeaf;
   bool chunked = chunks > 1;
   if (chunked) {
-    const Bounds bounds = meshBounds(mesh->mesh);
+    const Bounds bounds = meshBounds(original.mesh);
     const glm::dvec3 size = bounds.size();
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
     std::vector<uint32_t> order(count);
@@ -588,7 +580,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
     parallelFor(0, chunks, 1, [&](int64_t first, int64_t last) {
       for (int64_t c = first; c < last && built; ++c)
         if (!buildPiece(pieces[size_t(c)], positions, triangles, members[size_t(c)],
-                        mesh->triangleLeaf, isSeam, progress))
+                        original.triangleLeaf, isSeam, progress))
           built = false;
     });
     members = {};
@@ -621,7 +613,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   }
   if (!chunked) {
     stitched = triangles;
-    stitchedLeaf = mesh->triangleLeaf;
+    stitchedLeaf = original.triangleLeaf;
   }
 
   // Pass 2: the whole mesh, seams free, the chunks' points carried.
@@ -635,14 +627,9 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
     whole = Piece();
     all.resize(count);
     for (size_t t = 0; t < count; ++t) all[t] = uint32_t(t);
-    builtWhole = buildPiece(whole, positions, triangles, all, mesh->triangleLeaf, {}, progress);
+    builtWhole = buildPiece(whole, positions, triangles, all, original.triangleLeaf, {}, progress);
   }
-  if (!builtWhole) {
-    report.refused = true;
-    report.refusedWhy = "the mesh is not a 2-manifold OpenMesh can hold";
-    report.seconds = clock.seconds();
-    return report;
-  }
+  if (!builtWhole) return false;
   all = {};
   stitched = {};
   stitchedLeaf = {};
@@ -659,9 +646,10 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   points = {};
   whole.mesh.garbage_collection();
 
-  ExportMesh simplified;
-  simplified.leaves = mesh->leaves;
-  simplified.unit = mesh->unit;
+  ExportMesh& simplified = *out;
+  simplified = ExportMesh();
+  simplified.leaves = original.leaves;
+  simplified.unit = original.unit;
   const Mesh& m = whole.mesh;
   simplified.mesh.positions.reserve(m.n_vertices());
   for (const auto v : m.vertices()) simplified.mesh.positions.push_back(toGlm(m.point(v)));
@@ -674,11 +662,62 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
     simplified.mesh.triangles.push_back(tri);
     simplified.triangleLeaf.push_back(m.property(whole.leaf, f));
   }
-  report.measured =
-      measureDeviation(mesh->mesh, simplified.mesh, kSampleSpacingPerTolerance * tolerance,
-                       surface.reach(), progress, "simplify", &surface, 0.9, 1.0);
-  *mesh = std::move(simplified);
-  report.trianglesAfter = mesh->mesh.triangles.size();
+  return true;
+}
+
+}  // namespace
+
+SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progress,
+                            size_t trianglesPerChunk, double firstAttemptTolerance) {
+  Stopwatch clock;
+  SimplifyReport report;
+  report.tolerance = tolerance;
+  report.trianglesBefore = mesh->mesh.triangles.size();
+  report.trianglesAfter = report.trianglesBefore;
+  if (mesh->mesh.triangles.empty() || !(tolerance > 0.0)) return report;
+  progress.report("simplify", 0.0);
+  // OpenMesh prints every face it cannot add; buildPiece reports those (the chunks then give way
+  // to the whole mesh at once, or the report says why nothing was done).
+  omerr().disable();
+  // The unsimplified surface, for the rules' back-check and the measurement.
+  const TriangleGrid surface(mesh->mesh.positions, mesh->mesh.triangles,
+                             kMeasureReachPerTolerance * tolerance);
+  CollapseCount collapses;
+  double within = firstAttemptTolerance * tolerance;
+  ExportMesh simplified;
+  for (int attempt = 0;; ++attempt) {
+    // Each attempt a shrinking share of the bar: 0-0.85, 0.85-0.95, 0.95-0.99, 0.99-1.
+    static constexpr double kSpans[kMaxSimplifyAttempts + 1] = {0.0, 0.85, 0.95, 0.99, 1.0};
+    collapses.spanFrom = kSpans[attempt];
+    collapses.spanTo = kSpans[attempt + 1];
+    collapses.collapses = 0;
+    if (!simplifyOnce(*mesh, within, surface, trianglesPerChunk, progress, collapses,
+                      &simplified)) {
+      report.refused = true;
+      report.refusedWhy = "the mesh is not a 2-manifold OpenMesh can hold";
+      break;
+    }
+    report.attempts = attempt + 1;
+    report.rulesTolerance = within;
+    Stopwatch measuring;
+    report.measured =
+        measureDeviation(mesh->mesh, simplified.mesh, kMeasureAccuracyPerTolerance * tolerance,
+                         surface.reach(), kMeasureEnoughPerTolerance * tolerance, progress,
+                         "simplify", &surface, collapses.at(0.9), collapses.at(1.0));
+    report.measureSeconds += measuring.seconds();
+    if (report.measured.bound() <= tolerance && !report.measured.capped) {
+      *mesh = std::move(simplified);
+      report.trianglesAfter = mesh->mesh.triangles.size();
+      break;
+    }
+    if (attempt + 1 == kMaxSimplifyAttempts) {
+      report.refused = true;
+      report.refusedWhy = "no attempt kept within the bound (the mesh is left as it was)";
+      break;
+    }
+    // Tighter by what the last attempt overshot, and by at least a fifth.
+    within *= std::min(0.8, 0.95 * tolerance / report.measured.bound());
+  }
   report.seconds = clock.seconds();
   progress.report("simplify", 1.0);
   return report;

@@ -13,46 +13,106 @@
 namespace strata {
 namespace {
 
-constexpr int kMaxSteps = 4096;
+// A triangle is split at most this many times over (2^-20 of its size; the accuracy ends it
+// long before, but for non-finite corners).
+constexpr int kMaxDepth = 20;
 
 struct OneWay {
-  double largest = 0.0;
+  double largest = 0.0;  // at a point
+  double bound = 0.0;    // proven
   size_t samples = 0;
   bool capped = false;
 };
 
-// The largest distance of samples of `from` to the surface `to` (found through its grid), each
-// capped at the grid's reach.
-OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double spacing,
-                     Progress& progress, const char* stage, double fractionFrom,
+struct Corner {
+  glm::dvec3 p;
+  double d;     // distance to the other surface (capped at its reach)
+  uint32_t at;  // the nearest triangle there, UINT32_MAX beyond reach
+};
+
+// The proven largest distance of a point of triangle (q0, q1, q2) from the surface in `to`.
+double triangleBound(const Corner (&q)[3], const TriangleGrid& to) {
+  const double longest = std::sqrt(std::max({glm::dot(q[1].p - q[0].p, q[1].p - q[0].p),
+                                             glm::dot(q[2].p - q[1].p, q[2].p - q[1].p),
+                                             glm::dot(q[0].p - q[2].p, q[0].p - q[2].p)}));
+  double bound = std::max({q[0].d, q[1].d, q[2].d}) + longest / std::sqrt(3.0);
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t t = q[k].at;
+    if (t == UINT32_MAX || (k > 0 && t == q[0].at) || (k > 1 && t == q[1].at)) continue;
+    double onTriangle = q[k].d;  // the distance to t at corner k (t is nearest there)
+    for (int m = 0; m < 3 && onTriangle < bound; ++m)
+      if (m != k) onTriangle = std::max(onTriangle, to.distanceTo(q[m].p, t));
+    bound = std::min(bound, onTriangle);
+  }
+  return bound;
+}
+
+// The largest distance of `from`'s points to the surface `to` (found through its grid), found
+// and bounded; each capped at the grid's reach.
+OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double accuracy,
+                     double enough, Progress& progress, const char* stage, double fractionFrom,
                      double fractionTo) {
+  // The corners first: their largest distance is where splitting stops for every triangle.
+  const int64_t vertices = int64_t(from.positions.size());
+  std::vector<Corner> corners(from.positions.size());
+  parallelFor(0, vertices, 1 << 12, [&](int64_t first, int64_t last) {
+    progress.check();
+    for (int64_t v = first; v < last; ++v) {
+      Corner& c = corners[size_t(v)];
+      c.p = from.positions[size_t(v)];
+      c.d = to.nearest(c.p, &c.at);
+    }
+  });
+  double floor = enough;
+  for (const Corner& c : corners) floor = std::max(floor, c.d);
+
   const int64_t count = int64_t(from.triangles.size());
   constexpr int64_t kBlock = 1 << 12;
   const int64_t blocks = (count + kBlock - 1) / kBlock;
   std::vector<OneWay> perBlock(static_cast<size_t>(blocks));
   std::atomic<int64_t> done{0};
   parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
+    struct Item {
+      Corner q[3];
+      int depth;
+    };
+    std::vector<Item> stack;
     for (int64_t block = first; block < last; ++block) {
       progress.check();
       OneWay result;
       const int64_t end = std::min(count, (block + 1) * kBlock);
       for (int64_t t = block * kBlock; t < end; ++t) {
         const auto& tri = from.triangles[size_t(t)];
-        const glm::dvec3 p0 = from.positions[tri[0]], p1 = from.positions[tri[1]],
-                         p2 = from.positions[tri[2]];
-        const double longest = std::sqrt(std::max(
-            {glm::dot(p1 - p0, p1 - p0), glm::dot(p2 - p1, p2 - p1), glm::dot(p0 - p2, p0 - p2)}));
-        // At most kMaxSteps per edge (a triangle 4096 spacings long is sampled more coarsely).
-        const double steps = std::ceil(longest / spacing);  // NaN for a non-finite corner: 1
-        const int n = steps >= 1.0 ? int(std::min(steps, double(kMaxSteps))) : 1;
-        for (int i = 0; i <= n; ++i)
-          for (int j = 0; i + j <= n; ++j) {
-            const glm::dvec3 p = p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n);
-            const double d = to.nearest(p);
-            result.largest = std::max(result.largest, d);
-            result.capped = result.capped || d >= to.reach();
-            ++result.samples;
+        stack.push_back({{corners[tri[0]], corners[tri[1]], corners[tri[2]]}, 0});
+        while (!stack.empty()) {
+          const Item item = stack.back();
+          stack.pop_back();
+          const Corner(&q)[3] = item.q;
+          const double found = std::max({q[0].d, q[1].d, q[2].d});
+          result.largest = std::max(result.largest, found);
+          if (found >= to.reach()) {  // capped: the true distance is beyond what we measure
+            result.bound = std::max(result.bound, to.reach());
+            continue;
           }
+          const double bound = triangleBound(q, to);
+          if (bound <= floor || bound - found <= accuracy || item.depth >= kMaxDepth ||
+              !std::isfinite(bound)) {
+            result.bound = std::max(result.bound, std::isfinite(bound) ? bound : to.reach());
+            continue;
+          }
+          Corner mid[3];
+          for (int k = 0; k < 3; ++k) {
+            mid[k].p = 0.5 * (q[k].p + q[(k + 1) % 3].p);
+            mid[k].d = to.nearest(mid[k].p, &mid[k].at);
+            result.capped = result.capped || mid[k].d >= to.reach();
+          }
+          result.samples += 3;
+          const int depth = item.depth + 1;
+          stack.push_back({{q[0], mid[0], mid[2]}, depth});
+          stack.push_back({{mid[0], q[1], mid[1]}, depth});
+          stack.push_back({{mid[2], mid[1], q[2]}, depth});
+          stack.push_back({{mid[0], mid[1], mid[2]}, depth});
+        }
       }
       perBlock[size_t(block)] = result;
       const int64_t finished = done.fetch_add(1) + 1;
@@ -62,35 +122,44 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double sp
     }
   });
   OneWay total;
+  total.samples = corners.size();
+  for (const Corner& c : corners) {
+    total.largest = std::max(total.largest, c.d);
+    total.capped = total.capped || c.d >= to.reach();
+  }
   for (const OneWay& r : perBlock) {
     total.largest = std::max(total.largest, r.largest);
+    total.bound = std::max(total.bound, r.bound);
     total.samples += r.samples;
     total.capped = total.capped || r.capped;
   }
+  total.bound = std::max(total.bound, total.largest);
   return total;
 }
 
 }  // namespace
 
-SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double spacing,
-                                  double cap, Progress& progress, const char* stage,
+SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double accuracy,
+                                  double cap, double enough, Progress& progress, const char* stage,
                                   const TriangleGrid* aGrid, double from, double to) {
   SurfaceDeviation deviation;
-  deviation.spacing = spacing;
-  if (a.empty() || b.empty() || !(spacing > 0.0) || !(cap > 0.0)) return deviation;
+  deviation.accuracy = accuracy;
+  if (a.empty() || b.empty() || !(accuracy > 0.0) || !(cap > 0.0)) return deviation;
   OneWay ab, ba;
   {
     const TriangleGrid bGrid(b.positions, b.triangles, cap);
-    ab = measureOneWay(a, bGrid, spacing, progress, stage, from, 0.5 * (from + to));
+    ab = measureOneWay(a, bGrid, accuracy, enough, progress, stage, from, 0.5 * (from + to));
   }
   if (aGrid) {
-    ba = measureOneWay(b, *aGrid, spacing, progress, stage, 0.5 * (from + to), to);
+    ba = measureOneWay(b, *aGrid, accuracy, enough, progress, stage, 0.5 * (from + to), to);
   } else {
     const TriangleGrid grid(a.positions, a.triangles, cap);
-    ba = measureOneWay(b, grid, spacing, progress, stage, 0.5 * (from + to), to);
+    ba = measureOneWay(b, grid, accuracy, enough, progress, stage, 0.5 * (from + to), to);
   }
   deviation.aToB = ab.largest;
   deviation.bToA = ba.largest;
+  deviation.aToBBound = ab.bound;
+  deviation.bToABound = ba.bound;
   deviation.samples = ab.samples + ba.samples;
   deviation.capped = ab.capped || ba.capped;
   return deviation;

@@ -1,7 +1,15 @@
-// The deviation between two triangle surfaces, measured by sampling (like the Metro tool):
-// points on every triangle of one surface, at most `spacing` apart (its corners included), each
-// measured to the nearest triangle of the other, both ways. Used to report how far a
-// simplified export lies from the surface it simplifies (simplify_mesh.h) and in tests.
+// The deviation between two triangle surfaces (one-sided Hausdorff distances, both ways), with
+// a proven bound: each triangle of one surface is measured against the other by branch and
+// bound (as in Guthe, Borodin and Klein, "Fast and accurate Hausdorff distance calculation
+// between meshes", 2005). The distance from a point to the other surface is at most
+//   - its distance at the nearest corner plus that corner's distance (1-Lipschitz): over a
+//     triangle, the largest corner distance plus longest edge / sqrt(3);
+//   - its distance to any one triangle of the other surface, and that is a convex function, so
+//     over a triangle it is largest at a corner: the candidates are the triangles nearest to
+//     the three corners.
+// A triangle whose bound exceeds `enough`, the largest corner distance found anywhere and its
+// own corners' distances by more than `accuracy` is split in four, and so on. Used to report how
+// far a simplified export lies from the surface it simplifies (simplify_mesh.h) and in tests.
 //
 // Synchronous; parallel inside (parallel_for.h); the result does not depend on the thread count.
 #pragma once
@@ -15,22 +23,29 @@
 namespace strata {
 
 struct SurfaceDeviation {
-  double aToB = 0.0;  // the largest distance of a sample of `a` from `b` (scene units)
+  // The largest distance found at a point of `a` from `b`, and of `b` from `a` (scene units):
+  // the true one-sided Hausdorff distances are at least these...
+  double aToB = 0.0;
   double bToA = 0.0;
-  double spacing = 0.0;  // samples on each triangle at most this far apart along its edges
-  size_t samples = 0;
-  // True when some sample has no triangle of the other surface within `cap`: its distance was
+  // ...and at most these (proven), which exceed them by at most `accuracy` (or are at most
+  // `enough`) unless `capped`.
+  double aToBBound = 0.0;
+  double bToABound = 0.0;
+  double accuracy = 0.0;
+  size_t samples = 0;  // points measured, both ways
+  // True when some point has no triangle of the other surface within `cap`: its distance was
   // counted as `cap` (the true deviation is larger).
   bool capped = false;
   double largest() const { return aToB > bToA ? aToB : bToA; }
+  double bound() const { return aToBBound > bToABound ? aToBBound : bToABound; }
 };
 
-// `spacing` and `cap` are in the meshes' units (> 0). A point of a triangle is at most
-// spacing / sqrt(3) from its nearest sample, so the true deviation exceeds the measured one by
-// at most that. `aGrid` (may be null): a's triangles already in a grid whose reach is the cap.
-// Progress stage `stage` from `from` to `to`, checked between blocks; throws Cancelled.
-SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double spacing,
-                                  double cap, Progress& progress,
+// `accuracy` and `cap` are in the meshes' units (> 0); `enough` (>= 0, same units): bounds up to
+// it need no sharper proof (a caller asking "within E?" passes a part of E). `aGrid` (may be null):
+// a's triangles already in a grid whose reach is the cap. Progress stage `stage` from `from` to
+// `to`, checked between blocks; throws Cancelled.
+SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double accuracy,
+                                  double cap, double enough, Progress& progress,
                                   const char* stage = "measure deviation",
                                   const TriangleGrid* aGrid = nullptr, double from = 0.0,
                                   double to = 1.0);

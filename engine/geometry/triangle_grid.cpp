@@ -118,19 +118,31 @@ bool TriangleGrid::within(const glm::dvec3& p, double distance) const {
   return false;
 }
 
-double TriangleGrid::nearest(const glm::dvec3& p) const {
+double TriangleGrid::nearest(const glm::dvec3& p, uint32_t* index) const {
   const Slot* s = cell(p);
   double best = reach_ * reach_;
+  uint32_t which = UINT32_MAX;
   if (s)
     for (uint32_t i = s->begin; i < s->end; ++i) {
       const glm::dvec4& sphere = spheres_[items_[i]];
       const glm::dvec3 d = p - glm::dvec3(sphere);
       if (glm::dot(d, d) > sphere.w) continue;
       const auto& t = triangles_[items_[i]];
-      best = std::min(best, pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]],
-                                                         positions_[t[2]]));
+      const double d2 =
+          pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]);
+      if (d2 < best) {  // the first of equals (a fixed order): deterministic
+        best = d2;
+        which = items_[i];
+      }
     }
+  if (index) *index = which;
   return std::sqrt(best);
+}
+
+double TriangleGrid::distanceTo(const glm::dvec3& p, uint32_t t) const {
+  const auto& tri = triangles_[t];
+  return std::sqrt(
+      pointTriangleDistanceSquared(p, positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]));
 }
 
 }  // namespace strata

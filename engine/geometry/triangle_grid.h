@@ -24,8 +24,11 @@ class TriangleGrid {
 
   // True when some triangle lies within `distance` (<= reach) of p.
   bool within(const glm::dvec3& p, double distance) const;
-  // The distance from p to the nearest triangle, or `reach` when none is nearer.
-  double nearest(const glm::dvec3& p) const;
+  // The distance from p to the nearest triangle, or `reach` when none is nearer; `index`, when
+  // given, receives that triangle's index (UINT32_MAX when none is within reach).
+  double nearest(const glm::dvec3& p, uint32_t* index = nullptr) const;
+  // The distance from p to triangle `t` (any triangle of the mesh, however far).
+  double distanceTo(const glm::dvec3& p, uint32_t t) const;
   double reach() const { return reach_; }
 
  private:

@@ -1,5 +1,6 @@
-// TriangleGrid: its answers match a loop over every triangle, for points near and far from a
-// random soup of triangles of mixed sizes (a few large ones among many small).
+// TriangleGrid: its answers (distances and the nearest triangle) match a loop over every triangle,
+// for points near and far from a random soup of triangles of mixed sizes (a few large ones among
+// many small).
 #include "engine/geometry/triangle_grid.h"
 
 #include <gtest/gtest.h>
@@ -35,6 +36,15 @@ TEST(TriangleGrid, MatchesALoopOverEveryTriangle) {
       best = std::min(best, std::sqrt(pointTriangleDistanceSquared(
                                 p, positions[t[0]], positions[t[1]], positions[t[2]])));
     EXPECT_DOUBLE_EQ(grid.nearest(p), std::min(best, reach)) << q;
+    // The index names a triangle at that distance, or none beyond the reach.
+    uint32_t index = 0;
+    const double d = grid.nearest(p, &index);
+    if (best < reach) {
+      ASSERT_LT(index, triangles.size()) << q;
+      EXPECT_DOUBLE_EQ(grid.distanceTo(p, index), d) << q;
+    } else {
+      EXPECT_EQ(index, UINT32_MAX) << q;
+    }
     EXPECT_EQ(grid.within(p, 0.02), best <= 0.02) << q;
     EXPECT_EQ(grid.within(p, reach), best <= reach) << q;
   }
