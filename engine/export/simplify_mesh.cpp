@@ -700,10 +700,10 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
     report.attempts = attempt + 1;
     report.rulesTolerance = within;
     Stopwatch measuring;
-    report.measured =
-        measureDeviation(mesh->mesh, simplified.mesh, kMeasureAccuracyPerTolerance * tolerance,
-                         surface.reach(), kMeasureEnoughPerTolerance * tolerance, progress,
-                         "simplify", &surface, collapses.at(0.9), collapses.at(1.0));
+    report.measured = measureDeviation(mesh->mesh, simplified.mesh, /*closed=*/true,
+                                       kMeasureAccuracyPerTolerance * tolerance, surface.reach(),
+                                       kMeasureEnoughPerTolerance * tolerance, progress, "simplify",
+                                       &surface, collapses.at(0.9), collapses.at(1.0));
     report.measureSeconds += measuring.seconds();
     if (report.measured.bound() <= tolerance && !report.measured.capped) {
       *mesh = std::move(simplified);

@@ -13,9 +13,9 @@
 namespace strata {
 namespace {
 
-// A triangle is split at most this many times over (2^-20 of its size; the accuracy ends it
-// long before, but for non-finite corners).
-constexpr int kMaxDepth = 20;
+// A triangle is halved at most this many times over (2^-20 of its size after 60; the accuracy
+// ends it long before, but for non-finite corners).
+constexpr int kMaxDepth = 60;
 
 struct OneWay {
   double largest = 0.0;  // at a point
@@ -32,10 +32,19 @@ struct Corner {
 
 // The proven largest distance of a point of triangle (q0, q1, q2) from the surface in `to`.
 double triangleBound(const Corner (&q)[3], const TriangleGrid& to) {
-  const double longest = std::sqrt(std::max({glm::dot(q[1].p - q[0].p, q[1].p - q[0].p),
-                                             glm::dot(q[2].p - q[1].p, q[2].p - q[1].p),
-                                             glm::dot(q[0].p - q[2].p, q[0].p - q[2].p)}));
-  double bound = std::max({q[0].d, q[1].d, q[2].d}) + longest / std::sqrt(3.0);
+  // The farthest a point of the triangle can be from its nearest corner: the circumradius of
+  // an acute triangle, else half the longest edge.
+  const double e0 = glm::dot(q[1].p - q[0].p, q[1].p - q[0].p);
+  const double e1 = glm::dot(q[2].p - q[1].p, q[2].p - q[1].p);
+  const double e2 = glm::dot(q[0].p - q[2].p, q[0].p - q[2].p);
+  const double longest2 = std::max({e0, e1, e2});
+  const double area2 = glm::dot(glm::cross(q[1].p - q[0].p, q[2].p - q[0].p),
+                                glm::cross(q[1].p - q[0].p, q[2].p - q[0].p));  // (2 area)^2
+  const bool obtuse = 2.0 * longest2 >= e0 + e1 + e2;  // the longest squared >= the other two
+  const double cover = obtuse || !(area2 > 0.0)
+                           ? 0.5 * std::sqrt(longest2)
+                           : std::sqrt(e0 * e1 * e2 / (4.0 * area2));  // abc / (4 area)
+  double bound = std::max({q[0].d, q[1].d, q[2].d}) + std::min(cover, std::sqrt(longest2));
   for (int k = 0; k < 3; ++k) {
     const uint32_t t = q[k].at;
     if (t == UINT32_MAX || (k > 0 && t == q[0].at) || (k > 1 && t == q[1].at)) continue;
@@ -47,9 +56,43 @@ double triangleBound(const Corner (&q)[3], const TriangleGrid& to) {
   return bound;
 }
 
+// The flat-region bound, for a closed surface `to`: when every triangle listed near S (the grid's
+// cells S passes through: all those within reach of it) faces within 60 degrees of the plane P
+// of the triangle nearest to S's first corner and lies within eta of P, the surface there is one
+// sheet over P (a closed surface has no edge; a step, a groove or a sheet facing the other way
+// would need triangles that fail the test), so each point of S has a point of it within
+// |s_P| + eta, and the signed distance s_P is affine: largest at a corner. INFINITY when the
+// test fails or cannot improve on `better`.
+double flatBound(const Corner (&q)[3], const TriangleGrid& to, double better) {
+  constexpr long kCellLimit = 512;
+  const uint32_t base = q[0].at;
+  if (base == UINT32_MAX) return INFINITY;
+  const glm::dvec3 a = to.corner(base, 0);
+  glm::dvec3 normal = glm::cross(to.corner(base, 1) - a, to.corner(base, 2) - a);
+  const double length = glm::length(normal);
+  if (!(length > 0.0) || !std::isfinite(length)) return INFINITY;
+  normal /= length;
+  double corners = 0.0;
+  for (const Corner& c : q) corners = std::max(corners, std::abs(glm::dot(c.p - a, normal)));
+  double eta = 0.0;
+  const double slack = std::min(better, to.reach()) - corners;  // eta must stay below it
+  if (!(slack > 0.0)) return INFINITY;
+  const bool flat = to.visitNear(q[0].p, q[1].p, q[2].p, kCellLimit, [&](uint32_t t) {
+    const glm::dvec3 p0 = to.corner(t, 0), p1 = to.corner(t, 1), p2 = to.corner(t, 2);
+    const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+    const double n2 = glm::dot(n, n);
+    const double facing = glm::dot(n, normal);
+    if (!(facing > 0.0 && facing * facing >= 0.25 * n2)) return false;  // beyond 60 degrees
+    eta = std::max({eta, std::abs(glm::dot(p0 - a, normal)), std::abs(glm::dot(p1 - a, normal)),
+                    std::abs(glm::dot(p2 - a, normal))});
+    return eta < slack;
+  });
+  return flat ? corners + eta : INFINITY;
+}
+
 // The largest distance of `from`'s points to the surface `to` (found through its grid), found
-// and bounded; each capped at the grid's reach.
-OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double accuracy,
+// and bounded; each capped at the grid's reach. `closed`: `to` is a closed surface (flatBound).
+OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, bool closed, double accuracy,
                      double enough, Progress& progress, const char* stage, double fractionFrom,
                      double fractionTo) {
   // The corners first: their largest distance is where splitting stops for every triangle.
@@ -94,24 +137,33 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double ac
             result.bound = std::max(result.bound, to.reach());
             continue;
           }
-          const double bound = triangleBound(q, to);
+          double bound = triangleBound(q, to);
+          if (closed && bound > floor && bound - found > accuracy)
+            bound = std::min(bound, flatBound(q, to, bound));
           if (bound <= floor || bound - found <= accuracy || item.depth >= kMaxDepth ||
               !std::isfinite(bound)) {
             result.bound = std::max(result.bound, std::isfinite(bound) ? bound : to.reach());
             continue;
           }
-          Corner mid[3];
-          for (int k = 0; k < 3; ++k) {
-            mid[k].p = 0.5 * (q[k].p + q[(k + 1) % 3].p);
-            mid[k].d = to.nearest(mid[k].p, &mid[k].at);
-            result.capped = result.capped || mid[k].d >= to.reach();
+          // Halved across its longest edge (a sliver along a curved surface splits in length
+          // only).
+          int k = 0;
+          double longest2 = -1.0;
+          for (int e = 0; e < 3; ++e) {
+            const glm::dvec3 d = q[(e + 1) % 3].p - q[e].p;
+            if (glm::dot(d, d) > longest2) {
+              longest2 = glm::dot(d, d);
+              k = e;
+            }
           }
-          result.samples += 3;
+          Corner mid;
+          mid.p = 0.5 * (q[k].p + q[(k + 1) % 3].p);
+          mid.d = to.nearest(mid.p, &mid.at);
+          result.capped = result.capped || mid.d >= to.reach();
+          ++result.samples;
           const int depth = item.depth + 1;
-          stack.push_back({{q[0], mid[0], mid[2]}, depth});
-          stack.push_back({{mid[0], q[1], mid[1]}, depth});
-          stack.push_back({{mid[2], mid[1], q[2]}, depth});
-          stack.push_back({{mid[0], mid[1], mid[2]}, depth});
+          stack.push_back({{q[k], mid, q[(k + 2) % 3]}, depth});
+          stack.push_back({{mid, q[(k + 1) % 3], q[(k + 2) % 3]}, depth});
         }
       }
       perBlock[size_t(block)] = result;
@@ -139,22 +191,24 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, double ac
 
 }  // namespace
 
-SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double accuracy,
-                                  double cap, double enough, Progress& progress, const char* stage,
-                                  const TriangleGrid* aGrid, double from, double to) {
+SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, bool closed,
+                                  double accuracy, double cap, double enough, Progress& progress,
+                                  const char* stage, const TriangleGrid* aGrid, double from,
+                                  double to) {
   SurfaceDeviation deviation;
   deviation.accuracy = accuracy;
   if (a.empty() || b.empty() || !(accuracy > 0.0) || !(cap > 0.0)) return deviation;
   OneWay ab, ba;
   {
     const TriangleGrid bGrid(b.positions, b.triangles, cap);
-    ab = measureOneWay(a, bGrid, accuracy, enough, progress, stage, from, 0.5 * (from + to));
+    ab =
+        measureOneWay(a, bGrid, closed, accuracy, enough, progress, stage, from, 0.5 * (from + to));
   }
   if (aGrid) {
-    ba = measureOneWay(b, *aGrid, accuracy, enough, progress, stage, 0.5 * (from + to), to);
+    ba = measureOneWay(b, *aGrid, closed, accuracy, enough, progress, stage, 0.5 * (from + to), to);
   } else {
     const TriangleGrid grid(a.positions, a.triangles, cap);
-    ba = measureOneWay(b, grid, accuracy, enough, progress, stage, 0.5 * (from + to), to);
+    ba = measureOneWay(b, grid, closed, accuracy, enough, progress, stage, 0.5 * (from + to), to);
   }
   deviation.aToB = ab.largest;
   deviation.bToA = ba.largest;

@@ -7,6 +7,10 @@
 //   - its distance to any one triangle of the other surface, and that is a convex function, so
 //     over a triangle it is largest at a corner: the candidates are the triangles nearest to
 //     the three corners.
+//   - for closed surfaces, in flat regions (where neither of the above is sharp: the other
+//     surface there is many small triangles in one plane): the distance to that plane at the
+//     corners, when every triangle of the other surface near the triangle lies close to that
+//     plane and faces its way (a closed surface then has no edge or step there).
 // A triangle whose bound exceeds `enough`, the largest corner distance found anywhere and its
 // own corners' distances by more than `accuracy` is split in four, and so on. Used to report how
 // far a simplified export lies from the surface it simplifies (simplify_mesh.h) and in tests.
@@ -40,12 +44,13 @@ struct SurfaceDeviation {
   double bound() const { return aToBBound > bToABound ? aToBBound : bToABound; }
 };
 
+// `closed`: both surfaces are closed (no boundary edge), which allows the flat-region bound.
 // `accuracy` and `cap` are in the meshes' units (> 0); `enough` (>= 0, same units): bounds up to
 // it need no sharper proof (a caller asking "within E?" passes a part of E). `aGrid` (may be null):
 // a's triangles already in a grid whose reach is the cap. Progress stage `stage` from `from` to
 // `to`, checked between blocks; throws Cancelled.
-SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, double accuracy,
-                                  double cap, double enough, Progress& progress,
+SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, bool closed,
+                                  double accuracy, double cap, double enough, Progress& progress,
                                   const char* stage = "measure deviation",
                                   const TriangleGrid* aGrid = nullptr, double from = 0.0,
                                   double to = 1.0);

@@ -95,7 +95,11 @@ glm::ivec3 TriangleGrid::cellOf(const glm::dvec3& p) const {
 }
 
 const TriangleGrid::Slot* TriangleGrid::cell(const glm::dvec3& p) const {
-  const uint64_t key = cellKey(cellOf(p));
+  return cellAt(cellOf(p));
+}
+
+const TriangleGrid::Slot* TriangleGrid::cellAt(const glm::ivec3& c) const {
+  const uint64_t key = cellKey(c);
   const size_t mask = table_.size() - 1;
   for (size_t slot = avalanche64(key) & mask; table_[slot].end != 0; slot = (slot + 1) & mask)
     if (table_[slot].key == key) return &table_[slot];

@@ -54,7 +54,7 @@ void expectGuaranteesKept(const ExportMesh& before, const ExportMesh& after, dou
   // Every point of the unsimplified surface within the tolerance of the simplified one and back
   // (the Hausdorff distance, measured independently of the simplifier's own bound).
   Progress progress;
-  const SurfaceDeviation d = measureDeviation(before.mesh, after.mesh, 0.01 * tolerance,
+  const SurfaceDeviation d = measureDeviation(before.mesh, after.mesh, false, 0.01 * tolerance,
                                               8 * tolerance, 0.9 * tolerance, progress);
   EXPECT_LE(d.aToBBound, tolerance * (1 + 1e-9));
   EXPECT_FALSE(d.capped);
