@@ -141,6 +141,7 @@ std::string formatExportJson(const ExportSummary& s) {
                      {"measure_seconds", sr.measureSeconds},
                      {"attempts", sr.attempts},
                      {"rules_tolerance", sr.rulesTolerance},
+                     {"first_attempt_bound", sr.firstAttemptBound},
                      {"measured_deviation", sr.measured.largest()},
                      {"measured_to_simplified", sr.measured.aToB},
                      {"measured_to_unsimplified", sr.measured.bToA},

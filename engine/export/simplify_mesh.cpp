@@ -183,6 +183,7 @@ class Collapser {
     }
     points_.assign(m_.n_faces(), {});
     version_.assign(m_.n_vertices(), 0);
+    touched_.assign(m_.n_vertices(), 0);
     // Epochs are drawn from one clock, so that no two vertices ever share one: a refusal stamp
     // stays with its halfedge when a collapse hands the halfedge to another vertex, and must
     // not match that vertex's epoch.
@@ -215,6 +216,11 @@ class Collapser {
   }
   // The same after run(), by face index (deleted faces hold none).
   std::vector<Points> takePoints() { return std::move(points_); }
+  // Clears `settled` (per vertex) where a collapse changed a vertex's faces.
+  void unsettleTouched(std::vector<uint8_t>& settled) const {
+    for (size_t i = 0; i < touched_.size() && i < settled.size(); ++i)
+      if (touched_[i]) settled[i] = 0;
+  }
 
   void run(Progress& progress, CollapseCount& count, size_t expected, double from, double to) {
     for (const auto v : m_.vertices()) offer(v);
@@ -422,10 +428,11 @@ class Collapser {
   // within the tolerance of the faces around it, the faces near the unsimplified surface, the
   // moved vertex itself within the tolerance of it). In vertex order, each move seeing the ones
   // before it.
-  void relocate(Progress& progress) {
+  // `settled` (per vertex, may be null): vertices to leave (relocated before, faces unchanged).
+  void relocate(Progress& progress, const std::vector<uint8_t>* settled) {
     for (const auto v : m_.vertices()) {
       if ((v.idx() & 4095) == 0) progress.check();
-      if (m_.status(v).locked()) continue;
+      if (m_.status(v).locked() || (settled && (*settled)[size_t(v.idx())])) continue;
       double sum = 0.0;
       size_t count = 0;
       OpenMesh::Vec3d normal(0.0, 0.0, 0.0);
@@ -468,6 +475,8 @@ class Collapser {
   // vertex go to the nearest changed face (deviationKept found one within the tolerance).
   void afterCollapse(const CollapseInfo& ci) {
     quadric_[size_t(ci.v1.idx())] += quadric_[size_t(ci.v0.idx())];
+    touched_[size_t(ci.v1.idx())] = 1;
+    for (const auto u : m_.vv_range(ci.v1)) touched_[size_t(u.idx())] = 1;
     for (const auto f : m_.vf_range(ci.v1)) m_.set_normal(f, m_.calc_face_normal(f));
     tested_.clear();
     for (const auto f : changed_) {
@@ -514,6 +523,7 @@ class Collapser {
   std::vector<Quadric> quadric_;
   std::vector<Points> points_;
   std::vector<uint32_t> version_;
+  std::vector<uint8_t> touched_;             // per vertex: its faces changed by a collapse
   std::vector<uint64_t> epoch_, refusedAt_;  // refusedAt_: the epoch of the refusal, 0 none
   uint64_t clock_ = 0;
   std::vector<Mesh::HalfedgeHandle> target_;
@@ -522,128 +532,177 @@ class Collapser {
   Points tested_;
 };
 
-constexpr int kMaxChunks = 64;
+constexpr size_t kMaxChunks = 256;
+
+// The key a triangle is placed in a slab by: the sum of its corners' coordinates on `axis`.
+double slabKey(const std::vector<glm::dvec3>& positions, const std::array<uint32_t, 3>& tri,
+               int axis) {
+  return positions[tri[0]][axis] + positions[tri[1]][axis] + positions[tri[2]][axis];
+}
+
+// The working mesh of an attempt between passes: triangles (indices into `positions`, which
+// relocations move), their leaves and the unsimplified points each covers (empty before the
+// first pass).
+struct Working {
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<uint32_t> leaf;
+  std::vector<Points> points;
+  std::vector<uint8_t> settled;  // per position: relocated, and its faces unchanged since
+};
+
+// One parallel pass over slabs along `axis` split at `bounds` (slabKey values, ascending: a
+// triangle goes to the slab of the bounds at or below its key), each collapsed on one thread with
+// the vertices two slabs share locked, then relocated. False when a slab cannot be built (a seam
+// vertex OpenMesh cannot hold): `w` is then unchanged.
+bool slabPass(Working& w, int axis, const std::vector<double>& bounds, double tolerance,
+              const TriangleGrid& surface, Progress& progress, CollapseCount& collapses,
+              size_t expected, double from, double to) {
+  const size_t count = w.triangles.size();
+  const size_t slabs = bounds.size() + 1;
+  std::vector<uint32_t> slabOf(count);
+  std::vector<std::vector<uint32_t>> members(slabs);
+  for (size_t t = 0; t < count; ++t) {
+    const double key = slabKey(w.positions, w.triangles[t], axis);
+    slabOf[t] = uint32_t(std::upper_bound(bounds.begin(), bounds.end(), key) - bounds.begin());
+    members[slabOf[t]].push_back(uint32_t(t));
+  }
+  std::vector<uint32_t> owner(w.positions.size(), UINT32_MAX);
+  std::vector<uint8_t> isSeam(w.positions.size(), 0);
+  for (size_t t = 0; t < count; ++t)
+    for (uint32_t v : w.triangles[t]) {
+      if (owner[v] == UINT32_MAX)
+        owner[v] = slabOf[t];
+      else if (owner[v] != slabOf[t])
+        isSeam[v] = 1;
+    }
+  owner = {};
+  slabOf = {};
+  std::vector<Piece> pieces(slabs);
+  std::atomic<bool> built{true};
+  parallelFor(0, int64_t(slabs), 1, [&](int64_t first, int64_t last) {
+    for (int64_t c = first; c < last && built; ++c)
+      if (!buildPiece(pieces[size_t(c)], w.positions, w.triangles, members[size_t(c)], w.leaf,
+                      isSeam, progress))
+        built = false;
+  });
+  if (!built) return false;
+  std::vector<std::vector<Points>> carried(slabs);
+  parallelFor(0, int64_t(slabs), 1, [&](int64_t first, int64_t last) {
+    for (int64_t c = first; c < last; ++c) {
+      Piece& piece = pieces[size_t(c)];
+      markFeatures(piece);
+      Collapser collapser(piece, tolerance, surface, true);
+      if (w.points.empty()) {
+        collapser.coverFaceCentresAndEdgeMidpoints();
+      } else {  // the piece's faces were added in members' order
+        std::vector<Points> own(members[size_t(c)].size());
+        for (size_t k = 0; k < own.size(); ++k) own[k] = std::move(w.points[members[size_t(c)][k]]);
+        collapser.loadPoints(std::move(own));
+      }
+      collapser.run(progress, collapses, expected, from, to);
+      collapser.relocate(progress, nullptr);
+      carried[size_t(c)] = collapser.takePoints();
+    }
+  });
+  Working next;
+  next.positions = std::move(w.positions);
+  next.settled.assign(next.positions.size(), 0);
+  for (size_t c = 0; c < slabs; ++c) {
+    const Piece& piece = pieces[c];
+    const Mesh& m = piece.mesh;
+    for (const auto v : m.vertices()) {
+      const uint32_t o = m.property(piece.original, v);
+      next.positions[o] = toGlm(m.point(v));  // a seam vertex is locked: the same in every slab
+      if (!m.status(v).locked()) next.settled[o] = 1;
+    }
+    for (const auto f : m.faces()) {
+      std::array<uint32_t, 3> tri{};
+      int k = 0;
+      for (const auto v : m.fv_range(f)) tri[k++] = m.property(piece.original, v);
+      next.triangles.push_back(tri);
+      next.leaf.push_back(m.property(piece.leaf, f));
+      next.points.push_back(std::move(carried[c][size_t(f.idx())]));
+    }
+    pieces[c] = Piece();
+  }
+  w = std::move(next);
+  return true;
+}
 
 // One attempt: `original` simplified by the collapse rules within `tolerance` (scene units) into
 // `*out`, the bar's span from `collapses`; false when the mesh is not a 2-manifold OpenMesh can
 // hold (then `*out` is unspecified). `surface`: `original`'s triangles, reach >= tolerance.
+// With more than one chunk's worth of triangles: slabs in parallel, then slabs shifted by half
+// a slab (the first pass's seams inside them) in parallel, then the whole mesh with what is left.
 bool simplifyOnce(const ExportMesh& original, double tolerance, const TriangleGrid& surface,
                   size_t trianglesPerChunk, Progress& progress, CollapseCount& collapses,
                   ExportMesh* out) {
-  const auto& positions = original.mesh.positions;
-  const auto& triangles = original.mesh.triangles;
-  const size_t count = triangles.size();
+  const size_t count = original.mesh.triangles.size();
   trianglesPerChunk = std::max<size_t>(trianglesPerChunk, 1);
-  const int chunks =
-      int(std::clamp<size_t>((count + trianglesPerChunk / 2) / trianglesPerChunk, 1, kMaxChunks));
-  const size_t expected = positions.size() * 9 / 10;
+  const size_t chunks =
+      std::clamp<size_t>((count + trianglesPerChunk / 2) / trianglesPerChunk, 1, kMaxChunks);
+  const size_t expected = original.mesh.positions.size() * 9 / 10;
 
-  // Pass 1: the chunks, their seams locked, in parallel.
-  std::vector<uint32_t> chunkOf(count, 0);
-  std::vector<uint8_t> isSeam;
-  std::vector<Points> points;  // per face of the stitched mesh
-  std::vector<std::array<uint32_t, 3>> stitched;
-  std::vector<uint32_t> stitchedLeaf;
-  bool chunked = chunks > 1;
-  if (chunked) {
-    const Bounds bounds = meshBounds(original.mesh);
-    const glm::dvec3 size = bounds.size();
+  Working w;
+  w.positions = original.mesh.positions;
+  w.triangles = original.mesh.triangles;
+  w.leaf = original.triangleLeaf;
+  if (chunks > 1) {
+    const Bounds box = meshBounds(original.mesh);
+    const glm::dvec3 size = box.size();
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
-    std::vector<uint32_t> order(count);
-    for (size_t t = 0; t < count; ++t) order[t] = uint32_t(t);
-    auto key = [&](uint32_t t) {
-      const auto& tri = triangles[t];
-      return positions[tri[0]][axis] + positions[tri[1]][axis] + positions[tri[2]][axis];
-    };
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      const double ka = key(a), kb = key(b);
-      return ka < kb || (ka == kb && a < b);
-    });
-    std::vector<std::vector<uint32_t>> members(static_cast<size_t>(chunks));
-    for (size_t k = 0; k < count; ++k) {
-      const uint32_t c = uint32_t(k * size_t(chunks) / count);
-      chunkOf[order[k]] = c;
-      members[c].push_back(order[k]);
+    std::vector<double> keys(count);
+    for (size_t t = 0; t < count; ++t) keys[t] = slabKey(w.positions, w.triangles[t], axis);
+    std::sort(keys.begin(), keys.end());
+    std::vector<double> bounds, shifted;  // equal counts; then halfway between those
+    for (size_t k = 1; k < chunks; ++k) bounds.push_back(keys[k * count / chunks]);
+    for (size_t k = 0; k < chunks; ++k) {
+      const double below = k == 0 ? keys.front() : bounds[k - 1];
+      const double above = k + 1 == chunks ? keys.back() : bounds[k];
+      shifted.push_back(0.5 * (below + above));
     }
-    order = {};
-    std::vector<uint32_t> owner(positions.size(), UINT32_MAX);
-    isSeam.assign(positions.size(), 0);
-    for (size_t t = 0; t < count; ++t)
-      for (uint32_t v : triangles[t]) {
-        if (owner[v] == UINT32_MAX)
-          owner[v] = chunkOf[t];
-        else if (owner[v] != chunkOf[t])
-          isSeam[v] = 1;
-      }
-    std::vector<Piece> pieces(static_cast<size_t>(chunks));
-    std::atomic<bool> built{true};
-    parallelFor(0, chunks, 1, [&](int64_t first, int64_t last) {
-      for (int64_t c = first; c < last && built; ++c)
-        if (!buildPiece(pieces[size_t(c)], positions, triangles, members[size_t(c)],
-                        original.triangleLeaf, isSeam, progress))
-          built = false;
-    });
-    members = {};
-    chunked = built;  // else a seam vertex OpenMesh could not take: the whole mesh at once
-    if (chunked) {
-      std::vector<std::vector<Points>> carried(static_cast<size_t>(chunks));
-      parallelFor(0, chunks, 1, [&](int64_t first, int64_t last) {
-        for (int64_t c = first; c < last; ++c) {
-          Piece& piece = pieces[size_t(c)];
-          markFeatures(piece);
-          Collapser collapser(piece, tolerance, surface, true);
-          collapser.coverFaceCentresAndEdgeMidpoints();
-          collapser.run(progress, collapses, expected, 0.02, 0.7);
-          carried[size_t(c)] = collapser.takePoints();
-        }
-      });
-      for (size_t c = 0; c < pieces.size(); ++c) {
-        const Mesh& m = pieces[c].mesh;
-        for (const auto f : m.faces()) {
-          std::array<uint32_t, 3> tri{};
-          int k = 0;
-          for (const auto v : m.fv_range(f)) tri[k++] = m.property(pieces[c].original, v);
-          stitched.push_back(tri);
-          stitchedLeaf.push_back(m.property(pieces[c].leaf, f));
-          points.push_back(std::move(carried[c][size_t(f.idx())]));
-        }
-        pieces[c] = Piece();
-      }
-    }
-  }
-  if (!chunked) {
-    stitched = triangles;
-    stitchedLeaf = original.triangleLeaf;
+    keys = {};
+    if (slabPass(w, axis, bounds, tolerance, surface, progress, collapses, expected, 0.02, 0.6))
+      slabPass(w, axis, shifted, tolerance, surface, progress, collapses, expected, 0.6, 0.8);
+    // else a seam vertex OpenMesh could not take: the whole mesh at once.
   }
 
-  // Pass 2: the whole mesh, seams free, the chunks' points carried.
-  std::vector<uint32_t> all(stitched.size());
+  // The whole mesh, seams free, the slabs' points carried.
+  std::vector<uint32_t> all(w.triangles.size());
   for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
   Piece whole;
-  bool builtWhole = buildPiece(whole, positions, stitched, all, stitchedLeaf, {}, progress);
-  if (!builtWhole && chunked) {  // the chunks did not stitch into a 2-manifold: start again
-    chunked = false;
-    points = {};
+  bool builtWhole = buildPiece(whole, w.positions, w.triangles, all, w.leaf, {}, progress);
+  if (!builtWhole && !w.points.empty()) {  // the slabs did not stitch into a 2-manifold
+    w = Working();
+    w.positions = original.mesh.positions;
+    w.triangles = original.mesh.triangles;
+    w.leaf = original.triangleLeaf;
+    all.resize(w.triangles.size());
+    for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
     whole = Piece();
-    all.resize(count);
-    for (size_t t = 0; t < count; ++t) all[t] = uint32_t(t);
-    builtWhole = buildPiece(whole, positions, triangles, all, original.triangleLeaf, {}, progress);
+    builtWhole = buildPiece(whole, w.positions, w.triangles, all, w.leaf, {}, progress);
   }
   if (!builtWhole) return false;
   all = {};
-  stitched = {};
-  stitchedLeaf = {};
   markFeatures(whole);
   {
     Collapser collapser(whole, tolerance, surface, false);
-    if (chunked)
-      collapser.loadPoints(std::move(points));
+    const bool carried = !w.points.empty();
+    if (carried)
+      collapser.loadPoints(std::move(w.points));
     else
       collapser.coverFaceCentresAndEdgeMidpoints();
-    collapser.run(progress, collapses, expected, chunked ? 0.7 : 0.02, 0.88);
-    collapser.relocate(progress);
+    collapser.run(progress, collapses, expected, carried ? 0.8 : 0.02, 0.88);
+    // Relocated by a slab and untouched since: not again.
+    std::vector<uint8_t> settled(whole.mesh.n_vertices(), 0);
+    if (!w.settled.empty())
+      for (const auto v : whole.mesh.vertices())
+        settled[size_t(v.idx())] = w.settled[whole.mesh.property(whole.original, v)];
+    collapser.unsettleTouched(settled);
+    collapser.relocate(progress, &settled);
   }
-  points = {};
+  w = Working();
   whole.mesh.garbage_collection();
 
   ExportMesh& simplified = *out;
@@ -705,6 +764,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
                                        kMeasureEnoughPerTolerance * tolerance, progress, "simplify",
                                        &surface, collapses.at(0.9), collapses.at(1.0));
     report.measureSeconds += measuring.seconds();
+    if (attempt == 0) report.firstAttemptBound = report.measured.bound();
     if (report.measured.bound() <= tolerance && !report.measured.capped) {
       *mesh = std::move(simplified);
       report.trianglesAfter = mesh->mesh.triangles.size();

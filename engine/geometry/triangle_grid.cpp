@@ -12,6 +12,7 @@
 #include "engine/geometry/triangle_distance.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 namespace {
@@ -35,35 +36,73 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
   if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = 1.0;
   origin_ = bounds.empty() ? glm::dvec3(0.0) : bounds.min - glm::dvec3(reach + cell_);
   spheres_.resize(triangles.size());
-  std::vector<std::pair<uint64_t, uint32_t>> pairs;
-  pairs.reserve(triangles.size() * 8);
-  for (uint32_t t = 0; t < triangles.size(); ++t) {
-    Bounds box;
-    for (uint32_t v : triangles[t]) box.include(positions[v]);
-    const double grown = 0.5 * glm::length(box.size()) + reach;
-    spheres_[t] = glm::dvec4(box.center(), grown * grown);
-    const glm::ivec3 lo = cellOf(box.min - glm::dvec3(reach));
-    const glm::ivec3 hi = cellOf(box.max + glm::dvec3(reach));
-    // Only the cells the triangle's plane passes within reach of: a large tilted triangle
-    // (a simplified mesh has some) would otherwise fill the cube of its box.
-    const glm::dvec3 a = positions[triangles[t][0]];
-    glm::dvec3 normal = glm::cross(positions[triangles[t][1]] - a, positions[triangles[t][2]] - a);
-    const double length = glm::length(normal);
-    const bool planar = length > 0.0 && std::isfinite(length);
-    if (planar) normal /= length;
-    const double slab = reach + 0.5 * std::sqrt(3.0) * cell_;  // plane to a cell's centre
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const glm::dvec3 centre = origin_ + (glm::dvec3(x, y, z) + 0.5) * cell_;
-          if (planar && std::abs(glm::dot(centre - a, normal)) > slab) continue;
-          pairs.emplace_back(cellKey({x, y, z}), t);
-        }
-  }
-  if (pairs.size() >= size_t(UINT32_MAX))
-    throw Error("a triangle grid of " + std::to_string(pairs.size()) +
+  // The (cell, triangle) pairs, made in parallel by blocks of triangles and scattered into
+  // buckets by the cell's hash (in block order), each bucket then sorted on its own: the same
+  // order as one sort of all pairs by (cell, triangle) within each bucket, on any thread count.
+  constexpr int kBucketBits = 8;
+  constexpr size_t kBuckets = size_t(1) << kBucketBits;
+  auto bucketOf = [](uint64_t key) { return size_t(avalanche64(key) >> (64 - kBucketBits)); };
+  const int64_t count = int64_t(triangles.size());
+  constexpr int64_t kBlock = 1 << 14;
+  const int64_t blocks = (count + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::pair<uint64_t, uint32_t>>> perBlock(static_cast<size_t>(blocks));
+  parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
+    for (int64_t block = first; block < last; ++block) {
+      auto& pairs = perBlock[size_t(block)];
+      const int64_t end = std::min(count, (block + 1) * kBlock);
+      for (int64_t i = block * kBlock; i < end; ++i) {
+        const uint32_t t = uint32_t(i);
+        Bounds box;
+        for (uint32_t v : triangles[t]) box.include(positions[v]);
+        const double grown = 0.5 * glm::length(box.size()) + reach;
+        spheres_[t] = glm::dvec4(box.center(), grown * grown);
+        const glm::ivec3 lo = cellOf(box.min - glm::dvec3(reach));
+        const glm::ivec3 hi = cellOf(box.max + glm::dvec3(reach));
+        // Only the cells the triangle's plane passes within reach of: a large tilted triangle
+        // (a simplified mesh has some) would otherwise fill the cube of its box.
+        const glm::dvec3 a = positions[triangles[t][0]];
+        glm::dvec3 normal =
+            glm::cross(positions[triangles[t][1]] - a, positions[triangles[t][2]] - a);
+        const double length = glm::length(normal);
+        const bool planar = length > 0.0 && std::isfinite(length);
+        if (planar) normal /= length;
+        const double slab = reach + 0.5 * std::sqrt(3.0) * cell_;  // plane to a cell's centre
+        for (int z = lo.z; z <= hi.z; ++z)
+          for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x) {
+              const glm::dvec3 centre = origin_ + (glm::dvec3(x, y, z) + 0.5) * cell_;
+              if (planar && std::abs(glm::dot(centre - a, normal)) > slab) continue;
+              pairs.emplace_back(cellKey({x, y, z}), t);
+            }
+      }
+    }
+  });
+  // Bucket sizes and each block's place in each bucket.
+  std::vector<size_t> start(kBuckets * size_t(blocks) + 1, 0);  // [bucket][block]
+  parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
+    for (int64_t block = first; block < last; ++block)
+      for (const auto& pair : perBlock[size_t(block)])
+        ++start[bucketOf(pair.first) * size_t(blocks) + size_t(block) + 1];
+  });
+  for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  const size_t total = start.back();
+  if (total >= size_t(UINT32_MAX))
+    throw Error("a triangle grid of " + std::to_string(total) +
                 " cell entries is beyond its 32-bit index");
-  std::sort(pairs.begin(), pairs.end());
+  std::vector<std::pair<uint64_t, uint32_t>> pairs(total);
+  parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
+    for (int64_t block = first; block < last; ++block) {
+      std::vector<size_t> at(kBuckets);
+      for (size_t b = 0; b < kBuckets; ++b) at[b] = start[b * size_t(blocks) + size_t(block)];
+      for (const auto& pair : perBlock[size_t(block)]) pairs[at[bucketOf(pair.first)]++] = pair;
+      perBlock[size_t(block)] = {};
+    }
+  });
+  parallelFor(0, int64_t(kBuckets), 1, [&](int64_t first, int64_t last) {
+    for (int64_t b = first; b < last; ++b)
+      std::sort(pairs.begin() + std::ptrdiff_t(start[size_t(b) * size_t(blocks)]),
+                pairs.begin() + std::ptrdiff_t(start[size_t(b + 1) * size_t(blocks)]));
+  });
   items_.resize(pairs.size());
   size_t cells = 0;
   for (size_t k = 0; k < pairs.size(); ++k) {
