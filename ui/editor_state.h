@@ -27,7 +27,8 @@ enum class LogLevel { Info, Warning, Error };
 struct LogLine {
   LogLevel level = LogLevel::Info;
   std::string text;
-  double time = 0.0;  // seconds since the editor started
+  double time = 0.0;       // seconds since the editor started
+  bool dismissed = false;  // an error stays in the status bar until clicked (or followed)
 };
 
 // Something that replaces the document, held back while the user decides about unsaved changes.

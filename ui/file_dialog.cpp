@@ -114,7 +114,10 @@ void FileDialog::open(DialogPurpose purpose, const std::string& suggestion) {
   hasChosen_ = false;
   if (tool_ == "built-in") {
     std::snprintf(field_, sizeof(field_), "%s", suggestion.c_str());
+    suggestedExtension_ = std::filesystem::path(suggestion).extension().string();
     justOpened_ = true;
+    focusField_ = true;
+    listError_.clear();
     return;
   }
   std::string command;
@@ -230,8 +233,15 @@ void FileDialog::draw() {
     ImGui::PopStyleColor();
   }
   ImGui::SetNextItemWidth(-1);
+  // Focused with its text selected when the dialog opens (and on each click into it): what is
+  // typed replaces the suggested name instead of joining it.
+  if (focusField_) {
+    ImGui::SetKeyboardFocusHere();
+    focusField_ = false;
+  }
   const bool typed =
-      ImGui::InputText("##path", field_, sizeof(field_), ImGuiInputTextFlags_EnterReturnsTrue);
+      ImGui::InputText("##path", field_, sizeof(field_),
+                       ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
   bool ok = ImGui::Button(saving(purpose_) ? "Save" : "Open", ImVec2(100, 0)) || typed || accept;
   ImGui::SameLine();
   const bool cancel = ImGui::Button("Cancel", ImVec2(100, 0)) ||
@@ -245,19 +255,12 @@ void FileDialog::draw() {
     ok = false;
   }
   if (ok && field_[0] != '\0') {
-    // A name alone is in the folder shown; a file saved must go into a folder that exists.
-    std::filesystem::path path(field_);
-    if (path.is_relative()) path = std::filesystem::path(folder_) / path;
-    const std::filesystem::path parent = path.parent_path();
-    if (saving(purpose_) && !std::filesystem::is_directory(parent, ec)) {
-      listError_ = "the folder " + parent.string() + " does not exist: choose another";
-      ok = false;
-    } else if (!saving(purpose_) && !std::filesystem::exists(path, ec)) {
-      listError_ = "there is no file " + path.string();
-      ok = false;
-    }
+    const ResolvedPath resolved =
+        resolveDialogPath(field_, folder_, saving(purpose_), suggestedExtension_);
+    listError_ = resolved.error;
+    ok = resolved.error.empty();
     if (ok) {
-      chosen_ = path.lexically_normal().string();
+      chosen_ = resolved.path;
       hasChosen_ = true;
       open_ = false;
       ImGui::CloseCurrentPopup();
@@ -267,6 +270,27 @@ void FileDialog::draw() {
     ImGui::CloseCurrentPopup();
   }
   ImGui::EndPopup();
+}
+
+ResolvedPath resolveDialogPath(const std::string& field, const std::string& folder, bool saving,
+                               const std::string& extension) {
+  namespace fs = std::filesystem;
+  ResolvedPath r;
+  fs::path path(field);
+  if (path.is_relative()) path = fs::path(folder) / path;
+  path = path.lexically_normal();
+  if (saving && !path.has_extension() && !extension.empty()) path += extension;
+  std::error_code ec;
+  const fs::path parent = path.parent_path();
+  if (field.empty())
+    r.error = "type a file name";
+  else if (saving && !fs::is_directory(parent, ec))
+    r.error = "the folder " + parent.string() + " does not exist: choose another";
+  else if (!saving && !fs::exists(path, ec))
+    r.error = "there is no file " + path.string();
+  else
+    r.path = path.string();
+  return r;
 }
 
 std::string FileDialog::folderOf(const std::string& suggestion) const {

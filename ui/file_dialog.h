@@ -17,6 +17,17 @@ namespace strata::ui {
 
 enum class DialogPurpose { Open, SaveAs, Export, ImportMesh };
 
+// What the built-in browser's path field means: a name alone lies in `folder`; a file saved
+// without an extension gets `extension` (the suggested name's, as ".stl"; none when empty); a
+// file saved must go into a folder that exists, a file opened must exist. `error` says why not
+// (and `path` is then empty).
+struct ResolvedPath {
+  std::string path;
+  std::string error;
+};
+ResolvedPath resolveDialogPath(const std::string& field, const std::string& folder, bool saving,
+                               const std::string& extension);
+
 class FileDialog {
  public:
   FileDialog();
@@ -52,6 +63,8 @@ class FileDialog {
   DialogPurpose purpose_ = DialogPurpose::Open;
   char field_[1024] = {};
   bool justOpened_ = false;
+  bool focusField_ = false;         // the path field takes the keyboard on the next frame
+  std::string suggestedExtension_;  // ".stl": given to a name saved without one
   std::string chosen_;
   bool hasChosen_ = false;
   std::shared_ptr<External> external_;  // of the running native dialog

@@ -221,8 +221,12 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
   if (!state.previewError.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "|  %s", state.previewError.c_str());
-  } else if (!state.log.empty() && state.now - state.log.back().time < 6.0) {
-    const LogLine& last = state.log.back();
+  } else if (!state.log.empty() &&
+             (state.now - state.log.back().time < 6.0 ||
+              (state.log.back().level == LogLevel::Error && !state.log.back().dismissed))) {
+    // A message for 6 s; an error (a file that did not open, a save that failed) until it is
+    // clicked or another message follows, so that it cannot pass unseen.
+    LogLine& last = state.log.back();
     ImGui::SameLine();
     ImVec4 color = last.level == LogLevel::Error     ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f)
                    : last.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
@@ -233,11 +237,15 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
       ImGui::BeginTooltip();
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
       ImGui::TextUnformatted(last.text.c_str());
-      ImGui::TextDisabled("click: all messages, to read or copy");
+      ImGui::TextDisabled("click: all messages, to read or copy%s",
+                          last.level == LogLevel::Error ? " (and clear this one)" : "");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }
-    if (ImGui::IsItemClicked()) state.showDiagnostics = true;
+    if (ImGui::IsItemClicked()) {
+      state.showDiagnostics = true;
+      last.dismissed = true;
+    }
   }
   ImGui::End();
   ImGui::PopStyleVar();
