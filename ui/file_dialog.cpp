@@ -114,7 +114,10 @@ void FileDialog::open(DialogPurpose purpose, const std::string& suggestion) {
   hasChosen_ = false;
   if (tool_ == "built-in") {
     std::snprintf(field_, sizeof(field_), "%s", suggestion.c_str());
-    suggestedExtension_ = std::filesystem::path(suggestion).extension().string();
+    const bool scene = suggestion.size() >= 12 &&
+                       suggestion.compare(suggestion.size() - 12, 12, ".strata.json") == 0;
+    suggestedExtension_ =
+        scene ? ".strata.json" : std::filesystem::path(suggestion).extension().string();
     justOpened_ = true;
     focusField_ = true;
     listError_.clear();
@@ -248,15 +251,19 @@ void FileDialog::draw() {
                       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
   ImGui::SameLine();
   ImGui::TextDisabled(forcedBuiltIn_ ? "" : "(zenity or kdialog give the desktop's browser)");
-  // A folder typed into the field is entered, not chosen.
+  // A folder typed into the field (a name alone: in the folder shown) is entered, not chosen.
   std::error_code ec;
-  if (ok && field_[0] != '\0' && std::filesystem::is_directory(field_, ec)) {
-    listFolder(field_);
-    ok = false;
+  if (ok && field_[0] != '\0') {
+    std::filesystem::path typed(field_);
+    if (typed.is_relative()) typed = std::filesystem::path(folder_) / typed;
+    if (std::filesystem::is_directory(typed, ec)) {
+      listFolder(typed.lexically_normal().string());
+      ok = false;
+    }
   }
   if (ok && field_[0] != '\0') {
-    const ResolvedPath resolved =
-        resolveDialogPath(field_, folder_, saving(purpose_), suggestedExtension_);
+    const ResolvedPath resolved = resolveDialogPath(field_, folder_, saving(purpose_),
+                                                    suggestedExtension_, acceptedExtensions());
     listError_ = resolved.error;
     ok = resolved.error.empty();
     if (ok) {
@@ -273,24 +280,47 @@ void FileDialog::draw() {
 }
 
 ResolvedPath resolveDialogPath(const std::string& field, const std::string& folder, bool saving,
-                               const std::string& extension) {
+                               const std::string& extension,
+                               const std::vector<std::string>& accepted) {
   namespace fs = std::filesystem;
   ResolvedPath r;
   fs::path path(field);
   if (path.is_relative()) path = fs::path(folder) / path;
   path = path.lexically_normal();
-  if (saving && !path.has_extension() && !extension.empty()) path += extension;
   std::error_code ec;
+  if (field.empty() || path.filename().empty() || path.filename() == "." ||
+      path.filename() == "..") {
+    r.error = "type a file name" + std::string(field.empty() ? "" : " after the folder");
+    return r;
+  }
+  if (saving && !extension.empty()) {
+    // Unless it ends in an extension the dialog takes, the suggested one is added
+    // ("bracket_v1.2" becomes "bracket_v1.2.stl"; "name." becomes "name.stl").
+    std::string name = path.filename().string();
+    while (!name.empty() && name.back() == '.') name.pop_back();
+    std::string typed = fs::path(name).extension().string();
+    for (char& ch : typed) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    const bool known = typed.size() > 1 && std::find(accepted.begin(), accepted.end(),
+                                                     typed.substr(1)) != accepted.end();
+    if (!known) name += extension;
+    path.replace_filename(name);
+  }
   const fs::path parent = path.parent_path();
-  if (field.empty())
-    r.error = "type a file name";
-  else if (saving && !fs::is_directory(parent, ec))
+  if (saving && !fs::is_directory(parent, ec))
     r.error = "the folder " + parent.string() + " does not exist: choose another";
-  else if (!saving && !fs::exists(path, ec))
-    r.error = "there is no file " + path.string();
+  else if (saving && fs::is_directory(path, ec))
+    r.error = path.string() + " is a folder: type a file name";
+  else if (!saving && !fs::is_regular_file(path, ec))
+    r.error = (fs::is_directory(path, ec) ? path.string() + " is a folder, not a file"
+                                          : "there is no file " + path.string());
   else
     r.path = path.string();
   return r;
+}
+
+std::vector<std::string> FileDialog::acceptedExtensions() const {
+  if (isMeshDialog(purpose_)) return meshExtensions(meshAccess(purpose_));
+  return {"json"};  // scenes: .strata.json (and .json)
 }
 
 std::string FileDialog::folderOf(const std::string& suggestion) const {

@@ -18,15 +18,17 @@ namespace strata::ui {
 enum class DialogPurpose { Open, SaveAs, Export, ImportMesh };
 
 // What the built-in browser's path field means: a name alone lies in `folder`; a file saved
-// without an extension gets `extension` (the suggested name's, as ".stl"; none when empty); a
-// file saved must go into a folder that exists, a file opened must exist. `error` says why not
-// (and `path` is then empty).
+// whose name does not end in one of `accepted` (extensions without the dot: "stl") gets
+// `extension` (the suggested name's, as ".stl"; none when empty); a file saved must go into a
+// folder that exists and not be a folder, a file opened must be an existing file. `error` says
+// why not (and `path` is then empty).
 struct ResolvedPath {
   std::string path;
   std::string error;
 };
 ResolvedPath resolveDialogPath(const std::string& field, const std::string& folder, bool saving,
-                               const std::string& extension);
+                               const std::string& extension,
+                               const std::vector<std::string>& accepted);
 
 class FileDialog {
  public:
@@ -76,6 +78,7 @@ class FileDialog {
   };
   std::string folderOf(const std::string& suggestion) const;
   void listFolder(const std::string& folder);
+  std::vector<std::string> acceptedExtensions() const;
   std::string folder_;
   std::vector<Entry> entries_;
   std::string listError_;

@@ -180,6 +180,20 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   ImGui::End();
 }
 
+namespace {
+
+// The message the status bar shows: the latest error not yet clicked away (however many messages
+// followed it: a scene that failed to open must not pass unseen), else the latest message for
+// 6 s; null for none.
+LogLine* statusLine(EditorState& state) {
+  for (auto it = state.log.rbegin(); it != state.log.rend(); ++it)
+    if (it->level == LogLevel::Error && !it->dismissed) return &*it;
+  if (!state.log.empty() && state.now - state.log.back().time < 6.0) return &state.log.back();
+  return nullptr;
+}
+
+}  // namespace
+
 void drawStatusBar(EditorState& state, const PanelLayout& layout) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(ImVec2(vp->Pos.x, vp->Pos.y + vp->Size.y - layout.statusHeight));
@@ -221,12 +235,8 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
   if (!state.previewError.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "|  %s", state.previewError.c_str());
-  } else if (!state.log.empty() &&
-             (state.now - state.log.back().time < 6.0 ||
-              (state.log.back().level == LogLevel::Error && !state.log.back().dismissed))) {
-    // A message for 6 s; an error (a file that did not open, a save that failed) until it is
-    // clicked or another message follows, so that it cannot pass unseen.
-    LogLine& last = state.log.back();
+  } else if (LogLine* shown = statusLine(state)) {
+    LogLine& last = *shown;
     ImGui::SameLine();
     ImVec4 color = last.level == LogLevel::Error     ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f)
                    : last.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)

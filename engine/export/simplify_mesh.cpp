@@ -633,11 +633,12 @@ bool slabPass(Working& w, int axis, const std::vector<double>& bounds, double to
 // One attempt: `original` simplified by the collapse rules within `tolerance` (scene units) into
 // `*out`, the bar's span from `collapses`; false when the mesh is not a 2-manifold OpenMesh can
 // hold (then `*out` is unspecified). `surface`: `original`'s triangles, reach >= tolerance.
+// `*closed`: whether the mesh has no boundary (the measurement's flat-region bound needs it).
 // With more than one chunk's worth of triangles: slabs in parallel, then slabs shifted by half
 // a slab (the first pass's seams inside them) in parallel, then the whole mesh with what is left.
 bool simplifyOnce(const ExportMesh& original, double tolerance, const TriangleGrid& surface,
                   size_t trianglesPerChunk, Progress& progress, CollapseCount& collapses,
-                  ExportMesh* out) {
+                  ExportMesh* out, bool* closed) {
   const size_t count = original.mesh.triangles.size();
   trianglesPerChunk = std::max<size_t>(trianglesPerChunk, 1);
   const size_t chunks =
@@ -685,6 +686,13 @@ bool simplifyOnce(const ExportMesh& original, double tolerance, const TriangleGr
   }
   if (!builtWhole) return false;
   all = {};
+  // Collapses keep the boundary: the result is closed when the input is.
+  *closed = true;
+  for (const auto h : whole.mesh.halfedges())
+    if (whole.mesh.is_boundary(h)) {
+      *closed = false;
+      break;
+    }
   markFeatures(whole);
   {
     Collapser collapser(whole, tolerance, surface, false);
@@ -750,8 +758,9 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
     collapses.spanFrom = kSpans[attempt];
     collapses.spanTo = kSpans[attempt + 1];
     collapses.collapses = 0;
-    if (!simplifyOnce(*mesh, within, surface, trianglesPerChunk, progress, collapses,
-                      &simplified)) {
+    bool closed = false;
+    if (!simplifyOnce(*mesh, within, surface, trianglesPerChunk, progress, collapses, &simplified,
+                      &closed)) {
       report.refused = true;
       report.refusedWhy = "the mesh is not a 2-manifold OpenMesh can hold";
       break;
@@ -759,7 +768,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
     report.attempts = attempt + 1;
     report.rulesTolerance = within;
     Stopwatch measuring;
-    report.measured = measureDeviation(mesh->mesh, simplified.mesh, /*closed=*/true,
+    report.measured = measureDeviation(mesh->mesh, simplified.mesh, closed,
                                        kMeasureAccuracyPerTolerance * tolerance, surface.reach(),
                                        kMeasureEnoughPerTolerance * tolerance, progress, "simplify",
                                        &surface, collapses.at(0.9), collapses.at(1.0));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -75,7 +76,9 @@ double flatBound(const Corner (&q)[3], const TriangleGrid& to, double better) {
   double corners = 0.0;
   for (const Corner& c : q) corners = std::max(corners, std::abs(glm::dot(c.p - a, normal)));
   double eta = 0.0;
-  const double slack = std::min(better, to.reach()) - corners;  // eta must stay below it
+  // eta must stay below it: the sheet is known within reach of the piece, and the argument
+  // reaches from a corner's nearest point, up to sqrt(3) corner distances sideways of it.
+  const double slack = std::min(better, 0.5 * to.reach()) - corners;
   if (!(slack > 0.0)) return INFINITY;
   const bool flat = to.visitNear(q[0].p, q[1].p, q[2].p, kCellLimit, [&](uint32_t t) {
     const glm::dvec3 p0 = to.corner(t, 0), p1 = to.corner(t, 1), p2 = to.corner(t, 2);
@@ -98,12 +101,16 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, bool clos
   // The corners first: their largest distance is where splitting stops for every triangle.
   const int64_t vertices = int64_t(from.positions.size());
   std::vector<Corner> corners(from.positions.size());
+  std::vector<uint8_t> used(from.positions.size(), 0);  // a vertex no triangle uses is no point
+  for (const auto& tri : from.triangles)
+    for (uint32_t v : tri) used[v] = 1;
   parallelFor(0, vertices, 1 << 12, [&](int64_t first, int64_t last) {
     progress.check();
     for (int64_t v = first; v < last; ++v) {
       Corner& c = corners[size_t(v)];
       c.p = from.positions[size_t(v)];
-      c.d = to.nearest(c.p, &c.at);
+      c.d = used[size_t(v)] ? to.nearest(c.p, &c.at) : 0.0;
+      if (!used[size_t(v)]) c.at = UINT32_MAX;
     }
   });
   double floor = enough;
@@ -114,6 +121,8 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, bool clos
   const int64_t blocks = (count + kBlock - 1) / kBlock;
   std::vector<OneWay> perBlock(static_cast<size_t>(blocks));
   std::atomic<int64_t> done{0};
+  std::mutex reporting;  // the fraction reported never goes back
+  int64_t reported = 0;
   parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
     struct Item {
       Corner q[3];
@@ -140,9 +149,13 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, bool clos
           double bound = triangleBound(q, to);
           if (closed && bound > floor && bound - found > accuracy)
             bound = std::min(bound, flatBound(q, to, bound));
-          if (bound <= floor || bound - found <= accuracy || item.depth >= kMaxDepth ||
-              !std::isfinite(bound)) {
-            result.bound = std::max(result.bound, std::isfinite(bound) ? bound : to.reach());
+          if (!std::isfinite(bound)) {  // a non-finite corner: nothing is proven
+            result.bound = std::max(result.bound, to.reach());
+            result.capped = true;
+            continue;
+          }
+          if (bound <= floor || bound - found <= accuracy || item.depth >= kMaxDepth) {
+            result.bound = std::max(result.bound, bound);
             continue;
           }
           // Halved across its longest edge (a sliver along a curved surface splits in length
@@ -168,14 +181,21 @@ OneWay measureOneWay(const TriangleMesh& from, const TriangleGrid& to, bool clos
       }
       perBlock[size_t(block)] = result;
       const int64_t finished = done.fetch_add(1) + 1;
-      if ((finished & 15) == 0 && !progress.cancelled())
-        progress.report(
-            stage, fractionFrom + (fractionTo - fractionFrom) * double(finished) / double(blocks));
+      if ((finished & 15) == 0 && !progress.cancelled()) {
+        std::lock_guard<std::mutex> lock(reporting);
+        if (finished > reported) {
+          reported = finished;
+          progress.report(stage, fractionFrom + (fractionTo - fractionFrom) * double(finished) /
+                                                    double(blocks));
+        }
+      }
     }
   });
   OneWay total;
-  total.samples = corners.size();
-  for (const Corner& c : corners) {
+  for (size_t v = 0; v < corners.size(); ++v) {
+    if (!used[v]) continue;
+    const Corner& c = corners[v];
+    ++total.samples;
     total.largest = std::max(total.largest, c.d);
     total.capped = total.capped || c.d >= to.reach();
   }

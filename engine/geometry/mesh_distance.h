@@ -3,7 +3,8 @@
 // bound (as in Guthe, Borodin and Klein, "Fast and accurate Hausdorff distance calculation
 // between meshes", 2005). The distance from a point to the other surface is at most
 //   - its distance at the nearest corner plus that corner's distance (1-Lipschitz): over a
-//     triangle, the largest corner distance plus longest edge / sqrt(3);
+//     triangle, the largest corner distance plus the farthest a point is from its nearest corner
+//     (the circumradius of an acute triangle, else half the longest edge);
 //   - its distance to any one triangle of the other surface, and that is a convex function, so
 //     over a triangle it is largest at a corner: the candidates are the triangles nearest to
 //     the three corners.

@@ -1,10 +1,13 @@
 // resolveDialogPath: what the built-in browser's path field means. A name alone lies in the
-// folder shown, a name saved without an extension gets the suggested one, a save into a missing
-// folder and an open of a missing file are refused with a message naming them.
+// folder shown, a name saved without an extension the dialog takes gets the suggested one, a
+// save into a missing folder, a folder given as a file and an open of a missing file are
+// refused with a message naming them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "ui/file_dialog.h"
 
@@ -12,6 +15,8 @@ namespace strata::ui {
 namespace {
 
 namespace fs = std::filesystem;
+
+const std::vector<std::string> kMeshes = {"stl", "obj", "ply", "3mf"};
 
 class DialogPath : public ::testing::Test {
  protected:
@@ -27,31 +32,49 @@ class DialogPath : public ::testing::Test {
 };
 
 TEST_F(DialogPath, ANameAloneIsSavedInTheFolderShownWithTheSuggestedExtension) {
-  const ResolvedPath r = resolveDialogPath("bracket", folder_.string(), true, ".stl");
+  const ResolvedPath r = resolveDialogPath("bracket", folder_.string(), true, ".stl", kMeshes);
   EXPECT_EQ(r.error, "");
   EXPECT_EQ(r.path, (folder_ / "bracket.stl").string());
   // An extension typed is kept; a relative folder is under the folder shown.
-  EXPECT_EQ(resolveDialogPath("bracket.obj", folder_.string(), true, ".stl").path,
+  EXPECT_EQ(resolveDialogPath("bracket.obj", folder_.string(), true, ".stl", kMeshes).path,
             (folder_ / "bracket.obj").string());
-  EXPECT_EQ(resolveDialogPath("./x/../b", folder_.string(), true, ".ply").path,
+  EXPECT_EQ(resolveDialogPath("./x/../b", folder_.string(), true, ".ply", kMeshes).path,
             (folder_ / "b.ply").string());
+  // A dot that is not a format's extension is part of the name; trailing dots go.
+  EXPECT_EQ(resolveDialogPath("bracket_v1.2", folder_.string(), true, ".stl", kMeshes).path,
+            (folder_ / "bracket_v1.2.stl").string());
+  EXPECT_EQ(resolveDialogPath("name.", folder_.string(), true, ".stl", kMeshes).path,
+            (folder_ / "name.stl").string());
+  EXPECT_EQ(resolveDialogPath("LOUD.STL", folder_.string(), true, ".stl", kMeshes).path,
+            (folder_ / "LOUD.STL").string());
+  // Scenes: the compound extension.
+  EXPECT_EQ(resolveDialogPath("plate", folder_.string(), true, ".strata.json", {"json"}).path,
+            (folder_ / "plate.strata.json").string());
   // An absolute path is taken as it is.
-  EXPECT_EQ(resolveDialogPath((folder_ / "c.3mf").string(), "/nowhere", true, ".stl").path,
+  EXPECT_EQ(resolveDialogPath((folder_ / "c.3mf").string(), "/nowhere", true, ".stl", kMeshes).path,
             (folder_ / "c.3mf").string());
 }
 
 TEST_F(DialogPath, MissingFoldersAndFilesAreRefusedByName) {
-  const ResolvedPath save = resolveDialogPath("missing/part", folder_.string(), true, ".stl");
+  const ResolvedPath save =
+      resolveDialogPath("missing/part", folder_.string(), true, ".stl", kMeshes);
   EXPECT_EQ(save.path, "");
   EXPECT_NE(save.error.find((folder_ / "missing").string()), std::string::npos) << save.error;
-  const ResolvedPath open = resolveDialogPath("nothing.stl", folder_.string(), false, "");
+  const ResolvedPath open = resolveDialogPath("nothing.stl", folder_.string(), false, "", kMeshes);
   EXPECT_EQ(open.path, "");
   EXPECT_NE(open.error.find("nothing.stl"), std::string::npos) << open.error;
   // Opening does not add an extension; an existing file opens.
-  EXPECT_EQ(resolveDialogPath("part", folder_.string(), false, ".stl").path, "");
-  EXPECT_EQ(resolveDialogPath("part.stl", folder_.string(), false, "").path,
+  EXPECT_EQ(resolveDialogPath("part", folder_.string(), false, ".stl", kMeshes).path, "");
+  EXPECT_EQ(resolveDialogPath("part.stl", folder_.string(), false, "", kMeshes).path,
             (folder_ / "part.stl").string());
-  EXPECT_NE(resolveDialogPath("", folder_.string(), true, ".stl").error, "");
+  EXPECT_NE(resolveDialogPath("", folder_.string(), true, ".stl", kMeshes).error, "");
+  // A folder is not a file: "sub/" names no file; opening a folder is refused.
+  fs::create_directories(folder_ / "sub");
+  EXPECT_NE(resolveDialogPath("sub/", folder_.string(), true, ".stl", kMeshes).error, "");
+  EXPECT_EQ(resolveDialogPath("sub/", folder_.string(), true, ".stl", kMeshes).path, "");
+  EXPECT_NE(resolveDialogPath("..", folder_.string(), true, ".stl", kMeshes).error, "");
+  const ResolvedPath folder = resolveDialogPath("sub", folder_.string(), false, "", kMeshes);
+  EXPECT_NE(folder.error.find("folder"), std::string::npos) << folder.error;
 }
 
 }  // namespace
