@@ -121,6 +121,7 @@ void FileDialog::open(DialogPurpose purpose, const std::string& suggestion) {
     justOpened_ = true;
     focusField_ = true;
     listError_.clear();
+    replacing_.clear();
     return;
   }
   std::string command;
@@ -208,7 +209,9 @@ void FileDialog::draw() {
   if (ImGui::Button("Up")) listFolder(std::filesystem::path(folder_).parent_path().string());
   ImGui::SameLine();
   ImGui::TextDisabled("%s", folder_.c_str());
-  const float footer = ImGui::GetFrameHeightWithSpacing() * (listError_.empty() ? 3.0f : 4.5f);
+  const float footer =
+      ImGui::GetFrameHeightWithSpacing() *
+      (3.0f + (listError_.empty() ? 0.0f : 1.5f) + (replacing_.empty() ? 0.0f : 1.5f));
   ImGui::BeginChild("##listing", ImVec2(0, -footer), true);
   std::string enter;  // a folder double-clicked (entered after the loop)
   bool accept = false;
@@ -245,7 +248,13 @@ void FileDialog::draw() {
   const bool typed =
       ImGui::InputText("##path", field_, sizeof(field_),
                        ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
-  bool ok = ImGui::Button(saving(purpose_) ? "Save" : "Open", ImVec2(100, 0)) || typed || accept;
+  if (!replacing_.empty()) {  // asked once: the same path again replaces it
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s exists: Replace (or Enter) writes over it", replacing_.c_str());
+    ImGui::PopStyleColor();
+  }
+  const char* label = !saving(purpose_) ? "Open" : replacing_.empty() ? "Save" : "Replace";
+  bool ok = ImGui::Button(label, ImVec2(100, 0)) || typed || accept;
   ImGui::SameLine();
   const bool cancel = ImGui::Button("Cancel", ImVec2(100, 0)) ||
                       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
@@ -266,13 +275,22 @@ void FileDialog::draw() {
                                                     suggestedExtension_, acceptedExtensions());
     listError_ = resolved.error;
     ok = resolved.error.empty();
+    // Saving over a file asks first (as the desktop's dialogs do): once for each path.
+    if (ok && saving(purpose_) && replacing_ != resolved.path &&
+        std::filesystem::exists(resolved.path, ec)) {
+      replacing_ = resolved.path;
+      focusField_ = true;  // Enter again replaces
+      ok = false;
+    }
     if (ok) {
+      replacing_.clear();
       chosen_ = resolved.path;
       hasChosen_ = true;
       open_ = false;
       ImGui::CloseCurrentPopup();
     }
   } else if (cancel) {
+    replacing_.clear();
     open_ = false;
     ImGui::CloseCurrentPopup();
   }

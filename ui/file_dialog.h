@@ -67,6 +67,7 @@ class FileDialog {
   bool justOpened_ = false;
   bool focusField_ = false;         // the path field takes the keyboard on the next frame
   std::string suggestedExtension_;  // ".stl": given to a name saved without one
+  std::string replacing_;           // an existing file the user was asked about replacing
   std::string chosen_;
   bool hasChosen_ = false;
   std::shared_ptr<External> external_;  // of the running native dialog
