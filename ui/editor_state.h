@@ -28,7 +28,7 @@ struct LogLine {
   LogLevel level = LogLevel::Info;
   std::string text;
   double time = 0.0;       // seconds since the editor started
-  bool dismissed = false;  // an error stays in the status bar until clicked (or followed)
+  bool dismissed = false;  // an error stays in the status bar until clicked
 };
 
 // Something that replaces the document, held back while the user decides about unsaved changes.

@@ -645,10 +645,14 @@ bool simplifyOnce(const ExportMesh& original, double tolerance, const TriangleGr
       std::clamp<size_t>((count + trianglesPerChunk / 2) / trianglesPerChunk, 1, kMaxChunks);
   const size_t expected = original.mesh.positions.size() * 9 / 10;
 
-  Working w;
-  w.positions = original.mesh.positions;
-  w.triangles = original.mesh.triangles;
-  w.leaf = original.triangleLeaf;
+  auto unsimplified = [&original] {
+    Working w;
+    w.positions = original.mesh.positions;
+    w.triangles = original.mesh.triangles;
+    w.leaf = original.triangleLeaf;
+    return w;
+  };
+  Working w = unsimplified();
   if (chunks > 1) {
     const Bounds box = meshBounds(original.mesh);
     const glm::dvec3 size = box.size();
@@ -675,10 +679,7 @@ bool simplifyOnce(const ExportMesh& original, double tolerance, const TriangleGr
   Piece whole;
   bool builtWhole = buildPiece(whole, w.positions, w.triangles, all, w.leaf, {}, progress);
   if (!builtWhole && !w.points.empty()) {  // the slabs did not stitch into a 2-manifold
-    w = Working();
-    w.positions = original.mesh.positions;
-    w.triangles = original.mesh.triangles;
-    w.leaf = original.triangleLeaf;
+    w = unsimplified();
     all.resize(w.triangles.size());
     for (size_t t = 0; t < all.size(); ++t) all[t] = uint32_t(t);
     whole = Piece();
