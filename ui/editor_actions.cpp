@@ -264,6 +264,13 @@ double modifierAmountFor(NodeKind kind, const Bounds& bounds) {
   const double step = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
   return std::max(step, std::round(x / step) * step);
 }
+
+// A new pattern's copies from what it holds (`bounds`); an empty one is spaced for parts of
+// the size new parts get (sceneScale).
+PatternParams patternFor(const EditorState& state, NodeKind kind, const Bounds& bounds) {
+  const glm::dvec3 held = bounds.empty() ? glm::dvec3(sceneScale(state)) : bounds.size();
+  return defaultPattern(patternOf(kind), held);
+}
 }  // namespace
 
 NodeId addOperation(EditorState& state, NodeKind kind) {
@@ -272,6 +279,7 @@ NodeId addOperation(EditorState& state, NodeKind kind) {
     auto node = std::make_shared<Node>(*makeOperationNode(kind, state.document.nextId(), {}));
     if (modifierOf(kind) != Modifier::None)
       node->amount = modifierAmountFor(kind, sceneBounds(state.document.root()));
+    if (patternOf(kind) != Pattern::None) node->pattern = patternFor(state, kind, Bounds());
     id = placeNew(state, node, state.placeMode);
     selectNode(state, id);
   });
@@ -423,6 +431,8 @@ void groupSelection(EditorState& state, NodeKind kind) {
     NodeId id = state.document.group(state.selection, kind);
     if (modifierOf(kind) != Modifier::None)
       state.document.setAmount(id, modifierAmountFor(kind, bounds));
+    if (patternOf(kind) != Pattern::None)
+      state.document.setPattern(id, patternFor(state, kind, bounds));
     selectNode(state, id);
   });
   state.document.endInteraction();
@@ -432,7 +442,14 @@ void setSelectionOperation(EditorState& state, NodeKind kind) {
   state.document.beginInteraction();
   for (NodeId id : state.selection) {
     NodePtr n = findNode(state.document.root(), id);
-    if (n && isOperation(n->kind)) guarded(state, [&] { state.document.setOperation(id, kind); });
+    if (!n || !isOperation(n->kind)) continue;
+    const Bounds held = selectionBounds(state.document.root(), {id});
+    guarded(state, [&] {
+      state.document.setOperation(id, kind);
+      // Becoming a pattern: copies spaced for what it holds.
+      if (patternOf(kind) != Pattern::None && patternOf(n->kind) != patternOf(kind))
+        state.document.setPattern(id, patternFor(state, kind, held));
+    });
   }
   state.document.endInteraction();
 }

@@ -111,7 +111,7 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Rename", "F2", false, any)) state.renaming = primarySelection(state);
     if (ImGui::BeginMenu("Group as", any)) {
       for (NodeKind k : operationKinds())
-        if (ImGui::MenuItem(kindName(k), k == NodeKind::Union ? "Ctrl+G" : nullptr))
+        if (ImGui::MenuItem(kindLabel(k), k == NodeKind::Union ? "Ctrl+G" : nullptr))
           groupSelection(state, k);
       ImGui::EndMenu();
     }

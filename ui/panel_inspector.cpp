@@ -283,6 +283,139 @@ void shellOpeningField(EditorState& state, const NodePtr& shell) {
     ImGui::TextDisabled("the opening is hidden: the wall is closed");
 }
 
+// Sets one field of every selected pattern's copies (all of the primary's kind).
+void setPatternField(EditorState& state, const NodeList& nodes,
+                     const std::function<void(PatternParams&)>& change) {
+  for (const NodePtr& n : nodes) {
+    PatternParams p = n->pattern;
+    change(p);
+    state.document.setPattern(n->id, p);
+  }
+}
+
+// A whole number of copies from 1 to kMaxPatternCount, "~" when the selection differs.
+void countField(EditorState& state, const NodeList& nodes, const char* label, float width,
+                int value, bool mixed, const std::function<void(PatternParams&, int)>& set) {
+  ImGui::PushID(label);
+  ImGui::SetNextItemWidth(width);
+  const bool changed = ImGui::DragInt("##n", &value, 0.1f, 1, kMaxPatternCount,
+                                      mixed ? "~%d" : "%d", ImGuiSliderFlags_AlwaysClamp);
+  edited(state, changed,
+         [&] { setPatternField(state, nodes, [&](PatternParams& p) { set(p, value); }); });
+  ImGui::PopID();
+}
+
+// Three radio buttons x, y, z for an axis.
+void axisField(EditorState& state, const NodeList& nodes, const char* label, const char* tip,
+               int axis) {
+  ImGui::PushID(label);
+  ImGui::TextUnformatted(label);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
+  for (int a = 0; a < 3; ++a) {
+    ImGui::SameLine(a == 0 ? 110.0f : 0.0f);
+    if (ImGui::RadioButton(axisName(a), axis == a)) {
+      state.document.beginInteraction();
+      guarded(state, [&] { setPatternField(state, nodes, [&](PatternParams& p) { p.axis = a; }); });
+      state.document.endInteraction();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
+  }
+  ImGui::PopID();
+}
+
+// A pattern's copies (array, circular array, mirror), in the node's frame.
+void patternFields(EditorState& state, const NodePtr& node, const NodeList& nodes, double speed) {
+  const Pattern pattern = patternOf(node->kind);
+  const PatternParams& p = node->pattern;
+  auto mixedVec = [&](glm::dvec3 PatternParams::*field) {
+    glm::bvec3 mixed(false);
+    for (const NodePtr& n : nodes)
+      for (int i = 0; i < 3; ++i) mixed[i] = mixed[i] || (n->pattern.*field)[i] != (p.*field)[i];
+    return mixed;
+  };
+  auto vecField = [&](const char* label, glm::dvec3 PatternParams::*field) {
+    glm::dvec3 value = p.*field;
+    const glm::dvec3 before = value;
+    dragVec3(
+        state, label, &value, speed,
+        [&](const glm::dvec3& next) {
+          // Each node's own value moved by as much as the primary's.
+          setPatternField(state, nodes,
+                          [&](PatternParams& q) { q.*field = q.*field + (next - before); });
+        },
+        gLengthFormat.c_str(), mixedVec(field));
+  };
+  if (pattern == Pattern::Array) {
+    ImGui::TextUnformatted("counts");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Copies along x, y and z of the array's frame (1 = no repeat)");
+    ImGui::SameLine(72.0f);
+    const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+    const float w = (ImGui::GetContentRegionAvail().x - 2 * spacing) / 3;
+    for (int a = 0; a < 3; ++a) {
+      bool mixed = false;
+      for (const NodePtr& n : nodes) mixed = mixed || n->pattern.counts[a] != p.counts[a];
+      if (a) ImGui::SameLine(0, spacing);
+      countField(state, nodes, axisName(a), w, p.counts[a], mixed,
+                 [a](PatternParams& q, int n) { q.counts[a] = n; });
+    }
+    vecField("step", &PatternParams::step);
+  } else if (pattern == Pattern::Circular) {
+    bool mixedCount = false, mixedAngle = false;
+    for (const NodePtr& n : nodes) {
+      mixedCount = mixedCount || n->pattern.count != p.count;
+      mixedAngle = mixedAngle || n->pattern.angle != p.angle;
+    }
+    ImGui::TextUnformatted("count");
+    ImGui::SameLine(110.0f);
+    countField(state, nodes, "count", -1.0f, p.count, mixedCount,
+               [](PatternParams& q, int n) { q.count = n; });
+    axisField(state, nodes, "axis", "The axis the copies turn about (of the array's frame)",
+              p.axis);
+    ImGui::TextUnformatted("angle");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "360: spaced evenly around; less: the first and last copies this far apart");
+    ImGui::SameLine(110.0f);
+    ImGui::SetNextItemWidth(-1);
+    double angle = p.angle;
+    const double lo = -360.0, hi = 360.0;
+    const bool changed =
+        ImGui::DragScalar("##angle", ImGuiDataType_Double, &angle, 0.5f, &lo, &hi,
+                          mixedAngle ? "~%.4g deg" : "%.4g deg", ImGuiSliderFlags_AlwaysClamp);
+    edited(state, changed, [&] {
+      if (angle == 0.0) return;  // no copies on top of each other
+      setPatternField(state, nodes, [&](PatternParams& q) { q.angle = angle; });
+    });
+    vecField("centre", &PatternParams::center);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A point of the axis (the array's frame)");
+  } else if (pattern == Pattern::Mirror) {
+    axisField(state, nodes, "across",
+              "The mirror plane's normal: x mirrors left to right across the yz plane", p.axis);
+    vecField("centre", &PatternParams::center);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A point of the mirror plane");
+    bool keep = p.keepOriginal;
+    bool mixed = false;
+    for (const NodePtr& n : nodes) mixed = mixed || n->pattern.keepOriginal != keep;
+    if (mixed) ImGui::PushItemFlag(ImGuiItemFlags_MixedValue, true);
+    if (ImGui::Checkbox("keep the original", &keep)) {
+      state.document.beginInteraction();
+      guarded(state, [&] {
+        setPatternField(state, nodes, [&](PatternParams& q) { q.keepOriginal = keep; });
+      });
+      state.document.endInteraction();
+    }
+    if (mixed) ImGui::PopItemFlag();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("On: the children and their image (symmetry). Off: the image alone");
+  }
+  const uint64_t copies = patternCopies(pattern, p);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%llu copies of the children, each following every edit",
+                     static_cast<unsigned long long>(copies));
+  ImGui::PopStyleColor();
+}
+
 void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& nodes,
                       double speed) {
   bool sameKind = true;
@@ -298,15 +431,13 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
 
   if (isOperation(node->kind) &&
       ImGui::CollapsingHeader("Operation", ImGuiTreeNodeFlags_DefaultOpen)) {
-    bool first = true;
-    Modifier previous = Modifier::None;
-    for (NodeKind op : operationKinds()) {
-      // Booleans on one row, modifiers on the next.
-      if (!first && !(previous == Modifier::None && modifierOf(op) != Modifier::None))
-        ImGui::SameLine();
-      first = false;
-      previous = modifierOf(op);
-      if (ImGui::RadioButton(kindName(op), node->kind == op)) {
+    // Booleans on one row, modifiers on the next, patterns on the third.
+    const std::vector<NodeKind> ops = operationKinds();
+    const std::vector<bool> rowStarts = operationRowStarts(ops, 4);
+    for (size_t i = 0; i < ops.size(); ++i) {
+      const NodeKind op = ops[i];
+      if (!rowStarts[i]) ImGui::SameLine();
+      if (ImGui::RadioButton(kindLabel(op), node->kind == op)) {
         state.document.beginInteraction();
         for (const NodePtr& n : nodes)
           guarded(state, [&] { state.document.setOperation(n->id, op); });
@@ -335,6 +466,7 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       });
     }
     if (node->kind == NodeKind::Shell && nodes.size() == 1) shellOpeningField(state, node);
+    if (patternOf(node->kind) != Pattern::None) patternFields(state, node, nodes, speed);
   }
 
   if (node->kind == NodeKind::Mesh &&

@@ -146,14 +146,14 @@ void contextMenu(EditorState& state, const NodePtr& node) {
   ImGui::Separator();
   if (ImGui::BeginMenu("Group as")) {
     for (NodeKind k : operationKinds()) {
-      const std::string label = std::string(kindGlyph(k)) + " " + kindName(k);
+      const std::string label = std::string(kindGlyph(k)) + " " + kindLabel(k);
       if (ImGui::MenuItem(label.c_str())) groupSelection(state, k);
     }
     ImGui::EndMenu();
   }
   if (isOperation(node->kind) && ImGui::BeginMenu("Operation")) {
     for (NodeKind k : operationKinds())
-      if (ImGui::MenuItem(kindName(k), nullptr, node->kind == k)) setSelectionOperation(state, k);
+      if (ImGui::MenuItem(kindLabel(k), nullptr, node->kind == k)) setSelectionOperation(state, k);
     ImGui::EndMenu();
   }
   ImGui::Separator();
@@ -389,26 +389,27 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   ImGui::Separator();
   ImGui::TextDisabled("empty operation");
   const std::vector<NodeKind> ops = operationKinds();
-  // Three to a row: the Booleans, then the modifiers.
+  // Three to a row: the Booleans, then the modifiers, then the patterns.
+  const std::vector<bool> rowStarts = operationRowStarts(ops, 3);
   for (size_t i = 0; i < ops.size(); ++i) {
-    if (i % 3) ImGui::SameLine();
+    if (!rowStarts[i]) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s##add%zu", kindName(ops[i]), i);
+    std::snprintf(label, sizeof(label), "%s##add%zu", kindLabel(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) addOperation(state, ops[i]);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(ops[i]).summary);
   }
   ImGui::TextDisabled("group selection as");
   ImGui::BeginDisabled(state.selection.empty());
   for (size_t i = 0; i < ops.size(); ++i) {
-    if (i % 3) ImGui::SameLine();
+    if (!rowStarts[i]) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s %s##group%zu", kindGlyph(ops[i]), kindName(ops[i]), i);
+    std::snprintf(label, sizeof(label), "%s %s##group%zu", kindGlyph(ops[i]), kindLabel(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) groupSelection(state, ops[i]);
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
       ImGui::SetTooltip(
           "Put the selected parts in a new %s in the first one's place (parts that "
           "do the same: all add, or all cut)",
-          kindName(ops[i]));
+          kindLabel(ops[i]));
   }
   ImGui::EndDisabled();
   ImGui::End();

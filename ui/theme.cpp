@@ -76,6 +76,19 @@ const char* kindGlyph(NodeKind kind) {
   return g_unicode ? info.glyph : info.asciiGlyph;
 }
 
+std::vector<bool> operationRowStarts(const std::vector<NodeKind>& ops, int perRow) {
+  auto family = [](NodeKind k) {
+    return modifierOf(k) != Modifier::None ? 1 : patternOf(k) != Pattern::None ? 2 : 0;
+  };
+  std::vector<bool> starts(ops.size(), false);
+  int inRow = 0;
+  for (size_t i = 0; i < ops.size(); ++i) {
+    starts[i] = i == 0 || family(ops[i]) != family(ops[i - 1]) || inRow == perRow;
+    inRow = starts[i] ? 1 : inRow + 1;
+  }
+  return starts;
+}
+
 const char* visibleGlyph(bool visible) {
   if (!g_unicode) return visible ? "o" : "-";
   return visible ? "\u25C9" : "\u25CB";  // ◉ ○

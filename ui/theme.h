@@ -2,6 +2,8 @@
 // glyphs the outliner uses; ImGui's built-in font otherwise), and the glyph of each node kind.
 #pragma once
 
+#include <vector>
+
 #include "engine/document/node.h"
 
 namespace strata::ui {
@@ -12,6 +14,9 @@ void applyTheme(float scale);
 // A short symbol for the kind: "∪" "∩" "−" for operations and shapes for leaves (ASCII when the
 // font lacks them).
 const char* kindGlyph(NodeKind kind);
+// Where rows of operation buttons start: at each new family (Booleans, modifiers, patterns) and
+// after `perRow` buttons of one family. One entry per kind of `ops`.
+std::vector<bool> operationRowStarts(const std::vector<NodeKind>& ops, int perRow);
 // Symbols for visible / hidden.
 const char* visibleGlyph(bool visible);
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "engine/document/commands.h"
+#include "engine/document/expansion.h"
 #include "engine/util/error.h"
 #include "engine/util/limits.h"
 
@@ -190,6 +191,19 @@ void Document::setOpening(NodeId id, NodeId opening) {
                 "'");
   if (node->opening == opening) return;
   apply("opening", editNode(root(), id, [&](Node& n) { n.opening = opening; }));
+}
+
+void Document::setPattern(NodeId id, const PatternParams& pattern) {
+  NodePtr node = findNode(root(), id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  const Pattern kind = patternOf(node->kind);
+  const std::string who = std::string(kindName(node->kind)) + " '" + node->name + "'";
+  if (kind == Pattern::None) throw Error(who + " makes no copies (only arrays and mirrors do)");
+  checkPattern(kind, pattern, who);
+  if (node->pattern == pattern) return;
+  NodePtr edited = editNode(root(), id, [&](Node& n) { n.pattern = pattern; });
+  checkExpansion(edited, scene().settings.maxLeaves);
+  apply("copies", edited);
 }
 
 void Document::setVisible(NodeId id, bool visible) {

@@ -83,6 +83,9 @@ class Document {
   void setAmount(NodeId id, double amount);
   // A shell's opening (Node::opening): a part inside the shell, or 0 for a closed wall.
   void setOpening(NodeId id, NodeId opening);
+  // A pattern's copies (Node::pattern); checked as the kind requires, and refused when the
+  // scene would exceed its leaf limit (engine/document/expansion.h).
+  void setPattern(NodeId id, const PatternParams& pattern);
   void setVisible(NodeId id, bool visible);
   void setResolution(int resolution);
   // Drag and drop: under `parent` before child `index`; never into the node's own subtree.

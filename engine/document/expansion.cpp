@@ -14,6 +14,11 @@ uint64_t saturatingAdd(uint64_t a, uint64_t b) {
   return a > kSaturated - b ? kSaturated : a + b;
 }
 
+uint64_t saturatingMultiply(uint64_t a, uint64_t b) {
+  if (a == 0 || b == 0) return 0;
+  return a > kSaturated / b ? kSaturated : a * b;
+}
+
 // One visit state: a node, reached directly or through an instance (which shows hidden nodes).
 struct StateKey {
   const Node* node;
@@ -125,7 +130,10 @@ class ExpansionCounter {
       return {saturatingAdd(f.sum.leaves, f.sum.leaves),
               saturatingAdd(saturatingAdd(f.sum.nodes, f.sum.nodes), 2), f.sum.depth + 1};
     }
-    return {f.sum.leaves, saturatingAdd(f.sum.nodes, 1), f.sum.depth + 1};
+    // A pattern visits its children once per copy.
+    const uint64_t copies = patternCopies(patternOf(n.kind), n.pattern);
+    return {saturatingMultiply(f.sum.leaves, copies),
+            saturatingAdd(saturatingMultiply(f.sum.nodes, copies), 1), f.sum.depth + 1};
   }
 
   std::unordered_map<NodeId, const Node*> byId_;

@@ -15,6 +15,7 @@
 #include "engine/geometry/mesh.h"
 #include "engine/geometry/transform.h"
 #include "engine/kinds/node_kinds.h"
+#include "engine/kinds/patterns.h"
 #include "engine/kinds/primitive_params.h"
 
 namespace strata {
@@ -42,6 +43,9 @@ struct Node {
   // pot's mouth). 0: a closed wall everywhere. A reference that no longer names a visible part
   // inside the shell leaves the wall closed (the inspector says so).
   NodeId opening = 0;
+  // Patterns (array, circular array, mirror): what the copies are (patterns.h), in the node's
+  // frame.
+  PatternParams pattern;
 
   // Mesh leaves: the file's path (absolute in a Document; in a scene file relative to its
   // folder or absolute), the content hash of the file, and the loaded, checked mesh (shared,

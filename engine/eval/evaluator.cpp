@@ -58,6 +58,15 @@ void hashPrimitiveParams(Hasher& h, NodeKind kind, const PrimitiveParams& p) {
   }
 }
 
+// Where an operation places its children, in its frame: a pattern's copies (checked), else the
+// identity alone.
+std::vector<glm::dmat4> placementsOf(const Node& node) {
+  const Pattern pattern = patternOf(node.kind);
+  if (pattern == Pattern::None) return {glm::dmat4(1.0)};
+  checkPattern(pattern, node.pattern, std::string(kindName(node.kind)) + " '" + node.name + "'");
+  return patternPlacements(pattern, node.pattern);
+}
+
 Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
                 bool asInstance, int depth) {
   Bounds b;
@@ -76,17 +85,19 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
   const RayOp op = nodeKindInfo(node->kind).rayOp;
   // A hidden base leaves its difference empty (its cutters never become the base).
   if (op == RayOp::Difference && !node->children.empty() && !node->children[0]->visible) return b;
-  for (const auto& child : node->children) {
-    if (!child->visible) continue;
-    Bounds cb = boundsOf(child, root, world, false, depth + 1);
-    if (op == RayOp::Union) {
-      b.include(cb);
-    } else if (op == RayOp::Intersection) {
-      b = first ? cb : b.intersected(cb);
-    } else if (first) {
-      b = cb;  // difference: the first visible child
+  for (const glm::dmat4& placement : placementsOf(*node)) {  // patterns: every copy
+    for (const auto& child : node->children) {
+      if (!child->visible) continue;
+      Bounds cb = boundsOf(child, root, world * placement, false, depth + 1);
+      if (op == RayOp::Union) {
+        b.include(cb);
+      } else if (op == RayOp::Intersection) {
+        b = first ? cb : b.intersected(cb);
+      } else if (first) {
+        b = cb;  // difference: the first visible child
+      }
+      first = false;
     }
-    first = false;
   }
   // A modifier may reach beyond its children (an offset grows, a fillet grows before it
   // shrinks): room for it.
@@ -169,7 +180,9 @@ void allLeafBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& p
   if (node->kind == NodeKind::Instance) {
     allLeafBounds(findNode(root, node->instanceOf), root, world, true, depth + 1, out);
   } else if (isOperation(node->kind)) {
-    for (const auto& c : node->children) allLeafBounds(c, root, world, false, depth + 1, out);
+    for (const glm::dmat4& placement : placementsOf(*node))
+      for (const auto& c : node->children)
+        allLeafBounds(c, root, world * placement, false, depth + 1, out);
   } else {
     out->include(boundsOf(node, root, parentWorld, true, depth));  // visibility checked above
   }
@@ -380,9 +393,17 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   const bool hiddenBase =
       op == RayOp::Difference && !node->children.empty() && !node->children[0]->visible;
   std::vector<Visit> children;
-  for (const auto& c : node->children) {
-    if (!c->visible || hiddenBase) continue;
-    children.push_back(visit(c, world, depth + 1, ctx));
+  const std::vector<glm::dmat4> placements = placementsOf(*node);
+  for (size_t k = 0; k < placements.size(); ++k) {
+    // A pattern's copies are reached as instances are: their LDIs are not kept (the original,
+    // placed by the identity, is).
+    const int copy = placements[k] == glm::dmat4(1.0) ? 0 : 1;
+    ctx.insideInstance += copy;
+    for (const auto& c : node->children) {
+      if (!c->visible || hiddenBase) continue;
+      children.push_back(visit(c, world * placements[k], depth + 1, ctx));
+    }
+    ctx.insideInstance -= copy;
   }
   // Empty operands decide some results without a Boolean.
   std::vector<Visit> operands;

@@ -18,7 +18,8 @@ namespace strata {
 
 // 2: offset, shell, round and fillet nodes. Version 1 files read unchanged.
 // 3: a shell's opening (the `opening` member).
-constexpr int kSceneFormatVersion = 3;
+// 4: patterns: array, circularArray and mirror nodes.
+constexpr int kSceneFormatVersion = 4;
 
 struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving

@@ -514,6 +514,7 @@ class SceneReader {
                                     ", which is not inside this shell (an opening must be a "
                                     "part the shell holds)");
       }
+      if (patternOf(node->kind) != Pattern::None) readPattern(v, at, *node);
     } else if (isPrimitive(node->kind)) {
       readPrimitiveParams(v, at, node->kind, &node->params);
     } else if (node->kind == NodeKind::Mesh) {
@@ -612,6 +613,46 @@ class SceneReader {
         fail(at + "/" + where, problem.message);
       }
     }
+  }
+
+  // A pattern's parameters (version 4): array `counts` and `step` (required); circular array
+  // `count` (required), `axis` ("z"), `angle` (360), `center` (origin); mirror `axis`
+  // (required), `center` (origin), `keep` (true).
+  void readPattern(const json& v, const std::string& at, Node& node) const {
+    const Pattern pattern = patternOf(node.kind);
+    PatternParams& p = node.pattern;
+    const std::string countText = "an integer from 1 to " + std::to_string(kMaxPatternCount);
+    auto required = [&](const char* key) {
+      auto f = v.find(key);
+      if (f == v.end())
+        fail(at + "/" + key, std::string("missing required field (the ") + key + ")");
+      return f;
+    };
+    auto readAxis = [&](const json& x) {
+      const std::string& name = string(x, at + "/axis");
+      if (!axisFromName(name, &p.axis))
+        fail(at + "/axis", "expected \"x\", \"y\" or \"z\", got " + describe(x));
+    };
+    if (pattern == Pattern::Array) {
+      p.counts = glm::ivec3(
+          vec3(*required("counts"), at + "/counts", [&](const json& x, const std::string& xp) {
+            return double(integer(x, xp, 1, kMaxPatternCount, countText));
+          }));
+      p.step = anyVec3(*required("step"), at + "/step");
+    } else if (pattern == Pattern::Circular) {
+      p.count = int(integer(*required("count"), at + "/count", 1, kMaxPatternCount, countText));
+      if (auto f = v.find("axis"); f != v.end()) readAxis(*f);
+      if (auto f = v.find("angle"); f != v.end()) {
+        p.angle = inRange(*f, at + "/angle", -360.0, 360.0);
+        if (p.angle == 0.0 && p.count > 1)
+          fail(at + "/angle", "expected a non-zero angle for more than one copy, got 0");
+      }
+    } else {
+      readAxis(*required("axis"));
+      if (auto f = v.find("keep"); f != v.end()) p.keepOriginal = boolean(*f, at + "/keep");
+    }
+    if (pattern != Pattern::Array)
+      if (auto f = v.find("center"); f != v.end()) p.center = anyVec3(*f, at + "/center");
   }
 
   static bool isContentHash(const std::string& s) {

@@ -125,6 +125,22 @@ ojson nodeToJson(const Node& node, int depth) {
   } else if (const char* key = nodeKindInfo(node.kind).amountKey) {
     j[key] = finite(node.amount, label + " " + key);
     if (writesOpening(node)) j["opening"] = node.opening;
+  } else if (const Pattern pattern = patternOf(node.kind); pattern != Pattern::None) {
+    const PatternParams& p = node.pattern;
+    checkPattern(pattern, p, "cannot save the scene: " + label);
+    if (pattern == Pattern::Array) {
+      j["counts"] = ojson::array({p.counts.x, p.counts.y, p.counts.z});
+      j["step"] = vec3(p.step, label + " step");
+    } else if (pattern == Pattern::Circular) {
+      j["count"] = p.count;
+      j["axis"] = axisName(p.axis);
+      j["angle"] = finite(p.angle, label + " angle");
+      j["center"] = vec3(p.center, label + " centre");
+    } else {
+      j["axis"] = axisName(p.axis);
+      j["center"] = vec3(p.center, label + " centre");
+      j["keep"] = p.keepOriginal;
+    }
   }
 
   ojson transform;
@@ -158,6 +174,13 @@ bool holdsModifier(const Node& node) {
   return false;
 }
 
+bool holdsPattern(const Node& node) {
+  if (patternOf(node.kind) != Pattern::None) return true;
+  for (const NodePtr& child : node.children)
+    if (child && holdsPattern(*child)) return true;
+  return false;
+}
+
 bool holdsOpening(const Node& node) {
   if (writesOpening(node)) return true;
   for (const NodePtr& child : node.children)
@@ -173,8 +196,12 @@ std::string sceneToJson(const Scene& scene) {
   ojson doc;
   doc["format"] = "strata-scene";
   // The oldest version that holds the scene: files without modifiers stay readable by
-  // builds that read version 1, files without a shell's opening by those that read 2.
-  doc["version"] = holdsOpening(*scene.root) ? 3 : holdsModifier(*scene.root) ? 2 : 1;
+  // builds that read version 1, files without a shell's opening by those that read 2, files
+  // without patterns by those that read 3.
+  doc["version"] = holdsPattern(*scene.root)    ? 4
+                   : holdsOpening(*scene.root)  ? 3
+                   : holdsModifier(*scene.root) ? 2
+                                                : 1;
   doc["unit"] = s.unit;
   ojson settings;
   settings["resolution"] = s.resolution;

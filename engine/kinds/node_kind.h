@@ -18,6 +18,11 @@ enum class NodeKind : uint8_t {
   Shell,
   Round,
   Fillet,
+  // Patterns: operations whose children, united, are repeated under placements in the node's
+  // frame (patterns.h).
+  Array,
+  CircularArray,
+  Mirror,
   // Primitive leaves (primitives.h), centred at the origin, axis along z.
   Box,
   Sphere,
@@ -39,6 +44,14 @@ enum class Modifier : uint8_t {
   Shell,   // a wall of thickness amount (> 0) inside the surface: S minus offset(S, -amount)
   Round,   // convex edges rounded with radius amount (> 0): offset(offset(S, -r), r), an opening
   Fillet,  // concave edges and seams filled with radius amount (> 0): offset(offset(S, r), -r)
+};
+
+// What a pattern (an operation that repeats its children's union) places; patterns.h says how.
+enum class Pattern : uint8_t {
+  None,
+  Array,     // copies along a grid of the node's frame (a linear array is a grid of one row)
+  Circular,  // copies around an axis
+  Mirror,    // a mirror image across a plane, with or without the original
 };
 
 }  // namespace strata

@@ -81,6 +81,46 @@ std::vector<NodeKindInfo> buildTable() {
        Modifier::Fillet,
        "radius",
        0.1},
+      {NodeKind::Array,
+       "array",
+       KindRole::Operation,
+       "\u2237",
+       "#",
+       "Array: copies of the children along one, two or three axes (counts and steps)",
+       RayOp::Union,
+       {"children", "counts", "step"},
+       nullptr,
+       Modifier::None,
+       nullptr,
+       0.0,
+       Pattern::Array},
+      {NodeKind::CircularArray,
+       "circularArray",
+       KindRole::Operation,
+       "\u21BB",
+       "@",
+       "Circular array: copies of the children around an axis (count, axis, angle, centre)",
+       RayOp::Union,
+       {"children", "count", "axis", "angle", "center"},
+       nullptr,
+       Modifier::None,
+       nullptr,
+       0.0,
+       Pattern::Circular,
+       "circular array"},
+      {NodeKind::Mirror,
+       "mirror",
+       KindRole::Operation,
+       "\u2194",
+       "|",
+       "Mirror: the children and their mirror image across a plane (or the image alone)",
+       RayOp::Union,
+       {"children", "axis", "center", "keep"},
+       nullptr,
+       Modifier::None,
+       nullptr,
+       0.0,
+       Pattern::Mirror},
   };
   for (const PrimitiveInfo& p : primitiveTable()) {
     std::vector<std::string> fields;
@@ -138,7 +178,7 @@ const char* kindName(NodeKind kind) {
 
 const char* kindLabel(NodeKind kind) {
   const NodeKindInfo& info = nodeKindInfo(kind);
-  return info.primitive ? info.primitive->label : info.name;
+  return info.primitive ? info.primitive->label : info.label ? info.label : info.name;
 }
 
 bool kindFromName(const std::string& name, NodeKind* kind) {
@@ -153,6 +193,10 @@ bool kindFromName(const std::string& name, NodeKind* kind) {
 
 Modifier modifierOf(NodeKind kind) {
   return nodeKindInfo(kind).modifier;
+}
+
+Pattern patternOf(NodeKind kind) {
+  return nodeKindInfo(kind).pattern;
 }
 
 double modifierGrowth(NodeKind kind, double amount) {

@@ -33,6 +33,8 @@ struct NodeKindInfo {
   Modifier modifier = Modifier::None;        // modifiers only (role Operation, rayOp Union)
   const char* amountKey = nullptr;           // modifiers: the amount's scene-file field
   double defaultAmount = 0.0;                // modifiers: of a new node, in scene units
+  Pattern pattern = Pattern::None;           // patterns only (role Operation, rayOp Union)
+  const char* label = nullptr;               // for people, where it differs from `name`
 };
 
 // The modifier of `kind` (Modifier::None for every other kind).
@@ -41,6 +43,9 @@ Modifier modifierOf(NodeKind kind);
 double modifierGrowth(NodeKind kind, double amount);
 // Throws strata::Error (naming `who`) when `amount` is not valid for the modifier `kind`.
 void checkModifierAmount(NodeKind kind, double amount, const std::string& who);
+
+// The pattern of `kind` (Pattern::None for every other kind).
+Pattern patternOf(NodeKind kind);
 
 // Every kind: operations, then primitives in palette order, then mesh and instance.
 const std::vector<NodeKindInfo>& nodeKindTable();
@@ -51,7 +56,8 @@ bool isOperation(NodeKind kind);
 bool isPrimitive(NodeKind kind);
 // Lower-case name used in files and on the command line ("union", "box", ...).
 const char* kindName(NodeKind kind);
-// For people: a primitive's label ("rounded box"), else the name ("union").
+// For people: a primitive's label ("rounded box"), a kind's label ("circular array"), else the
+// name ("union").
 const char* kindLabel(NodeKind kind);
 // Inverse of kindName; returns false for unknown names.
 bool kindFromName(const std::string& name, NodeKind* kind);

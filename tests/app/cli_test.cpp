@@ -275,6 +275,29 @@ TEST(CliExport, OffsetShellRoundAndFilletOfMeshFiles) {
   EXPECT_NE(zero.output.find("must be greater than 0"), std::string::npos) << zero.output;
 }
 
+// The bundled scene of patterns: a mirrored pair of ribs, a circular array of 6 bolt holes, a
+// 2 x 2 grid of mounting holes and a row of 3 slots. Exported whole and in tiles: one closed
+// part whose genus counts every copy (bore 1 + 6 + 4 + 3), the same volume both ways.
+TEST(CliExport, TheSceneOfPatternsExportsWatertightWithEveryCopy) {
+  const std::string scene = std::string(STRATA_ASSETS) + "/scenes/flange_patterns.strata.json";
+  double volumes[2] = {0.0, 0.0};
+  for (int tiled = 0; tiled < 2; ++tiled) {
+    const std::string report = temp("patterns.json");
+    CliRun r = strata("export " + scene + " --resolution 128 -q -o " + temp("patterns.stl") +
+                      " --report " + report + (tiled ? " --tile 32" : ""));
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream in(report);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["tiles"].get<int>() > 1, tiled == 1) << j["tiles"];
+    const nlohmann::json& check = j["check"];
+    EXPECT_TRUE(check["passed"].get<bool>()) << r.output;
+    EXPECT_EQ(check["components"].get<int>(), 1) << r.output;
+    EXPECT_EQ(check["genus"].get<int>(), 14) << r.output;
+    volumes[tiled] = check["volume"].get<double>();
+  }
+  EXPECT_DOUBLE_EQ(volumes[0], volumes[1]);
+}
+
 // `shell A --thickness T --opening C`: A minus C, hollowed, the hollow open where C cuts: the
 // outer and inner surfaces are one (one component, genus 0), where the closed shell of the
 // same part has its cavity as a separate surface.

@@ -273,6 +273,64 @@ TEST(EditorWindow, GroupAsRoundIsOneUndoStepWithARadiusFromTheParts) {
   EXPECT_EQ(sceneToJson(state.document.scene()), before);
 }
 
+// Grouping the selection as each pattern: one undo step, copies spaced from the parts' size
+// (an array: 3 along x, a quarter of their width apart; a mirror across x keeping the
+// original), the preview's volume multiplied by the disjoint copies; switching an array to a
+// circular array respaces it; every step undoes.
+TEST(EditorWindow, GroupAsAPatternIsOneUndoStepSpacedFromTheParts) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  NodeId block = addPrimitive(state, NodeKind::Box);
+  ASSERT_TRUE(guarded(state, [&] {
+    PrimitiveParams box;
+    box.size = glm::dvec3(8.0, 4.0, 4.0);
+    state.document.setParams(block, box);
+    Transform t;
+    t.translate = glm::dvec3(10.0, 0.0, 0.0);  // off the mirror plane and the circle's axis
+    state.document.setTransform(block, t);
+  }));
+  setResolution(state, 128);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  const double one = 8.0 * 4.0 * 4.0;
+  // The LDI's volume of n copies: within half a cell of their surface (area 160 each) of n x 128.
+  auto expectCopies = [&](int n) {
+    const double h = state.preview->stats.grid.h;
+    EXPECT_NEAR(state.preview->stats.measure.volume, n * one, 0.5 * n * 160.0 * h) << n;
+  };
+  expectCopies(1);
+  const std::string before = sceneToJson(state.document.scene());
+  state.selection = {block};
+  groupSelection(state, NodeKind::Array);
+  NodePtr array = findNode(state.document.root(), state.selection.at(0));
+  ASSERT_TRUE(array && array->kind == NodeKind::Array);
+  EXPECT_EQ(array->pattern.counts, glm::ivec3(3, 1, 1));
+  EXPECT_DOUBLE_EQ(array->pattern.step.x, 10.0);  // 1.25 x 8
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  expectCopies(3);
+  setSelectionOperation(state, NodeKind::CircularArray);
+  array = findNode(state.document.root(), array->id);
+  EXPECT_EQ(array->pattern.count, 6);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  expectCopies(6);  // at radius 10 they are disjoint
+  undo(state);
+  undo(state);
+  EXPECT_EQ(sceneToJson(state.document.scene()), before);
+
+  state.selection = {block};
+  groupSelection(state, NodeKind::Mirror);
+  NodePtr mirror = findNode(state.document.root(), state.selection.at(0));
+  ASSERT_TRUE(mirror && mirror->kind == NodeKind::Mirror);
+  EXPECT_TRUE(mirror->pattern.keepOriginal);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  expectCopies(2);
+  const Bounds shown = selectionBounds(state.document.root(), {mirror->id});
+  EXPECT_NEAR(shown.min.x, -14.0, 1e-9);
+  EXPECT_NEAR(shown.max.x, 14.0, 1e-9);
+  undo(state);
+  EXPECT_EQ(sceneToJson(state.document.scene()), before);
+}
+
 class SphereAndBox : public testing::Test {
  protected:
   static constexpr int w = 320, h = 200;

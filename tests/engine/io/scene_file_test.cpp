@@ -289,8 +289,8 @@ TEST(SceneFileValidation, FormatAndVersion) {
   expectError(R"({"format": "obj", "version": 1})", {"/format: expected \"strata-scene\""});
   expectError(R"({"format": "strata-scene", "root": {"id": 1, "type": "box"}})",
               {"/version: missing required field"});
-  expectError(R"({"format": "strata-scene", "version": 4})",
-              {"/version: version 4 is newer than this build of Strata reads (3)"});
+  expectError(R"({"format": "strata-scene", "version": 5})",
+              {"/version: version 5 is newer than this build of Strata reads (4)"});
   expectError(R"({"format": "strata-scene", "version": 99999999999999999999})",
               {"/version: expected an integer"});
   expectError(R"({"format": "strata-scene", "version": "1"})",
