@@ -392,6 +392,16 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, bool ortho) {
                                                    : "scale (R)");
   draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 8)), IM_COL32(210, 210, 215, 170),
                 corner);
+  if (s.measure.active) {
+    // What the next click does.
+    const bool open = s.measure.open >= 0 && s.measure.openRevision == s.document.revision();
+    std::string hint = s.measure.first ? "measure (M): click the second point"
+                       : open ? "measure (M): click a third point for the angle, Esc to finish"
+                              : "measure (M): click the first point; Esc leaves the tool";
+    if (!s.measure.lastSnap.empty()) hint += "   (last point: " + s.measure.lastSnap + ")";
+    draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 26)), IM_COL32(255, 226, 120, 230),
+                  hint.c_str());
+  }
 }
 
 }  // namespace
@@ -465,6 +475,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   if (s.document.interacting() && !ImGui::IsAnyItemActive() && !gl_->viewport.gizmoDragging())
     s.document.endInteraction();
 
+  gl_->viewport.drawAnnotations(s, rect);
   drawViewportHints(s, rect, gl_->viewport.camera.ortho);
   ImGui::Render();
 

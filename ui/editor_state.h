@@ -20,6 +20,7 @@
 #include "engine/jobs/triangle_estimate_job.h"
 #include "ui/file_dialog.h"
 #include "ui/gizmo.h"
+#include "ui/measure_tool.h"
 
 namespace strata::ui {
 
@@ -112,6 +113,7 @@ struct EditorState {
   bool showAllGhosts = false;
   SectionState section;
   bool showDiagnostics = false;
+  MeasureTool measure;  // M: distances and angles on the preview (measure_tool.h)
 
   // Jobs and dialogs.
   std::unique_ptr<ExportJob> exportJob;

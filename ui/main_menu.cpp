@@ -116,6 +116,9 @@ void drawMainMenu(EditorState& state) {
       ImGui::EndMenu();
     }
     if (ImGui::MenuItem("Select none", "Esc", false, any)) clearSelection(state);
+    if (ImGui::MenuItem("Clear measurements", nullptr, false,
+                        !state.document.scene().measurements.empty()))
+      clearMeasurements(state);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -138,6 +141,8 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Scale", "R", state.gizmoMode == GizmoMode::Scale))
       state.gizmoMode = GizmoMode::Scale;
     ImGui::MenuItem("Snap", nullptr, &state.snap.enabled);
+    if (ImGui::MenuItem("Measure", "M", state.measure.active))
+      setMeasuring(state, !state.measure.active);
     ImGui::Separator();
     ImGui::MenuItem("Ghosts of all cutters", "G", &state.showAllGhosts);
     ImGui::MenuItem("Ground grid", nullptr, &state.showGrid);
@@ -182,7 +187,13 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_G)) state.showAllGhosts = !state.showAllGhosts;
   if (keyPressed(state, GLFW_KEY_F2) && !state.selection.empty())
     state.renaming = primarySelection(state);
-  if (keyPressed(state, GLFW_KEY_ESCAPE)) clearSelection(state);
+  if (keyPressed(state, GLFW_KEY_M)) setMeasuring(state, !state.measure.active);
+  if (keyPressed(state, GLFW_KEY_ESCAPE)) {
+    if (state.measure.active)
+      measureEscape(state);
+    else
+      clearSelection(state);
+  }
 }
 
 void handleDialogResult(EditorState& state) {

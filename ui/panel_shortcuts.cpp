@@ -56,6 +56,7 @@ const ShortcutGroup kGroups[] = {
       {"5", "orthographic / perspective"},
       {"G", "ghosts of every part that cuts or intersects"},
       {"W E R", "move, rotate, scale gizmo"},
+      {"M", "measure: two clicks a distance, a third the angle; Esc ends"},
       {"F1", "this sheet"}}},
 };
 

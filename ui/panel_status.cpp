@@ -261,6 +261,46 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
   ImGui::PopStyleVar();
 }
 
+namespace {
+// The result's extent and the document's measurements (each removable), in scene units.
+void measurementList(EditorState& state) {
+  const PreviewResult* shown = state.preview.get();
+  const char* unit = unitSymbol(state.document.scene().settings.unit);
+  if (shown && shown->ok()) {
+    const EvalResult& r = shown->stats;
+    ImGui::Separator();
+    ImGui::Text("result: volume %.6g %s^3, area %.6g %s^2", r.measure.volume, unit, r.measure.area,
+                unit);
+    const Bounds b = sceneBounds(state.document.root());
+    if (!b.empty())
+      ImGui::Text("bounding box %.4g x %.4g x %.4g %s (from %.4g, %.4g, %.4g)", b.size().x,
+                  b.size().y, b.size().z, unit, b.min.x, b.min.y, b.min.z);
+  }
+  // A copy: removing one replaces the document's scene.
+  const std::vector<Measurement> list = state.document.scene().measurements;
+  ImGui::Separator();
+  ImGui::Text("measurements (M): %zu", list.size());
+  if (!list.empty()) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("clear all")) clearMeasurements(state);
+  }
+  for (size_t i = 0; i < list.size(); ++i) {
+    ImGui::PushID(int(i));
+    const bool remove = ImGui::SmallButton("x");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Remove this measurement (Ctrl+Z brings it back)");
+    ImGui::SameLine();
+    const std::string text = measureSummary(state, measureValues(state.document.root(), list[i]));
+    ImGui::TextWrapped("%s", text.c_str());
+    ImGui::PopID();
+    if (remove) {
+      removeMeasurement(state, i);
+      break;
+    }
+  }
+}
+}  // namespace
+
 void drawDiagnostics(EditorState& state) {
   if (!state.showDiagnostics) return;
   ImGui::SetNextWindowSize(ImVec2(560, 460), ImGuiCond_FirstUseEver);
@@ -325,6 +365,7 @@ void drawDiagnostics(EditorState& state) {
       }
     }
   }
+  measurementList(state);
   ImGui::Separator();
   ImGui::Text("messages");
   ImGui::SameLine();

@@ -14,17 +14,6 @@ Bounds computeSceneBounds(const NodePtr& root);
 
 }  // namespace
 
-glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id) {
-  std::vector<const Node*> path;
-  glm::dmat4 m(1.0);
-  if (!root || !pathToNode(root, id, &path)) return m;
-  // A mirror that drops its original shows its children as their image: the gizmo goes there.
-  for (size_t i = 0; i + 1 < path.size(); ++i)
-    m = m * path[i]->transform.matrix() *
-        firstPlacement(patternOf(path[i]->kind), path[i]->pattern);
-  return m;
-}
-
 Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection) {
   Bounds b;
   for (NodeId id : selection) {

@@ -8,14 +8,15 @@
 #include <utility>
 #include <vector>
 
+#include "engine/document/measurement.h"
 #include "engine/document/node.h"
 #include "engine/geometry/mesh.h"
 #include "ui/viewport_renderer.h"
 
 namespace strata::ui {
 
-// Object-to-world matrix of the node's parent (identity for the root).
-glm::dmat4 parentWorldMatrix(const NodePtr& root, NodeId id);
+// Object-to-world matrix of the node's parent (engine/document/measurement.h).
+using strata::parentWorldMatrix;
 
 // World bounds of the visible result of each selected node (empty when nothing is visible).
 Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection);

@@ -1,5 +1,7 @@
 #include "ui/viewport.h"
 
+#include "ui/measure_tool.h"
+
 #include <imgui.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -209,7 +211,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     return;
   }
 
-  const bool haveGizmo = placeGizmo(state);
+  // The measure tool takes clicks on parts; the gizmo is not offered meanwhile.
+  const bool haveGizmo = !state.measure.active && placeGizmo(state);
   hot_ = haveGizmo && inside && !navigating_ ? gizmo_.hover(view, mouse) : -1;
 
   if (inside && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
@@ -236,7 +239,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     }
     clickPending_ = true;
   }
-  if (clickPending_ && ImGui::IsMouseDragging(0, 4.0f)) {
+  if (clickPending_ && ImGui::IsMouseDragging(0, 4.0f) && !state.measure.active) {
     clickPending_ = false;
     const ImVec2 delta = ImGui::GetMouseDragDelta(0, 0.0f);
     boxFrom_ = mouse - glm::dvec2(delta.x, delta.y);
@@ -295,6 +298,19 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
 
 void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, const ViewRect& rect,
                             double pixelScale) {
+  if (click_ && state.measure.active) {
+    std::optional<PickHit> hit = pickAt(renderer, state, rect, click_->mouse, pixelScale);
+    if (hit) {
+      std::string what;
+      const glm::dvec3 p =
+          snapMeasurePoint(state, mapping(state, rect), *hit, click_->mouse, &what);
+      measureClick(state, hit->leaf, p);
+      state.measure.lastSnap = what;
+    } else {
+      logInfo(state, "measure: click on a part (or the section's cap); Esc leaves the tool");
+    }
+    click_.reset();
+  }
   if (click_) {
     std::optional<PickHit> hit = pickAt(renderer, state, rect, click_->mouse, pixelScale);
     if (hit && findNode(state.document.root(), hit->leaf))
@@ -330,6 +346,10 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
     }
     drop_.reset();
   }
+}
+
+void Viewport::drawAnnotations(const EditorState& state, const ViewRect& rect) {
+  drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y);
 }
 
 bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) {
@@ -368,8 +388,9 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
     const Bounds& b = cachedSelectionBounds(state);
     if (!b.empty()) appendBox(b, glm::vec4(1.0f, 0.62f, 0.2f, 0.55f), &overlay);
   }
+  appendMeasureLines(state, view, &overlay);
   Gizmo gizmo = gizmo_;
-  if (!state.selection.empty()) {
+  if (!state.selection.empty() && !state.measure.active) {
     NodeId id = primarySelection(state);
     NodePtr node = findNode(state.document.root(), id);
     if (node) {

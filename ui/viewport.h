@@ -47,6 +47,8 @@ class Viewport {
   // (screenshots, headless renders).
   void draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
             int framebufferHeight, double pixelScale, double lastFrameMs = -1.0);
+  // The measurements' labels (measure_tool.h), in this frame's ImGui draw lists.
+  void drawAnnotations(const EditorState& state, const ViewRect& rect);
   // Frame the whole scene / the selection (at the next handleInput or draw).
   void viewAll(const EditorState& state);
   void frameSelected(const EditorState& state);

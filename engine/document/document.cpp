@@ -53,6 +53,24 @@ void Document::apply(const std::string& label, const NodePtr& newRoot) {
   if (newRoot == root()) return;  // nothing changed: no undo step
   Scene next = scene();
   next.root = newRoot;
+  if (!next.measurements.empty())
+    next.measurements = pinPointsOfRemovedParts(root(), newRoot, next.measurements);
+  history_.record(state_, label);
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
+}
+
+void Document::applyMeasurements(const std::string& label, std::vector<Measurement> measurements) {
+  if (measurements == scene().measurements) return;
+  for (const Measurement& m : measurements) {
+    if (m.points.size() < 2 || m.points.size() > 3)
+      throw Error("a measurement has two points (a distance) or three (an angle)");
+    for (const MeasurePoint& p : m.points)
+      if (p.node != 0 && !findNode(root(), p.node))
+        throw Error("a measured point lies on node " + std::to_string(p.node) +
+                    ", which is not in the scene");
+  }
+  Scene next = scene();
+  next.measurements = std::move(measurements);
   history_.record(state_, label);
   state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }

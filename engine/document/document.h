@@ -50,6 +50,10 @@ class Document {
   // Makes `root` current as one undo step named `label`. The other commands go through here.
   void apply(const std::string& label, const NodePtr& root);
   void applySettings(const std::string& label, const SceneSettings& settings);
+  // Replaces the measurements (measurement.h) as one undo step; none is kept when nothing
+  // changes. Throws strata::Error for a measurement of fewer than 2 or more than 3 points, or a
+  // point on a node that is not in the tree.
+  void applyMeasurements(const std::string& label, std::vector<Measurement> measurements);
 
   // Adds a new primitive (default parameters) or operation under `parent` (0 = the root; a leaf
   // parent adds beside it instead, after it in its own parent) at `index` (< 0 = at the end).

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "engine/document/measurement.h"
 #include "engine/document/node.h"
 #include "engine/util/limits.h"
 
@@ -25,6 +26,8 @@ struct SceneSettings {
 struct Scene {
   SceneSettings settings;
   NodePtr root;  // never null for a loaded scene
+  // Distances and angles the artist placed (measurement.h); each point's part is in `root`.
+  std::vector<Measurement> measurements;
 };
 
 }  // namespace strata

@@ -277,7 +277,7 @@ class SceneReader {
         scene.settings.unit = nonEmptyString(*it, at);
       else if (key == "settings")
         readSettings(*it, at, &scene.settings);
-      else if (key != "root")
+      else if (key != "root" && key != "measurements")
         fail(at, "unknown field \"" + key + "\"");
     }
     auto root = doc.find("root");
@@ -286,6 +286,8 @@ class SceneReader {
     checkGraph(rootEntry);
     loadMeshes();
     scene.root = entries_[rootEntry].node;
+    if (auto m = doc.find("measurements"); m != doc.end())
+      readMeasurements(*m, "/measurements", scene.root, &scene.measurements);
     return scene;
   }
 
@@ -612,6 +614,45 @@ class SceneReader {
           }
         fail(at + "/" + where, problem.message);
       }
+    }
+  }
+
+  // Measurements (version 4): [{"points": [{"on": id, "at": [x, y, z]}, ...]}], 2 or 3 points,
+  // each in world coordinates, on the node `on` (a leaf of the tree) or fixed in the world.
+  void readMeasurements(const json& v, const std::string& at, const NodePtr& root,
+                        std::vector<Measurement>* out) const {
+    if (!v.is_array()) fail(at, "expected an array of measurements, got " + describe(v));
+    if (v.size() > kMaxMeasurements)
+      fail(at, "more than " + std::to_string(kMaxMeasurements) + " measurements");
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string mp = at + "/" + std::to_string(i);
+      requireObject(v[i], mp);
+      for (auto it = v[i].begin(); it != v[i].end(); ++it)
+        if (it.key() != "points") fail(mp + "/" + pointerToken(it.key()), "unknown field");
+      auto points = v[i].find("points");
+      if (points == v[i].end()) fail(mp + "/points", "missing required field (2 or 3 points)");
+      if (!points->is_array() || points->size() < 2 || points->size() > 3)
+        fail(mp + "/points", "expected an array of 2 or 3 points, got " + describe(*points));
+      Measurement m;
+      for (size_t k = 0; k < points->size(); ++k) {
+        const json& p = (*points)[k];
+        const std::string pp = mp + "/points/" + std::to_string(k);
+        requireObject(p, pp);
+        for (auto it = p.begin(); it != p.end(); ++it)
+          if (it.key() != "on" && it.key() != "at")
+            fail(pp + "/" + pointerToken(it.key()), "unknown field");
+        auto where = p.find("at");
+        if (where == p.end()) fail(pp + "/at", "missing required field (the point)");
+        const glm::dvec3 world = anyVec3(*where, pp + "/at");
+        NodeId on = 0;
+        if (auto f = p.find("on"); f != p.end()) {
+          on = static_cast<NodeId>(integer(*f, pp + "/on", 1, UINT32_MAX, "a positive integer id"));
+          if (!findNode(root, on))
+            fail(pp + "/on", "names node " + std::to_string(on) + ", which is not in the scene");
+        }
+        m.points.push_back(attachPoint(root, on, world));
+      }
+      out->push_back(std::move(m));
     }
   }
 

@@ -197,11 +197,11 @@ std::string sceneToJson(const Scene& scene) {
   doc["format"] = "strata-scene";
   // The oldest version that holds the scene: files without modifiers stay readable by
   // builds that read version 1, files without a shell's opening by those that read 2, files
-  // without patterns by those that read 3.
-  doc["version"] = holdsPattern(*scene.root)    ? 4
-                   : holdsOpening(*scene.root)  ? 3
-                   : holdsModifier(*scene.root) ? 2
-                                                : 1;
+  // without patterns or measurements by those that read 3.
+  doc["version"] = holdsPattern(*scene.root) || !scene.measurements.empty() ? 4
+                   : holdsOpening(*scene.root)                              ? 3
+                   : holdsModifier(*scene.root)                             ? 2
+                                                                            : 1;
   doc["unit"] = s.unit;
   ojson settings;
   settings["resolution"] = s.resolution;
@@ -215,6 +215,23 @@ std::string sceneToJson(const Scene& scene) {
   if (s.maxLeaves != kDefaultMaxLeaves) settings["maxLeaves"] = s.maxLeaves;
   doc["settings"] = std::move(settings);
   doc["root"] = nodeToJson(*scene.root, 1);
+  if (!scene.measurements.empty()) {
+    // Points in world coordinates where they are now, with the part they lie on.
+    ojson measurements = ojson::array();
+    for (const Measurement& m : scene.measurements) {
+      ojson points = ojson::array();
+      for (const MeasurePoint& p : m.points) {
+        ojson point;
+        if (p.node != 0) point["on"] = p.node;
+        point["at"] = vec3(pointInWorld(scene.root, p), "a measured point");
+        points.push_back(std::move(point));
+      }
+      ojson one;
+      one["points"] = std::move(points);
+      measurements.push_back(std::move(one));
+    }
+    doc["measurements"] = std::move(measurements);
+  }
   try {
     std::string text;
     writePretty(doc, 0, &text);

@@ -2,6 +2,7 @@
 // for. Messages that refuse a value name the limit.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace strata {
@@ -18,5 +19,8 @@ constexpr int kMaxTreeDepth = 512;
 constexpr uint64_t kDefaultMaxLeaves = 100000;
 // The most a scene file or the command line may set it to (2^40, about 1.1e12).
 constexpr int64_t kMaxLeavesSetting = int64_t(1) << 40;
+
+// Measurements a scene may hold (engine/document/measurement.h).
+constexpr size_t kMaxMeasurements = 10000;
 
 }  // namespace strata

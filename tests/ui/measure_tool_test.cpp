@@ -1,0 +1,112 @@
+// The measure tool's document actions (ui/measure_tool.h), without a window: two clicks make a
+// distance (one undo step), a third the angle at the second point (one more), Esc closes the
+// open measurement and then leaves the tool, an undo closes it too; clicks snap to a turned
+// box's own corners and edge midpoints within kMeasureSnapPixels and otherwise keep the point.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "engine/document/commands.h"
+#include "ui/camera.h"
+#include "ui/editor_actions.h"
+#include "ui/editor_state.h"
+#include "ui/measure_tool.h"
+
+namespace strata::ui {
+namespace {
+
+TEST(MeasureTool, TwoClicksADistanceAThirdTheAngleEscEnds) {
+  EditorState state;
+  const NodeId block = addPrimitive(state, NodeKind::Box);
+  setMeasuring(state, true);
+  measureClick(state, block, {0, 0, 0});
+  EXPECT_TRUE(state.document.scene().measurements.empty());  // one point: nothing yet
+  measureClick(state, block, {3, 0, 0});
+  ASSERT_EQ(state.document.scene().measurements.size(), 1u);
+  EXPECT_EQ(state.document.undoLabel(), "measure");
+  measureClick(state, block, {3, 4, 0});
+  ASSERT_EQ(state.document.scene().measurements[0].points.size(), 3u);
+  MeasureValues v = measureValues(state.document.root(), state.document.scene().measurements[0]);
+  EXPECT_NEAR(v.distance, 3.0, 1e-12);
+  EXPECT_NEAR(v.angleDegrees, 90.0, 1e-12);
+  // The next two clicks start a new distance; Esc closes it, so a third click starts another.
+  measureClick(state, 0, {10, 0, 0});
+  measureClick(state, 0, {10, 0, 5});
+  measureEscape(state);
+  EXPECT_TRUE(state.measure.active);
+  measureClick(state, 0, {20, 0, 0});
+  EXPECT_EQ(state.document.scene().measurements.size(), 2u);
+  EXPECT_EQ(state.document.scene().measurements[1].points.size(), 2u);
+  measureEscape(state);  // drops the pending point
+  EXPECT_FALSE(state.measure.first.has_value());
+  measureEscape(state);  // leaves the tool
+  EXPECT_FALSE(state.measure.active);
+  // An undo closes the open measurement: the next click is a first point again.
+  setMeasuring(state, true);
+  measureClick(state, 0, {0, 9, 0});
+  measureClick(state, 0, {1, 9, 0});
+  undo(state);
+  measureClick(state, 0, {2, 9, 0});
+  EXPECT_EQ(state.document.scene().measurements.size(), 2u);
+  // Removing one, clearing all: one undo step each.
+  removeMeasurement(state, 0);
+  EXPECT_EQ(state.document.scene().measurements.size(), 1u);
+  clearMeasurements(state);
+  EXPECT_TRUE(state.document.scene().measurements.empty());
+  undo(state);
+  undo(state);
+  EXPECT_EQ(state.document.scene().measurements.size(), 2u);
+}
+
+TEST(MeasureTool, ClicksSnapToATurnedBoxsCornersAndEdgeMidpoints) {
+  EditorState state;
+  const NodeId block = addPrimitive(state, NodeKind::Box);
+  ASSERT_TRUE(guarded(state, [&] {
+    PrimitiveParams p;
+    p.size = glm::dvec3(4.0, 2.0, 2.0);
+    state.document.setParams(block, p);
+    Transform t;
+    t.rotateDegrees = glm::dvec3(0.0, 0.0, 30.0);
+    state.document.setTransform(block, t);
+  }));
+  Camera camera;
+  camera.target = glm::dvec3(0.0);
+  camera.distance = 20.0;
+  ScreenMapping view;
+  view.size = glm::dvec2(800.0, 600.0);
+  view.viewProjection = camera.projection(800.0 / 600.0, 10.0) * camera.view();
+  view.eye = camera.eye();
+  view.forward = camera.forward();
+  auto pixelOf = [&](glm::dvec3 p) {
+    glm::dvec2 px;
+    EXPECT_TRUE(view.toScreen(p, &px));
+    return px;
+  };
+  const glm::dmat4 world = nodeWorldMatrix(state.document.root(), block);
+  const glm::dvec3 corner = glm::dvec3(world * glm::dvec4(2.0, 1.0, 1.0, 1.0));
+  const glm::dvec3 edgeMid = glm::dvec3(world * glm::dvec4(0.0, 1.0, 1.0, 1.0));
+  PickHit hit;
+  hit.leaf = block;
+  std::string what;
+  // A hit a few pixels from the corner snaps to it; so does one near an edge's midpoint.
+  hit.position = corner + glm::dvec3(0.02, -0.03, 0.0);
+  glm::dvec3 p = snapMeasurePoint(state, view, hit, pixelOf(corner) + glm::dvec2(4, -3), &what);
+  EXPECT_NEAR(glm::length(p - corner), 0.0, 1e-12);
+  EXPECT_EQ(what, "corner");
+  hit.position = edgeMid + glm::dvec3(0.01, 0.0, 0.0);
+  p = snapMeasurePoint(state, view, hit, pixelOf(edgeMid) + glm::dvec2(2, 2), &what);
+  EXPECT_NEAR(glm::length(p - edgeMid), 0.0, 1e-12);
+  EXPECT_EQ(what, "edge midpoint");
+  // Far from every corner and midpoint: the surface point itself.
+  const glm::dvec3 face = glm::dvec3(world * glm::dvec4(1.0, 0.3, 1.0, 1.0));
+  hit.position = face;
+  p = snapMeasurePoint(state, view, hit, pixelOf(face), &what);
+  EXPECT_EQ(p, face);
+  EXPECT_EQ(what, "surface");
+  hit.cap = true;
+  snapMeasurePoint(state, view, hit, pixelOf(face), &what);
+  EXPECT_EQ(what, "section cap");
+}
+
+}  // namespace
+}  // namespace strata::ui

@@ -1,0 +1,232 @@
+#include "ui/measure_tool.h"
+
+#include <imgui.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "engine/kinds/primitives.h"
+#include "ui/editor_actions.h"
+#include "ui/editor_state.h"
+#include "ui/scene_queries.h"
+
+namespace strata::ui {
+namespace {
+
+const glm::vec4 kMeasureColor(1.0f, 0.86f, 0.25f, 1.0f);
+
+// The part's box in its own frame (a primitive's or a mesh's bounds); empty for other nodes.
+Bounds localBox(const Node& node) {
+  Bounds b;
+  if (isPrimitive(node.kind)) return primitiveLocalBounds(node.kind, node.params);
+  if (node.kind == NodeKind::Mesh && node.mesh)
+    for (const auto& p : node.mesh->positions) b.include(glm::dvec3(p));
+  return b;
+}
+
+// The corners and edge midpoints of `box` placed by `m`.
+std::vector<glm::dvec3> snapPoints(const Bounds& box, const glm::dmat4& m) {
+  std::vector<glm::dvec3> out;
+  if (box.empty()) return out;
+  const glm::dvec3 lo = box.min, hi = box.max, mid = 0.5 * (lo + hi);
+  for (int i = 0; i < 27; ++i) {
+    const int c[3] = {i % 3, (i / 3) % 3, i / 9};  // 0 min, 1 middle, 2 max per axis
+    int middles = 0;
+    glm::dvec3 p;
+    for (int a = 0; a < 3; ++a) {
+      p[a] = c[a] == 0 ? lo[a] : c[a] == 2 ? hi[a] : mid[a];
+      middles += c[a] == 1 ? 1 : 0;
+    }
+    if (middles <= 1) out.push_back(glm::dvec3(m * glm::dvec4(p, 1.0)));  // 8 corners, 12 edges
+  }
+  return out;
+}
+
+bool openValid(const EditorState& state) {
+  const MeasureTool& t = state.measure;
+  return t.open >= 0 && t.openRevision == state.document.revision() &&
+         size_t(t.open) < state.document.scene().measurements.size() &&
+         state.document.scene().measurements[size_t(t.open)].points.size() == 2;
+}
+
+void addMarker(const ScreenMapping& view, const glm::dvec3& p, std::vector<LineVertex>* out) {
+  // About 5 pixels each way whatever the depth.
+  const double depth = view.ortho ? 1.0 : std::max(glm::dot(p - view.eye, view.forward), 1e-9);
+  const double r = 5.0 * view.unitsPerPixel * depth;
+  for (int a = 0; a < 3; ++a) {
+    glm::dvec3 d(0.0);
+    d[a] = r;
+    out->push_back(lineVertex(p - d, kMeasureColor));
+    out->push_back(lineVertex(p + d, kMeasureColor));
+  }
+}
+
+void label(ImDrawList* draw, ImVec2 at, const std::string& text) {
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  const ImVec2 lo(at.x - size.x * 0.5f - 4.0f, at.y - size.y * 0.5f - 2.0f);
+  const ImVec2 hi(at.x + size.x * 0.5f + 4.0f, at.y + size.y * 0.5f + 2.0f);
+  draw->AddRectFilled(lo, hi, IM_COL32(20, 22, 26, 210), 3.0f);
+  draw->AddRect(lo, hi, IM_COL32(255, 220, 64, 160), 3.0f);
+  draw->AddText(ImVec2(lo.x + 4.0f, lo.y + 2.0f), IM_COL32(255, 236, 150, 255), text.c_str());
+}
+
+}  // namespace
+
+glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
+                            glm::dvec2 mouse, std::string* what) {
+  if (what) *what = hit.cap ? "section cap" : "surface";
+  const NodePtr& root = state.document.root();
+  NodePtr leaf = findNode(root, hit.leaf);
+  if (!leaf) return hit.position;
+  const std::vector<glm::dvec3> points =
+      snapPoints(localBox(*leaf), nodeWorldMatrix(root, leaf->id));
+  double best = kMeasureSnapPixels;
+  glm::dvec3 snapped = hit.position;
+  for (size_t i = 0; i < points.size(); ++i) {
+    glm::dvec2 pixel;
+    if (!view.toScreen(points[i], &pixel)) continue;
+    const double d = glm::length(pixel - mouse);
+    if (d < best) {
+      best = d;
+      snapped = points[i];
+    }
+  }
+  if (what && snapped != hit.position) {
+    // Which kind of point: a corner has no middle coordinate.
+    const Bounds box = localBox(*leaf);
+    const glm::dvec3 local =
+        glm::dvec3(glm::inverse(nodeWorldMatrix(root, leaf->id)) * glm::dvec4(snapped, 1.0));
+    int middles = 0;
+    for (int a = 0; a < 3; ++a)
+      middles += std::abs(local[a] - 0.5 * (box.min[a] + box.max[a])) <
+                         1e-9 * std::max(1.0, box.max[a] - box.min[a])
+                     ? 1
+                     : 0;
+    *what = middles ? "edge midpoint" : "corner";
+  }
+  return snapped;
+}
+
+void measureClick(EditorState& state, uint32_t leaf, const glm::dvec3& world) {
+  MeasureTool& tool = state.measure;
+  const NodePtr& root = state.document.root();
+  const MeasurePoint point = attachPoint(root, leaf, world);
+  std::vector<Measurement> list = state.document.scene().measurements;
+  if (openValid(state)) {
+    list[size_t(tool.open)].points.push_back(point);
+    tool.open = -1;
+    guarded(state, [&] { state.document.applyMeasurements("measure an angle", list); });
+    return;
+  }
+  tool.open = -1;
+  if (!tool.first) {
+    tool.first = point;
+    return;
+  }
+  // The first point's part may have gone since it was placed.
+  MeasurePoint first = *tool.first;
+  if (first.node != 0 && !findNode(root, first.node)) first = MeasurePoint{};
+  list.push_back(Measurement{{first, point}});
+  tool.first.reset();
+  if (guarded(state, [&] { state.document.applyMeasurements("measure", list); })) {
+    tool.open = int(list.size()) - 1;
+    tool.openRevision = state.document.revision();
+  }
+}
+
+void measureEscape(EditorState& state) {
+  MeasureTool& tool = state.measure;
+  if (tool.first || openValid(state)) {
+    tool.first.reset();
+    tool.open = -1;
+    return;
+  }
+  setMeasuring(state, false);
+}
+
+void setMeasuring(EditorState& state, bool on) {
+  state.measure.active = on;
+  state.measure.first.reset();
+  state.measure.open = -1;
+}
+
+void removeMeasurement(EditorState& state, size_t index) {
+  std::vector<Measurement> list = state.document.scene().measurements;
+  if (index >= list.size()) return;
+  list.erase(list.begin() + long(index));
+  state.measure.open = -1;
+  guarded(state, [&] { state.document.applyMeasurements("remove a measurement", list); });
+}
+
+void clearMeasurements(EditorState& state) {
+  state.measure.open = -1;
+  state.measure.first.reset();
+  guarded(state, [&] { state.document.applyMeasurements("clear measurements", {}); });
+}
+
+std::string distanceText(const EditorState& state, double distance) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.4g %s", distance,
+                unitSymbol(state.document.scene().settings.unit));
+  return text;
+}
+
+std::string measureSummary(const EditorState& state, const MeasureValues& v) {
+  std::string s = distanceText(state, v.distance) + "  (dx " + distanceText(state, v.delta.x) +
+                  ", dy " + distanceText(state, v.delta.y) + ", dz " +
+                  distanceText(state, v.delta.z) + ")";
+  if (v.hasAngle) {
+    char angle[48];
+    std::snprintf(angle, sizeof(angle), "%.2f deg", v.angleDegrees);
+    s += "; then " + distanceText(state, v.distance2) + ", angle " + angle;
+  }
+  return s;
+}
+
+void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
+                        std::vector<LineVertex>* overlay) {
+  const NodePtr& root = state.document.root();
+  for (const Measurement& m : state.document.scene().measurements) {
+    const MeasureValues v = measureValues(root, m);
+    overlay->push_back(lineVertex(v.a, kMeasureColor));
+    overlay->push_back(lineVertex(v.b, kMeasureColor));
+    addMarker(view, v.a, overlay);
+    addMarker(view, v.b, overlay);
+    if (m.points.size() == 3) {
+      overlay->push_back(lineVertex(v.b, kMeasureColor));
+      overlay->push_back(lineVertex(v.c, kMeasureColor));
+      addMarker(view, v.c, overlay);
+    }
+  }
+  if (state.measure.active && state.measure.first)
+    addMarker(view, pointInWorld(root, *state.measure.first), overlay);
+}
+
+void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const NodePtr& root = state.document.root();
+  auto screen = [&](const glm::dvec3& p, ImVec2* out) {
+    glm::dvec2 px;
+    if (!view.toScreen(p, &px)) return false;
+    *out = ImVec2(float(x0 + px.x), float(y0 + px.y));
+    return true;
+  };
+  for (const Measurement& m : state.document.scene().measurements) {
+    const MeasureValues v = measureValues(root, m);
+    ImVec2 at;
+    if (screen(0.5 * (v.a + v.b), &at))
+      label(draw, at,
+            distanceText(state, v.distance) + "\ndx " + distanceText(state, v.delta.x) + "  dy " +
+                distanceText(state, v.delta.y) + "  dz " + distanceText(state, v.delta.z));
+    if (m.points.size() == 3) {
+      if (screen(0.5 * (v.b + v.c), &at)) label(draw, at, distanceText(state, v.distance2));
+      char angle[48];
+      std::snprintf(angle, sizeof(angle), "%.2f\u00B0", v.angleDegrees);
+      if (v.hasAngle && screen(v.b, &at)) label(draw, ImVec2(at.x, at.y - 22.0f), angle);
+    }
+  }
+}
+
+}  // namespace strata::ui

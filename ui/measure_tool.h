@@ -1,0 +1,64 @@
+// The measure tool (M): clicks on the preview place the points of the document's measurements
+// (engine/document/measurement.h). Two clicks measure a distance (shown with its dx, dy, dz in
+// scene units); a third click, before Esc, turns it into the angle at the second point. A click
+// snaps to the nearest corner or edge midpoint of the clicked part's own box (its frame's
+// bounding box, so a turned box's corners are its corners) within kMeasureSnapPixels, else
+// takes the surface point the view shows (a splat, or the section's cap). The measurements stay
+// on screen until removed (Diagnostics, or Edit > Clear measurements) and follow their parts.
+//
+// Threads: the UI thread.
+#pragma once
+
+#include <glm/vec2.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/document/measurement.h"
+#include "ui/gizmo.h"
+#include "ui/viewport_renderer.h"
+
+namespace strata::ui {
+
+struct EditorState;
+
+constexpr double kMeasureSnapPixels = 10.0;
+
+struct MeasureTool {
+  bool active = false;
+  std::optional<MeasurePoint> first;  // the first point of a distance being placed
+  // The measurement that a third click turns into an angle: its index, valid while the
+  // document is still at `openRevision` (an undo or any other edit closes it).
+  int open = -1;
+  uint64_t openRevision = 0;
+  std::string lastSnap;  // what the last click snapped to, for the viewport's hint
+};
+
+// Where a click at `mouse` (view pixels) on `hit` measures from: a corner or edge midpoint of
+// the part's box within kMeasureSnapPixels, else the hit itself. *what says which ("corner",
+// "edge midpoint", "section cap", "surface").
+glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
+                            glm::dvec2 mouse, std::string* what = nullptr);
+// A click of the tool at `world` on leaf `leaf` (0: none): the first point, the second (a
+// distance, one undo step) or the third (an angle, one more).
+void measureClick(EditorState& state, uint32_t leaf, const glm::dvec3& world);
+// Esc: drops the point being placed and closes the open measurement; with neither, leaves the
+// tool.
+void measureEscape(EditorState& state);
+void setMeasuring(EditorState& state, bool on);
+void removeMeasurement(EditorState& state, size_t index);
+void clearMeasurements(EditorState& state);
+
+// "42.5 mm", and "dx 30 mm  dy -29.5 mm  dz 0 mm", "90.0 deg" for people.
+std::string distanceText(const EditorState& state, double distance);
+std::string measureSummary(const EditorState& state, const MeasureValues& v);
+
+// The measurements' segments and point markers (overlay lines, drawn over the scene).
+void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
+                        std::vector<LineVertex>* overlay);
+// Their labels, at the segments' midpoints and the angles' vertices, into ImGui's background
+// draw list of the frame; (x0, y0) is the view's top-left corner in window pixels.
+void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0);
+
+}  // namespace strata::ui
