@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -54,6 +55,13 @@ std::string formatReportText(const EvalResult& r, const ReportContext& c, bool l
                 r.measure.volume, u.c_str(), r.measure.axisVolume[0], r.measure.axisVolume[1],
                 r.measure.axisVolume[2], r.measure.area, u.c_str(), r.measure.surfels);
   out << line;
+  if (std::isfinite(r.measure.thinnestWall)) {
+    std::snprintf(line, sizeof(line),
+                  "          thinnest wall about %.4g %s (%.2g cells) at (%.4g, %.4g, %.4g)\n",
+                  r.measure.thinnestWall, u.c_str(), r.measure.thinnestWall / r.grid.h,
+                  r.measure.thinnestAt.x, r.measure.thinnestAt.y, r.measure.thinnestAt.z);
+    out << line;
+  }
   if (!c.output.empty()) out << "wrote     " << c.output << " (" << c.outputPoints << " points)\n";
   for (const auto& w : c.warnings) out << "warning   " << w << "\n";
   return out.str();
@@ -72,6 +80,11 @@ std::string formatReportJson(const EvalResult& r, const ReportContext& c) {
   j["volume"] = r.measure.volume;
   j["axis_volumes"] = {r.measure.axisVolume[0], r.measure.axisVolume[1], r.measure.axisVolume[2]};
   j["area"] = r.measure.area;
+  if (std::isfinite(r.measure.thinnestWall)) {
+    j["thinnest_wall"] = r.measure.thinnestWall;
+    j["thinnest_wall_at"] = {r.measure.thinnestAt.x, r.measure.thinnestAt.y,
+                             r.measure.thinnestAt.z};
+  }
   j["surfels"] = r.measure.surfels;
   j["seconds"] = r.seconds;
   j["peak_bytes"] = r.peakBytes;

@@ -271,6 +271,15 @@ void measurementList(EditorState& state) {
     ImGui::Separator();
     ImGui::Text("result: volume %.6g %s^3, area %.6g %s^2", r.measure.volume, unit, r.measure.area,
                 unit);
+    if (std::isfinite(r.measure.thinnestWall)) {
+      const glm::dvec3 at = r.measure.thinnestAt;
+      ImGui::TextWrapped("thinnest wall about %.4g %s (%.2g cells) at (%.4g, %.4g, %.4g)%s",
+                         r.measure.thinnestWall, unit, r.measure.thinnestWall / r.grid.h, at.x,
+                         at.y, at.z,
+                         r.measure.thinnestWall < 2.0 * r.grid.h
+                             ? "; thinner than two cells: raise the resolution to judge it"
+                             : "");
+    }
     const Bounds b = sceneBounds(state.document.root());
     if (!b.empty())
       ImGui::Text("bounding box %.4g x %.4g x %.4g %s (from %.4g, %.4g, %.4g)", b.size().x,

@@ -80,6 +80,19 @@ void checkSurfelCount(uint64_t count, const char* what) {
                 " surfels on one axis exceed the 2^32 limit; lower the resolution");
 }
 
+glm::dvec3 rayPoint(const Grid& grid, int axis, bool whole, const RayWindow& window, int64_t ray,
+                    double depth) {
+  const int u = grid.uAxis(axis), v = grid.vAxis(axis);
+  const int64_t width = whole ? grid.raysU(axis) : window.uCount;
+  const int64_t i = ray % width + (whole ? 0 : window.u0);
+  const int64_t j = ray / width + (whole ? 0 : window.v0);
+  glm::dvec3 p;
+  p[axis] = grid.origin[axis] + grid.h * depth;
+  p[u] = grid.origin[u] + grid.h * double(grid.first[u] + i);
+  p[v] = grid.origin[v] + grid.h * double(grid.first[v] + j);
+  return p;
+}
+
 LdiMeasure measureLdi(const Ldi& ldi) {
   LdiMeasure m;
   const double h = ldi.grid.h;
@@ -91,9 +104,20 @@ LdiMeasure measureLdi(const Ldi& ldi) {
     // how chunks were scheduled.
     const int64_t chunks = (rays + kGrain - 1) / kGrain;
     std::vector<double> length(size_t(chunks), 0.0), area(size_t(chunks), 0.0);
+    // The thinnest wall of each chunk: thickness, ray, depth (the first ray of a tie).
+    std::vector<float> thinnest(size_t(chunks), INFINITY), thinnestDepth(size_t(chunks), 0.0f);
+    std::vector<int64_t> thinnestRay(size_t(chunks), 0);
     parallelFor(0, rays, kGrain, [&](int64_t b, int64_t e) {
       double l = 0.0, s = 0.0;
       for (int64_t r = b; r < e; ++r) {
+        float at = 0.0f;
+        const float wall = rayThinnestWall(axis.surfels.data() + axis.offsets[r],
+                                           axis.offsets[r + 1] - axis.offsets[r], a, &at);
+        if (wall < thinnest[size_t(b / kGrain)]) {
+          thinnest[size_t(b / kGrain)] = wall;
+          thinnestDepth[size_t(b / kGrain)] = at;
+          thinnestRay[size_t(b / kGrain)] = r;
+        }
         for (uint32_t k = axis.offsets[r]; k < axis.offsets[r + 1]; ++k) {
           const Surfel& surfel = axis.surfels[k];
           l += surfelEnters(surfel.tag) ? -double(surfel.depth) : double(surfel.depth);
@@ -109,6 +133,11 @@ LdiMeasure measureLdi(const Ldi& ldi) {
     for (int64_t c = 0; c < chunks; ++c) {
       totalLength += length[size_t(c)];
       totalArea += area[size_t(c)];
+      if (double(thinnest[size_t(c)]) * h < m.thinnestWall) {
+        m.thinnestWall = double(thinnest[size_t(c)]) * h;
+        m.thinnestAt = rayPoint(ldi.grid, a, axis.whole, axis.window, thinnestRay[size_t(c)],
+                                thinnestDepth[size_t(c)]);
+      }
     }
     m.axisVolume[a] = totalLength * h * h * h;
     m.area += totalArea * h * h;

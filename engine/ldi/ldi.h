@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -71,12 +72,21 @@ void settleAxisWindow(const Grid& grid, int axisIndex, const RayWindow& window, 
 //   volume: per axis, the summed inside length of all rays times h^2; the three axes averaged
 //   area:   each surfel stands for h^2 / |n|_1 of surface (the three axes together sample a
 //           patch with normal n at density |n|_1 / h^2)
+//   thinnestWall: the thinnest wall any ray crosses (shared_math.h: rayThinnestWall), scene
+//           units, +infinity when none; thinnestAt: the middle of that wall, world coordinates.
+//           An estimate at the grid's resolution: spans under half a cell are not judged.
 struct LdiMeasure {
   double volume = 0.0;
   std::array<double, 3> axisVolume{0.0, 0.0, 0.0};
   double area = 0.0;
   size_t surfels = 0;
+  double thinnestWall = std::numeric_limits<double>::infinity();
+  glm::dvec3 thinnestAt{0.0};
 };
+// The world point at `depth` on the stored ray `ray` of axis `axis` of an LDI on `grid` (rays
+// of a windowed axis count within its window).
+glm::dvec3 rayPoint(const Grid& grid, int axis, bool whole, const RayWindow& window, int64_t ray,
+                    double depth);
 LdiMeasure measureLdi(const Ldi& ldi);
 
 // Throws strata::Error when a surfel count no longer fits the 32-bit offsets.

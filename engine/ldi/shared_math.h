@@ -99,6 +99,39 @@ STRATA_HD bool onDominantAxis(const float n[3], int axis) {
   return true;
 }
 
+// The thinnest wall one clean ray crosses (surfels [0, count), alternating enter / leave), in
+// grid units, or +infinity when it crosses none it can judge. Each inside span is a wall of
+// thickness length x |cos| of the angle between the ray and the wall's normal (exact for a flat
+// wall, whose two faces share the normal); the two surfels' |cos| are averaged. Judged only
+// where the span is a wall: its two faces turn away from each other (normals within 30 degrees
+// of opposite; a ray through a part's corner meets two faces at right angles, which is no thin
+// wall) and both face the ray steeply (|cos| >= 1/sqrt(3), 54.7 degrees: every surface faces
+// one of the three axes that steeply, while a ray grazing a curved surface would see a short span
+// that is no wall). Spans shorter than half a cell are not judged either:
+// at that size they are as often slivers between faces that touch (a cutter flush with a face)
+// as walls, and the grid cannot tell. *at: the span's middle depth.
+STRATA_HD float rayThinnestWall(const Surfel* surfels, uint32_t count, int axis, float* at) {
+  const float kSteep = 0.57735027f;
+  const float kShortest = 0.5f;         // grid units
+  const float kOpposite = -0.8660254f;  // cos 150 degrees
+  float best = INFINITY;
+  for (uint32_t k = 0; k + 1 < count; k += 2) {
+    if (surfels[k + 1].depth - surfels[k].depth < kShortest) continue;
+    float a[3], b[3];
+    decodeNormal(surfels[k].normal, a);
+    decodeNormal(surfels[k + 1].normal, b);
+    const float ca = fabsf(a[axis]), cb = fabsf(b[axis]);
+    if (ca < kSteep || cb < kSteep) continue;
+    if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] > kOpposite) continue;
+    const float t = (surfels[k + 1].depth - surfels[k].depth) * 0.5f * (ca + cb);
+    if (t < best) {
+      best = t;
+      *at = 0.5f * (surfels[k].depth + surfels[k + 1].depth);
+    }
+  }
+  return best;
+}
+
 // The normal with its sign flipped (a surfel taken from a subtracted solid).
 STRATA_HD uint32_t flipNormal(uint32_t packed) {
   float n[3];

@@ -46,6 +46,9 @@ void expectIdentical(const Scene& scene, const std::shared_ptr<Backend>& cuda, c
   }
   EXPECT_NEAR(a.measure.volume, b.measure.volume, 1e-9 * std::max(1.0, a.measure.volume)) << what;
   EXPECT_NEAR(a.measure.area, b.measure.area, 1e-9 * std::max(1.0, a.measure.area)) << what;
+  // The thinnest wall: the same per-ray math and the same tie rule, so the same bits.
+  EXPECT_EQ(a.measure.thinnestWall, b.measure.thinnestWall) << what;
+  EXPECT_EQ(a.measure.thinnestAt, b.measure.thinnestAt) << what;
   EXPECT_EQ(a.computed, b.computed);
 
   // The editor's splats, made on each backend: the same bits in the same order.
@@ -112,7 +115,8 @@ TEST_F(CudaVsCpu, RealMeshesMatch) {
 
 TEST_F(CudaVsCpu, SceneFilesMatch) {
   for (const char* name :
-       {"demo.strata.json", "bone_scaffold.strata.json", "bone_scaffold_scaled_copy.strata.json"}) {
+       {"demo.strata.json", "bone_scaffold.strata.json", "bone_scaffold_scaled_copy.strata.json",
+        "flange_patterns.strata.json"}) {
     Scene s = loadScene(assetsDir() + "/scenes/" + name);
     expectIdentical(s, cuda_, name);
   }
