@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
@@ -71,6 +76,23 @@ Bounds sceneBoundsWithout(const EditorState& state, NodeId id) {
 void placeNode(EditorState& state, NodeId id, const Placement& placement) {
   NodePtr node = findNode(state.document.root(), id);
   if (!node) return;
+  if (placement.normal) {
+    // Its own +z along the surface's normal (in its parent's frame), the turn about it kept.
+    const glm::dmat3 parent(parentWorldMatrix(state.document.root(), id));
+    const glm::dvec3 z = glm::normalize(glm::inverse(parent) * *placement.normal);
+    const glm::dvec3 from(0.0, 0.0, 1.0);
+    const double c = glm::dot(from, z);
+    glm::dmat4 turn(1.0);
+    if (c < 1.0 - 1e-12) {
+      const glm::dvec3 axis =
+          c > -1.0 + 1e-12 ? glm::normalize(glm::cross(from, z)) : glm::dvec3(1.0, 0.0, 0.0);
+      turn = glm::rotate(glm::dmat4(1.0), std::acos(std::clamp(c, -1.0, 1.0)), axis);
+    }
+    Transform t = transformFromMatrix(turn * node->transform.matrix());
+    t.translate = node->transform.translate;
+    state.document.setTransform(id, t);
+    node = findNode(state.document.root(), id);
+  }
   const Bounds b = selectionBounds(state.document.root(), {id});
   if (b.empty()) return;
   glm::dvec3 delta = placement.point - b.center();
@@ -231,6 +253,15 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
     NodePtr node = newPrimitive(state, kind, &note);
     id = placeNew(state, node, state.placeMode, note);
     placeNode(state, id, placement);
+    if (placement.normal) {
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    "placed at (%.4g, %.4g, %.4g), its z turned to the surface's normal "
+                    "(%.2f, %.2f, %.2f)",
+                    placement.point.x, placement.point.y, placement.point.z, placement.normal->x,
+                    placement.normal->y, placement.normal->z);
+      logInfo(state, text);
+    }
     selectNode(state, id);
   });
   state.document.endInteraction();
@@ -434,6 +465,66 @@ void groupSelection(EditorState& state, NodeKind kind) {
     if (patternOf(kind) != Pattern::None)
       state.document.setPattern(id, patternFor(state, kind, bounds));
     selectNode(state, id);
+  });
+  state.document.endInteraction();
+}
+
+namespace {
+// The selected nodes that no other selected node holds (those move; the rest follow them).
+std::vector<NodeId> outermostSelected(const EditorState& state) {
+  std::vector<NodeId> out;
+  for (NodeId id : state.selection) {
+    std::vector<const Node*> path;
+    if (!pathToNode(state.document.root(), id, &path)) continue;
+    bool inside = false;
+    for (size_t i = 0; i + 1 < path.size(); ++i) inside = inside || isSelected(state, path[i]->id);
+    if (!inside) out.push_back(id);
+  }
+  return out;
+}
+
+// Moves node `id` by `delta` in the world (its translation changed in its parent's frame).
+void moveInWorld(EditorState& state, NodeId id, const glm::dvec3& delta) {
+  NodePtr node = findNode(state.document.root(), id);
+  if (!node || delta == glm::dvec3(0.0)) return;
+  const glm::dmat4 toParent = glm::inverse(parentWorldMatrix(state.document.root(), id));
+  Transform t = node->transform;
+  t.translate += glm::dvec3(toParent * glm::dvec4(delta, 0.0));
+  state.document.setTransform(id, t);
+}
+
+double edgeOf(const Bounds& b, int axis, AlignEdge edge) {
+  return edge == AlignEdge::Min   ? b.min[axis]
+         : edge == AlignEdge::Max ? b.max[axis]
+                                  : b.center()[axis];
+}
+}  // namespace
+
+void alignSelection(EditorState& state, int axis, AlignEdge edge) {
+  const NodeId active = primarySelection(state);
+  const Bounds target = selectionBounds(state.document.root(), {active});
+  if (!active || target.empty()) return;
+  state.document.beginInteraction();
+  guarded(state, [&] {
+    for (NodeId id : outermostSelected(state)) {
+      if (id == active) continue;
+      const Bounds b = selectionBounds(state.document.root(), {id});
+      if (b.empty()) continue;
+      glm::dvec3 delta(0.0);
+      delta[axis] = edgeOf(target, axis, edge) - edgeOf(b, axis, edge);
+      moveInWorld(state, id, delta);
+    }
+  });
+  state.document.endInteraction();
+}
+
+void dropSelectionToGround(EditorState& state) {
+  state.document.beginInteraction();
+  guarded(state, [&] {
+    for (NodeId id : outermostSelected(state)) {
+      const Bounds b = selectionBounds(state.document.root(), {id});
+      if (!b.empty()) moveInWorld(state, id, glm::dvec3(0.0, 0.0, -b.min.z));
+    }
   });
   state.document.endInteraction();
 }

@@ -64,6 +64,15 @@ void instanceSelection(EditorState& state);
 // Hides the selection, or shows it when every selected node is hidden.
 void toggleSelectionHidden(EditorState& state);
 void groupSelection(EditorState& state, NodeKind kind);
+// Where alignSelection meets the active part's bounds on an axis.
+enum class AlignEdge { Min, Centre, Max };
+// Moves every selected part but the active (primary) one along world `axis` (0 x, 1 y, 2 z) so
+// that its bounds' min, centre or max meets the active part's; a part inside another selected
+// one moves with it only. One undo step.
+void alignSelection(EditorState& state, int axis, AlignEdge edge);
+// Moves every selected part (a part inside another selected one with it) along z so that it
+// rests on the ground plane z = 0. One undo step.
+void dropSelectionToGround(EditorState& state);
 void setSelectionOperation(EditorState& state, NodeKind kind);
 void renameNode(EditorState& state, NodeId id, const std::string& name);
 // Drag and drop in the outliner: node `dragged` onto row `target` (0: empty space, the root)

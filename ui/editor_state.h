@@ -53,6 +53,8 @@ struct SectionState {
 struct Placement {
   glm::dvec3 point{0.0};
   bool onGround = false;
+  // The surface's normal at the point (world, unit): a part dropped there turns its own +z to it.
+  std::optional<glm::dvec3> normal;
 };
 
 // A mesh file chosen for import, waiting for its options in the import dialog.

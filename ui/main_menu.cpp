@@ -116,6 +116,23 @@ void drawMainMenu(EditorState& state) {
       ImGui::EndMenu();
     }
     if (ImGui::MenuItem("Select none", "Esc", false, any)) clearSelection(state);
+    ImGui::Separator();
+    const bool several = state.selection.size() > 1;
+    if (ImGui::BeginMenu("Align to the active part", several)) {
+      const char* edges[3] = {"min", "centre", "max"};
+      for (int axis = 0; axis < 3; ++axis)
+        for (int e = 0; e < 3; ++e) {
+          const std::string label = std::string("xyz").substr(size_t(axis), 1) + " " + edges[e];
+          if (ImGui::MenuItem(label.c_str())) alignSelection(state, axis, AlignEdge(e));
+        }
+      ImGui::EndMenu();
+    }
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(
+          "Moves the other selected parts so that their bounds line up with the "
+          "active (last clicked) part's");
+    if (ImGui::MenuItem("Drop to ground", nullptr, false, any)) dropSelectionToGround(state);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Moves the selected parts to rest on z = 0");
     if (ImGui::MenuItem("Clear measurements", nullptr, false,
                         !state.document.scene().measurements.empty()))
       clearMeasurements(state);

@@ -283,6 +283,7 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
   Placement placement;
   if (std::optional<PickHit> hit = pickAt(renderer, state, rect, mouse, pixelScale)) {
     placement.point = hit->position;
+    placement.normal = hit->normal;
     return placement;
   }
   const Ray ray = camera.rayThrough(mouse, glm::dvec2(rect.width, rect.height));

@@ -586,30 +586,61 @@ std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, in
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
   glGetIntegerv(GL_VIEWPORT, previousViewport);
   std::optional<PickHit> hit;
-  if (drawPickIds(f, px, py, 1, 1)) {
-    GLuint leafPlusOne = 0;
-    float depth = 1.0f;
-    glReadPixels(px, py, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT, &leafPlusOne);
-    glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+  // The pixel and a window around it (clipped to the view): the window's depths give the
+  // surface's normal there.
+  constexpr int kNormalRadius = 4;
+  const int x0 = std::max(0, px - kNormalRadius), y0 = std::max(0, py - kNormalRadius);
+  const int x1 = std::min(f.width - 1, px + kNormalRadius);
+  const int y1 = std::min(f.height - 1, py + kNormalRadius);
+  const int w = x1 - x0 + 1, hgt = y1 - y0 + 1;
+  if (drawPickIds(f, x0, y0, w, hgt)) {
+    std::vector<GLuint> ids(size_t(w) * size_t(hgt), 0);
+    std::vector<float> depths(ids.size(), 1.0f);
+    glReadPixels(x0, y0, w, hgt, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+    glReadPixels(x0, y0, w, hgt, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_DEPTH_TEST);
+    auto at = [&](int x, int y) { return size_t(y - y0) * size_t(w) + size_t(x - x0); };
+    const GLuint leafPlusOne = ids[at(px, py)];
     if (leafPlusOne > 0) {
       const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
-      auto unproject = [&](double ndcDepth) {
-        const glm::dvec4 ndc((px + 0.5) / f.width * 2.0 - 1.0, (py + 0.5) / f.height * 2.0 - 1.0,
+      auto unprojectAt = [&](int x, int y, double ndcDepth) {
+        const glm::dvec4 ndc((x + 0.5) / f.width * 2.0 - 1.0, (y + 0.5) / f.height * 2.0 - 1.0,
                              ndcDepth, 1.0);
         const glm::dvec4 world = toWorld * ndc;
         return glm::dvec3(world) / world.w;
       };
+      auto unproject = [&](double ndcDepth) { return unprojectAt(px, py, ndcDepth); };
       PickHit h;
       h.cap = (leafPlusOne & 0x80000000u) != 0;
       h.leaf = (leafPlusOne & 0x7fffffffu) - 1;
-      h.position = unproject(double(depth) * 2.0 - 1.0);
+      h.position = unproject(double(depths[at(px, py)]) * 2.0 - 1.0);
+      const glm::dvec3 toEye = f.ortho ? -f.forward : f.eye - h.position;
       if (h.cap) {  // the view ray through the pixel meets the plane there
         const glm::dvec3 a = unproject(-1.0), b = unproject(1.0);
         const double denom = glm::dot(f.sectionNormal, b - a);
         if (std::fabs(denom) > 1e-12)
           h.position = a + (b - a) * ((f.sectionOffset - glm::dot(f.sectionNormal, a)) / denom);
+        h.normal = glm::dot(f.sectionNormal, toEye) >= 0.0 ? f.sectionNormal : -f.sectionNormal;
+      } else {
+        // The surface's normal from the same part's depths across the window: the cross product
+        // of the spans between the farthest pixels on each side, facing the viewer.
+        auto point = [&](int x, int y, glm::dvec3* out) {
+          if (x < x0 || x > x1 || y < y0 || y > y1 || ids[at(x, y)] != leafPlusOne) return false;
+          *out = unprojectAt(x, y, double(depths[at(x, y)]) * 2.0 - 1.0);
+          return true;
+        };
+        glm::dvec3 left = h.position, right = h.position, down = h.position, up = h.position;
+        bool any[4] = {false, false, false, false};
+        for (int k = kNormalRadius; k >= 1 && !any[0]; --k) any[0] = point(px - k, py, &left);
+        for (int k = kNormalRadius; k >= 1 && !any[1]; --k) any[1] = point(px + k, py, &right);
+        for (int k = kNormalRadius; k >= 1 && !any[2]; --k) any[2] = point(px, py - k, &down);
+        for (int k = kNormalRadius; k >= 1 && !any[3]; --k) any[3] = point(px, py + k, &up);
+        const glm::dvec3 n = glm::cross(right - left, up - down);
+        if ((any[0] || any[1]) && (any[2] || any[3]) && glm::length(n) > 0.0) {
+          const glm::dvec3 unit = glm::normalize(n);
+          h.normal = glm::dot(unit, toEye) >= 0.0 ? unit : -unit;
+        }
       }
       hit = h;
     }

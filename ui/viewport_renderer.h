@@ -53,6 +53,9 @@ struct PickHit {
   uint32_t leaf = 0;
   glm::dvec3 position{0.0};  // world, scene units
   bool cap = false;          // on the section plane's cap (position on the plane)
+  // The surface's unit normal there, facing the viewer (from the depths of the pixels around
+  // it that show the same part; the plane's at a cap); none where too few pixels show it.
+  std::optional<glm::dvec3> normal;
 };
 
 class RenderTarget;

@@ -50,7 +50,7 @@ TEST(ImportAndPlace, ImportWithOptionsIsOneUndoStep) {
   import.path = std::string(STRATA_ASSETS) + "/meshes/bunny.obj";
   import.unit = unitIndex("metres");  // the scene is in millimetres
   import.upAxis = 1;
-  import.placement = Placement{glm::dvec3(10.0, 20.0, 30.0), false};
+  import.placement = Placement{glm::dvec3(10.0, 20.0, 30.0), false, std::nullopt};
   NodeId id = importMesh(state, import);
   ASSERT_NE(id, 0u);
   NodePtr node = findNode(state.document.root(), id);
@@ -86,12 +86,14 @@ TEST(ImportAndPlace, DroppedPrimitiveIsCentredOnTheSurfacePointOrRestsOnTheGroun
   parent.scale = glm::dvec3(2.0);
   ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(group, parent); }));
   selectNode(state, group);
-  NodeId onSurface = addPrimitiveAt(state, NodeKind::Sphere, {glm::dvec3(1.0, 2.0, 3.0), false});
+  NodeId onSurface =
+      addPrimitiveAt(state, NodeKind::Sphere, {glm::dvec3(1.0, 2.0, 3.0), false, std::nullopt});
   ASSERT_NE(onSurface, 0u);
   Bounds b = selectionBounds(state.document.root(), {onSurface});
   EXPECT_NEAR(glm::distance(b.center(), glm::dvec3(1.0, 2.0, 3.0)), 0.0, 1e-9);
   selectNode(state, group);
-  NodeId onGround = addPrimitiveAt(state, NodeKind::Cylinder, {glm::dvec3(-4.0, 1.0, 0.0), true});
+  NodeId onGround =
+      addPrimitiveAt(state, NodeKind::Cylinder, {glm::dvec3(-4.0, 1.0, 0.0), true, std::nullopt});
   b = selectionBounds(state.document.root(), {onGround});
   EXPECT_NEAR(b.min.z, 0.0, 1e-9);
   EXPECT_NEAR(b.center().x, -4.0, 1e-9);
@@ -100,6 +102,76 @@ TEST(ImportAndPlace, DroppedPrimitiveIsCentredOnTheSurfacePointOrRestsOnTheGroun
   undo(state);
   EXPECT_FALSE(findNode(state.document.root(), onGround));
   EXPECT_TRUE(findNode(state.document.root(), onSurface));
+}
+
+// A part dropped on a surface turns its own +z to the surface's normal (under a turned, scaled
+// parent too) and is centred on the point; one undo step.
+TEST(ImportAndPlace, ADropOnASurfaceFacesItsNormal) {
+  EditorState state;
+  NodeId group = addOperation(state, NodeKind::Union);
+  Transform parent;
+  parent.rotateDegrees = glm::dvec3(0.0, 0.0, 90.0);
+  parent.scale = glm::dvec3(2.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(group, parent); }));
+  for (const glm::dvec3& normal :
+       {glm::dvec3(1.0, 0.0, 0.0), glm::normalize(glm::dvec3(0.0, -1.0, 1.0)),
+        glm::dvec3(0.0, 0.0, -1.0), glm::dvec3(0.0, 0.0, 1.0)}) {
+    selectNode(state, group);
+    const NodeId id =
+        addPrimitiveAt(state, NodeKind::Cylinder, {glm::dvec3(3.0, -1.0, 2.0), false, normal});
+    const glm::dmat4 world = nodeWorldMatrix(state.document.root(), id);
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, 1.0, 0.0)));
+    EXPECT_NEAR(glm::distance(axis, normal), 0.0, 1e-9) << normal.x << normal.y << normal.z;
+    const Bounds b = selectionBounds(state.document.root(), {id});
+    EXPECT_NEAR(glm::distance(b.center(), glm::dvec3(3.0, -1.0, 2.0)), 0.0, 1e-9);
+    const size_t before = state.document.root()->children.size();
+    undo(state);
+    EXPECT_FALSE(findNode(state.document.root(), id));
+    EXPECT_EQ(state.document.root()->children.size(), before);
+  }
+}
+
+// Align to the active part (min, centre, max on each axis) and drop to ground: every other
+// selected part moves, a part inside a selected group moves only with it, one undo step each.
+TEST(ImportAndPlace, AlignToTheActivePartAndDropToGround) {
+  EditorState state;
+  const NodeId a = addPrimitive(state, NodeKind::Box);
+  const NodeId b = addPrimitive(state, NodeKind::Sphere);
+  const NodeId c = addPrimitive(state, NodeKind::Box);
+  auto place = [&](NodeId id, glm::dvec3 at) {
+    Transform t;
+    t.translate = at;
+    ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(id, t); }));
+  };
+  place(a, {0.0, 0.0, 5.0});
+  place(b, {7.0, -3.0, 9.0});
+  place(c, {-4.0, 6.0, -2.0});
+  auto boundsOf = [&](NodeId id) { return selectionBounds(state.document.root(), {id}); };
+  state.selection = {b, c, a};  // a is active (the last clicked)
+  alignSelection(state, 0, AlignEdge::Min);
+  EXPECT_NEAR(boundsOf(b).min.x, boundsOf(a).min.x, 1e-9);
+  EXPECT_NEAR(boundsOf(c).min.x, boundsOf(a).min.x, 1e-9);
+  EXPECT_NEAR(boundsOf(b).center().y, -3.0, 1e-9);  // other axes untouched
+  alignSelection(state, 2, AlignEdge::Max);
+  EXPECT_NEAR(boundsOf(b).max.z, boundsOf(a).max.z, 1e-9);
+  alignSelection(state, 1, AlignEdge::Centre);
+  EXPECT_NEAR(boundsOf(c).center().y, boundsOf(a).center().y, 1e-9);
+  undo(state);
+  EXPECT_NEAR(boundsOf(c).center().y, 6.0, 1e-9);  // one step
+  dropSelectionToGround(state);
+  for (NodeId id : {a, b, c}) EXPECT_NEAR(boundsOf(id).min.z, 0.0, 1e-9);
+  undo(state);
+  EXPECT_GT(boundsOf(a).min.z, 1.0);
+  // A selected group and a part inside it: the group drops, the part goes with it only.
+  place(b, {7.0, -3.0, -6.0});  // below the box
+  state.selection = {a, b};
+  groupSelection(state, NodeKind::Union);
+  const NodeId group = primarySelection(state);
+  state.selection = {a, group};
+  const double groupLow = boundsOf(group).min.z, boxLow = boundsOf(a).min.z;
+  dropSelectionToGround(state);
+  EXPECT_NEAR(boundsOf(group).min.z, 0.0, 1e-9);
+  EXPECT_NEAR(boundsOf(a).min.z, boxLow - groupLow, 1e-9);  // moved with the group only
 }
 
 // The demo's trap, and the modes: a part added onto the base of a difference with the palette
