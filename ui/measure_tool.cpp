@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
@@ -82,12 +83,15 @@ glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view,
   if (!leaf) return hit.position;
   const std::vector<glm::dvec3> points =
       snapPoints(localBox(*leaf), nodeWorldMatrix(root, leaf->id));
-  double best = kMeasureSnapPixels;
+  // Of the points within reach on screen, the nearest to the surface point clicked: a corner
+  // behind the part, on the same line of sight, is not taken for the one in front.
+  double best = std::numeric_limits<double>::infinity();
   glm::dvec3 snapped = hit.position;
   for (size_t i = 0; i < points.size(); ++i) {
     glm::dvec2 pixel;
-    if (!view.toScreen(points[i], &pixel)) continue;
-    const double d = glm::length(pixel - mouse);
+    if (!view.toScreen(points[i], &pixel) || glm::length(pixel - mouse) > kMeasureSnapPixels)
+      continue;
+    const double d = glm::length(points[i] - hit.position);
     if (d < best) {
       best = d;
       snapped = points[i];

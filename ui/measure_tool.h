@@ -35,8 +35,9 @@ struct MeasureTool {
   std::string lastSnap;  // what the last click snapped to, for the viewport's hint
 };
 
-// Where a click at `mouse` (view pixels) on `hit` measures from: a corner or edge midpoint of
-// the part's box within kMeasureSnapPixels, else the hit itself. *what says which ("corner",
+// Where a click at `mouse` (view pixels) on `hit` measures from: of the corners and edge
+// midpoints of the part's box within kMeasureSnapPixels on screen, the nearest to the hit in the
+// world (the one in front, not one behind on the same line of sight), else the hit itself. *what says which ("corner",
 // "edge midpoint", "section cap", "surface").
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
                             glm::dvec2 mouse, std::string* what = nullptr);

@@ -97,6 +97,20 @@ TEST(MeasureTool, ClicksSnapToATurnedBoxsCornersAndEdgeMidpoints) {
   p = snapMeasurePoint(state, view, hit, pixelOf(edgeMid) + glm::dvec2(2, 2), &what);
   EXPECT_NEAR(glm::length(p - edgeMid), 0.0, 1e-12);
   EXPECT_EQ(what, "edge midpoint");
+  // Two corners on one line of sight (looking straight down on the box): the one in front.
+  Camera above;
+  above.distance = 60.0;
+  above.pitchDegrees = 90.0;
+  ScreenMapping top = view;
+  top.viewProjection = above.projection(800.0 / 600.0, 10.0) * above.view();
+  const glm::dvec3 upper = glm::dvec3(world * glm::dvec4(2.0, 1.0, 1.0, 1.0));
+  const glm::dvec3 lower = glm::dvec3(world * glm::dvec4(2.0, 1.0, -1.0, 1.0));
+  glm::dvec2 upperPixel, lowerPixel;
+  ASSERT_TRUE(top.toScreen(upper, &upperPixel) && top.toScreen(lower, &lowerPixel));
+  ASSERT_LT(glm::length(upperPixel - lowerPixel), kMeasureSnapPixels);
+  hit.position = upper + glm::dvec3(0.0, 0.0, -0.01);
+  p = snapMeasurePoint(state, top, hit, lowerPixel, &what);  // the lower one is nearer on screen
+  EXPECT_NEAR(glm::length(p - upper), 0.0, 1e-12);
   // Far from every corner and midpoint: the surface point itself.
   const glm::dvec3 face = glm::dvec3(world * glm::dvec4(1.0, 0.3, 1.0, 1.0));
   hit.position = face;
