@@ -16,6 +16,7 @@
 #include "engine/document/document.h"
 #include "engine/eval/backend.h"
 #include "engine/jobs/export_job.h"
+#include "engine/jobs/part_measure_job.h"
 #include "engine/jobs/preview_worker.h"
 #include "engine/jobs/triangle_estimate_job.h"
 #include "ui/file_dialog.h"
@@ -116,6 +117,10 @@ struct EditorState {
   SectionState section;
   bool showDiagnostics = false;
   MeasureTool measure;  // M: distances and angles on the preview (measure_tool.h)
+  // Diagnostics: the selected part measured alone in the background; older jobs cancelled and
+  // kept until they have stopped (never joined on the UI thread while running).
+  std::unique_ptr<PartMeasureJob> partMeasure;
+  std::vector<std::unique_ptr<PartMeasureJob>> retiredPartMeasures;
 
   // Jobs and dialogs.
   std::unique_ptr<ExportJob> exportJob;

@@ -262,6 +262,57 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
 }
 
 namespace {
+// The selected part measured alone (one part selected): started in the background for the
+// document as it is now, shown once done.
+void selectionMeasure(EditorState& state) {
+  auto& retired = state.retiredPartMeasures;
+  retired.erase(std::remove_if(retired.begin(), retired.end(),
+                               [](const std::unique_ptr<PartMeasureJob>& j) { return j->done(); }),
+                retired.end());
+  const NodeId id = state.selection.size() == 1 ? state.selection[0] : 0;
+  const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
+  PartMeasureJob* job = state.partMeasure.get();
+  const bool current =
+      job && node && job->id() == id && job->scene() == state.document.snapshot().get();
+  if (!current && !ImGui::IsAnyItemActive()) {
+    if (state.partMeasure) {
+      state.partMeasure->cancel();
+      retired.push_back(std::move(state.partMeasure));
+    }
+    if (node) {
+      // At the preview's resolution, at most 512 cells along the part.
+      const int resolution =
+          std::min(512, state.preview ? state.preview->resolution
+                                      : state.document.scene().settings.resolution);
+      state.partMeasure = std::make_unique<PartMeasureJob>(
+          state.document.snapshot(), id, std::max(resolution, 32), state.makeBackend);
+    }
+  }
+  if (!node) return;
+  const char* unit = unitSymbol(state.document.scene().settings.unit);
+  job = state.partMeasure.get();
+  ImGui::Separator();
+  if (!job || !job->done()) {
+    ImGui::TextDisabled("selection \"%s\": measuring...", node->name.c_str());
+    return;
+  }
+  if (!job->error().empty()) {
+    ImGui::TextWrapped("selection \"%s\": not measured (%s)", node->name.c_str(),
+                       job->error().c_str());
+    return;
+  }
+  const PartMeasure m = job->result();
+  ImGui::TextWrapped("selection \"%s\" alone: volume %.6g %s^3, area %.6g %s^2", node->name.c_str(),
+                     m.measure.volume, unit, m.measure.area, unit);
+  const Bounds b = selectionBounds(state.document.root(), {id});
+  if (!b.empty())
+    ImGui::Text("  bounding box %.4g x %.4g x %.4g %s", b.size().x, b.size().y, b.size().z, unit);
+  if (std::isfinite(m.measure.thinnestWall))
+    ImGui::Text("  thinnest wall about %.4g %s (%.2g cells of %.3g) at (%.4g, %.4g, %.4g)",
+                m.measure.thinnestWall, unit, m.measure.thinnestWall / m.h, m.h,
+                m.measure.thinnestAt.x, m.measure.thinnestAt.y, m.measure.thinnestAt.z);
+}
+
 // The result's extent and the document's measurements (each removable), in scene units.
 void measurementList(EditorState& state) {
   const PreviewResult* shown = state.preview.get();
@@ -285,6 +336,7 @@ void measurementList(EditorState& state) {
       ImGui::Text("bounding box %.4g x %.4g x %.4g %s (from %.4g, %.4g, %.4g)", b.size().x,
                   b.size().y, b.size().z, unit, b.min.x, b.min.y, b.min.z);
   }
+  selectionMeasure(state);
   // A copy: removing one replaces the document's scene.
   const std::vector<Measurement> list = state.document.scene().measurements;
   ImGui::Separator();
