@@ -37,8 +37,8 @@ struct MeasureTool {
 
 // Where a click at `mouse` (view pixels) on `hit` measures from: of the corners and edge
 // midpoints of the part's box within kMeasureSnapPixels on screen, the nearest to the hit in the
-// world (the one in front, not one behind on the same line of sight), else the hit itself. *what says which ("corner",
-// "edge midpoint", "section cap", "surface").
+// world (the one in front, not one behind on the same line of sight), else the hit itself. *what
+// says which ("corner", "edge midpoint", "section cap", "surface").
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
                             glm::dvec2 mouse, std::string* what = nullptr);
 // A click of the tool at `world` on leaf `leaf` (0: none): the first point, the second (a
