@@ -507,7 +507,9 @@ void alignSelection(EditorState& state, int axis, AlignEdge edge) {
   state.document.beginInteraction();
   guarded(state, [&] {
     for (NodeId id : outermostSelected(state)) {
-      if (id == active) continue;
+      // Not the active part, nor a group holding it (moving that would move the target too).
+      NodePtr node = findNode(state.document.root(), id);
+      if (id == active || (node && findNode(node, active))) continue;
       const Bounds b = selectionBounds(state.document.root(), {id});
       if (b.empty()) continue;
       glm::dvec3 delta(0.0);

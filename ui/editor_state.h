@@ -120,6 +120,10 @@ struct EditorState {
   // Diagnostics: the selected part measured alone in the background; older jobs cancelled and
   // kept until they have stopped (never joined on the UI thread while running).
   std::unique_ptr<PartMeasureJob> partMeasure;
+  // What the job measured: the part and its ancestors below the root (shared nodes: the same
+  // pointers while nothing on that path changed), and the root's transform.
+  std::vector<const Node*> partMeasurePath;
+  Transform partMeasureRootTransform;
   std::vector<std::unique_ptr<PartMeasureJob>> retiredPartMeasures;
 
   // Jobs and dialogs.

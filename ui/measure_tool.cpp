@@ -127,11 +127,12 @@ void measureClick(EditorState& state, uint32_t leaf, const glm::dvec3& world) {
   tool.open = -1;
   if (!tool.first) {
     tool.first = point;
+    tool.firstWorld = world;
     return;
   }
-  // The first point's part may have gone since it was placed.
+  // The first point's part may have gone since it was placed: then it stays where it was.
   MeasurePoint first = *tool.first;
-  if (first.node != 0 && !findNode(root, first.node)) first = MeasurePoint{};
+  if (first.node != 0 && !findNode(root, first.node)) first = attachPoint(root, 0, tool.firstWorld);
   list.push_back(Measurement{{first, point}});
   tool.first.reset();
   if (guarded(state, [&] { state.document.applyMeasurements("measure", list); })) {
@@ -204,8 +205,11 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
       addMarker(view, v.c, overlay);
     }
   }
-  if (state.measure.active && state.measure.first)
-    addMarker(view, pointInWorld(root, *state.measure.first), overlay);
+  if (state.measure.active && state.measure.first) {
+    const MeasurePoint& first = *state.measure.first;
+    const bool gone = first.node != 0 && !findNode(root, first.node);
+    addMarker(view, gone ? state.measure.firstWorld : pointInWorld(root, first), overlay);
+  }
 }
 
 void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0) {

@@ -28,6 +28,7 @@ constexpr double kMeasureSnapPixels = 10.0;
 struct MeasureTool {
   bool active = false;
   std::optional<MeasurePoint> first;  // the first point of a distance being placed
+  glm::dvec3 firstWorld{0.0};         // where it was when placed (its part may go meanwhile)
   // The measurement that a third click turns into an angle: its index, valid while the
   // document is still at `openRevision` (an undo or any other edit closes it).
   int open = -1;

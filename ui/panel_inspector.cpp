@@ -437,12 +437,8 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
     for (size_t i = 0; i < ops.size(); ++i) {
       const NodeKind op = ops[i];
       if (!rowStarts[i]) ImGui::SameLine();
-      if (ImGui::RadioButton(kindLabel(op), node->kind == op)) {
-        state.document.beginInteraction();
-        for (const NodePtr& n : nodes)
-          guarded(state, [&] { state.document.setOperation(n->id, op); });
-        state.document.endInteraction();
-      }
+      // The selection's operations become `op` (a pattern spaced for what it holds).
+      if (ImGui::RadioButton(kindLabel(op), node->kind == op)) setSelectionOperation(state, op);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(op).summary);
     }
     ImGui::TextDisabled("%zu children%s", node->children.size(),

@@ -309,6 +309,11 @@ void drawModals(EditorState& state) {
       std::remove_if(retired.begin(), retired.end(),
                      [](const std::unique_ptr<TriangleEstimateJob>& job) { return job->done(); }),
       retired.end());
+  auto& measures = state.retiredPartMeasures;  // the same for the selection's measures
+  measures.erase(
+      std::remove_if(measures.begin(), measures.end(),
+                     [](const std::unique_ptr<PartMeasureJob>& job) { return job->done(); }),
+      measures.end());
   recoveryQuestion(state);
   unsavedQuestion(state);
   importDialog(state);

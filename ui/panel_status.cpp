@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/document/commands.h"
 #include "engine/eval/evaluator.h"
 #include "engine/ldi/grid.h"
 #include "engine/util/error.h"
@@ -265,19 +266,22 @@ namespace {
 // The selected part measured alone (one part selected): started in the background for the
 // document as it is now, shown once done.
 void selectionMeasure(EditorState& state) {
-  auto& retired = state.retiredPartMeasures;
-  retired.erase(std::remove_if(retired.begin(), retired.end(),
-                               [](const std::unique_ptr<PartMeasureJob>& j) { return j->done(); }),
-                retired.end());
   const NodeId id = state.selection.size() == 1 ? state.selection[0] : 0;
   const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
+  // The part as it is now: the nodes from below the root down to it, unchanged while no edit
+  // touched them (an edit elsewhere leaves them shared).
+  std::vector<const Node*> path;
+  if (node) pathToNode(state.document.root(), id, &path);
+  if (!path.empty()) path.erase(path.begin());
+  const Transform rootTransform = state.document.root()->transform;
   PartMeasureJob* job = state.partMeasure.get();
-  const bool current =
-      job && node && job->id() == id && job->scene() == state.document.snapshot().get();
-  if (!current && !ImGui::IsAnyItemActive()) {
+  const bool current = job && node && job->id() == id && state.partMeasurePath == path &&
+                       state.partMeasureRootTransform == rootTransform;
+  // Not while a field is held or the gizmo drags: the part is still changing.
+  if (!current && !ImGui::IsAnyItemActive() && !state.document.interacting()) {
     if (state.partMeasure) {
       state.partMeasure->cancel();
-      retired.push_back(std::move(state.partMeasure));
+      state.retiredPartMeasures.push_back(std::move(state.partMeasure));
     }
     if (node) {
       // At the preview's resolution, at most 512 cells along the part.
@@ -286,6 +290,8 @@ void selectionMeasure(EditorState& state) {
                                       : state.document.scene().settings.resolution);
       state.partMeasure = std::make_unique<PartMeasureJob>(
           state.document.snapshot(), id, std::max(resolution, 32), state.makeBackend);
+      state.partMeasurePath = path;
+      state.partMeasureRootTransform = rootTransform;
     }
   }
   if (!node) return;

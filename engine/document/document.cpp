@@ -1,6 +1,7 @@
 #include "engine/document/document.h"
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 
 #include "engine/document/commands.h"
@@ -61,9 +62,14 @@ void Document::apply(const std::string& label, const NodePtr& newRoot) {
 
 void Document::applyMeasurements(const std::string& label, std::vector<Measurement> measurements) {
   if (measurements == scene().measurements) return;
+  if (measurements.size() > kMaxMeasurements)
+    throw Error("a scene holds at most " + std::to_string(kMaxMeasurements) + " measurements");
   for (const Measurement& m : measurements) {
     if (m.points.size() < 2 || m.points.size() > 3)
       throw Error("a measurement has two points (a distance) or three (an angle)");
+    for (const MeasurePoint& p : m.points)
+      if (!std::isfinite(p.local.x) || !std::isfinite(p.local.y) || !std::isfinite(p.local.z))
+        throw Error("a measured point is not a finite position");
     for (const MeasurePoint& p : m.points)
       if (p.node != 0 && !findNode(root(), p.node))
         throw Error("a measured point lies on node " + std::to_string(p.node) +

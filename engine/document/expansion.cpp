@@ -132,8 +132,11 @@ class ExpansionCounter {
     }
     // A pattern visits its children once per copy.
     const uint64_t copies = patternCopies(patternOf(n.kind), n.pattern);
+    // A pattern visits its children once per copy; its copies count as visits even when it
+    // holds nothing (they are listed).
     return {saturatingMultiply(f.sum.leaves, copies),
-            saturatingAdd(saturatingMultiply(f.sum.nodes, copies), 1), f.sum.depth + 1};
+            saturatingAdd(saturatingMultiply(std::max<uint64_t>(f.sum.nodes, 1), copies), 1),
+            f.sum.depth + 1};
   }
 
   std::unordered_map<NodeId, const Node*> byId_;

@@ -63,6 +63,10 @@ void hashPrimitiveParams(Hasher& h, NodeKind kind, const PrimitiveParams& p) {
 std::vector<glm::dmat4> placementsOf(const Node& node) {
   const Pattern pattern = patternOf(node.kind);
   if (pattern == Pattern::None) return {glm::dmat4(1.0)};
+  // Nothing to place: no copies listed.
+  if (std::none_of(node.children.begin(), node.children.end(),
+                   [](const NodePtr& c) { return c->visible; }))
+    return {};
   checkPattern(pattern, node.pattern, std::string(kindName(node.kind)) + " '" + node.name + "'");
   return patternPlacements(pattern, node.pattern);
 }
@@ -395,9 +399,9 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   std::vector<Visit> children;
   const std::vector<glm::dmat4> placements = placementsOf(*node);
   for (size_t k = 0; k < placements.size(); ++k) {
-    // A pattern's copies are reached as instances are: their LDIs are not kept (the original,
-    // placed by the identity, is).
-    const int copy = placements[k] == glm::dmat4(1.0) ? 0 : 1;
+    // A pattern's copies are reached as instances are: their LDIs are not kept. The first
+    // placement is the one the editor shows the children at (patterns.h: firstPlacement): kept.
+    const int copy = k == 0 ? 0 : 1;
     ctx.insideInstance += copy;
     for (const auto& c : node->children) {
       if (!c->visible || hiddenBase) continue;

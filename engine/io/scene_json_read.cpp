@@ -679,6 +679,9 @@ class SceneReader {
           vec3(*required("counts"), at + "/counts", [&](const json& x, const std::string& xp) {
             return double(integer(x, xp, 1, kMaxPatternCount, countText));
           }));
+      if (patternCopies(pattern, p) > kMaxPatternCopies)
+        fail(at + "/counts", "the counts make " + std::to_string(patternCopies(pattern, p)) +
+                                 " copies, more than " + std::to_string(kMaxPatternCopies));
       p.step = anyVec3(*required("step"), at + "/step");
     } else if (pattern == Pattern::Circular) {
       p.count = int(integer(*required("count"), at + "/count", 1, kMaxPatternCount, countText));

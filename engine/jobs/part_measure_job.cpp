@@ -24,6 +24,12 @@ Scene partScene(const Scene& scene, NodeId id) {
     holder->name = path[i]->name;
     holder->kind = NodeKind::Union;
     holder->transform = path[i]->transform;
+    // A mirror that drops its original shows the part as its image (patterns.h:
+    // firstPlacement): measured there.
+    if (patternOf(path[i]->kind) == Pattern::Mirror && !path[i]->pattern.keepOriginal) {
+      holder->kind = NodeKind::Mirror;
+      holder->pattern = path[i]->pattern;
+    }
     holder->children = {placed};
     placed = holder;
   }

@@ -28,8 +28,9 @@ struct PartMeasure {
 };
 
 // The scene of part `id` alone: the part under copies of its ancestors' transforms (so that it
-// lies where the scene puts it), with the rest of the tree hidden beside it (instances inside the
-// part still find their targets). Throws strata::Error when `id` is not in the scene.
+// lies where the scene puts it; a pattern's first copy, as the editor shows it), with the rest of
+// the tree hidden beside it (instances inside the part still find their targets). Throws
+// strata::Error when `id` is not in the scene.
 Scene partScene(const Scene& scene, NodeId id);
 
 class PartMeasureJob {

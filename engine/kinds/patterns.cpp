@@ -91,6 +91,9 @@ void checkPattern(Pattern pattern, const PatternParams& p, const std::string& wh
         if (!countOk(p.counts[a]))
           throw Error(who + ": its count along " + axisName(a) + range + " (it is " +
                       std::to_string(p.counts[a]) + ")");
+      if (patternCopies(pattern, p) > kMaxPatternCopies)
+        throw Error(who + ": its counts make " + std::to_string(patternCopies(pattern, p)) +
+                    " copies, more than " + std::to_string(kMaxPatternCopies));
       if (!finite3(p.step)) throw Error(who + ": its step is not a finite distance");
       break;
     case Pattern::Circular:

@@ -22,6 +22,9 @@ namespace strata {
 // Largest count along one axis of an array, or around a circular array (the product is limited
 // by the scene's leaf limit, engine/document/expansion.h).
 constexpr int kMaxPatternCount = 10000;
+// Largest number of copies one pattern makes (an array's counts multiplied): the placements are
+// listed, so even a pattern of nothing must stay small.
+constexpr uint64_t kMaxPatternCopies = 1000000;
 
 struct PatternParams {
   // Array: copies along x, y and z of the node's frame (each >= 1; (4, 1, 1) is a linear array)
@@ -55,8 +58,8 @@ uint64_t patternCopies(Pattern pattern, const PatternParams& params);
 std::vector<glm::dmat4> patternPlacements(Pattern pattern, const PatternParams& params);
 
 // Throws strata::Error naming `who` when the parameters are not valid for `pattern`: counts
-// outside [1, kMaxPatternCount], non-finite steps, angles or centres, an axis outside 0..2, an
-// angle of 0 or beyond a full turn with more than one copy.
+// outside [1, kMaxPatternCount] or more than kMaxPatternCopies copies, non-finite steps, angles or
+// centres, an axis outside 0..2, an angle of 0 or beyond a full turn with more than one copy.
 void checkPattern(Pattern pattern, const PatternParams& params, const std::string& who);
 
 // The parameters of a new pattern holding parts of world size `heldSize` (scene units; zero

@@ -172,6 +172,11 @@ TEST(ImportAndPlace, AlignToTheActivePartAndDropToGround) {
   dropSelectionToGround(state);
   EXPECT_NEAR(boundsOf(group).min.z, 0.0, 1e-9);
   EXPECT_NEAR(boundsOf(a).min.z, boxLow - groupLow, 1e-9);  // moved with the group only
+  // Aligning a group to a part inside it: the group holds the target, it does not move.
+  const Bounds before = boundsOf(group);
+  state.selection = {group, a};
+  alignSelection(state, 0, AlignEdge::Max);
+  EXPECT_EQ(boundsOf(group).min, before.min);
 }
 
 // The demo's trap, and the modes: a part added onto the base of a difference with the palette

@@ -48,6 +48,17 @@ TEST(MeasureTool, TwoClicksADistanceAThirdTheAngleEscEnds) {
   undo(state);
   measureClick(state, 0, {2, 9, 0});
   EXPECT_EQ(state.document.scene().measurements.size(), 2u);
+  // The first point's part deleted before the second click: measured from where it was.
+  measureEscape(state);
+  const NodeId doomed = addPrimitive(state, NodeKind::Sphere);
+  measureClick(state, doomed, {5, 5, 5});
+  state.selection = {doomed};
+  deleteSelection(state);
+  measureClick(state, 0, {5, 5, 9});
+  const auto& list = state.document.scene().measurements;
+  EXPECT_NEAR(measureValues(state.document.root(), list.back()).distance, 4.0, 1e-12);
+  undo(state);
+  undo(state);
   // Removing one, clearing all: one undo step each.
   removeMeasurement(state, 0);
   EXPECT_EQ(state.document.scene().measurements.size(), 1u);

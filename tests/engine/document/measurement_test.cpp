@@ -108,6 +108,10 @@ TEST(Measurement, PointsFollowTheirPartsAndStayWhenAPartIsDeleted) {
   MeasurePoint ghost;
   ghost.node = 9999;
   EXPECT_THROW(doc.applyMeasurements("x", {Measurement{{ghost, ghost}}}), Error);
+  MeasurePoint nowhere;
+  nowhere.local = glm::dvec3(1.0, std::nan(""), 0.0);
+  EXPECT_THROW(doc.applyMeasurements("x", {Measurement{{nowhere, nowhere}}}), Error);  // unsaveable
+  EXPECT_TRUE(doc.scene().measurements.empty());
 }
 
 TEST(Measurement, SceneFilesKeepThemInWorldCoordinates) {

@@ -127,6 +127,45 @@ TEST(PatternNodes, CopiesMultiplyTheLeafCountThatGuardsTheScene) {
   EXPECT_GT(measureExpansion(huge).leaves, uint64_t(1) << 60);
 }
 
+// A pattern of nothing lists no copies (a hostile file of 10000^3 empty copies costs nothing),
+// and counts whose product passes the cap are refused; the ghosts keep the shown copy once: a
+// mirror that drops its original keeps its image, an array whose copies coincide keeps one.
+TEST(PatternNodes, EmptyPatternsHugeCountsAndKeptCopies) {
+  EXPECT_EQ(patternCopies(Pattern::Array, arrayOf({100, 100, 100}, glm::dvec3(1))), 1000000u);
+  EXPECT_NO_THROW(checkPattern(Pattern::Array, arrayOf({1000, 1000, 1}, glm::dvec3(1)), "a"));
+  EXPECT_THROW(checkPattern(Pattern::Array, arrayOf({1000, 1000, 2}, glm::dvec3(1)), "a"), Error);
+  const std::string file =
+      R"({"format": "strata-scene", "version": 4, "root": {"id": 1, "type": "union", "children": [)"
+      R"({"id": 2, "type": "sphere"}, {"id": 3, "type": "array", "counts": [10000, 10000, 10000],)"
+      R"( "step": [1, 1, 1]}]}})";
+  try {
+    parseScene(file, "huge.strata.json", ".");
+    ADD_FAILURE() << "10000^3 copies read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/root/children/1/counts"), std::string::npos) << e.what();
+  }
+  // An empty array of many copies: counted as visits, listed as none, evaluated at once.
+  const NodePtr empty = pattern(NodeKind::Array, arrayOf({1000, 1000, 1}, glm::dvec3(1)), {});
+  EXPECT_EQ(measureExpansion(empty).nodes, 1000001u);
+  const NodePtr root = op(NodeKind::Union, {sphere(1.0), empty});
+  EXPECT_NEAR(evaluateCpu(makeScene(root, 32)).measure.volume, 4.18879, 0.3);
+
+  // Kept LDIs (the editor's ghosts): the first copy, once.
+  NodePtr cutter = box(glm::dvec3(0.5), {1.0, 0.0, 0.0});
+  const NodePtr image = pattern(NodeKind::Mirror, mirrorOf(0, glm::dvec3(0.0), false), {cutter});
+  NodePtr other = box(glm::dvec3(0.5), {3.0, 0.0, 0.0});
+  const NodePtr stacked = pattern(NodeKind::Array, arrayOf({2, 5, 1}, {1.0, 0.0, 0.0}), {other});
+  Scene scene = makeScene(op(NodeKind::Union, {sphere(0.2), image, stacked}), 32);
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  EvalOptions options;
+  options.keep = {cutter->id, other->id};
+  const EvalResult r = evaluator.evaluate(scene, options, progress);
+  ASSERT_EQ(r.kept.size(), 2u);
+  EXPECT_EQ(r.kept[0].id, cutter->id);
+  EXPECT_EQ(r.kept[1].id, other->id);
+}
+
 TEST(PatternNodes, ACountChangedReusesTheCopiesAlreadySampled) {
   Document doc(makeScene(op(NodeKind::Union, {box(glm::dvec3(1.0))}), 48));
   const NodeId leaf = doc.root()->children[0]->id;
