@@ -6,6 +6,7 @@
 
 #include "engine/export/export_scene.h"
 #include "engine/export/job_estimate.h"
+#include "engine/jobs/background_job.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/thread_priority.h"
@@ -113,14 +114,8 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     result.fileDifference = report.fileDifference;
   } catch (const Cancelled&) {
     result.cancelled = true;
-  } catch (const Error& e) {
-    result.error = e.what();
-  } catch (const std::bad_alloc&) {
-    result.error = "out of memory; export at a lower resolution";
-  } catch (const std::exception& e) {
-    result.error = std::string("unexpected error: ") + e.what();
   } catch (...) {
-    result.error = "unexpected error";
+    result.error = jobErrorText(std::current_exception(), "; export at a lower resolution");
   }
   update([&](ExportStatus& s) {
     s.running = false;

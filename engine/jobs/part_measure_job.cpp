@@ -1,12 +1,8 @@
 #include "engine/jobs/part_measure_job.h"
 
-#include <exception>
-#include <new>
-
 #include "engine/document/commands.h"
 #include "engine/eval/evaluator.h"
 #include "engine/util/error.h"
-#include "engine/util/thread_priority.h"
 
 namespace strata {
 
@@ -49,52 +45,15 @@ Scene partScene(const Scene& scene, NodeId id) {
 
 PartMeasureJob::PartMeasureJob(std::shared_ptr<const Scene> scene, NodeId id, int resolution,
                                std::function<std::shared_ptr<Backend>()> makeBackend)
-    : scene_(std::move(scene)), id_(id) {
-  thread_ = std::thread([this, resolution, makeBackend = std::move(makeBackend)] {
-    lowerThisThreadPriority();
-    PartMeasure measured;
-    std::string error;
-    try {
-      if (!makeBackend) throw Error("no backend to measure with");
-      Evaluator evaluator(makeBackend());
-      EvalOptions options;
-      options.resolution = resolution;
-      const EvalResult r = evaluator.evaluate(partScene(*scene_, id_), options, progress_);
-      measured.measure = r.measure;
-      measured.h = r.grid.h;
-    } catch (const Cancelled&) {
-      error = "cancelled";
-    } catch (const Error& e) {
-      error = e.what();
-    } catch (const std::bad_alloc&) {
-      error = "out of memory";
-    } catch (const std::exception& e) {
-      error = std::string("unexpected error: ") + e.what();
-    } catch (...) {
-      error = "unexpected error";
-    }
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      result_ = measured;
-      error_ = error;
-    }
-    done_.store(true, std::memory_order_release);
-  });
-}
-
-PartMeasureJob::~PartMeasureJob() {
-  progress_.cancel();
-  thread_.join();
-}
-
-PartMeasure PartMeasureJob::result() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return result_;
-}
-
-std::string PartMeasureJob::error() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return error_;
-}
+    : id_(id),
+      job_([scene = std::move(scene), id, resolution,
+            makeBackend = std::move(makeBackend)](Progress& progress) {
+        if (!makeBackend) throw Error("no backend to measure with");
+        Evaluator evaluator(makeBackend());
+        EvalOptions options;
+        options.resolution = resolution;
+        const EvalResult r = evaluator.evaluate(partScene(*scene, id), options, progress);
+        return PartMeasure{r.measure, r.grid.h};
+      }) {}
 
 }  // namespace strata

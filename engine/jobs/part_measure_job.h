@@ -3,22 +3,17 @@
 // alone (partScene), placed as in the scene, on its own grid of `resolution` cells along its
 // longest side.
 //
-// Threads: constructed, polled and destroyed on one thread (the UI's); the work runs on its own
-// thread at a lower priority with a backend it makes there. cancel() returns at once; the
-// destructor cancels and joins (the UI keeps a cancelled job until done(), as the export
-// dialog's estimates).
+// Threads: as BackgroundJob (background_job.h), with a backend it makes on its thread; the UI
+// keeps a cancelled job until done(), as the export dialog's estimates.
 #pragma once
 
-#include <atomic>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 
 #include "engine/document/scene.h"
 #include "engine/eval/backend.h"
-#include "engine/util/progress.h"
+#include "engine/jobs/background_job.h"
 
 namespace strata {
 
@@ -37,27 +32,17 @@ class PartMeasureJob {
  public:
   PartMeasureJob(std::shared_ptr<const Scene> scene, NodeId id, int resolution,
                  std::function<std::shared_ptr<Backend>()> makeBackend);
-  ~PartMeasureJob();
-  PartMeasureJob(const PartMeasureJob&) = delete;
-  PartMeasureJob& operator=(const PartMeasureJob&) = delete;
 
-  void cancel() { progress_.cancel(); }
+  void cancel() { job_.cancel(); }
   NodeId id() const { return id_; }
-  const Scene* scene() const { return scene_.get(); }
-  bool done() const { return done_.load(std::memory_order_acquire); }
+  bool done() const { return job_.done(); }
   // Valid once done(): the measure, or why there is none.
-  PartMeasure result() const;
-  std::string error() const;
+  PartMeasure result() const { return job_.result(); }
+  std::string error() const { return job_.error(); }
 
  private:
-  std::shared_ptr<const Scene> scene_;
   NodeId id_;
-  Progress progress_;
-  std::atomic<bool> done_{false};
-  mutable std::mutex mutex_;
-  PartMeasure result_;
-  std::string error_;
-  std::thread thread_;
+  BackgroundJob<PartMeasure> job_;
 };
 
 }  // namespace strata

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/eval/cpu_backend.h"
+#include "engine/jobs/background_job.h"
 #include "engine/util/error.h"
 #include "engine/util/limits.h"
 #include "engine/util/thread_priority.h"
@@ -151,14 +152,8 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     computePass(evaluator, request, progress, *result);
   } catch (const Cancelled&) {
     return false;
-  } catch (const Error& e) {
-    result->error = e.what();
-  } catch (const std::bad_alloc&) {
-    result->error = "out of memory; lower the resolution";
-  } catch (const std::exception& e) {
-    result->error = std::string("unexpected error: ") + e.what();
   } catch (...) {
-    result->error = "unexpected error";
+    result->error = jobErrorText(std::current_exception(), "; lower the resolution");
   }
   lastShown_ = request.scene;
   if (!coarse && result->error.empty())

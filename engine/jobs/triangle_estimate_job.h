@@ -8,17 +8,14 @@
 // stops at its next progress check: milliseconds; the UI keeps a cancelled job until done()).
 #pragma once
 
-#include <atomic>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 
 #include "engine/document/scene.h"
 #include "engine/eval/backend.h"
 #include "engine/export/job_estimate.h"
-#include "engine/util/progress.h"
+#include "engine/jobs/background_job.h"
 
 namespace strata {
 
@@ -26,27 +23,19 @@ class TriangleEstimateJob {
  public:
   TriangleEstimateJob(std::shared_ptr<const Scene> scene, int resolution, double simplifyCells,
                       std::function<std::shared_ptr<Backend>()> makeBackend);
-  ~TriangleEstimateJob();
-  TriangleEstimateJob(const TriangleEstimateJob&) = delete;
-  TriangleEstimateJob& operator=(const TriangleEstimateJob&) = delete;
 
-  void cancel() { progress_.cancel(); }
+  void cancel() { job_.cancel(); }
   int resolution() const { return resolution_; }
   double simplifyCells() const { return simplifyCells_; }
-  bool done() const { return done_.load(std::memory_order_acquire); }
+  bool done() const { return job_.done(); }
   // Valid once done(): the estimate, or why there is none.
-  TriangleEstimate result() const;
-  std::string error() const;
+  TriangleEstimate result() const { return job_.result(); }
+  std::string error() const { return job_.error(); }
 
  private:
   int resolution_;
   double simplifyCells_;
-  Progress progress_;
-  std::atomic<bool> done_{false};
-  mutable std::mutex mutex_;
-  TriangleEstimate result_;
-  std::string error_;
-  std::thread thread_;
+  BackgroundJob<TriangleEstimate> job_;
 };
 
 }  // namespace strata

@@ -33,34 +33,31 @@ __global__ void measureRays(const uint32_t* offsets, const Surfel* surfels, int6
   }
 }
 
-double sum(const double* values, int64_t count, const DeviceStream& stream) {
-  DeviceBuffer<double> result(1, stream);
+// `values` reduced by `reduce` (a cub::DeviceReduce entry point: Sum, Min) and read back.
+template <typename T, typename Reduce>
+T reduceToHost(const T* values, int64_t count, const DeviceStream& stream, Reduce reduce) {
+  DeviceBuffer<T> result(1, stream);
   size_t tempBytes = 0;
-  STRATA_CUDA_CHECK(
-      cub::DeviceReduce::Sum(nullptr, tempBytes, values, result.data(), count, stream.get()));
+  STRATA_CUDA_CHECK(reduce(nullptr, tempBytes, values, result.data(), count, stream.get()));
   DeviceBuffer<unsigned char> temp(tempBytes, stream);
+  STRATA_CUDA_CHECK(reduce(temp.data(), tempBytes, values, result.data(), count, stream.get()));
+  T host{};
   STRATA_CUDA_CHECK(
-      cub::DeviceReduce::Sum(temp.data(), tempBytes, values, result.data(), count, stream.get()));
-  double host = 0.0;
-  STRATA_CUDA_CHECK(
-      cudaMemcpyAsync(&host, result.data(), sizeof(double), cudaMemcpyDeviceToHost, stream.get()));
+      cudaMemcpyAsync(&host, result.data(), sizeof(T), cudaMemcpyDeviceToHost, stream.get()));
   stream.synchronize();
   return host;
 }
 
+double sum(const double* values, int64_t count, const DeviceStream& stream) {
+  return reduceToHost(values, count, stream, [](void* temp, size_t& bytes, auto... rest) {
+    return cub::DeviceReduce::Sum(temp, bytes, rest...);
+  });
+}
+
 uint64_t minimum(const uint64_t* values, int64_t count, const DeviceStream& stream) {
-  DeviceBuffer<uint64_t> result(1, stream);
-  size_t tempBytes = 0;
-  STRATA_CUDA_CHECK(
-      cub::DeviceReduce::Min(nullptr, tempBytes, values, result.data(), count, stream.get()));
-  DeviceBuffer<unsigned char> temp(tempBytes, stream);
-  STRATA_CUDA_CHECK(
-      cub::DeviceReduce::Min(temp.data(), tempBytes, values, result.data(), count, stream.get()));
-  uint64_t host = 0;
-  STRATA_CUDA_CHECK(cudaMemcpyAsync(&host, result.data(), sizeof(uint64_t), cudaMemcpyDeviceToHost,
-                                    stream.get()));
-  stream.synchronize();
-  return host;
+  return reduceToHost(values, count, stream, [](void* temp, size_t& bytes, auto... rest) {
+    return cub::DeviceReduce::Min(temp, bytes, rest...);
+  });
 }
 
 }  // namespace
