@@ -27,9 +27,14 @@ Bounds localBox(const Node& node) {
   return b;
 }
 
+struct SnapPoint {
+  glm::dvec3 world;
+  const char* what;  // "corner" or "edge midpoint"
+};
+
 // The corners and edge midpoints of `box` placed by `m`.
-std::vector<glm::dvec3> snapPoints(const Bounds& box, const glm::dmat4& m) {
-  std::vector<glm::dvec3> out;
+std::vector<SnapPoint> snapPoints(const Bounds& box, const glm::dmat4& m) {
+  std::vector<SnapPoint> out;
   if (box.empty()) return out;
   const glm::dvec3 lo = box.min, hi = box.max, mid = 0.5 * (lo + hi);
   for (int i = 0; i < 27; ++i) {
@@ -40,7 +45,8 @@ std::vector<glm::dvec3> snapPoints(const Bounds& box, const glm::dmat4& m) {
       p[a] = c[a] == 0 ? lo[a] : c[a] == 2 ? hi[a] : mid[a];
       middles += c[a] == 1 ? 1 : 0;
     }
-    if (middles <= 1) out.push_back(glm::dvec3(m * glm::dvec4(p, 1.0)));  // 8 corners, 12 edges
+    if (middles <= 1)  // 8 corners, 12 edge midpoints
+      out.push_back({glm::dvec3(m * glm::dvec4(p, 1.0)), middles ? "edge midpoint" : "corner"});
   }
   return out;
 }
@@ -81,34 +87,20 @@ glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view,
   const NodePtr& root = state.document.root();
   NodePtr leaf = findNode(root, hit.leaf);
   if (!leaf) return hit.position;
-  const std::vector<glm::dvec3> points =
-      snapPoints(localBox(*leaf), nodeWorldMatrix(root, leaf->id));
   // Of the points within reach on screen, the nearest to the surface point clicked: a corner
   // behind the part, on the same line of sight, is not taken for the one in front.
   double best = std::numeric_limits<double>::infinity();
   glm::dvec3 snapped = hit.position;
-  for (size_t i = 0; i < points.size(); ++i) {
+  for (const SnapPoint& s : snapPoints(localBox(*leaf), nodeWorldMatrix(root, leaf->id))) {
     glm::dvec2 pixel;
-    if (!view.toScreen(points[i], &pixel) || glm::length(pixel - mouse) > kMeasureSnapPixels)
+    if (!view.toScreen(s.world, &pixel) || glm::length(pixel - mouse) > kMeasureSnapPixels)
       continue;
-    const double d = glm::length(points[i] - hit.position);
+    const double d = glm::length(s.world - hit.position);
     if (d < best) {
       best = d;
-      snapped = points[i];
+      snapped = s.world;
+      if (what) *what = s.what;
     }
-  }
-  if (what && snapped != hit.position) {
-    // Which kind of point: a corner has no middle coordinate.
-    const Bounds box = localBox(*leaf);
-    const glm::dvec3 local =
-        glm::dvec3(glm::inverse(nodeWorldMatrix(root, leaf->id)) * glm::dvec4(snapped, 1.0));
-    int middles = 0;
-    for (int a = 0; a < 3; ++a)
-      middles += std::abs(local[a] - 0.5 * (box.min[a] + box.max[a])) <
-                         1e-9 * std::max(1.0, box.max[a] - box.min[a])
-                     ? 1
-                     : 0;
-    *what = middles ? "edge midpoint" : "corner";
   }
   return snapped;
 }

@@ -1,7 +1,5 @@
 #include "ui/viewport.h"
 
-#include "ui/measure_tool.h"
-
 #include <imgui.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -12,6 +10,7 @@
 
 #include "engine/document/commands.h"
 #include "ui/editor_actions.h"
+#include "ui/measure_tool.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 

@@ -130,7 +130,6 @@ class ExpansionCounter {
       return {saturatingAdd(f.sum.leaves, f.sum.leaves),
               saturatingAdd(saturatingAdd(f.sum.nodes, f.sum.nodes), 2), f.sum.depth + 1};
     }
-    // A pattern visits its children once per copy.
     const uint64_t copies = patternCopies(patternOf(n.kind), n.pattern);
     // A pattern visits its children once per copy; its copies count as visits even when it
     // holds nothing (they are listed).

@@ -24,16 +24,11 @@ std::pair<glm::dvec3, glm::dvec3> raySurfels(const Ldi& ldi, int axis, glm::dvec
   const int i = int(std::lround((through[u] - g.origin[u]) / g.h)) - g.first[u];
   const int j = int(std::lround((through[v] - g.origin[v]) / g.h)) - g.first[v];
   const AxisLdi& a = ldi.axes[axis];
+  EXPECT_TRUE(a.whole);  // the ray index below counts the whole grid's rays
   const int64_t ray = i + int64_t(j) * g.raysU(axis);
   const uint32_t begin = a.offsets[size_t(ray)], end = a.offsets[size_t(ray) + 1];
   EXPECT_GE(end, begin + 2u);
-  auto world = [&](float depth) {
-    glm::dvec3 p;
-    p[axis] = g.origin[axis] + g.h * depth;
-    p[u] = g.origin[u] + g.h * (g.first[u] + i);
-    p[v] = g.origin[v] + g.h * (g.first[v] + j);
-    return p;
-  };
+  auto world = [&](float depth) { return rayPoint(g, axis, a.whole, a.window, ray, depth); };
   return {world(a.surfels[begin].depth), world(a.surfels[end - 1].depth)};
 }
 
