@@ -2,7 +2,10 @@
 
 #include <cuda_runtime.h>
 
+#include <algorithm>
+
 #include "engine/ldi/grid_mesh.h"
+#include "engine/util/parallel_for.h"
 #include "gpu/contour/contour_tile.cuh"
 #include "gpu/ldi/combine_ldi.cuh"
 #include "gpu/ldi/csr_build.cuh"
@@ -16,6 +19,16 @@
 
 namespace strata {
 namespace {
+
+// Scratch memory one sampling batch may take (sample_mesh.cuh), and an estimate of a leaf's
+// share: its rays (whole axes at most) and triangles.
+constexpr uint64_t kBatchBytes = uint64_t(512) << 20;
+uint64_t batchScratchBytes(const GridMesh& mesh, const Grid& grid) {
+  uint64_t rays = 0;
+  for (int a = 0; a < 3; ++a)
+    rays += uint64_t(std::min(meshRayWindow(mesh, grid, a).rayCount(), grid.rayCount(a)));
+  return 60 * rays + 600 * uint64_t(mesh.triangles.size());
+}
 
 const DeviceLdi& deviceLdi(const LdiHandle& handle) {
   auto* d = dynamic_cast<const DeviceLdi*>(handle.get());
@@ -53,6 +66,36 @@ class CudaBackend : public Backend {
     progress.check();
     GridMesh placed = toGridUnits(mesh, objectToWorld, grid);
     return sampleMeshOnDevice(placed, grid, leafId, stream_);
+  }
+
+  // Leaves placed on the host in parallel, then sampled in batches of at most kBatchBytes of
+  // scratch (at least one leaf each): one pass per batch, whatever its leaf count.
+  std::vector<LdiHandle> sampleMeshes(const std::vector<LeafToSample>& leaves, const Grid& grid,
+                                      Progress& progress) override {
+    progress.check();
+    std::vector<GridMesh> placed(leaves.size());
+    parallelFor(0, int64_t(leaves.size()), 1, [&](int64_t b, int64_t e) {
+      for (int64_t k = b; k < e; ++k)
+        placed[size_t(k)] =
+            toGridUnits(*leaves[size_t(k)].mesh, leaves[size_t(k)].objectToWorld, grid);
+    });
+    std::vector<LdiHandle> out;
+    size_t k = 0;
+    while (k < leaves.size()) {
+      progress.check();
+      std::vector<const GridMesh*> meshes;
+      std::vector<uint32_t> ids;
+      uint64_t bytes = 0;
+      for (; k < leaves.size(); ++k) {
+        const uint64_t leafBytes = batchScratchBytes(placed[k], grid);
+        if (!meshes.empty() && bytes + leafBytes > kBatchBytes) break;
+        bytes += leafBytes;
+        meshes.push_back(&placed[k]);
+        ids.push_back(leaves[k].leafId);
+      }
+      for (auto& ldi : sampleMeshesOnDevice(meshes, ids, grid, stream_)) out.push_back(ldi);
+    }
+    return out;
   }
 
   LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,

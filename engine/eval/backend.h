@@ -33,6 +33,14 @@ class LdiResource {
 };
 using LdiHandle = std::shared_ptr<const LdiResource>;
 
+// One leaf to sample: `mesh` (borrowed for the call) placed by `objectToWorld`, its surfels
+// tagged `leafId`.
+struct LeafToSample {
+  const TriangleMesh* mesh = nullptr;
+  glm::dmat4 objectToWorld{1.0};
+  uint32_t leafId = 0;
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -40,6 +48,12 @@ class Backend {
   virtual std::string description() const = 0;
   virtual LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld,
                                const Grid& grid, uint32_t leafId, Progress& progress) = 0;
+  // Many leaves at once: result k is what sampleMesh makes of leaves[k]. The evaluator hands
+  // every leaf an evaluation must sample to one call, so a backend whose cost is per call (the
+  // CUDA one: launches and waits) samples them in one pass. The default calls sampleMesh on
+  // each in turn.
+  virtual std::vector<LdiHandle> sampleMeshes(const std::vector<LeafToSample>& leaves,
+                                              const Grid& grid, Progress& progress);
   virtual LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
                             Progress& progress) = 0;
   virtual LdiHandle empty(const Grid& grid) = 0;

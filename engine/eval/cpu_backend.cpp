@@ -93,6 +93,15 @@ SplatsHandle Backend::splats(const LdiHandle& ldi, Progress& progress) {
   return std::make_shared<HostSplats>(buildSplats(*host));
 }
 
+std::vector<LdiHandle> Backend::sampleMeshes(const std::vector<LeafToSample>& leaves,
+                                             const Grid& grid, Progress& progress) {
+  std::vector<LdiHandle> out;
+  out.reserve(leaves.size());
+  for (const LeafToSample& leaf : leaves)
+    out.push_back(sampleMesh(*leaf.mesh, leaf.objectToWorld, grid, leaf.leafId, progress));
+  return out;
+}
+
 uint64_t Backend::memoryAvailable() const {
   return availableMemoryBytes();
 }

@@ -206,6 +206,24 @@ struct Evaluator::Context {
   std::unordered_set<NodeId> keep;                            // EvalOptions::keep
   int insideInstance = 0;  // > 0 while visiting an instance's target
 
+  // The first walk only collects the leaves to sample (sampleMeshes takes them in one call);
+  // the second finds every leaf's LDI cached and combines.
+  bool collecting = false;
+  struct PendingLeaf {
+    uint64_t key = 0;
+    std::shared_ptr<const TriangleMesh> mesh;
+    glm::dmat4 world{1.0};
+    uint32_t leafId = 0;
+    std::string warning;
+  };
+  std::vector<PendingLeaf> pending;
+  std::unordered_set<uint64_t> pendingKeys;
+  // Keys sampled by this evaluation and not visited yet by the second walk: its first visit of
+  // each is reported as computed, with its share of the batch's time.
+  std::unordered_map<uint64_t, double> sampledNow;
+  // Primitives tessellated by this evaluation, by kind, parameters and segments.
+  std::unordered_map<uint64_t, std::shared_ptr<const TriangleMesh>> tessellations;
+
   void finishStage(Stage s, double seconds, uint64_t surfels) {
     stages[s].seconds += seconds;
     stages[s].surfels += surfels;
@@ -302,39 +320,74 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
   key.add(content.digest()).add(leafId);
   Visit v;
   v.key = key.digest();
-  NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Computed, 0.0, 0};
+  // Collecting, a leaf not cached is prepared for the batch; in the second walk every leaf is
+  // cached (one that was not collected, should the walks ever differ, is sampled alone now).
   auto hit = cache_.find(v.key);
-  if (hit != cache_.end()) {
-    hit->second.generation = generation_;
-    v.ldi = hit->second.ldi;
-    record.outcome = NodeOutcome::Cached;
-    ++ctx.result->reused;
-    ctx.warn(hit->second.warning);
-  } else {
-    Stopwatch watch;
+  if (hit == cache_.end() && ctx.pendingKeys.insert(v.key).second) {
     std::shared_ptr<const TriangleMesh> mesh = node->mesh;
     if (node->kind != NodeKind::Mesh) {
-      Stopwatch tessellate;
-      mesh =
-          std::make_shared<TriangleMesh>(tessellatePrimitive(node->kind, node->params, segments));
-      ctx.finishStage(kTessellate, tessellate.seconds(), 0);
+      // Copies of a primitive (instances, patterns) share one tessellation.
+      Hasher shape;
+      shape.add(uint8_t(node->kind));
+      hashPrimitiveParams(shape, node->kind, node->params);
+      shape.add(segments);
+      std::shared_ptr<const TriangleMesh>& made = ctx.tessellations[shape.digest()];
+      if (!made) {
+        Stopwatch tessellate;
+        made =
+            std::make_shared<TriangleMesh>(tessellatePrimitive(node->kind, node->params, segments));
+        ctx.finishStage(kTessellate, tessellate.seconds(), 0);
+      }
+      mesh = made;
     }
     Bounds bounds;
     for (const auto& p : mesh->positions) bounds.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
     checkLeafPlacement(*node, world, bounds);
-    const std::string warning = smallerThanCellWarning(*node, bounds, ctx.grid.h);
-    Stopwatch sample;
-    v.ldi = backend_->sampleMesh(*mesh, world, ctx.grid, leafId, *ctx.progress);
-    ctx.finishStage(kSample, sample.seconds(), v.ldi->surfelCount());
-    cache_[v.key] = CacheEntry{v.ldi, generation_, warning};
-    ctx.warn(warning);
-    record.seconds = watch.seconds();
+    ctx.pending.push_back(Context::PendingLeaf{v.key, mesh, world, uint32_t(leafId),
+                                               smallerThanCellWarning(*node, bounds, ctx.grid.h)});
+  }
+  if (ctx.collecting) return v;
+  if (hit == cache_.end()) {
+    sampleCollected(ctx);
+    hit = cache_.find(v.key);
+    if (hit == cache_.end()) throw Error("internal: leaf '" + node->name + "' was not sampled");
+  }
+  NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Cached, 0.0, 0};
+  hit->second.generation = generation_;
+  v.ldi = hit->second.ldi;
+  ctx.warn(hit->second.warning);
+  auto now = ctx.sampledNow.find(v.key);
+  if (now != ctx.sampledNow.end()) {
+    record.outcome = NodeOutcome::Computed;
+    record.seconds = now->second;
+    ctx.sampledNow.erase(now);
     ++ctx.result->computed;
+  } else {
+    ++ctx.result->reused;
   }
   record.surfels = v.ldi->surfelCount();
   ctx.result->nodes.push_back(record);
   ctx.nodeDone();
   return v;
+}
+
+void Evaluator::sampleCollected(Context& ctx) {
+  if (ctx.pending.empty()) return;
+  std::vector<LeafToSample> leaves;
+  for (const auto& p : ctx.pending) leaves.push_back(LeafToSample{p.mesh.get(), p.world, p.leafId});
+  Stopwatch sample;
+  const std::vector<LdiHandle> ldis = backend_->sampleMeshes(leaves, ctx.grid, *ctx.progress);
+  const double seconds = sample.seconds();
+  uint64_t surfels = 0;
+  for (size_t k = 0; k < ldis.size(); ++k) {
+    const auto& p = ctx.pending[k];
+    cache_[p.key] = CacheEntry{ldis[k], generation_, p.warning};
+    ctx.sampledNow[p.key] = seconds / double(ldis.size());
+    surfels += ldis[k]->surfelCount();
+  }
+  ctx.finishStage(kSample, seconds, surfels);
+  ctx.stages[kSample].runs += int(ldis.size()) - 1;
+  ctx.pending.clear();
 }
 
 // Equal keys mean equal LDIs: A op A = A for union and intersection, and subtracting A twice
@@ -372,7 +425,7 @@ Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentW
   ctx.insideInstance += instance ? 1 : 0;
   Visit v = visitNode(node, parentWorld, depth, ctx);
   ctx.insideInstance -= instance ? 1 : 0;
-  if (ctx.insideInstance == 0 && !ctx.keep.empty() && ctx.keep.count(node->id))
+  if (!ctx.collecting && ctx.insideInstance == 0 && !ctx.keep.empty() && ctx.keep.count(node->id))
     ctx.result->kept.push_back(KeptLdi{node->id, v.ldi});
   return v;
 }
@@ -409,6 +462,8 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
     }
     ctx.insideInstance -= copy;
   }
+  // Collecting leaves: a shell's walls without its opening hold the same leaves.
+  if (ctx.collecting) return Visit{};
   // Empty operands decide some results without a Boolean.
   std::vector<Visit> operands;
   bool resultEmpty = children.empty();
@@ -515,6 +570,11 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];
   result.grid = ctx.grid;
 
+  // First every leaf to sample, in one call to the backend; then the tree.
+  ctx.collecting = true;
+  visit(scene.root, glm::dmat4(1.0), 0, ctx);
+  ctx.collecting = false;
+  sampleCollected(ctx);
   Visit root = visit(scene.root, glm::dmat4(1.0), 0, ctx);
   result.root = root.ldi;
   Stopwatch measure;

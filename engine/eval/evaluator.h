@@ -3,7 +3,9 @@
 // Every node's LDI is cached under a key made of its content: kind and parameters, the world
 // transform (for leaves), the mesh's content hash, the grid, and the keys of its children. After
 // one leaf changes, only the nodes on its path to the root get new keys and are recomputed; the
-// result reports what was computed and what was reused.
+// result reports what was computed and what was reused. The tree is walked twice: once to
+// collect the leaves not cached, which the backend samples in one call (sampleMeshes), then to
+// combine.
 //
 // Threads: an Evaluator is used by one thread at a time. The Scene it reads is immutable.
 #pragma once
@@ -114,6 +116,8 @@ class Evaluator {
   // it; record.outcome says which.
   LdiHandle cachedOr(uint64_t key, NodeRecord& record, const std::function<LdiHandle()>& compute);
   Visit visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx);
+  // Samples the leaves the collecting walk found (Backend::sampleMeshes) into the cache.
+  void sampleCollected(Context& ctx);
   static bool dropDuplicateOperands(RayOp op, std::vector<Visit>* operands);
   uint64_t meshHash(const std::shared_ptr<const TriangleMesh>& mesh);
 

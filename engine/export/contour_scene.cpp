@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/contour/contour_tile.h"
+#include "engine/geometry/mesh_components.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
@@ -72,6 +73,12 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
   r.contourSeconds += contour.seconds();
   r.synthesizedCrossings += tile.synthesizedCrossings;
   r.signDisagreements += tile.signDisagreements;
+  // The first tile's arrays are taken, not copied (one tile is the common case).
+  if (out->vertices.empty() && out->triangles.empty()) {
+    out->vertices = std::move(tile.vertices);
+    out->triangles = std::move(tile.triangles);
+    return;
+  }
   out->vertices.insert(out->vertices.end(), tile.vertices.begin(), tile.vertices.end());
   out->triangles.insert(out->triangles.end(), tile.triangles.begin(), tile.triangles.end());
 }
@@ -240,8 +247,10 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   mergeTiles(&contour, progress);
   std::vector<uint8_t> resolved;
   ExportMesh out = indexedMesh(scene, grid, contour, r, &resolved);
-  r.unfoldedShells = unfoldInvertedShells(grid, contour.vertices, &out.mesh);
-  r.droppedSpecks = dropUnresolvedSpecks(&out, &resolved, grid.h);
+  // Components once, for both (unfolding moves vertices, not triangles).
+  const std::vector<uint32_t> roots = vertexComponentRoots(out.mesh);
+  r.unfoldedShells = unfoldInvertedShells(grid, contour.vertices, roots, &out.mesh);
+  r.droppedSpecks = dropUnresolvedSpecks(&out, &resolved, grid.h, &roots);
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;
   r.peakBytes = peakResidentBytes();

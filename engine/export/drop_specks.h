@@ -35,6 +35,9 @@ struct DroppedSpecks {
 // vertices only those used (and any no triangle uses); the rest keep their order. `resolved`
 // and mesh->triangleLeaf are shortened alike.
 // `cell` is h in the mesh's units.
-DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resolved, double cell);
+// `roots`: the mesh's vertex component roots (vertexComponentRoots) when the caller has them;
+// computed here otherwise.
+DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resolved, double cell,
+                                   const std::vector<uint32_t>* roots = nullptr);
 
 }  // namespace strata

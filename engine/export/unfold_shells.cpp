@@ -5,12 +5,17 @@
 
 #include <cmath>
 
-#include "engine/util/union_find.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 namespace {
 
 constexpr uint64_t kFaceVertexBit = uint64_t(1) << 63;  // faceSegmentKey (contour_cells.h)
+
+// Six times the signed volume of one triangle (corners relative to a reference point).
+double sixVolumeTerm(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return glm::dot(a, glm::cross(b, c));
+}
 
 // Six times the signed volume of the shell's triangles with vertex positions `at(i)`, relative
 // to `ref` (a point of the shell, so that the sum does not cancel far from the origin).
@@ -21,7 +26,7 @@ double sixVolume(const TriangleMesh& mesh, const std::vector<uint32_t>& shellTri
   for (uint32_t t : shellTriangles) {
     const auto& tri = mesh.triangles[t];
     const glm::dvec3 a = at(tri[0]) - ref, b = at(tri[1]) - ref, c = at(tri[2]) - ref;
-    sum += glm::dot(a, glm::cross(b, c));
+    sum += sixVolumeTerm(a, b, c);
   }
   return sum;
 }
@@ -33,56 +38,82 @@ int sign(double x) {
 }  // namespace
 
 int unfoldInvertedShells(const Grid& grid, const std::vector<ContourVertex>& vertices,
-                         TriangleMesh* mesh) {
+                         const std::vector<uint32_t>& rootOf, TriangleMesh* mesh) {
   const size_t n = mesh->positions.size();
-  if (n == 0 || vertices.size() != n) return 0;
+  if (n == 0 || vertices.size() != n || rootOf.size() != n) return 0;
 
   // Where each vertex goes at the grid's own placement: its cell's centre, or halfway there
   // when its cell has several components (their keys are adjacent: vertices are in key order).
   std::vector<glm::dvec3> anchor(n);
-  for (size_t i = 0; i < n; ++i) {
-    const uint64_t key = vertices[i].key;
-    if (key & kFaceVertexBit) {  // on a cell face, between two crossings: stays
-      anchor[i] = mesh->positions[i];
-      continue;
+  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
+    for (size_t i = size_t(b); i < size_t(e); ++i) {
+      const uint64_t key = vertices[i].key;
+      if (key & kFaceVertexBit) {  // on a cell face, between two crossings: stays
+        anchor[i] = mesh->positions[i];
+        continue;
+      }
+      const uint64_t cell = key / 4;
+      const uint64_t gx = uint64_t(grid.cells.x), gy = uint64_t(grid.cells.y);
+      const glm::dvec3 index(double(cell % gx), double(cell / gx % gy), double(cell / gx / gy));
+      const glm::dvec3 centre = grid.origin + grid.h * (index + 0.5);
+      const bool shared = (i > 0 && vertices[i - 1].key / 4 == cell) ||
+                          (i + 1 < n && vertices[i + 1].key / 4 == cell);
+      anchor[i] = shared ? 0.5 * (centre + mesh->positions[i]) : centre;
     }
-    const uint64_t cell = key / 4;
-    const uint64_t gx = uint64_t(grid.cells.x), gy = uint64_t(grid.cells.y);
-    const glm::dvec3 index(double(cell % gx), double(cell / gx % gy), double(cell / gx / gy));
-    const glm::dvec3 centre = grid.origin + grid.h * (index + 0.5);
-    const bool shared = (i > 0 && vertices[i - 1].key / 4 == cell) ||
-                        (i + 1 < n && vertices[i + 1].key / 4 == cell);
-    anchor[i] = shared ? 0.5 * (centre + mesh->positions[i]) : centre;
-  }
+  });
 
-  // Shells: triangles joined through shared vertices.
-  UnionFind sets(n);
-  for (const auto& t : mesh->triangles) {
-    sets.unite(t[0], t[1]);
-    sets.unite(t[0], t[2]);
-  }
+  // Shells: triangles joined through shared vertices, numbered by their first vertex.
   std::vector<uint32_t> shellOf(n, 0);
   std::vector<uint32_t> rootShell(n, UINT32_MAX);
   uint32_t shells = 0;
   for (size_t i = 0; i < n; ++i) {
-    const uint32_t root = sets.find(uint32_t(i));
+    const uint32_t root = rootOf[i];
     if (rootShell[root] == UINT32_MAX) rootShell[root] = shells++;
     shellOf[i] = rootShell[root];
   }
-  std::vector<std::vector<uint32_t>> shellTriangles(shells);
-  for (size_t t = 0; t < mesh->triangles.size(); ++t)
-    shellTriangles[shellOf[mesh->triangles[t][0]]].push_back(uint32_t(t));
+  rootShell = std::vector<uint32_t>();
 
+  // Each shell's six volumes, anchored and placed, summed over its triangles in order from its
+  // first triangle's first anchor.
+  struct ShellSums {
+    bool seen = false;
+    glm::dvec3 ref{0.0};
+    double anchored = 0.0, placed = 0.0;
+  };
+  std::vector<ShellSums> sums(shells);
+  const auto& triangles = mesh->triangles;
+  for (const auto& tri : triangles) {
+    ShellSums& s = sums[shellOf[tri[0]]];
+    if (!s.seen) {
+      s.seen = true;
+      s.ref = anchor[tri[0]];
+    }
+    s.anchored +=
+        sixVolumeTerm(anchor[tri[0]] - s.ref, anchor[tri[1]] - s.ref, anchor[tri[2]] - s.ref);
+    s.placed += sixVolumeTerm(mesh->positions[tri[0]] - s.ref, mesh->positions[tri[1]] - s.ref,
+                              mesh->positions[tri[2]] - s.ref);
+  }
+  std::vector<uint8_t> inverted(shells, 0);
+  bool any = false;
+  for (uint32_t s = 0; s < shells; ++s) {
+    const int want = sign(sums[s].anchored);
+    inverted[s] = want != 0 && sign(sums[s].placed) != want;
+    any = any || inverted[s];
+  }
+  if (!any) return 0;
+
+  // The inverted shells' triangles (few), each shell pulled back from its anchors.
+  std::vector<std::vector<uint32_t>> shellTriangles(shells);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    if (inverted[shellOf[triangles[t][0]]])
+      shellTriangles[shellOf[triangles[t][0]]].push_back(uint32_t(t));
   int moved = 0;
   std::vector<bool> done(n, false);  // a vertex belongs to one shell: moved once
   for (uint32_t s = 0; s < shells; ++s) {
+    if (!inverted[s]) continue;
     const std::vector<uint32_t>& tris = shellTriangles[s];
-    if (tris.empty()) continue;
-    const glm::dvec3 ref = anchor[mesh->triangles[tris[0]][0]];
-    const auto placed = [&](uint32_t v) { return mesh->positions[v]; };
-    const auto anchored = [&](uint32_t v) { return anchor[v]; };
-    const int want = sign(sixVolume(*mesh, tris, ref, anchored));
-    if (want == 0 || sign(sixVolume(*mesh, tris, ref, placed)) == want) continue;
+    const glm::dvec3 ref = sums[s].ref;
+    const int want = sign(sums[s].anchored);
     // Pulled back from the anchors: keep `keep` of each vertex's offset from its anchor.
     double keep = 0.5;
     for (;; keep *= 0.5) {

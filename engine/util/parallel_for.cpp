@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
@@ -35,6 +36,95 @@ void setWorkerCount(int threads) {
   g_override.store(std::max(0, threads));
 }
 
+namespace {
+
+// One parallelFor call: its chunks, handed out by `next`, to the calling thread and to pool
+// workers (at most maxThreads at once, the caller included).
+struct Job {
+  const std::function<void(int64_t, int64_t)>* body = nullptr;
+  int64_t begin = 0, end = 0, grain = 1, chunks = 0;
+  int maxThreads = 1;
+  int active = 0;  // threads inside the job (under the pool's mutex)
+  std::atomic<int64_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex errorMutex;
+  std::exception_ptr error;
+
+  bool hasWork() const { return next.load(std::memory_order_relaxed) < chunks; }
+  // Runs chunks until none is left (or one failed).
+  void work() {
+    for (;;) {
+      if (failed.load(std::memory_order_relaxed)) return;
+      const int64_t c = next.fetch_add(1);
+      if (c >= chunks) return;
+      const int64_t b = begin + c * grain;
+      try {
+        (*body)(b, std::min(end, b + grain));
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(errorMutex);
+        if (!error) error = std::current_exception();
+        failed.store(true);
+        return;
+      }
+    }
+  }
+};
+
+// Threads kept for parallelFor, started as first needed (spawning threads for every call cost
+// more than the work of a small call on a many-core host). Never destroyed: its threads wait on
+// the condition variable until the process ends, so no static destructor can find it gone.
+class Pool {
+ public:
+  static Pool& instance() {
+    static Pool* pool = new Pool();
+    return *pool;
+  }
+
+  void run(Job& job) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      while (int(threads_.size()) < job.maxThreads - 1) threads_.emplace_back([this] { loop(); });
+      job.active = 1;  // the caller
+      jobs_.push_back(&job);
+    }
+    wake_.notify_all();
+    job.work();
+    std::unique_lock<std::mutex> lock(mutex_);
+    jobs_.erase(std::find(jobs_.begin(), jobs_.end(), &job));  // no one joins any more
+    --job.active;
+    left_.wait(lock, [&] { return job.active == 0; });
+  }
+
+ private:
+  void loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      Job* job = nullptr;
+      wake_.wait(lock, [&] {
+        for (Job* j : jobs_)
+          if (j->active < j->maxThreads && j->hasWork()) {
+            job = j;
+            return true;
+          }
+        return false;
+      });
+      ++job->active;
+      lock.unlock();
+      job->work();
+      lock.lock();
+      if (--job->active == 0) left_.notify_all();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;  // a job arrived
+  std::condition_variable left_;  // a thread left a job
+  std::vector<Job*> jobs_;        // jobs still handing out chunks
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace
+
 void parallelFor(int64_t begin, int64_t end, int64_t grain,
                  const std::function<void(int64_t, int64_t)>& body) {
   if (end <= begin) return;
@@ -45,32 +135,15 @@ void parallelFor(int64_t begin, int64_t end, int64_t grain,
     for (int64_t b = begin; b < end; b += grain) body(b, std::min(end, b + grain));
     return;
   }
-  std::atomic<int64_t> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex errorMutex;
-  auto worker = [&]() {
-    for (;;) {
-      if (failed.load(std::memory_order_relaxed)) return;
-      int64_t c = next.fetch_add(1);
-      if (c >= chunks) return;
-      int64_t b = begin + c * grain;
-      try {
-        body(b, std::min(end, b + grain));
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(errorMutex);
-        if (!error) error = std::current_exception();
-        failed.store(true);
-        return;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(threads - 1);
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  Job job;
+  job.body = &body;
+  job.begin = begin;
+  job.end = end;
+  job.grain = grain;
+  job.chunks = chunks;
+  job.maxThreads = threads;
+  Pool::instance().run(job);
+  if (job.error) std::rethrow_exception(job.error);
 }
 
 }  // namespace strata

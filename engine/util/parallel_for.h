@@ -3,7 +3,9 @@
 // parallelFor(begin, end, grain, body) calls body(chunkBegin, chunkEnd) on disjoint chunks of at
 // most `grain` indices, from up to workerCount() threads, and returns when all are done. The
 // first exception thrown by a body (Cancelled included) stops handing out chunks and is
-// rethrown on the calling thread.
+// rethrown on the calling thread. The calling thread works too; the others come from a pool of
+// threads kept for the process (started as first needed), so a call costs a wake-up, not a
+// thread start. Calls may nest and may come from several threads at once.
 #pragma once
 
 #include <cstdint>

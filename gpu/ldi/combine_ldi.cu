@@ -73,9 +73,9 @@ std::shared_ptr<DeviceLdi> combineOnDevice(RayOp op, const std::vector<const Dev
                                                                   space, eventOffsets.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
   exclusiveScanAsync(eventOffsets.data(), rays + 1, stream);
+  // Every surfel of every child is one event of its ray: the total is known here, no wait.
   uint64_t totalEvents = 0;
-  const uint64_t* end[1] = {eventOffsets.data() + rays};
-  readBack(end, &totalEvents, 1, stream);
+  for (const DeviceLdi* c : children) totalEvents += c->surfelCount();
 
   DeviceBuffer<RayEvent> events(static_cast<size_t>(totalEvents), stream);
   DeviceBuffer<Surfel> scratch(static_cast<size_t>(totalEvents), stream);

@@ -20,16 +20,55 @@ __global__ void axisOffsets(const uint64_t* wide, int64_t first, int64_t rays, u
     out[r] = uint32_t(wide[first + r] - wide[first]);
 }
 
-__global__ void copyRays(RaySpace space, const uint64_t* wide, const uint32_t* counts,
-                         const Surfel* scratch, const uint64_t* scratchOffsets,
-                         AxisSurfelTargets targets) {
-  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < space.total();
-       r += int64_t(gridDim.x) * blockDim.x) {
-    const int a = space.axisOf(r);
-    const Surfel* from = scratch + scratchOffsets[r];
-    Surfel* to = targets.surfels[a] + (wide[r] - wide[space.base[a]]);
-    for (uint32_t k = 0; k < counts[r]; ++k) to[k] = from[k];
+// One axis of one LDI of a batch: its rays' place among the concatenated rays, and where its
+// offsets and surfels go.
+struct AxisSegment {
+  int64_t first;  // first global ray
+  int64_t rays;
+  uint32_t* offsets;  // rays + 1
+  Surfel* surfels;
+};
+
+// The segment holding global ray r: the last whose first ray is <= r (a segment without rays
+// shares its first ray with the next, which comes after it).
+__device__ int segmentOf(const AxisSegment* segments, int count, int64_t r) {
+  int lo = 0, hi = count;  // segments[lo].first <= r < segments[hi].first
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (segments[mid].first <= r)
+      lo = mid;
+    else
+      hi = mid;
   }
+  return lo;
+}
+
+// Every ray's offset and list, copied into its segment's axis.
+__global__ void copySegmentRays(const AxisSegment* segments, int segmentCount, int64_t total,
+                                const uint64_t* wide, const uint32_t* counts, const Surfel* scratch,
+                                const uint64_t* scratchOffsets) {
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < total;
+       r += int64_t(gridDim.x) * blockDim.x) {
+    const AxisSegment& s = segments[segmentOf(segments, segmentCount, r)];
+    const uint64_t at = wide[r] - wide[s.first];
+    s.offsets[r - s.first] = uint32_t(at);
+    if (counts[r] == 0) continue;
+    const Surfel* from = scratch + scratchOffsets[r];
+    for (uint32_t k = 0; k < counts[r]; ++k) s.surfels[at + k] = from[k];
+  }
+}
+
+// Each segment's closing offset (its surfel count).
+__global__ void closeSegments(const AxisSegment* segments, int segmentCount, const uint64_t* wide) {
+  for (int k = blockIdx.x * blockDim.x + threadIdx.x; k < segmentCount; k += gridDim.x * blockDim.x)
+    segments[k].offsets[segments[k].rays] =
+        uint32_t(wide[segments[k].first + segments[k].rays] - wide[segments[k].first]);
+}
+
+// values[k] = wide[at[k]].
+__global__ void gatherValues(const uint64_t* wide, const int64_t* at, int n, uint64_t* values) {
+  for (int k = blockIdx.x * blockDim.x + threadIdx.x; k < n; k += gridDim.x * blockDim.x)
+    values[k] = wide[at[k]];
 }
 
 // Per grid ray of one axis: its surfel count in a windowed axis (0 outside the window), widened;
@@ -140,17 +179,62 @@ AxisSurfelTargets allocateAxes(const RaySpace& space, const uint64_t* wide, Devi
 
 void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
                const uint64_t* scratchOffsets, DeviceLdi* out, const char* what) {
-  const DeviceStream& stream = out->stream();
-  const int64_t total = space.total();
+  RaySpaces spaces;
+  spaces.add(space);
+  buildAxesOfMany(spaces, counts, scratch, scratchOffsets, {out}, what);
+}
+
+void buildAxesOfMany(const RaySpaces& spaces, const uint32_t* counts, const Surfel* scratch,
+                     const uint64_t* scratchOffsets, const std::vector<DeviceLdi*>& outs,
+                     const char* what) {
+  if (outs.empty()) return;
+  const DeviceStream& stream = outs[0]->stream();
+  const int64_t total = spaces.total;
   DeviceBuffer<uint64_t> wide(static_cast<size_t>(total) + 1, stream);
   widenCounts(counts, total, wide.data(), stream);
   exclusiveScanAsync(wide.data(), total + 1, stream);
-  const AxisSurfelTargets targets = allocateAxes(space, wide.data(), out, what);
-  if (targets.total > 0) {
-    copyRays<<<blocksFor(total, 256), 256, 0, stream.get()>>>(space, wide.data(), counts, scratch,
-                                                              scratchOffsets, targets);
+
+  // Each axis's first ray, and the end: their scanned values are the axes' surfel starts.
+  std::vector<AxisSegment> segments;
+  std::vector<int64_t> at;
+  for (size_t k = 0; k < outs.size(); ++k)
+    for (int a = 0; a < 3; ++a) {
+      const RaySpace& space = spaces.spaces[k];
+      const int64_t first = spaces.first[k] + space.base[a];
+      segments.push_back(AxisSegment{first, space.base[a + 1] - space.base[a], nullptr, nullptr});
+      at.push_back(first);
+    }
+  at.push_back(total);
+  const auto deviceAt = DeviceBuffer<int64_t>::upload(at, stream);
+  DeviceBuffer<uint64_t> deviceStarts(at.size(), stream);
+  gatherValues<<<blocksFor(int64_t(at.size()), 128), 128, 0, stream.get()>>>(
+      wide.data(), deviceAt.data(), int(at.size()), deviceStarts.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
+  std::vector<uint64_t> starts;
+  deviceStarts.downloadAsync(&starts);
+  stream.synchronize();
+
+  for (size_t k = 0; k < outs.size(); ++k)
+    for (int a = 0; a < 3; ++a) {
+      AxisSegment& s = segments[3 * k + size_t(a)];
+      const uint64_t n = starts[3 * k + size_t(a) + 1] - starts[3 * k + size_t(a)];
+      checkSurfelCount(n, what);
+      DeviceAxisLdi& axis = outs[k]->axes[a];
+      axis.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(s.rays) + 1, stream);
+      axis.surfels = DeviceBuffer<Surfel>(static_cast<size_t>(n), stream);
+      s.offsets = axis.offsets.data();
+      s.surfels = axis.surfels.data();
+    }
+  const auto deviceSegments = DeviceBuffer<AxisSegment>::upload(segments, stream);
+  const int segmentCount = int(segments.size());
+  if (total > 0) {
+    copySegmentRays<<<blocksFor(total, 256), 256, 0, stream.get()>>>(
+        deviceSegments.data(), segmentCount, total, wide.data(), counts, scratch, scratchOffsets);
     STRATA_CUDA_CHECK(cudaGetLastError());
   }
+  closeSegments<<<blocksFor(segmentCount, 128), 128, 0, stream.get()>>>(deviceSegments.data(),
+                                                                        segmentCount, wide.data());
+  STRATA_CUDA_CHECK(cudaGetLastError());
 }
 
 }  // namespace strata

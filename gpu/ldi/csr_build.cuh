@@ -9,6 +9,7 @@
 #include <cuda_runtime.h>
 
 #include <memory>
+#include <vector>
 
 #include "gpu/ldi/device_ldi.h"
 
@@ -21,6 +22,7 @@ struct RaySpace {
   int raysU[3];     // rays along u per axis (of the window)
   int u0[3], v0[3];
 
+  RaySpace() : base{0, 0, 0, 0}, raysU{0, 0, 0}, u0{0, 0, 0}, v0{0, 0, 0} {}  // no rays
   explicit RaySpace(const Grid& grid) {
     base[0] = 0;
     for (int a = 0; a < 3; ++a) {
@@ -81,6 +83,26 @@ AxisSurfelTargets allocateAxes(const RaySpace& space, const uint64_t* wide, Devi
 // work is queued on). Throws strata::Error when an axis exceeds 2^32 surfels.
 void buildAxes(const RaySpace& space, const uint32_t* counts, const Surfel* scratch,
                const uint64_t* scratchOffsets, DeviceLdi* out, const char* what);
+
+// Rays of several LDIs, one after the other: LDI k's ray space (its axes, whole or windowed)
+// starts at global ray first[k]; `total` rays in all.
+struct RaySpaces {
+  std::vector<RaySpace> spaces;
+  std::vector<int64_t> first;
+  int64_t total = 0;
+  void add(const RaySpace& space) {
+    spaces.push_back(space);
+    first.push_back(total);
+    total += space.total();
+  }
+};
+
+// buildAxes for many LDIs at once (outs[k] over spaces.spaces[k]; all on one stream, that of
+// outs[0]): one scan, one wait for all their axis sizes, one copy launch. scratch may be null
+// when every count is 0.
+void buildAxesOfMany(const RaySpaces& spaces, const uint32_t* counts, const Surfel* scratch,
+                     const uint64_t* scratchOffsets, const std::vector<DeviceLdi*>& outs,
+                     const char* what);
 
 // `ldi` itself when every axis is whole, else a copy with whole axes (offsets for every ray of
 // the grid), made on `stream` and complete on return: for the steps that index rays of the

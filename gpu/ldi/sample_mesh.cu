@@ -1,8 +1,11 @@
+#include <algorithm>
+#include <array>
 #include <vector>
 
 #include "engine/ldi/grid_mesh.h"
 #include "engine/ldi/sample_mesh.h"
 #include "engine/ldi/shared_math.h"
+#include "engine/util/parallel_for.h"
 #include "gpu/ldi/csr_build.cuh"
 #include "gpu/ldi/sample_mesh.cuh"
 
@@ -22,21 +25,52 @@ struct AxisSetup {
   uint32_t minus[3], plus[3];  // encoded -axis / +axis normals for clipped ends
 };
 
-// Job j = axis * count + t: triangle t projected for `axis`; work[j] = its candidate rays.
-__global__ void projectTriangles(const TriangleInput* in, int64_t count, AxisSetup s,
-                                 ProjectedTriangle* out, uint64_t* work) {
-  const int64_t jobs = 3 * count;
+// One leaf of a batch as the kernels see it: its rays among the batch's concatenated rays, its
+// jobs (3 per triangle: job axis * triangles + t of the leaf) and triangles among the batch's.
+struct BatchLeaf {
+  RaySpace space;  // the leaf's own rays (its windows), from 0
+  int64_t firstRay;
+  int64_t firstJob;
+  int64_t firstTriangle;
+  int64_t triangles;
+  uint32_t leafId;
+};
+
+// The last leaf whose `first` member is <= x (leaves without any come before the next that has
+// some, with the same first: the last of equals is the one that holds x).
+template <typename First>
+__device__ int leafOf(const BatchLeaf* leaves, int count, int64_t x, First first) {
+  int lo = 0, hi = count;
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (first(leaves[mid]) <= x)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+// Every job of the batch: its triangle projected for its axis; work[j] = its candidate rays,
+// jobLeaf[j] = its leaf.
+__global__ void projectTriangles(const TriangleInput* in, const BatchLeaf* leaves, int leafCount,
+                                 int64_t jobs, AxisSetup s, ProjectedTriangle* out,
+                                 int32_t* jobLeaf, uint64_t* work) {
   for (int64_t j = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; j <= jobs;
        j += int64_t(gridDim.x) * blockDim.x) {
     if (j == jobs) {
       work[j] = 0;
       continue;
     }
-    const int axis = int(j / count);
-    const int64_t t = j % count;
+    const int leaf = leafOf(leaves, leafCount, j, [](const BatchLeaf& l) { return l.firstJob; });
+    const BatchLeaf& l = leaves[leaf];
+    const int64_t local = j - l.firstJob;
+    const int axis = int(local / l.triangles);
+    const int64_t t = l.firstTriangle + local % l.triangles;
     ProjectedTriangle pt = projectTriangle(in[t].p, in[t].n, axis, s.firstU[axis], s.firstV[axis],
                                            s.raysU[axis], s.raysV[axis]);
     out[j] = pt;
+    jobLeaf[j] = leaf;
     const int64_t w = int64_t(pt.rayUMax - pt.rayUMin + 1) * int64_t(pt.rayVMax - pt.rayVMin + 1);
     work[j] = pt.rayUMax < pt.rayUMin ? 0 : uint64_t(w);
   }
@@ -55,16 +89,19 @@ __device__ int64_t jobOf(const uint64_t* scan, int64_t jobs, uint64_t w) {
   return lo;
 }
 
-// Every (triangle, candidate ray) pair of every axis is one work item, so big triangles spread
-// over many threads. kWrite = false counts hits per ray; true writes them at their slots.
+// Every (triangle, candidate ray) pair of every axis of every leaf is one work item, so big
+// triangles spread over many threads. kWrite = false counts hits per ray; true writes them at
+// their slots.
 template <bool kWrite>
-__global__ void rasterize(const ProjectedTriangle* tris, const uint64_t* scan, int64_t count,
-                          uint64_t totalWork, RaySpace space, uint32_t leafId, uint32_t* counters,
-                          const uint64_t* rawOffsets, Surfel* raw) {
+__global__ void rasterize(const ProjectedTriangle* tris, const int32_t* jobLeaf,
+                          const BatchLeaf* leaves, const uint64_t* scan, int64_t jobs,
+                          uint64_t totalWork, uint32_t* counters, const uint64_t* rawOffsets,
+                          Surfel* raw) {
   for (uint64_t w = blockIdx.x * uint64_t(blockDim.x) + threadIdx.x; w < totalWork;
        w += uint64_t(gridDim.x) * blockDim.x) {
-    const int64_t job = jobOf(scan, 3 * count, w);
-    const int axis = int(job / count);
+    const int64_t job = jobOf(scan, jobs, w);
+    const BatchLeaf& l = leaves[jobLeaf[job]];
+    const int axis = int((job - l.firstJob) / l.triangles);
     const ProjectedTriangle& pt = tris[job];
     const uint64_t local = w - scan[job];
     const int width = pt.rayUMax - pt.rayUMin + 1;
@@ -72,20 +109,22 @@ __global__ void rasterize(const ProjectedTriangle* tris, const uint64_t* scan, i
     const int j = pt.rayVMin + int(local / uint64_t(width));
     double depth;
     if (!hitTriangle(pt, i, j, &depth)) continue;
-    const int64_t ray = space.rayOf(axis, i, j);
+    const int64_t ray = l.firstRay + l.space.rayOf(axis, i, j);
     const uint32_t slot = atomicAdd(&counters[ray], 1u);
     if (kWrite)
       raw[rawOffsets[ray] + slot] =
-          Surfel{float(depth), pt.normal, makeSurfelTag(leafId, pt.enters)};
+          Surfel{float(depth), pt.normal, makeSurfelTag(l.leafId, pt.enters)};
   }
 }
 
-__global__ void sortAndNormalize(Surfel* raw, const uint64_t* rawOffsets, RaySpace space,
-                                 AxisSetup s, uint32_t leafId, Surfel* normalized,
+__global__ void sortAndNormalize(Surfel* raw, const uint64_t* rawOffsets, const BatchLeaf* leaves,
+                                 int leafCount, int64_t rays, AxisSetup s, Surfel* normalized,
                                  uint64_t* normalizedOffsets, uint32_t* normalizedCounts) {
-  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < space.total();
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < rays;
        r += int64_t(gridDim.x) * blockDim.x) {
-    const int axis = space.axisOf(r);
+    const BatchLeaf& l =
+        leaves[leafOf(leaves, leafCount, r, [](const BatchLeaf& b) { return b.firstRay; })];
+    const int axis = l.space.axisOf(r - l.firstRay);
     Surfel* list = raw + rawOffsets[r];
     const int n = int(rawOffsets[r + 1] - rawOffsets[r]);
     // Insertion sort: lists are short, and the order equals the CPU's std::sort because the
@@ -101,7 +140,7 @@ __global__ void sortAndNormalize(Surfel* raw, const uint64_t* rawOffsets, RaySpa
     }
     const uint64_t at = rawOffsets[r] + 2 * uint64_t(r);  // room for two clip surfels per ray
     normalizedOffsets[r] = at;
-    normalizedCounts[r] = uint32_t(normalizeLeafRay(list, n, s.lo[axis], s.hi[axis], leafId,
+    normalizedCounts[r] = uint32_t(normalizeLeafRay(list, n, s.lo[axis], s.hi[axis], l.leafId,
                                                     s.minus[axis], s.plus[axis], normalized + at));
   }
 }
@@ -127,116 +166,157 @@ AxisSetup makeAxisSetup(const Grid& grid) {
   return setup;
 }
 
-// The (triangle, candidate ray) work of all three axes: each triangle projected per axis and
-// the exclusive scan of their candidate ray counts (job j = axis * triangles + t).
-struct RasterWork {
-  int64_t triangles = 0;
-  DeviceBuffer<ProjectedTriangle> projected;
-  DeviceBuffer<uint64_t> scan;  // 3 * triangles + 1
-  uint64_t total = 0;           // items over all jobs
+// The batch's leaves, rays and triangles, laid out on the host.
+struct BatchLayout {
+  std::vector<BatchLeaf> leaves;
+  RaySpaces rays;
+  std::vector<TriangleInput> triangles;
+  int64_t jobs = 0;
+  // Per leaf and axis: sampled over a window (true) or the whole grid.
+  std::vector<std::array<RayWindow, 3>> windows;
+  std::vector<std::array<bool, 3>> whole;
 };
 
-RasterWork projectMesh(const GridMesh& mesh, const AxisSetup& setup, const DeviceStream& stream) {
-  RasterWork w;
-  w.triangles = int64_t(mesh.triangles.size());
-  const int64_t count = w.triangles;
-  std::vector<TriangleInput> host(static_cast<size_t>(count));
-  for (int64_t t = 0; t < count; ++t) {
-    for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k)
-        host[size_t(t)].p[c][k] = mesh.positions[mesh.triangles[size_t(t)][c]][k];
-    for (int k = 0; k < 3; ++k) host[size_t(t)].n[k] = mesh.normals[size_t(t)][k];
+BatchLayout layBatch(const std::vector<const GridMesh*>& meshes,
+                     const std::vector<uint32_t>& leafIds, const Grid& grid) {
+  BatchLayout b;
+  const size_t count = meshes.size();
+  b.leaves.resize(count);
+  b.windows.resize(count);
+  b.whole.resize(count);
+  // Per axis, the rays the mesh can reach: an axis whose window covers at most half of the
+  // grid's rays is sampled and kept windowed (a small leaf costs its size, not the grid's), the
+  // others whole, as the CPU backend does.
+  parallelFor(0, int64_t(count), 1, [&](int64_t first, int64_t last) {
+    for (int64_t k = first; k < last; ++k) {
+      const GridMesh& mesh = *meshes[size_t(k)];
+      for (int a = 0; a < 3; ++a) {
+        RayWindow& window = b.windows[size_t(k)][a];
+        window = meshRayWindow(mesh, grid, a);
+        b.whole[size_t(k)][a] = mesh.triangles.empty() || window.rayCount() * 2 > grid.rayCount(a);
+        if (b.whole[size_t(k)][a]) window = wholeWindow(grid, a);
+      }
+    }
+  });
+  int64_t triangles = 0;
+  for (size_t k = 0; k < count; ++k) {
+    BatchLeaf& leaf = b.leaves[k];
+    leaf.space = RaySpace(b.windows[k].data());
+    leaf.firstRay = b.rays.total;
+    leaf.firstJob = b.jobs;
+    leaf.firstTriangle = triangles;
+    leaf.triangles = int64_t(meshes[k]->triangles.size());
+    leaf.leafId = leafIds[k];
+    b.rays.add(leaf.space);
+    b.jobs += 3 * leaf.triangles;
+    triangles += leaf.triangles;
   }
-  const auto input = DeviceBuffer<TriangleInput>::upload(host, stream);
-  w.projected = DeviceBuffer<ProjectedTriangle>(static_cast<size_t>(3 * count), stream);
-  w.scan = DeviceBuffer<uint64_t>(static_cast<size_t>(3 * count) + 1, stream);
-  projectTriangles<<<blocksFor(3 * count + 1, 128), 128, 0, stream.get()>>>(
-      input.data(), count, setup, w.projected.data(), w.scan.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  exclusiveScanAsync(w.scan.data(), 3 * count + 1, stream);
-  const uint64_t* workEnd[1] = {w.scan.data() + 3 * count};
-  readBack(workEnd, &w.total, 1, stream);
-  return w;
-}
-
-// Every ray's raw hits, unsorted: ray R's at rawOffsets[R] .. rawOffsets[R + 1] of the result.
-// counters (one per ray) are scratch, left holding each ray's hit count.
-DeviceBuffer<Surfel> rasterizeHits(const RasterWork& w, const RaySpace& space, uint32_t leafId,
-                                   uint32_t* counters, DeviceBuffer<uint64_t>* rawOffsets,
-                                   const DeviceStream& stream) {
-  const int64_t rays = space.total();
-  // Pass 1: count hits per ray; scan into raw offsets.
-  STRATA_CUDA_CHECK(cudaMemsetAsync(counters, 0, size_t(rays) * sizeof(uint32_t), stream.get()));
-  rasterize<false><<<itemBlocks(w.total), 256, 0, stream.get()>>>(
-      w.projected.data(), w.scan.data(), w.triangles, w.total, space, leafId, counters, nullptr,
-      nullptr);
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  *rawOffsets = DeviceBuffer<uint64_t>(static_cast<size_t>(rays) + 1, stream);
-  widenCounts(counters, rays, rawOffsets->data(), stream);
-  exclusiveScanAsync(rawOffsets->data(), rays + 1, stream);
-  uint64_t rawTotal = 0;
-  const uint64_t* rawEnd[1] = {rawOffsets->data() + rays};
-  readBack(rawEnd, &rawTotal, 1, stream);
-
-  // Pass 2: write each hit at its ray's next slot.
-  DeviceBuffer<Surfel> raw(static_cast<size_t>(rawTotal), stream);
-  STRATA_CUDA_CHECK(cudaMemsetAsync(counters, 0, size_t(rays) * sizeof(uint32_t), stream.get()));
-  rasterize<true><<<itemBlocks(w.total), 256, 0, stream.get()>>>(
-      w.projected.data(), w.scan.data(), w.triangles, w.total, space, leafId, counters,
-      rawOffsets->data(), raw.data());
-  STRATA_CUDA_CHECK(cudaGetLastError());
-  return raw;
+  // Every triangle's corners and normal, filled in parallel by blocks of the batch's triangles.
+  b.triangles.resize(size_t(triangles));
+  parallelFor(0, triangles, 16384, [&](int64_t first, int64_t last) {
+    // The leaf holding triangle `first`: the last whose first triangle is <= it.
+    size_t k =
+        size_t(std::upper_bound(b.leaves.begin(), b.leaves.end(), first,
+                                [](int64_t t, const BatchLeaf& l) { return t < l.firstTriangle; }) -
+               b.leaves.begin()) -
+        1;
+    for (int64_t t = first; t < last; ++t) {
+      while (t >= b.leaves[k].firstTriangle + b.leaves[k].triangles) ++k;
+      const GridMesh& mesh = *meshes[k];
+      const int64_t local = t - b.leaves[k].firstTriangle;
+      TriangleInput& in = b.triangles[size_t(t)];
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d)
+          in.p[c][d] = mesh.positions[mesh.triangles[size_t(local)][c]][d];
+      for (int d = 0; d < 3; ++d) in.n[d] = mesh.normals[size_t(local)][d];
+    }
+  });
+  return b;
 }
 
 }  // namespace
 
 std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
                                               uint32_t leafId, const DeviceStream& stream) {
-  auto ldi = std::make_shared<DeviceLdi>(grid, stream);
-  // Per axis, the rays the mesh can reach: an axis whose window covers at most half of the
-  // grid's rays is sampled and kept windowed (a small leaf costs its size, not the grid's), the
-  // others whole, as the CPU backend does.
-  RayWindow windows[3];
-  bool whole[3];
-  for (int a = 0; a < 3; ++a) {
-    windows[a] = meshRayWindow(mesh, grid, a);
-    whole[a] = mesh.triangles.empty() || windows[a].rayCount() * 2 > grid.rayCount(a);
-    if (whole[a]) windows[a] = wholeWindow(grid, a);
-  }
-  const RaySpace space(windows);
-  const int64_t rays = space.total();
-  const AxisSetup setup = makeAxisSetup(grid);
-  DeviceBuffer<uint32_t> counters(static_cast<size_t>(rays), stream);
-  auto settle = [&] {
-    for (int a = 0; a < 3; ++a) {
-      ldi->axes[a].whole = whole[a];
-      ldi->axes[a].window = whole[a] ? RayWindow{} : windows[a];
-    }
-  };
-  if (mesh.triangles.empty()) {
-    STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream.get()));
-    buildAxes(space, counters.data(), nullptr, nullptr, ldi.get(), "sampling");
-    settle();
-    stream.synchronize();
-    return ldi;
-  }
-  const RasterWork work = projectMesh(mesh, setup, stream);
-  DeviceBuffer<uint64_t> rawOffsets;
-  DeviceBuffer<Surfel> raw =
-      rasterizeHits(work, space, leafId, counters.data(), &rawOffsets, stream);
+  return sampleMeshesOnDevice({&mesh}, {leafId}, grid, stream)[0];
+}
 
-  // Pass 3: sort and normalise every ray; then the CSR of each axis.
-  DeviceBuffer<Surfel> normalized(raw.size() + 2 * size_t(rays), stream);
-  DeviceBuffer<uint64_t> normalizedOffsets(static_cast<size_t>(rays), stream);
-  sortAndNormalize<<<blocksFor(rays, 128), 128, 0, stream.get()>>>(
-      raw.data(), rawOffsets.data(), space, setup, leafId, normalized.data(),
-      normalizedOffsets.data(), counters.data());
+std::vector<std::shared_ptr<DeviceLdi>> sampleMeshesOnDevice(
+    const std::vector<const GridMesh*>& meshes, const std::vector<uint32_t>& leafIds,
+    const Grid& grid, const DeviceStream& stream) {
+  const BatchLayout layout = layBatch(meshes, leafIds, grid);
+  const int leafCount = int(layout.leaves.size());
+  std::vector<std::shared_ptr<DeviceLdi>> ldis;
+  std::vector<DeviceLdi*> outs;
+  for (int k = 0; k < leafCount; ++k) {
+    ldis.push_back(std::make_shared<DeviceLdi>(grid, stream));
+    outs.push_back(ldis.back().get());
+  }
+  if (leafCount == 0) return ldis;
+  const int64_t rays = layout.rays.total;
+  const int64_t jobs = layout.jobs;
+  const AxisSetup setup = makeAxisSetup(grid);
+  const auto leaves = DeviceBuffer<BatchLeaf>::upload(layout.leaves, stream);
+  DeviceBuffer<uint32_t> counters(static_cast<size_t>(rays), stream);
+  STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream.get()));
+
+  // Projection of every job, and the scan of their candidate rays (one wait for the total).
+  const auto input = DeviceBuffer<TriangleInput>::upload(layout.triangles, stream);
+  DeviceBuffer<ProjectedTriangle> projected(static_cast<size_t>(jobs), stream);
+  DeviceBuffer<int32_t> jobLeaf(static_cast<size_t>(jobs), stream);
+  DeviceBuffer<uint64_t> scan(static_cast<size_t>(jobs) + 1, stream);
+  projectTriangles<<<blocksFor(jobs + 1, 128), 128, 0, stream.get()>>>(
+      input.data(), leaves.data(), leafCount, jobs, setup, projected.data(), jobLeaf.data(),
+      scan.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  buildAxes(space, counters.data(), normalized.data(), normalizedOffsets.data(), ldi.get(),
-            "sampling");
-  settle();
+  exclusiveScanAsync(scan.data(), jobs + 1, stream);
+  uint64_t totalWork = 0;
+  const uint64_t* workEnd[1] = {scan.data() + jobs};
+  readBack(workEnd, &totalWork, 1, stream);
+
+  DeviceBuffer<uint64_t> rawOffsets(static_cast<size_t>(rays) + 1, stream);
+  DeviceBuffer<Surfel> raw;
+  DeviceBuffer<Surfel> normalized;
+  DeviceBuffer<uint64_t> normalizedOffsets;
+  if (totalWork > 0) {
+    // Pass 1: count hits per ray; scan into raw offsets (one wait for the total).
+    rasterize<false><<<itemBlocks(totalWork), 256, 0, stream.get()>>>(
+        projected.data(), jobLeaf.data(), leaves.data(), scan.data(), jobs, totalWork,
+        counters.data(), nullptr, nullptr);
+    STRATA_CUDA_CHECK(cudaGetLastError());
+    widenCounts(counters.data(), rays, rawOffsets.data(), stream);
+    exclusiveScanAsync(rawOffsets.data(), rays + 1, stream);
+    uint64_t rawTotal = 0;
+    const uint64_t* rawEnd[1] = {rawOffsets.data() + rays};
+    readBack(rawEnd, &rawTotal, 1, stream);
+
+    // Pass 2: write each hit at its ray's next slot.
+    raw = DeviceBuffer<Surfel>(static_cast<size_t>(rawTotal), stream);
+    STRATA_CUDA_CHECK(cudaMemsetAsync(counters.data(), 0, counters.bytes(), stream.get()));
+    rasterize<true><<<itemBlocks(totalWork), 256, 0, stream.get()>>>(
+        projected.data(), jobLeaf.data(), leaves.data(), scan.data(), jobs, totalWork,
+        counters.data(), rawOffsets.data(), raw.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+
+    // Pass 3: sort and normalise every ray (counters now hold the clean counts).
+    normalized = DeviceBuffer<Surfel>(raw.size() + 2 * size_t(rays), stream);
+    normalizedOffsets = DeviceBuffer<uint64_t>(static_cast<size_t>(rays), stream);
+    sortAndNormalize<<<blocksFor(rays, 128), 128, 0, stream.get()>>>(
+        raw.data(), rawOffsets.data(), leaves.data(), leafCount, rays, setup, normalized.data(),
+        normalizedOffsets.data(), counters.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  // Then the CSR of every axis of every leaf (one wait for their sizes).
+  buildAxesOfMany(layout.rays, counters.data(), normalized.data(), normalizedOffsets.data(), outs,
+                  "sampling");
+  for (int k = 0; k < leafCount; ++k)
+    for (int a = 0; a < 3; ++a) {
+      ldis[size_t(k)]->axes[a].whole = layout.whole[size_t(k)][a];
+      ldis[size_t(k)]->axes[a].window =
+          layout.whole[size_t(k)][a] ? RayWindow{} : layout.windows[size_t(k)][a];
+    }
   stream.synchronize();
-  return ldi;
+  return ldis;
 }
 
 }  // namespace strata

@@ -10,6 +10,7 @@
 #include <cuda_runtime.h>
 
 #include <memory>
+#include <vector>
 
 #include "engine/ldi/grid_mesh.h"
 #include "gpu/ldi/device_ldi.h"
@@ -21,5 +22,14 @@ namespace strata {
 // (DeviceOutOfMemory when the device is full).
 std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
                                               uint32_t leafId, const DeviceStream& stream);
+
+// The same for many meshes at once (meshes[k] tagged leafIds[k]), in one pass: one upload of all
+// their triangles, one launch per step over all of them and three waits in all, however many
+// meshes there are; each LDI equals what sampleMeshOnDevice makes of its mesh alone. Scratch
+// memory grows with the batch (about 40 bytes a ray of every mesh's rays, 80 a triangle, plus
+// their raw hits): the caller sizes batches.
+std::vector<std::shared_ptr<DeviceLdi>> sampleMeshesOnDevice(
+    const std::vector<const GridMesh*>& meshes, const std::vector<uint32_t>& leafIds,
+    const Grid& grid, const DeviceStream& stream);
 
 }  // namespace strata

@@ -143,6 +143,11 @@ TEST_F(CudaVsCpu, SmallPartsOnABigGridMatch) {
     parts.push_back(box(glm::dvec3(next(0.2, 1.5), next(0.2, 1.5), next(0.2, 1.5)),
                         glm::dvec3(next(-9, 9), next(-9, 9), next(-9, 9))));
   parts.push_back(box(glm::dvec3(14.0), glm::dvec3(0.0)));  // one part over most of the grid
+  // All sampled in one batch (Backend::sampleMeshes) with parts the grid does not reach and a
+  // mesh without triangles.
+  parts.push_back(box(glm::dvec3(1.0), glm::dvec3(30.0, 0.0, 0.0)));
+  parts.push_back(box(glm::dvec3(2.0), glm::dvec3(10.5, 10.5, 0.0)));  // partly inside
+  parts.push_back(meshLeaf(std::make_shared<TriangleMesh>()));
   for (int k = 0; k < 60; ++k)
     cutters.push_back(sphere(next(0.2, 1.0), glm::dvec3(next(-9, 9), next(-9, 9), next(-9, 9))));
   auto united = std::make_shared<Node>(*op(NodeKind::Union, {}));

@@ -72,6 +72,58 @@ TEST(EvaluatorCache, MovingOneLeafRecomputesOnlyItsPath) {
   EXPECT_EQ(edited.measure.surfels, fresh.measure.surfels);
 }
 
+// A CPU backend that records how the evaluator asks for leaves: the size of every
+// sampleMeshes call and how many single sampleMesh calls there were.
+class CountingBackend : public CpuBackend {
+ public:
+  std::vector<LdiHandle> sampleMeshes(const std::vector<LeafToSample>& leaves, const Grid& grid,
+                                      Progress& progress) override {
+    batches.push_back(leaves.size());
+    return CpuBackend::sampleMeshes(leaves, grid, progress);
+  }
+  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                       uint32_t leafId, Progress& progress) override {
+    ++singles;
+    return CpuBackend::sampleMesh(mesh, objectToWorld, grid, leafId, progress);
+  }
+  std::vector<size_t> batches;
+  int singles = 0;
+};
+
+TEST(EvaluatorCache, LeavesAreSampledInOneBatch) {
+  Tree t;
+  auto backend = std::make_shared<CountingBackend>();
+  Evaluator evaluator(backend);
+  Progress progress;
+  EvalResult first = evaluator.evaluate(fixedGrid(t.root), {}, progress);
+  ASSERT_EQ(backend->batches, std::vector<size_t>{5});  // every leaf, in one call
+  EXPECT_EQ(backend->singles, 5);                       // the default: one by one
+  EXPECT_EQ(computedOf(first, t.drill->id), 1);
+  EXPECT_EQ(first.stages[1].name, "sample");
+  EXPECT_EQ(first.stages[1].runs, 5);
+
+  // Nothing new: no call at all. One leaf moved: a batch of one.
+  evaluator.evaluate(fixedGrid(t.root), {}, progress);
+  EXPECT_EQ(backend->batches.size(), 1u);
+  Transform moved = t.ball->transform;
+  moved.translate.y += 0.3;
+  auto root = std::make_shared<Node>(*t.root);
+  root->children = {t.cut, withTransform(t.ball, moved), t.lens};
+  evaluator.evaluate(fixedGrid(root), {}, progress);
+  EXPECT_EQ(backend->batches, (std::vector<size_t>{5, 1}));
+
+  // Identical leaves (same content, same place) are sampled once; the result equals a fresh
+  // evaluation's on a backend that samples one leaf at a time.
+  NodePtr copies = op(NodeKind::Union, {box({1, 1, 1}), box({1, 1, 1}), sphere(0.7, {0.5, 0, 0})});
+  auto counting = std::make_shared<CountingBackend>();
+  Evaluator batched(counting);
+  EvalResult b = batched.evaluate(fixedGrid(copies), {}, progress);
+  EXPECT_EQ(counting->batches, std::vector<size_t>{2});
+  EvalResult fresh = evaluateCpu(fixedGrid(copies));
+  EXPECT_EQ(b.measure.volume, fresh.measure.volume);
+  EXPECT_EQ(b.computed, fresh.computed);
+}
+
 TEST(EvaluatorCache, ResolutionChangeRecomputesAndHiddenNodesAreSkipped) {
   Tree t;
   Evaluator evaluator(std::make_shared<CpuBackend>());

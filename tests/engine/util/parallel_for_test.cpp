@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -65,6 +69,55 @@ TEST(ParallelFor, LoopsFromSeveralThreadsAtOnce) {
     });
   for (auto& c : callers) c.join();
   for (int64_t s : sums) EXPECT_EQ(s, int64_t(20000) * 19999 / 2);
+}
+
+// Bodies that call parallelFor themselves (an export job's merge inside a tile loop): every
+// inner index once, no deadlock, also when an inner loop throws.
+TEST(ParallelFor, NestedLoopsFinishAndRethrow) {
+  WorkerCount four(4);
+  std::vector<std::atomic<int>> visits(64 * 500);
+  parallelFor(0, 64, 1, [&](int64_t outer, int64_t) {
+    parallelFor(0, 500, 7, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) visits[size_t(outer * 500 + i)].fetch_add(1);
+    });
+  });
+  for (size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), 1) << i;
+  EXPECT_THROW(parallelFor(0, 16, 1,
+                           [](int64_t outer, int64_t) {
+                             parallelFor(0, 100, 1, [&](int64_t i, int64_t) {
+                               if (outer == 5 && i == 42) throw Cancelled();
+                             });
+                           }),
+               Cancelled);
+}
+
+// The threads are kept: thousands of small loops (the per-leaf steps of a scene with many
+// parts) run on the same few threads, each loop still spread over several of them.
+TEST(ParallelFor, ManySmallLoopsReuseTheSameThreads) {
+  WorkerCount four(4);
+  static std::atomic<int> threadsSeen{0};  // first visits of a thread (a thread_local per thread)
+  threadsSeen = 0;
+  int spread = 0;
+  for (int loop = 0; loop < 2000; ++loop) {
+    std::mutex mutex;
+    std::set<std::thread::id> here;
+    parallelFor(0, 64, 1, [&](int64_t, int64_t) {
+      thread_local bool counted = false;
+      if (!counted) {
+        counted = true;
+        threadsSeen.fetch_add(1);
+      }
+      if (loop % 100 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+      std::lock_guard<std::mutex> lock(mutex);
+      here.insert(std::this_thread::get_id());
+    });
+    spread += here.size() > 1 ? 1 : 0;
+  }
+  // New threads for every loop would be thousands; kept ones are the pool (grown to the largest
+  // worker count asked for so far) and this thread.
+  const int most = std::max(8, int(std::thread::hardware_concurrency())) + 1;
+  EXPECT_LE(threadsSeen.load(), most);
+  EXPECT_GT(spread, 0);  // loops are shared out
 }
 
 }  // namespace
