@@ -13,6 +13,7 @@
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
+#include "engine/util/parallel_sort.h"
 #include "engine/util/timer.h"
 
 namespace strata {
@@ -88,8 +89,9 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
 // emits its cells and edges in increasing order already, so one tile needs no sort.
 void mergeTiles(TiledContour* c, Progress& progress) {
   auto byKey = [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; };
+  // Equal keys are equal vertices (a halo cell computed by two tiles): their order is moot.
   if (!std::is_sorted(c->vertices.begin(), c->vertices.end(), byKey))
-    std::sort(c->vertices.begin(), c->vertices.end(), byKey);
+    parallelSortByKey(c->vertices, [](const ContourVertex& v) { return v.key; });
   c->vertices.erase(
       std::unique(c->vertices.begin(), c->vertices.end(),
                   [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
@@ -98,8 +100,9 @@ void mergeTiles(TiledContour* c, Progress& progress) {
   auto byOrder = [](const ContourTriangle& a, const ContourTriangle& b) {
     return a.order < b.order;
   };
+  // Orders are unique (an edge belongs to one tile).
   if (!std::is_sorted(c->triangles.begin(), c->triangles.end(), byOrder))
-    std::sort(c->triangles.begin(), c->triangles.end(), byOrder);
+    parallelSortByKey(c->triangles, [](const ContourTriangle& t) { return t.order; });
   progress.check();
 }
 
