@@ -229,13 +229,55 @@ void Editor::transferSplats(const PreviewResult& result) {
   renderer.uploadSplats(copy.data(), copy.size(), h);
 }
 
+size_t Editor::uploadChunkBytes() const {
+  constexpr double kUploadMsPerFrame = 6.0;  // of a 16 ms frame, beside drawing and panels
+  if (uploadBytesPerMs_ <= 0.0) return size_t(4) << 20;
+  return size_t(
+      std::clamp(uploadBytesPerMs_ * kUploadMsPerFrame, double(1 << 20), double(1 << 28)));
+}
+
+void Editor::stageMore() {
+  if (!staging_) return;
+  EditorState& s = *state_;
+  const SplatResource& splats = *staging_->splats;
+  Stopwatch clock;
+  const size_t before = stagedSplats_;
+  stagedSplats_ = gl_->renderer->stageSplats(splats.hostData(), splats.count(), stagedSplats_,
+                                             uploadChunkBytes());
+  const double ms = clock.seconds() * 1000.0;
+  stagingMs_ += ms;
+  const size_t bytes = (stagedSplats_ - before) * sizeof(Splat);
+  if (ms > 0.5 && bytes >= (size_t(1) << 20)) uploadBytesPerMs_ = double(bytes) / ms;
+  if (stagedSplats_ < splats.count()) return;
+  gl_->renderer->commitStagedSplats(splats.count(), staging_->ok() ? staging_->stats.grid.h : 1.0);
+  s.previewError = staging_->error;
+  s.uploadMs = stagingMs_;
+  s.uploadedBytes = gl_->renderer->splatBytes();
+  s.preview = std::move(staging_);
+}
+
 void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
   EditorState& s = *state_;
+  staging_.reset();  // a newer result replaces one still being uploaded
+  // A host upload larger than a frame's share, with a result on screen to keep meanwhile (and
+  // no CUDA-GL copier registered to the buffer drawn): over several frames.
+  const Splat* host = result->splats ? result->splats->hostData() : nullptr;
+  if (host && s.preview && !gl_->copier &&
+      result->splats->count() * sizeof(Splat) > uploadChunkBytes()) {
+    staging_ = std::move(result);
+    stagedSplats_ = 0;
+    stagingMs_ = 0.0;
+    stageMore();
+    return;
+  }
   s.previewError = result->error;
   Stopwatch upload;
   transferSplats(*result);
   s.uploadMs = upload.seconds() * 1000.0;
   s.uploadedBytes = gl_->renderer->splatBytes();
+  // The rate of a large upload only: small ones say little.
+  if (host && s.uploadMs > 0.5 && s.uploadedBytes >= (size_t(1) << 20))
+    uploadBytesPerMs_ = double(s.uploadedBytes) / s.uploadMs;
   s.preview = std::move(result);
 }
 
@@ -299,6 +341,7 @@ bool Editor::requestPreviewIfNeeded() {
 
 void Editor::pumpPreview() {
   EditorState& s = *state_;
+  stageMore();
   if (auto result = worker_->takeResult()) {
     // A result for an emptied scene arrives late: ignore it.
     if (!(requestedEmpty_ && result->tag != s.document.revision())) applyResult(result);

@@ -73,6 +73,8 @@ class Editor {
   // Whether the window's view shows every splat of the current preview (not a coarse image of
   // a moving view, or one still being refined).
   bool viewSettled() const;
+  // Whether a result is being uploaded over several frames (shown once all of it is there).
+  bool uploading() const { return staging_ != nullptr; }
   // Points the camera at the whole scene.
   void viewAll();
   // Renders the 3D view alone (no panels) off-screen: width * height * 4 RGBA bytes, top row
@@ -92,6 +94,11 @@ class Editor {
   // Sends the worker what the document needs now; returns whether a request went out.
   bool requestPreviewIfNeeded();
   void applyResult(std::shared_ptr<const PreviewResult> result);
+  // A large host upload goes over several frames (ViewportRenderer::stageSplats) while the last
+  // result stays drawn: one more share of it, and the result shown once all is there.
+  void stageMore();
+  // Bytes of splats one frame uploads: about kUploadMsPerFrame at the rate measured so far.
+  size_t uploadChunkBytes() const;
   // Puts the result's splats into the renderer's buffer: device to device through the copier,
   // or a host upload. Falls back to the host path for good when the copier fails.
   void transferSplats(const PreviewResult& result);
@@ -126,6 +133,10 @@ class Editor {
   const PreviewResult* ghostedResult_ = nullptr;
   std::vector<NodeId> ghostedSelection_;
   bool ghostedAll_ = false;
+  std::shared_ptr<const PreviewResult> staging_;  // being uploaded (stageMore), not shown yet
+  size_t stagedSplats_ = 0;
+  double stagingMs_ = 0.0;
+  double uploadBytesPerMs_ = 0.0;  // host upload rate seen (0: not measured yet)
   double lastAutosave_ = 0.0;
   double activeUntil_ = 0.0;  // draw without waiting for events until then (seconds)
   uint64_t autosavedRevision_ = 0;

@@ -55,6 +55,7 @@ ViewportRenderer::ViewportRenderer()
   glBindBuffer(GL_ARRAY_BUFFER, cornerBuffer_);
   glBufferData(GL_ARRAY_BUFFER, sizeof(corners), corners, GL_STATIC_DRAW);
   makeSplatLayer(&surfelVao_, &splatBuffer_);
+  makeSplatLayer(&stagingVao_, &stagingBuffer_);
   for (SplatLayer& ghost : ghosts_) makeSplatLayer(&ghost.vao, &ghost.buffer);
 
   glGenVertexArrays(1, &lineVao_);
@@ -129,11 +130,11 @@ ViewportRenderer::~ViewportRenderer() {
     glDeleteRenderbuffers(2, targets);
   }
   glDeleteTextures(1, &leafTexture_);
-  GLuint buffers[] = {cornerBuffer_, splatBuffer_, lineBuffer_, ghosts_[0].buffer,
-                      ghosts_[1].buffer};
-  glDeleteBuffers(5, buffers);
-  GLuint vaos[] = {surfelVao_, lineVao_, emptyVao_, ghosts_[0].vao, ghosts_[1].vao};
-  glDeleteVertexArrays(5, vaos);
+  GLuint buffers[] = {cornerBuffer_,     splatBuffer_,      lineBuffer_,
+                      ghosts_[0].buffer, ghosts_[1].buffer, stagingBuffer_};
+  glDeleteBuffers(6, buffers);
+  GLuint vaos[] = {surfelVao_, lineVao_, emptyVao_, ghosts_[0].vao, ghosts_[1].vao, stagingVao_};
+  glDeleteVertexArrays(6, vaos);
 }
 
 bool ViewportRenderer::splatBufferFits(size_t count) const {
@@ -164,6 +165,31 @@ void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double ce
   }
   setSplatCount(count, cellSize);
   uploadMsThisFrame_ += clock.seconds() * 1000.0;
+}
+
+size_t ViewportRenderer::stageSplats(const Splat* splats, size_t count, size_t done,
+                                     size_t maxBytes) {
+  Stopwatch clock;
+  glBindBuffer(GL_ARRAY_BUFFER, stagingBuffer_);
+  if (done == 0 && stagingCapacity_ < count) {
+    const size_t capacity = std::max(kMinSplatCapacity, count + count / 4);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(capacity * sizeof(Splat)), nullptr, GL_DYNAMIC_DRAW);
+    stagingCapacity_ = capacity;
+  }
+  const size_t n = std::min(count - done, std::max<size_t>(1, maxBytes / sizeof(Splat)));
+  if (n > 0)
+    glBufferSubData(GL_ARRAY_BUFFER, GLintptr(done * sizeof(Splat)), GLsizeiptr(n * sizeof(Splat)),
+                    splats + done);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  uploadMsThisFrame_ += clock.seconds() * 1000.0;
+  return done + n;
+}
+
+void ViewportRenderer::commitStagedSplats(size_t count, double cellSize) {
+  std::swap(surfelVao_, stagingVao_);
+  std::swap(splatBuffer_, stagingBuffer_);
+  std::swap(splatCapacity_, stagingCapacity_);
+  setSplatCount(count, cellSize);
 }
 
 void ViewportRenderer::setSplatCount(size_t count, double cellSize) {

@@ -78,6 +78,13 @@ class ViewportRenderer {
   static constexpr size_t kMinSplatCapacity = 1024;
   // Host upload of `count` splats; `cellSize` is the grid's h.
   void uploadSplats(const Splat* splats, size_t count, double cellSize);
+  // A host upload spread over frames: the splats go into a second buffer, at most `maxBytes`
+  // a call of stageSplats, while the first keeps drawing the last result; commitStagedSplats
+  // then makes the second the one drawn (and the first the next staging buffer). `splats` must
+  // stay the same array from the call that starts at 0 to the commit. Returns how many of the
+  // `count` splats are in the second buffer now (from `done`).
+  size_t stageSplats(const Splat* splats, size_t count, size_t done, size_t maxBytes);
+  void commitStagedSplats(size_t count, double cellSize);
   // After the buffer was filled on the device (CUDA-GL interop): draw `count` splats.
   void setSplatCount(size_t count, double cellSize);
   void setLeafStyles(const LeafStyleTable& styles);
@@ -152,6 +159,8 @@ class ViewportRenderer {
   GlProgram lineProgram_;
   GlProgram backgroundProgram_;
   GLuint surfelVao_ = 0, cornerBuffer_ = 0, splatBuffer_ = 0;
+  GLuint stagingVao_ = 0, stagingBuffer_ = 0;  // stageSplats' buffer, and a VAO to draw it
+  size_t stagingCapacity_ = 0;
   GLuint lineVao_ = 0, lineBuffer_ = 0;
   GLuint emptyVao_ = 0;
   SplatLayer ghosts_[2];  // cutting, intersecting

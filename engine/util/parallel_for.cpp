@@ -1,10 +1,18 @@
 #include "engine/util/parallel_for.h"
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <condition_variable>
 #include <cstdlib>
 #include <exception>
+#include <map>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -70,13 +78,32 @@ struct Job {
   }
 };
 
+// The calling thread's nice value (Linux threads have their own; 0 elsewhere).
+int thisThreadNice() {
+#if defined(__linux__)
+  errno = 0;
+  const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  return nice == -1 && errno != 0 ? 0 : nice;
+#else
+  return 0;
+#endif
+}
+
 // Threads kept for parallelFor, started as first needed (spawning threads for every call cost
-// more than the work of a small call on a many-core host). Never destroyed: its threads wait on
-// the condition variable until the process ends, so no static destructor can find it gone.
+// more than the work of a small call on a many-core host). One pool per nice value of the
+// threads that call it, its threads started by such a caller (they inherit its nice value): the
+// editor's background engine threads (thread_priority.h) keep their loops at their own lower
+// priority, the UI thread's at its own. Never destroyed: the threads wait on the condition
+// variable until the process ends, so no static destructor can find a pool gone.
 class Pool {
  public:
-  static Pool& instance() {
-    static Pool* pool = new Pool();
+  static Pool& forThisThread() {
+    static std::mutex registry;
+    static std::map<int, Pool*>* pools = new std::map<int, Pool*>();
+    const int nice = thisThreadNice();
+    std::lock_guard<std::mutex> lock(registry);
+    Pool*& pool = (*pools)[nice];
+    if (!pool) pool = new Pool();
     return *pool;
   }
 
@@ -142,7 +169,7 @@ void parallelFor(int64_t begin, int64_t end, int64_t grain,
   job.grain = grain;
   job.chunks = chunks;
   job.maxThreads = threads;
-  Pool::instance().run(job);
+  Pool::forThisThread().run(job);
   if (job.error) std::rethrow_exception(job.error);
 }
 

@@ -4,7 +4,8 @@
 // smooth while the engine works, and the engine still gets every cycle the UI leaves.
 //
 // Threads: affects the calling thread only, and the threads it creates from then on (Linux
-// threads inherit their creator's nice value: parallelFor's workers follow).
+// threads inherit their creator's nice value). parallelFor keeps one pool of threads per nice
+// value of its callers, started by such a caller: a lowered thread's loops run at its priority.
 #pragma once
 
 namespace strata {

@@ -182,6 +182,52 @@ TEST(EditorWindow, SphereSilhouetteAppearsAndUndoRemovesIt) {
   EXPECT_TRUE(reddish(at(editor.renderViewport(w, h), w, w / 2, h / 2)));
 }
 
+// A result too large for one frame's upload goes up in shares over several frames, while the
+// last one stays on screen; then it is shown whole (the sphere's pixels, every splat).
+TEST(EditorWindow, LargeResultsAreUploadedOverSeveralFramesWhileTheLastStaysShown) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  NodeId sphere = addPrimitive(state, NodeKind::Sphere);
+  ASSERT_NE(sphere, 0u);
+  ASSERT_TRUE(
+      guarded(state, [&] { state.document.setColor(sphere, glm::vec3(0.9f, 0.1f, 0.1f)); }));
+  setResolution(state, 32);  // a small first result: one upload
+  clearSelection(state);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  ASSERT_FALSE(editor.uploading());
+  const PreviewResult* small = state.preview.get();
+  setResolution(state, 400);  // about 340,000 splats, 7 MB: more than a first frame's share
+  bool sawUpload = false;
+  for (int frame = 0; frame < 20000 && !(state.preview.get() != small && !editor.uploading());
+       ++frame) {
+    editor.frame();
+    if (editor.uploading()) {
+      sawUpload = true;
+      EXPECT_EQ(state.preview.get(), small) << "the last result stays shown meanwhile";
+    }
+  }
+  EXPECT_TRUE(sawUpload);
+  ASSERT_NE(state.preview.get(), small);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  EXPECT_EQ(state.preview->resolution, 400);
+  EXPECT_EQ(state.uploadedBytes, state.preview->splatCount() * sizeof(Splat));
+  editor.camera().setAxisView(AxisView::Front);
+  editor.viewAll();
+  const int w = 240, h = 200;
+  const std::vector<uint8_t> image = editor.renderViewport(w, h);
+  int red = 0;  // the disc (about 17,000 pixels; its centre is the highlight)
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) red += reddish(at(image, w, x, y)) ? 1 : 0;
+  EXPECT_GT(red, 12000);
+  EXPECT_FALSE(reddish(at(image, w, 2, 2)));
+  undo(state);  // resolution 400
+  undo(state);  // resolution 32
+  undo(state);  // colour
+  undo(state);  // add
+  EXPECT_TRUE(state.document.root()->children.empty());
+}
+
 TEST(EditorWindow, DifferenceShowsTheHoleFromAbove) {
   REQUIRE_DISPLAY();
   Editor editor(testOptions());
