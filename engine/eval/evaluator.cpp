@@ -373,20 +373,38 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
 
 void Evaluator::sampleCollected(Context& ctx) {
   if (ctx.pending.empty()) return;
-  std::vector<LeafToSample> leaves;
-  for (const auto& p : ctx.pending) leaves.push_back(LeafToSample{p.mesh.get(), p.world, p.leafId});
+  // In groups of about an eighth of the triangles (at least a million a group), so that the
+  // progress moves while big leaves are sampled; a small scene is one call.
+  uint64_t triangles = 0;
+  for (const auto& p : ctx.pending) triangles += p.mesh->triangles.size();
+  const uint64_t perGroup = std::max<uint64_t>(triangles / 8, 1000000);
+  ctx.total += int(std::min<size_t>(ctx.pending.size(), 1u << 30));  // a unit per leaf sampled
   Stopwatch sample;
-  const std::vector<LdiHandle> ldis = backend_->sampleMeshes(leaves, ctx.grid, *ctx.progress);
-  const double seconds = sample.seconds();
   uint64_t surfels = 0;
-  for (size_t k = 0; k < ldis.size(); ++k) {
-    const auto& p = ctx.pending[k];
-    cache_[p.key] = CacheEntry{ldis[k], generation_, p.warning};
-    ctx.sampledNow[p.key] = seconds / double(ldis.size());
-    surfels += ldis[k]->surfelCount();
+  size_t first = 0;
+  while (first < ctx.pending.size()) {
+    std::vector<LeafToSample> leaves;
+    uint64_t groupTriangles = 0;
+    size_t end = first;
+    for (; end < ctx.pending.size() && (end == first || groupTriangles < perGroup); ++end) {
+      const auto& p = ctx.pending[end];
+      leaves.push_back(LeafToSample{p.mesh.get(), p.world, p.leafId});
+      groupTriangles += p.mesh->triangles.size();
+    }
+    const std::vector<LdiHandle> ldis = backend_->sampleMeshes(leaves, ctx.grid, *ctx.progress);
+    for (size_t k = 0; k < ldis.size(); ++k) {
+      const auto& p = ctx.pending[first + k];
+      cache_[p.key] = CacheEntry{ldis[k], generation_, p.warning};
+      surfels += ldis[k]->surfelCount();
+    }
+    ctx.done += int(ldis.size());
+    ctx.progress->report("evaluate", double(ctx.done) / double(ctx.total));
+    first = end;
   }
+  const double seconds = sample.seconds();
+  for (const auto& p : ctx.pending) ctx.sampledNow[p.key] = seconds / double(ctx.pending.size());
   ctx.finishStage(kSample, seconds, surfels);
-  ctx.stages[kSample].runs += int(ldis.size()) - 1;
+  ctx.stages[kSample].runs += int(ctx.pending.size()) - 1;
   ctx.pending.clear();
 }
 

@@ -2,6 +2,7 @@
 // recomputed, and the result equals a fresh evaluation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "engine/eval/cpu_backend.h"
@@ -122,6 +123,36 @@ TEST(EvaluatorCache, LeavesAreSampledInOneBatch) {
   EvalResult fresh = evaluateCpu(fixedGrid(copies));
   EXPECT_EQ(b.measure.volume, fresh.measure.volume);
   EXPECT_EQ(b.computed, fresh.computed);
+}
+
+// Big leaves go in groups of at least a million triangles (about an eighth of all), and the
+// evaluation's progress moves after each group, never backwards, to the end.
+TEST(EvaluatorCache, BigLeavesAreSampledInGroupsWithProgress) {
+  std::vector<NodePtr> spheres;
+  for (int k = 0; k < 8; ++k) {
+    auto s = std::make_shared<Node>(*sphere(0.4, {-2.0 + 0.55 * k, 0.0, 0.0}));
+    s->params.segments = 512;  // about 260,000 triangles each
+    spheres.push_back(s);
+  }
+  auto root = std::make_shared<Node>(*op(NodeKind::Union, {}));
+  root->children = spheres;
+  auto backend = std::make_shared<CountingBackend>();
+  Evaluator evaluator(backend);
+  std::vector<double> fractions;
+  Progress progress([&](const std::string& stage, double fraction) {
+    if (stage == "evaluate") fractions.push_back(fraction);
+  });
+  EvalResult r =
+      evaluator.evaluate(makeSceneInBox(root, 48, {-3, -3, -3}, {3, 3, 3}), {}, progress);
+  ASSERT_GE(backend->batches.size(), 2u);
+  size_t sampled = 0;
+  for (size_t b : backend->batches) sampled += b;
+  EXPECT_EQ(sampled, 8u);
+  EXPECT_EQ(r.computed, 9);
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+  EXPECT_LT(fractions.front(), 0.5);  // the first group's share, before any Boolean
 }
 
 TEST(EvaluatorCache, ResolutionChangeRecomputesAndHiddenNodesAreSkipped) {
