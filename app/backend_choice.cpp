@@ -1,41 +1,14 @@
 #include "app/backend_choice.h"
 
 #include "engine/eval/cpu_backend.h"
-
-#include <thread>
-
 #include "engine/util/error.h"
 #if defined(STRATA_HAS_CUDA)
 #include "gpu/cuda_backend.h"
 #endif
 
 namespace strata {
-namespace {
-
-struct EarlyStart {
-  std::thread thread;
-  ~EarlyStart() {
-    if (thread.joinable()) thread.join();
-  }
-};
-EarlyStart& earlyStart() {
-  static EarlyStart early;
-  return early;
-}
-
-}  // namespace
-
-void startBackendEarly(const std::string& name) {
-#if defined(STRATA_HAS_CUDA)
-  if (name == "cpu" || earlyStart().thread.joinable()) return;
-  earlyStart().thread = std::thread([] { startCudaDevice(); });
-#else
-  (void)name;
-#endif
-}
 
 BackendChoice chooseBackend(const std::string& name) {
-  if (earlyStart().thread.joinable()) earlyStart().thread.join();
   if (name != "auto" && name != "cpu" && name != "cuda")
     throw Error("--backend: unknown backend '" + name + "' (expected auto, cpu or cuda)");
   if (name == "cpu") {

@@ -14,12 +14,6 @@ struct BackendChoice {
   bool cuda = false;  // the CUDA backend (its splats can go to GL through CUDA-GL interop)
 };
 
-// Starts what `name` will need on a thread of its own (the CUDA runtime and the device's
-// context: a good part of a short command's wall time), so that the command reads its input
-// meanwhile; chooseBackend waits for it. Nothing for "cpu" or a build without CUDA. The thread
-// is joined by chooseBackend or at exit.
-void startBackendEarly(const std::string& name);
-
 // auto: CUDA when this build has it and a device is present, otherwise the CPU.
 // cpu:  the CPU backend. cuda: the CUDA backend, or strata::Error saying why it is unavailable.
 BackendChoice chooseBackend(const std::string& name);

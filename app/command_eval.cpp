@@ -136,7 +136,6 @@ int runEval(const std::vector<std::string>& argv) {
       throw Error("eval does not write meshes; use strata export SCENE -o FILE");
     ReportContext context;
     context.input = args.positional()[0];
-    startBackendEarly(args.text("--backend", "auto"));  // while the input is read
     Scene scene = loadSceneFromArgs(args, context.input, &context.warnings);
     return evaluateAndReport(scene, args, context);
   });
@@ -174,7 +173,6 @@ int runBoolean(const std::vector<std::string>& argv) {
     meshOptions.unitScale = args.number("--unit-scale", 1.0, 1e-9, 1e9);
     std::vector<std::string> warnings;
     std::vector<std::string> files(pos.begin() + 1, pos.end());
-    startBackendEarly(args.text("--backend", "auto"));  // while the input is read
     Scene scene = sceneFromMeshFiles(pos[0], files, meshOptions,
                                      args.number("--margin", 0.05, 0.0, 10.0), &warnings);
     return runMeshScene(scene, args, pos[0], files, warnings);
@@ -214,7 +212,6 @@ int runModifier(const std::string& command, const std::vector<std::string>& argv
     // With --opening C: the shell of (the union minus C), open where C cuts it.
     std::vector<std::string> meshes = files;
     if (args.has("--opening")) meshes.push_back(args.text("--opening", ""));
-    startBackendEarly(args.text("--backend", "auto"));  // while the input is read
     Scene scene = sceneFromMeshFiles("union", meshes, meshOptions,
                                      args.number("--margin", 0.05, 0.0, 10.0), &warnings);
     checkModifierAmount(kind, amount, command + " " + option);
@@ -246,7 +243,6 @@ int runExport(const std::vector<std::string>& argv) {
       throw Error("usage: strata export SCENE.strata.json -o " + outputAlternatives("part") +
                   " [--resolution N] [--tile N] [--report FILE]");
     std::vector<std::string> warnings;
-    startBackendEarly(args.text("--backend", "auto"));  // while the input is read
     Scene scene = loadSceneFromArgs(args, args.positional()[0], &warnings);
     return exportAndReport(scene, args, args.positional()[0], warnings);
   });

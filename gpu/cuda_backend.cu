@@ -180,12 +180,6 @@ bool cudaDeviceAvailable(std::string* why) {
   return true;
 }
 
-void startCudaDevice() {
-  std::string why;
-  if (!cudaDeviceAvailable(&why)) return;
-  if (cudaSetDevice(0) != cudaSuccess || cudaFree(nullptr) != cudaSuccess) cudaGetLastError();
-}
-
 std::shared_ptr<Backend> makeCudaBackend() {
   std::string why;
   if (!cudaDeviceAvailable(&why)) throw Error("--backend cuda: " + why);

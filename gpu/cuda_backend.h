@@ -14,10 +14,6 @@ namespace strata {
 // device, ...). Never throws.
 bool cudaDeviceAvailable(std::string* why);
 
-// Starts the CUDA runtime and device 0's context, so that a backend made later (on any thread)
-// finds them ready. Never throws; does nothing where no device is available.
-void startCudaDevice();
-
 // The backend on device 0. Throws strata::Error when no device is available.
 std::shared_ptr<Backend> makeCudaBackend();
 
