@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 
 #include "engine/contour/contour_cells.h"
 #include "engine/util/parallel_for.h"
@@ -13,11 +14,29 @@ namespace {
 
 constexpr CellCaseTable kCellCases = buildCellCaseTable();
 
+// Bytes left uninitialised: every one is written by a parallel loop before it is read, so the
+// pages are first touched (and zeroed by the kernel) on all workers, not by one thread filling
+// gigabytes with zeros that the loop then overwrites (a tile of 1024 cells holds 3 GB).
+class ByteArray {
+ public:
+  void reset(size_t size) {
+    data_.reset(new uint8_t[size]);  // default-initialised: no fill
+    size_ = size;
+  }
+  uint8_t* data() { return data_.get(); }
+  size_t size() const { return size_; }
+  uint8_t& operator[](size_t i) { return data_[i]; }
+
+ private:
+  std::unique_ptr<uint8_t[]> data_;
+  size_t size_ = 0;
+};
+
 // The tile's arrays on the host, and the view the shared per-cell steps read.
 struct HostTile {
-  std::vector<uint8_t> votes;      // per window node: rays saying inside
-  std::vector<uint8_t> inside;     // per window node
-  std::vector<uint8_t> masks;      // per window cell
+  ByteArray votes;                 // per window node: rays saying inside
+  ByteArray inside;                // per window node
+  ByteArray masks;                 // per window cell
   std::vector<uint32_t> boundary;  // boundary cells, increasing index
   std::vector<uint32_t> vertexStart;
   TileView view{};
@@ -26,7 +45,7 @@ struct HostTile {
 // The node votes (decideNodeSide): every ray walks its surfels once (startRayVote, rayVote)
 // while the loops run over nodes in memory order (x fastest), keeping one cursor per ray of the
 // current row or slab, so all writes are sequential. votes[node] = the x and y rays' votes.
-void voteAlongXAndY(const TileView& t, std::vector<uint8_t>& votes, Progress* progress) {
+void voteAlongXAndY(const TileView& t, ByteArray& votes, Progress* progress) {
   const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
   const int64_t plane = int64_t(nx) * ny;
   parallelFor(0, nz, 1, [&](int64_t b, int64_t e) {
@@ -49,7 +68,7 @@ void voteAlongXAndY(const TileView& t, std::vector<uint8_t>& votes, Progress* pr
 }
 
 // votes[node] += the z rays' votes (as above).
-void addVotesAlongZ(const TileView& t, std::vector<uint8_t>& votes, Progress* progress) {
+void addVotesAlongZ(const TileView& t, ByteArray& votes, Progress* progress) {
   const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
   const int64_t plane = int64_t(nx) * ny;
   parallelFor(0, ny, 1, [&](int64_t b, int64_t e) {
@@ -75,12 +94,12 @@ uint64_t decideNodeSigns(HostTile& tile, Progress* progress) {
   const TileView& t = tile.view;
   const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
   const int64_t plane = int64_t(nx) * ny;
-  std::vector<uint8_t>& votes = tile.votes;
-  votes.assign(size_t(plane * nz), 0);
+  ByteArray& votes = tile.votes;
+  votes.reset(size_t(plane * nz));  // every node written by voteAlongXAndY
   voteAlongXAndY(t, votes, progress);
   addVotesAlongZ(t, votes, progress);
   std::atomic<uint64_t> disagreements{0};
-  tile.inside.assign(votes.size(), 0);
+  tile.inside.reset(votes.size());  // every node written below
   parallelFor(0, nz, 1, [&](int64_t b, int64_t e) {
     uint64_t local = 0;
     for (int k = int(b); k < int(e); ++k) {
@@ -109,7 +128,7 @@ uint64_t decideNodeSigns(HostTile& tile, Progress* progress) {
 // The corner mask of every window cell, and the boundary cells in increasing index.
 void computeCellMasks(HostTile& tile, Progress* progress) {
   const TileView& t = tile.view;
-  tile.masks.assign(size_t(int64_t(t.cells[0]) * t.cells[1] * t.cells[2]), 0);
+  tile.masks.reset(size_t(int64_t(t.cells[0]) * t.cells[1] * t.cells[2]));  // every cell written
   std::vector<std::vector<uint32_t>> slabs(size_t(t.cells[2]));
   parallelFor(0, t.cells[2], 1, [&](int64_t b, int64_t e) {
     if (progress) progress->check();
