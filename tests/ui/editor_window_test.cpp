@@ -123,14 +123,20 @@ bool bluish(Pixel p) {
   return p.b > p.r + 50 && p.b > p.g + 20;
 }
 
+// A sphere from the palette, coloured red (two undo steps); its id, 0 when it failed.
+NodeId addRedSphere(EditorState& state) {
+  const NodeId sphere = addPrimitive(state, NodeKind::Sphere);
+  if (sphere == 0) return 0;
+  const bool coloured =
+      guarded(state, [&] { state.document.setColor(sphere, glm::vec3(0.9f, 0.1f, 0.1f)); });
+  return coloured ? sphere : 0;
+}
+
 TEST(EditorWindow, SphereSilhouetteAppearsAndUndoRemovesIt) {
   REQUIRE_DISPLAY();
   Editor editor(testOptions());
   EditorState& state = editor.state();
-  NodeId sphere = addPrimitive(state, NodeKind::Sphere);
-  ASSERT_NE(sphere, 0u);
-  ASSERT_TRUE(
-      guarded(state, [&] { state.document.setColor(sphere, glm::vec3(0.9f, 0.1f, 0.1f)); }));
+  ASSERT_NE(addRedSphere(state), 0u);
   setResolution(state, 48);
   clearSelection(state);  // no selection tint, no gizmo
   state.showGrid = false;
@@ -188,10 +194,7 @@ TEST(EditorWindow, LargeResultsAreUploadedOverSeveralFramesWhileTheLastStaysShow
   REQUIRE_DISPLAY();
   Editor editor(testOptions());
   EditorState& state = editor.state();
-  NodeId sphere = addPrimitive(state, NodeKind::Sphere);
-  ASSERT_NE(sphere, 0u);
-  ASSERT_TRUE(
-      guarded(state, [&] { state.document.setColor(sphere, glm::vec3(0.9f, 0.1f, 0.1f)); }));
+  ASSERT_NE(addRedSphere(state), 0u);
   setResolution(state, 32);  // a small first result: one upload
   clearSelection(state);
   ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
