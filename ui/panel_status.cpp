@@ -204,46 +204,19 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::TextDisabled("%s", state.backendDescription.c_str());
-  const PreviewResult* shown = state.preview.get();
-  if (shown && shown->ok()) {
-    const Grid& g = shown->stats.grid;
-    ImGui::SameLine();
-    ImGui::Text("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
-                unitSymbol(shown->scene->settings.unit));
-    ImGui::SameLine();
-    ImGui::Text("|  surfels %s (%s splats, %s, %s)", countText(shown->surfels).c_str(),
-                countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),
-                bytesText(double(state.uploadedBytes)).c_str());
-    ImGui::SameLine();
-    std::string stages;
-    for (const auto& s : shown->stats.stages) {
-      char part[64];
-      std::snprintf(part, sizeof(part), "%s%s %.0f ms", stages.empty() ? "" : " \u00B7 ",
-                    s.name.c_str(), s.seconds * 1000.0);
-      stages += part;
-    }
-    ImGui::Text("|  eval %.0f ms%s: %s", shown->stats.seconds * 1000.0,
-                shown->coarse ? " (coarse)" : "", stages.c_str());
-  }
-  ImGui::SameLine();
-  ImGui::Text("|  frame %.1f ms", state.frameMs);
-  if (state.worker.busy) {
-    ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "|  evaluating %d: %s %.0f%%",
-                       state.worker.resolution, state.worker.stage.c_str(),
-                       state.worker.fraction * 100.0);
-  }
+  // What the user must read comes first, so that a narrow window cuts the figures, not it: the
+  // preview's error or the latest message, and the evaluation under way.
   if (!state.previewError.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "|  %s", state.previewError.c_str());
-  } else if (LogLine* shown = statusLine(state)) {
-    LogLine& last = *shown;
+  } else if (LogLine* message = statusLine(state)) {
+    LogLine& last = *message;
     ImGui::SameLine();
     ImVec4 color = last.level == LogLevel::Error     ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f)
                    : last.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
                                                      : ImVec4(0.6f, 0.85f, 0.6f, 1.0f);
     ImGui::TextColored(color, "|  %s", last.text.c_str());
-    // The bar cuts a long message: the whole of it on hover, and a click opens the messages.
+    // A message longer than the bar: the whole of it on hover, and a click opens the messages.
     if (ImGui::IsItemHovered()) {
       ImGui::BeginTooltip();
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
@@ -258,6 +231,34 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
       last.dismissed = true;
     }
   }
+  if (state.worker.busy) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "|  evaluating %d: %s %.0f%%",
+                       state.worker.resolution, state.worker.stage.c_str(),
+                       state.worker.fraction * 100.0);
+  }
+  const PreviewResult* shown = state.preview.get();
+  if (shown && shown->ok()) {
+    const Grid& g = shown->stats.grid;
+    ImGui::SameLine();
+    ImGui::Text("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
+                unitSymbol(shown->scene->settings.unit));
+    ImGui::SameLine();
+    ImGui::Text("|  surfels %s (%s splats, %s, %s)", countText(shown->surfels).c_str(),
+                countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),
+                bytesText(double(state.uploadedBytes)).c_str());
+    ImGui::SameLine();
+    ImGui::Text("|  eval %.0f ms%s", shown->stats.seconds * 1000.0,
+                shown->coarse ? " (coarse)" : "");
+    if (ImGui::IsItemHovered()) {  // the stages on hover: the bar stays one short line
+      ImGui::BeginTooltip();
+      for (const auto& st : shown->stats.stages)
+        ImGui::Text("%-10s %8.1f ms", st.name.c_str(), st.seconds * 1000.0);
+      ImGui::EndTooltip();
+    }
+  }
+  ImGui::SameLine();
+  ImGui::Text("|  frame %.1f ms", state.frameMs);
   ImGui::End();
   ImGui::PopStyleVar();
 }
