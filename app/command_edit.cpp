@@ -135,9 +135,9 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
 #if defined(STRATA_HAS_EDITOR)
 // `strata edit SCENE --measure-frames SECONDS [--resolution N]`: once the scene is shown, runs
 // the editor's frame loop for SECONDS while the engine thread evaluates the scene (at N), and
-// prints how long the UI
-// thread took per frame (events, panels, splat transfer, drawing; not the idle wait) while the
-// evaluation was running: the UI must keep 60 frames a second (16.7 ms) whatever the engine does.
+// prints how long the UI thread took per frame (events, panels, splat transfer, drawing; not the
+// idle wait) while the evaluation was running: the UI must keep 60 frames a second (16.7 ms)
+// whatever the engine does.
 int measureFrames(ui::Editor& editor, double seconds, int resolution) {
   ui::EditorState& state = editor.state();
   // As a user would: the scene opened and shown first (the window's first frames compile

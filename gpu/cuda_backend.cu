@@ -2,8 +2,6 @@
 
 #include <cuda_runtime.h>
 
-#include <algorithm>
-
 #include "engine/ldi/grid_mesh.h"
 #include "engine/util/parallel_for.h"
 #include "gpu/contour/contour_tile.cuh"
@@ -20,15 +18,8 @@
 namespace strata {
 namespace {
 
-// Scratch memory one sampling batch may take (sample_mesh.cuh), and an estimate of a leaf's
-// share: its rays (whole axes at most) and triangles.
+// Scratch memory one sampling batch may take (PlacedLeaf::scratchBytes).
 constexpr uint64_t kBatchBytes = uint64_t(512) << 20;
-uint64_t batchScratchBytes(const GridMesh& mesh, const Grid& grid) {
-  uint64_t rays = 0;
-  for (int a = 0; a < 3; ++a)
-    rays += uint64_t(std::min(meshRayWindow(mesh, grid, a).rayCount(), grid.rayCount(a)));
-  return 60 * rays + 600 * uint64_t(mesh.triangles.size());
-}
 
 const DeviceLdi& deviceLdi(const LdiHandle& handle) {
   auto* d = dynamic_cast<const DeviceLdi*>(handle.get());
@@ -63,9 +54,7 @@ class CudaBackend : public Backend {
 
   LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
                        uint32_t leafId, Progress& progress) override {
-    progress.check();
-    GridMesh placed = toGridUnits(mesh, objectToWorld, grid);
-    return sampleMeshOnDevice(placed, grid, leafId, stream_);
+    return sampleMeshes({LeafToSample{&mesh, objectToWorld, leafId}}, grid, progress)[0];
   }
 
   // Leaves placed on the host in parallel, then sampled in batches of at most kBatchBytes of
@@ -73,27 +62,26 @@ class CudaBackend : public Backend {
   std::vector<LdiHandle> sampleMeshes(const std::vector<LeafToSample>& leaves, const Grid& grid,
                                       Progress& progress) override {
     progress.check();
-    std::vector<GridMesh> placed(leaves.size());
+    std::vector<PlacedLeaf> placed(leaves.size());
     parallelFor(0, int64_t(leaves.size()), 1, [&](int64_t b, int64_t e) {
-      for (int64_t k = b; k < e; ++k)
-        placed[size_t(k)] =
-            toGridUnits(*leaves[size_t(k)].mesh, leaves[size_t(k)].objectToWorld, grid);
+      for (int64_t k = b; k < e; ++k) {
+        const LeafToSample& leaf = leaves[size_t(k)];
+        placed[size_t(k)] = placeLeaf(*leaf.mesh, leaf.objectToWorld, grid, leaf.leafId);
+      }
     });
     std::vector<LdiHandle> out;
     size_t k = 0;
-    while (k < leaves.size()) {
+    while (k < placed.size()) {
       progress.check();
-      std::vector<const GridMesh*> meshes;
-      std::vector<uint32_t> ids;
+      std::vector<const PlacedLeaf*> batch;
       uint64_t bytes = 0;
-      for (; k < leaves.size(); ++k) {
-        const uint64_t leafBytes = batchScratchBytes(placed[k], grid);
-        if (!meshes.empty() && bytes + leafBytes > kBatchBytes) break;
+      for (; k < placed.size(); ++k) {
+        const uint64_t leafBytes = placed[k].scratchBytes();
+        if (!batch.empty() && bytes + leafBytes > kBatchBytes) break;
         bytes += leafBytes;
-        meshes.push_back(&placed[k]);
-        ids.push_back(leaves[k].leafId);
+        batch.push_back(&placed[k]);
       }
-      for (auto& ldi : sampleMeshesOnDevice(meshes, ids, grid, stream_)) out.push_back(ldi);
+      for (auto& ldi : sampleMeshesOnDevice(batch, grid, stream_)) out.push_back(ldi);
     }
     return out;
   }

@@ -565,8 +565,10 @@ bool Editor::frame() {
                io.InputQueueCharacters.Size > 0;
   for (bool down : io.MouseDown) input = input || down;
   for (bool down : io.KeysDown) input = input || down;
-  // The viewport's full image is drawn a share a frame: keep frames coming until it is shown.
-  if (input || g_input.pending() || gl_->renderer->refining()) activeUntil_ = state_->now + 0.5;
+  // The viewport's full image is drawn a share a frame, and a large result uploaded a share a
+  // frame: keep frames coming until it is shown.
+  if (input || g_input.pending() || gl_->renderer->refining() || uploading())
+    activeUntil_ = state_->now + 0.5;
   // An edit made since the last frame without input (a dialog's result, a script, a test) is
   // sent to the worker before sleeping: its result wakes the loop (glfwPostEmptyEvent).
   const bool requested = requestPreviewIfNeeded();

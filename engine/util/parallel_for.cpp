@@ -1,14 +1,8 @@
 #include "engine/util/parallel_for.h"
-
-#if defined(__linux__)
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
+#include "engine/util/thread_priority.h"
 
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <condition_variable>
 #include <cstdlib>
 #include <exception>
@@ -78,17 +72,6 @@ struct Job {
   }
 };
 
-// The calling thread's nice value (Linux threads have their own; 0 elsewhere).
-int thisThreadNice() {
-#if defined(__linux__)
-  errno = 0;
-  const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
-  return nice == -1 && errno != 0 ? 0 : nice;
-#else
-  return 0;
-#endif
-}
-
 // Threads kept for parallelFor, started as first needed (spawning threads for every call cost
 // more than the work of a small call on a many-core host). One pool per nice value of the
 // threads that call it, its threads started by such a caller (they inherit its nice value): the
@@ -100,7 +83,7 @@ class Pool {
   static Pool& forThisThread() {
     static std::mutex registry;
     static std::map<int, Pool*>* pools = new std::map<int, Pool*>();
-    const int nice = thisThreadNice();
+    const int nice = thisThreadNiceValue();
     std::lock_guard<std::mutex> lock(registry);
     Pool*& pool = (*pools)[nice];
     if (!pool) pool = new Pool();

@@ -10,14 +10,30 @@
 
 namespace strata {
 
+namespace {
+#if defined(__linux__)
+id_t thisThreadId() {
+  return static_cast<id_t>(syscall(SYS_gettid));  // the nice value belongs to the task
+}
+#endif
+}  // namespace
+
+int thisThreadNiceValue() {
+#if defined(__linux__)
+  errno = 0;
+  const int nice = getpriority(PRIO_PROCESS, thisThreadId());
+  return nice == -1 && errno != 0 ? 0 : nice;
+#else
+  return 0;
+#endif
+}
+
 bool lowerThisThreadPriority(int steps) {
 #if defined(__linux__)
-  // On Linux the nice value belongs to the thread (task) named by its id.
-  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
   errno = 0;
-  const int now = getpriority(PRIO_PROCESS, tid);
+  const int now = getpriority(PRIO_PROCESS, thisThreadId());
   if (now == -1 && errno != 0) return false;
-  return setpriority(PRIO_PROCESS, tid, now + steps) == 0;
+  return setpriority(PRIO_PROCESS, thisThreadId(), now + steps) == 0;
 #else
   (void)steps;
   return false;

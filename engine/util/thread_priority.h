@@ -10,6 +10,10 @@
 
 namespace strata {
 
+// The calling thread's nice value (Linux threads have their own; 0 elsewhere, or when it cannot
+// be read).
+int thisThreadNiceValue();
+
 // Raises the calling thread's nice value by `steps` (Linux; elsewhere nothing). Returns whether
 // it changed.
 bool lowerThisThreadPriority(int steps = 10);

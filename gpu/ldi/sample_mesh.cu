@@ -172,41 +172,21 @@ struct BatchLayout {
   RaySpaces rays;
   std::vector<TriangleInput> triangles;
   int64_t jobs = 0;
-  // Per leaf and axis: sampled over a window (true) or the whole grid.
-  std::vector<std::array<RayWindow, 3>> windows;
-  std::vector<std::array<bool, 3>> whole;
 };
 
-BatchLayout layBatch(const std::vector<const GridMesh*>& meshes,
-                     const std::vector<uint32_t>& leafIds, const Grid& grid) {
+BatchLayout layBatch(const std::vector<const PlacedLeaf*>& placed) {
   BatchLayout b;
-  const size_t count = meshes.size();
+  const size_t count = placed.size();
   b.leaves.resize(count);
-  b.windows.resize(count);
-  b.whole.resize(count);
-  // Per axis, the rays the mesh can reach: an axis whose window covers at most half of the
-  // grid's rays is sampled and kept windowed (a small leaf costs its size, not the grid's), the
-  // others whole, as the CPU backend does.
-  parallelFor(0, int64_t(count), 1, [&](int64_t first, int64_t last) {
-    for (int64_t k = first; k < last; ++k) {
-      const GridMesh& mesh = *meshes[size_t(k)];
-      for (int a = 0; a < 3; ++a) {
-        RayWindow& window = b.windows[size_t(k)][a];
-        window = meshRayWindow(mesh, grid, a);
-        b.whole[size_t(k)][a] = mesh.triangles.empty() || window.rayCount() * 2 > grid.rayCount(a);
-        if (b.whole[size_t(k)][a]) window = wholeWindow(grid, a);
-      }
-    }
-  });
   int64_t triangles = 0;
   for (size_t k = 0; k < count; ++k) {
     BatchLeaf& leaf = b.leaves[k];
-    leaf.space = RaySpace(b.windows[k].data());
+    leaf.space = RaySpace(placed[k]->windows.data());
     leaf.firstRay = b.rays.total;
     leaf.firstJob = b.jobs;
     leaf.firstTriangle = triangles;
-    leaf.triangles = int64_t(meshes[k]->triangles.size());
-    leaf.leafId = leafIds[k];
+    leaf.triangles = int64_t(placed[k]->mesh.triangles.size());
+    leaf.leafId = placed[k]->leafId;
     b.rays.add(leaf.space);
     b.jobs += 3 * leaf.triangles;
     triangles += leaf.triangles;
@@ -222,7 +202,7 @@ BatchLayout layBatch(const std::vector<const GridMesh*>& meshes,
         1;
     for (int64_t t = first; t < last; ++t) {
       while (t >= b.leaves[k].firstTriangle + b.leaves[k].triangles) ++k;
-      const GridMesh& mesh = *meshes[k];
+      const GridMesh& mesh = placed[k]->mesh;
       const int64_t local = t - b.leaves[k].firstTriangle;
       TriangleInput& in = b.triangles[size_t(t)];
       for (int c = 0; c < 3; ++c)
@@ -236,15 +216,29 @@ BatchLayout layBatch(const std::vector<const GridMesh*>& meshes,
 
 }  // namespace
 
-std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
-                                              uint32_t leafId, const DeviceStream& stream) {
-  return sampleMeshesOnDevice({&mesh}, {leafId}, grid, stream)[0];
+uint64_t PlacedLeaf::scratchBytes() const {
+  uint64_t rays = 0;
+  for (const RayWindow& w : windows) rays += uint64_t(w.rayCount());
+  return 60 * rays + 600 * uint64_t(mesh.triangles.size());
+}
+
+PlacedLeaf placeLeaf(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                     uint32_t leafId) {
+  PlacedLeaf leaf;
+  leaf.mesh = toGridUnits(mesh, objectToWorld, grid);
+  leaf.leafId = leafId;
+  for (int a = 0; a < 3; ++a) {
+    leaf.windows[size_t(a)] = meshRayWindow(leaf.mesh, grid, a);
+    leaf.whole[size_t(a)] =
+        leaf.mesh.triangles.empty() || leaf.windows[size_t(a)].rayCount() * 2 > grid.rayCount(a);
+    if (leaf.whole[size_t(a)]) leaf.windows[size_t(a)] = wholeWindow(grid, a);
+  }
+  return leaf;
 }
 
 std::vector<std::shared_ptr<DeviceLdi>> sampleMeshesOnDevice(
-    const std::vector<const GridMesh*>& meshes, const std::vector<uint32_t>& leafIds,
-    const Grid& grid, const DeviceStream& stream) {
-  const BatchLayout layout = layBatch(meshes, leafIds, grid);
+    const std::vector<const PlacedLeaf*>& placed, const Grid& grid, const DeviceStream& stream) {
+  const BatchLayout layout = layBatch(placed);
   const int leafCount = int(layout.leaves.size());
   std::vector<std::shared_ptr<DeviceLdi>> ldis;
   std::vector<DeviceLdi*> outs;
@@ -311,9 +305,9 @@ std::vector<std::shared_ptr<DeviceLdi>> sampleMeshesOnDevice(
                   "sampling");
   for (int k = 0; k < leafCount; ++k)
     for (int a = 0; a < 3; ++a) {
-      ldis[size_t(k)]->axes[a].whole = layout.whole[size_t(k)][a];
+      ldis[size_t(k)]->axes[a].whole = placed[size_t(k)]->whole[size_t(a)];
       ldis[size_t(k)]->axes[a].window =
-          layout.whole[size_t(k)][a] ? RayWindow{} : layout.windows[size_t(k)][a];
+          placed[size_t(k)]->whole[size_t(a)] ? RayWindow{} : placed[size_t(k)]->windows[size_t(a)];
     }
   stream.synchronize();
   return ldis;

@@ -9,6 +9,7 @@
 
 #include <cuda_runtime.h>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -17,19 +18,27 @@
 
 namespace strata {
 
-// Samples `mesh` (already placed on the grid) with every surfel tagged `leafId`, into an LDI
-// on `stream`. Synchronous: returns with `stream` drained. Throws strata::Error
-// (DeviceOutOfMemory when the device is full).
-std::shared_ptr<DeviceLdi> sampleMeshOnDevice(const GridMesh& mesh, const Grid& grid,
-                                              uint32_t leafId, const DeviceStream& stream);
+// A mesh placed on the grid for sampling, with the rays it can reach: per axis a window
+// (meshRayWindow), or the whole grid where that window holds more than half of the grid's rays
+// or the mesh is empty (then the axis is kept whole, as the CPU backend does).
+struct PlacedLeaf {
+  GridMesh mesh;
+  uint32_t leafId = 0;
+  std::array<RayWindow, 3> windows;
+  std::array<bool, 3> whole{};
+  // Scratch a sampling batch takes for this leaf, about: 60 bytes a ray, 600 a triangle.
+  uint64_t scratchBytes() const;
+};
+PlacedLeaf placeLeaf(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                     uint32_t leafId);
 
-// The same for many meshes at once (meshes[k] tagged leafIds[k]), in one pass: one upload of all
-// their triangles, one launch per step over all of them and three waits in all, however many
-// meshes there are; each LDI equals what sampleMeshOnDevice makes of its mesh alone. Scratch
-// memory grows with the batch (about 40 bytes a ray of every mesh's rays, 80 a triangle, plus
-// their raw hits): the caller sizes batches.
+// Samples many placed leaves in one pass, every surfel tagged with its leaf's id: one upload of
+// all their triangles, one launch per step over all of them and three waits in all, however many
+// leaves there are; each LDI is what the leaf sampled alone gives (the CPU backend's, bit for
+// bit). Scratch memory grows with the batch (scratchBytes): the caller sizes batches.
+// Synchronous: returns with `stream` drained. Throws strata::Error (DeviceOutOfMemory when the
+// device is full).
 std::vector<std::shared_ptr<DeviceLdi>> sampleMeshesOnDevice(
-    const std::vector<const GridMesh*>& meshes, const std::vector<uint32_t>& leafIds,
-    const Grid& grid, const DeviceStream& stream);
+    const std::vector<const PlacedLeaf*>& leaves, const Grid& grid, const DeviceStream& stream);
 
 }  // namespace strata
