@@ -48,10 +48,12 @@ struct TileView {
   int ownedLo[3], ownedHi[3];  // owned edges' lower nodes, window coordinates, [lo, hi)
   const uint32_t* offsets[3];  // the root LDI of the window, per axis (CSR)
   const Surfel* surfels[3];
-  const uint8_t* inside;     // per window node: 1 inside
-  const uint8_t* votes;      // per window node: how many of its three rays say inside
-  const uint8_t* masks;      // per window cell: bit c set when corner c is inside
-  const uint32_t* boundary;  // boundary cells (mixed corners), increasing index
+  // Node sides as two bit planes (nodeBit below): a row of nodes along x takes rowWords words.
+  const uint64_t* insideBits;     // 1: the node is inside (decideNodeSide)
+  const uint64_t* unanimousBits;  // 1: its three rays agree (all inside or all outside)
+  int64_t rowWords;               // nodeRowWords(cells[0])
+  const uint32_t* boundary;       // boundary cells (mixed corners), increasing index
+  const uint8_t* boundaryMasks;   // per boundary cell: bit c set when corner c is inside
   int64_t boundaryCount;
   const uint32_t* vertexStart;  // per boundary cell: its first vertex in `vertices`
   const CellVertex* vertices;   // the tile's cell vertices (read by the polygon step)
@@ -59,6 +61,24 @@ struct TileView {
 
 STRATA_HD int64_t tileNode(const TileView& t, int i, int j, int k) {
   return int64_t(i) + int64_t(t.cells[0] + 1) * (int64_t(j) + int64_t(t.cells[1] + 1) * k);
+}
+// The 64-bit words of one row of window nodes along x (cells + 1 nodes), in a node bit plane.
+STRATA_HD int64_t nodeRowWords(int cellsX) {
+  return (int64_t(cellsX) + 1 + 63) / 64;
+}
+// The first word of the row of nodes (., j, k) in a node bit plane.
+STRATA_HD int64_t nodeRow(const TileView& t, int j, int k) {
+  return (int64_t(j) + int64_t(t.cells[1] + 1) * k) * t.rowWords;
+}
+// Bit i of a row of a node bit plane.
+STRATA_HD uint32_t rowBit(const uint64_t* row, int i) {
+  return uint32_t(row[i >> 6] >> (i & 63)) & 1u;
+}
+STRATA_HD uint32_t nodeInside(const TileView& t, int i, int j, int k) {
+  return rowBit(t.insideBits + nodeRow(t, j, k), i);
+}
+STRATA_HD uint32_t nodeUnanimous(const TileView& t, int i, int j, int k) {
+  return rowBit(t.unanimousBits + nodeRow(t, j, k), i);
 }
 STRATA_HD int64_t tileCell(const TileView& t, int i, int j, int k) {
   return int64_t(i) + int64_t(t.cells[0]) * (int64_t(j) + int64_t(t.cells[1]) * k);
@@ -130,12 +150,16 @@ STRATA_HD uint8_t decideNodeSide(uint8_t votes, bool onOuterFace) {
   return (!onOuterFace && votes >= 2) ? 1 : 0;
 }
 
-// The corner mask of window cell (i, j, k) from the node sides.
+// The corner mask of window cell (i, j, k) from the node sides (corner c at offset c & 1 along
+// x, (c >> 1) & 1 along y, c >> 2 along z).
 STRATA_HD uint8_t cellMaskFromNodes(const TileView& t, int i, int j, int k) {
-  const uint8_t* n = t.inside + tileNode(t, i, j, k);
-  const int64_t dx = 1, dy = t.cells[0] + 1, dz = int64_t(t.cells[0] + 1) * (t.cells[1] + 1);
-  return uint8_t(n[0] | (n[dx] << 1) | (n[dy] << 2) | (n[dx + dy] << 3) | (n[dz] << 4) |
-                 (n[dx + dz] << 5) | (n[dy + dz] << 6) | (n[dx + dy + dz] << 7));
+  const uint64_t* r00 = t.insideBits + nodeRow(t, j, k);
+  const uint64_t* r10 = r00 + t.rowWords;
+  const uint64_t* r01 = t.insideBits + nodeRow(t, j, k + 1);
+  const uint64_t* r11 = r01 + t.rowWords;
+  return uint8_t(rowBit(r00, i) | (rowBit(r00, i + 1) << 1) | (rowBit(r10, i) << 2) |
+                 (rowBit(r10, i + 1) << 3) | (rowBit(r01, i) << 4) | (rowBit(r01, i + 1) << 5) |
+                 (rowBit(r11, i) << 6) | (rowBit(r11, i + 1) << 7));
 }
 
 struct EdgeCrossing {
@@ -200,7 +224,7 @@ STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, 
   const uint32_t index = t.boundary[b];
   int c[3];
   tileCellCoords(t, index, c);
-  const uint8_t mask = t.masks[index];
+  const uint8_t mask = t.boundaryMasks[b];
   const CellCase& cc = table.cases[mask];
   double points[kMaxCellComponents][12][3];
   float normals[kMaxCellComponents][12][3];
@@ -248,7 +272,8 @@ STRATA_HD const CellVertex& vertexOfEdge(const TileView& t, const CellCaseTable&
     else
       hi = mid;
   }
-  return t.vertices[t.vertexStart[lo] + uint32_t(table.cases[t.masks[index]].edgeComponent[edge])];
+  return t
+      .vertices[t.vertexStart[lo] + uint32_t(table.cases[t.boundaryMasks[lo]].edgeComponent[edge])];
 }
 
 STRATA_HD double splitAgreement(const double* a, const double* b, const double* c,
@@ -335,9 +360,9 @@ STRATA_HD bool faceSplitsEdge(const TileView& t, const CellCaseTable& table, con
   const int eQ = localEdgeIndex(axis, bitsQ), eQ1 = localEdgeIndex(axis, bitsQ1);
   bitsQ[f.w] = bitsQ1[f.w] = 1 - f.wBit;
   const int oppQ = localEdgeIndex(axis, bitsQ), oppQ1 = localEdgeIndex(axis, bitsQ1);
-  const CellCase& caseQ = table.cases[t.masks[tileCell(t, cells[q][0], cells[q][1], cells[q][2])]];
+  const CellCase& caseQ = table.cases[cellMaskFromNodes(t, cells[q][0], cells[q][1], cells[q][2])];
   const CellCase& caseQ1 =
-      table.cases[t.masks[tileCell(t, cells[q1][0], cells[q1][1], cells[q1][2])]];
+      table.cases[cellMaskFromNodes(t, cells[q1][0], cells[q1][1], cells[q1][2])];
   if (caseQ.edgeComponent[oppQ] != caseQ.edgeComponent[eQ] ||
       caseQ1.edgeComponent[oppQ1] != caseQ1.edgeComponent[eQ1])
     return false;
@@ -371,9 +396,9 @@ STRATA_HD void faceSegmentVertex(const TileView& t, const int n[3], int axis, bo
   const int faceMinGlobal[3] = {faceMin[0] + t.first[0], faceMin[1] + t.first[1],
                                 faceMin[2] + t.first[2]};
   *key = faceSegmentKey(t.globalCells, faceMinGlobal, f.normalAxis, corner);
-  const EdgeCrossing ea = tileCrossing(t, axis, n, t.inside[tileNode(t, n[0], n[1], n[2])]);
+  const EdgeCrossing ea = tileCrossing(t, axis, n, nodeInside(t, n[0], n[1], n[2]) != 0);
   const EdgeCrossing ew =
-      tileCrossing(t, w, wLower, t.inside[tileNode(t, wLower[0], wLower[1], wLower[2])]);
+      tileCrossing(t, w, wLower, nodeInside(t, wLower[0], wLower[1], wLower[2]) != 0);
   for (int k = 0; k < 3; ++k) {
     double pa = double(t.first[k] + n[k]), pw = double(t.first[k] + wLower[k]);
     if (k == axis) pa = ea.t;
@@ -477,10 +502,12 @@ STRATA_HD uint8_t edgeResolved(const TileView& t, const int n[3], int axis, bool
     const int g = outsideNode[k] + t.first[k];
     onOuterFace = onOuterFace || g == 0 || g == t.globalCells[k];
   }
-  const uint8_t insideVotes = t.votes[tileNode(t, insideNode[0], insideNode[1], insideNode[2])];
-  const uint8_t outsideVotes = t.votes[tileNode(t, outsideNode[0], outsideNode[1], outsideNode[2])];
-  return uint8_t((insideVotes == 3 ? kInsideResolved : 0) |
-                 (onOuterFace || outsideVotes == 0 ? kOutsideResolved : 0));
+  // The inside node is inside by its majority: unanimous means all three rays. The outside node
+  // off the outer faces is outside by its majority: unanimous means none.
+  const uint32_t insideAll = nodeUnanimous(t, insideNode[0], insideNode[1], insideNode[2]);
+  const uint32_t outsideNone = nodeUnanimous(t, outsideNode[0], outsideNode[1], outsideNode[2]);
+  return uint8_t((insideAll ? kInsideResolved : 0) |
+                 (onOuterFace || outsideNone ? kOutsideResolved : 0));
 }
 
 // The polygons of the sign-changing edges owned by boundary cell number b (those running from
@@ -500,7 +527,7 @@ STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_
   tileCellCoords(t, index, n);
   for (int k = 0; k < 3; ++k)
     if (n[k] < t.ownedLo[k] || n[k] >= t.ownedHi[k]) return 0;
-  const uint8_t mask = t.masks[index];
+  const uint8_t mask = t.boundaryMasks[b];
   const bool in0 = mask & 1;
   int triangleCount = 0;
   for (int axis = 0; axis < 3; ++axis) {

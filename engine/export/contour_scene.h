@@ -26,9 +26,10 @@ struct ContourOptions {
 
 // The largest tile edge: a tile's window of cells is indexed in 32 bits (contour_cells.h).
 constexpr int kMaxTileCells = 1024;
-// Device or host bytes per window node that contouring a tile holds at once (node votes and
-// signs, cell masks and flags; both backends), for sizing tiles.
-constexpr uint64_t kContourBytesPerNode = 4;
+// Device or host bytes per window node that contouring a tile holds at once, for sizing tiles:
+// the CUDA backend's byte of votes or of cell flags beside the two bit planes of node sides
+// (the CPU backend holds the bit planes only: tile_sides.h), rounded up.
+constexpr uint64_t kContourBytesPerNode = 2;
 
 // The tile edge an export uses when none is given: the longest side of `grid` split into the
 // fewest equal parts whose tiles are at most kMaxTileCells and whose contouring arrays take at

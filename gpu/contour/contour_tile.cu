@@ -45,27 +45,38 @@ __global__ void voteAxis(TileView t, int axis, uint8_t* votes) {
   }
 }
 
-__global__ void decideSides(TileView t, const uint8_t* votes, uint8_t* inside,
-                            unsigned long long* disagreements) {
+// The node bit planes (tile_sides.h's layout): one thread per word of 64 nodes of a row.
+__global__ void decideSides(TileView t, const uint8_t* votes, uint64_t* insideBits,
+                            uint64_t* unanimousBits, unsigned long long* disagreements) {
   const int nx = t.cells[0] + 1, ny = t.cells[1] + 1, nz = t.cells[2] + 1;
-  const int64_t total = int64_t(nx) * ny * nz;
+  const int64_t total = t.rowWords * ny * nz;
   unsigned long long local = 0;
-  for (int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; i < total;
-       i += int64_t(gridDim.x) * blockDim.x) {
-    const int x = int(i % nx), y = int((i / nx) % ny), z = int(i / (int64_t(nx) * ny));
-    const int g[3] = {t.first[0] + x, t.first[1] + y, t.first[2] + z};
-    const bool face = g[0] == 0 || g[1] == 0 || g[2] == 0 || g[0] == t.globalCells[0] ||
-                      g[1] == t.globalCells[1] || g[2] == t.globalCells[2];
-    const uint8_t vote = votes[i];
-    local += (vote == 1 || vote == 2) ? 1 : 0;
-    inside[i] = decideNodeSide(vote, face);
+  for (int64_t w = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; w < total;
+       w += int64_t(gridDim.x) * blockDim.x) {
+    const int64_t row = w / t.rowWords;
+    const int firstNode = int(w % t.rowWords) * 64;
+    const int y = int(row % ny), z = int(row / ny);
+    const bool rowFace = t.first[1] + y == 0 || t.first[2] + z == 0 ||
+                         t.first[1] + y == t.globalCells[1] || t.first[2] + z == t.globalCells[2];
+    uint64_t inside = 0, unanimous = 0;
+    const int last = min(64, nx - firstNode);
+    for (int b = 0; b < last; ++b) {
+      const int x = firstNode + b, gx = t.first[0] + x;
+      const uint8_t vote = votes[tileNode(t, x, y, z)];
+      local += (vote == 1 || vote == 2) ? 1 : 0;
+      const bool face = rowFace || gx == 0 || gx == t.globalCells[0];
+      inside |= uint64_t(decideNodeSide(vote, face)) << b;
+      unanimous |= uint64_t(vote == 0 || vote == 3) << b;
+    }
+    insideBits[w] = inside;
+    unanimousBits[w] = unanimous;
   }
   if (local) atomicAdd(disagreements, local);
 }
 
-// One thread per cell; also counts the boundary cells (one atomic per block).
-__global__ void cellMasks(TileView t, uint8_t* masks, uint8_t* boundaryFlags,
-                          unsigned long long* boundaryCount) {
+// One thread per cell: whether its corners are mixed; also counts the boundary cells (one
+// atomic per block).
+__global__ void boundaryFlags(TileView t, uint8_t* flags, unsigned long long* boundaryCount) {
   const int64_t total = int64_t(t.cells[0]) * t.cells[1] * t.cells[2];
   const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
   int flag = 0;
@@ -73,19 +84,27 @@ __global__ void cellMasks(TileView t, uint8_t* masks, uint8_t* boundaryFlags,
     const int x = int(c % t.cells[0]), y = int((c / t.cells[0]) % t.cells[1]),
               z = int(c / (int64_t(t.cells[0]) * t.cells[1]));
     const uint8_t mask = cellMaskFromNodes(t, x, y, z);
-    masks[c] = mask;
     flag = (mask != 0 && mask != 255) ? 1 : 0;
-    boundaryFlags[c] = uint8_t(flag);
+    flags[c] = uint8_t(flag);
   }
   const int inBlock = __syncthreads_count(flag);
   if (threadIdx.x == 0 && inBlock) atomicAdd(boundaryCount, (unsigned long long)inBlock);
+}
+
+__global__ void boundaryMasks(TileView t, uint8_t* masks) {
+  for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b < t.boundaryCount;
+       b += int64_t(gridDim.x) * blockDim.x) {
+    int c[3];
+    tileCellCoords(t, t.boundary[b], c);
+    masks[b] = cellMaskFromNodes(t, c[0], c[1], c[2]);
+  }
 }
 
 __global__ void componentCounts(TileView t, uint32_t* counts) {
   for (int64_t b = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; b <= t.boundaryCount;
        b += int64_t(gridDim.x) * blockDim.x)
     counts[b] =
-        b < t.boundaryCount ? uint32_t(c_cellCases.cases[t.masks[t.boundary[b]]].components) : 0u;
+        b < t.boundaryCount ? uint32_t(c_cellCases.cases[t.boundaryMasks[b]].components) : 0u;
 }
 
 __global__ void placeVertices(TileView t, CellVertex* vertices) {
@@ -142,46 +161,52 @@ struct DeviceTile {
   TileView t{};
   int64_t nodes = 0, cells = 0;
   DeviceBuffer<unsigned long long> counters;  // disagreements, synthesised crossings
-  DeviceBuffer<uint8_t> votes, inside, masks;
+  DeviceBuffer<uint64_t> insideBits, unanimousBits;
   DeviceBuffer<uint32_t> boundary, vertexStart;
+  DeviceBuffer<uint8_t> boundaryMasks;
   DeviceBuffer<CellVertex> vertices;
 };
 
-// Node sides: votes of the three axes, then majority and the outer faces.
+// Node sides: votes of the three axes (a byte per node, released once decided), then majority
+// and the outer faces into the bit planes.
 void decideNodeSides(DeviceTile& d, const DeviceStream& stream) {
-  d.votes = DeviceBuffer<uint8_t>(static_cast<size_t>(d.nodes), stream);
-  DeviceBuffer<uint8_t>& votes = d.votes;
-  d.inside = DeviceBuffer<uint8_t>(static_cast<size_t>(d.nodes), stream);
+  DeviceBuffer<uint8_t> votes(static_cast<size_t>(d.nodes), stream);
   STRATA_CUDA_CHECK(cudaMemsetAsync(votes.data(), 0, votes.bytes(), stream.get()));
   for (int axis = 0; axis < 3; ++axis) {
     const int64_t rays = int64_t(d.t.cells[(axis + 1) % 3] + 1) * (d.t.cells[(axis + 2) % 3] + 1);
     voteAxis<<<blocksFor(rays, 128), 128, 0, stream.get()>>>(d.t, axis, votes.data());
     STRATA_CUDA_CHECK(cudaGetLastError());
   }
-  decideSides<<<blocksFor(d.nodes, 256), 256, 0, stream.get()>>>(d.t, votes.data(), d.inside.data(),
-                                                                 d.counters.data());
+  d.t.rowWords = nodeRowWords(d.t.cells[0]);
+  const int64_t words = d.t.rowWords * (d.t.cells[1] + 1) * (d.t.cells[2] + 1);
+  d.insideBits = DeviceBuffer<uint64_t>(static_cast<size_t>(words), stream);
+  d.unanimousBits = DeviceBuffer<uint64_t>(static_cast<size_t>(words), stream);
+  decideSides<<<blocksFor(words, 256), 256, 0, stream.get()>>>(
+      d.t, votes.data(), d.insideBits.data(), d.unanimousBits.data(), d.counters.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  d.t.inside = d.inside.data();
-  d.t.votes = d.votes.data();
+  d.t.insideBits = d.insideBits.data();
+  d.t.unanimousBits = d.unanimousBits.data();
 }
 
-// Cell masks and the boundary cells, in increasing index (room for exactly those: they follow
+// The boundary cells in increasing index and their masks (room for exactly those: they follow
 // the surface, not the volume).
 void findBoundaryCells(DeviceTile& d, const DeviceStream& stream) {
-  d.masks = DeviceBuffer<uint8_t>(static_cast<size_t>(d.cells), stream);
   DeviceBuffer<uint8_t> flags(static_cast<size_t>(d.cells), stream);
   DeviceBuffer<unsigned long long> flagged(1, stream);
   STRATA_CUDA_CHECK(cudaMemsetAsync(flagged.data(), 0, flagged.bytes(), stream.get()));
-  cellMasks<<<blocksFor(d.cells, 256), 256, 0, stream.get()>>>(d.t, d.masks.data(), flags.data(),
-                                                               flagged.data());
+  boundaryFlags<<<blocksFor(d.cells, 256), 256, 0, stream.get()>>>(d.t, flags.data(),
+                                                                   flagged.data());
   STRATA_CUDA_CHECK(cudaGetLastError());
-  d.t.masks = d.masks.data();
   unsigned long long boundaryCount = 0;
   STRATA_CUDA_CHECK(cudaMemcpyAsync(&boundaryCount, flagged.data(), sizeof(boundaryCount),
                                     cudaMemcpyDeviceToHost, stream.get()));
   stream.synchronize();
   d.boundary = DeviceBuffer<uint32_t>(static_cast<size_t>(boundaryCount), stream);
+  d.boundaryMasks = DeviceBuffer<uint8_t>(static_cast<size_t>(boundaryCount), stream);
   DeviceBuffer<int64_t> selected(1, stream);
+  d.t.boundary = d.boundary.data();
+  d.t.boundaryMasks = d.boundaryMasks.data();
+  d.t.boundaryCount = int64_t(boundaryCount);
   if (boundaryCount > 0) {
     thrust::counting_iterator<uint32_t> indices(0);
     size_t tempBytes = 0;
@@ -192,9 +217,10 @@ void findBoundaryCells(DeviceTile& d, const DeviceStream& stream) {
     STRATA_CUDA_CHECK(cub::DeviceSelect::Flagged(temp.data(), tempBytes, indices, flags.data(),
                                                  d.boundary.data(), selected.data(), d.cells,
                                                  stream.get()));
+    boundaryMasks<<<blocksFor(int64_t(boundaryCount), 256), 256, 0, stream.get()>>>(
+        d.t, d.boundaryMasks.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
   }
-  d.t.boundary = d.boundary.data();
-  d.t.boundaryCount = int64_t(boundaryCount);
 }
 
 // One vertex per component of each boundary cell.
