@@ -13,6 +13,7 @@
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
+#include "engine/util/parallel_merge.h"
 #include "engine/util/parallel_sort.h"
 #include "engine/util/timer.h"
 
@@ -43,13 +44,15 @@ glm::ivec3 tileCounts(const Grid& grid, int tileCells) {
   return tiles;
 }
 
-// Vertices and triangles of every tile, keyed on the global lattice.
+// Vertices and triangles of every tile, keyed on the global lattice: each tile's own arrays
+// until mergeTiles, then the merged ones.
 struct TiledContour {
+  std::vector<TileContour> tiles;
   std::vector<ContourVertex> vertices;
   std::vector<ContourTriangle> triangles;
 };
 
-// Evaluates and contours one tile, appending to `out`.
+// Evaluates and contours one tile, appending it to `out`.
 void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
                     const glm::ivec3& begin, const glm::ivec3& end, Progress& progress,
                     ContourReport& r, TiledContour* out) {
@@ -74,35 +77,60 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
   r.contourSeconds += contour.seconds();
   r.synthesizedCrossings += tile.synthesizedCrossings;
   r.signDisagreements += tile.signDisagreements;
-  // The first tile's arrays are taken, not copied (one tile is the common case).
-  if (out->vertices.empty() && out->triangles.empty()) {
-    out->vertices = std::move(tile.vertices);
-    out->triangles = std::move(tile.triangles);
-    return;
-  }
-  out->vertices.insert(out->vertices.end(), tile.vertices.begin(), tile.vertices.end());
-  out->triangles.insert(out->triangles.end(), tile.triangles.begin(), tile.triangles.end());
+  out->tiles.push_back(std::move(tile));
+}
+
+// Puts a tile's arrays in key order: its cell vertices come in key order and its face-segment
+// vertices (keys with the top bit: after every cell key) after them in polygon order, its
+// triangles in edge order; whatever breaks that expectation is sorted.
+void sortTile(TileContour* tile) {
+  constexpr uint64_t kFaceBit = uint64_t(1) << 63;
+  auto& v = tile->vertices;
+  const auto byKey = [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; };
+  const auto faces = std::partition_point(
+      v.begin(), v.end(), [](const ContourVertex& x) { return (x.key & kFaceBit) == 0; });
+  std::sort(faces, v.end(), byKey);
+  if (!std::is_sorted(v.begin(), v.end(), byKey))
+    parallelSortByKey(v, [](const ContourVertex& x) { return x.key; });
+  auto& t = tile->triangles;
+  if (!std::is_sorted(t.begin(), t.end(), [](const ContourTriangle& a, const ContourTriangle& b) {
+        return a.order < b.order;
+      }))
+    parallelSortByKey(t, [](const ContourTriangle& x) { return x.order; });
 }
 
 // Vertices: one per key (neighbouring tiles computed their shared halo cells identically), in
-// key order; triangles in edge order. Both orders are independent of the tiling. Each tile
-// emits its cells and edges in increasing order already, so one tile needs no sort.
+// key order; triangles in edge order (orders are unique: an edge belongs to one tile). Both
+// orders are independent of the tiling. The tiles' sorted arrays are merged in one pass
+// (parallel_merge.h); one tile's arrays are taken as they are.
 void mergeTiles(TiledContour* c, Progress& progress) {
-  auto byKey = [](const ContourVertex& a, const ContourVertex& b) { return a.key < b.key; };
-  // Equal keys are equal vertices (a halo cell computed by two tiles): their order is moot.
-  if (!std::is_sorted(c->vertices.begin(), c->vertices.end(), byKey))
-    parallelSortByKey(c->vertices, [](const ContourVertex& v) { return v.key; });
-  c->vertices.erase(
-      std::unique(c->vertices.begin(), c->vertices.end(),
-                  [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
-      c->vertices.end());
+  parallelFor(0, int64_t(c->tiles.size()), 1, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) sortTile(&c->tiles[size_t(i)]);
+  });
   progress.check();
-  auto byOrder = [](const ContourTriangle& a, const ContourTriangle& b) {
-    return a.order < b.order;
-  };
-  // Orders are unique (an edge belongs to one tile).
-  if (!std::is_sorted(c->triangles.begin(), c->triangles.end(), byOrder))
-    parallelSortByKey(c->triangles, [](const ContourTriangle& t) { return t.order; });
+  const auto vertexKey = [](const ContourVertex& v) { return v.key; };
+  if (c->tiles.size() == 1) {
+    std::vector<ContourVertex>& v = c->tiles[0].vertices;
+    v.erase(
+        std::unique(v.begin(), v.end(),
+                    [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
+        v.end());
+    c->vertices = std::move(v);
+    c->triangles = std::move(c->tiles[0].triangles);
+  } else if (c->tiles.size() > 1) {
+    std::vector<SortedRun<ContourVertex>> vertexRuns;
+    std::vector<SortedRun<ContourTriangle>> triangleRuns;
+    for (const TileContour& t : c->tiles) {
+      vertexRuns.push_back({t.vertices.data(), t.vertices.size()});
+      triangleRuns.push_back({t.triangles.data(), t.triangles.size()});
+    }
+    c->vertices = parallelMergeRuns(vertexRuns, vertexKey, true);
+    progress.check();
+    c->triangles = parallelMergeRuns(
+        triangleRuns, [](const ContourTriangle& t) { return t.order; }, false);
+  }
+  c->tiles.clear();
+  c->tiles.shrink_to_fit();
   progress.check();
 }
 

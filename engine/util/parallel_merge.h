@@ -1,0 +1,112 @@
+// Merging runs that are each sorted by a 64-bit key into one sorted array, on all workers
+// (parallelFor): the key space is split at keys sampled from the runs, each part's slice of
+// every run is found by binary search, and the parts are merged on their own (a heap over the
+// runs) into their place in the output. One pass over the data where appending the runs and
+// sorting them took several; what the tiles of an export need (each tile emits its vertices and
+// triangles in key order already).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <queue>
+#include <utility>
+#include <vector>
+
+#include "engine/util/parallel_for.h"
+
+namespace strata {
+
+template <typename T>
+struct SortedRun {
+  const T* data = nullptr;  // sorted by key, ascending; not owned
+  size_t size = 0;
+};
+
+namespace detail {
+
+// Merges the slices [lo[r], hi[r]) of the runs into out (when not null); with `unique`, of
+// equal keys only the first met (runs in order) is kept. Returns the number written.
+template <typename T, typename Key>
+size_t mergeSlices(const std::vector<SortedRun<T>>& runs, const std::vector<size_t>& lo,
+                   const std::vector<size_t>& hi, Key key, bool unique, T* out) {
+  using Head = std::pair<uint64_t, size_t>;  // key, run: ties taken in run order
+  std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heads;
+  std::vector<size_t> at(lo);
+  for (size_t r = 0; r < runs.size(); ++r)
+    if (at[r] < hi[r]) heads.push({key(runs[r].data[at[r]]), r});
+  size_t written = 0;
+  bool any = false;
+  uint64_t last = 0;
+  while (!heads.empty()) {
+    const Head h = heads.top();
+    heads.pop();
+    const size_t r = h.second;
+    if (!unique || !any || h.first != last) {
+      if (out) out[written] = runs[r].data[at[r]];
+      ++written;
+      any = true;
+      last = h.first;
+    }
+    if (++at[r] < hi[r]) heads.push({key(runs[r].data[at[r]]), r});
+  }
+  return written;
+}
+
+}  // namespace detail
+
+// The runs merged into one array sorted by key(element) (a uint64_t). With `unique`, elements
+// with equal keys are taken as equal and one is kept. T: default-constructible and copyable.
+template <typename T, typename Key>
+std::vector<T> parallelMergeRuns(const std::vector<SortedRun<T>>& runs, Key key, bool unique) {
+  size_t total = 0;
+  for (const SortedRun<T>& r : runs) total += r.size;
+  // Parts split at keys sampled evenly from every run, so each holds a similar share.
+  const size_t parts = total < (size_t(1) << 16) ? 1 : size_t(workerCount()) * 8;
+  std::vector<uint64_t> sample;
+  constexpr size_t kSamplesPerRun = 64;
+  for (const SortedRun<T>& r : runs)
+    for (size_t s = 1; s <= kSamplesPerRun && r.size > 0; ++s)
+      sample.push_back(key(r.data[(r.size - 1) * s / kSamplesPerRun]));
+  std::sort(sample.begin(), sample.end());
+  std::vector<uint64_t> split;  // part p holds keys in [split[p - 1], split[p])
+  for (size_t p = 1; p < parts && !sample.empty(); ++p) {
+    const uint64_t s = sample[p * sample.size() / parts];
+    if (split.empty() || s > split.back()) split.push_back(s);
+  }
+  const size_t partCount = split.size() + 1;
+  // Slice [bounds[p][r], bounds[p + 1][r]) of run r belongs to part p.
+  std::vector<std::vector<size_t>> bounds(partCount + 1, std::vector<size_t>(runs.size()));
+  for (size_t r = 0; r < runs.size(); ++r) {
+    bounds[partCount][r] = runs[r].size;
+    for (size_t p = 0; p < split.size(); ++p)
+      bounds[p + 1][r] =
+          size_t(std::lower_bound(runs[r].data, runs[r].data + runs[r].size, split[p],
+                                  [&](const T& e, uint64_t k) { return key(e) < k; }) -
+                 runs[r].data);
+  }
+  std::vector<size_t> start(partCount + 1, 0);
+  parallelFor(0, int64_t(partCount), 1, [&](int64_t b, int64_t e) {
+    for (int64_t p = b; p < e; ++p) {
+      size_t n = 0;
+      if (unique) {
+        n = detail::mergeSlices<T>(runs, bounds[size_t(p)], bounds[size_t(p) + 1], key, true,
+                                   nullptr);
+      } else {
+        for (size_t r = 0; r < runs.size(); ++r)
+          n += bounds[size_t(p) + 1][r] - bounds[size_t(p)][r];
+      }
+      start[size_t(p) + 1] = n;
+    }
+  });
+  for (size_t p = 0; p < partCount; ++p) start[p + 1] += start[p];
+  std::vector<T> out(start[partCount]);
+  parallelFor(0, int64_t(partCount), 1, [&](int64_t b, int64_t e) {
+    for (int64_t p = b; p < e; ++p)
+      detail::mergeSlices<T>(runs, bounds[size_t(p)], bounds[size_t(p) + 1], key, unique,
+                             out.data() + start[size_t(p)]);
+  });
+  return out;
+}
+
+}  // namespace strata
