@@ -1,5 +1,7 @@
 #include "app/backend_choice.h"
 
+#include <algorithm>
+
 #include "engine/eval/cpu_backend.h"
 #include "engine/util/error.h"
 #if defined(STRATA_HAS_CUDA)
@@ -8,7 +10,7 @@
 
 namespace strata {
 
-BackendChoice chooseBackend(const std::string& name) {
+BackendChoice chooseBackend(const std::string& name, int processOnHost) {
   if (name != "auto" && name != "cpu" && name != "cuda")
     throw Error("--backend: unknown backend '" + name + "' (expected auto, cpu or cuda)");
   if (name == "cpu") {
@@ -18,7 +20,7 @@ BackendChoice chooseBackend(const std::string& name) {
 #if defined(STRATA_HAS_CUDA)
   std::string why;
   if (cudaDeviceAvailable(&why)) {
-    auto cuda = makeCudaBackend();
+    auto cuda = makeCudaBackend(processOnHost % std::max(1, cudaDeviceCount()));
     return {cuda, "backend " + cuda->description() + (name == "auto" ? " (auto)" : " (asked for)"),
             true};
   }
@@ -29,6 +31,38 @@ BackendChoice chooseBackend(const std::string& name) {
 #endif
   auto cpu = std::make_shared<CpuBackend>();
   return {cpu, "backend " + cpu->description() + " (auto: " + why + ")"};
+}
+
+std::vector<std::shared_ptr<Backend>> exportWorkers(const BackendChoice& choice,
+                                                    const std::string& gpus, bool given,
+                                                    int* perDevice) {
+  *perDevice = 1;
+  if (!choice.cuda) {
+    if (given)
+      throw Error("--gpus: exports on several GPUs need the CUDA backend (" + choice.why + ")");
+    return {choice.backend};
+  }
+  int devices = 1;
+#if defined(STRATA_HAS_CUDA)
+  devices = std::max(1, cudaDeviceCount());
+#endif
+  int workers = devices;
+  if (gpus != "all") {
+    size_t used = 0;
+    try {
+      workers = std::stoi(gpus, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != gpus.size() || workers < 1 || workers > 64)
+      throw Error("--gpus: expected all or a number of workers from 1 to 64, got '" + gpus + "'");
+  }
+  std::vector<std::shared_ptr<Backend>> backends{choice.backend};
+#if defined(STRATA_HAS_CUDA)
+  for (int w = 1; w < workers; ++w) backends.push_back(makeCudaBackend(w % devices));
+#endif
+  *perDevice = (workers + devices - 1) / devices;
+  return backends;
 }
 
 }  // namespace strata

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "engine/eval/backend.h"
 
@@ -16,6 +17,18 @@ struct BackendChoice {
 
 // auto: CUDA when this build has it and a device is present, otherwise the CPU.
 // cpu:  the CPU backend. cuda: the CUDA backend, or strata::Error saying why it is unavailable.
-BackendChoice chooseBackend(const std::string& name);
+// `processOnHost`: this process's number among those of one job on its host (distributed
+// exports), which picks its GPU: device processOnHost % devices.
+BackendChoice chooseBackend(const std::string& name, int processOnHost = 0);
+
+// The backends of an export for `--gpus N|all` (`given`: the option was on the command line;
+// its default is all): the chosen backend first, then CUDA backends on the next devices, worker
+// i on device i % devices, so N above the device count puts several workers on one device
+// (one's host-side contouring overlaps another's device work). One worker for the CPU backend.
+// *perDevice: the most workers on one device. Throws strata::Error for a bad value, or --gpus
+// given without the CUDA backend.
+std::vector<std::shared_ptr<Backend>> exportWorkers(const BackendChoice& choice,
+                                                    const std::string& gpus, bool given,
+                                                    int* perDevice);
 
 }  // namespace strata

@@ -16,9 +16,10 @@ const std::vector<std::string> kValuedOptions = {
     "--resolution", "--report",        "-o",           "--output",        "--backend",
     "--threads",    "--margin",        "--surfels",    "--tile",          "--unit-scale",
     "--max-leaves", "--max-file-size", "--max-memory", "--max-triangles", "--distance",
-    "--thickness",  "--radius",        "--fillet",     "--opening",       "--simplify"};
-const std::vector<std::string> kFlagOptions = {"--quiet", "-q", "--nodes", "--allow-open",
-                                               "--force"};
+    "--thickness",  "--radius",        "--fillet",     "--opening",       "--simplify",
+    "--gpus"};
+const std::vector<std::string> kFlagOptions = {"--quiet",      "-q",      "--nodes",
+                                               "--allow-open", "--force", "--distributed"};
 
 int runGuarded(const std::function<int()>& body) {
   try {
@@ -40,9 +41,13 @@ bool quietRequested(const CliArgs& args) {
 }
 
 BackendChoice setUpBackend(const CliArgs& args) {
+  return setUpBackend(args, quietRequested(args));
+}
+
+BackendChoice setUpBackend(const CliArgs& args, bool quiet, int processOnHost) {
   if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));
-  BackendChoice choice = chooseBackend(args.text("--backend", "auto"));
-  if (!quietRequested(args)) std::fprintf(stderr, "%s\n", choice.why.c_str());
+  BackendChoice choice = chooseBackend(args.text("--backend", "auto"), processOnHost);
+  if (!quiet) std::fprintf(stderr, "%s\n", choice.why.c_str());
   return choice;
 }
 

@@ -22,6 +22,8 @@ int runGuarded(const std::function<int()>& body);
 
 // Applies --threads and picks the backend from --backend (printing the choice unless quiet).
 BackendChoice setUpBackend(const CliArgs& args);
+// The same, printing the choice unless `quiet`; processOnHost: see chooseBackend.
+BackendChoice setUpBackend(const CliArgs& args, bool quiet, int processOnHost = 0);
 
 bool quietRequested(const CliArgs& args);
 

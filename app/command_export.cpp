@@ -2,7 +2,9 @@
 
 #include "app/cli_common.h"
 #include "app/export_report.h"
+#include "app/process_group_plugin.h"
 #include "app/terminal_progress.h"
+#include "engine/export/distributed_export.h"
 #include "engine/export/export_scene.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/util/atomic_file.h"
@@ -10,19 +12,80 @@
 
 namespace strata {
 
+namespace {
+
+// The export's part on this process of an MPI job (mpirun ... --distributed): process 0 reports
+// as a single-process export does, the others say what they did (unless quiet). A failure on any
+// process ends them all (ProcessGroup::abort), after this one says why.
+int exportDistributed(const Scene& scene, const CliArgs& args, const std::string& output,
+                      const ExportOptions& options, BackendChoice choice, ProcessGroup& group,
+                      ExportSummary summary) {
+  const bool root = group.rank() == 0;
+  const std::string who =
+      "process " + std::to_string(group.rank()) + " of " + std::to_string(group.size());
+  try {
+    DistributedShare share;
+    {
+      TerminalProgress terminal(!root || quietRequested(args));
+      summary.result = exportSceneDistributed(scene, output, options, choice.backend, group,
+                                              terminal.progress(), &share);
+    }
+    char seconds[32];
+    std::snprintf(seconds, sizeof(seconds), "%.3f", share.seconds);
+    if (!root) {
+      if (!quietRequested(args))
+        std::fprintf(stderr, "strata: %s contoured %d of %d tiles on %s in %s s\n", who.c_str(),
+                     share.ownTiles, share.tiles, choice.backend->description().c_str(), seconds);
+      return 0;
+    }
+    char all[32];
+    std::snprintf(all, sizeof(all), "%.3f", share.allTilesSeconds);
+    summary.distributed = group.description() + ": every tile in " + all +
+                          " s (evaluate and contour above: summed over the processes); process 0 " +
+                          std::to_string(share.ownTiles) + " of " + std::to_string(share.tiles) +
+                          " tiles in " + seconds + " s";
+    summary.processes = group.size();
+    summary.distributedTilesSeconds = share.allTilesSeconds;
+  } catch (const Cancelled&) {
+    std::fprintf(stderr, "\nstrata: %s cancelled; ending every process, nothing was written\n",
+                 who.c_str());
+    group.abort(130);
+    return 130;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strata: error (%s): %s; ending every process, nothing was written\n",
+                 who.c_str(), e.what());
+    group.abort(1);
+    return 1;
+  }
+  for (const auto& line : summary.result.contour.warnings) summary.warnings.push_back(line);
+  std::fputs(formatExportText(summary).c_str(), stdout);
+  if (args.has("--report")) {
+    std::string json = formatExportJson(summary);
+    writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
+  }
+  return summary.result.passed() ? 0 : 3;
+}
+
+}  // namespace
+
 int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& input,
                     const std::vector<std::string>& warnings) {
   const std::string output = args.text("-o", args.text("--output", ""));
   if (!meshFormatFor(output, MeshAccess::Write))
     throw Error(output + ": unknown export format '" + lowerExtension(output) + "' (expected " +
                 meshExtensionList(MeshAccess::Write) + ")");
-  BackendChoice choice = setUpBackend(args);
+  // MPI starts first: each process then says only what is its to say.
+  std::unique_ptr<ProcessGroup> group;
+  if (args.has("--distributed")) group = openMpiProcessGroup();
+  const bool root = !group || group->rank() == 0;
+  BackendChoice choice =
+      setUpBackend(args, !root || quietRequested(args), group ? group->rankOnHost() : 0);
   ExportOptions options;
   options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
   options.tileCells = args.integer("--tile", 0, 8, kMaxTileCells);  // 0: sized to memory
   options.simplifyCells = args.number("--simplify", 0.0, 0.0, 8.0);
 
-  {
+  if (root) {
     Progress probe;
     const JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
     const glm::ivec3 c = estimate.grid.cells;
@@ -37,9 +100,16 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   summary.unit = scene.settings.unit;
   summary.backend = choice.backend->description();
   summary.warnings = warnings;
+  if (group) return exportDistributed(scene, args, output, options, choice, *group, summary);
+  int perDevice = 1;
+  const std::vector<std::shared_ptr<Backend>> workers =
+      exportWorkers(choice, args.text("--gpus", "all"), args.has("--gpus"), &perDevice);
+  if (workers.size() > 1)
+    summary.backend += ", " + std::to_string(workers.size()) + " workers (--gpus), up to " +
+                       std::to_string(perDevice) + " a device";
   {
     TerminalProgress terminal(quietRequested(args));
-    summary.result = exportScene(scene, output, options, choice.backend, terminal.progress(),
+    summary.result = exportScene(scene, output, options, workers, perDevice, terminal.progress(),
                                  [&](const std::string& line) {
                                    terminal.finish();
                                    std::fprintf(stderr, "strata: %s\n", line.c_str());

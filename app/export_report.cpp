@@ -38,6 +38,7 @@ std::string formatExportText(const ExportSummary& summary) {
                 r.evaluateSeconds, r.contourSeconds, r.mergeSeconds, s.result.writeSeconds,
                 s.result.checkSeconds, mib(r.peakBytes).c_str());
   out << line;
+  if (!s.distributed.empty()) out << "processes " << s.distributed << "\n";
   const SimplifyReport& sr = s.result.simplify;
   if (sr.refused) {
     out << "simplify  not done: " << sr.refusedWhy << "\n";
@@ -122,6 +123,10 @@ std::string formatExportJson(const ExportSummary& s) {
                {"h", r.grid.h},
                {"cells", {r.grid.cells.x, r.grid.cells.y, r.grid.cells.z}}};
   j["tiles"] = r.tiles;
+  if (!s.distributed.empty())
+    j["distributed"] = {{"processes", s.processes},
+                        {"description", s.distributed},
+                        {"tiles_seconds", s.distributedTilesSeconds}};
   j["stages"] =
       nlohmann::ordered_json::array({{{"name", "evaluate"}, {"seconds", r.evaluateSeconds}},
                                      {{"name", "contour"}, {"seconds", r.contourSeconds}},

@@ -16,6 +16,10 @@ struct ExportSummary {
   std::string backend;
   ExportReport result;                // the contour report and the check of the file as written
   std::vector<std::string> warnings;  // of the input, then the export's notices
+  // Distributed exports (--distributed): the group and the tiles' wall time; "" otherwise.
+  std::string distributed;
+  double distributedTilesSeconds = 0.0;
+  int processes = 1;
 };
 
 std::string formatExportText(const ExportSummary& s);

@@ -39,14 +39,18 @@ std::shared_ptr<const DeviceLdi> wholeDeviceLdi(const LdiHandle& handle,
 // call returns with the stream drained, so a handle it returns is complete and may be read from
 // any stream or thread. Each LDI and splats handle shares stream_ through its buffers, which are
 // freed on it: handles may outlive the backend, and the stream goes with the last of them.
+//
+// Devices: the backend works on one device (`device_`), made current on the calling thread at
+// the start of every call that queues work, so any thread may call it (one at a time).
 class CudaBackend : public Backend {
  public:
-  CudaBackend() {
-    STRATA_CUDA_CHECK(cudaSetDevice(0));
+  explicit CudaBackend(int device) : device_(device) {
+    STRATA_CUDA_CHECK(cudaSetDevice(device_));
     cudaDeviceProp prop{};
-    STRATA_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
+    STRATA_CUDA_CHECK(cudaGetDeviceProperties(&prop, device_));
     name_ = prop.name;
-    keepFreedDeviceMemory(0);
+    if (device_ != 0) name_ += ", device " + std::to_string(device_);
+    keepFreedDeviceMemory(device_);
     stream_ = DeviceStream::create();
   }
 
@@ -54,6 +58,7 @@ class CudaBackend : public Backend {
 
   LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
                        uint32_t leafId, Progress& progress) override {
+    onDevice();
     return sampleMeshes({LeafToSample{&mesh, objectToWorld, leafId}}, grid, progress)[0];
   }
 
@@ -61,6 +66,7 @@ class CudaBackend : public Backend {
   // scratch (at least one leaf each): one pass per batch, whatever its leaf count.
   std::vector<LdiHandle> sampleMeshes(const std::vector<LeafToSample>& leaves, const Grid& grid,
                                       Progress& progress) override {
+    onDevice();
     progress.check();
     std::vector<PlacedLeaf> placed(leaves.size());
     parallelFor(0, int64_t(leaves.size()), 1, [&](int64_t b, int64_t e) {
@@ -88,6 +94,7 @@ class CudaBackend : public Backend {
 
   LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
                     Progress& progress) override {
+    onDevice();
     progress.check();
     std::vector<const DeviceLdi*> inputs;
     for (const auto& c : children) {
@@ -98,9 +105,13 @@ class CudaBackend : public Backend {
     return combineOnDevice(op, inputs, grid, stream_);
   }
 
-  LdiHandle empty(const Grid& grid) override { return emptyOnDevice(grid, stream_); }
+  LdiHandle empty(const Grid& grid) override {
+    onDevice();
+    return emptyOnDevice(grid, stream_);
+  }
 
   LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override {
+    onDevice();
     progress.check();
     return offsetOnDevice(*wholeDeviceLdi(ldi, stream_), distance, stream_);
   }
@@ -108,12 +119,14 @@ class CudaBackend : public Backend {
 
   // Free device memory, as the driver sees it (the pool's kept blocks not counted).
   uint64_t memoryAvailable() const override {
+    onDevice();
     size_t free = 0, total = 0;
     if (cudaMemGetInfo(&free, &total) != cudaSuccess) return 0;
     return uint64_t(free);
   }
 
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override {
+    onDevice();
     progress.check();
     return measureOnDevice(deviceLdi(ldi), stream_);
   }
@@ -121,17 +134,20 @@ class CudaBackend : public Backend {
   TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                           const glm::ivec3& begin, const glm::ivec3& end,
                           Progress& progress) override {
+    onDevice();
     progress.check();
     return contourTileOnDevice(*wholeDeviceLdi(root, stream_), globalCells, begin, end, stream_);
   }
 
   SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
+    onDevice();
     progress.check();
     return splatsOnDevice(*wholeDeviceLdi(ldi, stream_), stream_);
   }
 
   // Queued on the LDI's own stream (its buffers' copies), then waited for.
   std::shared_ptr<const Ldi> download(const LdiHandle& handle) override {
+    onDevice();
     const DeviceLdi& d = deviceLdi(handle);
     auto host = std::make_shared<Ldi>();
     host->grid = d.grid();
@@ -146,6 +162,9 @@ class CudaBackend : public Backend {
   }
 
  private:
+  void onDevice() const { STRATA_CUDA_CHECK(cudaSetDevice(device_)); }
+
+  int device_ = 0;
   std::string name_;
   DeviceStream stream_;
 };
@@ -168,10 +187,23 @@ bool cudaDeviceAvailable(std::string* why) {
   return true;
 }
 
-std::shared_ptr<Backend> makeCudaBackend() {
+int cudaDeviceCount() {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return count;
+}
+
+std::shared_ptr<Backend> makeCudaBackend(int device) {
   std::string why;
   if (!cudaDeviceAvailable(&why)) throw Error("--backend cuda: " + why);
-  return std::make_shared<CudaBackend>();
+  const int count = cudaDeviceCount();
+  if (device < 0 || device >= count)
+    throw Error("--backend cuda: no device " + std::to_string(device) + " (" +
+                std::to_string(count) + " present)");
+  return std::make_shared<CudaBackend>(device);
 }
 
 }  // namespace strata

@@ -14,7 +14,11 @@ namespace strata {
 // device, ...). Never throws.
 bool cudaDeviceAvailable(std::string* why);
 
-// The backend on device 0. Throws strata::Error when no device is available.
-std::shared_ptr<Backend> makeCudaBackend();
+// CUDA devices present (0 without a driver). Never throws.
+int cudaDeviceCount();
+
+// The backend on `device` (0 .. cudaDeviceCount() - 1). Throws strata::Error when it is not
+// available.
+std::shared_ptr<Backend> makeCudaBackend(int device = 0);
 
 }  // namespace strata

@@ -55,7 +55,7 @@ struct TiledContour {
 // Evaluates and contours one tile, appending it to `out`.
 void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
                     const glm::ivec3& begin, const glm::ivec3& end, Progress& progress,
-                    ContourReport& r, TiledContour* out) {
+                    ContourReport& r, std::vector<TileContour>* out) {
   const TileWindow window = tileWindow(begin, end, grid.cells);
   const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
   const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
@@ -77,7 +77,7 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
   r.contourSeconds += contour.seconds();
   r.synthesizedCrossings += tile.synthesizedCrossings;
   r.signDisagreements += tile.signDisagreements;
-  out->tiles.push_back(std::move(tile));
+  out->push_back(std::move(tile));
 }
 
 // Puts a tile's arrays in key order: its cell vertices come in key order and its face-segment
@@ -247,34 +247,57 @@ int exportTileCells(const Grid& grid, uint64_t memoryBytes) {
   }
 }
 
-ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
-                        Progress& progress, ContourReport* report) {
-  ContourReport local;
-  ContourReport& r = report ? *report : local;
-  r = ContourReport();
-  const Grid grid = Evaluator::gridFor(scene, options.resolution);
-  r.grid = grid;
+int ExportTiling::count() const {
+  return counts.x * counts.y * counts.z;
+}
+
+glm::ivec3 ExportTiling::begin(int tile) const {
+  return glm::ivec3(tile % counts.x, (tile / counts.x) % counts.y, tile / (counts.x * counts.y)) *
+         tileCells;
+}
+
+glm::ivec3 ExportTiling::end(int tile) const {
+  return glm::min(begin(tile) + tileCells, grid.cells);
+}
+
+ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes) {
+  ExportTiling t;
+  t.grid = Evaluator::gridFor(scene, options.resolution);
+  const Grid& grid = t.grid;
   // One tile where a modifier needs the whole grid (hasModifier).
-  const int tileCells =
-      hasModifier(scene.root) ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8})
-      : options.tileCells > 0 ? options.tileCells
-                              : exportTileCells(grid, evaluator.backend().memoryAvailable());
-  r.tileCells = tileCells;
-  const glm::ivec3 tiles = tileCounts(grid, tileCells);
-  r.tiles = tiles.x * tiles.y * tiles.z;
+  t.tileCells = hasModifier(scene.root) ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8})
+                : options.tileCells > 0 ? options.tileCells
+                                        : exportTileCells(grid, memoryBytes);
+  t.counts = tileCounts(grid, t.tileCells);
+  return t;
+}
 
-  TiledContour contour;
-  int done = 0;
-  for (int tz = 0; tz < tiles.z; ++tz)
-    for (int ty = 0; ty < tiles.y; ++ty)
-      for (int tx = 0; tx < tiles.x; ++tx) {
-        const glm::ivec3 begin = glm::ivec3(tx, ty, tz) * tileCells;
-        const glm::ivec3 end = glm::min(begin + tileCells, grid.cells);
-        contourOneTile(scene, evaluator, grid, begin, end, progress, r, &contour);
-        progress.report("export", double(++done) / r.tiles);
-      }
+void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& tiling,
+                  const std::function<bool(int)>& mine, Progress& progress, ContourReport& r,
+                  std::vector<TileContour>* out, const std::function<void(int)>& afterTile) {
+  r.grid = tiling.grid;
+  r.tileCells = tiling.tileCells;
+  r.tiles = tiling.count();
+  int done = 0, share = 0;
+  if (!afterTile)
+    for (int t = 0; t < tiling.count(); ++t) share += !mine || mine(t) ? 1 : 0;
+  for (int t = 0; t < tiling.count(); ++t) {
+    if (mine && !mine(t)) continue;
+    contourOneTile(scene, evaluator, tiling.grid, tiling.begin(t), tiling.end(t), progress, r, out);
+    ++done;
+    if (afterTile)
+      afterTile(t);
+    else
+      progress.report("export", double(done) / share);
+  }
+}
 
+ExportMesh meshFromTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
+                         ContourReport& r) {
+  const Grid& grid = r.grid;
   Stopwatch merge;
+  TiledContour contour;
+  contour.tiles = std::move(tiles);
   mergeTiles(&contour, progress);
   std::vector<uint8_t> resolved;
   ExportMesh out = indexedMesh(scene, grid, contour, r, &resolved);
@@ -286,6 +309,17 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   r.deviationBound = std::sqrt(3.0) * grid.h;
   r.peakBytes = peakResidentBytes();
   return out;
+}
+
+ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
+                        Progress& progress, ContourReport* report) {
+  ContourReport local;
+  ContourReport& r = report ? *report : local;
+  r = ContourReport();
+  const ExportTiling tiling = exportTiling(scene, options, evaluator.backend().memoryAvailable());
+  std::vector<TileContour> tiles;
+  contourTiles(scene, evaluator, tiling, {}, progress, r, &tiles);
+  return meshFromTiles(scene, std::move(tiles), progress, r);
 }
 
 }  // namespace strata

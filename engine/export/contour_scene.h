@@ -7,9 +7,11 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "engine/contour/contour_tile.h"
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/drop_specks.h"
@@ -66,5 +68,36 @@ struct ContourReport {
 // Contours the visible tree. Throws strata::Error or Cancelled; progress stage "export".
 ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
                         Progress& progress, ContourReport* report = nullptr);
+
+// contourScene in its three steps, for exports whose tiles are contoured by several processes
+// (distributed_export.h): the tiling, the tiles a process contours, and the mesh from all of
+// them. Tiles are keyed on the global lattice, so tiles contoured anywhere merge into the mesh
+// one process makes, vertex for vertex.
+struct ExportTiling {
+  Grid grid;             // the whole export's grid
+  int tileCells = 0;     // tile edge in cells
+  glm::ivec3 counts{0};  // tiles per axis
+  int count() const;
+  // Tile t's owned cells [begin, end): tiles numbered x fastest, then y, then z.
+  glm::ivec3 begin(int tile) const;
+  glm::ivec3 end(int tile) const;
+};
+// The tiling of an export with `options` on a backend with `memoryBytes` free (exportTileCells;
+// one tile where a modifier needs the whole grid).
+ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes);
+
+// Evaluates and contours the tiles t of `tiling` with mine(t) (all when `mine` is empty) in
+// increasing order, appending them to *out and adding to r (grid, tiles, times, counts);
+// progress "export" over those tiles, or afterTile(t) after each when set (which then reports).
+// mine(t) is asked once per tile, just before it would be contoured, when afterTile is set (so
+// it may claim the tile from a shared queue); without afterTile it is also asked up front.
+void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& tiling,
+                  const std::function<bool(int)>& mine, Progress& progress, ContourReport& r,
+                  std::vector<TileContour>* out, const std::function<void(int)>& afterTile = {});
+
+// The mesh from contoured tiles (any subset, in any order: each tile once): merged, indexed,
+// shells unfolded, specks dropped. Sets r's merge time, deviation bound and peak memory.
+ExportMesh meshFromTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
+                         ContourReport& r);
 
 }  // namespace strata

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "engine/export/check_written.h"
+#include "engine/export/contour_workers.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
@@ -22,6 +23,27 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Expo
                                  if (notice) notice(line);
                                });
   }  // the evaluator's cached LDIs go before the file is written
+  writeAndCheckExport(std::move(mesh), path, options, progress, &report);
+  return report;
+}
+
+ExportReport exportScene(const Scene& scene, const std::string& path, const ExportOptions& options,
+                         const std::vector<std::shared_ptr<Backend>>& backends,
+                         int workersPerMemory, Progress& progress, const FallbackNotice& notice) {
+  if (backends.size() == 1) return exportScene(scene, path, options, backends[0], progress, notice);
+  ExportReport report;
+  ExportMesh mesh = contourSceneOnWorkers(scene, backends, options, workersPerMemory, progress,
+                                          &report.contour, [&](const std::string& line) {
+                                            report.notices.push_back(line);
+                                            if (notice) notice(line);
+                                          });
+  writeAndCheckExport(std::move(mesh), path, options, progress, &report);
+  return report;
+}
+
+void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportOptions& options,
+                         Progress& progress, ExportReport* out) {
+  ExportReport& report = *out;
   if (options.simplifyCells > 0.0)
     report.simplify = simplifyMesh(&mesh, options.simplifyCells * report.contour.grid.h, progress);
   // Written atomically (engine/util/atomic_file.h): a cancel or a failure while writing leaves
@@ -39,7 +61,6 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Expo
   report.check = written.check;
   report.fileDifference = written.fileDifference;
   report.checkSeconds = check.seconds();
-  return report;
 }
 
 }  // namespace strata

@@ -54,4 +54,16 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Expo
                          std::shared_ptr<Backend> backend, Progress& progress,
                          const FallbackNotice& notice = {});
 
+// The same with the tiles contoured on several backends at once (contour_workers.h;
+// `workersPerMemory` of them share one backend's memory); one backend: exportScene above.
+ExportReport exportScene(const Scene& scene, const std::string& path, const ExportOptions& options,
+                         const std::vector<std::shared_ptr<Backend>>& backends,
+                         int workersPerMemory, Progress& progress,
+                         const FallbackNotice& notice = {});
+
+// exportScene's steps after contouring, on a mesh made elsewhere (distributed_export.h):
+// simplified when asked (with out->contour.grid's cell size), written, checked, into *out.
+void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportOptions& options,
+                         Progress& progress, ExportReport* out);
+
 }  // namespace strata

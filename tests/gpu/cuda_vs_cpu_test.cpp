@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "engine/export/contour_scene.h"
+#include "engine/export/contour_workers.h"
 #include "engine/io/scene_file.h"
 #include "gpu/cuda_backend.h"
 #include "tests/support/mesh_invariants.h"
@@ -126,6 +127,27 @@ TEST_F(CudaVsCpu, ExportedMeshesAreIdentical) {
   Scene s = loadScene(assetsDir() + "/scenes/demo.strata.json");
   s.settings.resolution = 192;
   expectSameExport(s, cuda_, 64);
+}
+
+// The tiles of one export spread over several CUDA workers (--gpus: one a device, and here
+// also three on device 0, which one GPU can run): the CPU's mesh, vertex for vertex.
+TEST_F(CudaVsCpu, ExportOnSeveralWorkersMatchesTheCpu) {
+  Scene s = loadScene(assetsDir() + "/scenes/demo.strata.json");
+  Progress progress;
+  Evaluator cpu(std::make_shared<CpuBackend>());
+  const ExportMesh expected = contourScene(s, cpu, ContourOptions{192, 48}, progress);
+  const int devices = cudaDeviceCount();
+  for (int workers : {devices, 3}) {
+    std::vector<std::shared_ptr<Backend>> backends{cuda_};
+    for (int w = 1; w < workers; ++w) backends.push_back(makeCudaBackend(w % devices));
+    ContourReport r;
+    const ExportMesh m = contourSceneOnWorkers(s, backends, ContourOptions{192, 48},
+                                               (workers + devices - 1) / devices, progress, &r);
+    EXPECT_GT(r.tiles, 4);
+    EXPECT_TRUE(m.mesh.positions == expected.mesh.positions) << workers << " workers";
+    EXPECT_TRUE(m.mesh.triangles == expected.mesh.triangles) << workers << " workers";
+    EXPECT_TRUE(m.triangleLeaf == expected.triangleLeaf) << workers << " workers";
+  }
 }
 
 // Leaves small against the grid are stored windowed on both backends (with different windows:

@@ -119,14 +119,16 @@ std::vector<uint8_t> renderInEditor(std::function<std::shared_ptr<Backend>()> ma
 TEST(CudaGlInterop, EditorDrawsTheSamePixelsThroughInteropAsThroughTheHost) {
   REQUIRE_CUDA_AND_DISPLAY();
   std::string transfer, gl;
-  std::vector<uint8_t> viaInterop = renderInEditor(makeCudaBackend, true, &transfer, &gl);
+  std::vector<uint8_t> viaInterop =
+      renderInEditor([] { return makeCudaBackend(); }, true, &transfer, &gl);
   if (transfer != "CUDA-GL interop") {
     ASSERT_EQ(transfer.rfind("host upload", 0), 0u) << transfer;  // the fallback, named
     if (onMesa(gl)) GTEST_SKIP() << "GL runs on " << gl << ": " << transfer;
     FAIL() << "interop unavailable on " << gl << ": " << transfer;
   }
   std::string hostTransfer, cpuTransfer;
-  std::vector<uint8_t> viaHost = renderInEditor(makeCudaBackend, false, &hostTransfer, &gl);
+  std::vector<uint8_t> viaHost =
+      renderInEditor([] { return makeCudaBackend(); }, false, &hostTransfer, &gl);
   EXPECT_EQ(hostTransfer, "host upload");
   std::vector<uint8_t> onCpu =
       renderInEditor([] { return std::make_shared<CpuBackend>(); }, false, &cpuTransfer, &gl);

@@ -1,0 +1,261 @@
+#include "engine/export/distributed_export.h"
+
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
+#include "engine/util/error.h"
+#include "engine/util/timer.h"
+
+namespace strata {
+namespace {
+
+// Message tags.
+constexpr int kTagTiling = 1;    // 0 -> all: int32 tile edge in cells
+constexpr int kTagProgress = 2;  // r -> 0: int32 a tile just finished
+constexpr int kTagTiles = 3;     // r -> 0: the process's tiles and counters (below)
+constexpr int kTagFailed = 4;    // r -> 0: the error's text
+
+class ByteWriter {
+ public:
+  template <typename T>
+  void put(const T& value) {
+    putBytes(&value, sizeof(T));
+  }
+  void putBytes(const void* data, size_t size) {
+    const auto* p = static_cast<const uint8_t*>(data);
+    bytes_.insert(bytes_.end(), p, p + size);
+  }
+  void putString(const std::string& s) {
+    put(uint64_t(s.size()));
+    putBytes(s.data(), s.size());
+  }
+  const std::vector<uint8_t>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<uint8_t> bytes_;
+};
+
+class ByteReader {
+ public:
+  ByteReader(const std::vector<uint8_t>& bytes, int source) : bytes_(bytes), source_(source) {}
+  template <typename T>
+  T get() {
+    T value;
+    getBytes(&value, sizeof(T));
+    return value;
+  }
+  void getBytes(void* out, size_t size) {
+    if (size > bytes_.size() - at_)
+      throw Error("distributed export: process " + std::to_string(source_) +
+                  " sent a truncated message");
+    std::memcpy(out, bytes_.data() + at_, size);
+    at_ += size;
+  }
+  std::string getString() {
+    std::string s(get<uint64_t>(), '\0');
+    getBytes(s.data(), s.size());
+    return s;
+  }
+  template <typename T>
+  std::vector<T> getArray() {
+    const uint64_t count = get<uint64_t>();
+    if (count > (bytes_.size() - at_) / sizeof(T))
+      throw Error("distributed export: process " + std::to_string(source_) +
+                  " sent a truncated message");
+    std::vector<T> v(count);
+    getBytes(v.data(), count * sizeof(T));
+    return v;
+  }
+
+ private:
+  const std::vector<uint8_t>& bytes_;
+  int source_;
+  size_t at_ = 0;
+};
+
+// A process's tiles and contour counters, as sent to process 0 (header, then the arrays of each
+// tile, sent as they are so no second copy of them is made).
+void sendTiles(ProcessGroup& group, const std::vector<TileContour>& tiles, const ContourReport& r) {
+  ByteWriter w;
+  w.put(uint64_t(tiles.size()));
+  w.put(r.surfels);
+  w.put(r.synthesizedCrossings);
+  w.put(r.signDisagreements);
+  w.put(r.evaluateSeconds);
+  w.put(r.contourSeconds);
+  w.put(uint64_t(r.warnings.size()));
+  for (const std::string& s : r.warnings) w.putString(s);
+  for (const TileContour& t : tiles) {
+    w.put(uint64_t(t.vertices.size()));
+    w.putBytes(t.vertices.data(), t.vertices.size() * sizeof(ContourVertex));
+    w.put(uint64_t(t.triangles.size()));
+    w.putBytes(t.triangles.data(), t.triangles.size() * sizeof(ContourTriangle));
+  }
+  group.send(0, kTagTiles, w.bytes().data(), w.bytes().size());
+}
+
+void receiveTiles(const ProcessGroup::Message& m, std::vector<TileContour>* tiles,
+                  ContourReport* r) {
+  ByteReader in(m.bytes, m.source);
+  const uint64_t count = in.get<uint64_t>();
+  r->surfels += in.get<uint64_t>();
+  r->synthesizedCrossings += in.get<uint64_t>();
+  r->signDisagreements += in.get<uint64_t>();
+  r->evaluateSeconds += in.get<double>();
+  r->contourSeconds += in.get<double>();
+  const uint64_t warnings = in.get<uint64_t>();
+  for (uint64_t i = 0; i < warnings; ++i) {
+    const std::string w = in.getString();
+    bool known = false;
+    for (const std::string& k : r->warnings) known = known || k == w;
+    if (!known) r->warnings.push_back(w);
+  }
+  for (uint64_t i = 0; i < count; ++i) {
+    TileContour t;
+    t.vertices = in.getArray<ContourVertex>();
+    t.triangles = in.getArray<ContourTriangle>();
+    tiles->push_back(std::move(t));
+  }
+}
+
+int32_t int32From(const ProcessGroup::Message& m) {
+  int32_t v = 0;
+  if (m.bytes.size() != sizeof(v))
+    throw Error("distributed export: process " + std::to_string(m.source) +
+                " sent a message of the wrong size");
+  std::memcpy(&v, m.bytes.data(), sizeof(v));
+  return v;
+}
+
+// Test hook (tests/app/distributed_export_test.sh): STRATA_TEST_KILL_PROCESS=R makes process R
+// kill itself once its first tile is done, as a crashed or killed rank would.
+void maybeKillForTest(int rank) {
+  const char* env = std::getenv("STRATA_TEST_KILL_PROCESS");
+  if (env && *env && std::atoi(env) == rank) std::raise(SIGKILL);
+}
+
+// This process's tiles on `backend`, or on the CPU for the tiles left when it runs out of
+// memory (CPU and CUDA make the same bits), or from the start where it cannot evaluate the
+// scene's modifiers.
+void contourShare(const Scene& scene, std::shared_ptr<Backend> backend, const ExportTiling& tiling,
+                  int rank, int size, Progress& progress, ContourReport& r,
+                  std::vector<TileContour>* tiles, const std::function<void(int)>& afterTile) {
+  if (hasModifier(scene.root) && !backend->evaluatesModifiers())
+    backend = std::make_shared<CpuBackend>();
+  std::set<int> done;
+  const auto mine = [&](int t) { return t % size == rank && !done.count(t); };
+  const auto finished = [&](int t) {
+    done.insert(t);
+    afterTile(t);
+  };
+  try {
+    Evaluator evaluator(backend);
+    contourTiles(scene, evaluator, tiling, mine, progress, r, tiles, finished);
+  } catch (const BackendOutOfMemory&) {
+    Evaluator cpu(std::make_shared<CpuBackend>());
+    contourTiles(scene, cpu, tiling, mine, progress, r, tiles, finished);
+  }
+}
+
+}  // namespace
+
+ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
+                                    const ExportOptions& options, std::shared_ptr<Backend> backend,
+                                    ProcessGroup& group, Progress& progress,
+                                    DistributedShare* share) {
+  const int rank = group.rank(), size = group.size();
+  ExportReport report;
+  ContourReport& r = report.contour;
+  std::vector<TileContour> tiles;
+  Stopwatch own;
+  int given = 0;  // tiles this process contoured (empty ones included)
+  if (rank != 0) {
+    try {
+      ProcessGroup::Message m;
+      group.receive(&m, true);
+      if (m.tag != kTagTiling) throw Error("distributed export: expected the tiling first");
+      ContourOptions contour = options;
+      contour.tileCells = int32From(m);
+      const ExportTiling tiling = exportTiling(scene, contour, 0);
+      contourShare(scene, backend, tiling, rank, size, progress, r, &tiles, [&](int t) {
+        ++given;
+        const int32_t finished = t;
+        group.send(0, kTagProgress, &finished, sizeof(finished));
+        maybeKillForTest(rank);
+      });
+      sendTiles(group, tiles, r);
+    } catch (const std::exception& e) {
+      const std::string text = e.what();
+      group.send(0, kTagFailed, text.data(), text.size());
+      throw;
+    }
+    if (share) *share = DistributedShare{size, r.tiles, given, own.seconds(), 0.0};
+    return report;
+  }
+
+  const ExportTiling tiling = exportTiling(scene, options, backend->memoryAvailable());
+  const int32_t tileCells = tiling.tileCells;
+  for (int p = 1; p < size; ++p) group.send(p, kTagTiling, &tileCells, sizeof(tileCells));
+  int finished = 0, reported = 1;  // tiles finished anywhere; processes whose tiles are in
+  std::vector<TileContour> others;
+  ContourReport fromOthers;
+  const auto handle = [&](const ProcessGroup::Message& m) {
+    if (m.tag == kTagProgress) {
+      int32From(m);
+      ++finished;
+    } else if (m.tag == kTagTiles) {
+      receiveTiles(m, &others, &fromOthers);
+      ++reported;
+    } else if (m.tag == kTagFailed) {
+      throw Error("process " + std::to_string(m.source) + " of " + std::to_string(size) +
+                  " failed: " + std::string(m.bytes.begin(), m.bytes.end()));
+    } else {
+      throw Error("distributed export: unexpected message " + std::to_string(m.tag) +
+                  " from process " + std::to_string(m.source));
+    }
+    progress.report("export", double(finished) / tiling.count());
+  };
+  const auto drain = [&](bool wait) {
+    ProcessGroup::Message m;
+    while (group.receive(&m, wait)) {
+      handle(m);
+      if (wait) return;
+    }
+  };
+  contourShare(scene, backend, tiling, 0, size, progress, r, &tiles, [&](int) {
+    ++given;
+    ++finished;
+    drain(false);
+    progress.report("export", double(finished) / tiling.count());
+  });
+  const double ownSeconds = own.seconds();
+  while (reported < size) {
+    progress.check();
+    drain(true);
+  }
+  const double allTilesSeconds = own.seconds();
+  r.surfels += fromOthers.surfels;
+  r.synthesizedCrossings += fromOthers.synthesizedCrossings;
+  r.signDisagreements += fromOthers.signDisagreements;
+  r.evaluateSeconds += fromOthers.evaluateSeconds;
+  r.contourSeconds += fromOthers.contourSeconds;
+  for (const std::string& w : fromOthers.warnings) {
+    bool known = false;
+    for (const std::string& k : r.warnings) known = known || k == w;
+    if (!known) r.warnings.push_back(w);
+  }
+  for (TileContour& t : others) tiles.push_back(std::move(t));
+  others.clear();
+  ExportMesh mesh = meshFromTiles(scene, std::move(tiles), progress, r);
+  writeAndCheckExport(std::move(mesh), path, options, progress, &report);
+  if (share) *share = DistributedShare{size, tiling.count(), given, ownSeconds, allTilesSeconds};
+  return report;
+}
+
+}  // namespace strata

@@ -1,0 +1,42 @@
+// A group of cooperating processes that exchange byte messages: the ranks of an MPI job
+// (dist/mpi_process_group.cpp, loaded by the app only for --distributed), or threads standing
+// in for them in tests. The engine sees this interface only, never MPI.
+//
+// Threads: each process uses its group from one thread (MPI_THREAD_FUNNELED).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace strata {
+
+class ProcessGroup {
+ public:
+  struct Message {
+    int source = -1;
+    int tag = 0;
+    std::vector<uint8_t> bytes;
+  };
+
+  virtual ~ProcessGroup() = default;
+  virtual int rank() const = 0;  // this process, 0 .. size() - 1
+  virtual int size() const = 0;
+  // This process's number among the group's processes on its host (0 ..): processes of one
+  // host spread over its GPUs by it.
+  virtual int rankOnHost() const = 0;
+  // "MPI (Open MPI v4.1.4), 3 processes": for reports.
+  virtual std::string description() const = 0;
+  // Sends `bytes` bytes (any size) to process `to` with `tag` (>= 0, < 1024); returns once the
+  // buffer may be reused. Messages from one process to another arrive in the order sent.
+  virtual void send(int to, int tag, const void* data, size_t bytes) = 0;
+  // The next message from any process: false when none has arrived and !wait; with wait,
+  // blocks until one does.
+  virtual bool receive(Message* out, bool wait) = 0;
+  // Ends every process of the group now with `code` (the launcher reports it). Does not return
+  // for MPI; in tests it throws GroupAborted on every process.
+  virtual void abort(int code) = 0;
+};
+
+}  // namespace strata
