@@ -346,7 +346,10 @@ int runRender(const std::vector<std::string>& argv) {
     const int width = args.integer("--width", 1280, 16, 8192);
     const int height = args.integer("--height", 800, 16, 8192);
 #if !defined(STRATA_HAS_EDITOR)
+    (void)width;
+    (void)height;
     throw Error("this build has no editor, so it cannot render (see .ci/deps --editor)");
+    return 1;
 #else
     bool iso = true;
     ui::AxisView view = parseView(args.text("--view", "iso"), &iso);
