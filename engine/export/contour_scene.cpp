@@ -68,9 +68,7 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
   EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
   r.evaluateSeconds += evaluate.seconds();
   r.surfels += result.measure.surfels;
-  for (const std::string& w : result.warnings)
-    if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
-      r.warnings.push_back(w);
+  addWarnings(result.warnings, &r);
   if (result.measure.surfels == 0) return;
   Stopwatch contour;
   TileContour tile = evaluator.backend().contourTile(result.root, grid.cells, begin, end, progress);
@@ -247,6 +245,19 @@ int exportTileCells(const Grid& grid, uint64_t memoryBytes) {
   }
 }
 
+void addWarnings(const std::vector<std::string>& from, ContourReport* into) {
+  for (const std::string& w : from)
+    if (std::find(into->warnings.begin(), into->warnings.end(), w) == into->warnings.end())
+      into->warnings.push_back(w);
+}
+
+void addTileCounts(const ContourReport& from, ContourReport* into) {
+  into->surfels += from.surfels;
+  into->synthesizedCrossings += from.synthesizedCrossings;
+  into->signDisagreements += from.signDisagreements;
+  addWarnings(from.warnings, into);
+}
+
 int ExportTiling::count() const {
   return counts.x * counts.y * counts.z;
 }
@@ -268,6 +279,22 @@ ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uin
   t.tileCells = hasModifier(scene.root) ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8})
                 : options.tileCells > 0 ? options.tileCells
                                         : exportTileCells(grid, memoryBytes);
+  if (hasModifier(scene.root)) {
+    // The whole grid is one tile, whose cells are indexed in 32 bits (tileCounts): say so in
+    // the modifier's terms, with the resolution that fits (cells grow as its cube).
+    double windowCells = 1.0;
+    for (int a = 0; a < 3; ++a) windowCells *= double(grid.cells[a] + 4);
+    if (windowCells > double(UINT32_MAX)) {
+      const int longest = std::max({grid.cells.x, grid.cells.y, grid.cells.z});
+      const int fits = int(double(longest) * std::cbrt(double(UINT32_MAX) / windowCells) * 0.99);
+      throw Error(
+          "offset, shell, round and fillet nodes are evaluated on the whole grid as one "
+          "tile, which holds at most 2^32 cells; at " +
+          std::to_string(longest) + " cells this scene's grid has " +
+          std::to_string(uint64_t(windowCells / 1e6)) + " million: use --resolution " +
+          std::to_string(fits) + " or less");
+    }
+  }
   t.counts = tileCounts(grid, t.tileCells);
   return t;
 }

@@ -65,6 +65,12 @@ struct ContourReport {
   std::vector<std::string> warnings;
 };
 
+// Adds the warnings of `from` not yet in into->warnings (each said once over all tiles).
+void addWarnings(const std::vector<std::string>& from, ContourReport* into);
+// Adds the surfel, crossing and sign counts and the warnings of tiles contoured apart (by
+// another worker or process) to *into; times are the caller's to combine.
+void addTileCounts(const ContourReport& from, ContourReport* into);
+
 // Contours the visible tree. Throws strata::Error or Cancelled; progress stage "export".
 ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourOptions& options,
                         Progress& progress, ContourReport* report = nullptr);

@@ -94,12 +94,7 @@ ExportMesh contourSceneOnWorkers(const Scene& scene,
     // Evaluate and contour: the longest worker's (the wall time of that part of the export).
     r.evaluateSeconds = std::max(r.evaluateSeconds, wr.evaluateSeconds);
     r.contourSeconds = std::max(r.contourSeconds, wr.contourSeconds);
-    r.surfels += wr.surfels;
-    r.synthesizedCrossings += wr.synthesizedCrossings;
-    r.signDisagreements += wr.signDisagreements;
-    for (const std::string& warning : wr.warnings)
-      if (std::find(r.warnings.begin(), r.warnings.end(), warning) == r.warnings.end())
-        r.warnings.push_back(warning);
+    addTileCounts(wr, &r);
     for (TileContour& t : tiles[w]) all.push_back(std::move(t));
     tiles[w].clear();
   }

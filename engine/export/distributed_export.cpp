@@ -109,13 +109,9 @@ void receiveTiles(const ProcessGroup::Message& m, std::vector<TileContour>* tile
   r->signDisagreements += in.get<uint64_t>();
   r->evaluateSeconds += in.get<double>();
   r->contourSeconds += in.get<double>();
-  const uint64_t warnings = in.get<uint64_t>();
-  for (uint64_t i = 0; i < warnings; ++i) {
-    const std::string w = in.getString();
-    bool known = false;
-    for (const std::string& k : r->warnings) known = known || k == w;
-    if (!known) r->warnings.push_back(w);
-  }
+  std::vector<std::string> warnings;
+  for (uint64_t i = 0, n = in.get<uint64_t>(); i < n; ++i) warnings.push_back(in.getString());
+  addWarnings(warnings, r);
   for (uint64_t i = 0; i < count; ++i) {
     TileContour t;
     t.vertices = in.getArray<ContourVertex>();
@@ -240,16 +236,9 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
     drain(true);
   }
   const double allTilesSeconds = own.seconds();
-  r.surfels += fromOthers.surfels;
-  r.synthesizedCrossings += fromOthers.synthesizedCrossings;
-  r.signDisagreements += fromOthers.signDisagreements;
+  addTileCounts(fromOthers, &r);
   r.evaluateSeconds += fromOthers.evaluateSeconds;
   r.contourSeconds += fromOthers.contourSeconds;
-  for (const std::string& w : fromOthers.warnings) {
-    bool known = false;
-    for (const std::string& k : r.warnings) known = known || k == w;
-    if (!known) r.warnings.push_back(w);
-  }
   for (TileContour& t : others) tiles.push_back(std::move(t));
   others.clear();
   ExportMesh mesh = meshFromTiles(scene, std::move(tiles), progress, r);

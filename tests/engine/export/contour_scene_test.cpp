@@ -340,3 +340,29 @@ TEST(ExportTiles, TheDefaultTileGivesTheMeshOfAnyOtherTiling) {
 
 }  // namespace
 }  // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+// A modifier scene is one tile: past 2^32 cells the refusal says so and names a resolution that
+// fits (found at 4096 cells on the bone scaffold, whose message asked for a --tile it ignores).
+TEST(ExportTiles, AModifierSceneTooLargeForOneTileSaysWhichResolutionFits) {
+  const Scene s =
+      makeScene(modifier(NodeKind::Offset, 0.1, {box({2, 1, 1}), sphere(0.5, {1, 0, 0})}), 64);
+  try {
+    exportTiling(s, ContourOptions{4096, 0}, uint64_t(1) << 40);
+    FAIL() << "a 4096 x 2048 x 2048 grid in one tile was not refused";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("offset, shell, round and fillet"), std::string::npos) << m;
+    const size_t at = m.find("--resolution ");
+    ASSERT_NE(at, std::string::npos) << m;
+    const int fits = std::stoi(m.substr(at + 13));
+    EXPECT_GT(fits, 1024);
+    EXPECT_LT(fits, 4096);
+    EXPECT_NO_THROW(exportTiling(s, ContourOptions{fits, 0}, uint64_t(1) << 40)) << fits;
+  }
+}
+
+}  // namespace
+}  // namespace strata::test
