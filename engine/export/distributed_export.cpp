@@ -28,6 +28,7 @@ class ByteWriter {
     putBytes(&value, sizeof(T));
   }
   void putBytes(const void* data, size_t size) {
+    if (size == 0) return;
     const auto* p = static_cast<const uint8_t*>(data);
     bytes_.insert(bytes_.end(), p, p + size);
   }
@@ -51,6 +52,7 @@ class ByteReader {
     return value;
   }
   void getBytes(void* out, size_t size) {
+    if (size == 0) return;  // an empty array's data() may be null, which memcpy must not get
     if (size > bytes_.size() - at_)
       throw Error("distributed export: process " + std::to_string(source_) +
                   " sent a truncated message");
