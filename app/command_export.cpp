@@ -14,6 +14,22 @@ namespace strata {
 
 namespace {
 
+// The report of a finished export on stdout (and --report's JSON); the export's notices and
+// warnings join the summary's. Returns the exit code: 0, or 3 when the file failed the check.
+int printExportSummary(const CliArgs& args, ExportSummary& summary) {
+  for (const auto& line : summary.result.notices) summary.warnings.push_back(line);
+  for (const auto& line : summary.result.contour.warnings) {
+    std::fprintf(stderr, "strata: warning: %s\n", line.c_str());
+    summary.warnings.push_back(line);
+  }
+  std::fputs(formatExportText(summary).c_str(), stdout);
+  if (args.has("--report")) {
+    std::string json = formatExportJson(summary);
+    writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
+  }
+  return summary.result.passed() ? 0 : 3;
+}
+
 // The export's part on this process of an MPI job (mpirun ... --distributed): process 0 reports
 // as a single-process export does, the others say what they did (unless quiet). A failure on any
 // process ends them all (ProcessGroup::abort), after this one says why.
@@ -25,11 +41,18 @@ int exportDistributed(const Scene& scene, const CliArgs& args, const std::string
       "process " + std::to_string(group.rank()) + " of " + std::to_string(group.size());
   try {
     DistributedShare share;
+    std::vector<std::string> notices;
     {
       TerminalProgress terminal(!root || quietRequested(args));
-      summary.result = exportSceneDistributed(scene, output, options, choice.backend, group,
-                                              terminal.progress(), &share);
+      summary.result = exportSceneDistributed(
+          scene, output, options, choice.backend, group, terminal.progress(), &share,
+          [&](const std::string& line) {
+            terminal.finish();
+            std::fprintf(stderr, "strata: %s: %s\n", who.c_str(), line.c_str());
+            notices.push_back(line);
+          });
     }
+    summary.result.notices = notices;
     char seconds[32];
     std::snprintf(seconds, sizeof(seconds), "%.3f", share.seconds);
     if (!root) {
@@ -57,13 +80,7 @@ int exportDistributed(const Scene& scene, const CliArgs& args, const std::string
     group.abort(1);
     return 1;
   }
-  for (const auto& line : summary.result.contour.warnings) summary.warnings.push_back(line);
-  std::fputs(formatExportText(summary).c_str(), stdout);
-  if (args.has("--report")) {
-    std::string json = formatExportJson(summary);
-    writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
-  }
-  return summary.result.passed() ? 0 : 3;
+  return printExportSummary(args, summary);
 }
 
 }  // namespace
@@ -75,6 +92,10 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     throw Error(output + ": unknown export format '" + lowerExtension(output) + "' (expected " +
                 meshExtensionList(MeshAccess::Write) + ")");
   // MPI starts first: each process then says only what is its to say.
+  if (args.has("--distributed") && args.has("--gpus"))
+    throw Error(
+        "--gpus and --distributed: a distributed export runs one backend per process "
+        "(the processes of a host take its GPUs in turn); start one process per GPU");
   std::unique_ptr<ProcessGroup> group;
   if (args.has("--distributed")) group = openMpiProcessGroup();
   const bool root = !group || group->rank() == 0;
@@ -115,17 +136,7 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
                                    std::fprintf(stderr, "strata: %s\n", line.c_str());
                                  });
   }
-  for (const auto& line : summary.result.notices) summary.warnings.push_back(line);
-  for (const auto& line : summary.result.contour.warnings) {
-    std::fprintf(stderr, "strata: warning: %s\n", line.c_str());
-    summary.warnings.push_back(line);
-  }
-  std::fputs(formatExportText(summary).c_str(), stdout);
-  if (args.has("--report")) {
-    std::string json = formatExportJson(summary);
-    writeFileAtomically(args.text("--report", ""), [&](std::ostream& out) { out << json; });
-  }
-  return summary.result.passed() ? 0 : 3;
+  return printExportSummary(args, summary);
 }
 
 }  // namespace strata

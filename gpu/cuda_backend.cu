@@ -58,7 +58,6 @@ class CudaBackend : public Backend {
 
   LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
                        uint32_t leafId, Progress& progress) override {
-    onDevice();
     return sampleMeshes({LeafToSample{&mesh, objectToWorld, leafId}}, grid, progress)[0];
   }
 

@@ -6,8 +6,6 @@
 #include <mutex>
 #include <thread>
 
-#include "engine/eval/cpu_backend.h"
-#include "engine/eval/evaluator.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -39,12 +37,12 @@ ExportMesh contourSceneOnWorkers(const Scene& scene,
   const auto work = [&](size_t w) {
     // The worker's own progress: its evaluations' stages are not the export's; it stops when the
     // export is cancelled.
-    Progress mine([&](const std::string&, double) {
-      if (progress.cancelled() || stop) mine.cancel();
+    Progress workerProgress([&](const std::string&, double) {
+      if (progress.cancelled() || stop) workerProgress.cancel();
     });
     int pending = -1;  // a tile this worker took and has not finished
     const auto claim = [&](int t) {
-      if (progress.cancelled() || stop) mine.cancel();
+      if (progress.cancelled() || stop) workerProgress.cancel();
       if (t == pending) return true;
       bool expected = false;
       if (!taken[size_t(t)].compare_exchange_strong(expected, true)) return false;
@@ -55,23 +53,14 @@ ExportMesh contourSceneOnWorkers(const Scene& scene,
       pending = -1;
       progress.report("export", double(++done) / count);
     };
+    // Fallback notices from any worker, one at a time.
+    const FallbackNotice said = [&](const std::string& line) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (notice) notice(line);
+    };
     try {
-      std::shared_ptr<Backend> backend = backends[w];
-      if (hasModifier(scene.root) && !backend->evaluatesModifiers())
-        backend = std::make_shared<CpuBackend>();
-      try {
-        Evaluator evaluator(backend);
-        contourTiles(scene, evaluator, tiling, claim, mine, reports[w], &tiles[w], finished);
-      } catch (const BackendOutOfMemory& e) {
-        {
-          std::lock_guard<std::mutex> lock(mutex);
-          if (notice)
-            notice(backend->description() + " ran out of memory (" + e.what() +
-                   "); its tiles go on on the CPU");
-        }
-        Evaluator cpu(std::make_shared<CpuBackend>());
-        contourTiles(scene, cpu, tiling, claim, mine, reports[w], &tiles[w], finished);
-      }
+      contourTilesWithFallback(scene, backends[w], tiling, claim, workerProgress, reports[w],
+                               &tiles[w], said, finished);
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex);
       if (!failure) failure = std::current_exception();

@@ -3,12 +3,9 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
-#include <set>
 #include <utility>
 #include <vector>
 
-#include "engine/eval/cpu_backend.h"
-#include "engine/eval/evaluator.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
 
@@ -81,8 +78,9 @@ class ByteReader {
   size_t at_ = 0;
 };
 
-// A process's tiles and contour counters, as sent to process 0 (header, then the arrays of each
-// tile, sent as they are so no second copy of them is made).
+// A process's tiles and contour counters, as sent to process 0 in one message: a header, then
+// each tile's arrays (copied once into the message: the sender holds its tiles twice while it
+// sends).
 void sendTiles(ProcessGroup& group, const std::vector<TileContour>& tiles, const ContourReport& r) {
   ByteWriter w;
   w.put(uint64_t(tiles.size()));
@@ -131,34 +129,11 @@ int32_t int32From(const ProcessGroup::Message& m) {
   return v;
 }
 
-// Test hook (tests/app/distributed_export_test.sh): STRATA_TEST_KILL_PROCESS=R makes process R
+// Test hook (tests/app/cli_distributed_test.cpp): STRATA_TEST_KILL_PROCESS=R makes process R
 // kill itself once its first tile is done, as a crashed or killed rank would.
 void maybeKillForTest(int rank) {
   const char* env = std::getenv("STRATA_TEST_KILL_PROCESS");
   if (env && *env && std::atoi(env) == rank) std::raise(SIGKILL);
-}
-
-// This process's tiles on `backend`, or on the CPU for the tiles left when it runs out of
-// memory (CPU and CUDA make the same bits), or from the start where it cannot evaluate the
-// scene's modifiers.
-void contourShare(const Scene& scene, std::shared_ptr<Backend> backend, const ExportTiling& tiling,
-                  int rank, int size, Progress& progress, ContourReport& r,
-                  std::vector<TileContour>* tiles, const std::function<void(int)>& afterTile) {
-  if (hasModifier(scene.root) && !backend->evaluatesModifiers())
-    backend = std::make_shared<CpuBackend>();
-  std::set<int> done;
-  const auto mine = [&](int t) { return t % size == rank && !done.count(t); };
-  const auto finished = [&](int t) {
-    done.insert(t);
-    afterTile(t);
-  };
-  try {
-    Evaluator evaluator(backend);
-    contourTiles(scene, evaluator, tiling, mine, progress, r, tiles, finished);
-  } catch (const BackendOutOfMemory&) {
-    Evaluator cpu(std::make_shared<CpuBackend>());
-    contourTiles(scene, cpu, tiling, mine, progress, r, tiles, finished);
-  }
 }
 
 }  // namespace
@@ -166,7 +141,7 @@ void contourShare(const Scene& scene, std::shared_ptr<Backend> backend, const Ex
 ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
                                     const ExportOptions& options, std::shared_ptr<Backend> backend,
                                     ProcessGroup& group, Progress& progress,
-                                    DistributedShare* share) {
+                                    DistributedShare* share, const FallbackNotice& notice) {
   const int rank = group.rank(), size = group.size();
   ExportReport report;
   ContourReport& r = report.contour;
@@ -181,12 +156,14 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       ContourOptions contour = options;
       contour.tileCells = int32From(m);
       const ExportTiling tiling = exportTiling(scene, contour, 0);
-      contourShare(scene, backend, tiling, rank, size, progress, r, &tiles, [&](int t) {
-        ++given;
-        const int32_t finished = t;
-        group.send(0, kTagProgress, &finished, sizeof(finished));
-        maybeKillForTest(rank);
-      });
+      const auto mine = [&](int t) { return t % size == rank; };
+      contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice,
+                               [&](int t) {
+                                 ++given;
+                                 const int32_t finished = t;
+                                 group.send(0, kTagProgress, &finished, sizeof(finished));
+                                 maybeKillForTest(rank);
+                               });
       sendTiles(group, tiles, r);
     } catch (const std::exception& e) {
       const std::string text = e.what();
@@ -226,7 +203,8 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       if (wait) return;
     }
   };
-  contourShare(scene, backend, tiling, 0, size, progress, r, &tiles, [&](int) {
+  const auto mine = [&](int t) { return t % size == 0; };
+  contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int) {
     ++given;
     ++finished;
     drain(false);

@@ -22,6 +22,7 @@
 
 #include "engine/eval/backend.h"
 #include "engine/export/export_scene.h"
+#include "engine/export/fallback.h"
 #include "engine/util/process_group.h"
 #include "engine/util/progress.h"
 
@@ -37,11 +38,13 @@ struct DistributedShare {
 
 // Runs this process's part of the export. On process 0 returns the export's report (contour
 // counters summed over all processes) and writes `path`; on the others returns their own
-// contour counters, writes nothing. `share` (may be null) says what this process did.
+// contour counters, writes nothing. `share` (may be null) says what this process did; `notice`
+// gets this process's fallbacks (fallback.h: contourTilesWithFallback).
 // Call on every process of `group` with the same scene, path and options.
 ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
                                     const ExportOptions& options, std::shared_ptr<Backend> backend,
                                     ProcessGroup& group, Progress& progress,
-                                    DistributedShare* share = nullptr);
+                                    DistributedShare* share = nullptr,
+                                    const FallbackNotice& notice = {});
 
 }  // namespace strata

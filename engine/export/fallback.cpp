@@ -58,4 +58,33 @@ ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
   return contourScene(scene, cpu, options, progress, report);
 }
 
+void contourTilesWithFallback(const Scene& scene, std::shared_ptr<Backend> backend,
+                              const ExportTiling& tiling, const std::function<bool(int)>& mine,
+                              Progress& progress, ContourReport& r, std::vector<TileContour>* tiles,
+                              const FallbackNotice& notice,
+                              const std::function<void(int)>& afterTile) {
+  if (hasModifier(scene.root) && !backend->evaluatesModifiers()) {
+    if (notice)
+      notice("offset, shell, round and fillet nodes are evaluated on the CPU (the " +
+             backend->description() + " backend cannot yet)");
+    backend = std::make_shared<CpuBackend>();
+  }
+  std::vector<bool> done(size_t(tiling.count()), false);
+  const auto left = [&](int t) { return !done[size_t(t)] && mine(t); };
+  const auto finished = [&](int t) {
+    done[size_t(t)] = true;
+    afterTile(t);
+  };
+  try {
+    Evaluator evaluator(backend);
+    contourTiles(scene, evaluator, tiling, left, progress, r, tiles, finished);
+  } catch (const BackendOutOfMemory& e) {
+    if (notice)
+      notice(backend->description() + " ran out of memory (" + e.what() +
+             "); its tiles go on on the CPU");
+    Evaluator cpu(std::make_shared<CpuBackend>());
+    contourTiles(scene, cpu, tiling, left, progress, r, tiles, finished);
+  }
+}
+
 }  // namespace strata

@@ -27,4 +27,16 @@ ExportMesh contourWithFallback(const Scene& scene, Evaluator& evaluator,
                                const ContourOptions& options, Progress& progress,
                                ContourReport* report, const FallbackNotice& notice);
 
+// Contours the tiles t of `tiling` with mine(t) (contourTiles, with afterTile) on `backend`,
+// or on a CPU backend (the same bits): from the start where `backend` cannot evaluate the
+// scene's modifiers, and for the tiles left, the one that failed included, when it runs out of
+// memory. Each switch is said through `notice` (called from this thread). For tiles shared by
+// several workers or processes, whose tiling is fixed; one process alone retries with smaller
+// tiles first (contourWithFallback).
+void contourTilesWithFallback(const Scene& scene, std::shared_ptr<Backend> backend,
+                              const ExportTiling& tiling, const std::function<bool(int)>& mine,
+                              Progress& progress, ContourReport& r, std::vector<TileContour>* tiles,
+                              const FallbackNotice& notice,
+                              const std::function<void(int)>& afterTile);
+
 }  // namespace strata
