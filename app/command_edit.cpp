@@ -105,6 +105,7 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
     // them), the transfer of the full result into GL, and the frames drawn meanwhile.
     int frames = 0, framesAfterResult = 0;
     double resultAtMs = -1.0;
+    std::string frameTimes;  // the UI thread's time of each frame from the one that took the result
     for (;;) {
       editor.frame();
       ++frames;
@@ -112,6 +113,9 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
       if (p && p->tag == revision && !p->coarse) {
         if (resultAtMs < 0.0) resultAtMs = clock.seconds() * 1e3;
         ++framesAfterResult;
+        char t[32];
+        std::snprintf(t, sizeof t, "%s%.1f", frameTimes.empty() ? "" : " ", editor.state().frameMs);
+        frameTimes += t;
         if (editor.viewSettled()) break;
       }
       if (clock.seconds() > 60.0) throw Error("an edit did not reach the screen within 60 s");
@@ -120,14 +124,18 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
     const auto& shown = *editor.state().preview;
     std::printf(
         "edit %d: %.1f ms from the edit to its surfels on screen (full result in the UI at %.1f "
-        "ms: engine %.1f + splats %.1f ms, transfer %.1f ms; %d frames, %d from the result on)\n",
+        "ms: engine %.1f + splats %.1f ms, transfer %.1f ms; %d frames, %d from the result on, "
+        "taking %s ms)\n",
         k + 1, ms.back(), resultAtMs, shown.stats.seconds * 1e3, shown.splatSeconds * 1e3,
-        editor.state().uploadMs, frames, framesAfterResult);
+        editor.state().uploadMs, frames, framesAfterResult, frameTimes.c_str());
   }
   std::sort(ms.begin(), ms.end());
-  std::printf("latency: median %.1f ms, best %.1f ms, worst %.1f ms over %d edits of '%s' (%s)\n",
-              ms[ms.size() / 2], ms.front(), ms.back(), count, leaf->name.c_str(),
-              editor.state().backendDescription.c_str());
+  std::printf(
+      "latency: median %.1f ms, best %.1f ms, worst %.1f ms over %d edits of '%s' (%s; %zu "
+      "splats, %zu drawn at level of detail %d)\n",
+      ms[ms.size() / 2], ms.front(), ms.back(), count, leaf->name.c_str(),
+      editor.state().backendDescription.c_str(), editor.state().preview->splatCount(),
+      editor.shownSplats(), editor.shownDetailLevel());
   return 0;
 }
 #endif
@@ -385,9 +393,11 @@ int runRender(const std::vector<std::string>& argv) {
     Progress progress;
     ui::SceneRender render = ui::renderScene(scene, scenePath, backend.backend, options, progress);
     ui::writePng(output, width, height, render.pixels);
-    std::printf("wrote %s (%d x %d, %zu splats at resolution %d, evaluated in %.0f ms)\n",
-                output.c_str(), width, height, render.splats, render.resolution,
-                render.evaluateSeconds * 1e3);
+    std::printf(
+        "wrote %s (%d x %d, %zu splats at resolution %d, %zu drawn at level of detail %d, "
+        "evaluated in %.0f ms)\n",
+        output.c_str(), width, height, render.splats, render.resolution, render.splatsDrawn,
+        render.detailLevel, render.evaluateSeconds * 1e3);
     return 0;
 #endif
   });

@@ -199,14 +199,16 @@ void Editor::dropCopier(const std::string& why) {
 
 void Editor::transferSplats(const PreviewResult& result) {
   ViewportRenderer& renderer = *gl_->renderer;
-  const double h = result.ok() ? result.stats.grid.h : 1.0;
   if (!result.splats || result.splats->count() == 0) {
-    renderer.setSplatCount(0, h);
+    SplatShape none;
+    none.cellSize = result.ok() ? result.stats.grid.h : 1.0;
+    renderer.setSplatCount(0, none);
     return;
   }
   const SplatResource& splats = *result.splats;
+  const SplatShape shape = splatShapeOf(result.stats.grid, splats);
   if (const Splat* host = splats.hostData()) {
-    renderer.uploadSplats(host, splats.count(), h);
+    renderer.uploadSplats(host, splats.count(), shape);
     return;
   }
   if (gl_->copier && gl_->copier->accepts(splats)) {
@@ -217,7 +219,7 @@ void Editor::transferSplats(const PreviewResult& result) {
         gl_->copier->attach(renderer.splatBuffer());
       }
       gl_->copier->copy(splats);
-      renderer.setSplatCount(splats.count(), h);
+      renderer.setSplatCount(splats.count(), shape);
       return;
     } catch (const Error& e) {
       dropCopier(e.what());
@@ -226,7 +228,7 @@ void Editor::transferSplats(const PreviewResult& result) {
   // Device splats and no way to copy them on the device: through the host, this once.
   std::vector<Splat> copy(splats.count());
   splats.copyToHost(copy.data());
-  renderer.uploadSplats(copy.data(), copy.size(), h);
+  renderer.uploadSplats(copy.data(), copy.size(), shape);
 }
 
 size_t Editor::uploadChunkBytes() const {
@@ -249,7 +251,7 @@ void Editor::stageMore() {
   const size_t bytes = (stagedSplats_ - before) * sizeof(Splat);
   if (ms > 0.5 && bytes >= (size_t(1) << 20)) uploadBytesPerMs_ = double(bytes) / ms;
   if (stagedSplats_ < splats.count()) return;
-  gl_->renderer->commitStagedSplats(splats.count(), staging_->ok() ? staging_->stats.grid.h : 1.0);
+  gl_->renderer->commitStagedSplats(splats.count(), splatShapeOf(staging_->stats.grid, splats));
   s.previewError = staging_->error;
   s.uploadMs = stagingMs_;
   s.uploadedBytes = gl_->renderer->splatBytes();
@@ -366,6 +368,14 @@ bool Editor::waitForPreview(double timeoutSeconds) {
 
 bool Editor::viewSettled() const {
   return !gl_->renderer->refining();
+}
+
+int Editor::shownDetailLevel() const {
+  return gl_->renderer->drawnLevel();
+}
+
+size_t Editor::shownSplats() const {
+  return gl_->renderer->drawnLevelSplats();
 }
 
 void Editor::updateLeafStyles() {

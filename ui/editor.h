@@ -70,9 +70,13 @@ class Editor {
   // Waits (polling the worker, no drawing) until the viewport shows the current document at its
   // full resolution, or it failed, or `timeoutSeconds` passed. Returns whether it is shown.
   bool waitForPreview(double timeoutSeconds);
-  // Whether the window's view shows every splat of the current preview (not a coarse image of
-  // a moving view, or one still being refined).
+  // Whether the window's view shows the full image of the current preview (every splat of the
+  // view's level of detail; not a coarse image of a moving view, or one still being refined).
   bool viewSettled() const;
+  // The level of detail of the view's last full image (ViewportRenderer::detailLevel) and the
+  // splats it drew.
+  int shownDetailLevel() const;
+  size_t shownSplats() const;
   // Whether a result is being uploaded over several frames (shown once all of it is there).
   bool uploading() const { return staging_ != nullptr; }
   // Points the camera at the whole scene.

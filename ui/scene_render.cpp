@@ -1,5 +1,7 @@
 #include "ui/scene_render.h"
 
+#include <algorithm>
+
 #include "engine/eval/evaluator.h"
 #include "engine/util/timer.h"
 #include "ui/scene_queries.h"
@@ -31,13 +33,14 @@ SceneRender renderScene(const Scene& scene, const std::string& scenePath,
 
   ViewportRenderer renderer;
   if (const Splat* host = splats->hostData()) {
-    renderer.uploadSplats(host, splats->count(), result.grid.h);
+    renderer.uploadSplats(host, splats->count(), splatShapeOf(result.grid, *splats));
   } else {
     std::vector<Splat> copy(splats->count());
     splats->copyToHost(copy.data());
-    renderer.uploadSplats(copy.data(), copy.size(), result.grid.h);
+    renderer.uploadSplats(copy.data(), copy.size(), splatShapeOf(result.grid, *splats));
   }
   renderer.setLeafStyles(leafStyles(scene.root, {}));
+  if (options.everySplat) renderer.limitDetailLevel(0);
 
   Viewport viewport;
   if (options.view) viewport.camera.setAxisView(*options.view);
@@ -50,6 +53,8 @@ SceneRender renderScene(const Scene& scene, const std::string& scenePath,
   rect.height = options.height;
   viewport.draw(renderer, state, rect, options.height, 1.0);
   out.pixels = target.read();
+  out.detailLevel = std::max(0, renderer.drawnLevel());
+  out.splatsDrawn = renderer.drawnLevelSplats();
   return out;
 }
 

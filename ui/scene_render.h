@@ -26,11 +26,15 @@ struct SceneRenderOptions {
   int resolution = 0;  // 0: the scene's
   SectionState section;
   bool grid = true;
+  // Every splat, whatever the view's level of detail needs (ViewportRenderer::detailLevel).
+  bool everySplat = false;
 };
 
 struct SceneRender {
   std::vector<uint8_t> pixels;  // width * height RGBA, top row first
   size_t splats = 0;
+  size_t splatsDrawn = 0;  // those of the level of detail drawn
+  int detailLevel = 0;
   int resolution = 0;
   double evaluateSeconds = 0.0;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
@@ -155,7 +156,7 @@ bool ViewportRenderer::reserveSplats(size_t count) {
   return true;
 }
 
-void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double cellSize) {
+void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, const SplatShape& shape) {
   Stopwatch clock;
   reserveSplats(count);
   if (count > 0) {
@@ -163,7 +164,7 @@ void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, double ce
     glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(count * sizeof(Splat)), splats);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
-  setSplatCount(count, cellSize);
+  setSplatCount(count, shape);
   uploadMsThisFrame_ += clock.seconds() * 1000.0;
 }
 
@@ -185,17 +186,70 @@ size_t ViewportRenderer::stageSplats(const Splat* splats, size_t count, size_t d
   return done + n;
 }
 
-void ViewportRenderer::commitStagedSplats(size_t count, double cellSize) {
+void ViewportRenderer::commitStagedSplats(size_t count, const SplatShape& shape) {
   std::swap(surfelVao_, stagingVao_);
   std::swap(splatBuffer_, stagingBuffer_);
   std::swap(splatCapacity_, stagingCapacity_);
-  setSplatCount(count, cellSize);
+  setSplatCount(count, shape);
 }
 
-void ViewportRenderer::setSplatCount(size_t count, double cellSize) {
+void ViewportRenderer::setSplatCount(size_t count, const SplatShape& shape) {
   splatCount_ = std::min(count, splatCapacity_);
-  cellSize_ = cellSize;
+  shape_ = shape;
+  cellSize_ = shape.cellSize;
   ++contentVersion_;
+}
+
+SplatShape splatShapeOf(const Grid& grid, const SplatResource& splats) {
+  SplatShape shape;
+  shape.cellSize = grid.h;
+  shape.levels = splats.levels();
+  const Bounds box = grid.bounds();
+  if (!box.empty()) {
+    shape.lo = box.min;
+    shape.hi = box.max;
+  }
+  return shape;
+}
+
+size_t ViewportRenderer::levelEnd(int level) const {
+  if (level <= 0) return splatCount_;
+  return std::min<size_t>(splatCount_, size_t(shape_.levels.end[level]));
+}
+
+int ViewportRenderer::detailLevel(const ViewportFrame& f) const {
+  if (splatCount_ == 0 || shape_.levels.end[1] == 0) return 0;
+  // Pixels per scene unit across the view at depth 1 (perspective) or anywhere (orthographic):
+  // the projections of a unit step up and a unit step right from a point in front.
+  const glm::dvec3 right = glm::normalize(glm::cross(f.forward, f.up));
+  const glm::dvec3 up = glm::normalize(glm::cross(right, f.forward));
+  const glm::dvec3 at = f.eye + f.forward;
+  auto ndc = [&](const glm::dvec3& p) {
+    const glm::dvec4 c = f.viewProjection * glm::dvec4(p, 1.0);
+    return glm::dvec2(c) / c.w;
+  };
+  const glm::dvec2 centre = ndc(at);
+  const double perUnit = std::max(std::abs(ndc(at + up).y - centre.y) * 0.5 * f.height,
+                                  std::abs(ndc(at + right).x - centre.x) * 0.5 * f.width);
+  double pixelsPerUnit = perUnit;
+  if (!f.ortho) {
+    // The box's nearest depth along the view: its corners' least.
+    double nearest = 1e300;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner((c & 1) ? shape_.hi.x : shape_.lo.x,
+                              (c & 2) ? shape_.hi.y : shape_.lo.y,
+                              (c & 4) ? shape_.hi.z : shape_.lo.z);
+      nearest = std::min(nearest, glm::dot(corner - f.eye, f.forward));
+    }
+    if (!(nearest > 0.0)) return 0;  // the camera is within the box's depth range
+    pixelsPerUnit = perUnit / nearest;
+  }
+  if (!std::isfinite(pixelsPerUnit) || pixelsPerUnit <= 0.0) return 0;
+  int level = 0;
+  while (level < maxDetailLevel_ && level + 1 < kSplatLevels && shape_.levels.end[level + 1] > 0 &&
+         std::ldexp(shape_.cellSize, level + 1) * pixelsPerUnit <= kMaxSplatSpacingPx)
+    ++level;
+  return level;
 }
 
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
@@ -329,7 +383,9 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
     surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
     surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
     surfelProgram_.set("ghostColor", glm::vec4(0.0f));
-    drawSplatRange(0, splatCount_, 1, 1.0f);
+    const int level = detailLevel(f);
+    drawSplatRange(0, levelEnd(level), 1, float(1 << level));
+    drawnLevel_ = level;
     glBindTexture(GL_TEXTURE_2D, 0);
   }
   drawGhosts(f);
@@ -440,24 +496,28 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   if (key != shownKey_) {
     shownKey_ = key;
     buildDone_ = 0;
-    if (splatCount_ <= allowed) {
+    // The full image's splats: those of the level of detail the view needs.
+    buildLevel_ = detailLevel(local);
+    const size_t full = levelEnd(buildLevel_);
+    if (full <= allowed) {
       // Everything fits in this frame: the full image at once.
       ensureTarget(&shown_, f.width, f.height);
       shown_->bind();
       drawBackground(local);
       beginSplats(local);
-      drawSplatRange(0, splatCount_, 1, 1.0f);
+      drawSplatRange(0, full, 1, float(1 << buildLevel_));
       drawGhosts(local);
       drawLinesInto(local);
       refining_ = false;
-      drewSplatsLastFrame_ = splatCount_;
+      drawnLevel_ = buildLevel_;
+      drewSplatsLastFrame_ = full;
       lastDrawFull_ = true;
       show = shown_.get();
     } else {
       // A share of the splats at half resolution now; the full image over the next frames.
       // Half resolution; a quarter when the share is so small that each splat stands for many
       // (what a software GL driver draws in a frame): fewer pixels to fill for the same image.
-      const size_t ratio = (splatCount_ + splatsPerFrame_ - 1) / splatsPerFrame_;
+      const size_t ratio = (full + splatsPerFrame_ - 1) / splatsPerFrame_;
       const size_t stride = ratio <= 1 ? 1 : nextPrime(ratio);
       const int shrink = stride > 64 ? 4 : 2;
       ViewportFrame half = local;
@@ -467,9 +527,10 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       coarse_->bind();
       drawBackground(half);
       beginSplats(half);
-      const size_t drawn = (splatCount_ + stride - 1) / stride;
+      const size_t drawn = (full + stride - 1) / stride;
       drawSplatRange(0, drawn, stride,
-                     1.25f * float(std::sqrt(double(stride))));  // a little larger: no holes
+                     1.25f * float(1 << buildLevel_) *
+                         float(std::sqrt(double(stride))));  // a little larger: no holes
       drawGhosts(half);
       drawLinesInto(half);
       refining_ = true;
@@ -486,16 +547,18 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     beginSplats(local);
-    const size_t count = std::min(fullShare_, splatCount_ - buildDone_);
-    drawSplatRange(buildDone_, count, 1, 1.0f);
+    const size_t full = levelEnd(buildLevel_);
+    const size_t count = std::min(fullShare_, full - std::min(full, buildDone_));
+    drawSplatRange(buildDone_, count, 1, float(1 << buildLevel_));
     buildDone_ += count;
     drewSplatsLastFrame_ = count;
     lastDrawFull_ = true;
-    if (buildDone_ >= splatCount_) {
+    if (buildDone_ >= full) {
       drawGhosts(local);
       drawLinesInto(local);
       std::swap(shown_, building_);
       refining_ = false;
+      drawnLevel_ = buildLevel_;
       show = shown_.get();
     } else {
       show = coarse_.get();

@@ -17,6 +17,7 @@
 #include <optional>
 #include <vector>
 
+#include "engine/ldi/grid.h"
 #include "engine/ldi/splats.h"
 #include "ui/gl_program.h"
 
@@ -58,6 +59,18 @@ struct PickHit {
   std::optional<glm::dvec3> normal;
 };
 
+// What the splat buffer holds beside the splats: their grid's cell size h (scene units), where
+// their levels of detail end (engine/ldi/splats.h: SplatLevels), and the box they lie in (scene
+// units), from which a view works out the level it needs.
+struct SplatShape {
+  double cellSize = 1.0;
+  SplatLevels levels;
+  glm::dvec3 lo{0.0}, hi{0.0};
+};
+
+// The shape of `splats` made on `grid`: its h, the splats' levels, the grid's box.
+SplatShape splatShapeOf(const Grid& grid, const SplatResource& splats);
+
 class RenderTarget;
 
 class ViewportRenderer {
@@ -76,17 +89,17 @@ class ViewportRenderer {
   // Whether reserveSplats(count) would keep the buffer as it is.
   bool splatBufferFits(size_t count) const;
   static constexpr size_t kMinSplatCapacity = 1024;
-  // Host upload of `count` splats; `cellSize` is the grid's h.
-  void uploadSplats(const Splat* splats, size_t count, double cellSize);
+  // Host upload of `count` splats.
+  void uploadSplats(const Splat* splats, size_t count, const SplatShape& shape);
   // A host upload spread over frames: the splats go into a second buffer, at most `maxBytes`
   // a call of stageSplats, while the first keeps drawing the last result; commitStagedSplats
   // then makes the second the one drawn (and the first the next staging buffer). `splats` must
   // stay the same array from the call that starts at 0 to the commit. Returns how many of the
   // `count` splats are in the second buffer now (from `done`).
   size_t stageSplats(const Splat* splats, size_t count, size_t done, size_t maxBytes);
-  void commitStagedSplats(size_t count, double cellSize);
+  void commitStagedSplats(size_t count, const SplatShape& shape);
   // After the buffer was filled on the device (CUDA-GL interop): draw `count` splats.
-  void setSplatCount(size_t count, double cellSize);
+  void setSplatCount(size_t count, const SplatShape& shape);
   void setLeafStyles(const LeafStyleTable& styles);
   size_t splatCount() const { return splatCount_; }
   size_t splatBytes() const { return splatCount_ * sizeof(Splat); }
@@ -98,8 +111,8 @@ class ViewportRenderer {
   size_t ghostCount() const { return ghosts_[0].count + ghosts_[1].count; }
 
   // `lines` are depth-tested against the surfels (grid, boxes); `overlay` is drawn on top
-  // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list. Every splat, at once:
-  // screenshots and headless renders.
+  // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list. All splats of the
+  // view's level of detail (detailLevel), at once: screenshots and headless renders.
   void draw(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
             const std::vector<LineVertex>& overlay,
             const std::vector<LineVertex>& overlayTriangles);
@@ -117,6 +130,19 @@ class ViewportRenderer {
                   const std::vector<LineVertex>& overlayTriangles, double lastFrameMs);
   // The full image is still being drawn: the frame loop must keep frames coming.
   bool refining() const { return refining_; }
+  // Level of detail: splats whose rays are at most this many pixels apart where the splats come
+  // nearest to the camera show the surface as every splat would (a finer lattice adds only
+  // splats drawn over each other within a pixel).
+  static constexpr double kMaxSplatSpacingPx = 1.0;
+  // The coarsest level (engine/ldi/splats.h: SplatLevels) whose rays, 2^L h apart, are at most
+  // kMaxSplatSpacingPx apart on screen at the splats' box's nearest depth in `frame`; 0 when
+  // the camera is within that box's depth range or the level holds no splats.
+  // At most `level` (0: every splat, a reference to compare the levels with).
+  int detailLevel(const ViewportFrame& frame) const;
+  void limitDetailLevel(int level) { maxDetailLevel_ = level; }
+  // The level the last full image was drawn at (drawCached, draw), and its splat count.
+  int drawnLevel() const { return drawnLevel_; }
+  size_t drawnLevelSplats() const { return drawnLevel_ < 0 ? 0 : levelEnd(drawnLevel_); }
   // Splats of the coarse image drawn a frame now (drawCached), for the status bar.
   size_t splatsPerFrame() const { return splatsPerFrame_; }
   static constexpr double kTargetFrameMs = 12.0;
@@ -136,6 +162,8 @@ class ViewportRenderer {
   // Splats [first, first + count * stride) of the instance buffer, every `stride`-th, with the
   // disc radius `radius` cells; the surfel program must be in use.
   void drawSplatRange(size_t first, size_t count, size_t stride, float radius);
+  // The splats of level `level` and coarser: the first levelEnd(level) of the buffer.
+  size_t levelEnd(int level) const;
   void drawGhosts(const ViewportFrame& f);
   // The key of the view the scene image shows: camera, viewport, section and lines.
   uint64_t viewKey(const ViewportFrame& f, const std::vector<LineVertex>& lines) const;
@@ -171,6 +199,10 @@ class ViewportRenderer {
   size_t splatCapacity_ = 0;
   size_t lineCapacity_ = 0;
   double cellSize_ = 1.0;
+  SplatShape shape_;
+  int buildLevel_ = 0;                     // the level building_ is drawn at
+  int drawnLevel_ = -1;                    // of the last full image; -1 before one
+  int maxDetailLevel_ = kSplatLevels - 1;  // limitDetailLevel
   GLuint pickFramebuffer_ = 0, pickIds_ = 0, pickDepth_ = 0;
   int pickWidth_ = 0, pickHeight_ = 0;
 

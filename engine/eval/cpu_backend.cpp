@@ -90,7 +90,9 @@ std::shared_ptr<const Ldi> CpuBackend::download(const LdiHandle& ldi) {
 SplatsHandle Backend::splats(const LdiHandle& ldi, Progress& progress) {
   progress.check();
   std::shared_ptr<const Ldi> host = download(ldi);
-  return std::make_shared<HostSplats>(buildSplats(*host));
+  SplatLevels levels;
+  std::vector<Splat> splats = buildSplats(*host, &levels);
+  return std::make_shared<HostSplats>(std::move(splats), levels);
 }
 
 std::vector<LdiHandle> Backend::sampleMeshes(const std::vector<LeafToSample>& leaves,

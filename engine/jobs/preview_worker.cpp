@@ -193,7 +193,7 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   if (hostSplats_ && !splats->hostData()) {
     std::vector<Splat> host(splats->count());
     splats->copyToHost(host.data());
-    splats = std::make_shared<HostSplats>(std::move(host));
+    splats = std::make_shared<HostSplats>(std::move(host), splats->levels());
   }
   result.splats = std::move(splats);
   for (KeptLdi& kept : result.stats.kept) {

@@ -1,8 +1,9 @@
 // Splats: what the editor's viewport draws of an LDI. Every surfel once, on the axis its normal
 // is most aligned with (onDominantAxis, ALGORITHM.md §6), as a compact record for a GL instance
-// buffer. The per-surfel math (splatOf) is shared with the CUDA twin (gpu/ldi/splats.cu), so
-// both backends produce the same splats, bit for bit and in the same order: axis, then ray,
-// then depth along the ray.
+// buffer. The per-surfel math (splatOf, splatRayLevel) is shared with the CUDA twin
+// (gpu/ldi/splats.cu), so both backends produce the same splats, bit for bit and in the same
+// order: level of detail (coarsest first, see SplatLevels), then axis, then ray, then depth
+// along the ray.
 #pragma once
 
 #include <cstdint>
@@ -52,6 +53,31 @@ STRATA_HD Splat splatOf(const SplatFrame& f, int axis, int64_t ray, const Surfel
   return out;
 }
 
+// Levels of detail as prefixes of one array. A ray is of level L when both of its global lattice
+// indices across the axis are multiples of 2^L (at most kSplatLevels - 1). Splats of higher
+// levels come first, so the first end[L] splats are those of the rays 2^L h apart: drawn with
+// discs 2^L times as wide, they cover the same surface with a sixteenth or a quarter of the
+// splats (what a viewer draws where a cell is smaller than a pixel). end[0] is every splat.
+constexpr int kSplatLevels = 3;
+struct SplatLevels {
+  uint64_t end[kSplatLevels] = {};
+  // Splats in no particular order: every one at level 0, none at the coarser levels.
+  static SplatLevels flat(uint64_t count) {
+    SplatLevels l;
+    l.end[0] = count;
+    return l;
+  }
+};
+
+// The level of ray `ray` of `axis` (see SplatLevels).
+STRATA_HD int splatRayLevel(const SplatFrame& f, int axis, int64_t ray) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const int64_t across = (f.first[u] + ray % f.raysU[axis]) | (f.first[v] + ray / f.raysU[axis]);
+  int level = 0;
+  while (level + 1 < kSplatLevels && (across & ((int64_t(2) << level) - 1)) == 0) ++level;
+  return level;
+}
+
 // Whether surfel `s` of `axis` becomes a splat.
 STRATA_HD bool surfelMakesSplat(const Surfel& s, int axis) {
   float n[3];
@@ -59,8 +85,9 @@ STRATA_HD bool surfelMakesSplat(const Surfel& s, int axis) {
   return onDominantAxis(n, axis);
 }
 
-// The splats of `ldi`, on the host (any thread).
-std::vector<Splat> buildSplats(const Ldi& ldi);
+// The splats of `ldi`, on the host (any thread), coarsest level first; *levels (when given)
+// says where each level ends.
+std::vector<Splat> buildSplats(const Ldi& ldi, SplatLevels* levels = nullptr);
 
 // Splats owned by a backend, wherever it keeps them (host memory for the CPU backend, device
 // memory for CUDA, where the editor copies them into a GL buffer without a trip through the
@@ -70,6 +97,8 @@ class SplatResource {
   virtual ~SplatResource() = default;
   virtual size_t count() const = 0;
   size_t bytes() const { return count() * sizeof(Splat); }
+  // Where the levels of detail end in the array (SplatLevels).
+  virtual SplatLevels levels() const = 0;
   // The splats in host memory, or null when they live elsewhere.
   virtual const Splat* hostData() const = 0;
   // Copies all count() splats into `out` (host memory).
@@ -80,14 +109,20 @@ using SplatsHandle = std::shared_ptr<const SplatResource>;
 // Splats in host memory.
 class HostSplats : public SplatResource {
  public:
-  explicit HostSplats(std::vector<Splat> splats) : splats_(std::move(splats)) {}
+  // Splats of buildSplats with its levels, or in any order (every splat at level 0).
+  explicit HostSplats(std::vector<Splat> splats)
+      : splats_(std::move(splats)), levels_(SplatLevels::flat(splats_.size())) {}
+  HostSplats(std::vector<Splat> splats, const SplatLevels& levels)
+      : splats_(std::move(splats)), levels_(levels) {}
   size_t count() const override { return splats_.size(); }
+  SplatLevels levels() const override { return levels_; }
   const Splat* hostData() const override { return splats_.data(); }
   void copyToHost(Splat* out) const override;
   const std::vector<Splat>& splats() const { return splats_; }
 
  private:
   std::vector<Splat> splats_;
+  SplatLevels levels_;
 };
 
 }  // namespace strata

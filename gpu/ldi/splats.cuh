@@ -17,8 +17,10 @@ namespace strata {
 // any thread, its memory then freed on that stream. Complete when splatsOnDevice returns.
 class DeviceSplats : public SplatResource {
  public:
-  explicit DeviceSplats(DeviceBuffer<Splat> splats) : splats_(std::move(splats)) {}
+  DeviceSplats(DeviceBuffer<Splat> splats, const SplatLevels& levels)
+      : splats_(std::move(splats)), levels_(levels) {}
   size_t count() const override { return splats_.size(); }
+  SplatLevels levels() const override { return levels_; }
   const Splat* hostData() const override { return nullptr; }
   // Synchronous: queued on stream() (after the work already queued there) and waited for.
   void copyToHost(Splat* out) const override;
@@ -29,6 +31,7 @@ class DeviceSplats : public SplatResource {
 
  private:
   DeviceBuffer<Splat> splats_;
+  SplatLevels levels_;
 };
 
 // Builds the splats of `ldi` (which may live on any stream) on `stream` and waits for them: the

@@ -61,6 +61,8 @@ void expectIdentical(const Scene& scene, const std::shared_ptr<Backend>& cuda, c
   std::vector<Splat> onDevice(q->count());
   q->copyToHost(onDevice.data());
   EXPECT_EQ(std::memcmp(p->hostData(), onDevice.data(), p->bytes()), 0) << what << ": splats";
+  for (int level = 0; level < kSplatLevels; ++level)
+    EXPECT_EQ(p->levels().end[level], q->levels().end[level]) << what << ": level " << level;
 }
 
 // Exports on both backends in tiles of `tile` cells: the same mesh, vertex for vertex.

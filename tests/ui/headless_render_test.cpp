@@ -3,6 +3,8 @@
 // applied. Skips, saying why, where EGL offers no OpenGL (libEGL missing).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <memory>
 
 #include "engine/eval/cpu_backend.h"
@@ -67,6 +69,49 @@ TEST(HeadlessRender, RendersASceneWithoutAWindow) {
       differing += (a.r != b.r || a.g != b.g || a.b != b.b) ? 1 : 0;
     }
   EXPECT_GT(differing, 1000) << "the cap looks different from the sphere's back";
+}
+
+// Levels of detail (engine/ldi/splats.h, ViewportRenderer::detailLevel): a sphere of 256 cells in
+// a small image, where a cell is a fraction of a pixel, is drawn from a quarter or a sixteenth of
+// its splats and looks as it does with every splat; filling the image, it is drawn whole.
+TEST(HeadlessRender, LevelsOfDetailLookLikeEverySplat) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  Scene scene = test::makeScene(test::sphere(1.0), 256);
+  auto backend = std::make_shared<CpuBackend>();
+  SceneRenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  options.grid = false;
+  Progress progress;
+  SceneRender lod = renderScene(scene, "", backend, options, progress);
+  options.everySplat = true;
+  SceneRender every = renderScene(scene, "", backend, options, progress);
+  EXPECT_EQ(every.detailLevel, 0);
+  EXPECT_EQ(every.splatsDrawn, every.splats);
+  EXPECT_GE(lod.detailLevel, 1);
+  EXPECT_LT(double(lod.splatsDrawn), 0.3 * double(lod.splats));
+  // Pixel by pixel: no holes, no grown silhouette, shading within a few levels.
+  int far = 0, covered = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) {
+      Rgb a = pixel(lod, 160, x, y), b = pixel(every, 160, x, y);
+      const int d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      far += d > 24 ? 1 : 0;
+      Rgb corner = pixel(every, 160, 0, 0);
+      covered += (b.r != corner.r || b.g != corner.g || b.b != corner.b) ? 1 : 0;
+    }
+  EXPECT_GT(covered, 3000) << "the sphere fills part of the image";
+  EXPECT_LT(far, covered / 100) << "pixels that differ visibly between the levels";
+
+  // Close up (a large image: cells of several pixels): every splat.
+  options.everySplat = false;
+  options.width = 1600;
+  options.height = 1200;
+  SceneRender near = renderScene(scene, "", backend, options, progress);
+  EXPECT_EQ(near.detailLevel, 0);
+  EXPECT_EQ(near.splatsDrawn, near.splats);
 }
 
 }  // namespace

@@ -26,38 +26,61 @@ TEST(Splats, OneSplatPerSurfelOnItsDominantAxis) {
   handle->copyToHost(copied.data());
 
   std::shared_ptr<const Ldi> host = backend->download(result.root);
-  std::vector<Splat> built = buildSplats(*host);
+  SplatLevels levels;
+  std::vector<Splat> built = buildSplats(*host, &levels);
   ASSERT_EQ(built.size(), copied.size());
-  // The reference, written out here: every surfel on its dominant axis, in axis, ray, depth
-  // order, at origin + h * (global node line, depth).
+  const SplatLevels handed = handle->levels();
+  for (int level = 0; level < kSplatLevels; ++level)
+    EXPECT_EQ(handed.end[level], levels.end[level]) << level;
+  // The reference, written out here: every surfel on its dominant axis, at origin + h * (global
+  // node line, depth); first the rays whose two global node lines are both multiples of 4, then
+  // of 2, then the others; within each, in axis, ray, depth order.
   size_t i = 0;
   const Grid& g = host->grid;
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    const AxisLdi& a = host->axes[axis];
-    for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray)
-      for (uint32_t k = a.offsets[size_t(ray)]; k < a.offsets[size_t(ray) + 1]; ++k) {
-        const Surfel& s = a.surfels[k];
-        float n[3];
-        decodeNormal(s.normal, n);
-        if (!onDominantAxis(n, axis)) continue;
-        ASSERT_LT(i, built.size());
-        glm::dvec3 p;
-        p[axis] = g.origin[axis] + g.h * double(s.depth);
-        p[u] = g.origin[u] + g.h * double(g.first[u] + ray % g.raysU(axis));
-        p[v] = g.origin[v] + g.h * double(g.first[v] + ray / g.raysU(axis));
-        const Splat& splat = built[i];
-        EXPECT_EQ(splat.leafAxis & 3u, uint32_t(axis));
-        EXPECT_EQ(splatLeaf(splat), surfelLeaf(s.tag));
-        EXPECT_EQ(splat.normal, s.normal);
-        EXPECT_EQ(splat.position[0], float(p.x));
-        EXPECT_EQ(splat.position[1], float(p.y));
-        EXPECT_EQ(splat.position[2], float(p.z));
-        EXPECT_EQ(std::memcmp(&splat, &copied[i], sizeof(Splat)), 0);
-        ++i;
+  auto multipleOf = [](int64_t line, int64_t m) { return ((line % m) + m) % m == 0; };
+  for (int level = kSplatLevels - 1; level >= 0; --level) {
+    const uint64_t start = level + 1 < kSplatLevels ? levels.end[level + 1] : 0;
+    EXPECT_EQ(i, start) << "level " << level << " starts where the coarser one ends";
+    for (int axis = 0; axis < 3; ++axis) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const AxisLdi& a = host->axes[axis];
+      for (int64_t ray = 0; ray + 1 < int64_t(a.offsets.size()); ++ray) {
+        const int64_t lu = g.first[u] + ray % g.raysU(axis), lv = g.first[v] + ray / g.raysU(axis);
+        const int64_t step = int64_t(1) << level;
+        const bool atLevel =
+            multipleOf(lu, step) && multipleOf(lv, step) &&
+            (level == kSplatLevels - 1 || !(multipleOf(lu, 2 * step) && multipleOf(lv, 2 * step)));
+        if (!atLevel) continue;
+        for (uint32_t k = a.offsets[size_t(ray)]; k < a.offsets[size_t(ray) + 1]; ++k) {
+          const Surfel& s = a.surfels[k];
+          float n[3];
+          decodeNormal(s.normal, n);
+          if (!onDominantAxis(n, axis)) continue;
+          ASSERT_LT(i, built.size());
+          glm::dvec3 p;
+          p[axis] = g.origin[axis] + g.h * double(s.depth);
+          p[u] = g.origin[u] + g.h * double(g.first[u] + ray % g.raysU(axis));
+          p[v] = g.origin[v] + g.h * double(g.first[v] + ray / g.raysU(axis));
+          const Splat& splat = built[i];
+          EXPECT_EQ(splat.leafAxis & 3u, uint32_t(axis));
+          EXPECT_EQ(splatLeaf(splat), surfelLeaf(s.tag));
+          EXPECT_EQ(splat.normal, s.normal);
+          EXPECT_EQ(splat.position[0], float(p.x));
+          EXPECT_EQ(splat.position[1], float(p.y));
+          EXPECT_EQ(splat.position[2], float(p.z));
+          EXPECT_EQ(std::memcmp(&splat, &copied[i], sizeof(Splat)), 0);
+          ++i;
+        }
       }
+    }
+    EXPECT_EQ(i, levels.end[level]) << "level " << level << " ends";
   }
   EXPECT_EQ(i, built.size());
+  // Each coarser level holds about a quarter of the splats of the next finer one.
+  for (int level = 1; level < kSplatLevels; ++level) {
+    EXPECT_GT(double(levels.end[level]), 0.15 * double(levels.end[level - 1])) << level;
+    EXPECT_LT(double(levels.end[level]), 0.40 * double(levels.end[level - 1])) << level;
+  }
   // A curved patch is sampled on all three axes and becomes splats on one; the box's faces are
   // sampled on one axis only.
   EXPECT_GT(double(built.size()), 0.3 * double(host->surfelCount()));

@@ -1,0 +1,41 @@
+#!/bin/bash
+# One lease (issue #11): the editor's edit-to-screen time on the GPU host, every edit's line
+# (engine, splats, transfer, and the UI thread's time of each frame from the result on), with
+# CUDA-GL interop and with the host path, at 512 and 1024 cells; the frame times while orbiting.
+# Also the GPU tests (CUDA against the CPU, the interop copy in a window) and the levels of
+# detail: the demo at 2048 cells in the editor and rendered.
+# Carried in .devrt: the X runtime of make-runtime.sh --x11 --pack, bin/strata.xz,
+# bin/strata_gpu_tests.xz.
+source .devrt/on-device.sh
+for f in .devrt/bin/*.xz; do xz -dkf "$f"; done
+chmod +x .devrt/bin/strata .devrt/bin/strata_gpu_tests
+B=.devrt/bin; S=assets/scenes; D=tests/data; R=$OUT/r; mkdir -p $R
+nvidia-smi --query-gpu=name,memory.total --format=csv,noheader > $R/gpu.txt 2>&1; nproc >> $R/gpu.txt
+export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
+timeout 240 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
+tail -4 $R/gpu_tests.txt
+[ -n "$DISPLAY" ] || { echo "no display" > $R/editor.txt; exit 1; }
+latency() {  # scene leaf resolution [--no-interop]
+  echo "== latency $(basename $1) '$2' $3 $4"
+  timeout 120 $B/strata edit $1 --measure-latency 12 --move-leaf "$2" --resolution $3 --backend cuda $4 2>&1 | grep -E "^(edit|latency)"
+}
+{
+for res in 512 1024; do
+  for io in "" --no-interop; do
+    latency $S/demo.strata.json "bolt hole front left" $res $io
+    latency $D/array200.strata.json hole $res $io
+    latency $S/armadillo_bunny.strata.json bunny $res $io
+  done
+done
+for res in 2048; do
+  latency $S/demo.strata.json "bolt hole front left" $res
+  latency $S/armadillo_bunny.strata.json bunny $res
+done
+for res in 1024 2048 4096; do
+  echo "== render demo $res 900x700"
+  timeout 120 $B/strata render $S/demo.strata.json --resolution $res --width 900 --height 700 -o $R/demo-$res.png --backend cuda 2>&1 | tail -1
+done
+echo "== frames demo 1024"
+timeout 120 $B/strata edit $S/demo.strata.json --measure-frames 5 --resolution 1024 --backend cuda 2>&1 | tail -5
+} > $R/editor.txt 2>&1
+cat $R/editor.txt | grep -E "^(==|latency)"
