@@ -33,7 +33,7 @@ namespace {
 std::vector<std::string> editorValuedOptions() {
   std::vector<std::string> valued = kValuedOptions;
   for (const char* o : {"--width", "--height", "--screenshot", "--view", "--measure-latency",
-                        "--move-leaf", "--section", "--measure-frames", "--select"})
+                        "--move-leaf", "--section", "--measure-frames", "--select", "--splats"})
     valued.push_back(o);
   return valued;
 }
@@ -85,15 +85,19 @@ void selectByNames(ui::EditorState& state, const std::string& list) {
 
 // `strata edit SCENE --measure-latency N [--move-leaf NAME]`: N times, moves a leaf by a small
 // step through the document (as a drag's release would) and runs frames until the window shows
-// the surfels of that edit at the scene's resolution; prints each time from the edit to the end
-// of that frame (buffers swapped, GL finished), and the median.
+// the surfels of that edit at the scene's resolution and the view's level of detail; prints each
+// time from the edit to the end of that frame (buffers swapped, GL finished), and the median; and
+// the same to the end of the frame that first showed the edit's result (a coarser level where
+// the view's would take long: ViewportRenderer::kFirstImageMs).
 int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
   NodePtr leaf = findLeaf(editor.state().document.root(), leafName);
   if (!leaf) throw Error("--move-leaf: no leaf named '" + leafName + "'");
   if (!editor.waitForPreview(600.0)) throw Error("the first evaluation did not finish");
   for (int i = 0; i < 3; ++i) editor.frame();
   const double step = Evaluator::gridFor(editor.state().document.scene(), 0).h * 0.37;
-  std::vector<double> ms;
+  std::vector<double> ms, firstMs;
+  const size_t pointsBefore = editor.splatsDrawnAsPoints();
+  const size_t quadsBefore = editor.splatsDrawnAsQuads();
   for (int k = 0; k < count; ++k) {
     Transform t = leaf->transform;
     t.translate.x += (k % 2 == 0 ? step : -step);
@@ -104,6 +108,7 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
     // Where the time goes: the engine's passes (evaluation and splats, as the results report
     // them), the transfer of the full result into GL, and the frames drawn meanwhile.
     int frames = 0, framesAfterResult = 0;
+    std::string firstImage;  // what the first frame with the result showed
     double resultAtMs = -1.0;
     std::string frameTimes;  // the UI thread's time of each frame from the one that took the result
     for (;;) {
@@ -112,7 +117,12 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
       const auto& p = editor.state().preview;
       if (p && p->tag == revision && !p->coarse) {
         if (resultAtMs < 0.0) resultAtMs = clock.seconds() * 1e3;
-        ++framesAfterResult;
+        if (++framesAfterResult == 1) {  // the frame that brought the result to the screen
+          firstMs.push_back(clock.seconds() * 1e3);
+          firstImage = editor.showsCoarseImage()
+                           ? "a coarse image"
+                           : "level of detail " + std::to_string(editor.shownDetailLevel());
+        }
         char t[32];
         std::snprintf(t, sizeof t, "%s%.1f", frameTimes.empty() ? "" : " ", editor.state().frameMs);
         frameTimes += t;
@@ -123,19 +133,31 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
     ms.push_back(clock.seconds() * 1e3);
     const auto& shown = *editor.state().preview;
     std::printf(
-        "edit %d: %.1f ms from the edit to its surfels on screen (full result in the UI at %.1f "
-        "ms: engine %.1f + splats %.1f ms, transfer %.1f ms; %d frames, %d from the result on, "
-        "taking %s ms)\n",
-        k + 1, ms.back(), resultAtMs, shown.stats.seconds * 1e3, shown.splatSeconds * 1e3,
-        editor.state().uploadMs, frames, framesAfterResult, frameTimes.c_str());
+        "edit %d: %.1f ms from the edit to its surfels on screen (first image at %.1f ms, %s; "
+        "full result in the UI at %.1f ms: engine %.1f + splats %.1f ms, transfer "
+        "%.1f ms; %d frames, %d from the result on, taking %s ms)\n",
+        k + 1, ms.back(), firstMs.back(), firstImage.c_str(), resultAtMs, shown.stats.seconds * 1e3,
+        shown.splatSeconds * 1e3, editor.state().uploadMs, frames, framesAfterResult,
+        frameTimes.c_str());
+    std::fflush(stdout);  // each edit's line as it comes (a long run may be stopped)
   }
   std::sort(ms.begin(), ms.end());
+  std::sort(firstMs.begin(), firstMs.end());
+  std::printf(
+      "first image: median %.1f ms, best %.1f ms, worst %.1f ms (the edit's result on screen; a "
+      "coarser image first where the view's level costs more than %.0f ms to draw)\n",
+      firstMs[firstMs.size() / 2], firstMs.front(), firstMs.back(),
+      ui::ViewportRenderer::kFirstImageMs);
   std::printf(
       "latency: median %.1f ms, best %.1f ms, worst %.1f ms over %d edits of '%s' (%s; %zu "
-      "splats, %zu drawn at level of detail %d)\n",
+      "splats, %zu drawn at level of detail %d; over the edits %zu splats drawn as points, %zu "
+      "as quads; measured %.2f ns a splat as points, %.2f as quads)\n",
       ms[ms.size() / 2], ms.front(), ms.back(), count, leaf->name.c_str(),
       editor.state().backendDescription.c_str(), editor.state().preview->splatCount(),
-      editor.shownSplats(), editor.shownDetailLevel());
+      editor.shownSplats(), editor.shownDetailLevel(), editor.splatsDrawnAsPoints() - pointsBefore,
+      editor.splatsDrawnAsQuads() - quadsBefore,
+      editor.splatNanoseconds(ui::SplatPrimitive::Points),
+      editor.splatNanoseconds(ui::SplatPrimitive::Quads));
   return 0;
 }
 #endif
@@ -256,6 +278,13 @@ ui::SectionState parseSection(const CliArgs& args) {
   return section;
 }
 
+ui::SplatPrimitive parseSplats(const CliArgs& args) {
+  const std::string word = args.text("--splats", "auto");
+  if (auto primitive = ui::parseSplatPrimitive(word)) return *primitive;
+  throw Error("--splats: unknown way to draw splats '" + word +
+              "' (expected auto, points or quads)");
+}
+
 ui::AxisView parseView(const std::string& view, bool* iso) {
   *iso = false;
   if (view == "front") return ui::AxisView::Front;
@@ -304,6 +333,7 @@ int runEdit(const std::vector<std::string>& argv) {
     options.scenePath = scene;
     options.sceneAsTemplate = args.positional().empty();  // the demo: never saved over
     chooseEditorBackend(args, &options);
+    options.splatPrimitive = parseSplats(args);
     options.width = args.integer("--width", 1600, 320, 8192);
     options.height = args.integer("--height", 1000, 240, 8192);
     const std::string screenshot = args.text("--screenshot", "");
@@ -367,6 +397,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (!iso) options.view = view;
     options.ortho = args.has("--ortho");
     options.section = parseSection(args);
+    options.splatPrimitive = parseSplats(args);
     if (args.has("--resolution"))
       options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
     const std::string scenePath = args.positional()[0];
@@ -394,10 +425,11 @@ int runRender(const std::vector<std::string>& argv) {
     ui::SceneRender render = ui::renderScene(scene, scenePath, backend.backend, options, progress);
     ui::writePng(output, width, height, render.pixels);
     std::printf(
-        "wrote %s (%d x %d, %zu splats at resolution %d, %zu drawn at level of detail %d, "
+        "wrote %s (%d x %d, %zu splats at resolution %d, %zu drawn as %s at level of detail %d, "
         "evaluated in %.0f ms)\n",
         output.c_str(), width, height, render.splats, render.resolution, render.splatsDrawn,
-        render.detailLevel, render.evaluateSeconds * 1e3);
+        render.drawnAsPoints ? "points" : "quads", render.detailLevel,
+        render.evaluateSeconds * 1e3);
     return 0;
 #endif
   });

@@ -8,6 +8,11 @@
 // cut away (per fragment, in surfel.frag), and splats facing away from the camera are kept: where
 // the nearest remaining splat faces away, the view ray is inside the solid at the plane, and the
 // fragment shader draws the cap there.
+//
+// With SPLAT_POINTS defined (ViewportRenderer's point program): one point per surfel instead of
+// a quad of four vertices (the draw is bound by vertex work on a GPU), sized to cover the lifted
+// quad's projection; surfel.frag then casts the pixel's view ray onto the same tangent plane and
+// writes that depth, so the disc seen is the quad's disc.
 
 layout(location = 0) in vec2 corner;          // per vertex: (+-1, +-1)
 layout(location = 1) in vec3 surfelPosition;  // per instance: world position, scene units
@@ -28,12 +33,20 @@ uniform vec4 sectionPlane;  // unit normal (xyz) and offset (w), scene units
 
 out vec3 vNormal;
 out vec3 vColor;
-out vec2 vCorner;
 out float vSelected;
-out vec3 vToEye;
-out vec3 vWorld;        // the fragment's world position, scene units
 out float vFacing;      // dot(normal, direction to the eye): < 0 faces away
 flat out uint vLeaf;
+#ifdef SPLAT_POINTS
+uniform vec4 viewportRect;  // the GL viewport: x, y, width, height in pixels
+uniform float maxPointSize;  // pixels; the renderer draws quads where splats would need more
+flat out vec3 vCenter;       // the surfel's position, scene units
+flat out vec3 vPlaneNormal;  // the lifted quad's plane: dot(vPlaneNormal, p - vCenter) = 0
+flat out int vAxis;          // the ray axis
+#else
+out vec2 vCorner;
+out vec3 vToEye;
+out vec3 vWorld;        // the fragment's world position, scene units
+#endif
 
 float snorm16(uint bits) {
   int v = int(bits);
@@ -62,7 +75,6 @@ void main() {
   int v = (axis + 2) % 3;
 
   vec3 toEye = ortho ? -viewForward : normalize(eye - surfelPosition);
-  vToEye = toEye;
   vFacing = dot(n, toEye);
   bool cull = sectionOn
                   // wholly on the cut side
@@ -75,22 +87,55 @@ void main() {
     return;
   }
 
-  float du = corner.x * splatRadius * cellSize;
-  float dv = corner.y * splatRadius * cellSize;
+  // The quad lies in the plane through the surfel whose normal is n with its ray-axis component
+  // kept away from 0 (a lift of at most 1 / 0.3 per unit across the axis).
+  float na = n[axis];
+  vec3 planeNormal = n;
+  planeNormal[axis] = abs(na) < 0.3 ? sign(na + 1e-6) * 0.3 : na;
+  float radius = splatRadius * cellSize;
+#ifdef SPLAT_POINTS
+  // The sprite covers the projections of the quad's corners (tighter than a bound of the sphere
+  // through them, which cost 8-14% more per splat on the H200 and 4 times more under Mesa).
+  vec4 centre = viewProjection * vec4(surfelPosition, 1.0);
+  vec2 extent = vec2(0.0);  // the corners' largest distance from the centre, NDC
+  bool behind = centre.w <= 0.0;
+  for (int k = 0; k < 4; ++k) {
+    vec2 c = vec2((k & 1) == 0 ? -radius : radius, (k & 2) == 0 ? -radius : radius);
+    vec3 offset = vec3(0.0);
+    offset[u] = c.x;
+    offset[v] = c.y;
+    offset[axis] = -(planeNormal[u] * c.x + planeNormal[v] * c.y) / planeNormal[axis];
+    vec4 q = viewProjection * vec4(surfelPosition + offset, 1.0);
+    behind = behind || q.w <= 0.0;
+    extent = max(extent, abs(q.xy / q.w - centre.xy / centre.w));
+  }
+  if (behind) {  // crosses the eye's plane: left out, as the near plane would clip it
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  gl_Position = centre;
+  // NDC spans 2 across the viewport: extent * size / 2 pixels each side, plus a pixel of margin.
+  gl_PointSize = min(maxPointSize, max(extent.x * viewportRect.z, extent.y * viewportRect.w) + 2.0);
+  vCenter = surfelPosition;
+  vPlaneNormal = planeNormal;
+  vAxis = axis;
+#else
+  vToEye = toEye;
+  float du = corner.x * radius;
+  float dv = corner.y * radius;
   vec3 offset = vec3(0.0);
   offset[u] = du;
   offset[v] = dv;
-  float na = n[axis];
-  offset[axis] = -(n[u] * du + n[v] * dv) / (abs(na) < 0.3 ? sign(na + 1e-6) * 0.3 : na);
-
+  offset[axis] = -(planeNormal[u] * du + planeNormal[v] * dv) / planeNormal[axis];
   vWorld = surfelPosition + offset;
-  vLeaf = leaf;
   gl_Position = viewProjection * vec4(vWorld, 1.0);
+  vCorner = corner;
+#endif
+  vLeaf = leaf;
   int entry = min(int(leaf), leafCount - 1);  // texelFetch outside the texture is undefined
   ivec2 texel = ivec2(entry % leafTextureWidth, entry / leafTextureWidth);
   vec4 leafData = texelFetch(leafTexture, texel, 0);
   vColor = leafData.rgb;
   vSelected = leafData.a;
   vNormal = n;
-  vCorner = corner;
 }

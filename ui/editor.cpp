@@ -89,6 +89,7 @@ struct Editor::Gl {
 
   Gl(const EditorOptions& o) : window(o.width, o.height, "Strata", o.visible) {
     renderer = std::make_unique<ViewportRenderer>();  // may throw: nothing else to undo yet
+    renderer->setSplatPrimitive(o.splatPrimitive);
     IMGUI_CHECKVERSION();
     imgui = ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed; nothing to remember
@@ -376,6 +377,22 @@ int Editor::shownDetailLevel() const {
 
 size_t Editor::shownSplats() const {
   return gl_->renderer->drawnLevelSplats();
+}
+
+bool Editor::showsCoarseImage() const {
+  return gl_->renderer->showsCoarseImage();
+}
+
+size_t Editor::splatsDrawnAsPoints() const {
+  return gl_->renderer->pointsDrawn();
+}
+
+size_t Editor::splatsDrawnAsQuads() const {
+  return gl_->renderer->quadsDrawn();
+}
+
+double Editor::splatNanoseconds(SplatPrimitive kind) const {
+  return gl_->renderer->nsPerSplat(kind);
 }
 
 void Editor::updateLeafStyles() {

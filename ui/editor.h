@@ -41,7 +41,8 @@ struct EditorOptions {
   // Tests: every frame takes at least this long (a slow machine), to show that input made
   // during a slow frame is still handled.
   double slowFrameSeconds = 0.0;
-  int coarseResolution = 96;  // of previews while dragging
+  int coarseResolution = 96;                                  // of previews while dragging
+  SplatPrimitive splatPrimitive = SplatPrimitive::Automatic;  // how the viewport draws splats
 };
 
 // True when a window can be opened (see gl_window.h); otherwise false with the reason.
@@ -77,6 +78,13 @@ class Editor {
   // splats it drew.
   int shownDetailLevel() const;
   size_t shownSplats() const;
+  // The view shows its coarse image while the full one is drawn (ViewportRenderer).
+  bool showsCoarseImage() const;
+  // Splats drawn so far as points and as quads (ViewportRenderer::pointsDrawn, quadsDrawn).
+  size_t splatsDrawnAsPoints() const;
+  size_t splatsDrawnAsQuads() const;
+  // The GPU time per splat measured for each kind (ViewportRenderer::nsPerSplat).
+  double splatNanoseconds(SplatPrimitive kind) const;
   // Whether a result is being uploaded over several frames (shown once all of it is there).
   bool uploading() const { return staging_ != nullptr; }
   // Points the camera at the whole scene.

@@ -2,6 +2,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstring>
+
 #include "engine/util/error.h"
 #include "ui/embedded_shaders.h"
 
@@ -16,13 +18,18 @@ std::string shaderLog(GLuint shader) {
   return log.c_str();
 }
 
-GLuint compile(GLenum type, const char* name) {
+// `defines` go right after the source's first line (its #version).
+GLuint compile(GLenum type, const char* name, const char* defines) {
   const char* source = embeddedShader(name);
   if (!source)
     throw Error(std::string("shaders/") + name +
                 ": no such shader was embedded into this build (ui/embed_shaders.cmake)");
+  const char* firstLineEnd = std::strchr(source, '\n');
+  const char* rest = firstLineEnd ? firstLineEnd + 1 : source + std::strlen(source);
+  const std::string version(source, rest);
+  const char* parts[3] = {version.c_str(), defines ? defines : "", rest};
   GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
+  glShaderSource(shader, 3, parts, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -36,11 +43,11 @@ GLuint compile(GLenum type, const char* name) {
 
 }  // namespace
 
-GlProgram::GlProgram(const char* vertexName, const char* fragmentName) {
-  GLuint vs = compile(GL_VERTEX_SHADER, vertexName);
+GlProgram::GlProgram(const char* vertexName, const char* fragmentName, const char* defines) {
+  GLuint vs = compile(GL_VERTEX_SHADER, vertexName, defines);
   GLuint fs = 0;
   try {
-    fs = compile(GL_FRAGMENT_SHADER, fragmentName);
+    fs = compile(GL_FRAGMENT_SHADER, fragmentName, defines);
   } catch (...) {
     glDeleteShader(vs);
     throw;
@@ -84,6 +91,9 @@ GlProgram& GlProgram::operator=(GlProgram&& other) noexcept {
 
 void GlProgram::set(const char* name, const glm::mat4& value) const {
   glUniformMatrix4fv(glGetUniformLocation(program_, name), 1, GL_FALSE, glm::value_ptr(value));
+}
+void GlProgram::set(const char* name, const glm::vec2& value) const {
+  glUniform2fv(glGetUniformLocation(program_, name), 1, glm::value_ptr(value));
 }
 void GlProgram::set(const char* name, const glm::vec3& value) const {
   glUniform3fv(glGetUniformLocation(program_, name), 1, glm::value_ptr(value));

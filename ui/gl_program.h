@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -17,9 +18,10 @@ namespace strata::ui {
 class GlProgram {
  public:
   GlProgram() = default;
-  // Compiles shaders/<vertexName> and shaders/<fragmentName>. Throws strata::Error naming the
-  // file and quoting the driver's log when a shader is missing or fails to compile or link.
-  GlProgram(const char* vertexName, const char* fragmentName);
+  // Compiles shaders/<vertexName> and shaders/<fragmentName>, with `defines` (lines such as
+  // "#define X\n", or nullptr) right after each one's #version line. Throws strata::Error naming
+  // the file and quoting the driver's log when a shader is missing or fails to compile or link.
+  GlProgram(const char* vertexName, const char* fragmentName, const char* defines = nullptr);
   ~GlProgram();
   GlProgram(GlProgram&& other) noexcept;
   GlProgram& operator=(GlProgram&& other) noexcept;
@@ -34,6 +36,7 @@ class GlProgram {
   void set(const char* name, const glm::vec4& value) const;
   void set(const char* name, float value) const;
   void set(const char* name, int value) const;
+  void set(const char* name, const glm::vec2& value) const;
 
  private:
   GLuint program_ = 0;

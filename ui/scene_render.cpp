@@ -41,6 +41,7 @@ SceneRender renderScene(const Scene& scene, const std::string& scenePath,
   }
   renderer.setLeafStyles(leafStyles(scene.root, {}));
   if (options.everySplat) renderer.limitDetailLevel(0);
+  renderer.setSplatPrimitive(options.splatPrimitive);
 
   Viewport viewport;
   if (options.view) viewport.camera.setAxisView(*options.view);
@@ -55,6 +56,7 @@ SceneRender renderScene(const Scene& scene, const std::string& scenePath,
   out.pixels = target.read();
   out.detailLevel = std::max(0, renderer.drawnLevel());
   out.splatsDrawn = renderer.drawnLevelSplats();
+  out.drawnAsPoints = renderer.pointsDrawn() > 0;
   return out;
 }
 

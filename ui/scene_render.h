@@ -16,6 +16,7 @@
 #include "engine/util/progress.h"
 #include "ui/camera.h"
 #include "ui/editor_state.h"
+#include "ui/splat_primitive.h"
 
 namespace strata::ui {
 
@@ -28,6 +29,7 @@ struct SceneRenderOptions {
   bool grid = true;
   // Every splat, whatever the view's level of detail needs (ViewportRenderer::detailLevel).
   bool everySplat = false;
+  SplatPrimitive splatPrimitive = SplatPrimitive::Automatic;
 };
 
 struct SceneRender {
@@ -35,6 +37,7 @@ struct SceneRender {
   size_t splats = 0;
   size_t splatsDrawn = 0;  // those of the level of detail drawn
   int detailLevel = 0;
+  bool drawnAsPoints = false;  // the splats were drawn as points (else quads)
   int resolution = 0;
   double evaluateSeconds = 0.0;
 };

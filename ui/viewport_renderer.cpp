@@ -1,6 +1,7 @@
 #include "ui/viewport_renderer.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 
@@ -25,6 +26,20 @@ glm::vec3 cameraLight(const ViewportFrame& f, double right, double up, double ba
   return glm::vec3(glm::normalize(r * right + f.up * up - f.forward * back));
 }
 
+// NDC per scene unit across the view (x, y) at view depth 1 (perspective) or anywhere
+// (orthographic): the projections of unit steps right and up from the point in front of the eye.
+glm::dvec2 projectionScale(const ViewportFrame& f) {
+  const glm::dvec3 right = glm::normalize(glm::cross(f.forward, f.up));
+  const glm::dvec3 up = glm::normalize(glm::cross(right, f.forward));
+  const glm::dvec3 at = f.eye + f.forward;
+  auto ndc = [&](const glm::dvec3& p) {
+    const glm::dvec4 c = f.viewProjection * glm::dvec4(p, 1.0);
+    return glm::dvec2(c) / c.w;
+  };
+  const glm::dvec2 centre = ndc(at);
+  return glm::dvec2(std::abs(ndc(at + right).x - centre.x), std::abs(ndc(at + up).y - centre.y));
+}
+
 std::vector<uint8_t> flipRows(std::vector<uint8_t> pixels, int width, int height) {
   const size_t row = size_t(width) * 4;
   std::vector<uint8_t> tmp(row);
@@ -47,6 +62,7 @@ LineVertex lineVertex(const glm::dvec3& p, const glm::vec4& c) {
 
 ViewportRenderer::ViewportRenderer()
     : surfelProgram_("surfel.vert", "surfel.frag"),
+      pointProgram_("surfel.vert", "surfel.frag", "#define SPLAT_POINTS\n"),
       pickProgram_("surfel.vert", "surfel_pick.frag"),
       lineProgram_("line.vert", "line.frag"),
       backgroundProgram_("background.vert", "background.frag") {
@@ -71,7 +87,17 @@ ViewportRenderer::ViewportRenderer()
                         reinterpret_cast<void*>(offsetof(LineVertex, color)));
 
   glGenVertexArrays(1, &emptyVao_);
+  glGenVertexArrays(1, &pointVao_);
+  glBindVertexArray(pointVao_);
+  for (GLuint attribute = 1; attribute <= 3; ++attribute) glEnableVertexAttribArray(attribute);
   glBindVertexArray(0);
+  GLfloat pointSizes[2] = {1.0f, 1.0f};
+  glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
+  maxPointSize_ = std::max(1.0f, pointSizes[1]);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  // GL 4.4 names the limit (at least 2048 bytes); older contexts have no query and none below.
+  if (epoxy_gl_version() >= 44) glGetIntegerv(GL_MAX_VERTEX_ATTRIB_STRIDE, &maxAttribStride_);
+  glGenQueries(1, &timerQuery_);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
   glGenTextures(1, &leafTexture_);
@@ -131,11 +157,13 @@ ViewportRenderer::~ViewportRenderer() {
     glDeleteRenderbuffers(2, targets);
   }
   glDeleteTextures(1, &leafTexture_);
+  glDeleteQueries(1, &timerQuery_);
   GLuint buffers[] = {cornerBuffer_,     splatBuffer_,      lineBuffer_,
                       ghosts_[0].buffer, ghosts_[1].buffer, stagingBuffer_};
   glDeleteBuffers(6, buffers);
-  GLuint vaos[] = {surfelVao_, lineVao_, emptyVao_, ghosts_[0].vao, ghosts_[1].vao, stagingVao_};
-  glDeleteVertexArrays(6, vaos);
+  GLuint vaos[] = {surfelVao_,     lineVao_,    emptyVao_, ghosts_[0].vao,
+                   ghosts_[1].vao, stagingVao_, pointVao_};
+  glDeleteVertexArrays(7, vaos);
 }
 
 bool ViewportRenderer::splatBufferFits(size_t count) const {
@@ -217,39 +245,84 @@ size_t ViewportRenderer::levelEnd(int level) const {
   return std::min<size_t>(splatCount_, size_t(shape_.levels.end[level]));
 }
 
+double ViewportRenderer::nearestPixelsPerUnit(const ViewportFrame& f) const {
+  // Pixels per scene unit across the view at depth 1 (perspective) or anywhere (orthographic).
+  const glm::dvec2 scale = projectionScale(f);
+  const double perUnit = std::max(scale.y * 0.5 * f.height, scale.x * 0.5 * f.width);
+  if (f.ortho) return std::isfinite(perUnit) ? perUnit : HUGE_VAL;
+  // The box's nearest depth along the view: its corners' least.
+  double nearest = 1e300;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 corner((c & 1) ? shape_.hi.x : shape_.lo.x,
+                            (c & 2) ? shape_.hi.y : shape_.lo.y,
+                            (c & 4) ? shape_.hi.z : shape_.lo.z);
+    nearest = std::min(nearest, glm::dot(corner - f.eye, f.forward));
+  }
+  if (!(nearest > 0.0)) return HUGE_VAL;  // the camera is within the box's depth range
+  const double pixelsPerUnit = perUnit / nearest;
+  return std::isfinite(pixelsPerUnit) ? pixelsPerUnit : HUGE_VAL;
+}
+
 int ViewportRenderer::detailLevel(const ViewportFrame& f) const {
   if (splatCount_ == 0 || shape_.levels.end[1] == 0) return 0;
-  // Pixels per scene unit across the view at depth 1 (perspective) or anywhere (orthographic):
-  // the projections of a unit step up and a unit step right from a point in front.
-  const glm::dvec3 right = glm::normalize(glm::cross(f.forward, f.up));
-  const glm::dvec3 up = glm::normalize(glm::cross(right, f.forward));
-  const glm::dvec3 at = f.eye + f.forward;
-  auto ndc = [&](const glm::dvec3& p) {
-    const glm::dvec4 c = f.viewProjection * glm::dvec4(p, 1.0);
-    return glm::dvec2(c) / c.w;
-  };
-  const glm::dvec2 centre = ndc(at);
-  const double perUnit = std::max(std::abs(ndc(at + up).y - centre.y) * 0.5 * f.height,
-                                  std::abs(ndc(at + right).x - centre.x) * 0.5 * f.width);
-  double pixelsPerUnit = perUnit;
-  if (!f.ortho) {
-    // The box's nearest depth along the view: its corners' least.
-    double nearest = 1e300;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 corner((c & 1) ? shape_.hi.x : shape_.lo.x,
-                              (c & 2) ? shape_.hi.y : shape_.lo.y,
-                              (c & 4) ? shape_.hi.z : shape_.lo.z);
-      nearest = std::min(nearest, glm::dot(corner - f.eye, f.forward));
-    }
-    if (!(nearest > 0.0)) return 0;  // the camera is within the box's depth range
-    pixelsPerUnit = perUnit / nearest;
-  }
+  const double pixelsPerUnit = nearestPixelsPerUnit(f);
   if (!std::isfinite(pixelsPerUnit) || pixelsPerUnit <= 0.0) return 0;
   int level = 0;
   while (level < maxDetailLevel_ && level + 1 < kSplatLevels && shape_.levels.end[level + 1] > 0 &&
          std::ldexp(shape_.cellSize, level + 1) * pixelsPerUnit <= kMaxSplatSpacingPx)
     ++level;
   return level;
+}
+
+bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
+  if (primitive_ == SplatPrimitive::Quads) return false;
+  const double pixelsPerUnit = nearestPixelsPerUnit(f);
+  if (!std::isfinite(pixelsPerUnit)) return false;
+  // The widest sprite (surfel.vert): the quad's corners lie at most radius * sqrt(2 + 2 / 0.3^2)
+  // cells from the surfel (lifted onto the tangent plane), so across the sprite twice that, plus
+  // the shader's pixel of margin; twice again for what perspective adds off the view's axis.
+  // Checked where the box comes nearest, so every splat fits.
+  const double liftedCorner = std::sqrt(2.0 + 2.0 / (0.3 * 0.3));
+  const double sprite =
+      2.0 * (2.0 * double(radius) * shape_.cellSize * liftedCorner * pixelsPerUnit) + 2.0;
+  if (sprite > double(maxPointSize_)) return false;
+  if (primitive_ == SplatPrimitive::Points) return true;
+  // Automatic: each kind until it has a time, then the cheaper, the other now and then.
+  if (nsPerSplat_[1] == 0.0) return true;
+  if (nsPerSplat_[0] == 0.0) return false;
+  const bool pointsCheaper = nsPerSplat_[1] <= nsPerSplat_[0];
+  const bool retry = !timerPending_ && timedDraws_ % kRetryEvery == kRetryEvery - 1;
+  return retry ? !pointsCheaper : pointsCheaper;
+}
+
+int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
+  int level = buildLevel_;
+  const double ns = nsPerSplat_[usePoints(f, float(1 << level)) ? 1 : 0];
+  if (ns <= 0.0) return level;  // not measured yet: the view's level
+  while (level + 1 < kSplatLevels && shape_.levels.end[level + 1] > 0 &&
+         double(levelEnd(level)) * ns * 1e-6 > kFirstImageMs)
+    ++level;
+  return level;
+}
+
+double ViewportRenderer::nsPerSplat(SplatPrimitive kind) const {
+  return kind == SplatPrimitive::Points  ? nsPerSplat_[1]
+         : kind == SplatPrimitive::Quads ? nsPerSplat_[0]
+                                         : 0.0;
+}
+
+void ViewportRenderer::collectTiming() {
+  if (!timerPending_) return;
+  GLint available = 0;
+  glGetQueryObjectiv(timerQuery_, GL_QUERY_RESULT_AVAILABLE, &available);
+  if (!available) return;
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(timerQuery_, GL_QUERY_RESULT, &ns);
+  timerPending_ = false;
+  ++timedDraws_;
+  const double perSplat = double(ns) / double(std::max<size_t>(1, timerSplats_));
+  double& kept = nsPerSplat_[timerPoints_ ? 1 : 0];
+  kept = kept == 0.0 ? perSplat : 0.7 * kept + 0.3 * perSplat;
 }
 
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
@@ -307,10 +380,50 @@ void ViewportRenderer::drawBackground(const ViewportFrame& f) {
   glDepthFunc(GL_LESS);
 }
 
-void ViewportRenderer::drawSplatRange(size_t first, size_t count, size_t stride, float radius) {
+void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size_t count,
+                                      size_t stride, float radius) {
   if (count == 0) return;
-  glBindVertexArray(surfelVao_);
+  collectTiming();
+  const bool points = usePoints(f, radius);
+  // Timed: a large draw at full resolution (every splat of a range), one at a time.
+  const bool timed = !timerPending_ && stride == 1 && count >= kTimedDrawSplats;
+  const GlProgram& program = points ? pointProgram_ : surfelProgram_;
+  useSurfelProgram(program, f);
+  program.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
+  program.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
+  program.set("ghostColor", glm::vec4(0.0f));
+  program.set("splatRadius", radius);
+  if (points) {
+    GLint viewport[4] = {0, 0, 1, 1};
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    program.set("viewportRect", glm::vec4(float(viewport[0]), float(viewport[1]),
+                                          float(viewport[2]), float(viewport[3])));
+    program.set("maxPointSize", maxPointSize_);
+    // The view rays (surfel.frag): near-plane points and directions, affine in NDC (x, y), the
+    // directions scaled alike (their length does not matter) to keep floats well within range.
+    const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
+    auto unproject = [&](double x, double y, double z) {
+      const glm::dvec4 p = toWorld * glm::dvec4(x, y, z, 1.0);
+      return glm::dvec3(p) / p.w;
+    };
+    const glm::dvec3 near0 = unproject(0, 0, -1), nearX = unproject(1, 0, -1) - near0,
+                     nearY = unproject(0, 1, -1) - near0;
+    const glm::dvec3 dir0 = unproject(0, 0, 1) - near0;
+    const glm::dvec3 dirX = unproject(1, 0, 1) - near0 - nearX - dir0;
+    const glm::dvec3 dirY = unproject(0, 1, 1) - near0 - nearY - dir0;
+    const double scale = 1.0 / std::max(1e-300, glm::length(dir0));
+    program.set("rayOrigin0", glm::vec3(near0));
+    program.set("rayOriginX", glm::vec3(nearX));
+    program.set("rayOriginY", glm::vec3(nearY));
+    program.set("rayDir0", glm::vec3(dir0 * scale));
+    program.set("rayDirX", glm::vec3(dirX * scale));
+    program.set("rayDirY", glm::vec3(dirY * scale));
+    glBindVertexArray(pointVao_);
+  }
   glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
+  // Within the driver's limit (callers keep to it): a refused stride would leave the last
+  // pointers in place, and the draw would read what they point at.
+  assert(stride * sizeof(Splat) <= size_t(maxAttribStride_));
   const GLsizei bytes = GLsizei(stride * sizeof(Splat));
   const size_t base = first * sizeof(Splat);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, bytes,
@@ -319,19 +432,31 @@ void ViewportRenderer::drawSplatRange(size_t first, size_t count, size_t stride,
                          reinterpret_cast<void*>(base + offsetof(Splat, normal)));
   glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, bytes,
                          reinterpret_cast<void*>(base + offsetof(Splat, leafAxis)));
-  surfelProgram_.set("splatRadius", radius);
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
-  // Back to every splat from the first, as pick() and the CUDA-GL copier expect.
-  if (first != 0 || stride != 1) {
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
-                          reinterpret_cast<void*>(offsetof(Splat, position)));
-    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                           reinterpret_cast<void*>(offsetof(Splat, normal)));
-    glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                           reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
+  if (timed) glBeginQuery(GL_TIME_ELAPSED, timerQuery_);
+  if (points) {
+    glDrawArrays(GL_POINTS, 0, GLsizei(count));
+    pointsDrawn_ += count;
+  } else {
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
+    quadsDrawn_ += count;
+    // Back to every splat from the first, as pick() and the CUDA-GL copier expect.
+    if (first != 0 || stride != 1) {
+      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
+                            reinterpret_cast<void*>(offsetof(Splat, position)));
+      glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                             reinterpret_cast<void*>(offsetof(Splat, normal)));
+      glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
+                             reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
+    }
+  }
+  if (timed) {
+    glEndQuery(GL_TIME_ELAPSED);
+    timerPending_ = true;
+    timerPoints_ = points;
+    timerSplats_ = count;
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  surfelProgram_.set("splatRadius", 1.0f);
+  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 void ViewportRenderer::drawGhosts(const ViewportFrame& f) {
@@ -379,14 +504,9 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
                             const std::vector<LineVertex>& overlayTriangles) {
   drawBackground(f);
   if (splatCount_ > 0) {
-    useSurfelProgram(surfelProgram_, f);
-    surfelProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
-    surfelProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
-    surfelProgram_.set("ghostColor", glm::vec4(0.0f));
     const int level = detailLevel(f);
-    drawSplatRange(0, levelEnd(level), 1, float(1 << level));
+    drawSplatRange(f, 0, levelEnd(level), 1, float(1 << level));
     drawnLevel_ = level;
-    glBindTexture(GL_TEXTURE_2D, 0);
   }
   drawGhosts(f);
   lineProgram_.use();
@@ -426,6 +546,16 @@ size_t nextPrime(size_t n) {
     for (size_t d = 3; d * d <= k && prime; d += 2) prime = k % d != 0;
     if (prime) return k;
   }
+}
+
+// The largest prime not above n (1 for n < 2).
+size_t largestPrimeAtMost(size_t n) {
+  for (size_t k = n; k >= 2; --k) {
+    bool prime = true;
+    for (size_t d = 2; d * d <= k && prime; ++d) prime = k % d != 0;
+    if (prime) return k;
+  }
+  return 1;
 }
 
 // Makes `target` a width x height off-screen image (kept when it already is one).
@@ -486,39 +616,47 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   };
-  auto beginSplats = [&](const ViewportFrame& frame) {
-    useSurfelProgram(surfelProgram_, frame);
-    surfelProgram_.set("keyLight", cameraLight(frame, -0.5, 0.8, 0.6));
-    surfelProgram_.set("fillLight", cameraLight(frame, 0.7, -0.3, 0.4));
-    surfelProgram_.set("ghostColor", glm::vec4(0.0f));
-  };
 
   if (key != shownKey_) {
     shownKey_ = key;
     buildDone_ = 0;
     // The full image's splats: those of the level of detail the view needs.
     buildLevel_ = detailLevel(local);
-    const size_t full = levelEnd(buildLevel_);
-    if (full <= allowed) {
-      // Everything fits in this frame: the full image at once.
+    // A new content (an edit's result) seen from a view at rest: the first image from coarser
+    // levels where the view's level costs more than kFirstImageMs (firstImageLevel).
+    const int firstLevel = viewMoved ? buildLevel_ : firstImageLevel(local);
+    const size_t first = levelEnd(firstLevel);
+    if (first <= allowed) {
+      // The full image at once, or a first image at a coarser level at full resolution (discs
+      // as wide as their rays are apart) refined to the view's level over the next frames.
       ensureTarget(&shown_, f.width, f.height);
       shown_->bind();
       drawBackground(local);
-      beginSplats(local);
-      drawSplatRange(0, full, 1, float(1 << buildLevel_));
+      drawSplatRange(local, 0, first, 1, float(1 << firstLevel));
       drawGhosts(local);
       drawLinesInto(local);
-      refining_ = false;
-      drawnLevel_ = buildLevel_;
-      drewSplatsLastFrame_ = full;
+      refining_ = firstLevel != buildLevel_;
+      refineOverShown_ = refining_;
+      drawnLevel_ = firstLevel;
+      drewSplatsLastFrame_ = first;
       lastDrawFull_ = true;
       show = shown_.get();
     } else {
       // A share of the splats at half resolution now; the full image over the next frames.
       // Half resolution; a quarter when the share is so small that each splat stands for many
       // (what a software GL driver draws in a frame): fewer pixels to fill for the same image.
-      const size_t ratio = (full + splatsPerFrame_ - 1) / splatsPerFrame_;
-      const size_t stride = ratio <= 1 ? 1 : nextPrime(ratio);
+      // Every k-th splat of a level, k no larger than the driver's largest attribute stride
+      // allows (a larger one is refused, and the draw would read other splats or none): from a
+      // coarser level where the view's would need a larger k.
+      const size_t maxStride = std::max<size_t>(1, size_t(maxAttribStride_) / sizeof(Splat));
+      int coarseLevel = buildLevel_;
+      while (coarseLevel + 1 < kSplatLevels && shape_.levels.end[coarseLevel + 1] > 0 &&
+             levelEnd(coarseLevel) > splatsPerFrame_ * maxStride)
+        ++coarseLevel;
+      const size_t pool = levelEnd(coarseLevel);
+      const size_t ratio = (pool + splatsPerFrame_ - 1) / splatsPerFrame_;
+      const size_t stride =
+          ratio <= 1 ? 1 : std::min(nextPrime(ratio), largestPrimeAtMost(maxStride));
       const int shrink = stride > 64 ? 4 : 2;
       ViewportFrame half = local;
       half.width = std::max(1, f.width / shrink);
@@ -526,14 +664,14 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       ensureTarget(&coarse_, half.width, half.height);
       coarse_->bind();
       drawBackground(half);
-      beginSplats(half);
-      const size_t drawn = (full + stride - 1) / stride;
-      drawSplatRange(0, drawn, stride,
-                     1.25f * float(1 << buildLevel_) *
+      const size_t drawn = (pool + stride - 1) / stride;
+      drawSplatRange(half, 0, drawn, stride,
+                     1.25f * float(1 << coarseLevel) *
                          float(std::sqrt(double(stride))));  // a little larger: no holes
       drawGhosts(half);
       drawLinesInto(half);
       refining_ = true;
+      refineOverShown_ = false;
       drewSplatsLastFrame_ = drawn;
       lastDrawFull_ = false;
       show = coarse_.get();
@@ -546,10 +684,9 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glViewport(0, 0, f.width, f.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    beginSplats(local);
     const size_t full = levelEnd(buildLevel_);
     const size_t count = std::min(fullShare_, full - std::min(full, buildDone_));
-    drawSplatRange(buildDone_, count, 1, float(1 << buildLevel_));
+    drawSplatRange(local, buildDone_, count, 1, float(1 << buildLevel_));
     buildDone_ += count;
     drewSplatsLastFrame_ = count;
     lastDrawFull_ = true;
@@ -560,6 +697,8 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       refining_ = false;
       drawnLevel_ = buildLevel_;
       show = shown_.get();
+    } else if (refineOverShown_) {
+      show = shown_.get();  // the first image, until the view's level is complete
     } else {
       show = coarse_.get();
       showCoarse = true;

@@ -20,6 +20,7 @@
 #include "engine/ldi/grid.h"
 #include "engine/ldi/splats.h"
 #include "ui/gl_program.h"
+#include "ui/splat_primitive.h"
 
 namespace strata::ui {
 
@@ -123,13 +124,33 @@ class ViewportRenderer {
   // each frame with the overlay on top. When the view changes and the splats are more than the
   // frame's share, an image at half resolution with every k-th splat (k prime, each splat
   // larger to cover) is shown at once; the full image is then drawn a share a frame and shown
-  // when complete. The share follows `lastFrameMs` (the previous frame's whole time) toward
-  // kTargetFrameMs.
+  // when complete. A new content seen from a view at rest (an edit) is drawn whole when its
+  // splats cost at most kFirstImageMs, else first from a coarser level at full resolution and
+  // then refined the same way. The share follows `lastFrameMs` (the previous frame's whole
+  // time) toward kTargetFrameMs.
   void drawCached(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
                   const std::vector<LineVertex>& overlay,
                   const std::vector<LineVertex>& overlayTriangles, double lastFrameMs);
   // The full image is still being drawn: the frame loop must keep frames coming.
   bool refining() const { return refining_; }
+  // The view shows the coarse image (half resolution, every k-th splat) while it refines.
+  bool showsCoarseImage() const { return refining_ && !refineOverShown_; }
+  // How splats are drawn (ui/splat_primitive.h). Points because a GPU's draw of millions of
+  // splats is bound by vertex work (four vertices a quad); quads where sprites would not fit.
+  void setSplatPrimitive(SplatPrimitive primitive) { primitive_ = primitive; }
+  // Splats drawn so far as points and as quads (each drawn splat counted once per draw).
+  size_t pointsDrawn() const { return pointsDrawn_; }
+  size_t quadsDrawn() const { return quadsDrawn_; }
+  // Automatic picks by measurement, not by driver name: which is cheaper depends on where the
+  // driver spends its time (a GPU: vertices, where points save three of four; a software
+  // rasterizer: fragments, where the points' depth written per fragment costs more). Draws of
+  // at least kTimedDrawSplats splats at full resolution are timed (GL_TIME_ELAPSED, read back
+  // frames later without waiting); each kind is tried until it has a time, then the cheaper is
+  // drawn and the other re-tried every kRetryEvery timed draws (views change what each costs).
+  static constexpr size_t kTimedDrawSplats = 2000;
+  static constexpr int kRetryEvery = 32;
+  // The measured GPU time per splat of each kind in nanoseconds (0: not measured yet).
+  double nsPerSplat(SplatPrimitive kind) const;
   // Level of detail: splats whose rays are at most this many pixels apart where the splats come
   // nearest to the camera show the surface as every splat would (a finer lattice adds only
   // splats drawn over each other within a pixel).
@@ -145,7 +166,18 @@ class ViewportRenderer {
   size_t drawnLevelSplats() const { return drawnLevel_ < 0 ? 0 : levelEnd(drawnLevel_); }
   // Splats of the coarse image drawn a frame now (drawCached), for the status bar.
   size_t splatsPerFrame() const { return splatsPerFrame_; }
+  // Tests: the splats a frame of the coarse image and of the full one (see splatsPerFrame_).
+  void setFrameShares(size_t coarse, size_t full) {
+    splatsPerFrame_ = coarse;
+    fullShare_ = full;
+  }
   static constexpr double kTargetFrameMs = 12.0;
+  // An edit's first image: drawn from the finest level whose splats cost at most this long at
+  // the measured cost per splat (the frame's target: the frame bringing the result stays one
+  // frame); the view's level follows over the next frames. Not less: where the view's level
+  // fits in a frame, a coarser first image only delays it (measured on the H200 at 1024 cells
+  // with a quarter frame: the first image 30% sooner, every splat twice as late).
+  static constexpr double kFirstImageMs = kTargetFrameMs;
 
   // The leaf and point that pixel (px, py) of `frame`'s viewport shows (pixels from its
   // bottom-left corner), rendered into an off-screen id buffer; nothing when it shows no splat.
@@ -160,8 +192,13 @@ class ViewportRenderer {
   // Clears the bound target's viewport and draws the background gradient.
   void drawBackground(const ViewportFrame& f);
   // Splats [first, first + count * stride) of the instance buffer, every `stride`-th, with the
-  // disc radius `radius` cells; the surfel program must be in use.
-  void drawSplatRange(size_t first, size_t count, size_t stride, float radius);
+  // disc radius `radius` cells, lit for `f`, as points where they fit (usePoints), else quads.
+  // Into the bound target's current viewport.
+  void drawSplatRange(const ViewportFrame& f, size_t first, size_t count, size_t stride,
+                      float radius);
+  // Pixels per scene unit across the view where the splats' box comes nearest to the camera;
+  // infinity when the camera is within the box's depth range.
+  double nearestPixelsPerUnit(const ViewportFrame& f) const;
   // The splats of level `level` and coarser: the first levelEnd(level) of the buffer.
   size_t levelEnd(int level) const;
   void drawGhosts(const ViewportFrame& f);
@@ -174,6 +211,9 @@ class ViewportRenderer {
   bool drawPickIds(const ViewportFrame& frame, int x, int y, int width, int height);
   // Binds `program` and sets the uniforms surfel.vert needs.
   void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
+  // Whether splats of `radius` cells are drawn as points in `f` (setSplatPrimitive, and every
+  // splat's sprite within the driver's largest point).
+  bool usePoints(const ViewportFrame& f, float radius) const;
 
   // A splat instance buffer with its vertex array (corners + instances).
   struct SplatLayer {
@@ -183,6 +223,7 @@ class ViewportRenderer {
   void makeSplatLayer(GLuint* vao, GLuint* buffer);
 
   GlProgram surfelProgram_;
+  GlProgram pointProgram_;  // surfel.vert + surfel.frag with SPLAT_POINTS
   GlProgram pickProgram_;
   GlProgram lineProgram_;
   GlProgram backgroundProgram_;
@@ -191,6 +232,23 @@ class ViewportRenderer {
   size_t stagingCapacity_ = 0;
   GLuint lineVao_ = 0, lineBuffer_ = 0;
   GLuint emptyVao_ = 0;
+  GLuint pointVao_ = 0;           // the splat buffer's attributes, one vertex per splat
+  float maxPointSize_ = 1.0f;     // pixels, the driver's largest
+  GLint maxAttribStride_ = 2048;  // bytes, the driver's largest vertex attribute stride
+  SplatPrimitive primitive_ = SplatPrimitive::Automatic;
+  size_t pointsDrawn_ = 0, quadsDrawn_ = 0;  // splats drawn as each so far
+  // Timing of the two kinds (see kTimedDrawSplats): [0] quads, [1] points.
+  double nsPerSplat_[2] = {0.0, 0.0};
+  GLuint timerQuery_ = 0;
+  bool timerPending_ = false;  // timerQuery_ holds a draw not read back yet
+  bool timerPoints_ = false;   // of that draw: points
+  size_t timerSplats_ = 0;     // and its splats
+  int timedDraws_ = 0;
+  // Reads the pending timer query back when the GPU has it (never waits).
+  void collectTiming();
+  // The level of an edit's first image in `f` (kFirstImageMs): buildLevel_ or coarser, as the
+  // measured cost per splat allows; buildLevel_ before any measurement.
+  int firstImageLevel(const ViewportFrame& f) const;
   SplatLayer ghosts_[2];  // cutting, intersecting
   GLuint leafTexture_ = 0;
   int leafTextureWidth_ = 1;
@@ -210,10 +268,11 @@ class ViewportRenderer {
   // being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  uint64_t shownKey_ = 0;   // what shown_ (or coarse_, while refining) holds
-  uint64_t shownView_ = 0;  // its view alone (viewKey)
-  bool refining_ = false;   // building_ is being drawn for shownKey_
-  size_t buildDone_ = 0;    // splats drawn into building_ so far
+  uint64_t shownKey_ = 0;         // what shown_ (or coarse_, while refining) holds
+  uint64_t shownView_ = 0;        // its view alone (viewKey)
+  bool refining_ = false;         // building_ is being drawn for shownKey_
+  bool refineOverShown_ = false;  // meanwhile shown_ holds a first image (else coarse_ is shown)
+  size_t buildDone_ = 0;          // splats drawn into building_ so far
   // Splats a frame: of the coarse image (every k-th, reduced resolution) and at full resolution
   // (whole images and the refining shares). Safe starts for a software GL driver; each grows
   // 1.5x a frame while frames are quick.

@@ -7,11 +7,16 @@
 #include <cstdlib>
 #include <memory>
 
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+
 #include "engine/eval/cpu_backend.h"
 #include "engine/io/scene_file.h"
 #include "tests/support/scene_builder.h"
 #include "ui/headless_gl.h"
 #include "ui/scene_render.h"
+#include "ui/viewport_renderer.h"
 
 namespace strata::ui {
 namespace {
@@ -112,6 +117,152 @@ TEST(HeadlessRender, LevelsOfDetailLookLikeEverySplat) {
   SceneRender near = renderScene(scene, "", backend, options, progress);
   EXPECT_EQ(near.detailLevel, 0);
   EXPECT_EQ(near.splatsDrawn, near.splats);
+}
+
+// Points (ui/splat_primitive.h): one vertex per splat, the disc and its depth found in the
+// fragment shader by casting the pixel's ray onto the splat's plane, look as the quads do: the
+// same silhouettes, the same part in front where two overlap, the same section caps.
+TEST(HeadlessRender, PointsLookLikeQuads) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  auto red = std::make_shared<Node>(*test::box(glm::dvec3(1.6, 1.6, 1.6)));
+  red->color = glm::vec3(0.9f, 0.15f, 0.1f);
+  auto green = std::make_shared<Node>(*test::sphere(0.75, glm::dvec3(0.55, -0.55, 0.55)));
+  green->color = glm::vec3(0.1f, 0.8f, 0.2f);
+  // Cells of several pixels, where a disc's size and depth show.
+  Scene scene = test::makeScene(test::op(NodeKind::Union, {red, green}), 40);
+  auto backend = std::make_shared<CpuBackend>();
+  SceneRenderOptions options;
+  options.width = 240;
+  options.height = 180;
+  options.grid = false;
+  options.everySplat = true;
+  Progress progress;
+  for (bool cut : {false, true}) {
+    SCOPED_TRACE(cut ? "section on" : "whole");
+    options.section.on = cut;
+    options.section.axis = 0;
+    options.section.at = 0.6;
+    options.splatPrimitive = SplatPrimitive::Quads;
+    SceneRender quads = renderScene(scene, "", backend, options, progress);
+    options.splatPrimitive = SplatPrimitive::Points;
+    SceneRender points = renderScene(scene, "", backend, options, progress);
+    EXPECT_FALSE(quads.drawnAsPoints);
+    EXPECT_TRUE(points.drawnAsPoints);
+    int far = 0, covered = 0, greenPixels = 0;
+    const Rgb background = pixel(quads, 240, 0, 0);
+    for (int y = 0; y < 180; ++y)
+      for (int x = 0; x < 240; ++x) {
+        Rgb a = pixel(quads, 240, x, y), b = pixel(points, 240, x, y);
+        const int d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+        far += d > 24 ? 1 : 0;
+        covered += (a.r != background.r || a.g != background.g || a.b != background.b) ? 1 : 0;
+        greenPixels += a.g > a.r + 60 ? 1 : 0;
+      }
+    EXPECT_GT(covered, 8000) << "the parts fill part of the image";
+    EXPECT_GT(greenPixels, 1000) << "the sphere shows in front of the box";
+    // Mesa draws them alike to the pixel here; discs 1.2 times as wide differ in 145-194 pixels
+    // of 43,000, the depth of the splat's centre instead of the pixel's in 51-72.
+    EXPECT_LT(far, covered / 2000) << "pixels that differ visibly between points and quads";
+  }
+}
+
+// Automatic: the renderer times its draws and settles on the kind it measured cheaper, after
+// trying each (whichever that is on this driver).
+TEST(HeadlessRender, AutomaticDrawsTheKindItMeasuredCheaper) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  Scene scene = test::makeScene(test::sphere(1.0), 128);
+  EvalResult result = test::evaluateCpu(scene);
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  SplatsHandle splats = backend->splats(result.root, progress);
+  ASSERT_GT(splats->count(), ViewportRenderer::kTimedDrawSplats);
+  ViewportRenderer renderer;
+  renderer.uploadSplats(splats->hostData(), splats->count(), splatShapeOf(result.grid, *splats));
+  renderer.limitDetailLevel(0);
+  ViewportFrame frame;
+  frame.width = 200;
+  frame.height = 150;
+  frame.eye = glm::dvec3(0.0, -4.0, 1.0);
+  frame.forward = glm::normalize(-frame.eye);
+  frame.up = glm::dvec3(0.0, 0.0, 1.0);
+  frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                         glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+  RenderTarget target(frame.width, frame.height);
+  target.bind();
+  for (int i = 0; i < 4; ++i) {
+    renderer.draw(frame, {}, {}, {});
+    glFinish();  // the timer's result is there for the next draw
+  }
+  const double points = renderer.nsPerSplat(SplatPrimitive::Points);
+  const double quads = renderer.nsPerSplat(SplatPrimitive::Quads);
+  EXPECT_GT(points, 0.0);
+  EXPECT_GT(quads, 0.0);
+  EXPECT_GT(renderer.pointsDrawn(), 0u);
+  EXPECT_GT(renderer.quadsDrawn(), 0u);
+  const size_t pointsBefore = renderer.pointsDrawn(), quadsBefore = renderer.quadsDrawn();
+  renderer.draw(frame, {}, {}, {});
+  glFinish();
+  if (points <= quads)
+    EXPECT_GT(renderer.pointsDrawn(), pointsBefore) << points << " ns against " << quads;
+  else
+    EXPECT_GT(renderer.quadsDrawn(), quadsBefore) << points << " ns against " << quads;
+  target.read();
+}
+
+// The coarse image of a view that changed (every k-th splat at half resolution) keeps k within
+// the driver's largest attribute stride (2048 bytes: 102 splats) by sampling a coarser level:
+// with a share of 200 splats a frame, a sphere of some 33,000 splats would need k = 167, which
+// GL refuses (the draw then read whatever the last pointers gave, and a driver crashed on it).
+// No GL error, and the coarse image covers what the full one does.
+TEST(HeadlessRender, CoarseImageCoversTheViewWhenTheShareIsSmall) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  Scene scene = test::makeScene(test::sphere(1.0), 128);
+  EvalResult result = test::evaluateCpu(scene);
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  SplatsHandle splats = backend->splats(result.root, progress);
+  ASSERT_GT(splats->count(), 30000u);
+  ViewportRenderer renderer;
+  renderer.uploadSplats(splats->hostData(), splats->count(), splatShapeOf(result.grid, *splats));
+  ViewportFrame frame;
+  frame.width = 200;
+  frame.height = 150;
+  frame.eye = glm::dvec3(0.0, -4.0, 1.0);
+  frame.forward = glm::normalize(-frame.eye);
+  frame.up = glm::dvec3(0.0, 0.0, 1.0);
+  frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                         glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+  RenderTarget full(frame.width, frame.height);
+  full.bind();
+  renderer.draw(frame, {}, {}, {});
+  const std::vector<uint8_t> fullPixels = full.read();
+  renderer.setFrameShares(200, 200);
+  renderer.limitDetailLevel(0);  // the view's level: every splat (the sphere is a few pixels)
+  RenderTarget window(frame.width, frame.height);
+  window.bind();
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  renderer.drawCached(frame, {}, {}, {}, 16.0);
+  ASSERT_TRUE(renderer.showsCoarseImage());
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "a refused stride (GL_INVALID_VALUE)";
+  const std::vector<uint8_t> coarsePixels = window.read();
+  auto background = [](const std::vector<uint8_t>& p, size_t i) {
+    return std::abs(int(p[i * 4 + 0]) - int(p[i * 4 + 2])) < 12 && p[i * 4 + 0] < 90;
+  };
+  int sphere = 0, missed = 0;
+  for (size_t i = 0; i < size_t(frame.width) * size_t(frame.height); ++i) {
+    if (background(fullPixels, i)) continue;
+    ++sphere;
+    missed += background(coarsePixels, i) ? 1 : 0;
+  }
+  EXPECT_GT(sphere, 4000);
+  EXPECT_LT(missed, sphere / 20) << "of the sphere's pixels the coarse image left empty";
 }
 
 }  // namespace

@@ -1,0 +1,12 @@
+#include "ui/splat_primitive.h"
+
+namespace strata::ui {
+
+std::optional<SplatPrimitive> parseSplatPrimitive(const std::string& word) {
+  if (word == "auto") return SplatPrimitive::Automatic;
+  if (word == "quads") return SplatPrimitive::Quads;
+  if (word == "points") return SplatPrimitive::Points;
+  return std::nullopt;
+}
+
+}  // namespace strata::ui
