@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -97,7 +98,15 @@ ViewportRenderer::ViewportRenderer()
   glEnable(GL_PROGRAM_POINT_SIZE);
   // GL 4.4 names the limit (at least 2048 bytes); older contexts have no query and none below.
   if (epoxy_gl_version() >= 44) glGetIntegerv(GL_MAX_VERTEX_ATTRIB_STRIDE, &maxAttribStride_);
-  glGenQueries(1, &timerQuery_);
+  for (KindTiming& t : timing_) glGenQueries(1, &t.query);
+  // Software rasterizers queue a draw's pixels for worker threads after the timer query has
+  // ended: their times count little of the work (Mesa llvmpipe timed points at 1 ns a splat
+  // against 215 for quads, then drew points 2-4 times slower than quads). There, Automatic
+  // draws quads, which they fill fastest (no depth written per fragment).
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  for (const char* software : {"llvmpipe", "softpipe", "SwiftShader", "swrast", "Software"})
+    if (name.find(software) != std::string::npos) timersTrusted_ = false;
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
   glGenTextures(1, &leafTexture_);
@@ -157,7 +166,7 @@ ViewportRenderer::~ViewportRenderer() {
     glDeleteRenderbuffers(2, targets);
   }
   glDeleteTextures(1, &leafTexture_);
-  glDeleteQueries(1, &timerQuery_);
+  for (KindTiming& t : timing_) glDeleteQueries(1, &t.query);
   GLuint buffers[] = {cornerBuffer_,     splatBuffer_,      lineBuffer_,
                       ghosts_[0].buffer, ghosts_[1].buffer, stagingBuffer_};
   glDeleteBuffers(6, buffers);
@@ -274,8 +283,7 @@ int ViewportRenderer::detailLevel(const ViewportFrame& f) const {
   return level;
 }
 
-bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
-  if (primitive_ == SplatPrimitive::Quads) return false;
+bool ViewportRenderer::pointsFit(const ViewportFrame& f, float radius) const {
   const double pixelsPerUnit = nearestPixelsPerUnit(f);
   if (!std::isfinite(pixelsPerUnit)) return false;
   // The widest sprite (surfel.vert): the quad's corners lie at most radius * sqrt(2 + 2 / 0.3^2)
@@ -285,19 +293,21 @@ bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
   const double liftedCorner = std::sqrt(2.0 + 2.0 / (0.3 * 0.3));
   const double sprite =
       2.0 * (2.0 * double(radius) * shape_.cellSize * liftedCorner * pixelsPerUnit) + 2.0;
-  if (sprite > double(maxPointSize_)) return false;
+  return sprite <= double(maxPointSize_);
+}
+
+bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
+  if (primitive_ == SplatPrimitive::Quads || !pointsFit(f, radius)) return false;
   if (primitive_ == SplatPrimitive::Points) return true;
-  // Automatic: each kind until it has a time, then the cheaper, the other now and then.
-  if (nsPerSplat_[1] == 0.0) return true;
-  if (nsPerSplat_[0] == 0.0) return false;
-  const bool pointsCheaper = nsPerSplat_[1] <= nsPerSplat_[0];
-  const bool retry = !timerPending_ && timedDraws_ % kRetryEvery == kRetryEvery - 1;
-  return retry ? !pointsCheaper : pointsCheaper;
+  if (!timersTrusted_) return false;
+  // Automatic: the kind measured cheaper; quads until both are measured.
+  const double quads = timing_[0].nsPerSplat, points = timing_[1].nsPerSplat;
+  return quads > 0.0 && points > 0.0 && points < quads;
 }
 
 int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
   int level = buildLevel_;
-  const double ns = nsPerSplat_[usePoints(f, float(1 << level)) ? 1 : 0];
+  const double ns = timing_[usePoints(f, float(1 << level)) ? 1 : 0].nsPerSplat;
   if (ns <= 0.0) return level;  // not measured yet: the view's level
   while (level + 1 < kSplatLevels && shape_.levels.end[level + 1] > 0 &&
          double(levelEnd(level)) * ns * 1e-6 > kFirstImageMs)
@@ -306,23 +316,24 @@ int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
 }
 
 double ViewportRenderer::nsPerSplat(SplatPrimitive kind) const {
-  return kind == SplatPrimitive::Points  ? nsPerSplat_[1]
-         : kind == SplatPrimitive::Quads ? nsPerSplat_[0]
+  return kind == SplatPrimitive::Points  ? timing_[1].nsPerSplat
+         : kind == SplatPrimitive::Quads ? timing_[0].nsPerSplat
                                          : 0.0;
 }
 
 void ViewportRenderer::collectTiming() {
-  if (!timerPending_) return;
-  GLint available = 0;
-  glGetQueryObjectiv(timerQuery_, GL_QUERY_RESULT_AVAILABLE, &available);
-  if (!available) return;
-  GLuint64 ns = 0;
-  glGetQueryObjectui64v(timerQuery_, GL_QUERY_RESULT, &ns);
-  timerPending_ = false;
-  ++timedDraws_;
-  const double perSplat = double(ns) / double(std::max<size_t>(1, timerSplats_));
-  double& kept = nsPerSplat_[timerPoints_ ? 1 : 0];
-  kept = kept == 0.0 ? perSplat : 0.7 * kept + 0.3 * perSplat;
+  for (KindTiming& t : timing_) {
+    if (!t.pending) continue;
+    GLint available = 0;
+    glGetQueryObjectiv(t.query, GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!available) continue;
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(t.query, GL_QUERY_RESULT, &ns);
+    t.pending = false;
+    const double perSplat = double(ns) / double(std::max<size_t>(1, t.splats));
+    t.nsPerSplat = t.nsPerSplat == 0.0 ? perSplat : 0.7 * t.nsPerSplat + 0.3 * perSplat;
+    ++t.reads;
+  }
 }
 
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
@@ -385,8 +396,33 @@ void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size
   if (count == 0) return;
   collectTiming();
   const bool points = usePoints(f, radius);
-  // Timed: a large draw at full resolution (every splat of a range), one at a time.
-  const bool timed = !timerPending_ && stride == 1 && count >= kTimedDrawSplats;
+  // Automatic: a slice at the start of a large draw at full resolution goes as the other kind,
+  // timed, while that kind has no time yet or is due again (every kRetryEvery times of the kind
+  // drawn); the rest as the kind chosen. The slice costs about kProbeMs at the other kind's last
+  // time (4 kTimedDrawSplats before it has one) and at most an eighth of the draw, so that
+  // trying the dearer kind costs a frame little.
+  size_t slice = 0;
+  if (primitive_ == SplatPrimitive::Automatic && timersTrusted_ && stride == 1 &&
+      pointsFit(f, radius) && count >= 8 * kTimedDrawSplats) {
+    const KindTiming& other = timing_[points ? 0 : 1];
+    const bool due =
+        other.nsPerSplat == 0.0 || timing_[points ? 1 : 0].reads % kRetryEvery == kRetryEvery - 1;
+    const size_t wanted =
+        other.nsPerSplat > 0.0 ? size_t(kProbeMs * 1e6 / other.nsPerSplat) : 4 * kTimedDrawSplats;
+    if (due && !other.pending) slice = std::clamp(wanted, kTimedDrawSplats, count / 8);
+  }
+  if (slice > 0) drawSplatsAs(f, !points, first, slice, 1, radius);
+  drawSplatsAs(f, points, first + slice, count - slice, stride, radius);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count,
+                                    size_t stride, float radius) {
+  if (count == 0) return;
+  KindTiming& timing = timing_[points ? 1 : 0];
+  // Timed: draws at full resolution of kTimedDrawSplats or more, one a kind at a time.
+  const bool timed = !timing.pending && stride == 1 && count >= kTimedDrawSplats;
   const GlProgram& program = points ? pointProgram_ : surfelProgram_;
   useSurfelProgram(program, f);
   program.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
@@ -432,7 +468,7 @@ void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size
                          reinterpret_cast<void*>(base + offsetof(Splat, normal)));
   glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, bytes,
                          reinterpret_cast<void*>(base + offsetof(Splat, leafAxis)));
-  if (timed) glBeginQuery(GL_TIME_ELAPSED, timerQuery_);
+  if (timed) glBeginQuery(GL_TIME_ELAPSED, timing.query);
   if (points) {
     glDrawArrays(GL_POINTS, 0, GLsizei(count));
     pointsDrawn_ += count;
@@ -451,12 +487,9 @@ void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size
   }
   if (timed) {
     glEndQuery(GL_TIME_ELAPSED);
-    timerPending_ = true;
-    timerPoints_ = points;
-    timerSplats_ = count;
+    timing.pending = true;
+    timing.splats = count;
   }
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 void ViewportRenderer::drawGhosts(const ViewportFrame& f) {

@@ -145,12 +145,18 @@ class ViewportRenderer {
   // driver spends its time (a GPU: vertices, where points save three of four; a software
   // rasterizer: fragments, where the points' depth written per fragment costs more). Draws of
   // at least kTimedDrawSplats splats at full resolution are timed (GL_TIME_ELAPSED, read back
-  // frames later without waiting); each kind is tried until it has a time, then the cheaper is
-  // drawn and the other re-tried every kRetryEvery timed draws (views change what each costs).
+  // frames later without waiting). Quads are drawn until both kinds have a time, then the
+  // cheaper; the other is timed on a slice of a large draw (about kProbeMs of it) at first and
+  // again every kRetryEvery times of the kind drawn (views change what each costs).
   static constexpr size_t kTimedDrawSplats = 2000;
   static constexpr int kRetryEvery = 32;
+  static constexpr double kProbeMs = 1.0;  // what timing the other kind may cost a draw
   // The measured GPU time per splat of each kind in nanoseconds (0: not measured yet).
   double nsPerSplat(SplatPrimitive kind) const;
+  // Whether the driver's timer queries are taken to measure a draw's whole work (not on a
+  // software rasterizer, which then draws quads in Automatic); tests may say so either way.
+  bool timersTrusted() const { return timersTrusted_; }
+  void trustTimers(bool trusted) { timersTrusted_ = trusted; }
   // Level of detail: splats whose rays are at most this many pixels apart where the splats come
   // nearest to the camera show the surface as every splat would (a finer lattice adds only
   // splats drawn over each other within a pixel).
@@ -214,6 +220,11 @@ class ViewportRenderer {
   // Whether splats of `radius` cells are drawn as points in `f` (setSplatPrimitive, and every
   // splat's sprite within the driver's largest point).
   bool usePoints(const ViewportFrame& f, float radius) const;
+  // Whether every splat's sprite of `radius` cells fits the driver's largest point in `f`.
+  bool pointsFit(const ViewportFrame& f, float radius) const;
+  // drawSplatRange's draw of one kind; leaves the vertex array and buffer bound.
+  void drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count, size_t stride,
+                    float radius);
 
   // A splat instance buffer with its vertex array (corners + instances).
   struct SplatLayer {
@@ -238,13 +249,16 @@ class ViewportRenderer {
   SplatPrimitive primitive_ = SplatPrimitive::Automatic;
   size_t pointsDrawn_ = 0, quadsDrawn_ = 0;  // splats drawn as each so far
   // Timing of the two kinds (see kTimedDrawSplats): [0] quads, [1] points.
-  double nsPerSplat_[2] = {0.0, 0.0};
-  GLuint timerQuery_ = 0;
-  bool timerPending_ = false;  // timerQuery_ holds a draw not read back yet
-  bool timerPoints_ = false;   // of that draw: points
-  size_t timerSplats_ = 0;     // and its splats
-  int timedDraws_ = 0;
-  // Reads the pending timer query back when the GPU has it (never waits).
+  struct KindTiming {
+    double nsPerSplat = 0.0;  // measured, smoothed; 0 before the first
+    GLuint query = 0;         // GL_TIME_ELAPSED
+    bool pending = false;     // query holds a draw not read back yet
+    size_t splats = 0;        // of that draw
+    int reads = 0;            // times read back
+  };
+  KindTiming timing_[2];
+  bool timersTrusted_ = true;  // see timersTrusted()
+  // Reads the pending timer queries back when the GPU has them (never waits).
   void collectTiming();
   // The level of an edit's first image in `f` (kFirstImageMs): buildLevel_ or coarser, as the
   // measured cost per splat allows; buildLevel_ before any measurement.
