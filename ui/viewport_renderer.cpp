@@ -300,9 +300,15 @@ bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
   if (primitive_ == SplatPrimitive::Quads || !pointsFit(f, radius)) return false;
   if (primitive_ == SplatPrimitive::Points) return true;
   if (!timersTrusted_) return false;
-  // Automatic: the kind measured cheaper; quads until both are measured.
-  const double quads = timing_[0].nsPerSplat, points = timing_[1].nsPerSplat;
-  return quads > 0.0 && points > 0.0 && points < quads;
+  // Automatic: each kind until it has a time, then the cheaper, the other now and then.
+  const KindTiming &quads = timing_[0], &points = timing_[1];
+  if (points.reads == 0) return true;
+  if (quads.reads == 0) return false;
+  const bool pointsCheaper = points.nsPerSplat < quads.nsPerSplat;
+  const KindTiming& cheaper = pointsCheaper ? points : quads;
+  const KindTiming& dearer = pointsCheaper ? quads : points;
+  const bool retry = !dearer.pending && cheaper.reads % kRetryEvery == kRetryEvery - 1;
+  return retry ? !pointsCheaper : pointsCheaper;
 }
 
 int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
@@ -321,19 +327,30 @@ double ViewportRenderer::nsPerSplat(SplatPrimitive kind) const {
                                          : 0.0;
 }
 
+namespace {
+
+// Reads `t`'s query when the GPU has it (never waits): its time joins the sums, older draws
+// fading, so that a large draw weighs more than a small one, whose fixed cost (a draw's setup,
+// tens of microseconds) would read as splats' cost. True when it was read.
+bool readTiming(ViewportRenderer::KindTiming& t) {
+  if (!t.pending) return false;
+  GLint available = 0;
+  glGetQueryObjectiv(t.query, GL_QUERY_RESULT_AVAILABLE, &available);
+  if (!available) return false;
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(t.query, GL_QUERY_RESULT, &ns);
+  t.pending = false;
+  t.nsSum = 0.7 * t.nsSum + double(ns);
+  t.splatSum = 0.7 * t.splatSum + double(t.splats);
+  t.nsPerSplat = t.splatSum > 0.0 ? t.nsSum / t.splatSum : 0.0;
+  ++t.reads;
+  return true;
+}
+
+}  // namespace
+
 void ViewportRenderer::collectTiming() {
-  for (KindTiming& t : timing_) {
-    if (!t.pending) continue;
-    GLint available = 0;
-    glGetQueryObjectiv(t.query, GL_QUERY_RESULT_AVAILABLE, &available);
-    if (!available) continue;
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(t.query, GL_QUERY_RESULT, &ns);
-    t.pending = false;
-    const double perSplat = double(ns) / double(std::max<size_t>(1, t.splats));
-    t.nsPerSplat = t.nsPerSplat == 0.0 ? perSplat : 0.7 * t.nsPerSplat + 0.3 * perSplat;
-    ++t.reads;
-  }
+  for (KindTiming& t : timing_) readTiming(t);
 }
 
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
@@ -396,33 +413,29 @@ void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size
   if (count == 0) return;
   collectTiming();
   const bool points = usePoints(f, radius);
-  // Automatic: a slice at the start of a large draw at full resolution goes as the other kind,
-  // timed, while that kind has no time yet or is due again (every kRetryEvery times of the kind
-  // drawn); the rest as the kind chosen. The slice costs about kProbeMs at the other kind's last
-  // time (4 kTimedDrawSplats before it has one) and at most an eighth of the draw, so that
-  // trying the dearer kind costs a frame little.
-  size_t slice = 0;
-  if (primitive_ == SplatPrimitive::Automatic && timersTrusted_ && stride == 1 &&
-      pointsFit(f, radius) && count >= 8 * kTimedDrawSplats) {
-    const KindTiming& other = timing_[points ? 0 : 1];
-    const bool due =
-        other.nsPerSplat == 0.0 || timing_[points ? 1 : 0].reads % kRetryEvery == kRetryEvery - 1;
-    const size_t wanted =
-        other.nsPerSplat > 0.0 ? size_t(kProbeMs * 1e6 / other.nsPerSplat) : 4 * kTimedDrawSplats;
-    if (due && !other.pending) slice = std::clamp(wanted, kTimedDrawSplats, count / 8);
-  }
-  if (slice > 0) drawSplatsAs(f, !points, first, slice, 1, radius);
-  drawSplatsAs(f, points, first + slice, count - slice, stride, radius);
+  drawSplatsAs(f, points, first, count, stride, radius, timerFor(points, first, count, stride));
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
+ViewportRenderer::KindTiming* ViewportRenderer::timerFor(bool points, size_t first, size_t count,
+                                                         size_t stride) {
+  // Timed: whole images' draws, every splat of a level from the buffer's start (draws of other
+  // ranges, such as the refinement's shares, hold other mixes of splats far apart and close
+  // together, which cost differently), of kTimedDrawSplats or more, one a kind at a time.
+  KindTiming& t = timing_[points ? 1 : 0];
+  if (t.pending || first != 0 || stride != 1 || count < kTimedDrawSplats) return nullptr;
+  t.splats = count;
+  t.pending = true;
+  return &t;
+}
+
 void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count,
-                                    size_t stride, float radius) {
-  if (count == 0) return;
-  KindTiming& timing = timing_[points ? 1 : 0];
-  // Timed: draws at full resolution of kTimedDrawSplats or more, one a kind at a time.
-  const bool timed = !timing.pending && stride == 1 && count >= kTimedDrawSplats;
+                                    size_t stride, float radius, KindTiming* timer) {
+  if (count == 0) {
+    if (timer) timer->pending = false;
+    return;
+  }
   const GlProgram& program = points ? pointProgram_ : surfelProgram_;
   useSurfelProgram(program, f);
   program.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
@@ -468,7 +481,7 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
                          reinterpret_cast<void*>(base + offsetof(Splat, normal)));
   glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, bytes,
                          reinterpret_cast<void*>(base + offsetof(Splat, leafAxis)));
-  if (timed) glBeginQuery(GL_TIME_ELAPSED, timing.query);
+  if (timer) glBeginQuery(GL_TIME_ELAPSED, timer->query);
   if (points) {
     glDrawArrays(GL_POINTS, 0, GLsizei(count));
     pointsDrawn_ += count;
@@ -485,11 +498,7 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
                              reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
     }
   }
-  if (timed) {
-    glEndQuery(GL_TIME_ELAPSED);
-    timing.pending = true;
-    timing.splats = count;
-  }
+  if (timer) glEndQuery(GL_TIME_ELAPSED);
 }
 
 void ViewportRenderer::drawGhosts(const ViewportFrame& f) {

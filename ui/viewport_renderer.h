@@ -141,18 +141,27 @@ class ViewportRenderer {
   // Splats drawn so far as points and as quads (each drawn splat counted once per draw).
   size_t pointsDrawn() const { return pointsDrawn_; }
   size_t quadsDrawn() const { return quadsDrawn_; }
-  // Automatic picks by measurement, not by driver name: which is cheaper depends on where the
-  // driver spends its time (a GPU: vertices, where points save three of four; a software
-  // rasterizer: fragments, where the points' depth written per fragment costs more). Draws of
-  // at least kTimedDrawSplats splats at full resolution are timed (GL_TIME_ELAPSED, read back
-  // frames later without waiting). Quads are drawn until both kinds have a time, then the
-  // cheaper; the other is timed on a slice of a large draw (about kProbeMs of it) at first and
-  // again every kRetryEvery times of the kind drawn (views change what each costs).
+  // Automatic picks by measurement: which is cheaper depends on where the driver spends its time
+  // (a GPU: vertices, where points save three of four; a software rasterizer: fragments, where
+  // the points' depth written per fragment costs more) and on the splats' size on screen.
+  // Whole images' draws (kTimedDrawSplats or more) are timed with GL_TIME_ELAPSED, read back
+  // frames later without waiting; each kind is drawn until it has a time, then the cheaper,
+  // and the other again every kRetryEvery times (views change what each costs). Whole draws,
+  // not slices of one: on the H200 a slice of points drawn after quads timed 8.5 ns a splat,
+  // whole draws of points 3.6 (a pipelined GPU's timer spans what is still in flight).
   static constexpr size_t kTimedDrawSplats = 2000;
   static constexpr int kRetryEvery = 32;
-  static constexpr double kProbeMs = 1.0;  // what timing the other kind may cost a draw
   // The measured GPU time per splat of each kind in nanoseconds (0: not measured yet).
   double nsPerSplat(SplatPrimitive kind) const;
+  // Times of draws of one kind.
+  struct KindTiming {
+    double nsPerSplat = 0.0;             // nsSum / splatSum; 0 before the first
+    double nsSum = 0.0, splatSum = 0.0;  // timed draws, each older one weighing 0.7 as much
+    GLuint query = 0;                    // GL_TIME_ELAPSED
+    bool pending = false;                // query holds a draw not read back yet
+    size_t splats = 0;                   // of that draw
+    int reads = 0;                       // times read back
+  };
   // Whether the driver's timer queries are taken to measure a draw's whole work (not on a
   // software rasterizer, which then draws quads in Automatic); tests may say so either way.
   bool timersTrusted() const { return timersTrusted_; }
@@ -222,9 +231,10 @@ class ViewportRenderer {
   bool usePoints(const ViewportFrame& f, float radius) const;
   // Whether every splat's sprite of `radius` cells fits the driver's largest point in `f`.
   bool pointsFit(const ViewportFrame& f, float radius) const;
-  // drawSplatRange's draw of one kind; leaves the vertex array and buffer bound.
+  // drawSplatRange's draw of one kind, timed into `timer` (marked pending) when given; leaves
+  // the vertex array and buffer bound.
   void drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count, size_t stride,
-                    float radius);
+                    float radius, KindTiming* timer);
 
   // A splat instance buffer with its vertex array (corners + instances).
   struct SplatLayer {
@@ -248,15 +258,10 @@ class ViewportRenderer {
   GLint maxAttribStride_ = 2048;  // bytes, the driver's largest vertex attribute stride
   SplatPrimitive primitive_ = SplatPrimitive::Automatic;
   size_t pointsDrawn_ = 0, quadsDrawn_ = 0;  // splats drawn as each so far
-  // Timing of the two kinds (see kTimedDrawSplats): [0] quads, [1] points.
-  struct KindTiming {
-    double nsPerSplat = 0.0;  // measured, smoothed; 0 before the first
-    GLuint query = 0;         // GL_TIME_ELAPSED
-    bool pending = false;     // query holds a draw not read back yet
-    size_t splats = 0;        // of that draw
-    int reads = 0;            // times read back
-  };
+  // Whole images' times of the two kinds (see kTimedDrawSplats): [0] quads, [1] points.
   KindTiming timing_[2];
+  // The timer of a draw of `count` splats of one kind from `first` (marked pending), or none.
+  KindTiming* timerFor(bool points, size_t first, size_t count, size_t stride);
   bool timersTrusted_ = true;  // see timersTrusted()
   // Reads the pending timer queries back when the GPU has them (never waits).
   void collectTiming();

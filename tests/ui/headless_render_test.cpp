@@ -218,7 +218,7 @@ TEST(HeadlessRender, AutomaticDrawsTheKindItMeasuredCheaper) {
   const size_t pointsBefore = renderer.pointsDrawn(), quadsBefore = renderer.quadsDrawn();
   renderer.draw(frame, {}, {}, {});
   glFinish();
-  if (points <= quads)
+  if (points < quads)
     EXPECT_GT(renderer.pointsDrawn(), pointsBefore) << points << " ns against " << quads;
   else
     EXPECT_GT(renderer.quadsDrawn(), quadsBefore) << points << " ns against " << quads;
