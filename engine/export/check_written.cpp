@@ -53,7 +53,7 @@ WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Pro
   std::thread reader([&] {
     try {
       const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-      found = fingerprintTriangles(readMeshFileVerbatim(path));
+      found = fingerprintTriangles(readMeshFileVerbatim(path, nullptr, &progress));
     } catch (...) {
       readError = std::current_exception();
     }
@@ -61,7 +61,7 @@ WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Pro
   try {
     const TriangleFingerprint expected = fingerprintTriangles(meant);
     progress.report("check", 0.1);
-    result.check = checkMesh(meant);
+    result.check = checkMesh(meant, &progress);
     reader.join();
     if (readError) std::rethrow_exception(readError);
     progress.report("check", 0.9);
@@ -75,7 +75,7 @@ WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Pro
                     "differs)";
       progress.check();
       const InputLimitLifted ownFile;
-      result.check = checkMesh(readMeshFileRaw(path));
+      result.check = checkMesh(readMeshFileRaw(path), &progress);
     }
   } catch (...) {
     if (reader.joinable()) reader.join();

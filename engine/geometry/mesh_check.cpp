@@ -398,7 +398,13 @@ double largestUsedExtent(const TriangleMesh& mesh) {
 
 namespace {
 // checkMesh with the welding map given: canonical[i] is the first vertex at vertex i's position.
-MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& canonical) {
+// `progress`: checked between passes and in each chunk of the parallel ones (may be null).
+MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& canonical,
+                      const Progress* progress) {
+  auto checkCancel = [progress] {
+    if (progress) progress->check();
+  };
+  checkCancel();
   MeshCheck c;
   c.vertices = mesh.positions.size();
   c.triangles = mesh.triangles.size();
@@ -406,13 +412,16 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
     c.nonFiniteCoordinates += !std::isfinite(p.x) + !std::isfinite(p.y) + !std::isfinite(p.z);
 
   measureTriangles(mesh, canonical, c);
+  checkCancel();
 
   const SortedHalfEdges sorted = sortedHalfEdges(mesh, &canonical);
+  checkCancel();
   const std::vector<HalfEdge>& edges = sorted.edges;
   // Edge counts and components, in parallel over the buckets of half-edges.
   ConcurrentUnionFind components(mesh.triangles.size());
   std::atomic<size_t> boundary{0}, nonManifold{0}, misoriented{0};
   parallelFor(0, int64_t(sorted.bucketEnd.size()), 4096, [&](int64_t b, int64_t e) {
+    checkCancel();
     size_t localBoundary = 0, localNonManifold = 0, localMisoriented = 0;
     forEachEdge(edges, sorted.bucketBegin(size_t(b)), sorted.bucketEnd[size_t(e - 1)],
                 [&](size_t begin, size_t end) {
@@ -435,6 +444,7 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
   // Number the components densely, in order of their first triangle.
   std::vector<uint32_t> componentOf(mesh.triangles.size());
   parallelFor(0, int64_t(mesh.triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    checkCancel();
     for (int64_t t = b; t < e; ++t) componentOf[size_t(t)] = components.find(uint32_t(t));
   });
   std::vector<uint32_t> denseId(mesh.triangles.size(), kNone);
@@ -445,6 +455,7 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
   }
 
   if (!c.watertight() || mesh.triangles.empty()) return c;
+  checkCancel();
 
   // Euler characteristic per component: V - E + F, each vertex counted once per component.
   std::vector<long long> chi(c.components, 0);
@@ -467,6 +478,7 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
       }
     }
   }
+  checkCancel();
   forEachEdge(edges, [&](size_t begin, size_t) { chi[componentOf[edges[begin].triangle]] -= 1; });
   int genus = 0;
   for (long long x : chi) {
@@ -479,8 +491,10 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
 }
 }  // namespace
 
-MeshCheck checkMesh(const TriangleMesh& mesh) {
-  return checkWelded(mesh, canonicalVertices(mesh.positions));
+MeshCheck checkMesh(const TriangleMesh& mesh, const Progress* progress) {
+  if (progress) progress->check();
+  std::vector<uint32_t> canonical = canonicalVertices(mesh.positions);
+  return checkWelded(mesh, canonical, progress);
 }
 
 size_t weldIdenticalPositions(TriangleMesh& mesh) {
@@ -688,7 +702,7 @@ PrepareReport prepareMesh(TriangleMesh& mesh) {
   // map is the identity (no second hash of every position).
   std::vector<uint32_t> identity(mesh.positions.size());
   std::iota(identity.begin(), identity.end(), 0u);
-  report.check = checkWelded(mesh, identity);
+  report.check = checkWelded(mesh, identity, nullptr);
   return report;
 }
 

@@ -180,9 +180,12 @@ TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report) {
                           Corners::WeldUnindexed);
 }
 
-TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report) {
+TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report,
+                                  const Progress* progress) {
   MeshReadReport local;
-  return parseByExtension(path, readWholeFile(path), report ? report : &local, Corners::Verbatim);
+  const std::string bytes = readWholeFile(path);
+  if (progress) progress->check();
+  return parseByExtension(path, bytes, report ? report : &local, Corners::Verbatim);
 }
 
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,

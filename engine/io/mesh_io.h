@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "engine/geometry/mesh.h"
+#include "engine/util/progress.h"
 
 namespace strata {
 
@@ -62,7 +63,9 @@ TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report = n
 
 // The same without even STL's weld: the triangles as the file lists them, each STL facet with
 // three vertices of its own. For comparing a written file with the mesh meant (check_written.h)
-// without the cost of welding.
-TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report = nullptr);
+// without the cost of welding. With `progress`, checks for cancellation between reading the file
+// and parsing it (throws Cancelled).
+TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report = nullptr,
+                                  const Progress* progress = nullptr);
 
 }  // namespace strata

@@ -179,5 +179,18 @@ TEST(CheckWritten, ACancelledCheckThrows) {
   EXPECT_THROW(checkWrittenFile(path, em.mesh, progress), Cancelled);
 }
 
+// The read-back half honours cancel too: between reading the file and parsing it.
+TEST(CheckWritten, ACancelledReadBackThrows) {
+  const ExportMesh em = threeCubes();
+  const std::string path = freshPath("cancel-read.stl");
+  writeMeshFile(path, em);
+  Progress running;
+  EXPECT_EQ(readMeshFileVerbatim(path, nullptr, &running).triangles.size(),
+            em.mesh.triangles.size());
+  Progress cancelled;
+  cancelled.cancel();
+  EXPECT_THROW(readMeshFileVerbatim(path, nullptr, &cancelled), Cancelled);
+}
+
 }  // namespace
 }  // namespace strata

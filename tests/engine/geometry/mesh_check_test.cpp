@@ -94,6 +94,22 @@ TEST(MeshCheck, CubeIsWatertightGenusZero) {
   EXPECT_DOUBLE_EQ(c.smallestTriangleArea, 0.5);
 }
 
+// A check told to stop stops (the export's check stage honours cancel within its passes).
+TEST(MeshCheck, ACancelledCheckThrows) {
+  TriangleMesh many;
+  for (int i = 0; i < 200; ++i) {
+    const TriangleMesh c = cube(glm::dvec3(2.0 * i, 0.0, 0.0));
+    const uint32_t base = uint32_t(many.positions.size());
+    many.positions.insert(many.positions.end(), c.positions.begin(), c.positions.end());
+    for (auto t : c.triangles) many.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  Progress running;
+  EXPECT_EQ(checkMesh(many, &running).components, 200u);
+  Progress cancelled;
+  cancelled.cancel();
+  EXPECT_THROW(checkMesh(many, &cancelled), Cancelled);
+}
+
 TEST(MeshCheck, TorusHasGenusOne) {
   const MeshCheck c = checkMesh(torus());
   EXPECT_TRUE(c.watertight());
