@@ -38,6 +38,31 @@ Rgb pixel(const SceneRender& render, int width, int x, int y) {
   return {p[0], p[1], p[2]};
 }
 
+// A unit sphere of 128 cells evaluated on the CPU, its splats uploaded to `renderer`; returns
+// how many.
+size_t uploadSphere(ViewportRenderer& renderer) {
+  Scene scene = test::makeScene(test::sphere(1.0), 128);
+  EvalResult result = test::evaluateCpu(scene);
+  CpuBackend backend;
+  Progress progress;
+  SplatsHandle splats = backend.splats(result.root, progress);
+  renderer.uploadSplats(splats->hostData(), splats->count(), splatShapeOf(result.grid, *splats));
+  return splats->count();
+}
+
+// 200 x 150 pixels looking at the origin from (0, -4, 1), z up.
+ViewportFrame sphereFrame() {
+  ViewportFrame frame;
+  frame.width = 200;
+  frame.height = 150;
+  frame.eye = glm::dvec3(0.0, -4.0, 1.0);
+  frame.forward = glm::normalize(-frame.eye);
+  frame.up = glm::dvec3(0.0, 0.0, 1.0);
+  frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                         glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+  return frame;
+}
+
 TEST(HeadlessRender, RendersASceneWithoutAWindow) {
   std::string why;
   auto gl = headlessOrSkipReason(&why);
@@ -175,23 +200,10 @@ TEST(HeadlessRender, AutomaticDrawsTheKindItMeasuredCheaper) {
   std::string why;
   auto gl = headlessOrSkipReason(&why);
   if (!gl) GTEST_SKIP() << why;
-  Scene scene = test::makeScene(test::sphere(1.0), 128);
-  EvalResult result = test::evaluateCpu(scene);
-  auto backend = std::make_shared<CpuBackend>();
-  Progress progress;
-  SplatsHandle splats = backend->splats(result.root, progress);
-  ASSERT_GT(splats->count(), ViewportRenderer::kTimedDrawSplats);
   ViewportRenderer renderer;
-  renderer.uploadSplats(splats->hostData(), splats->count(), splatShapeOf(result.grid, *splats));
+  ASSERT_GT(uploadSphere(renderer), ViewportRenderer::kTimedDrawSplats);
   renderer.limitDetailLevel(0);
-  ViewportFrame frame;
-  frame.width = 200;
-  frame.height = 150;
-  frame.eye = glm::dvec3(0.0, -4.0, 1.0);
-  frame.forward = glm::normalize(-frame.eye);
-  frame.up = glm::dvec3(0.0, 0.0, 1.0);
-  frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
-                         glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+  const ViewportFrame frame = sphereFrame();
   RenderTarget target(frame.width, frame.height);
   target.bind();
   if (!renderer.timersTrusted()) {
@@ -234,22 +246,9 @@ TEST(HeadlessRender, CoarseImageCoversTheViewWhenTheShareIsSmall) {
   std::string why;
   auto gl = headlessOrSkipReason(&why);
   if (!gl) GTEST_SKIP() << why;
-  Scene scene = test::makeScene(test::sphere(1.0), 128);
-  EvalResult result = test::evaluateCpu(scene);
-  auto backend = std::make_shared<CpuBackend>();
-  Progress progress;
-  SplatsHandle splats = backend->splats(result.root, progress);
-  ASSERT_GT(splats->count(), 30000u);
   ViewportRenderer renderer;
-  renderer.uploadSplats(splats->hostData(), splats->count(), splatShapeOf(result.grid, *splats));
-  ViewportFrame frame;
-  frame.width = 200;
-  frame.height = 150;
-  frame.eye = glm::dvec3(0.0, -4.0, 1.0);
-  frame.forward = glm::normalize(-frame.eye);
-  frame.up = glm::dvec3(0.0, 0.0, 1.0);
-  frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
-                         glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+  ASSERT_GT(uploadSphere(renderer), 30000u);
+  const ViewportFrame frame = sphereFrame();
   RenderTarget full(frame.width, frame.height);
   full.bind();
   renderer.draw(frame, {}, {}, {});
