@@ -606,11 +606,15 @@ bool Editor::frame() {
     // An edit just went to the engine and nothing else moves: a frame now would show the old
     // result. Wait a little for the new one (its arrival wakes the loop): on a fast engine the
     // edit then reaches the screen in this frame instead of the next.
-    glfwWaitEventsTimeout(0.008);
+    lastWaitSeconds_ = 0.008;
   else if (state_->now < activeUntil_)
-    glfwPollEvents();
+    lastWaitSeconds_ = 0.0;
   else
-    glfwWaitEventsTimeout(working ? 0.05 : 0.5);  // progress shows at 20 frames a second
+    lastWaitSeconds_ = working ? 0.05 : 0.5;  // progress shows at 20 frames a second
+  if (lastWaitSeconds_ > 0.0)
+    glfwWaitEventsTimeout(lastWaitSeconds_);
+  else
+    glfwPollEvents();
   if (glfwWindowShouldClose(gl_->window.handle())) {
     glfwSetWindowShouldClose(gl_->window.handle(), GLFW_FALSE);
     if (state_->document.dirty())

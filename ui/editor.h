@@ -87,6 +87,9 @@ class Editor {
   double splatNanoseconds(SplatPrimitive kind) const;
   // Whether a result is being uploaded over several frames (shown once all of it is there).
   bool uploading() const { return staging_ != nullptr; }
+  // The longest the last frame() waited for events before drawing, in seconds (0: it only
+  // polled): frames keep coming at once while the view refines or a result uploads.
+  double lastWaitSeconds() const { return lastWaitSeconds_; }
   // Points the camera at the whole scene.
   void viewAll();
   // Renders the 3D view alone (no panels) off-screen: width * height * 4 RGBA bytes, top row
@@ -150,7 +153,8 @@ class Editor {
   double stagingMs_ = 0.0;
   double uploadBytesPerMs_ = 0.0;  // host upload rate seen (0: not measured yet)
   double lastAutosave_ = 0.0;
-  double activeUntil_ = 0.0;  // draw without waiting for events until then (seconds)
+  double activeUntil_ = 0.0;      // draw without waiting for events until then (seconds)
+  double lastWaitSeconds_ = 0.0;  // frame()'s wait for events (lastWaitSeconds)
   uint64_t autosavedRevision_ = 0;
   double startTime_ = 0.0;
   PanelLayout layout_;  // the panels' sizes (splitters), read from options_.layoutPath

@@ -204,7 +204,11 @@ TEST(EditorWindow, LargeResultsAreUploadedOverSeveralFramesWhileTheLastStaysShow
   bool sawUpload = false;
   for (int frame = 0; frame < 20000 && !(state.preview.get() != small && !editor.uploading());
        ++frame) {
+    const bool wasUploading = editor.uploading();
     editor.frame();
+    if (wasUploading) {  // the frame loop kept frames coming: no wait for events (a mouse move)
+      EXPECT_EQ(editor.lastWaitSeconds(), 0.0) << "a frame waited while a result was uploading";
+    }
     if (editor.uploading()) {
       sawUpload = true;
       EXPECT_EQ(state.preview.get(), small) << "the last result stays shown meanwhile";
