@@ -191,9 +191,9 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   SplatsHandle splats = backend->splats(result.stats.root, progress);
   result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
   if (hostSplats_ && !splats->hostData()) {
-    std::vector<Splat> host(splats->count());
+    std::vector<Splat> host = splatArrays_->take(splats->count());
     splats->copyToHost(host.data());
-    splats = std::make_shared<HostSplats>(std::move(host), splats->levels());
+    splats = std::make_shared<HostSplats>(std::move(host), splats->levels(), splatArrays_);
   }
   result.splats = std::move(splats);
   for (KeptLdi& kept : result.stats.kept) {

@@ -139,6 +139,8 @@ class PreviewWorker {
   double quickPassSeconds_;
   std::function<void()> onResult_;
   std::atomic<bool> hostSplats_{true};
+  // The host copies' arrays, reused once their results are released (SplatArrayPool).
+  std::shared_ptr<SplatArrayPool> splatArrays_ = std::make_shared<SplatArrayPool>();
   std::unique_ptr<Evaluator> modifierEvaluator_;  // worker thread only: see computePass
 
   mutable std::mutex mutex_;

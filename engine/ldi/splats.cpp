@@ -1,5 +1,6 @@
 #include "engine/ldi/splats.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace strata {
@@ -39,6 +40,39 @@ std::vector<Splat> buildSplats(const Ldi& ldi, SplatLevels* levels) {
   }
   if (levels) *levels = ends;
   return splats;
+}
+
+std::vector<Splat> SplatArrayPool::take(size_t count) {
+  std::vector<Splat> array;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // The smallest kept array that holds `count`.
+    size_t best = kept_.size();
+    for (size_t i = 0; i < kept_.size(); ++i)
+      if (kept_[i].capacity() >= count &&
+          (best == kept_.size() || kept_[i].capacity() < kept_[best].capacity()))
+        best = i;
+    if (best < kept_.size()) {
+      array = std::move(kept_[best]);
+      kept_.erase(kept_.begin() + std::ptrdiff_t(best));
+    }
+  }
+  array.resize(count);  // within a kept array's capacity: no new memory
+  return array;
+}
+
+void SplatArrayPool::give(std::vector<Splat>&& splats) {
+  if (splats.capacity() == 0) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (kept_.size() < kKept) {
+    kept_.push_back(std::move(splats));
+    return;
+  }
+  // Full: the largest arrays stay (a later result needs at most as much as the largest so far).
+  auto smallest = std::min_element(kept_.begin(), kept_.end(), [](const auto& a, const auto& b) {
+    return a.capacity() < b.capacity();
+  });
+  if (smallest->capacity() < splats.capacity()) *smallest = std::move(splats);
 }
 
 void HostSplats::copyToHost(Splat* out) const {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "engine/ldi/ldi.h"
@@ -106,6 +107,24 @@ class SplatResource {
 };
 using SplatsHandle = std::shared_ptr<const SplatResource>;
 
+// Host arrays of splats kept for reuse: a new array of millions of splats taken from fresh memory
+// costs more in the kernel's zeroing of its pages than the copy that fills it (the preview
+// worker's host copies of device splats, 40 MB a result at 1024 cells). Keeps at most
+// kKept arrays. Threads: any (a result is released on the UI thread, arrays taken on the
+// worker's).
+class SplatArrayPool {
+ public:
+  static constexpr size_t kKept = 2;
+  // An array of `count` splats (contents unspecified): a kept one when one is large enough.
+  std::vector<Splat> take(size_t count);
+  // Keeps `splats` for a later take (or drops it when kKept are kept).
+  void give(std::vector<Splat>&& splats);
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::vector<Splat>> kept_;
+};
+
 // Splats in host memory.
 class HostSplats : public SplatResource {
  public:
@@ -114,6 +133,15 @@ class HostSplats : public SplatResource {
       : splats_(std::move(splats)), levels_(SplatLevels::flat(splats_.size())) {}
   HostSplats(std::vector<Splat> splats, const SplatLevels& levels)
       : splats_(std::move(splats)), levels_(levels) {}
+  // With `pool`: the array goes back to it when this is released.
+  HostSplats(std::vector<Splat> splats, const SplatLevels& levels,
+             std::shared_ptr<SplatArrayPool> pool)
+      : splats_(std::move(splats)), levels_(levels), pool_(std::move(pool)) {}
+  ~HostSplats() override {
+    if (pool_) pool_->give(std::move(splats_));
+  }
+  HostSplats(const HostSplats&) = delete;
+  HostSplats& operator=(const HostSplats&) = delete;
   size_t count() const override { return splats_.size(); }
   SplatLevels levels() const override { return levels_; }
   const Splat* hostData() const override { return splats_.data(); }
@@ -123,6 +151,7 @@ class HostSplats : public SplatResource {
  private:
   std::vector<Splat> splats_;
   SplatLevels levels_;
+  std::shared_ptr<SplatArrayPool> pool_;
 };
 
 }  // namespace strata

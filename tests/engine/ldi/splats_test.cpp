@@ -100,5 +100,33 @@ TEST(Splats, EmptyLdiHasNone) {
   EXPECT_TRUE(buildSplats(*makeEmptyLdi(grid)).empty());
 }
 
+// Arrays handed back by released host splats are reused by the next take that they hold (no
+// new memory), at most kKept of them, the largest kept.
+TEST(SplatArrayPool, ReleasedArraysAreReused) {
+  auto pool = std::make_shared<SplatArrayPool>();
+  std::vector<Splat> first = pool->take(1000);
+  ASSERT_EQ(first.size(), 1000u);
+  const Splat* memory = first.data();
+  {
+    HostSplats held(std::move(first), SplatLevels::flat(1000), pool);
+    EXPECT_EQ(held.count(), 1000u);
+    EXPECT_EQ(held.hostData(), memory);
+  }  // released: back to the pool
+  std::vector<Splat> again = pool->take(800);
+  EXPECT_EQ(again.data(), memory) << "the released array, not new memory";
+  EXPECT_EQ(again.size(), 800u);
+  std::vector<Splat> larger = pool->take(5000);  // nothing kept holds it: new memory
+  EXPECT_NE(larger.data(), memory);
+  // Three given back, two kept: the largest two.
+  std::vector<Splat> small(10), medium(100), big(10000);
+  const Splat* mediumMemory = medium.data();
+  const Splat* bigMemory = big.data();
+  pool->give(std::move(small));
+  pool->give(std::move(medium));
+  pool->give(std::move(big));
+  EXPECT_EQ(pool->take(50).data(), mediumMemory);
+  EXPECT_EQ(pool->take(50).data(), bigMemory);
+}
+
 }  // namespace
 }  // namespace strata::test
