@@ -77,7 +77,7 @@ const char* kUsageOptions =
     "  --no-interop               edit: splats through the host instead of CUDA-GL interop\n"
     "  --select \"A[,B...]\"        edit: select the nodes with these names (with --screenshot)\n"
     "  --ghosts                   edit: show the ghosts of every part that cuts or intersects\n"
-    "  --splats auto|points|quads how the view draws splats (auto: points where they fit)\n"
+    "  --splats auto|points|quads how the view draws splats (auto: the kind the GPU draws faster)\n"
     "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
     "\n";

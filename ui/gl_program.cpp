@@ -27,7 +27,9 @@ GLuint compile(GLenum type, const char* name, const char* defines) {
   const char* firstLineEnd = std::strchr(source, '\n');
   const char* rest = firstLineEnd ? firstLineEnd + 1 : source + std::strlen(source);
   const std::string version(source, rest);
-  const char* parts[3] = {version.c_str(), defines ? defines : "", rest};
+  // After the defines, the source's own line numbers again (the driver's log names them).
+  const std::string inserted = defines && *defines ? std::string(defines) + "#line 2\n" : "";
+  const char* parts[3] = {version.c_str(), inserted.c_str(), rest};
   GLuint shader = glCreateShader(type);
   glShaderSource(shader, 3, parts, nullptr);
   glCompileShader(shader);

@@ -6,8 +6,10 @@
 
 namespace strata::ui {
 
-// Automatic: one point per splat where every splat's sprite fits in the driver's largest point,
-// quads elsewhere (close-ups). Quads or Points: that kind alone (points only where they fit).
+// Automatic: whichever of points and quads the renderer's timing of whole images finds cheaper
+// (ViewportRenderer::kTimedDrawSplats), quads on software rasterizers and wherever a sprite could
+// exceed the driver's largest point (close-ups). Quads or Points: that kind alone (points only
+// where they fit).
 enum class SplatPrimitive { Automatic, Quads, Points };
 
 // "auto", "quads" or "points"; nothing for another word.

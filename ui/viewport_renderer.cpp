@@ -283,32 +283,52 @@ int ViewportRenderer::detailLevel(const ViewportFrame& f) const {
   return level;
 }
 
+double ViewportRenderer::spriteBoundPx(const ViewportFrame& f, float radius) const {
+  // The quad's corners lie at most `reach` from the surfel (radius * sqrt(2 + 2 / 0.3^2) cells:
+  // lifted onto the tangent plane, surfel.vert), so no corner comes nearer the eye than the
+  // box's nearest depth less reach. A point at depth d and NDC x lies at projScale.x x_view / d;
+  // moving it by reach moves it by at most reach (projScale.x + |NDC x|) / (d - reach), |NDC x|
+  // at most 1 for a splat whose sprite shows (plus the margin drawSplatsAs adds); the same
+  // across y. The sprite spans twice that, plus the shader's pixel of margin.
+  const double reach = double(radius) * shape_.cellSize * std::sqrt(2.0 + 2.0 / (0.3 * 0.3));
+  const glm::dvec2 scale = projectionScale(f);
+  const glm::dvec2 pixelsPerNdc(0.5 * f.width, 0.5 * f.height);
+  double perUnit = 0.0;  // pixels per scene unit of offset, the worst across x and y
+  if (f.ortho) {
+    perUnit = std::max(scale.x * pixelsPerNdc.x, scale.y * pixelsPerNdc.y);
+  } else {
+    double nearest = 1e300;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner((c & 1) ? shape_.hi.x : shape_.lo.x,
+                              (c & 2) ? shape_.hi.y : shape_.lo.y,
+                              (c & 4) ? shape_.hi.z : shape_.lo.z);
+      nearest = std::min(nearest, glm::dot(corner - f.eye, f.forward));
+    }
+    const double depth = nearest - reach;
+    if (!(depth > 0.0)) return HUGE_VAL;  // a splat may reach the eye's plane
+    constexpr double kNdcReach = 1.5;     // |NDC| of a centre whose sprite still shows, bound
+    perUnit =
+        std::max((scale.x + kNdcReach) * pixelsPerNdc.x, (scale.y + kNdcReach) * pixelsPerNdc.y) /
+        depth;
+  }
+  const double sprite = 2.0 * reach * perUnit + 2.0;
+  return std::isfinite(sprite) ? sprite : HUGE_VAL;
+}
+
 bool ViewportRenderer::pointsFit(const ViewportFrame& f, float radius) const {
-  const double pixelsPerUnit = nearestPixelsPerUnit(f);
-  if (!std::isfinite(pixelsPerUnit)) return false;
-  // The widest sprite (surfel.vert): the quad's corners lie at most radius * sqrt(2 + 2 / 0.3^2)
-  // cells from the surfel (lifted onto the tangent plane), so across the sprite twice that, plus
-  // the shader's pixel of margin; twice again for what perspective adds off the view's axis.
-  // Checked where the box comes nearest, so every splat fits.
-  const double liftedCorner = std::sqrt(2.0 + 2.0 / (0.3 * 0.3));
-  const double sprite =
-      2.0 * (2.0 * double(radius) * shape_.cellSize * liftedCorner * pixelsPerUnit) + 2.0;
-  return sprite <= double(maxPointSize_);
+  return spriteBoundPx(f, radius) <= double(maxPointSize_);
 }
 
 bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
   if (primitive_ == SplatPrimitive::Quads || !pointsFit(f, radius)) return false;
   if (primitive_ == SplatPrimitive::Points) return true;
   if (!timersTrusted_) return false;
-  // Automatic: each kind until it has a time, then the cheaper, the other now and then.
+  // Automatic: each kind until it has a time, then the cheaper (drawSplatRange retries the
+  // other now and then).
   const KindTiming &quads = timing_[0], &points = timing_[1];
   if (points.reads == 0) return true;
   if (quads.reads == 0) return false;
-  const bool pointsCheaper = points.nsPerSplat < quads.nsPerSplat;
-  const KindTiming& cheaper = pointsCheaper ? points : quads;
-  const KindTiming& dearer = pointsCheaper ? quads : points;
-  const bool retry = !dearer.pending && cheaper.reads % kRetryEvery == kRetryEvery - 1;
-  return retry ? !pointsCheaper : pointsCheaper;
+  return points.nsPerSplat < quads.nsPerSplat;
 }
 
 int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
@@ -409,22 +429,38 @@ void ViewportRenderer::drawBackground(const ViewportFrame& f) {
 }
 
 void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size_t count,
-                                      size_t stride, float radius) {
+                                      size_t stride, float radius, SplatDraw what) {
   if (count == 0) return;
   collectTiming();
-  const bool points = usePoints(f, radius);
-  drawSplatsAs(f, points, first, count, stride, radius, timerFor(points, first, count, stride));
+  // The coarse image of a moving view: quads, whose large discs points would draw only where
+  // their centres lie in the view (a point is clipped by its vertex).
+  bool points = what != SplatDraw::Coarse && usePoints(f, radius);
+  const bool whole = what == SplatDraw::WholeImage;
+  // Automatic tries a kind on whole images only, where it is timed: a share of an image drawn
+  // over frames goes as quads until both kinds have a time.
+  if (!whole && primitive_ == SplatPrimitive::Automatic &&
+      (timing_[0].reads == 0 || timing_[1].reads == 0))
+    points = false;
+  if (whole && primitive_ == SplatPrimitive::Automatic && timersTrusted_ && timing_[0].reads > 0 &&
+      timing_[1].reads > 0 && pointsFit(f, radius)) {
+    // The other kind again, once every kRetryEvery times of the one drawn.
+    const KindTiming &drawn = timing_[points ? 1 : 0], &other = timing_[points ? 0 : 1];
+    if (!other.pending && drawn.reads >= retryAfterReads_) {
+      points = !points;
+      retryAfterReads_ = drawn.reads + kRetryEvery;
+    }
+  }
+  drawSplatsAs(f, points, first, count, stride, radius, whole ? timerFor(points, count) : nullptr);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-ViewportRenderer::KindTiming* ViewportRenderer::timerFor(bool points, size_t first, size_t count,
-                                                         size_t stride) {
-  // Timed: whole images' draws, every splat of a level from the buffer's start (draws of other
+ViewportRenderer::KindTiming* ViewportRenderer::timerFor(bool points, size_t count) {
+  // Timed: whole images' draws (every splat of a level from the buffer's start; draws of other
   // ranges, such as the refinement's shares, hold other mixes of splats far apart and close
   // together, which cost differently), of kTimedDrawSplats or more, one a kind at a time.
   KindTiming& t = timing_[points ? 1 : 0];
-  if (t.pending || first != 0 || stride != 1 || count < kTimedDrawSplats) return nullptr;
+  if (t.pending || count < kTimedDrawSplats) return nullptr;
   t.splats = count;
   t.pending = true;
   return &t;
@@ -442,15 +478,40 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
   program.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
   program.set("ghostColor", glm::vec4(0.0f));
   program.set("splatRadius", radius);
+  GLint viewport[4] = {0, 0, 1, 1};
+  GLint scissorBox[4] = {0, 0, 1, 1};
+  GLboolean scissorOn = GL_FALSE;
   if (points) {
-    GLint viewport[4] = {0, 0, 1, 1};
+    // A point is clipped by its vertex: one whose centre lies just outside the view would leave
+    // its visible part undrawn. The viewport grows by half the largest sprite on each side, the
+    // projection shrinks to match (the view maps to the same pixels), and the scissor keeps the
+    // drawing to the view.
     glGetIntegerv(GL_VIEWPORT, viewport);
-    program.set("viewportRect", glm::vec4(float(viewport[0]), float(viewport[1]),
-                                          float(viewport[2]), float(viewport[3])));
+    glGetIntegerv(GL_SCISSOR_BOX, scissorBox);
+    scissorOn = glIsEnabled(GL_SCISSOR_TEST);
+    GLint maxDims[2] = {16384, 16384};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxDims);
+    const double bound = std::min(spriteBoundPx(f, radius), double(maxPointSize_));
+    GLint margin = GLint(std::ceil(0.5 * bound)) + 1;
+    if (viewport[2] + 2 * margin > maxDims[0] || viewport[3] + 2 * margin > maxDims[1]) margin = 0;
+    glm::dmat4 widen(1.0);
+    widen[0][0] = double(viewport[2]) / double(viewport[2] + 2 * margin);
+    widen[1][1] = double(viewport[3]) / double(viewport[3] + 2 * margin);
+    const glm::dmat4 viewProjection = widen * f.viewProjection;
+    if (!scissorOn) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+    }
+    glViewport(viewport[0] - margin, viewport[1] - margin, viewport[2] + 2 * margin,
+               viewport[3] + 2 * margin);
+    program.set("viewProjection", glm::mat4(viewProjection));
+    program.set("viewportRect",
+                glm::vec4(float(viewport[0] - margin), float(viewport[1] - margin),
+                          float(viewport[2] + 2 * margin), float(viewport[3] + 2 * margin)));
     program.set("maxPointSize", maxPointSize_);
     // The view rays (surfel.frag): near-plane points and directions, affine in NDC (x, y), the
     // directions scaled alike (their length does not matter) to keep floats well within range.
-    const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
+    const glm::dmat4 toWorld = glm::inverse(viewProjection);
     auto unproject = [&](double x, double y, double z) {
       const glm::dvec4 p = toWorld * glm::dvec4(x, y, z, 1.0);
       return glm::dvec3(p) / p.w;
@@ -485,6 +546,11 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
   if (points) {
     glDrawArrays(GL_POINTS, 0, GLsizei(count));
     pointsDrawn_ += count;
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    if (!scissorOn) {
+      glScissor(scissorBox[0], scissorBox[1], scissorBox[2], scissorBox[3]);
+      glDisable(GL_SCISSOR_TEST);
+    }
   } else {
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
     quadsDrawn_ += count;
@@ -547,7 +613,7 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
   drawBackground(f);
   if (splatCount_ > 0) {
     const int level = detailLevel(f);
-    drawSplatRange(f, 0, levelEnd(level), 1, float(1 << level));
+    drawSplatRange(f, 0, levelEnd(level), 1, float(1 << level), SplatDraw::WholeImage);
     drawnLevel_ = level;
   }
   drawGhosts(f);
@@ -674,7 +740,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       ensureTarget(&shown_, f.width, f.height);
       shown_->bind();
       drawBackground(local);
-      drawSplatRange(local, 0, first, 1, float(1 << firstLevel));
+      drawSplatRange(local, 0, first, 1, float(1 << firstLevel), SplatDraw::WholeImage);
       drawGhosts(local);
       drawLinesInto(local);
       refining_ = firstLevel != buildLevel_;
@@ -707,9 +773,10 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       coarse_->bind();
       drawBackground(half);
       const size_t drawn = (pool + stride - 1) / stride;
+      // Discs a little larger than the sampling's spacing: no holes.
       drawSplatRange(half, 0, drawn, stride,
-                     1.25f * float(1 << coarseLevel) *
-                         float(std::sqrt(double(stride))));  // a little larger: no holes
+                     1.25f * float(1 << coarseLevel) * float(std::sqrt(double(stride))),
+                     SplatDraw::Coarse);
       drawGhosts(half);
       drawLinesInto(half);
       refining_ = true;
@@ -728,7 +795,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glDepthFunc(GL_LESS);
     const size_t full = levelEnd(buildLevel_);
     const size_t count = std::min(fullShare_, full - std::min(full, buildDone_));
-    drawSplatRange(local, buildDone_, count, 1, float(1 << buildLevel_));
+    drawSplatRange(local, buildDone_, count, 1, float(1 << buildLevel_), SplatDraw::Share);
     buildDone_ += count;
     drewSplatsLastFrame_ = count;
     lastDrawFull_ = true;

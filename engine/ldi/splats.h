@@ -138,7 +138,11 @@ class HostSplats : public SplatResource {
              std::shared_ptr<SplatArrayPool> pool)
       : splats_(std::move(splats)), levels_(levels), pool_(std::move(pool)) {}
   ~HostSplats() override {
-    if (pool_) pool_->give(std::move(splats_));
+    if (!pool_) return;
+    try {
+      pool_->give(std::move(splats_));
+    } catch (...) {  // out of memory keeping it: the array is freed instead
+    }
   }
   HostSplats(const HostSplats&) = delete;
   HostSplats& operator=(const HostSplats&) = delete;

@@ -221,20 +221,67 @@ TEST(HeadlessRender, AutomaticDrawsTheKindItMeasuredCheaper) {
     renderer.draw(frame, {}, {}, {});
     glFinish();  // the timer's result is there for the next draw
   }
-  const double points = renderer.nsPerSplat(SplatPrimitive::Points);
-  const double quads = renderer.nsPerSplat(SplatPrimitive::Quads);
-  EXPECT_GT(points, 0.0);
-  EXPECT_GT(quads, 0.0);
+  EXPECT_GT(renderer.nsPerSplat(SplatPrimitive::Points), 0.0);
+  EXPECT_GT(renderer.nsPerSplat(SplatPrimitive::Quads), 0.0);
   EXPECT_GT(renderer.pointsDrawn(), 0u);
   EXPECT_GT(renderer.quadsDrawn(), 0u);
-  const size_t pointsBefore = renderer.pointsDrawn(), quadsBefore = renderer.quadsDrawn();
-  renderer.draw(frame, {}, {}, {});
-  glFinish();
-  if (points < quads)
-    EXPECT_GT(renderer.pointsDrawn(), pointsBefore) << points << " ns against " << quads;
-  else
-    EXPECT_GT(renderer.quadsDrawn(), quadsBefore) << points << " ns against " << quads;
+  // From here on each image is drawn as the kind measured cheaper before it, but for a retry of
+  // the other every kRetryEvery images (not more: an earlier version, once it retried, kept
+  // drawing the dearer kind).
+  constexpr int kImages = 80;
+  int otherKind = 0;
+  for (int i = 0; i < kImages; ++i) {
+    const bool pointsCheaper =
+        renderer.nsPerSplat(SplatPrimitive::Points) < renderer.nsPerSplat(SplatPrimitive::Quads);
+    const size_t pointsBefore = renderer.pointsDrawn();
+    renderer.draw(frame, {}, {}, {});
+    glFinish();
+    const bool drewPoints = renderer.pointsDrawn() > pointsBefore;
+    otherKind += drewPoints != pointsCheaper ? 1 : 0;
+  }
+  EXPECT_LE(otherKind, kImages / ViewportRenderer::kRetryEvery + 1);
   target.read();
+}
+
+// Close up, the sphere runs off the image's edges: points whose centres lie just outside the view
+// still draw their visible part (GL may clip a point by its vertex; the renderer widens the
+// viewport for points and shrinks the projection to match), so the edges look as the quads draw
+// them. Mesa draws such points anyway; here the test holds the widened mapping to the pixel (a
+// projection left unshrunk differs in 588 of 2064 edge pixels), on drivers that clip the edges.
+TEST(HeadlessRender, PointsReachTheImagesEdges) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  ViewportRenderer renderer;
+  uploadSphere(renderer);
+  renderer.limitDetailLevel(0);
+  ViewportFrame frame = sphereFrame();
+  frame.eye = glm::dvec3(0.0, -1.9, 0.3);
+  frame.forward = glm::normalize(-frame.eye);
+  frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                         glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+  std::vector<uint8_t> images[2];
+  for (int points = 0; points < 2; ++points) {
+    renderer.setSplatPrimitive(points ? SplatPrimitive::Points : SplatPrimitive::Quads);
+    const size_t before = renderer.pointsDrawn();
+    RenderTarget target(frame.width, frame.height);
+    target.bind();
+    renderer.draw(frame, {}, {}, {});
+    EXPECT_EQ(renderer.pointsDrawn() > before, points == 1);
+    images[points] = target.read();
+  }
+  int edge = 0, differing = 0;
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      if (x > 2 && y > 2 && x < frame.width - 3 && y < frame.height - 3) continue;
+      ++edge;
+      const size_t i = (size_t(y) * size_t(frame.width) + size_t(x)) * 4;
+      int d = 0;
+      for (int c = 0; c < 3; ++c)
+        d = std::max(d, std::abs(int(images[0][i + c]) - int(images[1][i + c])));
+      differing += d > 24 ? 1 : 0;
+    }
+  EXPECT_LT(differing, edge / 50) << "of the " << edge << " pixels along the edges";
 }
 
 // The coarse image of a view that changed (every k-th splat at half resolution) keeps k within
