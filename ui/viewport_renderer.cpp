@@ -254,12 +254,7 @@ size_t ViewportRenderer::levelEnd(int level) const {
   return std::min<size_t>(splatCount_, size_t(shape_.levels.end[level]));
 }
 
-double ViewportRenderer::nearestPixelsPerUnit(const ViewportFrame& f) const {
-  // Pixels per scene unit across the view at depth 1 (perspective) or anywhere (orthographic).
-  const glm::dvec2 scale = projectionScale(f);
-  const double perUnit = std::max(scale.y * 0.5 * f.height, scale.x * 0.5 * f.width);
-  if (f.ortho) return std::isfinite(perUnit) ? perUnit : HUGE_VAL;
-  // The box's nearest depth along the view: its corners' least.
+double ViewportRenderer::nearestDepth(const ViewportFrame& f) const {
   double nearest = 1e300;
   for (int c = 0; c < 8; ++c) {
     const glm::dvec3 corner((c & 1) ? shape_.hi.x : shape_.lo.x,
@@ -267,6 +262,15 @@ double ViewportRenderer::nearestPixelsPerUnit(const ViewportFrame& f) const {
                             (c & 4) ? shape_.hi.z : shape_.lo.z);
     nearest = std::min(nearest, glm::dot(corner - f.eye, f.forward));
   }
+  return nearest;
+}
+
+double ViewportRenderer::nearestPixelsPerUnit(const ViewportFrame& f) const {
+  // Pixels per scene unit across the view at depth 1 (perspective) or anywhere (orthographic).
+  const glm::dvec2 scale = projectionScale(f);
+  const double perUnit = std::max(scale.y * 0.5 * f.height, scale.x * 0.5 * f.width);
+  if (f.ortho) return std::isfinite(perUnit) ? perUnit : HUGE_VAL;
+  const double nearest = nearestDepth(f);
   if (!(nearest > 0.0)) return HUGE_VAL;  // the camera is within the box's depth range
   const double pixelsPerUnit = perUnit / nearest;
   return std::isfinite(pixelsPerUnit) ? pixelsPerUnit : HUGE_VAL;
@@ -297,14 +301,7 @@ double ViewportRenderer::spriteBoundPx(const ViewportFrame& f, float radius) con
   if (f.ortho) {
     perUnit = std::max(scale.x * pixelsPerNdc.x, scale.y * pixelsPerNdc.y);
   } else {
-    double nearest = 1e300;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 corner((c & 1) ? shape_.hi.x : shape_.lo.x,
-                              (c & 2) ? shape_.hi.y : shape_.lo.y,
-                              (c & 4) ? shape_.hi.z : shape_.lo.z);
-      nearest = std::min(nearest, glm::dot(corner - f.eye, f.forward));
-    }
-    const double depth = nearest - reach;
+    const double depth = nearestDepth(f) - reach;
     if (!(depth > 0.0)) return HUGE_VAL;  // a splat may reach the eye's plane
     constexpr double kNdcReach = 1.5;     // |NDC| of a centre whose sprite still shows, bound
     perUnit =

@@ -218,6 +218,8 @@ class ViewportRenderer {
   // current viewport.
   void drawSplatRange(const ViewportFrame& f, size_t first, size_t count, size_t stride,
                       float radius, SplatDraw what);
+  // The splats' box's nearest depth along the view (its corners' least), scene units.
+  double nearestDepth(const ViewportFrame& f) const;
   // Pixels per scene unit across the view where the splats' box comes nearest to the camera;
   // infinity when the camera is within the box's depth range.
   double nearestPixelsPerUnit(const ViewportFrame& f) const;
