@@ -3,6 +3,7 @@
 #include <cub/device/device_select.cuh>
 
 #include <mutex>
+#include <vector>
 
 #include "engine/contour/contour_cells.h"
 #include "gpu/contour/contour_tile.cuh"
@@ -13,18 +14,23 @@ namespace {
 
 __constant__ CellCaseTable c_cellCases;
 
-// The cell case table in constant memory, uploaded once per process (on the first caller's
-// stream, waited for before any caller goes on).
+// The cell case table in constant memory, uploaded once per device (constant memory is each
+// device's own: a table uploaded to device 0 alone left device 1's zero, and the export's second
+// GPU faulted), on the first caller's stream there, waited for before any caller goes on. The
+// caller has made the stream's device current.
 void uploadCellCases(const DeviceStream& stream) {
-  static std::once_flag once;
-  static cudaError_t status = cudaSuccess;
-  std::call_once(once, [&stream] {
-    const CellCaseTable table = buildCellCaseTable();
-    status = cudaMemcpyToSymbolAsync(c_cellCases, &table, sizeof(table), 0, cudaMemcpyHostToDevice,
-                                     stream.get());
-    if (status == cudaSuccess) status = cudaStreamSynchronize(stream.get());
-  });
-  STRATA_CUDA_CHECK(status);
+  int device = 0;
+  STRATA_CUDA_CHECK(cudaGetDevice(&device));
+  static std::mutex mutex;
+  static std::vector<bool> uploaded;  // by device
+  std::lock_guard<std::mutex> lock(mutex);
+  if (size_t(device) < uploaded.size() && uploaded[size_t(device)]) return;
+  const CellCaseTable table = buildCellCaseTable();
+  STRATA_CUDA_CHECK(cudaMemcpyToSymbolAsync(c_cellCases, &table, sizeof(table), 0,
+                                            cudaMemcpyHostToDevice, stream.get()));
+  STRATA_CUDA_CHECK(cudaStreamSynchronize(stream.get()));
+  if (uploaded.size() <= size_t(device)) uploaded.resize(size_t(device) + 1, false);
+  uploaded[size_t(device)] = true;
 }
 
 // Votes of one axis: one thread per ray walks its surfels and its nodes together.
