@@ -41,6 +41,17 @@ glm::dvec2 projectionScale(const ViewportFrame& f) {
   return glm::dvec2(std::abs(ndc(at + right).x - centre.x), std::abs(ndc(at + up).y - centre.y));
 }
 
+// The splat attributes (1: position, 2: normal, 3: leaf and axis) of the bound vertex array, from
+// the bound GL_ARRAY_BUFFER: splats `strideBytes` apart from byte `base`.
+void pointSplatAttributes(GLsizei strideBytes, size_t base) {
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, strideBytes,
+                        reinterpret_cast<void*>(base + offsetof(Splat, position)));
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, strideBytes,
+                         reinterpret_cast<void*>(base + offsetof(Splat, normal)));
+  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, strideBytes,
+                         reinterpret_cast<void*>(base + offsetof(Splat, leafAxis)));
+}
+
 std::vector<uint8_t> flipRows(std::vector<uint8_t> pixels, int width, int height) {
   const size_t row = size_t(width) * 4;
   std::vector<uint8_t> tmp(row);
@@ -126,18 +137,11 @@ void ViewportRenderer::makeSplatLayer(GLuint* vao, GLuint* buffer) {
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glGenBuffers(1, buffer);
   glBindBuffer(GL_ARRAY_BUFFER, *buffer);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
-                        reinterpret_cast<void*>(offsetof(Splat, position)));
-  glVertexAttribDivisor(1, 1);
-  glEnableVertexAttribArray(2);
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                         reinterpret_cast<void*>(offsetof(Splat, normal)));
-  glVertexAttribDivisor(2, 1);
-  glEnableVertexAttribArray(3);
-  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                         reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
-  glVertexAttribDivisor(3, 1);
+  pointSplatAttributes(sizeof(Splat), 0);
+  for (GLuint attribute = 1; attribute <= 3; ++attribute) {  // one splat per instance
+    glEnableVertexAttribArray(attribute);
+    glVertexAttribDivisor(attribute, 1);
+  }
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
@@ -533,12 +537,7 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
   assert(stride * sizeof(Splat) <= size_t(maxAttribStride_));
   const GLsizei bytes = GLsizei(stride * sizeof(Splat));
   const size_t base = first * sizeof(Splat);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, bytes,
-                        reinterpret_cast<void*>(base + offsetof(Splat, position)));
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, bytes,
-                         reinterpret_cast<void*>(base + offsetof(Splat, normal)));
-  glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, bytes,
-                         reinterpret_cast<void*>(base + offsetof(Splat, leafAxis)));
+  pointSplatAttributes(bytes, base);
   if (timer) glBeginQuery(GL_TIME_ELAPSED, timer->query);
   if (points) {
     glDrawArrays(GL_POINTS, 0, GLsizei(count));
@@ -552,14 +551,7 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
     quadsDrawn_ += count;
     // Back to every splat from the first, as pick() and the CUDA-GL copier expect.
-    if (first != 0 || stride != 1) {
-      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Splat),
-                            reinterpret_cast<void*>(offsetof(Splat, position)));
-      glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                             reinterpret_cast<void*>(offsetof(Splat, normal)));
-      glVertexAttribIPointer(3, 1, GL_UNSIGNED_INT, sizeof(Splat),
-                             reinterpret_cast<void*>(offsetof(Splat, leafAxis)));
-    }
+    if (first != 0 || stride != 1) pointSplatAttributes(sizeof(Splat), 0);
   }
   if (timer) glEndQuery(GL_TIME_ELAPSED);
 }
