@@ -353,55 +353,81 @@ class Collapser {
     return true;
   }
 
-  double distance2(const glm::dvec3& p, Mesh::FaceHandle f, Mesh::VertexHandle moved,
-                   const glm::dvec3& to) const {
-    auto it = m_.cfv_begin(f);
+  // Face f, with `moved` (when valid) at `to`, prepared for distance queries: once per face,
+  // not once per point tested against it (the circulator and the triangle's own arithmetic cost
+  // more than the point's).
+  TriangleDistance shapeOf(Mesh::FaceHandle f, Mesh::VertexHandle moved,
+                           const glm::dvec3& to) const {
     glm::dvec3 c[3];
+    auto it = m_.cfv_begin(f);
     for (auto& q : c) {
       q = *it == moved ? to : toGlm(m_.point(*it));
       ++it;
     }
-    return pointTriangleDistanceSquared(p, c[0], c[1], c[2]);
+    return TriangleDistance(c[0], c[1], c[2]);
   }
 
-  // The costly rules, on the mesh as it is: every unsimplified vertex covered by the faces
-  // around v0 stays within the tolerance of the faces that replace them, and those faces stay
-  // within it of the unsimplified surface on a grid of points at most sampleSpacing_ apart (at
-  // most kBackSteps per edge; their corners are vertices of it).
+  // The costly rules, on the mesh as it would be: every unsimplified point covered by the faces
+  // around v0 (and v0 itself) lies within the tolerance of the faces that replace them, and
+  // those faces stay within it of the unsimplified surface on a grid of points at most
+  // sampleSpacing_ apart (at most kBackSteps per edge; their corners are vertices of it). What
+  // it finds is what afterCollapse applies, if the collapse goes ahead: which points stay on
+  // their face (stays_) and the nearest new face of each that moves (moves_, in the order
+  // afterCollapse gathers them). A changed face is the same face after the collapse, with v1 at
+  // p1 in place of v0.
   bool deviationKept(const CollapseInfo& ci) {
     changed_.clear();
-    for (const auto f : m_.vf_range(ci.v0))
-      if (f != ci.fl && f != ci.fr) changed_.push_back(f);
+    shapes_.clear();
     const glm::dvec3 p1 = toGlm(ci.p1);
-    auto nearSome = [&](const glm::dvec3& p) {
-      for (const auto f : changed_)
-        if (distance2(p, f, ci.v0, p1) <= tolerance2_) return true;
-      return false;
+    for (const auto f : m_.vf_range(ci.v0))
+      if (f != ci.fl && f != ci.fr) {
+        changed_.push_back(f);
+        shapes_.push_back(shapeOf(f, ci.v0, p1));
+      }
+    if (changed_.empty()) return false;
+    stays_.clear();
+    moves_.clear();
+    // The nearest changed face (the first of equals) if within the tolerance, else -1.
+    auto nearest = [&](const glm::dvec3& p) {
+      double best = INFINITY;
+      uint32_t which = 0;
+      for (uint32_t k = 0; k < shapes_.size(); ++k) {
+        const double d = shapes_[k].squared(p);
+        if (d < best) {
+          best = d;
+          which = k;
+        }
+      }
+      return best <= tolerance2_ ? int64_t(which) : int64_t(-1);
+    };
+    auto move = [&](const glm::dvec3& p) {
+      const int64_t k = nearest(p);
+      if (k < 0) return false;
+      moves_.push_back(uint32_t(k));
+      return true;
     };
     // Each covered point is within the tolerance of its own face: test that face first.
-    for (const auto f : changed_)
-      for (const glm::dvec3& p : points_[size_t(f.idx())])
-        if (distance2(p, f, ci.v0, p1) > tolerance2_ && !nearSome(p)) return false;
+    for (size_t k = 0; k < changed_.size(); ++k)
+      for (const glm::dvec3& p : points_[size_t(changed_[k].idx())]) {
+        const bool stays = shapes_[k].squared(p) <= tolerance2_;
+        stays_.push_back(stays ? 1 : 0);
+        if (!stays && !move(p)) return false;
+      }
     for (const auto f : {ci.fl, ci.fr})
       if (f.is_valid())
         for (const glm::dvec3& p : points_[size_t(f.idx())])
-          if (!nearSome(p)) return false;
-    if (!nearSome(toGlm(ci.p0))) return false;
-    for (const auto f : changed_)
-      if (!faceNearSurface(f, ci.v0, p1)) return false;
+          if (!move(p)) return false;
+    if (!move(toGlm(ci.p0))) return false;
+    for (const TriangleDistance& shape : shapes_)
+      if (!faceNearSurface(shape)) return false;
     return true;
   }
 
-  // Whether face f (with `moved` at `to`) lies within the tolerance of the unsimplified surface
-  // on a grid of points at most sampleSpacing_ apart (at most kBackSteps per edge; its corners
-  // are tested by the caller or are vertices of the surface).
-  bool faceNearSurface(Mesh::FaceHandle f, Mesh::VertexHandle moved, const glm::dvec3& to) const {
-    auto it = m_.cfv_begin(f);
-    glm::dvec3 c[3];
-    for (auto& q : c) {
-      q = *it == moved ? to : toGlm(m_.point(*it));
-      ++it;
-    }
+  // Whether a face lies within the tolerance of the unsimplified surface on a grid of points at
+  // most sampleSpacing_ apart (at most kBackSteps per edge; its corners are tested by the
+  // caller or are vertices of the surface).
+  bool faceNearSurface(const TriangleDistance& shape) const {
+    const glm::dvec3 c[3] = {shape.corner(0), shape.corner(1), shape.corner(2)};
     const double longest =
         std::sqrt(std::max({glm::dot(c[1] - c[0], c[1] - c[0]), glm::dot(c[2] - c[1], c[2] - c[1]),
                             glm::dot(c[0] - c[2], c[0] - c[2])}));
@@ -412,7 +438,7 @@ class Collapser {
         if ((i == 0 && j == 0) || i == n || j == n) continue;  // a corner
         if (!surface_.within(
                 c[0] + (c[1] - c[0]) * (double(i) / n) + (c[2] - c[0]) * (double(j) / n),
-                tolerance_))
+                tolerance_, &hint_))
           return false;
       }
     return true;
@@ -463,27 +489,29 @@ class Collapser {
     for (const auto f : m_.vf_range(v)) {
       const OpenMesh::Vec3d n = m_.calc_face_normal(f);
       if (!(n.norm() > 0.0) || (m_.normal(f) | n) < minCos_) return false;
+      const TriangleDistance shape = shapeOf(f, Mesh::VertexHandle(), glm::dvec3(0.0));
       for (const glm::dvec3& p : points_[size_t(f.idx())])
-        if (distance2(p, f, Mesh::VertexHandle(), glm::dvec3(0.0)) > tolerance2_) return false;
-      if (!faceNearSurface(f, Mesh::VertexHandle(), glm::dvec3(0.0))) return false;
+        if (shape.squared(p) > tolerance2_) return false;
+      if (!faceNearSurface(shape)) return false;
     }
     return true;
   }
 
-  // The points of the faces that changed (changed_, from deviationKept) stay on their face
-  // while within the tolerance of it; the others, those of the two deleted faces and the removed
-  // vertex go to the nearest changed face (deviationKept found one within the tolerance).
+  // The points of the faces that changed (changed_) stay on their face where deviationKept
+  // found them within the tolerance of it; the others, those of the two deleted faces and the
+  // removed vertex go to the nearest changed face it found (moves_, in this order).
   void afterCollapse(const CollapseInfo& ci) {
     quadric_[size_t(ci.v1.idx())] += quadric_[size_t(ci.v0.idx())];
     touched_[size_t(ci.v1.idx())] = 1;
     for (const auto u : m_.vv_range(ci.v1)) touched_[size_t(u.idx())] = 1;
     for (const auto f : m_.vf_range(ci.v1)) m_.set_normal(f, m_.calc_face_normal(f));
     tested_.clear();
+    size_t next = 0;  // into stays_
     for (const auto f : changed_) {
       Points& own = points_[size_t(f.idx())];
       size_t kept = 0;
       for (const glm::dvec3& p : own) {
-        if (distance2(p, f, Mesh::VertexHandle(), glm::dvec3(0.0)) <= tolerance2_)
+        if (stays_[next++])
           own[kept++] = p;
         else
           tested_.push_back(p);
@@ -497,19 +525,8 @@ class Collapser {
         gone = Points();
       }
     tested_.push_back(toGlm(ci.p0));
-    if (changed_.empty()) return;
-    for (const glm::dvec3& p : tested_) {
-      double best = INFINITY;
-      Mesh::FaceHandle nearest = changed_.front();
-      for (const auto f : changed_) {
-        const double d = distance2(p, f, Mesh::VertexHandle(), glm::dvec3(0.0));
-        if (d < best) {
-          best = d;
-          nearest = f;
-        }
-      }
-      points_[size_t(nearest.idx())].push_back(p);
-    }
+    for (size_t k = 0; k < tested_.size(); ++k)
+      points_[size_t(changed_[moves_[k]].idx())].push_back(tested_[k]);
   }
 
   Piece& piece_;
@@ -528,8 +545,14 @@ class Collapser {
   uint64_t clock_ = 0;
   std::vector<Mesh::HalfedgeHandle> target_;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
+  // Scratch of deviationKept, read by afterCollapse (see there).
   std::vector<Mesh::FaceHandle> changed_;
+  std::vector<TriangleDistance> shapes_;
+  std::vector<uint8_t> stays_;
+  std::vector<uint32_t> moves_;
   Points tested_;
+  // The unsimplified triangle that faceNearSurface last found near (see TriangleGrid::within).
+  mutable uint32_t hint_ = UINT32_MAX;
 };
 
 constexpr size_t kMaxChunks = 256;

@@ -21,34 +21,69 @@ inline double pointSegmentDistanceSquared(const glm::dvec3& p, const glm::dvec3&
   return glm::dot(d, d);
 }
 
+// A triangle prepared for many point queries: what depends on the triangle alone is computed
+// once. squared(p) is pointTriangleDistanceSquared(p, a, b, c), bit for bit.
+class TriangleDistance {
+ public:
+  TriangleDistance() = default;
+  TriangleDistance(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+      : a_(a), b_(b), c_(c), ab_(b - a), ac_(c - a), n_(glm::cross(ab_, ac_)) {
+    n2_ = glm::dot(n_, n_);
+    scale_ = std::max(glm::dot(ab_, ab_), glm::dot(ac_, ac_));
+    flat_ = !(n2_ > 1e-24 * scale_ * scale_);
+    if (!flat_) {
+      toB_ = glm::cross(ac_, n_) / n2_;
+      toC_ = glm::cross(n_, ab_) / n2_;
+    }
+  }
+
+  double squared(const glm::dvec3& p) const {
+    const glm::dvec3 &a = a_, &b = b_, &c = c_, &ab = ab_, &ac = ac_;
+    if (flat_)  // no area to speak of: the nearest of its edges
+      return std::min({pointSegmentDistanceSquared(p, a, b), pointSegmentDistanceSquared(p, b, c),
+                       pointSegmentDistanceSquared(p, c, a)});
+    const glm::dvec3 ap = p - a;
+    const double along = glm::dot(ap, n_);
+    {
+      // Well inside the face, near its plane (most queries): the distance to the plane, as
+      // the regions below find it there, without them. The margin keeps their rounding out.
+      const double u = glm::dot(ap, toB_), v = glm::dot(ap, toC_);
+      constexpr double kMargin = 1e-7;
+      if (u > kMargin && v > kMargin && u + v < 1.0 - kMargin && along * along <= n2_ * scale_)
+        return along * along / n2_;
+    }
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    auto squaredTo = [&](const glm::dvec3& q) { return glm::dot(p - q, p - q); };
+    if (d1 <= 0.0 && d2 <= 0.0) return squaredTo(a);
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return squaredTo(b);
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return squaredTo(a + ab * (d1 / (d1 - d3)));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return squaredTo(c);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return squaredTo(a + ac * (d2 / (d2 - d6)));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+      return squaredTo(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    // Inside the face: the distance to its plane.
+    return along * along / n2_;
+  }
+
+  const glm::dvec3& corner(int k) const { return k == 0 ? a_ : k == 1 ? b_ : c_; }
+
+ private:
+  glm::dvec3 a_{0.0}, b_{0.0}, c_{0.0}, ab_{0.0}, ac_{0.0}, n_{0.0};
+  glm::dvec3 toB_{0.0}, toC_{0.0};  // dot(p - a, toB_): p's barycentric weight of b (c alike)
+  double n2_ = 0.0, scale_ = 0.0;
+  bool flat_ = true;
+};
+
 inline double pointTriangleDistanceSquared(const glm::dvec3& p, const glm::dvec3& a,
                                            const glm::dvec3& b, const glm::dvec3& c) {
-  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-  const glm::dvec3 n = glm::cross(ab, ac);
-  const double n2 = glm::dot(n, n);
-  const double scale = std::max(glm::dot(ab, ab), glm::dot(ac, ac));
-  if (!(n2 > 1e-24 * scale * scale))  // no area to speak of: the nearest of its edges
-    return std::min({pointSegmentDistanceSquared(p, a, b), pointSegmentDistanceSquared(p, b, c),
-                     pointSegmentDistanceSquared(p, c, a)});
-  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  auto squared = [&](const glm::dvec3& q) { return glm::dot(p - q, p - q); };
-  if (d1 <= 0.0 && d2 <= 0.0) return squared(a);
-  const glm::dvec3 bp = p - b;
-  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return squared(b);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return squared(a + ab * (d1 / (d1 - d3)));
-  const glm::dvec3 cp = p - c;
-  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return squared(c);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return squared(a + ac * (d2 / (d2 - d6)));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-    return squared(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
-  // Inside the face: the distance to its plane.
-  const double along = glm::dot(ap, n);
-  return along * along / n2;
+  return TriangleDistance(a, b, c).squared(p);
 }
 
 }  // namespace strata

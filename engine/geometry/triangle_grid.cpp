@@ -54,8 +54,7 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
         const uint32_t t = uint32_t(i);
         Bounds box;
         for (uint32_t v : triangles[t]) box.include(positions[v]);
-        const double grown = 0.5 * glm::length(box.size()) + reach;
-        spheres_[t] = glm::dvec4(box.center(), grown * grown);
+        spheres_[t] = glm::dvec4(box.center(), 0.5 * glm::length(box.size()));
         const glm::ivec3 lo = cellOf(box.min - glm::dvec3(reach));
         const glm::ivec3 hi = cellOf(box.max + glm::dvec3(reach));
         // Only the cells the triangle's plane passes within reach of: a large tilted triangle
@@ -145,18 +144,28 @@ const TriangleGrid::Slot* TriangleGrid::cellAt(const glm::ivec3& c) const {
   return nullptr;
 }
 
-bool TriangleGrid::within(const glm::dvec3& p, double distance) const {
-  const Slot* s = cell(p);
-  if (!s) return false;
+bool TriangleGrid::within(const glm::dvec3& p, double distance, uint32_t* hint) const {
   const double distance2 = distance * distance;
-  for (uint32_t i = s->begin; i < s->end; ++i) {
-    const glm::dvec4& sphere = spheres_[items_[i]];
-    const glm::dvec3 d = p - glm::dvec3(sphere);
-    if (glm::dot(d, d) > sphere.w) continue;  // beyond its box's sphere grown by the reach
-    const auto& t = triangles_[items_[i]];
+  if (hint && *hint < triangles_.size()) {
+    const auto& t = triangles_[*hint];
     if (pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]) <=
         distance2)
       return true;
+  }
+  const Slot* s = cell(p);
+  if (!s) return false;
+  for (uint32_t i = s->begin; i < s->end; ++i) {
+    const glm::dvec4& sphere = spheres_[items_[i]];
+    const glm::dvec3 d = p - glm::dvec3(sphere);
+    // Beyond its box's sphere grown by the distance (a hair more, for rounding): not within.
+    const double grown = (sphere.w + distance) * (1.0 + 1e-12);
+    if (glm::dot(d, d) > grown * grown) continue;
+    const auto& t = triangles_[items_[i]];
+    if (pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]) <=
+        distance2) {
+      if (hint) *hint = items_[i];
+      return true;
+    }
   }
   return false;
 }
@@ -164,17 +173,21 @@ bool TriangleGrid::within(const glm::dvec3& p, double distance) const {
 double TriangleGrid::nearest(const glm::dvec3& p, uint32_t* index) const {
   const Slot* s = cell(p);
   double best = reach_ * reach_;
+  // Beyond its box's sphere grown by the best distance so far (a hair more: never passes over
+  // a triangle whose exact distance would have been nearer): not measured.
+  double grown = reach_ * (1.0 + 1e-12);
   uint32_t which = UINT32_MAX;
   if (s)
     for (uint32_t i = s->begin; i < s->end; ++i) {
       const glm::dvec4& sphere = spheres_[items_[i]];
       const glm::dvec3 d = p - glm::dvec3(sphere);
-      if (glm::dot(d, d) > sphere.w) continue;
+      if (glm::dot(d, d) > (sphere.w + grown) * (sphere.w + grown)) continue;
       const auto& t = triangles_[items_[i]];
       const double d2 =
           pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]);
       if (d2 < best) {  // the first of equals (a fixed order): deterministic
         best = d2;
+        grown = std::sqrt(best) * (1.0 + 1e-12);
         which = items_[i];
       }
     }

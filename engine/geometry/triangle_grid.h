@@ -25,8 +25,10 @@ class TriangleGrid {
   TriangleGrid(const std::vector<glm::dvec3>& positions,
                const std::vector<std::array<uint32_t, 3>>& triangles, double reach);
 
-  // True when some triangle lies within `distance` (<= reach) of p.
-  bool within(const glm::dvec3& p, double distance) const;
+  // True when some triangle lies within `distance` (<= reach) of p. `hint` (may be null): a
+  // triangle to try first (any value; UINT32_MAX for none), set to the one found within: a run
+  // of nearby queries mostly finds the last one's triangle again, without the cell's list.
+  bool within(const glm::dvec3& p, double distance, uint32_t* hint = nullptr) const;
   // The distance from p to the nearest triangle, or `reach` when none is nearer; `index`, when
   // given, receives that triangle's index (UINT32_MAX when none is within reach).
   double nearest(const glm::dvec3& p, uint32_t* index = nullptr) const;
@@ -58,7 +60,7 @@ class TriangleGrid {
   double reach_;
   double cell_ = 1.0;
   glm::dvec3 origin_{0.0};
-  std::vector<glm::dvec4> spheres_;  // per triangle: its box's centre, (half diagonal + reach)^2
+  std::vector<glm::dvec4> spheres_;  // per triangle: its box's centre and half diagonal
   std::vector<uint32_t> items_;
   std::vector<Slot> table_;
 };

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -47,7 +48,59 @@ TEST(TriangleGrid, MatchesALoopOverEveryTriangle) {
     }
     EXPECT_EQ(grid.within(p, 0.02), best <= 0.02) << q;
     EXPECT_EQ(grid.within(p, reach), best <= reach) << q;
+    // A hint, right or wrong, changes nothing but where the search starts; a found triangle is
+    // handed back in it.
+    uint32_t hint = uint32_t(q % int(triangles.size()));
+    EXPECT_EQ(grid.within(p, 0.02, &hint), best <= 0.02) << q;
+    if (best <= 0.02) {
+      EXPECT_LE(grid.distanceTo(p, hint), 0.02) << q;
+    }
   }
+}
+
+// The distance by an independent route: the plane where the point projects inside the
+// triangle (barycentric weights from a 2x2 solve), else the nearest edge.
+double referenceDistanceSquared(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                const glm::dvec3& c) {
+  const glm::dvec3 u = b - a, v = c - a, w = p - a;
+  const double uu = glm::dot(u, u), uv = glm::dot(u, v), vv = glm::dot(v, v);
+  const double det = uu * vv - uv * uv;
+  const double s = (vv * glm::dot(w, u) - uv * glm::dot(w, v)) / det;
+  const double t = (uu * glm::dot(w, v) - uv * glm::dot(w, u)) / det;
+  if (s >= 0.0 && t >= 0.0 && s + t <= 1.0) {
+    const glm::dvec3 q = a + s * u + t * v;
+    return glm::dot(p - q, p - q);
+  }
+  return std::min({pointSegmentDistanceSquared(p, a, b), pointSegmentDistanceSquared(p, b, c),
+                   pointSegmentDistanceSquared(p, c, a)});
+}
+
+TEST(TriangleDistance, MatchesAnIndependentRouteInsideOutsideAndFar) {
+  // Well-shaped, skinny and needle triangles; points near the face (inside and beyond each
+  // edge and corner), on the edges, and far off.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int inside = 0;
+  for (int k = 0; k < 300; ++k) {
+    const double skinny = k % 3 == 0 ? 1.0 : k % 3 == 1 ? 1e-2 : 1e-4;
+    const glm::dvec3 a(unit(random), unit(random), unit(random));
+    const glm::dvec3 b = a + glm::dvec3(1.0 + unit(random), 0.3 * unit(random), 0.3 * unit(random));
+    const glm::dvec3 c = a + 0.5 * (b - a) +
+                         skinny * glm::dvec3(0.2 * unit(random), 1.0, 0.2 * unit(random));
+    const TriangleDistance prepared(a, b, c);
+    for (int q = 0; q < 200; ++q) {
+      const double s = 0.5 + 0.8 * unit(random), t = 0.5 + 0.8 * unit(random);
+      const double off = q % 4 == 0 ? 50.0 : 0.05;
+      const glm::dvec3 p = a + s * (b - a) + t * (c - a) - (q % 2) * 0.5 * s * (c - a) +
+                           off * glm::dvec3(unit(random), unit(random), unit(random));
+      const double reference = referenceDistanceSquared(p, a, b, c);
+      const double got = prepared.squared(p);
+      EXPECT_NEAR(got, reference, 1e-9 * (1.0 + reference)) << k << " " << q;
+      EXPECT_EQ(got, pointTriangleDistanceSquared(p, a, b, c)) << k << " " << q;
+      inside += reference < 0.0025 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(inside, 1000);  // the face's own region was exercised, not only edges and corners
 }
 
 TEST(TriangleDistance, DegenerateTrianglesAreTheirEdges) {
