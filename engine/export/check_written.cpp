@@ -13,6 +13,50 @@
 
 namespace strata {
 
+namespace {
+
+// One triangle's two hashes, added to the sums: two order-sensitive chains over the nine
+// coordinates (each step a bijection of the chain: a changed coordinate changes it), finished
+// by a full avalanche.
+void addTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, uint64_t* sum,
+                 uint64_t* mixedSum) {
+  uint64_t h = 0x243f6a8885a308d3ull, g = 0x13198a2e03707344ull;
+  for (const glm::dvec3* p : {&a, &b, &c})
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t x = coordinateBits((*p)[k]);
+      h = (h ^ x) * 0x100000001b3ull;
+      g = (g + x) * 0x9e3779b97f4a7c15ull;
+    }
+  *sum += avalanche64(h);
+  *mixedSum += avalanche64(g ^ 0xa4093822299f31d0ull);
+}
+
+// The fingerprint of the triangles the file at `path` lists, read back as
+// readMeshFileVerbatim reads it: in pieces where the format allows (visitFileTriangles: a
+// binary STL never held whole), else whole.
+TriangleFingerprint fingerprintFile(const std::string& path, const Progress& progress) {
+  std::atomic<uint64_t> triangles{0}, sum{0}, mixedSum{0};
+  const bool inPieces = visitFileTriangles(
+      path,
+      [&](uint64_t, const glm::dvec3* corners, size_t count) {
+        uint64_t s = 0, m = 0;
+        for (size_t t = 0; t < count; ++t)
+          addTriangle(corners[3 * t], corners[3 * t + 1], corners[3 * t + 2], &s, &m);
+        triangles += count;
+        sum += s;
+        mixedSum += m;
+      },
+      &progress);
+  if (!inPieces) return fingerprintTriangles(readMeshFileVerbatim(path, nullptr, &progress));
+  TriangleFingerprint f;
+  f.triangles = size_t(triangles.load());
+  f.sum = sum.load();
+  f.mixedSum = mixedSum.load();
+  return f;
+}
+
+}  // namespace
+
 TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   TriangleFingerprint f;
   f.triangles = mesh.triangles.size();
@@ -20,19 +64,8 @@ TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   parallelFor(0, int64_t(mesh.triangles.size()), 65536, [&](int64_t b, int64_t e) {
     uint64_t s = 0, m = 0;
     for (int64_t t = b; t < e; ++t) {
-      // Two order-sensitive chains over the nine coordinates (each step a bijection of the
-      // chain: a changed coordinate changes it), finished by a full avalanche.
-      uint64_t h = 0x243f6a8885a308d3ull, g = 0x13198a2e03707344ull;
-      for (uint32_t v : mesh.triangles[size_t(t)]) {
-        const glm::dvec3& p = mesh.positions[v];
-        for (int k = 0; k < 3; ++k) {
-          const uint64_t x = coordinateBits(p[k]);
-          h = (h ^ x) * 0x100000001b3ull;
-          g = (g + x) * 0x9e3779b97f4a7c15ull;
-        }
-      }
-      s += avalanche64(h);
-      m += avalanche64(g ^ 0xa4093822299f31d0ull);
+      const auto& tri = mesh.triangles[size_t(t)];
+      addTriangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], &s, &m);
     }
     sum += s;
     mixedSum += m;
@@ -53,7 +86,7 @@ WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Pro
   std::thread reader([&] {
     try {
       const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-      found = fingerprintTriangles(readMeshFileVerbatim(path, nullptr, &progress));
+      found = fingerprintFile(path, progress);
     } catch (...) {
       readError = std::current_exception();
     }

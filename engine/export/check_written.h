@@ -3,7 +3,8 @@
 //
 // Two halves, each at memory speed: checkMesh (mesh_check.h) on the written mesh as its format
 // stores it (storedMesh, mesh_writers.h: the positions the file holds), and the file read back
-// as it lists its triangles (readMeshFileVerbatim) compared with that mesh by a fingerprint of
+// as it lists its triangles (readMeshFileVerbatim, or in pieces where the format allows:
+// visitFileTriangles, a binary STL never held whole) compared with that mesh by a fingerprint of
 // every triangle's three corner positions (two independent 64-bit sums of a strong hash, so the
 // order in which the format lists triangles does not matter). A file that differs (a writer
 // bug, a truncated or altered file that still parses) is named in `fileDifference` and is then

@@ -8,7 +8,7 @@ namespace strata {
 
 const std::vector<MeshFormat>& meshFormats() {
   // label, extensions, parser, writer, read note, write note, bytes per triangle written,
-  // unindexed, the stored coordinate
+  // unindexed, the stored coordinate, the block reader
   static const std::vector<MeshFormat> formats = {
       {"STL",
        {"stl"},
@@ -18,7 +18,8 @@ const std::vector<MeshFormat>& meshFormats() {
        "binary",
        50.0,
        true,
-       meshio::storedAsFloat},
+       meshio::storedAsFloat,
+       meshio::visitStlBlocks},
       {"OBJ",
        {"obj"},
        meshio::parseObj,

@@ -39,6 +39,11 @@ using MeshWriter = void (*)(const std::string& path, const ExportMesh& mesh, Pro
 // (float32 for STL, "%.9g" for the text formats, double for PLY).
 using StoredCoordinate = double (*)(double value);
 
+// Visits the triangles of the file at `path` in blocks without holding it (visitFileTriangles,
+// mesh_io.h); false when the file is not in the form this reader streams.
+using MeshBlockReader = bool (*)(const std::string& path, const TriangleBlockVisitor& visit,
+                                 const Progress* progress);
+
 // Reading a format (import, readMeshFile) or writing it (export, writeMeshFile).
 enum class MeshAccess { Read, Write };
 
@@ -57,6 +62,7 @@ struct MeshFormat {
   // every triangle three vertices of its own, and the readers of mesh_io.h weld them.
   bool unindexed = false;
   StoredCoordinate stored = nullptr;  // nullptr when not writable
+  MeshBlockReader blocks = nullptr;   // nullptr: read whole only
   bool supports(MeshAccess access) const {
     return access == MeshAccess::Read ? parse != nullptr : write != nullptr;
   }

@@ -188,6 +188,12 @@ TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* repor
   return parseByExtension(path, bytes, report ? report : &local, Corners::Verbatim);
 }
 
+bool visitFileTriangles(const std::string& path, const TriangleBlockVisitor& visit,
+                        const Progress* progress) {
+  const MeshFormat* format = meshFormatFor(path, MeshAccess::Read);
+  return format && format->blocks && format->blocks(path, visit, progress);
+}
+
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,
                           MeshReadReport* report) {
   return readMeshBytes(path, readWholeFile(path), options, report);

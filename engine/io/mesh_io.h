@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,5 +68,21 @@ TriangleMesh readMeshFileRaw(const std::string& path, MeshReadReport* report = n
 // and parsing it (throws Cancelled).
 TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* report = nullptr,
                                   const Progress* progress = nullptr);
+
+// One block of a file's triangles as readMeshFileVerbatim would list them: triangles
+// [first, first + count) of the file, corner v of triangle first + i at corners[3 * i + v].
+// Called from several threads at once, blocks in any order; `corners` lives for the call.
+using TriangleBlockVisitor =
+    std::function<void(uint64_t first, const glm::dvec3* corners, size_t count)>;
+
+// The file's triangles in blocks, read in pieces and never held whole (a few MB at a time),
+// where its format lists them as fixed-size records (binary STL): the verbatim read at the
+// speed of memory and in constant memory. False, with nothing visited, for any other file
+// (another format, an ASCII STL, a binary STL whose facet count does not match its size):
+// read it with readMeshFileVerbatim, which also names what is wrong with it. Throws
+// strata::Error as the reader would for a non-finite coordinate (naming its byte), or when the
+// file cannot be read or changes while read; Cancelled from `progress` between pieces.
+bool visitFileTriangles(const std::string& path, const TriangleBlockVisitor& visit,
+                        const Progress* progress = nullptr);
 
 }  // namespace strata

@@ -10,10 +10,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_readers.h"
 #include "engine/io/reader_checks.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/parallel_for.h"
 
@@ -24,16 +26,45 @@ namespace {
 constexpr size_t kHeaderBytes = 80;
 constexpr size_t kFacetBytes = 50;
 
-uint32_t readU32(const std::string& bytes, size_t at) {
-  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
+uint32_t readU32(const char* bytes) {
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes);
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
-float readF32(const std::string& bytes, size_t at) {
-  const uint32_t bits = readU32(bytes, at);
+uint32_t readU32(const std::string& bytes, size_t at) {
+  return readU32(bytes.data() + at);
+}
+
+float readF32(const char* bytes) {
+  const uint32_t bits = readU32(bytes);
   float value;
   std::memcpy(&value, &bits, sizeof(value));
   return value;
+}
+
+// The three corners of the 50-byte facet record at `facet`; false if a coordinate is not
+// finite (the caller names the first such byte, requireNonFiniteFacet).
+bool decodeFacet(const char* facet, glm::dvec3* corners) {
+  bool finite = true;
+  for (int v = 0; v < 3; ++v)
+    for (int k = 0; k < 3; ++k) {
+      corners[v][k] = readF32(facet + 12 + 12 * v + 4 * k);
+      finite = finite && std::isfinite(corners[v][k]);
+    }
+  return finite;
+}
+
+// Throws the reader's error for the first non-finite coordinate of the facet at byte `at` of
+// the file (`facet` its record).
+void requireFiniteFacet(const std::string& name, const char* facet, size_t at) {
+  for (size_t k = 12; k < 48; k += 4) requireFiniteAtByte(name, at + k, readF32(facet + k));
+}
+
+// Lowers `*first` to `candidate` (several threads).
+void keepFirst(std::atomic<uint64_t>* first, uint64_t candidate) {
+  uint64_t seen = first->load();
+  while (candidate < seen && !first->compare_exchange_weak(seen, candidate)) {
+  }
 }
 
 bool startsWithSolid(const std::string& bytes) {
@@ -78,28 +109,15 @@ TriangleMesh parseBinary(const std::string& name, const std::string& bytes,
   std::atomic<uint64_t> firstBad{count};
   parallelFor(0, int64_t(count), 65536, [&](int64_t first, int64_t last) {
     for (int64_t f = first; f < last; ++f) {
-      const size_t facet = kHeaderBytes + 4 + kFacetBytes * size_t(f);
-      bool finite = true;
-      for (int v = 0; v < 3; ++v) {
-        glm::dvec3& p = mesh.positions[3 * size_t(f) + size_t(v)];
-        for (int k = 0; k < 3; ++k) {
-          p[k] = readF32(bytes, facet + 12 + 12 * size_t(v) + 4 * size_t(k));
-          finite = finite && std::isfinite(p[k]);
-        }
-      }
+      const char* facet = bytes.data() + kHeaderBytes + 4 + kFacetBytes * size_t(f);
+      if (!decodeFacet(facet, &mesh.positions[3 * size_t(f)])) keepFirst(&firstBad, uint64_t(f));
       const uint32_t base = static_cast<uint32_t>(3 * f);
       mesh.triangles[size_t(f)] = {base, base + 1, base + 2};
-      if (!finite) {
-        uint64_t seen = firstBad.load();
-        while (uint64_t(f) < seen && !firstBad.compare_exchange_weak(seen, uint64_t(f))) {
-        }
-      }
     }
   });
   if (firstBad.load() < count) {
-    const size_t facet = kHeaderBytes + 4 + kFacetBytes * size_t(firstBad.load());
-    for (size_t at = facet + 12; at < facet + 48; at += 4)
-      requireFiniteAtByte(name, at, readF32(bytes, at));
+    const size_t at = kHeaderBytes + 4 + kFacetBytes * size_t(firstBad.load());
+    requireFiniteFacet(name, bytes.data() + at, at);
   }
   report->fileFaces = count;
   return mesh;
@@ -227,6 +245,43 @@ class AsciiStlParser {
 };
 
 }  // namespace
+
+bool visitStlBlocks(const std::string& path, const TriangleBlockVisitor& visit,
+                    const Progress* progress) {
+  InputFile file(path);
+  if (file.size() < kHeaderBytes + 4) return false;
+  char head[kHeaderBytes + 4];
+  file.readExactly(head, sizeof(head));
+  const uint64_t count = readU32(head + kHeaderBytes);
+  // What parseStl calls binary when the count matches the size; anything else it decides on
+  // the whole file (ASCII, or an error naming the mismatch).
+  if (kHeaderBytes + 4 + kFacetBytes * count != file.size()) return false;
+  constexpr uint64_t kPieceFacets = uint64_t(1) << 18;  // 13 MB a read
+  constexpr int64_t kBlockFacets = 4096;                // a visit
+  std::string piece(size_t(std::min(count, kPieceFacets) * kFacetBytes), '\0');
+  for (uint64_t done = 0; done < count;) {
+    if (progress) progress->check();
+    const uint64_t n = std::min(kPieceFacets, count - done);
+    file.readExactly(piece.data(), size_t(n * kFacetBytes));
+    std::atomic<uint64_t> firstBad{n};
+    parallelFor(0, int64_t(n), kBlockFacets, [&](int64_t first, int64_t last) {
+      std::vector<glm::dvec3> corners(size_t(3 * kBlockFacets));
+      for (int64_t b = first; b < last; b += kBlockFacets) {
+        const int64_t e = std::min(last, b + kBlockFacets);
+        for (int64_t f = b; f < e; ++f)
+          if (!decodeFacet(piece.data() + kFacetBytes * size_t(f), &corners[3 * size_t(f - b)]))
+            keepFirst(&firstBad, uint64_t(f));
+        visit(done + uint64_t(b), corners.data(), size_t(e - b));
+      }
+    });
+    if (firstBad.load() < n) {
+      const size_t at = size_t(kHeaderBytes + 4 + kFacetBytes * (done + firstBad.load()));
+      requireFiniteFacet(path, piece.data() + kFacetBytes * size_t(firstBad.load()), at);
+    }
+    done += n;
+  }
+  return true;
+}
 
 TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshReadReport* report) {
   bool binary = true;

@@ -357,6 +357,12 @@ const char* fileTypeName(mode_t mode) {
   if (S_ISSOCK(mode)) return "a socket";
   return "not a regular file";
 }
+
+Error tooLargeFile(const std::string& path, uint64_t size, uint64_t limit) {
+  return Error(path + ": the file is " + sizeText(size) + ", larger than the limit of " +
+               sizeText(limit) + "; raise it with --max-file-size (e.g. --max-file-size 16G)");
+}
+
 }  // namespace
 
 thread_local bool t_inputLimitLifted = false;
@@ -377,27 +383,49 @@ void setMaxInputFileBytes(uint64_t bytes) {
   g_maxInputFileBytes.store(bytes);
 }
 
-std::string readWholeFile(const std::string& path) {
+InputFile::InputFile(const std::string& path, bool limited) : path_(path) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd_ < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
   struct stat st {};
-  if (::fstat(fd, &st) != 0) throw Error(path + ": cannot read: " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode))
+  const bool statted = ::fstat(fd_, &st) == 0;
+  const int statError = errno;
+  if (!statted || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    if (!statted) throw Error(path + ": cannot read: " + std::strerror(statError));
     throw Error(path + ": is " + fileTypeName(st.st_mode) + "; Strata reads regular files only");
+  }
+  size_ = uint64_t(st.st_size);
   const uint64_t limit = maxInputFileBytes();
-  auto tooLarge = [&](uint64_t size) {
-    return Error(path + ": the file is " + sizeText(size) + ", larger than the limit of " +
-                 sizeText(limit) + "; raise it with --max-file-size (e.g. --max-file-size 16G)");
-  };
-  if (uint64_t(st.st_size) > limit) throw tooLarge(uint64_t(st.st_size));
-  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  if (limited && size_ > limit) {
+    ::close(fd_);
+    throw tooLargeFile(path, size_, limit);
+  }
+  ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
+}
+
+InputFile::~InputFile() {
+  ::close(fd_);
+}
+
+void InputFile::readExactly(char* to, size_t n) {
+  size_t done = 0;
+  while (done < n) {
+    const ssize_t got = ::read(fd_, to + done, n - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw Error(path_ + ": read failed: " + std::strerror(errno));
+    if (got == 0) throw Error(path_ + ": the file ended early (it changed while it was read)");
+    done += size_t(got);
+  }
+}
+
+std::string readWholeFile(const std::string& path) {
+  InputFile file(path);
+  const int fd = file.descriptor();
+  const uint64_t limit = maxInputFileBytes();
+  auto tooLarge = [&](uint64_t size) { return tooLargeFile(path, size, limit); };
   std::string bytes;
-  bytes.resize(size_t(st.st_size));
+  bytes.resize(size_t(file.size()));
   size_t done = 0;
   for (;;) {  // the file may change while it is read: read to its end, within the limit
     if (done == bytes.size()) {

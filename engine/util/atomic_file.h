@@ -80,6 +80,29 @@ std::vector<std::string> temporaryFilesOf(const std::string& path);
 // call it only right before _exit. A forked child's call leaves its parent's files alone.
 void abandonAtomicWritesForExit() noexcept;
 
+// A regular file opened for reading front to back, with readWholeFile's refusals (not a
+// regular file; larger than maxInputFileBytes(), where `limited`). For files read in pieces,
+// never held whole. Owns its descriptor; one thread at a time.
+class InputFile {
+ public:
+  explicit InputFile(const std::string& path, bool limited = true);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+
+  // The size when opened (fstat).
+  uint64_t size() const { return size_; }
+  // Reads exactly n bytes from where the last read ended. Throws strata::Error naming the path
+  // when it cannot, or when the file ends first (it shrank while read).
+  void readExactly(char* to, size_t n);
+  int descriptor() const { return fd_; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  uint64_t size_ = 0;
+};
+
 // Reads a whole regular file of at most maxInputFileBytes() bytes. Throws strata::Error naming
 // the path when it cannot be read, is not a regular file (a FIFO, a device such as /dev/zero,
 // a folder: refused without blocking on them), or is larger than the limit (the message says

@@ -1,0 +1,175 @@
+// visitFileTriangles: a file read in pieces lists exactly the triangles readMeshFileVerbatim
+// lists (every triangle once, the same corners, across more than one piece), refuses what is
+// not its form (so the caller reads the file whole and gets the reader's message), names a
+// non-finite coordinate as the reader does, and honours cancel. Written against the format
+// table: every format with a block reader is tested.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/io/mesh_formats.h"
+#include "engine/io/mesh_io.h"
+#include "engine/io/mesh_writers.h"
+#include "engine/util/error.h"
+
+namespace strata {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string freshPath(const std::string& name) {
+  const fs::path folder = fs::path(testing::TempDir()) / "strata_read_in_pieces";
+  fs::create_directories(folder);
+  const fs::path path = folder / name;
+  fs::remove(path);
+  return path.string();
+}
+
+// A strip of `count` triangles with coordinates no two triangles share (so that a triangle
+// visited twice, or at the wrong index, shows).
+ExportMesh strip(size_t count) {
+  ExportMesh em;
+  for (size_t i = 0; i < count + 2; ++i)
+    em.mesh.positions.push_back({double(i) * 0.25, double(i % 2) + 0.001 * double(i % 7),
+                                 std::sin(double(i) * 0.01)});
+  for (uint32_t i = 0; i < count; ++i) {
+    em.mesh.triangles.push_back(i % 2 ? std::array<uint32_t, 3>{i, i + 2, i + 1}
+                                      : std::array<uint32_t, 3>{i, i + 1, i + 2});
+    em.triangleLeaf.push_back(1);
+  }
+  em.leaves[1] = {"strip", {1.0f, 1.0f, 1.0f}};
+  return em;
+}
+
+struct Visited {
+  std::vector<glm::dvec3> corners;
+  std::vector<int> times;  // per triangle
+};
+
+Visited visitAll(const std::string& path, bool* inPieces, const Progress* progress = nullptr) {
+  Visited v;
+  std::mutex mutex;
+  *inPieces = visitFileTriangles(
+      path,
+      [&](uint64_t first, const glm::dvec3* corners, size_t count) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (v.times.size() < first + count) {
+          v.times.resize(first + count, 0);
+          v.corners.resize(3 * (first + count));
+        }
+        for (size_t i = 0; i < 3 * count; ++i) v.corners[3 * first + i] = corners[i];
+        for (size_t t = first; t < first + count; ++t) ++v.times[t];
+      },
+      progress);
+  return v;
+}
+
+TEST(ReadInPieces, ListsWhatTheVerbatimReadListsAcrossPieces) {
+  // More triangles than one piece holds (2^18), and not a multiple of a block.
+  const ExportMesh em = strip((size_t(1) << 18) + 4099);
+  int formats = 0;
+  for (const MeshFormat& format : meshFormats()) {
+    if (!format.blocks || !format.write) continue;
+    ++formats;
+    SCOPED_TRACE(format.label);
+    const std::string path = freshPath("strip." + format.extensions[0]);
+    writeMeshFile(path, em);
+    bool inPieces = false;
+    const Visited v = visitAll(path, &inPieces);
+    ASSERT_TRUE(inPieces);
+    const TriangleMesh whole = readMeshFileVerbatim(path);
+    ASSERT_EQ(v.times.size(), whole.triangles.size());
+    for (size_t t = 0; t < whole.triangles.size(); ++t) {
+      ASSERT_EQ(v.times[t], 1) << t;
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(v.corners[3 * t + size_t(c)], whole.positions[whole.triangles[t][size_t(c)]])
+            << t << " " << c;
+    }
+  }
+  EXPECT_GE(formats, 1);  // binary STL at least
+}
+
+TEST(ReadInPieces, LeavesOtherFilesToTheWholeRead) {
+  const ExportMesh em = strip(10);
+  bool inPieces = true;
+  // Another format.
+  const std::string obj = freshPath("strip.obj");
+  writeMeshFile(obj, em);
+  visitAll(obj, &inPieces);
+  EXPECT_FALSE(inPieces);
+  // An ASCII STL.
+  const std::string ascii = freshPath("ascii.stl");
+  std::ofstream(ascii) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                          "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+  inPieces = true;
+  visitAll(ascii, &inPieces);
+  EXPECT_FALSE(inPieces);
+  // A binary STL whose count does not match its size: the whole read names the mismatch.
+  const std::string cut = freshPath("cut.stl");
+  writeMeshFile(cut, em);
+  fs::resize_file(cut, fs::file_size(cut) - 7);
+  inPieces = true;
+  const Visited v = visitAll(cut, &inPieces);
+  EXPECT_FALSE(inPieces);
+  EXPECT_TRUE(v.times.empty());
+  try {
+    readMeshFileVerbatim(cut);
+    ADD_FAILURE() << "a truncated STL was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReadInPieces, NamesANonFiniteCoordinateAsTheReaderDoes) {
+  const ExportMesh em = strip(300000);
+  const std::string path = freshPath("nan.stl");
+  writeMeshFile(path, em);
+  // Facet 290,000's second corner's z (in the second piece), then an earlier one in the same
+  // piece: the first in file order is named.
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    bytes = s.str();
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (size_t facet : {290000u, 280000u})
+    std::memcpy(&bytes[84 + 50 * facet + 12 + 12 + 8], &nan, 4);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  std::string whole, pieces;
+  try {
+    readMeshFileVerbatim(path);
+  } catch (const Error& e) {
+    whole = e.what();
+  }
+  bool inPieces = false;
+  try {
+    visitAll(path, &inPieces);
+  } catch (const Error& e) {
+    pieces = e.what();
+  }
+  EXPECT_NE(whole.find(std::to_string(84 + 50 * 280000 + 12 + 12 + 8)), std::string::npos)
+      << whole;
+  EXPECT_EQ(pieces, whole);
+}
+
+TEST(ReadInPieces, HonoursCancel) {
+  const std::string path = freshPath("cancel.stl");
+  writeMeshFile(path, strip(100));
+  Progress cancelled;
+  cancelled.cancel();
+  bool inPieces = false;
+  EXPECT_THROW(visitAll(path, &inPieces, &cancelled), Cancelled);
+}
+
+}  // namespace
+}  // namespace strata
