@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <exception>
+#include <future>
 #include <thread>
 #include <utility>
 
@@ -75,47 +76,86 @@ TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   return f;
 }
 
-WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Progress& progress) {
-  WrittenCheck result;
-  progress.report("check", 0.0);
-  const TriangleMesh meant = storedMesh(path, std::move(written));
-  // The file is read back and fingerprinted on a second thread while this one measures the
-  // topology of the mesh meant: the two share nothing, and each alone leaves cores idle.
-  TriangleFingerprint found;
-  std::exception_ptr readError;
-  std::thread reader([&] {
+struct MeantMeshCheck::State {
+  explicit State(const Progress& parent) : progress(&parent) {}
+  Progress progress;  // a child of the caller's: cancelled with it, or alone by the destructor
+  std::promise<void> copied, measured;
+  std::future<void> copiedFuture = copied.get_future(), measuredFuture = measured.get_future();
+  MeshCheck check;
+  TriangleFingerprint fingerprint;
+  std::thread thread;
+};
+
+MeantMeshCheck::MeantMeshCheck(const std::string& path, const TriangleMesh& written,
+                               const Progress& progress)
+    : state_(std::make_unique<State>(progress)) {
+  State* s = state_.get();
+  s->thread = std::thread([s, path, &written] {
+    bool released = false;
     try {
-      const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-      found = fingerprintFile(path, progress);
+      const TriangleMesh meant = storedMesh(path, written);
+      released = true;
+      s->copied.set_value();
+      s->fingerprint = fingerprintTriangles(meant);
+      s->progress.check();
+      s->check = checkMesh(meant, &s->progress);
+      s->measured.set_value();
     } catch (...) {
-      readError = std::current_exception();
+      if (!released) s->copied.set_exception(std::current_exception());
+      s->measured.set_exception(std::current_exception());
     }
   });
-  try {
-    const TriangleFingerprint expected = fingerprintTriangles(meant);
-    progress.report("check", 0.1);
-    result.check = checkMesh(meant, &progress);
-    reader.join();
-    if (readError) std::rethrow_exception(readError);
-    progress.report("check", 0.9);
-    if (!(found == expected)) {
-      result.fileDifference =
-          found.triangles != expected.triangles
-              ? path + ": the file holds " + std::to_string(found.triangles) +
-                    " triangles, not the " + std::to_string(expected.triangles) + " written"
-              : path +
-                    ": the file's triangles are not those written (a coordinate or a winding "
-                    "differs)";
-      progress.check();
-      const InputLimitLifted ownFile;
-      result.check = checkMesh(readMeshFileRaw(path), &progress);
-    }
-  } catch (...) {
-    if (reader.joinable()) reader.join();
-    throw;
+}
+
+MeantMeshCheck::~MeantMeshCheck() {
+  state_->progress.cancel();  // a no-op once measured
+  state_->thread.join();
+}
+
+void MeantMeshCheck::released() {
+  state_->copiedFuture.wait();
+}
+
+void MeantMeshCheck::wait(MeshCheck* check, TriangleFingerprint* fingerprint) {
+  state_->measuredFuture.get();  // rethrows
+  *check = state_->check;
+  *fingerprint = state_->fingerprint;
+}
+
+WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Progress& progress) {
+  WrittenCheck result;
+  progress.report("check", 0.0);
+  // The file is read back and fingerprinted on this thread while the other one measures the
+  // mesh meant (it may have finished during the write): the two share nothing.
+  TriangleFingerprint found;
+  {
+    const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
+    found = fingerprintFile(path, progress);
+  }
+  progress.report("check", 0.5);
+  TriangleFingerprint expected;
+  meant.wait(&result.check, &expected);
+  progress.report("check", 0.9);
+  if (!(found == expected)) {
+    result.fileDifference =
+        found.triangles != expected.triangles
+            ? path + ": the file holds " + std::to_string(found.triangles) +
+                  " triangles, not the " + std::to_string(expected.triangles) + " written"
+            : path +
+                  ": the file's triangles are not those written (a coordinate or a winding "
+                  "differs)";
+    progress.check();
+    const InputLimitLifted ownFile;
+    result.check = checkMesh(readMeshFileRaw(path), &progress);
   }
   progress.report("check", 1.0);
   return result;
+}
+
+WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
+                              Progress& progress) {
+  MeantMeshCheck meant(path, written, progress);
+  return checkWrittenFile(path, meant, progress);
 }
 
 }  // namespace strata

@@ -10,10 +10,15 @@
 // bug, a truncated or altered file that still parses) is named in `fileDifference` and is then
 // checked itself, read back as readMeshFileRaw reads it, so the report describes the file.
 //
-// Synchronous; any thread; parallel inside (parallel_for.h). `progress` is checked between the
-// steps and receives stage "check" from 0 to 1.
+// The half that needs no file can start before the file is written (MeantMeshCheck), so that
+// it runs beside the write (whose end waits on the disk); checkWrittenFile then reads the file
+// back and compares.
+//
+// Any thread; parallel inside (parallel_for.h). `progress` is checked between the steps and
+// receives stage "check" from 0 to 1 (from the calling thread only).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "engine/geometry/mesh.h"
@@ -34,11 +39,37 @@ struct WrittenCheck {
   bool passed() const { return writtenCheckPassed(check, fileDifference); }
 };
 
-// Checks the file at `path`, just written from `written` (scene units, as given to
-// writeMeshFile; taken by value and rounded in place: std::move it in where it is not needed
-// after, so that the check holds no copy). Throws strata::Error when the file cannot be read or
-// parsed, Cancelled.
-WrittenCheck checkWrittenFile(const std::string& path, TriangleMesh written, Progress& progress);
+// The fingerprint both halves compare (defined below).
+struct TriangleFingerprint;
+
+// The half of the check that needs no file, on a thread of its own from construction: the
+// mesh as the format of `path` will store it (storedMesh) measured by checkMesh and
+// fingerprinted. `written`: the mesh about to be written (scene units), read by that thread
+// until released() and then no more, so it must live until then; `progress`: cancels it (with
+// its own cancel(): the destructor's, which then waits for the thread).
+class MeantMeshCheck {
+ public:
+  MeantMeshCheck(const std::string& path, const TriangleMesh& written, const Progress& progress);
+  ~MeantMeshCheck();
+  MeantMeshCheck(const MeantMeshCheck&) = delete;
+  MeantMeshCheck& operator=(const MeantMeshCheck&) = delete;
+
+  // Waits until the thread has its own copy of `written` (the caller may then free it).
+  void released();
+  // Waits for the measures; rethrows what stopped them (Cancelled included).
+  void wait(MeshCheck* check, TriangleFingerprint* fingerprint);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// Checks the file at `path`, just written from the mesh `meant` measures: reads it back and
+// compares. Throws strata::Error when the file cannot be read or parsed, Cancelled.
+WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Progress& progress);
+// The same in one call, from the mesh written (scene units, as given to writeMeshFile).
+WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
+                              Progress& progress);
 
 // The fingerprint both halves compare: the triangle count, and two sums over triangles of
 // different 64-bit hashes of the bits of their corners' coordinates in order (-0.0 as 0.0).

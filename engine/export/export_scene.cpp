@@ -46,6 +46,9 @@ void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportO
   ExportReport& report = *out;
   if (options.simplifyCells > 0.0)
     report.simplify = simplifyMesh(&mesh, options.simplifyCells * report.contour.grid.h, progress);
+  // The check's half that needs no file (the mesh as the format stores it, measured) runs on a
+  // thread of its own beside the write, whose end waits on the disk (check_written.h).
+  MeantMeshCheck meant(path, mesh.mesh, progress);
   // Written atomically (engine/util/atomic_file.h): a cancel or a failure while writing leaves
   // the previous file(s) as they were; an OBJ and its MTL are replaced together.
   Stopwatch write;
@@ -53,11 +56,11 @@ void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportO
   report.writeSeconds = write.seconds();
 
   // The new file is in place and whole from here on: a cancel during the check leaves it.
+  // The check's time is what it takes beyond the write.
   Stopwatch check;
-  // Only the geometry is checked: the leaves go now, the mesh is rounded in place.
-  TriangleMesh geometry = std::move(mesh.mesh);
+  meant.released();
   mesh = ExportMesh();
-  const WrittenCheck written = checkWrittenFile(path, std::move(geometry), progress);
+  const WrittenCheck written = checkWrittenFile(path, meant, progress);
   report.check = written.check;
   report.fileDifference = written.fileDifference;
   report.checkSeconds = check.seconds();

@@ -21,10 +21,16 @@ class Progress {
 
   Progress() = default;
   explicit Progress(Callback callback) : callback_(std::move(callback)) {}
+  // A child: cancelled by its own cancel() or whenever `parent` is; reports nowhere. For work
+  // that runs beside its parent's stages (on a thread of its own) and must stop with them, or
+  // alone. The parent must outlive it.
+  explicit Progress(const Progress* parent) : parent_(parent) {}
 
   // Asks the operation to stop; it throws Cancelled at its next check(). Any thread.
   void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
-  bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+  bool cancelled() const {
+    return cancelled_.load(std::memory_order_relaxed) || (parent_ && parent_->cancelled());
+  }
 
   // Throws Cancelled if cancel() was called. Cheap; call inside long loops.
   void check() const {
@@ -41,6 +47,7 @@ class Progress {
 
  private:
   std::atomic<bool> cancelled_{false};
+  const Progress* parent_ = nullptr;
   Callback callback_;
   std::mutex mutex_;
 };
