@@ -192,5 +192,52 @@ TEST(CheckWritten, ACancelledReadBackThrows) {
   EXPECT_THROW(readMeshFileVerbatim(path, nullptr, &cancelled), Cancelled);
 }
 
+// A child Progress stops with its parent, and alone; its own cancel leaves the parent running.
+TEST(CheckWritten, ProgressChildrenCancelWithTheirParent) {
+  Progress parent;
+  Progress child(&parent);
+  EXPECT_FALSE(child.cancelled());
+  parent.cancel();
+  EXPECT_TRUE(child.cancelled());
+  EXPECT_THROW(child.check(), Cancelled);
+  Progress other;
+  Progress alone(&other);
+  alone.cancel();
+  EXPECT_TRUE(alone.cancelled());
+  EXPECT_FALSE(other.cancelled());
+}
+
+// The half that needs no file, started before the write: measures what the one-call check
+// measures, stops with the caller's cancel, and may be dropped unfinished (its destructor stops
+// and waits for its thread) while the mesh it reads is still alive.
+TEST(CheckWritten, TheMeantMeshCheckBesideTheWrite) {
+  const ExportMesh em = threeCubes();
+  const std::string path = freshPath("beside.stl");
+  Progress progress;
+  {
+    MeantMeshCheck meant(path, em.mesh, progress);
+    meant.released();
+    writeMeshFile(path, em);
+    const WrittenCheck c = checkWrittenFile(path, meant, progress);
+    const WrittenCheck once = checkWrittenFile(path, em.mesh, progress);
+    EXPECT_TRUE(c.passed());
+    EXPECT_EQ(c.check.triangles, once.check.triangles);
+    EXPECT_EQ(c.check.volume, once.check.volume);
+    EXPECT_EQ(c.check.genus, once.check.genus);
+  }
+  {
+    Progress cancelled;
+    cancelled.cancel();
+    MeantMeshCheck meant(path, em.mesh, cancelled);
+    MeshCheck check;
+    TriangleFingerprint fingerprint;
+    EXPECT_THROW(meant.wait(&check, &fingerprint), Cancelled);
+  }
+  for (int k = 0; k < 20; ++k) {
+    Progress running;
+    MeantMeshCheck dropped(path, em.mesh, running);  // destroyed at once, finished or not
+  }
+}
+
 }  // namespace
 }  // namespace strata
