@@ -214,10 +214,26 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
     return index;
   };
   parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
+    // The keys found last, by a hash of the key: triangles in edge order share most corners
+    // with the few before them, and a hit costs one compare where the index costs a search.
+    constexpr size_t kRecent = 256;
+    uint64_t recentKey[kRecent];
+    uint32_t recentIndex[kRecent];
+    // Every entry starts as a true pair (any slot may hold any pair: a hit is a hit).
+    std::fill(recentKey, recentKey + kRecent, triangles[size_t(b)].vertex[0]);
+    std::fill(recentIndex, recentIndex + kRecent, indexOf(triangles[size_t(b)].vertex[0]));
+    auto cachedIndexOf = [&](uint64_t key) {
+      const size_t slot = size_t((key ^ (key >> 7) ^ (key >> 19)) & (kRecent - 1));
+      if (recentKey[slot] != key) {
+        recentKey[slot] = key;
+        recentIndex[slot] = indexOf(key);
+      }
+      return recentIndex[slot];
+    };
     for (int64_t i = b; i < e; ++i) {
       const ContourTriangle& t = triangles[size_t(i)];
-      out.mesh.triangles[size_t(i)] = {indexOf(t.vertex[0]), indexOf(t.vertex[1]),
-                                       indexOf(t.vertex[2])};
+      out.mesh.triangles[size_t(i)] = {cachedIndexOf(t.vertex[0]), cachedIndexOf(t.vertex[1]),
+                                       cachedIndexOf(t.vertex[2])};
       out.triangleLeaf[size_t(i)] = t.leaf;
       (*resolved)[size_t(i)] = t.resolved;
     }
