@@ -3,7 +3,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <vector>
 
 #include "engine/util/parallel_for.h"
 
@@ -62,37 +65,71 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<ContourVertex>& ver
     }
   });
 
-  // Shells: triangles joined through shared vertices, numbered by their first vertex.
+  // Shells: triangles joined through shared vertices, numbered by their first vertex (a root is
+  // its component's smallest vertex: shells are the roots' ranks).
   std::vector<uint32_t> shellOf(n, 0);
-  std::vector<uint32_t> rootShell(n, UINT32_MAX);
   uint32_t shells = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t root = rootOf[i];
-    if (rootShell[root] == UINT32_MAX) rootShell[root] = shells++;
-    shellOf[i] = rootShell[root];
-  }
-  rootShell = std::vector<uint32_t>();
+  for (size_t i = 0; i < n; ++i)
+    if (rootOf[i] == i) shellOf[i] = shells++;
+  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
+    for (size_t i = size_t(b); i < size_t(e); ++i) shellOf[i] = shellOf[rootOf[i]];
+  });
 
-  // Each shell's six volumes, anchored and placed, summed over its triangles in order from its
-  // first triangle's first anchor.
+  // Each shell's six volumes, anchored and placed, relative to its first triangle's first
+  // anchor: summed in parallel over fixed chunks of triangles (runs of one shell in a chunk
+  // summed in order, the runs then added chunk by chunk in order: the same sums on any thread
+  // count). Most triangles are in one shell: one atomic per run, not per triangle.
+  const auto& triangles = mesh->triangles;
+  const int64_t triangleCount = int64_t(triangles.size());
+  std::vector<std::atomic<uint32_t>> firstTriangle(shells);
+  for (auto& f : firstTriangle) f.store(UINT32_MAX, std::memory_order_relaxed);
+  parallelFor(0, triangleCount, 65536, [&](int64_t b, int64_t e) {
+    uint32_t previous = UINT32_MAX;
+    for (int64_t t = b; t < e; ++t) {
+      const uint32_t shell = shellOf[triangles[size_t(t)][0]];
+      if (shell == previous) continue;
+      previous = shell;
+      uint32_t seen = firstTriangle[shell].load(std::memory_order_relaxed);
+      while (uint32_t(t) < seen && !firstTriangle[shell].compare_exchange_weak(seen, uint32_t(t))) {
+      }
+    }
+  });
   struct ShellSums {
-    bool seen = false;
     glm::dvec3 ref{0.0};
     double anchored = 0.0, placed = 0.0;
   };
   std::vector<ShellSums> sums(shells);
-  const auto& triangles = mesh->triangles;
-  for (const auto& tri : triangles) {
-    ShellSums& s = sums[shellOf[tri[0]]];
-    if (!s.seen) {
-      s.seen = true;
-      s.ref = anchor[tri[0]];
+  for (uint32_t s = 0; s < shells; ++s)
+    if (firstTriangle[s].load() != UINT32_MAX) sums[s].ref = anchor[triangles[firstTriangle[s]][0]];
+  firstTriangle = std::vector<std::atomic<uint32_t>>();
+  struct Run {
+    uint32_t shell;
+    double anchored, placed;
+  };
+  constexpr int64_t kChunk = 65536;
+  std::vector<std::vector<Run>> runs(size_t((triangleCount + kChunk - 1) / kChunk));
+  parallelFor(0, int64_t(runs.size()), 1, [&](int64_t b, int64_t e) {
+    for (int64_t c = b; c < e; ++c) {
+      std::vector<Run>& out = runs[size_t(c)];
+      for (int64_t t = c * kChunk; t < std::min(triangleCount, (c + 1) * kChunk); ++t) {
+        const auto& tri = triangles[size_t(t)];
+        const uint32_t shell = shellOf[tri[0]];
+        if (out.empty() || out.back().shell != shell) out.push_back({shell, 0.0, 0.0});
+        const glm::dvec3& ref = sums[shell].ref;
+        out.back().anchored +=
+            sixVolumeTerm(anchor[tri[0]] - ref, anchor[tri[1]] - ref, anchor[tri[2]] - ref);
+        out.back().placed += sixVolumeTerm(mesh->positions[tri[0]] - ref,
+                                           mesh->positions[tri[1]] - ref,
+                                           mesh->positions[tri[2]] - ref);
+      }
     }
-    s.anchored +=
-        sixVolumeTerm(anchor[tri[0]] - s.ref, anchor[tri[1]] - s.ref, anchor[tri[2]] - s.ref);
-    s.placed += sixVolumeTerm(mesh->positions[tri[0]] - s.ref, mesh->positions[tri[1]] - s.ref,
-                              mesh->positions[tri[2]] - s.ref);
-  }
+  });
+  for (const std::vector<Run>& chunk : runs)
+    for (const Run& run : chunk) {
+      sums[run.shell].anchored += run.anchored;
+      sums[run.shell].placed += run.placed;
+    }
+  runs = {};
   std::vector<uint8_t> inverted(shells, 0);
   bool any = false;
   for (uint32_t s = 0; s < shells; ++s) {
