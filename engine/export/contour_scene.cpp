@@ -3,6 +3,7 @@
 #include "engine/export/unfold_shells.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -45,11 +46,11 @@ glm::ivec3 tileCounts(const Grid& grid, int tileCells) {
 }
 
 // Vertices and triangles of every tile, keyed on the global lattice: each tile's own arrays
-// until mergeTiles, then the merged ones.
+// until mergeTiles, then the merged vertices (the triangles stay in their tiles until
+// indexedMesh turns them, in merged order, into the mesh's).
 struct TiledContour {
   std::vector<TileContour> tiles;
   std::vector<ContourVertex> vertices;
-  std::vector<ContourTriangle> triangles;
 };
 
 // Evaluates and contours one tile, appending it to `out`.
@@ -99,8 +100,9 @@ void sortTile(TileContour* tile) {
 
 // Vertices: one per key (neighbouring tiles computed their shared halo cells identically), in
 // key order; triangles in edge order (orders are unique: an edge belongs to one tile). Both
-// orders are independent of the tiling. The tiles' sorted arrays are merged in one pass
-// (parallel_merge.h); one tile's arrays are taken as they are.
+// orders are independent of the tiling. The tiles' sorted vertices are merged in one pass
+// (parallel_merge.h); one tile's are taken as they are. Triangles are sorted in their tiles
+// (indexedMesh merges them as it goes).
 void mergeTiles(TiledContour* c, Progress& progress) {
   parallelFor(0, int64_t(c->tiles.size()), 1, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) sortTile(&c->tiles[size_t(i)]);
@@ -114,21 +116,12 @@ void mergeTiles(TiledContour* c, Progress& progress) {
                     [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
         v.end());
     c->vertices = std::move(v);
-    c->triangles = std::move(c->tiles[0].triangles);
   } else if (c->tiles.size() > 1) {
     std::vector<SortedRun<ContourVertex>> vertexRuns;
-    std::vector<SortedRun<ContourTriangle>> triangleRuns;
-    for (const TileContour& t : c->tiles) {
-      vertexRuns.push_back({t.vertices.data(), t.vertices.size()});
-      triangleRuns.push_back({t.triangles.data(), t.triangles.size()});
-    }
+    for (const TileContour& t : c->tiles) vertexRuns.push_back({t.vertices.data(), t.vertices.size()});
     c->vertices = parallelMergeRuns(vertexRuns, vertexKey, true);
-    progress.check();
-    c->triangles = parallelMergeRuns(
-        triangleRuns, [](const ContourTriangle& t) { return t.order; }, false);
   }
-  c->tiles.clear();
-  c->tiles.shrink_to_fit();
+  for (TileContour& t : c->tiles) t.vertices = std::vector<ContourVertex>();
   progress.check();
 }
 
@@ -185,11 +178,11 @@ class KeyIndex {
   std::vector<uint32_t> start_;
 };
 
-// The indexed mesh in scene units, each triangle tagged with its leaf.
-ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour& c,
-                       ContourReport& r, std::vector<uint8_t>* resolved) {
+// The indexed mesh in scene units, each triangle tagged with its leaf: the tiles' triangles
+// taken in merged (edge) order straight into the mesh's arrays, then released.
+ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, ContourReport& r,
+                       std::vector<uint8_t>* resolved) {
   const auto& vertices = c.vertices;
-  const auto& triangles = c.triangles;
   ExportMesh out;
   out.unit = scene.settings.unit;
   collectLeafStyles(scene.root, &out.leaves);
@@ -203,6 +196,10 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
   });
   for (const ContourVertex& v : vertices)
     r.maxPlaneDistance = std::max(r.maxPlaneDistance, v.planeDistance * grid.h);
+  std::vector<SortedRun<ContourTriangle>> runs;
+  for (const TileContour& t : c.tiles) runs.push_back({t.triangles.data(), t.triangles.size()});
+  const RunMerge triangles(
+      runs, [](const ContourTriangle& t) { return t.order; }, false);
   out.mesh.triangles.resize(triangles.size());
   out.triangleLeaf.resize(triangles.size());
   resolved->resize(triangles.size());
@@ -213,31 +210,46 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, const TiledContour&
       throw Error("internal: a triangle refers to a vertex no tile produced");
     return index;
   };
-  parallelFor(0, int64_t(triangles.size()), 65536, [&](int64_t b, int64_t e) {
-    // The keys found last, by a hash of the key: triangles in edge order share most corners
-    // with the few before them, and a hit costs one compare where the index costs a search.
-    constexpr size_t kRecent = 256;
-    uint64_t recentKey[kRecent];
-    uint32_t recentIndex[kRecent];
-    // Every entry starts as a true pair (any slot may hold any pair: a hit is a hit).
-    std::fill(recentKey, recentKey + kRecent, triangles[size_t(b)].vertex[0]);
-    std::fill(recentIndex, recentIndex + kRecent, indexOf(triangles[size_t(b)].vertex[0]));
-    auto cachedIndexOf = [&](uint64_t key) {
-      const size_t slot = size_t((key ^ (key >> 7) ^ (key >> 19)) & (kRecent - 1));
-      if (recentKey[slot] != key) {
-        recentKey[slot] = key;
-        recentIndex[slot] = indexOf(key);
-      }
-      return recentIndex[slot];
-    };
-    for (int64_t i = b; i < e; ++i) {
-      const ContourTriangle& t = triangles[size_t(i)];
-      out.mesh.triangles[size_t(i)] = {cachedIndexOf(t.vertex[0]), cachedIndexOf(t.vertex[1]),
-                                       cachedIndexOf(t.vertex[2])};
-      out.triangleLeaf[size_t(i)] = t.leaf;
-      (*resolved)[size_t(i)] = t.resolved;
+  // The keys found last, by a hash of the key, per thread: triangles in edge order share most
+  // corners with the few before them, and a hit costs one compare where the index costs a
+  // search. Each entry is a true (key, index) pair from its first use on.
+  constexpr size_t kRecent = 256;
+  struct Recent {
+    uint64_t key[kRecent];
+    uint32_t index[kRecent];
+    bool filled = false;
+  };
+  const auto cachedIndexOf = [&](Recent& recent, uint64_t key) {
+    if (!recent.filled) {
+      std::fill(recent.key, recent.key + kRecent, key);
+      std::fill(recent.index, recent.index + kRecent, indexOf(key));
+      recent.filled = true;
     }
+    const size_t slot = size_t((key ^ (key >> 7) ^ (key >> 19)) & (kRecent - 1));
+    if (recent.key[slot] != key) {
+      recent.key[slot] = key;
+      recent.index[slot] = indexOf(key);
+    }
+    return recent.index[slot];
+  };
+  // Pairs belong to this call's vertices: a thread's pairs from another call (another
+  // export, or this one's address reused) are dropped by the call's own number.
+  static std::atomic<uint64_t> calls{0};
+  const uint64_t call = ++calls;
+  triangles.each([&](size_t i, const ContourTriangle& t) {
+    thread_local Recent recent;
+    thread_local uint64_t recentCall = 0;
+    if (recentCall != call) {
+      recent.filled = false;
+      recentCall = call;
+    }
+    out.mesh.triangles[i] = {cachedIndexOf(recent, t.vertex[0]), cachedIndexOf(recent, t.vertex[1]),
+                             cachedIndexOf(recent, t.vertex[2])};
+    out.triangleLeaf[i] = t.leaf;
+    (*resolved)[i] = t.resolved;
   });
+  c.tiles.clear();
+  c.tiles.shrink_to_fit();
   uint32_t previous = 0xffffffffu;  // neighbouring triangles mostly share a leaf
   for (uint32_t leaf : out.triangleLeaf) {
     if (leaf == previous) continue;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <random>
 #include <vector>
 
@@ -52,6 +53,36 @@ TEST(ParallelMerge, MatchesSortingTheConcatenatedRuns) {
 TEST(ParallelMerge, KeepsOneElementPerKeyWhenAskedWhereverTheKeyRepeats) {
   expectMergeMatchesSort(1, true);
   expectMergeMatchesSort(4, true);
+}
+
+// RunMerge::each visits every element of the merge once, at its place, from several threads;
+// one run (the single-tile export) is visited in place, in its own order.
+TEST(ParallelMerge, EachVisitsEveryPlaceOnceAndOneRunInPlace) {
+  setWorkerCount(4);
+  std::vector<std::vector<Item>> runs(3);
+  for (uint32_t r = 0; r < 3; ++r)
+    for (uint64_t k = 0; k < 70000; ++k) runs[r].push_back({3 * k + r, r});
+  std::vector<SortedRun<Item>> views;
+  for (const auto& r : runs) views.push_back({r.data(), r.size()});
+  const auto key = [](const Item& i) { return i.key; };
+  const RunMerge<Item, decltype(key)> merge(views, key, false);
+  ASSERT_EQ(merge.size(), 210000u);
+  std::vector<std::atomic<int>> seen(merge.size());
+  std::vector<uint64_t> at(merge.size(), 0);
+  merge.each([&](size_t i, const Item& e) {
+    ++seen[i];
+    at[i] = e.key;
+  });
+  for (size_t i = 0; i < at.size(); ++i) {
+    ASSERT_EQ(seen[i].load(), 1) << i;
+    ASSERT_EQ(at[i], uint64_t(i)) << i;  // keys 0, 1, 2, ... interleaved from the three runs
+  }
+  const std::vector<SortedRun<Item>> one = {views[1]};
+  const RunMerge<Item, decltype(key)> alone(one, key, false);
+  std::vector<uint64_t> order(alone.size(), 0);
+  alone.each([&](size_t i, const Item& e) { order[i] = e.key; });
+  for (size_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], runs[1][i].key) << i;
+  setWorkerCount(0);
 }
 
 }  // namespace
