@@ -45,12 +45,12 @@ glm::ivec3 tileCounts(const Grid& grid, int tileCells) {
   return tiles;
 }
 
-// Vertices and triangles of every tile, keyed on the global lattice: each tile's own arrays
-// until mergeTiles, then the merged vertices (the triangles stay in their tiles until
-// indexedMesh turns them, in merged order, into the mesh's).
+// Vertices and triangles of every tile, keyed on the global lattice: each tile's own arrays,
+// sorted by mergeTiles, then turned in merged order into the mesh's by indexedMesh, which keeps
+// the merged vertices' keys (their order is the mesh's vertex order).
 struct TiledContour {
   std::vector<TileContour> tiles;
-  std::vector<ContourVertex> vertices;
+  std::vector<uint64_t> keys;
 };
 
 // Evaluates and contours one tile, appending it to `out`.
@@ -100,32 +100,23 @@ void sortTile(TileContour* tile) {
 
 // Vertices: one per key (neighbouring tiles computed their shared halo cells identically), in
 // key order; triangles in edge order (orders are unique: an edge belongs to one tile). Both
-// orders are independent of the tiling. The tiles' sorted vertices are merged in one pass
-// (parallel_merge.h); one tile's are taken as they are. Triangles are sorted in their tiles
-// (indexedMesh merges them as it goes).
-void mergeTiles(TiledContour* c, Progress& progress) {
+// orders are independent of the tiling. Here each tile's arrays are put in order (one tile's
+// repeated keys dropped); indexedMesh merges them as it goes (parallel_merge.h).
+void sortTiles(TiledContour* c, Progress& progress) {
   parallelFor(0, int64_t(c->tiles.size()), 1, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) sortTile(&c->tiles[size_t(i)]);
   });
   progress.check();
-  const auto vertexKey = [](const ContourVertex& v) { return v.key; };
   if (c->tiles.size() == 1) {
     std::vector<ContourVertex>& v = c->tiles[0].vertices;
     v.erase(
         std::unique(v.begin(), v.end(),
                     [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
         v.end());
-    c->vertices = std::move(v);
-  } else if (c->tiles.size() > 1) {
-    std::vector<SortedRun<ContourVertex>> vertexRuns;
-    for (const TileContour& t : c->tiles) vertexRuns.push_back({t.vertices.data(), t.vertices.size()});
-    c->vertices = parallelMergeRuns(vertexRuns, vertexKey, true);
   }
-  for (TileContour& t : c->tiles) t.vertices = std::vector<ContourVertex>();
-  progress.check();
 }
 
-// The index of a vertex key among the merged vertices (sorted by key): a table of where each
+// The index of a vertex key among the merged vertices' keys (sorted): a table of where each
 // bucket of cell keys starts, then a search within the bucket (a few vertices), where a binary
 // search over all vertices took most of the merge. Face-segment keys (the top bit) sort after
 // every cell key and are few: searched among themselves.
@@ -133,15 +124,14 @@ class KeyIndex {
  public:
   static constexpr uint32_t kMissing = 0xffffffffu;
 
-  explicit KeyIndex(const std::vector<ContourVertex>& vertices) : vertices_(vertices) {
+  explicit KeyIndex(const std::vector<uint64_t>& keys) : keys_(keys) {
     constexpr uint64_t kFaceBit = uint64_t(1) << 63;
-    faceBegin_ = size_t(
-        std::partition_point(vertices.begin(), vertices.end(),
-                             [](const ContourVertex& v) { return (v.key & kFaceBit) == 0; }) -
-        vertices.begin());
+    faceBegin_ = size_t(std::partition_point(keys.begin(), keys.end(),
+                                             [](uint64_t k) { return (k & kFaceBit) == 0; }) -
+                        keys.begin());
     if (faceBegin_ == 0) return;
-    lo_ = vertices[0].key;
-    const uint64_t span = vertices[faceBegin_ - 1].key - lo_;
+    lo_ = keys[0];
+    const uint64_t span = keys[faceBegin_ - 1] - lo_;
     size_t buckets = 1;
     while (buckets < faceBegin_) buckets *= 2;
     while ((span >> shift_) >= buckets) ++shift_;
@@ -149,13 +139,13 @@ class KeyIndex {
     // start_[b]: the first vertex whose bucket is b or later.
     size_t b = 0;
     for (size_t i = 0; i < faceBegin_; ++i) {
-      const size_t bucket = size_t((vertices[i].key - lo_) >> shift_);
+      const size_t bucket = size_t((keys[i] - lo_) >> shift_);
       while (b <= bucket) start_[b++] = uint32_t(i);
     }
   }
 
   uint32_t find(uint64_t key) const {
-    size_t first = faceBegin_, last = vertices_.size();
+    size_t first = faceBegin_, last = keys_.size();
     if (!(key >> 63)) {
       if (faceBegin_ == 0 || key < lo_) return kMissing;
       const uint64_t bucket = (key - lo_) >> shift_;
@@ -164,14 +154,13 @@ class KeyIndex {
       last = start_[size_t(bucket) + 1];
     }
     const auto it =
-        std::lower_bound(vertices_.begin() + int64_t(first), vertices_.begin() + int64_t(last), key,
-                         [](const ContourVertex& v, uint64_t k) { return v.key < k; });
-    if (it == vertices_.begin() + int64_t(last) || it->key != key) return kMissing;
-    return uint32_t(it - vertices_.begin());
+        std::lower_bound(keys_.begin() + int64_t(first), keys_.begin() + int64_t(last), key);
+    if (it == keys_.begin() + int64_t(last) || *it != key) return kMissing;
+    return uint32_t(it - keys_.begin());
   }
 
  private:
-  const std::vector<ContourVertex>& vertices_;
+  const std::vector<uint64_t>& keys_;
   size_t faceBegin_ = 0;  // cell keys before, face-segment keys from here
   uint64_t lo_ = 0;       // the smallest cell key
   int shift_ = 0;         // bucket = (key - lo_) >> shift_
@@ -182,20 +171,31 @@ class KeyIndex {
 // taken in merged (edge) order straight into the mesh's arrays, then released.
 ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, ContourReport& r,
                        std::vector<uint8_t>* resolved) {
-  const auto& vertices = c.vertices;
   ExportMesh out;
   out.unit = scene.settings.unit;
   collectLeafStyles(scene.root, &out.leaves);
-  out.mesh.positions.resize(vertices.size());
-  parallelFor(0, int64_t(vertices.size()), 65536, [&](int64_t b, int64_t e) {
-    for (int64_t i = b; i < e; ++i)
-      out.mesh.positions[size_t(i)] =
-          grid.origin + grid.h * glm::dvec3(vertices[size_t(i)].position[0],
-                                            vertices[size_t(i)].position[1],
-                                            vertices[size_t(i)].position[2]);
-  });
-  for (const ContourVertex& v : vertices)
-    r.maxPlaneDistance = std::max(r.maxPlaneDistance, v.planeDistance * grid.h);
+  {
+    // The tiles' vertices in merged order: positions into the mesh, keys kept; then released.
+    // One tile's are in order already (sortTiles); several tiles share their halo's keys.
+    std::vector<SortedRun<ContourVertex>> runs;
+    for (const TileContour& t : c.tiles) runs.push_back({t.vertices.data(), t.vertices.size()});
+    const RunMerge vertices(
+        runs, [](const ContourVertex& v) { return v.key; }, c.tiles.size() > 1);
+    out.mesh.positions.resize(vertices.size());
+    c.keys.resize(vertices.size());
+    std::atomic<double> maxPlane{0.0};  // a maximum: the same in any order
+    vertices.each([&](size_t i, const ContourVertex& v) {
+      out.mesh.positions[i] =
+          grid.origin + grid.h * glm::dvec3(v.position[0], v.position[1], v.position[2]);
+      c.keys[i] = v.key;
+      const double d = v.planeDistance * grid.h;
+      double seen = maxPlane.load(std::memory_order_relaxed);
+      while (d > seen && !maxPlane.compare_exchange_weak(seen, d)) {
+      }
+    });
+    r.maxPlaneDistance = std::max(r.maxPlaneDistance, maxPlane.load());
+    for (TileContour& t : c.tiles) t.vertices = std::vector<ContourVertex>();
+  }
   std::vector<SortedRun<ContourTriangle>> runs;
   for (const TileContour& t : c.tiles) runs.push_back({t.triangles.data(), t.triangles.size()});
   const RunMerge triangles(
@@ -203,7 +203,7 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
   out.mesh.triangles.resize(triangles.size());
   out.triangleLeaf.resize(triangles.size());
   resolved->resize(triangles.size());
-  const KeyIndex keys(vertices);
+  const KeyIndex keys(c.keys);
   auto indexOf = [&](uint64_t key) {
     const uint32_t index = keys.find(key);
     if (index == KeyIndex::kMissing)
@@ -353,12 +353,12 @@ ExportMesh meshFromTiles(const Scene& scene, std::vector<TileContour> tiles, Pro
   Stopwatch merge;
   TiledContour contour;
   contour.tiles = std::move(tiles);
-  mergeTiles(&contour, progress);
+  sortTiles(&contour, progress);
   std::vector<uint8_t> resolved;
   ExportMesh out = indexedMesh(scene, grid, contour, r, &resolved);
   // Components once, for both (unfolding moves vertices, not triangles).
   const std::vector<uint32_t> roots = vertexComponentRoots(out.mesh);
-  r.unfoldedShells = unfoldInvertedShells(grid, contour.vertices, roots, &out.mesh);
+  r.unfoldedShells = unfoldInvertedShells(grid, contour.keys, roots, &out.mesh);
   r.droppedSpecks = dropUnresolvedSpecks(&out, &resolved, grid.h, &roots);
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;

@@ -40,17 +40,17 @@ int sign(double x) {
 
 }  // namespace
 
-int unfoldInvertedShells(const Grid& grid, const std::vector<ContourVertex>& vertices,
+int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
                          const std::vector<uint32_t>& rootOf, TriangleMesh* mesh) {
   const size_t n = mesh->positions.size();
-  if (n == 0 || vertices.size() != n || rootOf.size() != n) return 0;
+  if (n == 0 || keys.size() != n || rootOf.size() != n) return 0;
 
   // Where each vertex goes at the grid's own placement: its cell's centre, or halfway there
   // when its cell has several components (their keys are adjacent: vertices are in key order).
   std::vector<glm::dvec3> anchor(n);
   parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
     for (size_t i = size_t(b); i < size_t(e); ++i) {
-      const uint64_t key = vertices[i].key;
+      const uint64_t key = keys[i];
       if (key & kFaceVertexBit) {  // on a cell face, between two crossings: stays
         anchor[i] = mesh->positions[i];
         continue;
@@ -59,8 +59,8 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<ContourVertex>& ver
       const uint64_t gx = uint64_t(grid.cells.x), gy = uint64_t(grid.cells.y);
       const glm::dvec3 index(double(cell % gx), double(cell / gx % gy), double(cell / gx / gy));
       const glm::dvec3 centre = grid.origin + grid.h * (index + 0.5);
-      const bool shared = (i > 0 && vertices[i - 1].key / 4 == cell) ||
-                          (i + 1 < n && vertices[i + 1].key / 4 == cell);
+      const bool shared =
+          (i > 0 && keys[i - 1] / 4 == cell) || (i + 1 < n && keys[i + 1] / 4 == cell);
       anchor[i] = shared ? 0.5 * (centre + mesh->positions[i]) : centre;
     }
   });

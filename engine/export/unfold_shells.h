@@ -25,10 +25,10 @@
 namespace strata {
 
 // `mesh` is the indexed contour in scene units on `grid` (the whole grid, not a tile's window);
-// `vertices` the contour vertices it was built from (same order: vertex i has key
-// vertices[i].key); `rootOf` its vertices' component roots (vertexComponentRoots). Moves the
+// `keys` the keys of the contour vertices it was built from (same order: vertex i has key
+// keys[i]); `rootOf` its vertices' component roots (vertexComponentRoots). Moves the
 // vertices of inverted shells; returns how many shells it moved.
-int unfoldInvertedShells(const Grid& grid, const std::vector<ContourVertex>& vertices,
+int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
                          const std::vector<uint32_t>& rootOf, TriangleMesh* mesh);
 
 }  // namespace strata
