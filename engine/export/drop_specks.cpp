@@ -2,7 +2,9 @@
 
 #include <glm/common.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <limits>
 #include <unordered_map>
 
@@ -22,6 +24,43 @@ struct Box {
   glm::dvec3 lo{std::numeric_limits<double>::infinity()};
   glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
 };
+
+// Keeps the elements i < count for which keep(i) holds, in order, at the front: move(from, to,
+// count) moves `count` elements from index `from` to index `to` (to <= from; the ranges may
+// overlap: memmove). The tests run in parallel over fixed blocks, each block's kept runs moved
+// to the block's front; the blocks are then moved to their places one after the other (a
+// block's destination may hold an earlier block's elements until that one has moved). Returns
+// how many were kept.
+template <typename Keep, typename Move>
+size_t compactInOrder(size_t count, Keep keep, Move move) {
+  constexpr size_t kBlock = 65536;
+  const size_t blocks = (count + kBlock - 1) / kBlock;
+  std::vector<size_t> kept(blocks, 0);
+  parallelFor(0, int64_t(blocks), 1, [&](int64_t b, int64_t e) {
+    for (int64_t k = b; k < e; ++k) {
+      const size_t first = size_t(k) * kBlock, last = std::min(count, first + kBlock);
+      size_t to = first;
+      for (size_t i = first; i < last;) {
+        if (!keep(i)) {
+          ++i;
+          continue;
+        }
+        size_t end = i + 1;
+        while (end < last && keep(end)) ++end;
+        if (to != i) move(i, to, end - i);
+        to += end - i;
+        i = end;
+      }
+      kept[size_t(k)] = to - first;
+    }
+  });
+  size_t to = 0;
+  for (size_t k = 0; k < blocks; ++k) {
+    if (to != k * kBlock && kept[k] > 0) move(k * kBlock, to, kept[k]);
+    to += kept[k];
+  }
+  return to;
+}
 
 }  // namespace
 
@@ -111,26 +150,44 @@ DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resol
   for (size_t v = 0; v < n && !anyKept; ++v) anyKept = rootOf[v] == v && keepRoot[v];
   if (!anyKept) return DroppedSpecks();
   // Compact: triangles (with their leaves and bits), then vertices, in order.
-  size_t kept = 0;
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    if (!keepRoot[rootOf[triangles[t][0]]]) continue;
-    triangles[kept] = triangles[t];
-    mesh->triangleLeaf[kept] = mesh->triangleLeaf[t];
-    (*resolved)[kept] = (*resolved)[t];
-    ++kept;
-  }
+  const size_t kept = compactInOrder(
+      triangles.size(), [&](size_t t) { return keepRoot[rootOf[triangles[t][0]]] != 0; },
+      [&](size_t from, size_t to, size_t count) {
+        std::memmove(&triangles[to], &triangles[from], count * sizeof(triangles[0]));
+        std::memmove(&mesh->triangleLeaf[to], &mesh->triangleLeaf[from],
+                     count * sizeof(mesh->triangleLeaf[0]));
+        std::memmove(&(*resolved)[to], &(*resolved)[from], count * sizeof((*resolved)[0]));
+      });
   dropped.triangles = triangles.size() - kept;
   triangles.resize(kept);
   mesh->triangleLeaf.resize(kept);
   resolved->resize(kept);
-  std::vector<uint32_t> remap(n, UINT32_MAX);
-  uint32_t next = 0;
-  for (size_t v = 0; v < n; ++v) {
-    if (!keepRoot[rootOf[v]]) continue;
-    remap[v] = next;
-    positions[next++] = positions[v];
-  }
-  positions.resize(next);
+  // Where each kept vertex goes: its rank among the kept (counts per fixed block, then ranks).
+  constexpr size_t kBlock = 65536;
+  std::vector<uint32_t> remap(n);
+  std::vector<uint32_t> before((n + kBlock - 1) / kBlock + 1, 0);
+  parallelFor(0, int64_t(before.size() - 1), 1, [&](int64_t b, int64_t e) {
+    for (int64_t k = b; k < e; ++k) {
+      uint32_t c = 0;
+      for (size_t v = size_t(k) * kBlock; v < std::min(n, size_t(k + 1) * kBlock); ++v)
+        c += keepRoot[rootOf[v]] ? 1 : 0;
+      before[size_t(k) + 1] = c;
+    }
+  });
+  for (size_t k = 1; k < before.size(); ++k) before[k] += before[k - 1];
+  parallelFor(0, int64_t(before.size() - 1), 1, [&](int64_t b, int64_t e) {
+    for (int64_t k = b; k < e; ++k) {
+      uint32_t next = before[size_t(k)];
+      for (size_t v = size_t(k) * kBlock; v < std::min(n, size_t(k + 1) * kBlock); ++v)
+        remap[v] = keepRoot[rootOf[v]] ? next++ : UINT32_MAX;
+    }
+  });
+  const size_t keptVertices = compactInOrder(
+      n, [&](size_t v) { return remap[v] != UINT32_MAX; },
+      [&](size_t from, size_t to, size_t count) {
+        std::memmove(&positions[to], &positions[from], count * sizeof(positions[0]));
+      });
+  positions.resize(keptVertices);
   parallelFor(0, int64_t(kept), 65536, [&](int64_t b, int64_t e) {
     for (int64_t t = b; t < e; ++t)
       for (uint32_t& v : triangles[size_t(t)]) v = remap[v];

@@ -60,6 +60,30 @@ TEST(DropSpecks, LeavesOutWhatTheGridDoesNotResolveAndKeepsTheRestInOrder) {
   EXPECT_TRUE(checkMesh(m.mesh).watertight());
 }
 
+// Many parts and specks, so that what stays spans many of the compaction's blocks (65,536
+// elements) with specks in most of them: the same as keeping the parts in order.
+TEST(DropSpecks, KeepsOrderAcrossManyBlocks) {
+  constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
+  ExportMesh m, expected;
+  std::vector<uint8_t> resolved, unused;
+  for (int k = 0; k < 30000; ++k) {
+    const glm::dvec3 at(20.0 * (k % 100), 20.0 * (k / 100), 0.0);
+    if (k % 7 == 3) {
+      addOctahedron(m, resolved, at, 0.3, uint32_t(k), kBoth);  // a speck
+    } else {
+      addOctahedron(m, resolved, at, 3.0, uint32_t(k), kBoth);
+      addOctahedron(expected, unused, at, 3.0, uint32_t(k), kBoth);
+    }
+  }
+  ASSERT_GT(m.mesh.triangles.size(), size_t(3) * 65536);
+  const DroppedSpecks dropped = dropUnresolvedSpecks(&m, &resolved, 1.0);
+  EXPECT_EQ(dropped.components, 30000 / 7 + (30000 % 7 > 3 ? 1 : 0));
+  EXPECT_EQ(m.mesh.positions, expected.mesh.positions);
+  EXPECT_EQ(m.mesh.triangles, expected.mesh.triangles);
+  EXPECT_EQ(m.triangleLeaf, expected.triangleLeaf);
+  EXPECT_EQ(resolved.size(), m.mesh.triangles.size());
+}
+
 TEST(DropSpecks, NothingToDropChangesNothing) {
   ExportMesh m;
   std::vector<uint8_t> resolved;
