@@ -15,6 +15,7 @@
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/atomic_file.h"
+#include "tests/support/fresh_path.h"
 
 namespace strata {
 namespace {
@@ -53,11 +54,7 @@ ExportMesh threeCubes() {
 }
 
 std::string freshPath(const std::string& name) {
-  const fs::path folder = fs::path(testing::TempDir()) / "strata_check_written";
-  fs::create_directories(folder);
-  const fs::path path = folder / name;
-  fs::remove(path);
-  return path.string();
+  return test::freshPath("strata_check_written", name);
 }
 
 std::string fileBytes(const std::string& path) {

@@ -19,6 +19,7 @@
 #include "engine/io/mesh_io.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"
+#include "tests/support/fresh_path.h"
 
 namespace strata {
 namespace {
@@ -26,11 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string freshPath(const std::string& name) {
-  const fs::path folder = fs::path(testing::TempDir()) / "strata_read_in_pieces";
-  fs::create_directories(folder);
-  const fs::path path = folder / name;
-  fs::remove(path);
-  return path.string();
+  return test::freshPath("strata_read_in_pieces", name);
 }
 
 // A strip of `count` triangles with coordinates no two triangles share (so that a triangle
