@@ -118,9 +118,9 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
         const glm::dvec3& ref = sums[shell].ref;
         out.back().anchored +=
             sixVolumeTerm(anchor[tri[0]] - ref, anchor[tri[1]] - ref, anchor[tri[2]] - ref);
-        out.back().placed += sixVolumeTerm(mesh->positions[tri[0]] - ref,
-                                           mesh->positions[tri[1]] - ref,
-                                           mesh->positions[tri[2]] - ref);
+        out.back().placed +=
+            sixVolumeTerm(mesh->positions[tri[0]] - ref, mesh->positions[tri[1]] - ref,
+                          mesh->positions[tri[2]] - ref);
       }
     }
   });

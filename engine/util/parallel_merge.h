@@ -30,8 +30,7 @@ namespace detail {
 // (runs in order) is kept. Returns the number of elements of the merge.
 template <typename T, typename Key, typename Emit>
 size_t mergeSlices(const std::vector<SortedRun<T>>& runs, const std::vector<size_t>& lo,
-                   const std::vector<size_t>& hi, Key key, bool unique, size_t first,
-                   Emit* emit) {
+                   const std::vector<size_t>& hi, Key key, bool unique, size_t first, Emit* emit) {
   using Head = std::pair<uint64_t, size_t>;  // key, run: ties taken in run order
   std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heads;
   std::vector<size_t> at(lo);

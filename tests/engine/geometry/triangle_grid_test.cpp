@@ -85,8 +85,8 @@ TEST(TriangleDistance, MatchesAnIndependentRouteInsideOutsideAndFar) {
     const double skinny = k % 3 == 0 ? 1.0 : k % 3 == 1 ? 1e-2 : 1e-4;
     const glm::dvec3 a(unit(random), unit(random), unit(random));
     const glm::dvec3 b = a + glm::dvec3(1.0 + unit(random), 0.3 * unit(random), 0.3 * unit(random));
-    const glm::dvec3 c = a + 0.5 * (b - a) +
-                         skinny * glm::dvec3(0.2 * unit(random), 1.0, 0.2 * unit(random));
+    const glm::dvec3 c =
+        a + 0.5 * (b - a) + skinny * glm::dvec3(0.2 * unit(random), 1.0, 0.2 * unit(random));
     const TriangleDistance prepared(a, b, c);
     for (int q = 0; q < 200; ++q) {
       const double s = 0.5 + 0.8 * unit(random), t = 0.5 + 0.8 * unit(random);

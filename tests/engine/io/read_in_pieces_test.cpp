@@ -35,8 +35,8 @@ std::string freshPath(const std::string& name) {
 ExportMesh strip(size_t count) {
   ExportMesh em;
   for (size_t i = 0; i < count + 2; ++i)
-    em.mesh.positions.push_back({double(i) * 0.25, double(i % 2) + 0.001 * double(i % 7),
-                                 std::sin(double(i) * 0.01)});
+    em.mesh.positions.push_back(
+        {double(i) * 0.25, double(i % 2) + 0.001 * double(i % 7), std::sin(double(i) * 0.01)});
   for (uint32_t i = 0; i < count; ++i) {
     em.mesh.triangles.push_back(i % 2 ? std::array<uint32_t, 3>{i, i + 2, i + 1}
                                       : std::array<uint32_t, 3>{i, i + 1, i + 2});
@@ -154,8 +154,7 @@ TEST(ReadInPieces, NamesANonFiniteCoordinateAsTheReaderDoes) {
   } catch (const Error& e) {
     pieces = e.what();
   }
-  EXPECT_NE(whole.find(std::to_string(84 + 50 * 280000 + 12 + 12 + 8)), std::string::npos)
-      << whole;
+  EXPECT_NE(whole.find(std::to_string(84 + 50 * 280000 + 12 + 12 + 8)), std::string::npos) << whole;
   EXPECT_EQ(pieces, whole);
 }
 
