@@ -96,6 +96,7 @@ MeantMeshCheck::MeantMeshCheck(const std::string& path, const TriangleMesh& writ
       const TriangleMesh meant = storedMesh(path, written);
       released = true;
       s->copied.set_value();
+      s->progress.check();
       s->fingerprint = fingerprintTriangles(meant);
       s->progress.check();
       s->check = checkMesh(meant, &s->progress);

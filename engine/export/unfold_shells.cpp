@@ -72,7 +72,8 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
   for (size_t i = 0; i < n; ++i)
     if (rootOf[i] == i) shellOf[i] = shells++;
   parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
-    for (size_t i = size_t(b); i < size_t(e); ++i) shellOf[i] = shellOf[rootOf[i]];
+    for (size_t i = size_t(b); i < size_t(e); ++i)
+      if (rootOf[i] != i) shellOf[i] = shellOf[rootOf[i]];  // a root's is set: only read
   });
 
   // Each shell's six volumes, anchored and placed, relative to its first triangle's first

@@ -158,7 +158,7 @@ bool TriangleGrid::within(const glm::dvec3& p, double distance, uint32_t* hint) 
     const glm::dvec4& sphere = spheres_[items_[i]];
     const glm::dvec3 d = p - glm::dvec3(sphere);
     // Beyond its box's sphere grown by the distance (a hair more, for rounding): not within.
-    const double grown = (sphere.w + distance) * (1.0 + 1e-12);
+    const double grown = (sphere.w + distance) * (1.0 + 1e-9);
     if (glm::dot(d, d) > grown * grown) continue;
     const auto& t = triangles_[items_[i]];
     if (pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]) <=
@@ -173,21 +173,23 @@ bool TriangleGrid::within(const glm::dvec3& p, double distance, uint32_t* hint) 
 double TriangleGrid::nearest(const glm::dvec3& p, uint32_t* index) const {
   const Slot* s = cell(p);
   double best = reach_ * reach_;
-  // Beyond its box's sphere grown by the best distance so far (a hair more: never passes over
-  // a triangle whose exact distance would have been nearer): not measured.
-  double grown = reach_ * (1.0 + 1e-12);
+  // Beyond its box's sphere grown by the best distance so far (a hair more, on the whole grown
+  // radius: never passes over a triangle whose exact distance would have been nearer): not
+  // measured.
+  double bestDistance = reach_;
   uint32_t which = UINT32_MAX;
   if (s)
     for (uint32_t i = s->begin; i < s->end; ++i) {
       const glm::dvec4& sphere = spheres_[items_[i]];
       const glm::dvec3 d = p - glm::dvec3(sphere);
-      if (glm::dot(d, d) > (sphere.w + grown) * (sphere.w + grown)) continue;
+      const double grown = (sphere.w + bestDistance) * (1.0 + 1e-9);
+      if (glm::dot(d, d) > grown * grown) continue;
       const auto& t = triangles_[items_[i]];
       const double d2 =
           pointTriangleDistanceSquared(p, positions_[t[0]], positions_[t[1]], positions_[t[2]]);
       if (d2 < best) {  // the first of equals (a fixed order): deterministic
         best = d2;
-        grown = std::sqrt(best) * (1.0 + 1e-12);
+        bestDistance = std::sqrt(best);
         which = items_[i];
       }
     }

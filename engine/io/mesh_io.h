@@ -37,7 +37,8 @@ struct MeshReadReport {
 
 // The most triangles a mesh file may hold (through 3MF components: place), checked before the
 // mesh is prepared, and for binary STL and 3MF before anything is allocated; process-wide, set
-// by the command line's --max-triangles. Any thread.
+// by the command line's --max-triangles; lifted on a thread where an InputLimitLifted lives
+// (engine/util/atomic_file.h: reading back a file Strata wrote). Any thread.
 constexpr uint64_t kDefaultMaxInputTriangles = 100'000'000;
 uint64_t maxInputTriangles();
 void setMaxInputTriangles(uint64_t triangles);

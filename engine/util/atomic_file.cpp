@@ -373,6 +373,9 @@ InputLimitLifted::InputLimitLifted() : previous_(t_inputLimitLifted) {
 InputLimitLifted::~InputLimitLifted() {
   t_inputLimitLifted = previous_;
 }
+bool InputLimitLifted::active() {
+  return t_inputLimitLifted;
+}
 
 uint64_t maxInputFileBytes() {
   if (t_inputLimitLifted) return ~uint64_t(0) >> 1;

@@ -115,14 +115,18 @@ std::string readWholeFile(const std::string& path);
 uint64_t maxInputFileBytes();
 void setMaxInputFileBytes(uint64_t bytes);
 
-// While alive, lifts the limit on this thread alone: for reading back a file Strata has just
-// written itself (the export's check), which no input limit should refuse.
+// While alive, lifts the input limits on this thread alone (this size limit and the readers'
+// triangle limit, maxInputTriangles in engine/io/mesh_io.h): for reading back a file Strata has
+// just written itself (the export's check), which no input limit should refuse.
 class InputLimitLifted {
  public:
   InputLimitLifted();
   ~InputLimitLifted();
   InputLimitLifted(const InputLimitLifted&) = delete;
   InputLimitLifted& operator=(const InputLimitLifted&) = delete;
+
+  // Whether one is alive on the calling thread.
+  static bool active();
 
  private:
   bool previous_;
