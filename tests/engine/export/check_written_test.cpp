@@ -189,6 +189,22 @@ TEST(CheckWritten, ACancelledReadBackThrows) {
   EXPECT_THROW(readMeshFileVerbatim(path, nullptr, &cancelled), Cancelled);
 }
 
+// The check reads back a file Strata wrote: no input limit refuses it, whatever the format
+// (an export may hold more triangles than an input is allowed).
+TEST(CheckWritten, NoInputLimitRefusesOurOwnFile) {
+  const ExportMesh em = threeCubes();
+  setMaxInputTriangles(10);  // fewer than the 36 written
+  for (const char* ext : {"stl", "obj", "ply", "3mf"}) {
+    SCOPED_TRACE(ext);
+    const std::string path = freshPath(std::string("limit.") + ext);
+    writeMeshFile(path, em);
+    Progress progress;
+    EXPECT_TRUE(checkWrittenFile(path, em.mesh, progress).passed());
+    EXPECT_THROW(readMeshFile(path), Error);  // as an input, the limit holds
+  }
+  setMaxInputTriangles(kDefaultMaxInputTriangles);
+}
+
 // A child Progress stops with its parent, and alone; its own cancel leaves the parent running.
 TEST(CheckWritten, ProgressChildrenCancelWithTheirParent) {
   Progress parent;
