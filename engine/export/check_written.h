@@ -39,8 +39,19 @@ struct WrittenCheck {
   bool passed() const { return writtenCheckPassed(check, fileDifference); }
 };
 
-// The fingerprint both halves compare (defined below).
-struct TriangleFingerprint;
+// The fingerprint both halves compare: the triangle count, and two sums over triangles of
+// different 64-bit hashes of the bits of their corners' coordinates in order (-0.0 as 0.0).
+// Independent of the order of the triangles and of vertex indexing; any change to a
+// corner's coordinate or to a triangle's winding changes it (but for a 2^-128 chance).
+struct TriangleFingerprint {
+  size_t triangles = 0;
+  uint64_t sum = 0;
+  uint64_t mixedSum = 0;
+  bool operator==(const TriangleFingerprint& o) const {
+    return triangles == o.triangles && sum == o.sum && mixedSum == o.mixedSum;
+  }
+};
+TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh);
 
 // The half of the check that needs no file, on a thread of its own from construction: the
 // mesh as the format of `path` will store it (storedMesh) measured by checkMesh and
@@ -70,19 +81,5 @@ WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Pr
 // The same in one call, from the mesh written (scene units, as given to writeMeshFile).
 WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
                               Progress& progress);
-
-// The fingerprint both halves compare: the triangle count, and two sums over triangles of
-// different 64-bit hashes of the bits of their corners' coordinates in order (-0.0 as 0.0).
-// Independent of the order of the triangles and of vertex indexing; any change to a
-// corner's coordinate or to a triangle's winding changes it (but for a 2^-128 chance).
-struct TriangleFingerprint {
-  size_t triangles = 0;
-  uint64_t sum = 0;
-  uint64_t mixedSum = 0;
-  bool operator==(const TriangleFingerprint& o) const {
-    return triangles == o.triangles && sum == o.sum && mixedSum == o.mixedSum;
-  }
-};
-TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh);
 
 }  // namespace strata

@@ -46,7 +46,7 @@ glm::ivec3 tileCounts(const Grid& grid, int tileCells) {
 }
 
 // Vertices and triangles of every tile, keyed on the global lattice: each tile's own arrays,
-// sorted by mergeTiles, then turned in merged order into the mesh's by indexedMesh, which keeps
+// sorted by sortTiles, then turned in merged order into the mesh's by indexedMesh, which keeps
 // the merged vertices' keys (their order is the mesh's vertex order).
 struct TiledContour {
   std::vector<TileContour> tiles;
@@ -210,41 +210,32 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
       throw Error("internal: a triangle refers to a vertex no tile produced");
     return index;
   };
-  // The keys found last, by a hash of the key, per thread: triangles in edge order share most
-  // corners with the few before them, and a hit costs one compare where the index costs a
-  // search. Each entry is a true (key, index) pair from its first use on.
+  // The keys found last, by a hash of the key, in each stretch of triangles a worker visits:
+  // triangles in edge order share most corners with the few before them, and a hit costs one
+  // compare where the index costs a search. Each entry is a true (key, index) pair from its
+  // first use on.
   constexpr size_t kRecent = 256;
   struct Recent {
     uint64_t key[kRecent];
     uint32_t index[kRecent];
     bool filled = false;
   };
-  const auto cachedIndexOf = [&](Recent& recent, uint64_t key) {
-    if (!recent.filled) {
-      std::fill(recent.key, recent.key + kRecent, key);
-      std::fill(recent.index, recent.index + kRecent, indexOf(key));
-      recent.filled = true;
-    }
-    const size_t slot = size_t((key ^ (key >> 7) ^ (key >> 19)) & (kRecent - 1));
-    if (recent.key[slot] != key) {
-      recent.key[slot] = key;
-      recent.index[slot] = indexOf(key);
-    }
-    return recent.index[slot];
-  };
-  // Pairs belong to this call's vertices: a thread's pairs from another call (another
-  // export, or this one's address reused) are dropped by the call's own number.
-  static std::atomic<uint64_t> calls{0};
-  const uint64_t call = ++calls;
-  triangles.each([&](size_t i, const ContourTriangle& t) {
-    thread_local Recent recent;
-    thread_local uint64_t recentCall = 0;
-    if (recentCall != call) {
-      recent.filled = false;
-      recentCall = call;
-    }
-    out.mesh.triangles[i] = {cachedIndexOf(recent, t.vertex[0]), cachedIndexOf(recent, t.vertex[1]),
-                             cachedIndexOf(recent, t.vertex[2])};
+  triangles.eachWith<Recent>([&](Recent& recent, size_t i, const ContourTriangle& t) {
+    const auto cachedIndexOf = [&](uint64_t key) {
+      if (!recent.filled) {
+        std::fill(recent.key, recent.key + kRecent, key);
+        std::fill(recent.index, recent.index + kRecent, indexOf(key));
+        recent.filled = true;
+      }
+      const size_t slot = size_t((key ^ (key >> 7) ^ (key >> 19)) & (kRecent - 1));
+      if (recent.key[slot] != key) {
+        recent.key[slot] = key;
+        recent.index[slot] = indexOf(key);
+      }
+      return recent.index[slot];
+    };
+    out.mesh.triangles[i] = {cachedIndexOf(t.vertex[0]), cachedIndexOf(t.vertex[1]),
+                             cachedIndexOf(t.vertex[2])};
     out.triangleLeaf[i] = t.leaf;
     (*resolved)[i] = t.resolved;
   });

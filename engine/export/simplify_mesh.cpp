@@ -426,7 +426,7 @@ class Collapser {
   // Whether a face lies within the tolerance of the unsimplified surface on a grid of points at
   // most sampleSpacing_ apart (at most kBackSteps per edge; its corners are tested by the
   // caller or are vertices of the surface).
-  bool faceNearSurface(const TriangleDistance& shape) const {
+  bool faceNearSurface(const TriangleDistance& shape) {
     const glm::dvec3 c[3] = {shape.corner(0), shape.corner(1), shape.corner(2)};
     const double longest =
         std::sqrt(std::max({glm::dot(c[1] - c[0], c[1] - c[0]), glm::dot(c[2] - c[1], c[2] - c[1]),
@@ -552,7 +552,7 @@ class Collapser {
   std::vector<uint32_t> moves_;
   Points tested_;
   // The unsimplified triangle that faceNearSurface last found near (see TriangleGrid::within).
-  mutable uint32_t hint_ = UINT32_MAX;
+  uint32_t hint_ = UINT32_MAX;
 };
 
 constexpr size_t kMaxChunks = 256;

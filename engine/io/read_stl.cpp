@@ -43,7 +43,7 @@ float readF32(const char* bytes) {
 }
 
 // The three corners of the 50-byte facet record at `facet`; false if a coordinate is not
-// finite (the caller names the first such byte, requireNonFiniteFacet).
+// finite (the caller names the first such byte: requireFiniteFacet).
 bool decodeFacet(const char* facet, glm::dvec3* corners) {
   bool finite = true;
   for (int v = 0; v < 3; ++v)

@@ -386,7 +386,7 @@ void setMaxInputFileBytes(uint64_t bytes) {
   g_maxInputFileBytes.store(bytes);
 }
 
-InputFile::InputFile(const std::string& path, bool limited) : path_(path) {
+InputFile::InputFile(const std::string& path) : path_(path) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
   fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd_ < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
@@ -400,7 +400,7 @@ InputFile::InputFile(const std::string& path, bool limited) : path_(path) {
   }
   size_ = uint64_t(st.st_size);
   const uint64_t limit = maxInputFileBytes();
-  if (limited && size_ > limit) {
+  if (size_ > limit) {
     ::close(fd_);
     throw tooLargeFile(path, size_, limit);
   }

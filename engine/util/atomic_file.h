@@ -81,11 +81,11 @@ std::vector<std::string> temporaryFilesOf(const std::string& path);
 void abandonAtomicWritesForExit() noexcept;
 
 // A regular file opened for reading front to back, with readWholeFile's refusals (not a
-// regular file; larger than maxInputFileBytes(), where `limited`). For files read in pieces,
-// never held whole. Owns its descriptor; one thread at a time.
+// regular file; larger than maxInputFileBytes()). For files read in pieces, never held whole.
+// Owns its descriptor; one thread at a time.
 class InputFile {
  public:
-  explicit InputFile(const std::string& path, bool limited = true);
+  explicit InputFile(const std::string& path);
   ~InputFile();
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;

@@ -117,18 +117,31 @@ class RunMerge {
   // distinct i).
   template <typename Emit>
   void each(Emit emit) const {
-    const size_t partCount = start_.size() - 1;
+    struct None {};
+    eachWith<None>([&](None&, size_t i, const T& e) { emit(i, e); });
+  }
+
+  // The same with a Context of its own for each stretch of the merge a worker visits in order
+  // (default-constructed at the stretch's start; a cache of what the stretch met, say):
+  // emit(context, i, element).
+  template <typename Context, typename Emit>
+  void eachWith(Emit emit) const {
     if (runs_.size() == 1 && !unique_) {  // one run: itself, in place
       const SortedRun<T>& run = runs_[0];
       parallelFor(0, int64_t(run.size), 65536, [&](int64_t b, int64_t e) {
-        for (int64_t i = b; i < e; ++i) emit(size_t(i), run.data[size_t(i)]);
+        Context context;
+        for (int64_t i = b; i < e; ++i) emit(context, size_t(i), run.data[size_t(i)]);
       });
       return;
     }
+    const size_t partCount = start_.size() - 1;
     parallelFor(0, int64_t(partCount), 1, [&](int64_t b, int64_t e) {
-      for (int64_t p = b; p < e; ++p)
+      for (int64_t p = b; p < e; ++p) {
+        Context context;
+        auto withContext = [&](size_t i, const T& element) { emit(context, i, element); };
         detail::mergeSlices<T>(runs_, bounds_[size_t(p)], bounds_[size_t(p) + 1], key_, unique_,
-                               start_[size_t(p)], &emit);
+                               start_[size_t(p)], &withContext);
+      }
     });
   }
 

@@ -77,6 +77,21 @@ TEST(ParallelMerge, EachVisitsEveryPlaceOnceAndOneRunInPlace) {
     ASSERT_EQ(seen[i].load(), 1) << i;
     ASSERT_EQ(at[i], uint64_t(i)) << i;  // keys 0, 1, 2, ... interleaved from the three runs
   }
+  // eachWith: each stretch its own context, met in order from its first element on.
+  struct Stretch {
+    bool started = false;
+    uint64_t lastKey = 0;
+  };
+  std::atomic<int> outOfOrder{0};
+  std::vector<std::atomic<int>> seenWith(merge.size());
+  merge.eachWith<Stretch>([&](Stretch& s, size_t i, const Item& e) {
+    if (s.started && e.key <= s.lastKey) ++outOfOrder;
+    s.started = true;
+    s.lastKey = e.key;
+    ++seenWith[i];
+  });
+  EXPECT_EQ(outOfOrder.load(), 0);
+  for (size_t i = 0; i < seenWith.size(); ++i) ASSERT_EQ(seenWith[i].load(), 1) << i;
   const std::vector<SortedRun<Item>> one = {views[1]};
   const RunMerge<Item, decltype(key)> alone(one, key, false);
   std::vector<uint64_t> order(alone.size(), 0);
