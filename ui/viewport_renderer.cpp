@@ -681,9 +681,12 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   if (drawMs > 0.0 && drewSplatsLastFrame_ > 0) {
     const double factor = std::clamp(kTargetFrameMs / drawMs, 0.5, 1.5);
     size_t& share = lastDrawFull_ ? fullShare_ : splatsPerFrame_;
+    // A coarse frame over the target at the fewest splats is bound by the pixels it fills.
+    if (!lastDrawFull_ && share <= kMinShare && drawMs > kTargetFrameMs) coarseShrink_ = 4;
+    if (!lastDrawFull_ && coarseShrink_ > 2 && drawMs < 0.5 * kTargetFrameMs) coarseShrink_ = 2;
     if (drewSplatsLastFrame_ >= share / 2)
-      share =
-          std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), 4000, size_t(1) << 26);
+      share = std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), kMinShare,
+                                 size_t(1) << 26);
   }
   drewSplatsLastFrame_ = 0;
   GLint window = 0;
@@ -739,9 +742,9 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       lastDrawFull_ = true;
       show = shown_.get();
     } else {
-      // A share of the splats at half resolution now; the full image over the next frames.
-      // Half resolution; a quarter when the share is so small that each splat stands for many
-      // (what a software GL driver draws in a frame): fewer pixels to fill for the same image.
+      // A share of the splats at reduced resolution now; the full image over the next frames.
+      // Half resolution; a quarter when the share is so small that each splat stands for many,
+      // or when the pixels filled set the cost (coarseShrink_): a software GL driver.
       // Every k-th splat of a level, k no larger than the driver's largest attribute stride
       // allows (a larger one is refused, and the draw would read other splats or none): from a
       // coarser level where the view's would need a larger k.
@@ -754,7 +757,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       const size_t ratio = (pool + splatsPerFrame_ - 1) / splatsPerFrame_;
       const size_t stride =
           ratio <= 1 ? 1 : std::min(nextPrime(ratio), largestPrimeAtMost(maxStride));
-      const int shrink = stride > 64 ? 4 : 2;
+      const int shrink = stride > 64 ? 4 : coarseShrink_;
       ViewportFrame half = local;
       half.width = std::max(1, f.width / shrink);
       half.height = std::max(1, f.height / shrink);

@@ -193,6 +193,15 @@ class ViewportRenderer {
     fullShare_ = std::max<size_t>(1, full);
   }
   static constexpr double kTargetFrameMs = 12.0;
+  // The fewest splats a frame either share shrinks to.
+  static constexpr size_t kMinShare = 4000;
+  // The coarse image's reduction (2: half the view's width and height; 4: a quarter). It turns
+  // to 4 once a coarse frame at the fewest splats (kMinShare) still takes longer than
+  // kTargetFrameMs: its cost is then the pixels the discs fill (the discs widen as the share
+  // shrinks, so fewer splats fill as many pixels), which only a smaller image reduces: a
+  // software GL driver (Mesa llvmpipe at 1024 cells: 9 ms of coarse drawing at a half, 4.3 at
+  // a quarter). Back to 2 when a coarse frame at 4 takes less than half the target.
+  int coarseShrink() const { return coarseShrink_; }
   // An edit's first image: drawn from the finest level whose splats cost at most this long at
   // the measured cost per splat (the frame's target: the frame bringing the result stays one
   // frame); the view's level follows over the next frames. Not less: where the view's level
@@ -295,8 +304,8 @@ class ViewportRenderer {
   GLuint pickFramebuffer_ = 0, pickIds_ = 0, pickDepth_ = 0;
   int pickWidth_ = 0, pickHeight_ = 0;
 
-  // drawCached's images: the coarse one (half resolution), the full one shown and the full one
-  // being drawn.
+  // drawCached's images: the coarse one (reduced, coarseShrink), the full one shown and the full
+  // one being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
   uint64_t shownKey_ = 0;         // what shown_ (or coarse_, while refining) holds
@@ -309,6 +318,7 @@ class ViewportRenderer {
   // 1.5x a frame while frames are quick.
   size_t splatsPerFrame_ = 30000;
   size_t fullShare_ = 30000;
+  int coarseShrink_ = 2;       // see coarseShrink()
   bool lastDrawFull_ = false;  // the last drawCached's splats were at full resolution
   double uploadMsThisFrame_ = 0.0, uploadMsLastFrame_ = 0.0;  // host uploads, by frame
   size_t drewSplatsLastFrame_ = 0;  // splats the last drawCached drew (what its time bought)

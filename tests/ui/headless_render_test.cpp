@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 
@@ -321,6 +322,49 @@ TEST(HeadlessRender, CoarseImageCoversTheViewWhenTheShareIsSmall) {
   }
   EXPECT_GT(sphere, 4000);
   EXPECT_LT(missed, sphere / 20) << "of the sphere's pixels the coarse image left empty";
+}
+
+// The coarse image of a moving view turns to a quarter resolution when a frame at the fewest
+// splats still takes longer than the target (its cost is then the pixels filled, as under a
+// software GL driver), and back to half when frames take less than half the target; a frame
+// over the target with splats still to shed keeps half (fewer splats are the cheaper fix).
+TEST(HeadlessRender, CoarseImageTurnsToAQuarterWhenFillBound) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  ViewportRenderer renderer;
+  ASSERT_GT(uploadSphere(renderer), 30000u);
+  renderer.limitDetailLevel(0);
+  RenderTarget window(200, 150);
+  window.bind();
+  int turn = 0;
+  // Each frame turns the camera, so each draws the coarse image of a moved view.
+  auto movedFrame = [&](double lastFrameMs) {
+    ViewportFrame frame = sphereFrame();
+    const double angle = 0.05 * double(++turn);
+    frame.eye = glm::dvec3(4.0 * std::sin(angle), -4.0 * std::cos(angle), 1.0);
+    frame.forward = glm::normalize(-frame.eye);
+    frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                           glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+    renderer.drawCached(frame, {}, {}, {}, lastFrameMs);
+    EXPECT_TRUE(renderer.showsCoarseImage());
+  };
+  // Slow frames with a large share: the share shrinks, the image stays at half.
+  renderer.setFrameShares(20000, 200);
+  movedFrame(10.0);
+  movedFrame(30.0);
+  EXPECT_EQ(renderer.coarseShrink(), 2);
+  EXPECT_LT(renderer.splatsPerFrame(), 20000u);
+  // Slow frames shed splats down to the fewest; slow there: a quarter, and it stays while frames
+  // are near the target.
+  for (int i = 0; i < 8; ++i) movedFrame(30.0);
+  EXPECT_EQ(renderer.splatsPerFrame(), ViewportRenderer::kMinShare);
+  EXPECT_EQ(renderer.coarseShrink(), 4);
+  movedFrame(11.0);
+  EXPECT_EQ(renderer.coarseShrink(), 4);
+  // Quick frames: back to half.
+  movedFrame(0.25 * ViewportRenderer::kTargetFrameMs);
+  EXPECT_EQ(renderer.coarseShrink(), 2);
 }
 
 }  // namespace
