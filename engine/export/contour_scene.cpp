@@ -69,6 +69,7 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
   EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
   r.evaluateSeconds += evaluate.seconds();
   r.surfels += result.measure.surfels;
+  r.tileLdiBytes = std::max(r.tileLdiBytes, result.cacheBytes);
   addWarnings(result.warnings, &r);
   if (result.measure.surfels == 0) return;
   Stopwatch contour;
@@ -272,6 +273,7 @@ void addWarnings(const std::vector<std::string>& from, ContourReport* into) {
 
 void addTileCounts(const ContourReport& from, ContourReport* into) {
   into->surfels += from.surfels;
+  into->tileLdiBytes = std::max(into->tileLdiBytes, from.tileLdiBytes);
   into->synthesizedCrossings += from.synthesizedCrossings;
   into->signDisagreements += from.signDisagreements;
   addWarnings(from.warnings, into);

@@ -48,6 +48,7 @@ struct ContourReport {
   double mergeSeconds = 0.0;     // stitching and indexing
   uint64_t peakBytes = 0;        // process peak resident memory afterwards
   uint64_t surfels = 0;          // root surfels over all tiles
+  uint64_t tileLdiBytes = 0;     // the most LDI memory one tile's evaluation held (its cache)
   uint64_t synthesizedCrossings = 0;
   uint64_t signDisagreements = 0;
   // Every vertex lies in a cell the surface crosses: the distance from any output vertex to

@@ -13,11 +13,16 @@
 namespace strata {
 namespace {
 
-// Host memory of an export per output triangle, contouring, merging, writing and re-reading for
-// the check included: measured 75 bytes between the bone scaffold's exports at 512 and 2048
-// cells (164 MiB for 0.5 million triangles, 737 MiB for 8.2 million; 2026-11-23, CPU backend),
-// rounded up.
-constexpr double kExportBytesPerTriangle = 100.0;
+// Host memory of an export besides the LDIs of the tile being evaluated: per output triangle of
+// the whole mesh (merged, written, checked), and again per triangle of one tile (its contour's
+// own arrays while it is made). Fitted on this 2-core machine (CPU backend, 2026-11-25) to six
+// exports at 1024 and 2048 cells, one to eight tiles (the demo, armadillo - bunny, the flange,
+// the scaffold): peaks of 0.53 to 2.06 GB, each within -9% to +18% of the model.
+constexpr double kExportBytesPerTriangle = 80.0;
+constexpr double kTileBytesPerTriangle = 80.0;
+// Writing and checking, per triangle (they are not in the probes' times): measured 0.12 to
+// 0.18 microseconds on this 2-core machine in the same six exports.
+constexpr double kWriteCheckSecondsPerTriangle = 2e-7;
 
 int tileCount(const Grid& grid, int tileCells) {
   const int t = std::max(8, tileCells);
@@ -83,22 +88,32 @@ double fitSeconds(double tSmall, double xSmall, double tProbe, double xJob, int 
   return fixed * std::max(1, tiles) + perSurface * xJob;
 }
 
+int longestSide(const Grid& g) {
+  return std::max(g.cells.x, std::max(g.cells.y, g.cells.z));
+}
+
+// The probe's resolution for a job of `jobCells` along its longest side: kProbeResolution, or
+// an eighth of the job where that is finer. A job extrapolated from a much coarser probe
+// multiplies the probes' noise and fixed costs by its surface ratio: probes at 32 and 64 cells
+// put the demo's export at 1024 cells at 13 s on this 2-core machine where it takes 2.6 s.
+// An eighth costs about 1/64 of the job's surface work.
+int probeResolutionFor(int jobCells) {
+  return std::max(kProbeResolution, (jobCells / 8 + 1) / 2 * 2);
+}
+
 // Runs `probe` (returns the probe's grid) at half and at the whole probe resolution, timing
 // each; returns the fitted seconds of the job on `job` in `tiles` tiles.
 template <typename Probe>
 double timeFromProbes(const Grid& job, int tiles, Probe&& probe) {
+  const int resolution = probeResolutionFor(longestSide(job));
   Stopwatch small;
-  const Grid smallGrid = probe(kProbeResolution / 2);
+  const Grid smallGrid = probe(resolution / 2);
   const double tSmall = small.seconds();
   Stopwatch whole;
-  const Grid probeGrid = probe(kProbeResolution);
+  const Grid probeGrid = probe(resolution);
   const double tProbe = whole.seconds();
   return fitSeconds(tSmall, scaleFrom(probeGrid, smallGrid), tProbe, scaleFrom(probeGrid, job),
                     tiles);
-}
-
-int longestSide(const Grid& g) {
-  return std::max(g.cells.x, std::max(g.cells.y, g.cells.z));
 }
 
 }  // namespace
@@ -138,6 +153,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                                   : exportTileCells(e.grid, backend->memoryAvailable()));
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
+  const uint64_t present = peakResidentBytes();  // before the probes, which add their own
   ContourReport report;
   size_t probeTriangles = 0;
   const double seconds = timeFromProbes(e.grid, e.tiles, [&](int resolution) {
@@ -153,13 +169,15 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   e.probed = true;
   e.surfels = uint64_t(double(report.surfels) * scale);
   e.triangles = uint64_t(double(probeTriangles) * scale);
-  e.peakBytes = peakResidentBytes() + uint64_t(double(e.triangles) * kExportBytesPerTriangle);
+  // One tile at a time (the cache is cleared between tiles): its share of the LDIs and of the
+  // contour's arrays, beside the mesh of every tile.
+  const double tiles = double(std::max(1, e.tiles));
+  const double tileBytes =
+      (double(report.tileLdiBytes) * scale + double(e.triangles) * kTileBytesPerTriangle) / tiles;
+  e.peakBytes = present + uint64_t(tileBytes + double(e.triangles) * kExportBytesPerTriangle);
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
-  // Writing and checking grow with the triangles (they are not in the probes' times): measured
-  // 0.9 to 3.2 microseconds per triangle (scaffold at 512 cells here, at 2048 on the H200 host,
-  // 2026-11-23).
-  e.seconds = seconds + 2e-6 * double(e.triangles);
+  e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);
   return e;
 }
 

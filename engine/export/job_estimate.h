@@ -1,10 +1,11 @@
 // What a job at a high resolution will cost, told before it starts: cells, tiles, surface,
-// memory, file size and time, scaled from a quick probe of the same scene at a coarse
-// resolution on the same backend. Surfels, triangles, LDI memory and (to first order) time all
-// grow with the surface, that is with the square of the resolution; the probe measures the
-// constant for this scene. Time is fitted to two probes (at half and at the whole probe
-// resolution): a part fixed by the input (a big mesh's triangles) plus a part that grows with
-// the surface. An estimate, good to a factor of about two: enough to tell a job
+// memory, file size and time, scaled from quick probes of the same scene at an eighth of the
+// job's resolution (at least kProbeResolution) on the same backend. Surfels, triangles, LDI memory
+// and (to first order) time all grow with the surface, that is with the square of the resolution;
+// the probe measures the constant for this scene. Time is fitted to two probes (at half and at the
+// whole probe resolution): a part fixed by the input (a big mesh's triangles) plus a part that
+// grows with the surface. Memory: the probe's LDIs of one tile and bytes per triangle, scaled. An
+// estimate, good to a factor of about two: enough to tell a job
 // of seconds from one of hours, or one that fits from one that cannot.
 //
 // Synchronous; any thread; runs the probe on `backend` (which the caller must not use
@@ -22,7 +23,7 @@
 
 namespace strata {
 
-// Cells of the probe along the longest side.
+// Cells of the probe along the longest side, at least (jobs over 512 cells: an eighth of theirs).
 constexpr int kProbeResolution = 64;
 // Jobs of at most this many cells along the longest side are not probed (the probes would cost
 // a noticeable part of the job itself: a scene of 100,000 small leaves samples each leaf per

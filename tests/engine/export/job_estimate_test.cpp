@@ -1,5 +1,6 @@
-// Estimates before long jobs: scaled from a 64-cell probe, they must land within a factor of two
-// of what the job then does, and say so in words a user reads.
+// Estimates before long jobs: scaled from probes at an eighth of the job (at least 64 cells),
+// they must land within a factor of two of what the job then does, and say so in words a user
+// reads.
 #include "engine/export/job_estimate.h"
 
 #include <gtest/gtest.h>
@@ -34,6 +35,28 @@ TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
   EXPECT_NE(text.find("cells"), std::string::npos) << text;
   EXPECT_NE(text.find("tiles"), std::string::npos) << text;
   EXPECT_NE(text.find("triangles"), std::string::npos) << text;
+}
+
+// The estimate's memory counts one tile's LDIs (the cache is cleared between tiles): the report
+// gives the most one tile held, not the sum over tiles.
+TEST(JobEstimate, ReportGivesTheLdiMemoryOfOneTile) {
+  const Scene scene =
+      loadScene(test::assetsDir() + "/scenes/bone_scaffold_scaled_copy.strata.json");
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  uint64_t bytes[2] = {0, 0};
+  for (int tiled = 0; tiled < 2; ++tiled) {
+    ContourOptions options;
+    options.resolution = 128;
+    options.tileCells = tiled ? 40 : 256;
+    Evaluator evaluator(backend);
+    ContourReport report;
+    contourScene(scene, evaluator, options, progress, &report);
+    EXPECT_EQ(report.tiles > 1, tiled == 1);
+    bytes[tiled] = report.tileLdiBytes;
+  }
+  EXPECT_GT(bytes[1], 0u);
+  EXPECT_LT(double(bytes[1]), 0.6 * double(bytes[0])) << "one tile of several against the whole";
 }
 
 TEST(JobEstimate, SmallJobsAreNotProbedAndRefusalsSayWhy) {
