@@ -116,6 +116,8 @@ class CudaBackend : public Backend {
   }
   bool evaluatesModifiers() const override { return true; }
 
+  bool keepsLdisOnHost() const override { return false; }
+
   // Free device memory, as the driver sees it (the pool's kept blocks not counted).
   uint64_t memoryAvailable() const override {
     onDevice();

@@ -83,6 +83,8 @@ class Backend {
   // now (0 = unknown). Sizes export tiles (contour_scene.h). The default: the host's
   // (availableMemoryBytes, engine/util/memory.h).
   virtual uint64_t memoryAvailable() const;
+  // Whether LDIs (LdiResource::bytes) take host memory (true) or the device's (false).
+  virtual bool keepsLdisOnHost() const { return true; }
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
   // The default downloads the LDI and builds them on the host.
   virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);

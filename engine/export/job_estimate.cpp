@@ -138,8 +138,9 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
   e.probed = true;
   e.surfels = uint64_t(double(r.measure.surfels) * scale);
   // Every node's LDI is kept (the cache): the probe's cache, scaled, on top of what the
-  // process holds now.
-  e.peakBytes = peakResidentBytes() + uint64_t(double(r.cacheBytes) * scale);
+  // process holds now (LDIs on a device take none of the host's).
+  e.peakBytes = peakResidentBytes() +
+                (backend->keepsLdisOnHost() ? uint64_t(double(r.cacheBytes) * scale) : 0);
   return e;
 }
 
@@ -169,11 +170,11 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   e.probed = true;
   e.surfels = uint64_t(double(report.surfels) * scale);
   e.triangles = uint64_t(double(probeTriangles) * scale);
-  // One tile at a time (the cache is cleared between tiles): its share of the LDIs and of the
-  // contour's arrays, beside the mesh of every tile.
+  // One tile at a time (the cache is cleared between tiles): its share of the LDIs (where the
+  // backend keeps them on the host) and of the contour's arrays, beside the mesh of every tile.
   const double tiles = double(std::max(1, e.tiles));
-  const double tileBytes =
-      (double(report.tileLdiBytes) * scale + double(e.triangles) * kTileBytesPerTriangle) / tiles;
+  const double ldiBytes = backend->keepsLdisOnHost() ? double(report.tileLdiBytes) * scale : 0.0;
+  const double tileBytes = (ldiBytes + double(e.triangles) * kTileBytesPerTriangle) / tiles;
   e.peakBytes = present + uint64_t(tileBytes + double(e.triangles) * kExportBytesPerTriangle);
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
