@@ -109,6 +109,13 @@ class CudaBackend : public Backend {
     return emptyOnDevice(grid, stream_);
   }
 
+  LdiHandle crop(const LdiHandle& ldi, const Grid& window, Progress& progress) override {
+    onDevice();
+    progress.check();
+    deviceLdi(ldi);  // checks the kind
+    return cropOnDevice(std::static_pointer_cast<const DeviceLdi>(ldi), window, stream_);
+  }
+
   LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override {
     onDevice();
     progress.check();

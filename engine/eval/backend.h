@@ -65,6 +65,10 @@ class Backend {
   virtual TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                   const glm::ivec3& begin, const glm::ivec3& end,
                                   Progress& progress);
+  // The rays of `window` (a window within ldi's grid, on its lattice) with their whole lists
+  // (engine/ldi/ldi.h: cropLdi; the CUDA twin gives the same bits): a tile's part of an LDI
+  // evaluated on a larger window (a tiled export of modifiers, contour_scene.h).
+  virtual LdiHandle crop(const LdiHandle& ldi, const Grid& window, Progress& progress) = 0;
   // `ldi`'s solid grown (distance > 0) or shrunk (distance < 0) by |distance| scene units, on
   // its grid (engine/ldi/offset_ldi.h; the CUDA twin gives the same bits). The default throws
   // strata::Error: a backend that cannot offset says so.

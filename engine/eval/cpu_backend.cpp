@@ -74,6 +74,11 @@ LdiHandle Backend::modify(Modifier modifier, double amount, const LdiHandle& ldi
   return ldi;
 }
 
+LdiHandle CpuBackend::crop(const LdiHandle& ldi, const Grid& window, Progress& progress) {
+  progress.check();
+  return std::make_shared<CpuLdi>(cropLdi(hostLdi(ldi), window));
+}
+
 LdiHandle CpuBackend::empty(const Grid& grid) {
   return std::make_shared<CpuLdi>(makeEmptyLdi(grid));
 }

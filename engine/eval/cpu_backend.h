@@ -14,6 +14,7 @@ class CpuBackend : public Backend {
   LdiHandle combine(RayOp op, const std::vector<LdiHandle>& children, const Grid& grid,
                     Progress& progress) override;
   LdiHandle empty(const Grid& grid) override;
+  LdiHandle crop(const LdiHandle& ldi, const Grid& window, Progress& progress) override;
   LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override;
   bool evaluatesModifiers() const override { return true; }
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override;

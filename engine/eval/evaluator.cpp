@@ -12,6 +12,7 @@
 
 #include "engine/document/expansion.h"
 #include "engine/kinds/primitives.h"
+#include "engine/ldi/offset_math.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
 #include "engine/util/memory.h"
@@ -256,12 +257,43 @@ const char* outcomeName(NodeOutcome outcome) {
 
 Evaluator::Evaluator(std::shared_ptr<Backend> backend) : backend_(std::move(backend)) {}
 
-bool hasModifier(const NodePtr& node) {
+namespace {
+
+// The halo (modifierHaloCells) of `node`'s subtree, hidden nodes included (an instance may stand
+// for one); `depth` guards against instance cycles as the evaluation does.
+int64_t haloCells(const NodePtr& node, const NodePtr& root, double h, int depth) {
+  if (!node) return 0;
+  if (depth > kDepthGuard) throw Error("the tree is too deep to evaluate (instance cycle?)");
+  if (node->kind == NodeKind::Instance)
+    return haloCells(findNode(root, node->instanceOf), root, h, depth + 1);
+  int64_t below = 0;
+  for (const auto& c : node->children) below = std::max(below, haloCells(c, root, h, depth + 1));
+  const ModifierReach reach = modifierReach(node->kind, node->amount);
+  if (reach.offsets == 0) return below;
+  // Amounts are checked where the node is evaluated; a halo beyond any grid is clamped there.
+  const double cells = std::isfinite(reach.distance) ? std::ceil(reach.distance / h) : 1e9;
+  return below + int64_t(std::min(cells, 1e9)) + int64_t(reach.offsets) * kOffsetHaloCells;
+}
+
+bool anyModifier(const NodePtr& node, const NodePtr& root, int depth) {
   if (!node) return false;
+  if (depth > kDepthGuard) throw Error("the tree is too deep to evaluate (instance cycle?)");
+  if (node->kind == NodeKind::Instance)
+    return anyModifier(findNode(root, node->instanceOf), root, depth + 1);
   if (modifierOf(node->kind) != Modifier::None) return true;
   for (const auto& c : node->children)
-    if (hasModifier(c)) return true;
+    if (anyModifier(c, root, depth + 1)) return true;
   return false;
+}
+
+}  // namespace
+
+bool hasModifier(const NodePtr& root) {
+  return anyModifier(root, root, 0);
+}
+
+int modifierHaloCells(const NodePtr& root, double h) {
+  return int(std::min<int64_t>(haloCells(root, root, h, 0), 1 << 30));
 }
 
 Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld) {

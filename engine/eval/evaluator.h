@@ -131,11 +131,16 @@ class Evaluator {
   std::unordered_map<const TriangleMesh*, MeshHashMemo> meshHashes_;
 };
 
-// Whether the tree holds a modifier (offset, shell, round, fillet). A modifier reads its
-// children around each point up to its amount away, which a tile's window does not hold: such
-// scenes are exported in one tile (for now), and their memory follows the whole grid
-// (engine/ldi/offset_ldi.h: 13 bytes a node).
-bool hasModifier(const NodePtr& node);
+// Whether the tree under `root` holds a modifier (offset, shell, round, fillet), instances
+// followed to the nodes they stand for.
+bool hasModifier(const NodePtr& root);
+
+// The cells (of size h) by which a tile's window must grow on every side for its evaluation to
+// hold, inside the window, exactly what the whole grid's does: a modifier reads its children
+// around each point up to its reach away (modifierReach, plus kOffsetHaloCells per offset,
+// engine/ldi/offset_math.h), and modifiers nested on one path add up. 0 without modifiers;
+// instances followed.
+int modifierHaloCells(const NodePtr& root, double h);
 
 // World-space bounds of a node's visible result (union: all children; intersection: the
 // overlap of the children's; difference: the first child's). Empty when nothing is visible.

@@ -11,6 +11,7 @@
 
 #include "engine/contour/contour_tile.h"
 #include "engine/geometry/mesh_components.h"
+#include "engine/ldi/offset_math.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/parallel_for.h"
@@ -53,20 +54,28 @@ struct TiledContour {
   std::vector<uint64_t> keys;
 };
 
-// Evaluates and contours one tile, appending it to `out`.
-void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid,
+// Evaluates and contours one tile, appending it to `out`. With a `halo` (modifiers), the tile
+// is evaluated on its window grown by it on every side (within the grid) and cropped back.
+void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, int halo,
                     const glm::ivec3& begin, const glm::ivec3& end, Progress& progress,
                     ContourReport& r, std::vector<TileContour>* out) {
   const TileWindow window = tileWindow(begin, end, grid.cells);
   const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
   const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
+  const glm::ivec3 evalFirst = glm::max(window.first - halo, glm::ivec3(0));
+  const glm::ivec3 evalEnd = glm::min(window.first + window.cells + halo, grid.cells);
+  const Grid evalGrid = whole ? grid : grid.window(evalFirst, evalEnd - evalFirst);
   Stopwatch evaluate;
   if (r.tiles > 1) {
     // Each tile has its own grid, so no cache entry serves another tile: keep none, so that
     // memory stays that of one tile's evaluation (what --tile promises).
     evaluator.clearCache();
   }
-  EvalResult result = evaluator.evaluateOn(scene, tileGrid, progress);
+  EvalResult result = evaluator.evaluateOn(scene, evalGrid, progress);
+  if (!(evalGrid == tileGrid) && result.measure.surfels > 0) {
+    result.root = evaluator.backend().crop(result.root, tileGrid, progress);
+    result.measure.surfels = result.root->surfelCount();
+  }
   r.evaluateSeconds += evaluate.seconds();
   r.surfels += result.measure.surfels;
   r.tileLdiBytes = std::max(r.tileLdiBytes, result.cacheBytes);
@@ -253,15 +262,24 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
 
 }  // namespace
 
-int exportTileCells(const Grid& grid, uint64_t memoryBytes) {
-  if (memoryBytes == 0) return 256;
+int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo) {
+  const uint64_t perNode = halo > 0 ? kOffsetBytesPerNode : kContourBytesPerNode;
   const int longest = std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8});
   for (int parts = 1;; ++parts) {
     const int tile = std::max(8, (longest + parts - 1) / parts);
-    uint64_t nodes = 1;
-    for (int a = 0; a < 3; ++a) nodes *= uint64_t(std::min(tile, grid.cells[a]) + 3);
-    if (tile == 8 || (tile <= kMaxTileCells && nodes * kContourBytesPerNode <= memoryBytes / 4))
-      return tile;
+    // The evaluation window: the tile and the modifiers' halo on each side, within the grid,
+    // and the contour's cell of halo and the nodes (+ 3).
+    double cells = 1.0, nodes = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      const int64_t window = std::min(int64_t(tile) + 2 * int64_t(halo), int64_t(grid.cells[a]));
+      cells *= double(window + 2);
+      nodes *= double(window + 3);
+    }
+    const bool indexable = halo == 0 || cells <= double(UINT32_MAX);
+    const bool fits =
+        memoryBytes == 0 ? tile <= 256 : nodes * double(perNode) <= double(memoryBytes / 4);
+    if (tile <= kMaxTileCells && indexable && fits) return tile;
+    if (tile == 8) return indexable ? 8 : 0;
   }
 }
 
@@ -296,26 +314,14 @@ ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uin
   ExportTiling t;
   t.grid = Evaluator::gridFor(scene, options.resolution);
   const Grid& grid = t.grid;
-  // One tile where a modifier needs the whole grid (hasModifier).
-  t.tileCells = hasModifier(scene.root) ? std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8})
-                : options.tileCells > 0 ? options.tileCells
-                                        : exportTileCells(grid, memoryBytes);
-  if (hasModifier(scene.root)) {
-    // The whole grid is one tile, whose cells are indexed in 32 bits (tileCounts): say so in
-    // the modifier's terms, with the resolution that fits (cells grow as its cube).
-    double windowCells = 1.0;
-    for (int a = 0; a < 3; ++a) windowCells *= double(grid.cells[a] + 4);
-    if (windowCells > double(UINT32_MAX)) {
-      const int longest = std::max({grid.cells.x, grid.cells.y, grid.cells.z});
-      const int fits = int(double(longest) * std::cbrt(double(UINT32_MAX) / windowCells) * 0.99);
-      throw Error(
-          "offset, shell, round and fillet nodes are evaluated on the whole grid as one "
-          "tile, which holds at most 2^32 cells; at " +
-          std::to_string(longest) + " cells this scene's grid has " +
-          std::to_string(uint64_t(windowCells / 1e6)) + " million: use --resolution " +
-          std::to_string(fits) + " or less");
-    }
-  }
+  t.halo = modifierHaloCells(scene.root, grid.h);
+  t.tileCells =
+      options.tileCells > 0 ? options.tileCells : exportTileCells(grid, memoryBytes, t.halo);
+  if (t.tileCells == 0)
+    throw Error("offset, shell, round and fillet nodes read " + std::to_string(t.halo) +
+                " cells around each point at this resolution (their amounts, nested ones "
+                "added up), more than a tile can hold beside its own cells: lower --resolution "
+                "or the amounts");
   t.counts = tileCounts(grid, t.tileCells);
   return t;
 }
@@ -331,7 +337,8 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
     for (int t = 0; t < tiling.count(); ++t) share += !mine || mine(t) ? 1 : 0;
   for (int t = 0; t < tiling.count(); ++t) {
     if (mine && !mine(t)) continue;
-    contourOneTile(scene, evaluator, tiling.grid, tiling.begin(t), tiling.end(t), progress, r, out);
+    contourOneTile(scene, evaluator, tiling.grid, tiling.halo, tiling.begin(t), tiling.end(t),
+                   progress, r, out);
     ++done;
     if (afterTile)
       afterTile(t);

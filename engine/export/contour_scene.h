@@ -37,7 +37,11 @@ constexpr uint64_t kContourBytesPerNode = 2;
 // fewest equal parts whose tiles are at most kMaxTileCells and whose contouring arrays take at
 // most a quarter of `memoryBytes` (the backend's memoryAvailable(); the rest is for the tile's
 // LDIs and the mesh). Fewer tiles evaluate the tree fewer times. 0 bytes (unknown): 256.
-int exportTileCells(const Grid& grid, uint64_t memoryBytes);
+// With modifiers (`halo` > 0: modifierHaloCells) each tile is evaluated on its window grown by
+// `halo` cells a side, and the offsets' arrays (kOffsetBytesPerNode) of that window are what
+// must fit; its cells are also kept within 2^32. 0 when no tile fits that (a halo of hundreds of
+// cells).
+int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo = 0);
 
 struct ContourReport {
   Grid grid;
@@ -84,13 +88,16 @@ struct ExportTiling {
   Grid grid;             // the whole export's grid
   int tileCells = 0;     // tile edge in cells
   glm::ivec3 counts{0};  // tiles per axis
+  int halo = 0;          // cells evaluated around each tile's window (modifierHaloCells)
   int count() const;
   // Tile t's owned cells [begin, end): tiles numbered x fastest, then y, then z.
   glm::ivec3 begin(int tile) const;
   glm::ivec3 end(int tile) const;
 };
-// The tiling of an export with `options` on a backend with `memoryBytes` free (exportTileCells;
-// one tile where a modifier needs the whole grid).
+// The tiling of an export with `options` on a backend with `memoryBytes` free (exportTileCells).
+// A scene with modifiers is tiled too: each tile is evaluated on its window grown by the
+// modifiers' halo and then cropped to it (Backend::crop), so that it holds what the whole grid
+// holds there. Throws strata::Error when no tile fits.
 ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes);
 
 // Evaluates and contours the tiles t of `tiling` with mine(t) (all when `mine` is empty) in

@@ -24,13 +24,6 @@ constexpr double kTileBytesPerTriangle = 80.0;
 // 0.18 microseconds on this 2-core machine in the same six exports.
 constexpr double kWriteCheckSecondsPerTriangle = 2e-7;
 
-int tileCount(const Grid& grid, int tileCells) {
-  const int t = std::max(8, tileCells);
-  int64_t n = 1;
-  for (int a = 0; a < 3; ++a) n *= (grid.cells[a] + t - 1) / t;
-  return int(std::min<int64_t>(n, 0x7fffffff));
-}
-
 // How much more surface the job samples than the probe: the square of their cell sizes' ratio.
 double scaleFrom(const Grid& probe, const Grid& job) {
   const double ratio = probe.h / job.h;
@@ -149,9 +142,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            Progress& progress, int probeAbove) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
-  e.tiles = tileCount(e.grid, options.tileCells > 0
-                                  ? options.tileCells
-                                  : exportTileCells(e.grid, backend->memoryAvailable()));
+  e.tiles = exportTiling(scene, options, backend->memoryAvailable()).count();
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
   const uint64_t present = peakResidentBytes();  // before the probes, which add their own

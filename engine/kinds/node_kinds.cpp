@@ -210,6 +210,21 @@ double modifierGrowth(NodeKind kind, double amount) {
   }
 }
 
+ModifierReach modifierReach(NodeKind kind, double amount) {
+  const double a = std::abs(amount);
+  switch (modifierOf(kind)) {
+    case Modifier::Offset:
+    case Modifier::Shell:  // one offset, by -amount
+      return ModifierReach{1, a};
+    case Modifier::Round:  // two offsets, by -amount then amount
+    case Modifier::Fillet:
+      return ModifierReach{2, 2.0 * a};
+    case Modifier::None:
+      break;
+  }
+  return ModifierReach{};
+}
+
 void checkModifierAmount(NodeKind kind, double amount, const std::string& who) {
   const NodeKindInfo& info = nodeKindInfo(kind);
   if (info.modifier == Modifier::None) return;

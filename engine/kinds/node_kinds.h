@@ -41,6 +41,14 @@ struct NodeKindInfo {
 Modifier modifierOf(NodeKind kind);
 // How far a modifier's result may reach beyond its children's bounds (scene units, >= 0).
 double modifierGrowth(NodeKind kind, double amount);
+// The offsets a modifier applies (Backend::modify) and their summed distance (scene units, >= 0):
+// its result at a point depends on its children within that distance (plus each offset's band,
+// engine/ldi/offset_math.h: kOffsetHaloCells).
+struct ModifierReach {
+  int offsets = 0;
+  double distance = 0.0;
+};
+ModifierReach modifierReach(NodeKind kind, double amount);
 // Throws strata::Error (naming `who`) when `amount` is not valid for the modifier `kind`.
 void checkModifierAmount(NodeKind kind, double amount, const std::string& who);
 

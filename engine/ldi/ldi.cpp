@@ -1,5 +1,6 @@
 #include "engine/ldi/ldi.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -59,6 +60,53 @@ std::shared_ptr<const Ldi> wholeLdi(std::shared_ptr<const Ldi> ldi) {
     axis.window = RayWindow{};
   }
   return copy;
+}
+
+RayShift rayShift(const Grid& grid, const Grid& window, int axis) {
+  for (int k = 0; k < 3; ++k)
+    if (window.first[k] < grid.first[k] ||
+        window.first[k] + window.cells[k] > grid.first[k] + grid.cells[k] || window.h != grid.h ||
+        window.origin != grid.origin)
+      throw Error("cropping an LDI to a window outside its grid");
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  return RayShift{window.first[u] - grid.first[u], window.first[v] - grid.first[v]};
+}
+
+std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& window) {
+  const Ldi& in = *ldi;
+  const std::shared_ptr<const Ldi> whole = wholeLdi(ldi);
+  auto out = std::make_shared<Ldi>();
+  out->grid = window;
+  for (int a = 0; a < 3; ++a) {
+    const RayShift shift = rayShift(in.grid, window, a);
+    const AxisLdi& from = whole->axes[a];
+    AxisLdi& to = out->axes[a];
+    const int raysU = window.raysU(a), raysV = window.raysV(a), fromU = in.grid.raysU(a);
+    auto source = [&](int64_t ray) {
+      const int64_t i = ray % raysU, j = ray / raysU;
+      return (i + shift.di) + (j + shift.dj) * int64_t(fromU);
+    };
+    const int64_t rays = int64_t(raysU) * raysV;
+    to.offsets.resize(size_t(rays) + 1);
+    uint64_t running = 0;
+    for (int64_t r = 0; r < rays; ++r) {
+      to.offsets[size_t(r)] = uint32_t(running);
+      const int64_t s = source(r);
+      running += from.offsets[size_t(s) + 1] - from.offsets[size_t(s)];
+    }
+    checkSurfelCount(running, "a cropped LDI");
+    to.offsets[size_t(rays)] = uint32_t(running);
+    to.surfels.resize(size_t(running));
+    parallelFor(0, rays, 4096, [&](int64_t b, int64_t e) {
+      for (int64_t r = b; r < e; ++r) {
+        const int64_t s = source(r);
+        std::copy(from.surfels.begin() + from.offsets[size_t(s)],
+                  from.surfels.begin() + from.offsets[size_t(s) + 1],
+                  to.surfels.begin() + to.offsets[size_t(r)]);
+      }
+    });
+  }
+  return out;
 }
 
 void settleAxisWindow(const Grid& grid, int axisIndex, const RayWindow& window, AxisLdi* axis) {

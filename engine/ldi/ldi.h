@@ -63,6 +63,19 @@ RayWindow wholeWindow(const Grid& grid, int axis);
 // `ldi` itself when every axis is whole, else a copy with whole axes.
 std::shared_ptr<const Ldi> wholeLdi(std::shared_ptr<const Ldi> ldi);
 
+// The rays of `window` (a window on `ldi`'s lattice, within its grid) with their whole lists:
+// what a consumer of the window reads of them (a ray's surfels beyond the window count for its
+// parity, as a sampled ray's clipped ones do). Every axis of the result is whole.
+std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& window);
+
+// Where ray (i, j) of `axis` of `window` lies among the rays of `grid` (same lattice, window
+// within the grid): its index there is i + di + (j + dj) * grid.raysU(axis). Throws
+// strata::Error when the window does not lie within the grid.
+struct RayShift {
+  int di = 0, dj = 0;
+};
+RayShift rayShift(const Grid& grid, const Grid& window, int axis);
+
 // Stores `axis` (built for the rays of `window`) whole when the window covers more than half of
 // the grid's rays (the offsets of the other rays cost little then, and consumers read it
 // directly), windowed otherwise.

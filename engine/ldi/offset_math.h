@@ -51,6 +51,16 @@ inline OffsetLattice makeOffsetLattice(const int cells[3], const int first[3]) {
 // cell of |offsetCells|, the distance being 1-Lipschitz) and at their neighbours (one more cell,
 // for the gradient), so every value it reads is below the bound and exact; lines far from the
 // surface on both sides are then empty to the envelopes, which skip them.
+// The cells beyond an offset's distance that its result at a node depends on: the band's 4 and
+// the neighbours the result reads (the sign change and the gradient), and one to spare. An
+// offset evaluated on a window grown by ceil(|d| / h) + kOffsetHaloCells on every side is
+// exactly that of a larger grid inside the original window (tiled exports, contour_scene.h).
+constexpr int kOffsetHaloCells = 7;
+// Bytes per node of the grid window an offset holds at once: 17 on the CPU (offset_ldi.h), 37 on
+// the CUDA backend (gpu/ldi/offset_ldi.cu: distances and leaves in three copies, the inside
+// flags, the envelopes' vertices and intersections); for sizing tiles, rounded up.
+constexpr uint64_t kOffsetBytesPerNode = 40;
+
 STRATA_HD float offsetBandSquared(double offsetCells) {
   const double band = (offsetCells < 0.0 ? -offsetCells : offsetCells) + 4.0;
   return float(band * band);

@@ -90,6 +90,34 @@ __global__ void windowCounts(const uint32_t* offsets, RayWindow window, int rays
   }
 }
 
+// Per ray of a window of `axis` (raysU across, `rays` in all; ray (i, j) is ray
+// i + shift.di + (j + shift.dj) * fromU of the LDI cropped): its surfel count, widened;
+// wide[rays] = 0 (cropLdi's counts).
+__global__ void cropCounts(const uint32_t* offsets, RayShift shift, int fromU, int raysU,
+                           int64_t rays, uint64_t* wide) {
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r <= rays;
+       r += int64_t(gridDim.x) * blockDim.x) {
+    uint64_t n = 0;
+    if (r < rays) {
+      const int64_t from = (r % raysU + shift.di) + (r / raysU + shift.dj) * int64_t(fromU);
+      n = offsets[from + 1] - offsets[from];
+    }
+    wide[r] = n;
+  }
+}
+
+// Each cropped ray's list copied to its place (wide: the scanned counts).
+__global__ void cropCopy(const uint32_t* offsets, const Surfel* surfels, RayShift shift, int fromU,
+                         int raysU, int64_t rays, const uint64_t* wide, Surfel* out) {
+  for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < rays;
+       r += int64_t(gridDim.x) * blockDim.x) {
+    const int64_t from = (r % raysU + shift.di) + (r / raysU + shift.dj) * int64_t(fromU);
+    const Surfel* in = surfels + offsets[from];
+    const uint32_t n = offsets[from + 1] - offsets[from];
+    for (uint32_t k = 0; k < n; ++k) out[wide[r] + k] = in[k];
+  }
+}
+
 template <typename T>
 DeviceBuffer<T> copyOf(const DeviceBuffer<T>& from, const DeviceStream& stream) {
   DeviceBuffer<T> to(from.size(), stream);
@@ -125,6 +153,46 @@ std::shared_ptr<const DeviceLdi> wholeOnDevice(const std::shared_ptr<const Devic
     axisOffsets<<<blocksFor(rays + 1, 256), 256, 0, stream.get()>>>(wide.data(), 0, rays,
                                                                     to.offsets.data());
     STRATA_CUDA_CHECK(cudaGetLastError());
+  }
+  stream.synchronize();
+  return out;
+}
+
+std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                              const Grid& window, const DeviceStream& stream) {
+  const std::shared_ptr<const DeviceLdi> whole = wholeOnDevice(ldi, stream);
+  auto out = std::make_shared<DeviceLdi>(window, stream);
+  DeviceBuffer<uint64_t> wide[3];
+  int64_t rays[3];
+  for (int a = 0; a < 3; ++a) {
+    const RayShift shift = rayShift(ldi->grid(), window, a);  // throws for a window outside
+    rays[a] = window.rayCount(a);
+    wide[a] = DeviceBuffer<uint64_t>(static_cast<size_t>(rays[a]) + 1, stream);
+    cropCounts<<<blocksFor(rays[a] + 1, 256), 256, 0, stream.get()>>>(
+        whole->axes[a].offsets.data(), shift, ldi->grid().raysU(a), window.raysU(a), rays[a],
+        wide[a].data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+    exclusiveScanAsync(wide[a].data(), rays[a] + 1, stream);
+  }
+  const uint64_t* at[3] = {wide[0].data() + rays[0], wide[1].data() + rays[1],
+                           wide[2].data() + rays[2]};
+  uint64_t totals[3];
+  readBack(at, totals, 3, stream);
+  for (int a = 0; a < 3; ++a) {
+    checkSurfelCount(totals[a], "a cropped LDI");
+    const RayShift shift = rayShift(ldi->grid(), window, a);
+    DeviceAxisLdi& to = out->axes[a];
+    to.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(rays[a]) + 1, stream);
+    axisOffsets<<<blocksFor(rays[a] + 1, 256), 256, 0, stream.get()>>>(wide[a].data(), 0, rays[a],
+                                                                       to.offsets.data());
+    STRATA_CUDA_CHECK(cudaGetLastError());
+    to.surfels = DeviceBuffer<Surfel>(static_cast<size_t>(totals[a]), stream);
+    if (rays[a] > 0 && totals[a] > 0) {
+      cropCopy<<<blocksFor(rays[a], 256), 256, 0, stream.get()>>>(
+          whole->axes[a].offsets.data(), whole->axes[a].surfels.data(), shift, ldi->grid().raysU(a),
+          window.raysU(a), rays[a], wide[a].data(), to.surfels.data());
+      STRATA_CUDA_CHECK(cudaGetLastError());
+    }
   }
   stream.synchronize();
   return out;

@@ -110,6 +110,12 @@ void buildAxesOfMany(const RaySpaces& spaces, const uint32_t* counts, const Surf
 std::shared_ptr<const DeviceLdi> wholeOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
                                                const DeviceStream& stream);
 
+// The rays of `window` (within ldi's grid, on its lattice) with their whole lists: the CUDA
+// twin of cropLdi (engine/ldi/ldi.h), the same bits. Made on `stream`, complete on return.
+// Throws strata::Error for a window outside the grid.
+std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                              const Grid& window, const DeviceStream& stream);
+
 inline unsigned blocksFor(int64_t items, unsigned threads) {
   int64_t blocks = (items + threads - 1) / threads;
   return unsigned(blocks < 1 ? 1 : (blocks > 0x7fffffff ? 0x7fffffff : blocks));

@@ -248,6 +248,43 @@ TEST_F(CudaVsCpu, ModifiersMatchRayByRay) {
   expectSameExport(rounded, cuda_, 64);
 }
 
+// Tiles of a modifier scene are evaluated on a window grown by the modifiers' reach and cropped
+// back (Backend::crop): the device's crop gives the CPU's bits, and a tiled export of the
+// rebuilt scaffold gives the CPU's mesh and that of one tile, vertex for vertex.
+TEST_F(CudaVsCpu, CroppedTilesOfModifierScenesMatch) {
+  Scene s = loadScene(assetsDir() + "/scenes/bone_scaffold.strata.json");
+  Progress progress;
+  Evaluator onCpu(std::make_shared<CpuBackend>()), onGpu(cuda_);
+  const Grid grid = Evaluator::gridFor(s, 96);
+  const EvalResult a = onCpu.evaluateOn(s, grid, progress);
+  const EvalResult b = onGpu.evaluateOn(s, grid, progress);
+  const Grid window = grid.window(glm::ivec3(5, 7, 11), grid.cells / 2);
+  auto x = onCpu.backend().download(onCpu.backend().crop(a.root, window, progress));
+  auto y = onGpu.backend().download(onGpu.backend().crop(b.root, window, progress));
+  ASSERT_TRUE(x->grid == window);
+  ASSERT_TRUE(y->grid == window);
+  size_t surfels = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    ASSERT_EQ(x->axes[axis].offsets, y->axes[axis].offsets) << "axis " << axis;
+    ASSERT_EQ(x->axes[axis].surfels.size(), y->axes[axis].surfels.size()) << "axis " << axis;
+    surfels += x->axes[axis].surfels.size();
+    EXPECT_EQ(std::memcmp(x->axes[axis].surfels.data(), y->axes[axis].surfels.data(),
+                          x->axes[axis].surfels.size() * sizeof(Surfel)),
+              0)
+        << "axis " << axis;
+  }
+  EXPECT_GT(surfels, 1000u);
+  s.settings.resolution = 160;
+  expectSameExport(s, cuda_, 40);
+  Evaluator one(std::make_shared<CpuBackend>());
+  const ExportMesh whole = contourScene(s, one, ContourOptions{0, 0}, progress);
+  ContourReport r;
+  const ExportMesh tiled = contourScene(s, onGpu, ContourOptions{0, 40}, progress, &r);
+  EXPECT_GT(r.tiles, 4);
+  EXPECT_TRUE(whole.mesh.positions == tiled.mesh.positions);
+  EXPECT_TRUE(whole.mesh.triangles == tiled.mesh.triangles);
+}
+
 TEST_F(CudaVsCpu, AutoChoosesCudaAndCancelWorks) {
   Evaluator evaluator(cuda_);
   Progress progress;

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <functional>
 
+#include "engine/eval/evaluator.h"
 #include "engine/export/contour_scene.h"
 #include "engine/io/scene_file.h"
+#include "engine/ldi/offset_math.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
 
@@ -344,24 +346,97 @@ TEST(ExportTiles, TheDefaultTileGivesTheMeshOfAnyOtherTiling) {
 namespace strata::test {
 namespace {
 
-// A modifier scene is one tile: past 2^32 cells the refusal says so and names a resolution that
-// fits (found at 4096 cells on the bone scaffold, whose message asked for a --tile it ignores).
-TEST(ExportTiles, AModifierSceneTooLargeForOneTileSaysWhichResolutionFits) {
+// A modifier reads its children up to its reach away: a scene with modifiers is tiled with a
+// halo of that reach (kOffsetHaloCells per offset besides), nested modifiers added up, and its
+// tiles sized so that the offsets' arrays of the grown window fit. (It used to be one tile,
+// refused past 2^32 cells: the bone scaffold at 4096.)
+TEST(ExportTiles, ModifierScenesAreTiledWithTheirReachAround) {
   const Scene s =
       makeScene(modifier(NodeKind::Offset, 0.1, {box({2, 1, 1}), sphere(0.5, {1, 0, 0})}), 64);
+  const ExportTiling t = exportTiling(s, ContourOptions{4096, 0}, uint64_t(1) << 40);
+  EXPECT_GT(t.count(), 1);
+  EXPECT_EQ(t.halo, int(std::ceil(0.1 / t.grid.h)) + kOffsetHaloCells);
+  const double window = double(t.tileCells + 2 * t.halo + 2);
+  EXPECT_LE(window * window * window, double(UINT32_MAX));
+  EXPECT_LE(std::pow(window + 1, 3) * double(kOffsetBytesPerNode), double(uint64_t(1) << 38));
+  // Nested: a rounding (two offsets) of an offset.
+  const NodePtr nested = modifier(
+      NodeKind::Round, 0.05, {modifier(NodeKind::Offset, -0.1, {box({2, 1, 1})}), sphere(0.3)});
+  const Grid g = Evaluator::gridFor(makeScene(nested, 256), 256);
+  EXPECT_EQ(modifierHaloCells(nested, g.h),
+            int(std::ceil(0.1 / g.h)) + int(std::ceil(0.1 / g.h)) + 3 * kOffsetHaloCells);
+  EXPECT_EQ(modifierHaloCells(box({1, 1, 1}), g.h), 0);
+  // Through an instance: an offset of an instance of a (hidden) offset adds both.
+  auto inner = std::make_shared<Node>(*modifier(NodeKind::Offset, 0.2, {sphere(0.3)}));
+  inner->visible = false;
+  auto instance = std::make_shared<Node>();
+  instance->id = 9002;
+  instance->kind = NodeKind::Instance;
+  instance->instanceOf = inner->id;
+  const NodePtr outer = op(NodeKind::Union, {NodePtr(inner), box({1, 1, 1}),
+                                             modifier(NodeKind::Offset, 0.1, {instance})});
+  EXPECT_EQ(modifierHaloCells(outer, g.h),
+            int(std::ceil(0.2 / g.h)) + int(std::ceil(0.1 / g.h)) + 2 * kOffsetHaloCells);
+  EXPECT_TRUE(hasModifier(op(NodeKind::Union, {box({1, 1, 1}), instance, NodePtr(inner)})));
+  // A reach no tile can hold beside its own cells: refused, saying why.
+  const Scene huge = makeScene(modifier(NodeKind::Offset, 500.0, {box({2, 1, 1})}), 64);
   try {
-    exportTiling(s, ContourOptions{4096, 0}, uint64_t(1) << 40);
-    FAIL() << "a 4096 x 2048 x 2048 grid in one tile was not refused";
+    exportTiling(huge, ContourOptions{4096, 0}, uint64_t(1) << 40);
+    FAIL() << "a halo of about a million cells was not refused";
   } catch (const Error& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("offset, shell, round and fillet"), std::string::npos) << m;
-    const size_t at = m.find("--resolution ");
-    ASSERT_NE(at, std::string::npos) << m;
-    const int fits = std::stoi(m.substr(at + 13));
-    EXPECT_GT(fits, 1024);
-    EXPECT_LT(fits, 4096);
-    EXPECT_NO_THROW(exportTiling(s, ContourOptions{fits, 0}, uint64_t(1) << 40)) << fits;
+    EXPECT_NE(std::string(e.what()).find("offset, shell, round and fillet"), std::string::npos)
+        << e.what();
   }
+}
+
+// A tile of a modifier scene is evaluated on its window grown by the halo and cropped back:
+// the mesh is the one of a single tile, vertex for vertex, with nested modifiers (an offset
+// inside a rounding) and with an offset of an instance of an offset (a halo that did not follow
+// the instance would count only one of the two, and leave the tiles wrong along their seams).
+TEST(ExportTiles, ATiledModifierSceneGivesTheMeshOfOneTile) {
+  auto hidden =
+      std::make_shared<Node>(*modifier(NodeKind::Offset, 0.12, {sphere(0.35, {0.9, 0.2, 0.1})}));
+  hidden->visible = false;  // shown only through the instance
+  const NodePtr grown = hidden;
+  auto instance = std::make_shared<Node>();
+  instance->id = 9001;
+  instance->name = "copy";
+  instance->kind = NodeKind::Instance;
+  instance->instanceOf = grown->id;
+  instance->transform.translate = glm::dvec3(-0.4, 0.3, 0.2);
+  const NodePtr rounded =
+      modifier(NodeKind::Round, 0.08,
+               {op(NodeKind::Difference,
+                   {modifier(NodeKind::Offset, 0.1, {box({2, 1.2, 1})}), cylinder(0.3, 3.0)})});
+  const Scene scenes[] = {
+      makeScene(op(NodeKind::Union, {rounded, grown}), 48),
+      makeScene(op(NodeKind::Union,
+                   {box({2, 1.2, 1}), grown, modifier(NodeKind::Offset, 0.06, {instance})}),
+                48),
+  };
+  for (const Scene& s : scenes) {
+    Evaluator evaluator(std::make_shared<CpuBackend>());
+    Progress progress;
+    ContourReport one, tiled;
+    const ExportMesh a = contourScene(s, evaluator, ContourOptions{0, 0}, progress, &one);
+    const ExportMesh b = contourScene(s, evaluator, ContourOptions{0, 12}, progress, &tiled);
+    EXPECT_EQ(one.tiles, 1);
+    EXPECT_GT(tiled.tiles, 8);
+    ASSERT_GT(a.mesh.triangles.size(), 1000u);
+    EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+    EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  }
+  // The bundled scaffold rebuilt with offsets, shells and roundings, in 36 tiles.
+  const Scene scaffold = loadScene(assetsDir() + "/scenes/bone_scaffold.strata.json");
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  ContourReport tiled;
+  const ExportMesh a = contourScene(scaffold, evaluator, ContourOptions{128, 0}, progress);
+  const ExportMesh b = contourScene(scaffold, evaluator, ContourOptions{128, 32}, progress, &tiled);
+  EXPECT_GT(tiled.tiles, 8);
+  ASSERT_GT(a.mesh.triangles.size(), 10000u);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
 }
 
 }  // namespace
