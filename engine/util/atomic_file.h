@@ -9,7 +9,9 @@
 //      file and never follows a link planted at its name (it tries another random name). Its
 //      mode is 0666 less the umask, or the permission bits of the regular file it replaces.
 //      (<name> is shortened when the whole name would exceed 255 bytes.)
-//   3. `write` fills it through a std::ostream; it is fsync'ed and closed.
+//   3. `write` fills it through a std::ostream (on Linux the disk's writeback of each 8 MB is
+//      started as the next is written, so the fsync waits for the last stretch only); it is
+//      fsync'ed and closed.
 //   4. It is renamed over the target (rename(2)) and the folder is fsync'ed (best effort: some
 //      file systems cannot, and the rename has happened by then).
 // On any failure, or when `write` throws (Cancelled included), the temporary file is removed and
