@@ -6,14 +6,7 @@
 # memory; at 2048 also in tiles of 256 cells, compared byte for byte; and armadillo - bunny at
 # 4096 (the estimate against what the export took). Carried in .devrt2 (no X runtime):
 # bin/strata.xz, bin/strata_gpu_tests.xz. Results go to $OUT/r as they come.
-source .devrt2/on-device.sh
-for f in .devrt2/bin/strata.xz .devrt2/bin/strata_gpu_tests.xz; do xz -dkf "$f"; done
-chmod +x .devrt2/bin/strata .devrt2/bin/strata_gpu_tests
-B=.devrt2/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
-export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
-nvidia-smi -L > $R/gpus.txt 2>&1; nproc >> $R/gpus.txt; free -g >> $R/gpus.txt
-timeout 200 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
-tail -3 $R/gpu_tests.txt
+source tests/gpu/lease_start.sh
 stages() { python3 -c "import json;d=json.load(open('/tmp/x.json'));print(' '.join('%s %.3f'%(s['name'],s['seconds']) for s in d['stages']), 'tiles', d['tiles'], 'triangles', d['check']['triangles'], 'passed', d['check']['passed'])"; }
 gpumax() { python3 -c "
 m=0

@@ -5,14 +5,7 @@
 # peak memory, each GPU's peak memory (nvidia-smi sampled every 100 ms), and the two outputs
 # compared byte for byte. Carried in .devrt2 (no X runtime): bin/strata.xz,
 # bin/strata_gpu_tests.xz. Results go to $OUT/r as they come (a lease may end early).
-source .devrt2/on-device.sh
-for f in .devrt2/bin/strata.xz .devrt2/bin/strata_gpu_tests.xz; do xz -dkf "$f"; done
-chmod +x .devrt2/bin/strata .devrt2/bin/strata_gpu_tests
-B=.devrt2/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
-export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
-nvidia-smi -L > $R/gpus.txt 2>&1; nproc >> $R/gpus.txt; free -g >> $R/gpus.txt
-timeout 240 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
-tail -3 $R/gpu_tests.txt
+source tests/gpu/lease_start.sh
 stages() { python3 -c "import json;d=json.load(open('/tmp/x.json'));print(' '.join('%s %.3f'%(s['name'],s['seconds']) for s in d['stages']), 'tiles', d['tiles'])"; }
 gpumax() { python3 -c "
 import collections; m=collections.defaultdict(int)
