@@ -683,7 +683,9 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     size_t& share = lastDrawFull_ ? fullShare_ : splatsPerFrame_;
     // A coarse frame over the target at the fewest splats is bound by the pixels it fills.
     if (!lastDrawFull_ && share <= kMinShare && drawMs > kTargetFrameMs) coarseShrink_ = 4;
-    if (!lastDrawFull_ && coarseShrink_ > 2 && drawMs < 0.5 * kTargetFrameMs) coarseShrink_ = 2;
+    // Back to half only where a half image would fit even if the whole frame were pixels to
+    // fill (4 times as many): otherwise it would turn again within frames.
+    if (!lastDrawFull_ && coarseShrink_ > 2 && drawMs < 0.25 * kTargetFrameMs) coarseShrink_ = 2;
     if (drewSplatsLastFrame_ >= share / 2)
       share = std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), kMinShare,
                                  size_t(1) << 26);

@@ -200,7 +200,8 @@ class ViewportRenderer {
   // kTargetFrameMs: its cost is then the pixels the discs fill (the discs widen as the share
   // shrinks, so fewer splats fill as many pixels), which only a smaller image reduces: a
   // software GL driver (Mesa llvmpipe at 1024 cells: 9 ms of coarse drawing at a half, 4.3 at
-  // a quarter). Back to 2 when a coarse frame at 4 takes less than half the target.
+  // a quarter). Back to 2 when a coarse frame at 4 takes less than a quarter of the target
+  // (where even four times its pixels would fit).
   int coarseShrink() const { return coarseShrink_; }
   // An edit's first image: drawn from the finest level whose splats cost at most this long at
   // the measured cost per splat (the frame's target: the frame bringing the result stays one

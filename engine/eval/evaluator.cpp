@@ -259,15 +259,17 @@ Evaluator::Evaluator(std::shared_ptr<Backend> backend) : backend_(std::move(back
 
 namespace {
 
-// The halo (modifierHaloCells) of `node`'s subtree, hidden nodes included (an instance may stand
-// for one); `depth` guards against instance cycles as the evaluation does.
+// The halo (modifierHaloCells) of `node`'s subtree: its visible children, and what instances
+// stand for whether shown or not (as the evaluation visits them); `depth` guards against
+// instance cycles as the evaluation does.
 int64_t haloCells(const NodePtr& node, const NodePtr& root, double h, int depth) {
   if (!node) return 0;
   if (depth > kDepthGuard) throw Error("the tree is too deep to evaluate (instance cycle?)");
   if (node->kind == NodeKind::Instance)
     return haloCells(findNode(root, node->instanceOf), root, h, depth + 1);
   int64_t below = 0;
-  for (const auto& c : node->children) below = std::max(below, haloCells(c, root, h, depth + 1));
+  for (const auto& c : node->children)
+    if (c->visible) below = std::max(below, haloCells(c, root, h, depth + 1));
   const ModifierReach reach = modifierReach(node->kind, node->amount);
   if (reach.offsets == 0) return below;
   // Amounts are checked where the node is evaluated; a halo beyond any grid is clamped there.

@@ -56,9 +56,10 @@ struct TiledContour {
 
 // Evaluates and contours one tile, appending it to `out`. With a `halo` (modifiers), the tile
 // is evaluated on its window grown by it on every side (within the grid) and cropped back.
+// *lastEvaluated: the grid the previous tile was evaluated on (its cache entries), updated.
 void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, int halo,
                     const glm::ivec3& begin, const glm::ivec3& end, Progress& progress,
-                    ContourReport& r, std::vector<TileContour>* out) {
+                    ContourReport& r, std::vector<TileContour>* out, Grid* lastEvaluated) {
   const TileWindow window = tileWindow(begin, end, grid.cells);
   const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
   const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
@@ -66,11 +67,13 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, 
   const glm::ivec3 evalEnd = glm::min(window.first + window.cells + halo, grid.cells);
   const Grid evalGrid = whole ? grid : grid.window(evalFirst, evalEnd - evalFirst);
   Stopwatch evaluate;
-  if (r.tiles > 1) {
+  if (r.tiles > 1 && !(evalGrid == *lastEvaluated)) {
     // Each tile has its own grid, so no cache entry serves another tile: keep none, so that
-    // memory stays that of one tile's evaluation (what --tile promises).
+    // memory stays that of one tile's evaluation (what --tile promises). Tiles evaluated on the
+    // same grid (windows grown by modifiers to the whole grid) share one evaluation.
     evaluator.clearCache();
   }
+  *lastEvaluated = evalGrid;
   EvalResult result = evaluator.evaluateOn(scene, evalGrid, progress);
   if (!(evalGrid == tileGrid) && result.measure.surfels > 0) {
     result.root = evaluator.backend().crop(result.root, tileGrid, progress);
@@ -279,6 +282,9 @@ int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo) {
     const bool fits =
         memoryBytes == 0 ? tile <= 256 : nodes * double(perNode) <= double(memoryBytes / 4);
     if (tile <= kMaxTileCells && indexable && fits) return tile;
+    // With a halo, tiles smaller than it barely shrink the window (at least 3 halos wide) and
+    // multiply the evaluations: none fits.
+    if (halo > 0 && tile <= std::max(8, halo)) return 0;
     if (tile == 8) return indexable ? 8 : 0;
   }
 }
@@ -320,8 +326,21 @@ ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uin
   if (t.tileCells == 0)
     throw Error("offset, shell, round and fillet nodes read " + std::to_string(t.halo) +
                 " cells around each point at this resolution (their amounts, nested ones "
-                "added up), more than a tile can hold beside its own cells: lower --resolution "
-                "or the amounts");
+                "added up): no tile's window grown by that fits in a quarter of the " +
+                std::to_string(memoryBytes >> 20) +
+                " MiB the backend has free. Lower --resolution or the amounts");
+  if (t.halo > 0) {
+    // The grown window's cells, within 2^32 (asked for with --tile as well).
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a)
+      cells *=
+          double(std::min(int64_t(t.tileCells) + 2 * int64_t(t.halo), int64_t(grid.cells[a])) + 2);
+    if (cells > double(UINT32_MAX))
+      throw Error("a tile of " + std::to_string(t.tileCells) + " cells grown by the modifiers' " +
+                  std::to_string(t.halo) +
+                  " cells a side holds more than 2^32 cells: use a "
+                  "smaller --tile");
+  }
   t.counts = tileCounts(grid, t.tileCells);
   return t;
 }
@@ -333,12 +352,14 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
   r.tileCells = tiling.tileCells;
   r.tiles = tiling.count();
   int done = 0, share = 0;
+  Grid lastEvaluated;  // none yet (no tile's grid has zero cells)
+  lastEvaluated.cells = glm::ivec3(0);
   if (!afterTile)
     for (int t = 0; t < tiling.count(); ++t) share += !mine || mine(t) ? 1 : 0;
   for (int t = 0; t < tiling.count(); ++t) {
     if (mine && !mine(t)) continue;
     contourOneTile(scene, evaluator, tiling.grid, tiling.halo, tiling.begin(t), tiling.end(t),
-                   progress, r, out);
+                   progress, r, out, &lastEvaluated);
     ++done;
     if (afterTile)
       afterTile(t);

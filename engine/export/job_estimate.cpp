@@ -7,6 +7,7 @@
 #include "engine/eval/evaluator.h"
 #include "engine/export/simplify_mesh.h"
 #include "engine/io/mesh_formats.h"
+#include "engine/ldi/offset_math.h"
 #include "engine/util/memory.h"
 #include "engine/util/timer.h"
 
@@ -90,9 +91,10 @@ int longestSide(const Grid& g) {
 // an eighth of the job where that is finer. A job extrapolated from a much coarser probe
 // multiplies the probes' noise and fixed costs by its surface ratio: probes at 32 and 64 cells
 // put the demo's export at 1024 cells at 13 s on this 2-core machine where it takes 2.6 s.
-// An eighth costs about 1/64 of the job's surface work.
+// An eighth costs about 1/64 of the job's surface work; at most kMaxProbeResolution (a probe of
+// a 16384-cell job would otherwise be a job of its own).
 int probeResolutionFor(int jobCells) {
-  return std::max(kProbeResolution, (jobCells / 8 + 1) / 2 * 2);
+  return std::clamp((jobCells / 8 + 1) / 2 * 2, kProbeResolution, kMaxProbeResolution);
 }
 
 // Runs `probe` (returns the probe's grid) at half and at the whole probe resolution, timing
@@ -121,13 +123,18 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove)
     return e;  // no bigger than the probe
   EvalResult r;
-  e.seconds = timeFromProbes(e.grid, 1, [&](int resolution) {
-    Evaluator probe(backend);
-    EvalOptions options;
-    options.resolution = resolution;
-    r = probe.evaluate(scene, options, progress);
-    return r.grid;
-  });
+  try {
+    e.seconds = timeFromProbes(e.grid, 1, [&](int resolution) {
+      Evaluator probe(backend);
+      EvalOptions options;
+      options.resolution = resolution;
+      r = probe.evaluate(scene, options, progress);
+      return r.grid;
+    });
+  } catch (const BackendOutOfMemory&) {
+    e.seconds = 0.0;
+    return e;  // not probed: the evaluation itself falls back to the CPU
+  }
   const double scale = scaleFrom(r.grid, e.grid);
   e.probed = true;
   e.surfels = uint64_t(double(r.measure.surfels) * scale);
@@ -143,21 +150,26 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            Progress& progress, int probeAbove) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
-  e.tiles = exportTiling(scene, options, backend->memoryAvailable()).count();
+  const ExportTiling tiling = exportTiling(scene, options, backend->memoryAvailable());
+  e.tiles = tiling.count();
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
   const uint64_t present = peakResidentBytes();  // before the probes, which add their own
   ContourReport report;
   size_t probeTriangles = 0;
-  const double seconds = timeFromProbes(e.grid, e.tiles, [&](int resolution) {
-    Evaluator probe(backend);
-    ContourOptions probeOptions;
-    probeOptions.resolution = resolution;
-    probeOptions.tileCells = resolution * 2;  // one tile
-    probeTriangles =
-        contourScene(scene, probe, probeOptions, progress, &report).mesh.triangles.size();
-    return report.grid;
-  });
+  double seconds = 0.0;
+  try {
+    seconds = timeFromProbes(e.grid, e.tiles, [&](int resolution) {
+      Evaluator probe(backend);
+      ContourOptions probeOptions;
+      probeOptions.resolution = resolution;  // tiles sized to the backend's memory, as the job's
+      probeTriangles =
+          contourScene(scene, probe, probeOptions, progress, &report).mesh.triangles.size();
+      return report.grid;
+    });
+  } catch (const BackendOutOfMemory&) {
+    return e;  // not probed: the export itself retries with smaller tiles or on the CPU
+  }
   const double scale = scaleFrom(report.grid, e.grid);
   e.probed = true;
   e.surfels = uint64_t(double(report.surfels) * scale);
@@ -167,7 +179,18 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   const double tiles = double(std::max(1, e.tiles));
   const double ldiBytes = backend->keepsLdisOnHost() ? double(report.tileLdiBytes) * scale : 0.0;
   const double tileBytes = (ldiBytes + double(e.triangles) * kTileBytesPerTriangle) / tiles;
-  e.peakBytes = present + uint64_t(tileBytes + double(e.triangles) * kExportBytesPerTriangle);
+  // A modifier's distance transform over the tile's grown window, where the backend works on
+  // the host (engine/ldi/offset_math.h).
+  double offsetBytes = 0.0;
+  if (tiling.halo > 0 && backend->keepsLdisOnHost()) {
+    offsetBytes = double(kHostOffsetBytesPerNode);
+    for (int a = 0; a < 3; ++a)
+      offsetBytes *= double(
+          std::min(int64_t(tiling.tileCells) + 2 * int64_t(tiling.halo), int64_t(e.grid.cells[a])) +
+          3);
+  }
+  e.peakBytes =
+      present + uint64_t(tileBytes + offsetBytes + double(e.triangles) * kExportBytesPerTriangle);
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
   e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);

@@ -25,6 +25,7 @@ namespace strata {
 
 // Cells of the probe along the longest side, at least (jobs over 512 cells: an eighth of theirs).
 constexpr int kProbeResolution = 64;
+constexpr int kMaxProbeResolution = 512;
 // Jobs of at most this many cells along the longest side are not probed (the probes would cost
 // a noticeable part of the job itself: a scene of 100,000 small leaves samples each leaf per
 // probe whatever the resolution): only their grid and tiles are set.

@@ -58,7 +58,7 @@ void envelopeAlongAxis(const OffsetLattice& lat, int axis, float bandSquared, co
         inLeaf[size_t(q)] = leaf[start + q * step];
       }
       offsetEnvelopeLine(in.data(), inLeaf.data(), 1, out + start, outLeaf + start, step, n,
-                         v.data(), z.data(), 1, bandSquared, onlySmaller);
+                         lat.first[axis], v.data(), z.data(), 1, bandSquared, onlySmaller);
     }
   });
 }

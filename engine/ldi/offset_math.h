@@ -51,6 +51,11 @@ inline OffsetLattice makeOffsetLattice(const int cells[3], const int first[3]) {
 // cell of |offsetCells|, the distance being 1-Lipschitz) and at their neighbours (one more cell,
 // for the gradient), so every value it reads is below the bound and exact; lines far from the
 // surface on both sides are then empty to the envelopes, which skip them.
+STRATA_HD float offsetBandSquared(double offsetCells) {
+  const double band = (offsetCells < 0.0 ? -offsetCells : offsetCells) + 4.0;
+  return float(band * band);
+}
+
 // The cells beyond an offset's distance that its result at a node depends on: the band's 4 and
 // the neighbours the result reads (the sign change and the gradient), and one to spare. An
 // offset evaluated on a window grown by ceil(|d| / h) + kOffsetHaloCells on every side is
@@ -60,11 +65,8 @@ constexpr int kOffsetHaloCells = 7;
 // the CUDA backend (gpu/ldi/offset_ldi.cu: distances and leaves in three copies, the inside
 // flags, the envelopes' vertices and intersections); for sizing tiles, rounded up.
 constexpr uint64_t kOffsetBytesPerNode = 40;
-
-STRATA_HD float offsetBandSquared(double offsetCells) {
-  const double band = (offsetCells < 0.0 ? -offsetCells : offsetCells) + 4.0;
-  return float(band * band);
-}
+// The CPU's alone (offset_ldi.h), for the host memory an export will need.
+constexpr uint64_t kHostOffsetBytesPerNode = 17;
 
 // Step 1 for one line of `n` nodes (`stride` apart, the first at global depth `first`): each
 // node's squared distance along the line to the nearest of the ray's `count` surfels `s` (sorted
@@ -106,25 +108,30 @@ STRATA_HD void offsetSeedLine(const Surfel* s, int64_t count, int first, int64_t
 // The parabola on top of the stack and, when reading the envelope, the current one are kept in
 // locals: scratch and input are read again only when the stack pops or the envelope moves on
 // (on the GPU those reads are scattered across a warp's lines; the values are the same).
+// `origin` is the global index of the line's first node (OffsetLattice::first along the line):
+// the parabolas' keys and breakpoints are computed at global positions, so that a window of the
+// grid (an export's tile grown by the modifiers' reach) rounds exactly as the whole grid does.
 STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64_t inStride,
                                   float* out, uint32_t* outLeaf, int64_t outStride, int64_t n,
-                                  int32_t* v, double* z, int64_t scratchStride, float bandSquared,
-                                  bool onlySmaller) {
+                                  int64_t origin, int32_t* v, double* z, int64_t scratchStride,
+                                  float bandSquared, bool onlySmaller) {
   const double minusInfinity = -__builtin_huge_val();
   int64_t k = -1;
-  int64_t topP = 0;                           // the top parabola's node
-  double topKey = 0.0, topZ = minusInfinity;  // its in[p] + p^2, and where it starts
+  int64_t topP = 0;                           // the top parabola's node (window index)
+  double topKey = 0.0, topZ = minusInfinity;  // its in[p] + P^2 (P global), and where it starts
   for (int64_t q = 0; q < n; ++q) {
     const float f = in[q * inStride];
     if (f == offsetFar()) continue;
-    const double fq = double(f) + double(q) * double(q);
+    const double globalQ = double(origin + q);
+    const double fq = double(f) + globalQ * globalQ;
     double s = minusInfinity;
     while (k >= 0) {
       s = (fq - topKey) / (2.0 * double(q - topP));
       if (s > topZ) break;
       if (--k >= 0) {
         topP = v[k * scratchStride];
-        topKey = double(in[topP * inStride]) + double(topP) * double(topP);
+        const double globalP = double(origin + topP);
+        topKey = double(in[topP * inStride]) + globalP * globalP;
         topZ = z[k * scratchStride];
       }
     }
@@ -151,7 +158,7 @@ STRATA_HD void offsetEnvelopeLine(const float* in, const uint32_t* inLeaf, int64
   uint32_t leafP = inLeaf[p * inStride];
   double zNext = last > 0 ? z[scratchStride] : plusInfinity;  // where parabola k + 1 starts
   for (int64_t q = 0; q < n; ++q) {
-    while (k < last && zNext < double(q)) {
+    while (k < last && zNext < double(origin + q)) {
       ++k;
       p = v[k * scratchStride];
       fp = double(in[p * inStride]);

@@ -59,7 +59,7 @@ __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, cons
     lineCoords(lat, axis, t, &i, &j);
     const int64_t start = lat.lineStart(axis, i, j), step = lat.stride[axis];
     offsetEnvelopeLine(in + start, inLeaf + start, step, out + start, outLeaf + start, step,
-                       lat.n[axis], v + t, z + t, lines, bandSquared, onlySmaller);
+                       lat.n[axis], lat.first[axis], v + t, z + t, lines, bandSquared, onlySmaller);
   }
 }
 

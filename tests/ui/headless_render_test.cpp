@@ -326,8 +326,9 @@ TEST(HeadlessRender, CoarseImageCoversTheViewWhenTheShareIsSmall) {
 
 // The coarse image of a moving view turns to a quarter resolution when a frame at the fewest
 // splats still takes longer than the target (its cost is then the pixels filled, as under a
-// software GL driver), and back to half when frames take less than half the target; a frame
-// over the target with splats still to shed keeps half (fewer splats are the cheaper fix).
+// software GL driver), and back to half only when frames take less than a quarter of the target
+// (a half image, four times the pixels, would fit); a frame over the target with splats still to
+// shed keeps half (fewer splats are the cheaper fix).
 TEST(HeadlessRender, CoarseImageTurnsToAQuarterWhenFillBound) {
   std::string why;
   auto gl = headlessOrSkipReason(&why);
@@ -349,6 +350,8 @@ TEST(HeadlessRender, CoarseImageTurnsToAQuarterWhenFillBound) {
     renderer.drawCached(frame, {}, {}, {}, lastFrameMs);
     EXPECT_TRUE(renderer.showsCoarseImage());
   };
+  // A first frame takes the upload's time off its own (untimed here).
+  movedFrame(ViewportRenderer::kTargetFrameMs);
   // Slow frames with a large share: the share shrinks, the image stays at half.
   renderer.setFrameShares(20000, 200);
   movedFrame(10.0);
@@ -362,8 +365,10 @@ TEST(HeadlessRender, CoarseImageTurnsToAQuarterWhenFillBound) {
   EXPECT_EQ(renderer.coarseShrink(), 4);
   movedFrame(11.0);
   EXPECT_EQ(renderer.coarseShrink(), 4);
-  // Quick frames: back to half.
-  movedFrame(0.25 * ViewportRenderer::kTargetFrameMs);
+  movedFrame(0.4 * ViewportRenderer::kTargetFrameMs);  // quick, but a half would not fit
+  EXPECT_EQ(renderer.coarseShrink(), 4);
+  // Frames so quick that four times the pixels fit: back to half.
+  movedFrame(0.2 * ViewportRenderer::kTargetFrameMs);
   EXPECT_EQ(renderer.coarseShrink(), 2);
 }
 
