@@ -277,21 +277,10 @@ int64_t haloCells(const NodePtr& node, const NodePtr& root, double h, int depth)
   return below + int64_t(std::min(cells, 1e9)) + int64_t(reach.offsets) * kOffsetHaloCells;
 }
 
-bool anyModifier(const NodePtr& node, const NodePtr& root, int depth) {
-  if (!node) return false;
-  if (depth > kDepthGuard) throw Error("the tree is too deep to evaluate (instance cycle?)");
-  if (node->kind == NodeKind::Instance)
-    return anyModifier(findNode(root, node->instanceOf), root, depth + 1);
-  if (modifierOf(node->kind) != Modifier::None) return true;
-  for (const auto& c : node->children)
-    if (anyModifier(c, root, depth + 1)) return true;
-  return false;
-}
-
 }  // namespace
 
 bool hasModifier(const NodePtr& root) {
-  return anyModifier(root, root, 0);
+  return haloCells(root, root, 1.0, 0) > 0;  // every modifier's halo is at least one offset's
 }
 
 int modifierHaloCells(const NodePtr& root, double h) {

@@ -131,8 +131,8 @@ class Evaluator {
   std::unordered_map<const TriangleMesh*, MeshHashMemo> meshHashes_;
 };
 
-// Whether the tree under `root` holds a modifier (offset, shell, round, fillet), instances
-// followed to the nodes they stand for.
+// Whether the tree under `root` holds a modifier (offset, shell, round, fillet) that takes part:
+// visible, or stood for by an instance (modifierHaloCells > 0).
 bool hasModifier(const NodePtr& root);
 
 // The cells (of size h) by which a tile's window must grow on every side for its evaluation to

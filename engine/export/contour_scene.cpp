@@ -265,19 +265,23 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
 
 }  // namespace
 
+glm::dvec3 grownTileCells(const Grid& grid, int tileCells, int halo) {
+  glm::dvec3 cells;
+  for (int a = 0; a < 3; ++a)
+    cells[a] = double(std::min(int64_t(tileCells) + 2 * int64_t(halo), int64_t(grid.cells[a])));
+  return cells;
+}
+
 int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo) {
   const uint64_t perNode = halo > 0 ? kOffsetBytesPerNode : kContourBytesPerNode;
   const int longest = std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8});
   for (int parts = 1;; ++parts) {
     const int tile = std::max(8, (longest + parts - 1) / parts);
-    // The evaluation window: the tile and the modifiers' halo on each side, within the grid,
-    // and the contour's cell of halo and the nodes (+ 3).
-    double cells = 1.0, nodes = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      const int64_t window = std::min(int64_t(tile) + 2 * int64_t(halo), int64_t(grid.cells[a]));
-      cells *= double(window + 2);
-      nodes *= double(window + 3);
-    }
+    // The evaluation window, with the contour's cell of halo on each side (+ 2 cells, + 3
+    // nodes).
+    const glm::dvec3 window = grownTileCells(grid, tile, halo);
+    const double cells = (window.x + 2) * (window.y + 2) * (window.z + 2);
+    const double nodes = (window.x + 3) * (window.y + 3) * (window.z + 3);
     const bool indexable = halo == 0 || cells <= double(UINT32_MAX);
     const bool fits =
         memoryBytes == 0 ? tile <= 256 : nodes * double(perNode) <= double(memoryBytes / 4);
@@ -331,11 +335,8 @@ ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uin
                 " MiB the backend has free. Lower --resolution or the amounts");
   if (t.halo > 0) {
     // The grown window's cells, within 2^32 (asked for with --tile as well).
-    double cells = 1.0;
-    for (int a = 0; a < 3; ++a)
-      cells *=
-          double(std::min(int64_t(t.tileCells) + 2 * int64_t(t.halo), int64_t(grid.cells[a])) + 2);
-    if (cells > double(UINT32_MAX))
+    const glm::dvec3 window = grownTileCells(grid, t.tileCells, t.halo);
+    if ((window.x + 2) * (window.y + 2) * (window.z + 2) > double(UINT32_MAX))
       throw Error("a tile of " + std::to_string(t.tileCells) + " cells grown by the modifiers' " +
                   std::to_string(t.halo) +
                   " cells a side holds more than 2^32 cells: use a "

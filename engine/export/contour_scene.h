@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "engine/contour/contour_tile.h"
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
@@ -42,6 +44,10 @@ constexpr uint64_t kContourBytesPerNode = 2;
 // must fit; its cells are also kept within 2^32. 0 when no tile fits that (a halo of hundreds of
 // cells).
 int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo = 0);
+// Cells along each axis of the window a tile of `tileCells` is evaluated on: the tile and `halo`
+// cells on both sides, within the grid (the contour's own cell of halo and the nodes not
+// counted).
+glm::dvec3 grownTileCells(const Grid& grid, int tileCells, int halo);
 
 struct ContourReport {
   Grid grid;

@@ -132,8 +132,7 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
       return r.grid;
     });
   } catch (const BackendOutOfMemory&) {
-    e.seconds = 0.0;
-    return e;  // not probed: the evaluation itself falls back to the CPU
+    return e;  // not probed (seconds unset): the evaluation itself falls back to the CPU
   }
   const double scale = scaleFrom(r.grid, e.grid);
   e.probed = true;
@@ -183,11 +182,9 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   // the host (engine/ldi/offset_math.h).
   double offsetBytes = 0.0;
   if (tiling.halo > 0 && backend->keepsLdisOnHost()) {
-    offsetBytes = double(kHostOffsetBytesPerNode);
-    for (int a = 0; a < 3; ++a)
-      offsetBytes *= double(
-          std::min(int64_t(tiling.tileCells) + 2 * int64_t(tiling.halo), int64_t(e.grid.cells[a])) +
-          3);
+    const glm::dvec3 window = grownTileCells(e.grid, tiling.tileCells, tiling.halo);
+    offsetBytes =
+        double(kHostOffsetBytesPerNode) * (window.x + 3) * (window.y + 3) * (window.z + 3);
   }
   e.peakBytes =
       present + uint64_t(tileBytes + offsetBytes + double(e.triangles) * kExportBytesPerTriangle);

@@ -82,16 +82,12 @@ std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& 
     const AxisLdi& from = whole->axes[a];
     AxisLdi& to = out->axes[a];
     const int raysU = window.raysU(a), raysV = window.raysV(a), fromU = in.grid.raysU(a);
-    auto source = [&](int64_t ray) {
-      const int64_t i = ray % raysU, j = ray / raysU;
-      return (i + shift.di) + (j + shift.dj) * int64_t(fromU);
-    };
     const int64_t rays = int64_t(raysU) * raysV;
     to.offsets.resize(size_t(rays) + 1);
     uint64_t running = 0;
     for (int64_t r = 0; r < rays; ++r) {
       to.offsets[size_t(r)] = uint32_t(running);
-      const int64_t s = source(r);
+      const int64_t s = shift.source(r, raysU, fromU);
       running += from.offsets[size_t(s) + 1] - from.offsets[size_t(s)];
     }
     checkSurfelCount(running, "a cropped LDI");
@@ -99,7 +95,7 @@ std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& 
     to.surfels.resize(size_t(running));
     parallelFor(0, rays, 4096, [&](int64_t b, int64_t e) {
       for (int64_t r = b; r < e; ++r) {
-        const int64_t s = source(r);
+        const int64_t s = shift.source(r, raysU, fromU);
         std::copy(from.surfels.begin() + from.offsets[size_t(s)],
                   from.surfels.begin() + from.offsets[size_t(s) + 1],
                   to.surfels.begin() + to.offsets[size_t(r)]);

@@ -73,6 +73,10 @@ std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& 
 // strata::Error when the window does not lie within the grid.
 struct RayShift {
   int di = 0, dj = 0;
+  // The index in the grid of the window's ray `ray` (window rays raysU across; grid rays fromU).
+  STRATA_HD int64_t source(int64_t ray, int raysU, int fromU) const {
+    return (ray % raysU + di) + (ray / raysU + dj) * int64_t(fromU);
+  }
 };
 RayShift rayShift(const Grid& grid, const Grid& window, int axis);
 

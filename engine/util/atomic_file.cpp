@@ -86,7 +86,7 @@ class DescriptorBuffer : public std::streambuf {
     total_ += written;
     if (total_ - started_ < kWritebackBytes) return;
     const uint64_t end = total_ / kWritebackBytes * kWritebackBytes;
-    ::sync_file_range(fd_, off64_t(started_), off64_t(end - started_), SYNC_FILE_RANGE_WRITE);
+    ::sync_file_range(fd_, off_t(started_), off_t(end - started_), SYNC_FILE_RANGE_WRITE);
     started_ = end;
 #else
     (void)written;

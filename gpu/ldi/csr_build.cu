@@ -99,7 +99,7 @@ __global__ void cropCounts(const uint32_t* offsets, RayShift shift, int fromU, i
        r += int64_t(gridDim.x) * blockDim.x) {
     uint64_t n = 0;
     if (r < rays) {
-      const int64_t from = (r % raysU + shift.di) + (r / raysU + shift.dj) * int64_t(fromU);
+      const int64_t from = shift.source(r, raysU, fromU);
       n = offsets[from + 1] - offsets[from];
     }
     wide[r] = n;
@@ -111,7 +111,7 @@ __global__ void cropCopy(const uint32_t* offsets, const Surfel* surfels, RayShif
                          int raysU, int64_t rays, const uint64_t* wide, Surfel* out) {
   for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < rays;
        r += int64_t(gridDim.x) * blockDim.x) {
-    const int64_t from = (r % raysU + shift.di) + (r / raysU + shift.dj) * int64_t(fromU);
+    const int64_t from = shift.source(r, raysU, fromU);
     const Surfel* in = surfels + offsets[from];
     const uint32_t n = offsets[from + 1] - offsets[from];
     for (uint32_t k = 0; k < n; ++k) out[wide[r] + k] = in[k];
@@ -164,8 +164,9 @@ std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const Device
   auto out = std::make_shared<DeviceLdi>(window, stream);
   DeviceBuffer<uint64_t> wide[3];
   int64_t rays[3];
+  RayShift shifts[3];
   for (int a = 0; a < 3; ++a) {
-    const RayShift shift = rayShift(ldi->grid(), window, a);  // throws for a window outside
+    const RayShift shift = shifts[a] = rayShift(ldi->grid(), window, a);  // throws if outside
     rays[a] = window.rayCount(a);
     wide[a] = DeviceBuffer<uint64_t>(static_cast<size_t>(rays[a]) + 1, stream);
     cropCounts<<<blocksFor(rays[a] + 1, 256), 256, 0, stream.get()>>>(
@@ -180,7 +181,7 @@ std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const Device
   readBack(at, totals, 3, stream);
   for (int a = 0; a < 3; ++a) {
     checkSurfelCount(totals[a], "a cropped LDI");
-    const RayShift shift = rayShift(ldi->grid(), window, a);
+    const RayShift shift = shifts[a];
     DeviceAxisLdi& to = out->axes[a];
     to.offsets = DeviceBuffer<uint32_t>(static_cast<size_t>(rays[a]) + 1, stream);
     axisOffsets<<<blocksFor(rays[a] + 1, 256), 256, 0, stream.get()>>>(wide[a].data(), 0, rays[a],
