@@ -104,6 +104,16 @@ std::string formatExportText(const ExportSummary& summary) {
                   r.droppedSpecks.triangles);
     out << line;
   }
+  const DegenerateRepair& dr = s.result.degenerateRepair;
+  if (dr.flipped || dr.rotated || dr.collapsed) {
+    std::snprintf(line, sizeof(line),
+                  "          %zu triangle%s without area as the file stores them repaired (%zu "
+                  "edges flipped, %zu turned, %zu zero-length edges collapsed)\n",
+                  dr.flipped + dr.rotated + dr.collapsed,
+                  dr.flipped + dr.rotated + dr.collapsed == 1 ? "" : "s", dr.flipped, dr.rotated,
+                  dr.collapsed);
+    out << line;
+  }
   if (!s.result.fileDifference.empty())
     out << "          the file differs from the mesh written: " << s.result.fileDifference << "\n";
   out << "result    " << (s.result.passed() ? "passed" : "FAILED") << " the watertight check\n";
@@ -179,6 +189,10 @@ std::string formatExportJson(const ExportSummary& s) {
   j["synthesized_crossings"] = r.synthesizedCrossings;
   j["sign_disagreements"] = r.signDisagreements;
   j["unfolded_shells"] = r.unfoldedShells;
+  j["degenerate_repair"] = {{"flipped", s.result.degenerateRepair.flipped},
+                            {"rotated", s.result.degenerateRepair.rotated},
+                            {"collapsed", s.result.degenerateRepair.collapsed},
+                            {"left", s.result.degenerateRepair.left}};
   j["warnings"] = s.warnings;
   return j.dump(2) + "\n";
 }

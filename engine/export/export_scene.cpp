@@ -4,6 +4,7 @@
 
 #include "engine/export/check_written.h"
 #include "engine/export/contour_workers.h"
+#include "engine/geometry/degenerate_repair.h"
 #include "engine/io/mesh_writers.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
@@ -46,6 +47,11 @@ void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportO
   ExportReport& report = *out;
   if (options.simplifyCells > 0.0)
     report.simplify = simplifyMesh(&mesh, options.simplifyCells * report.contour.grid.h, progress);
+  // Triangles without area as the format stores the positions (degenerate_repair.h), repaired
+  // before the file is written, so that the check finds none.
+  report.degenerateRepair =
+      repairDegenerateTriangles(&mesh.mesh, storedCoordinate(path), &mesh.triangleLeaf);
+  progress.check();
   // The check's half that needs no file (the mesh as the format stores it, measured) runs on a
   // thread of its own beside the write, whose end waits on the disk (check_written.h).
   MeantMeshCheck meant(path, mesh.mesh, progress);

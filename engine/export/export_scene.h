@@ -22,6 +22,7 @@
 #include "engine/export/contour_scene.h"
 #include "engine/export/fallback.h"
 #include "engine/export/simplify_mesh.h"
+#include "engine/geometry/degenerate_repair.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/util/progress.h"
 
@@ -36,13 +37,14 @@ struct ExportOptions : ContourOptions {
 };
 
 struct ExportReport {
-  ContourReport contour;             // how the mesh was made
-  SimplifyReport simplify;           // trianglesBefore == trianglesAfter == 0: not simplified
-  double writeSeconds = 0.0;         // writing the file
-  double checkSeconds = 0.0;         // reading it back and checking it
-  MeshCheck check;                   // of the file as written (check_written.h)
-  std::string fileDifference;        // "" when the file holds the mesh meant (check_written.h)
-  std::vector<std::string> notices;  // the fallbacks taken, in order (each also sent to notice)
+  ContourReport contour;              // how the mesh was made
+  SimplifyReport simplify;            // trianglesBefore == trianglesAfter == 0: not simplified
+  DegenerateRepair degenerateRepair;  // triangles without area as stored, repaired before writing
+  double writeSeconds = 0.0;          // writing the file
+  double checkSeconds = 0.0;          // reading it back and checking it
+  MeshCheck check;                    // of the file as written (check_written.h)
+  std::string fileDifference;         // "" when the file holds the mesh meant (check_written.h)
+  std::vector<std::string> notices;   // the fallbacks taken, in order (each also sent to notice)
   bool passed() const { return writtenCheckPassed(check, fileDifference); }
 };
 

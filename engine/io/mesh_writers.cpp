@@ -147,7 +147,7 @@ void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* pr
 }
 
 TriangleMesh storedMesh(const std::string& path, TriangleMesh mesh) {
-  const StoredCoordinate stored = writableFormat(path).stored;
+  const StoredCoordinate stored = storedCoordinate(path);
   parallelFor(0, int64_t(mesh.positions.size()), 65536, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) {
       glm::dvec3& p = mesh.positions[size_t(i)];
@@ -155,6 +155,10 @@ TriangleMesh storedMesh(const std::string& path, TriangleMesh mesh) {
     }
   });
   return mesh;
+}
+
+StoredCoordinate storedCoordinate(const std::string& path) {
+  return writableFormat(path).stored;
 }
 
 }  // namespace strata

@@ -33,6 +33,7 @@
 #include <string>
 
 #include "engine/geometry/export_mesh.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -49,5 +50,9 @@ void writeMeshFile(const std::string& path, const ExportMesh& mesh, Progress* pr
 // for .ply). In place, in parallel: pass the mesh by std::move where it is not needed after.
 // Throws strata::Error for an extension no format writes.
 TriangleMesh storedMesh(const std::string& path, TriangleMesh mesh);
+
+// How the format of `path` rounds a coordinate it stores (storedMesh's rounding, one value).
+// Throws strata::Error for an extension no format writes.
+StoredCoordinate storedCoordinate(const std::string& path);
 
 }  // namespace strata

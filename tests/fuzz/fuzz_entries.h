@@ -22,8 +22,10 @@
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/contour_scene.h"
+#include "engine/geometry/degenerate_repair.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
+#include "engine/io/mesh_writers.h"
 #include "engine/io/scene_file.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
@@ -229,9 +231,11 @@ inline NodePtr fuzzNode(ByteReader& in, int depth, NodeId& nextId) {
 }
 
 // Whole pipeline: the bytes build a small tree (fuzzNode, up to 3 levels), which is sampled,
-// combined and contoured on the CPU at 8 to 47 cells, in tiles of 8 to 23 cells. The property:
-// the result is empty or a closed, manifold, oriented mesh without degenerate triangles; every
-// failure is a strata::Error. Returns whether a mesh came out.
+// combined and contoured on the CPU at 8 to 47 cells, in tiles of 8 to 23 cells, then readied for
+// a file as an export does (triangles without area as the format stores them repaired,
+// degenerate_repair.h) for one of the formats' roundings (exact, float32 or nine digits). The
+// property: the result is empty or, as the format stores it, a closed, manifold, oriented mesh
+// without degenerate triangles; every failure is a strata::Error. Returns whether a mesh came out.
 inline bool runPipeline(const uint8_t* data, size_t size) {
   ByteReader in(data, size);
   NodeId nextId = 1;
@@ -240,6 +244,8 @@ inline bool runPipeline(const uint8_t* data, size_t size) {
   scene.settings.resolution = 8 + in.byte() % 40;
   ContourOptions options;
   options.tileCells = 8 + in.byte() % 16;
+  const char* const formats[3] = {"fuzz.ply", "fuzz.stl", "fuzz.obj"};
+  const std::string path = formats[in.byte() % 3];
   Evaluator evaluator(std::make_shared<CpuBackend>());
   Progress progress;
   ExportMesh mesh;
@@ -249,13 +255,14 @@ inline bool runPipeline(const uint8_t* data, size_t size) {
     return false;
   }
   if (mesh.mesh.triangles.empty()) return false;
-  const MeshCheck c = checkMesh(mesh.mesh);
+  repairDegenerateTriangles(&mesh.mesh, storedCoordinate(path), &mesh.triangleLeaf);
+  const MeshCheck c = checkMesh(storedMesh(path, mesh.mesh));
   if (!c.watertight() || c.degenerateTriangles != 0 || !(c.volume > 0.0)) {
     std::fprintf(stderr,
-                 "pipeline: not a closed manifold: %zu boundary, %zu non-manifold, %zu misoriented "
-                 "edges, %zu degenerate triangles, volume %g\n",
-                 size_t(c.boundaryEdges), size_t(c.nonManifoldEdges), size_t(c.misorientedEdges),
-                 size_t(c.degenerateTriangles), c.volume);
+                 "pipeline: %s not a closed manifold: %zu boundary, %zu non-manifold, %zu "
+                 "misoriented edges, %zu degenerate triangles, volume %g\n",
+                 path.c_str(), size_t(c.boundaryEdges), size_t(c.nonManifoldEdges),
+                 size_t(c.misorientedEdges), size_t(c.degenerateTriangles), c.volume);
     std::abort();
   }
   return true;
