@@ -48,7 +48,8 @@ void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportO
   if (options.simplifyCells > 0.0)
     report.simplify = simplifyMesh(&mesh, options.simplifyCells * report.contour.grid.h, progress);
   // Triangles without area as the format stores the positions (degenerate_repair.h), repaired
-  // before the file is written, so that the check finds none.
+  // before the file is written, so that the check finds none: part of the write's time.
+  Stopwatch write;
   report.degenerateRepair =
       repairDegenerateTriangles(&mesh.mesh, storedCoordinate(path), &mesh.triangleLeaf);
   progress.check();
@@ -57,7 +58,6 @@ void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportO
   MeantMeshCheck meant(path, mesh.mesh, progress);
   // Written atomically (engine/util/atomic_file.h): a cancel or a failure while writing leaves
   // the previous file(s) as they were; an OBJ and its MTL are replaced together.
-  Stopwatch write;
   writeMeshFile(path, mesh, &progress);
   report.writeSeconds = write.seconds();
 

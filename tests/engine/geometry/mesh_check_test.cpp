@@ -458,6 +458,24 @@ TEST(MeshCheck, TheSameOnOneThreadAndOnMany) {
   EXPECT_EQ(many.area, one.area);
 }
 
+// 6000 closed cubes on a diagonal, each touching the next at one corner (one vertex after
+// welding, in two components), then a torus: more triangles than one block of the check's
+// passes, and vertices that belong to two components (counted once in each for the genus).
+TEST(MeshCheck, ShellsTouchingAtCornersKeepTheirOwnGenus) {
+  TriangleMesh m;
+  for (int i = 0; i < 6000; ++i) append(m, cube(glm::dvec3(double(i)), 1.0));
+  append(m, torus());
+  for (const int threads : {1, 8}) {
+    setWorkerCount(threads);
+    const MeshCheck c = checkMesh(m);
+    EXPECT_TRUE(c.watertight()) << threads;
+    EXPECT_EQ(c.triangles, 6000u * 12 + torus().triangles.size()) << threads;
+    EXPECT_EQ(c.components, 6001) << threads;
+    EXPECT_EQ(c.genus, 1) << threads;  // each cube's shared corners counted in each cube
+  }
+  setWorkerCount(0);
+}
+
 TEST(MeshCheck, WeldingOnManyThreadsKeepsTheFirstVertexOfEachPosition) {
   TriangleMesh m = manyUnweldedShells();
   const size_t before = m.positions.size();
