@@ -148,13 +148,22 @@ class KeyIndex {
     size_t buckets = 1;
     while (buckets < faceBegin_) buckets *= 2;
     while ((span >> shift_) >= buckets) ++shift_;
-    start_.assign(buckets + 1, uint32_t(faceBegin_));
-    // start_[b]: the first vertex whose bucket is b or later.
-    size_t b = 0;
-    for (size_t i = 0; i < faceBegin_; ++i) {
-      const size_t bucket = size_t((keys[i] - lo_) >> shift_);
-      while (b <= bucket) start_[b++] = uint32_t(i);
-    }
+    // start_[b]: the first vertex whose bucket is b or later. Keys are sorted, so vertex i
+    // starts the buckets after its predecessor's up to its own: each written once, in parallel.
+    start_.resize(buckets + 1);
+    const auto bucketOf = [&](size_t i) { return size_t((keys[i] - lo_) >> shift_); };
+    parallelFor(0, int64_t(faceBegin_), 1 << 16, [&](int64_t first, int64_t last) {
+      for (int64_t i = first; i < last; ++i) {
+        const size_t bucket = bucketOf(size_t(i));
+        for (size_t b = i == 0 ? 0 : bucketOf(size_t(i) - 1) + 1; b <= bucket; ++b)
+          start_[b] = uint32_t(i);
+      }
+    });
+    const size_t lastBucket = bucketOf(faceBegin_ - 1);
+    parallelFor(int64_t(lastBucket) + 1, int64_t(buckets) + 1, 1 << 18,
+                [&](int64_t first, int64_t last) {
+                  for (int64_t b = first; b < last; ++b) start_[size_t(b)] = uint32_t(faceBegin_);
+                });
   }
 
   uint32_t find(uint64_t key) const {
@@ -254,12 +263,28 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
   });
   c.tiles.clear();
   c.tiles.shrink_to_fit();
-  uint32_t previous = 0xffffffffu;  // neighbouring triangles mostly share a leaf
-  for (uint32_t leaf : out.triangleLeaf) {
-    if (leaf == previous) continue;
-    previous = leaf;
-    if (!out.leaves.count(leaf)) out.leaves[leaf] = LeafStyle{"unknown", glm::vec3(0.8f)};
-  }
+  // Every leaf the triangles name has a style: the leaves met, gathered per chunk (neighbouring
+  // triangles mostly share a leaf).
+  constexpr int64_t kChunk = 1 << 18;
+  const int64_t count = int64_t(out.triangleLeaf.size());
+  std::vector<std::vector<uint32_t>> met(size_t((count + kChunk - 1) / kChunk));
+  parallelFor(0, int64_t(met.size()), 1, [&](int64_t b, int64_t e) {
+    for (int64_t chunk = b; chunk < e; ++chunk) {
+      uint32_t previous = 0xffffffffu;
+      std::vector<uint32_t>& leaves = met[size_t(chunk)];
+      for (int64_t t = chunk * kChunk; t < std::min(count, (chunk + 1) * kChunk); ++t) {
+        const uint32_t leaf = out.triangleLeaf[size_t(t)];
+        if (leaf == previous) continue;
+        previous = leaf;
+        leaves.push_back(leaf);
+      }
+      std::sort(leaves.begin(), leaves.end());
+      leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
+    }
+  });
+  for (const std::vector<uint32_t>& leaves : met)
+    for (uint32_t leaf : leaves)
+      if (!out.leaves.count(leaf)) out.leaves[leaf] = LeafStyle{"unknown", glm::vec3(0.8f)};
   return out;
 }
 

@@ -118,31 +118,51 @@ DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resol
     }
     if (run != UINT32_MAX) count[run].fetch_add(runCount, std::memory_order_relaxed);
   });
-  // The boxes of the small components.
+  // The boxes of the small components: gathered per chunk of vertices, then joined.
+  constexpr size_t kChunk = size_t(1) << 18;
+  const size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::unordered_map<uint32_t, Box>> chunkBoxes(chunks);
+  parallelFor(0, int64_t(chunks), 1, [&](int64_t b, int64_t e) {
+    for (int64_t chunk = b; chunk < e; ++chunk)
+      for (size_t v = size_t(chunk) * kChunk; v < std::min(n, size_t(chunk + 1) * kChunk); ++v) {
+        const uint32_t root = rootOf[v];
+        if (count[root].load(std::memory_order_relaxed) > kMeasuredVertices) continue;
+        Box& box = chunkBoxes[size_t(chunk)][root];
+        box.lo = glm::min(box.lo, positions[v]);
+        box.hi = glm::max(box.hi, positions[v]);
+      }
+  });
   std::unordered_map<uint32_t, Box> boxes;
-  for (size_t v = 0; v < n; ++v) {
-    const uint32_t root = rootOf[v];
-    if (count[root].load(std::memory_order_relaxed) > kMeasuredVertices) continue;
-    Box& box = boxes[root];
-    box.lo = glm::min(box.lo, positions[v]);
-    box.hi = glm::max(box.hi, positions[v]);
-  }
+  for (const auto& chunk : chunkBoxes)
+    for (const auto& [root, part] : chunk) {
+      Box& box = boxes[root];
+      box.lo = glm::min(box.lo, part.lo);
+      box.hi = glm::max(box.hi, part.hi);
+    }
+  chunkBoxes.clear();
   // Which roots stay.
   constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
-  std::vector<uint8_t> keepRoot(n, 0);
-  for (size_t v = 0; v < n; ++v) {
-    if (rootOf[v] != v) continue;
-    const uint8_t b = bits[v].load(std::memory_order_relaxed);
-    if (!(b & kHasTriangle)) continue;  // a vertex no triangle uses
-    bool keep = (b & kBoth) == kBoth;
-    const auto box = boxes.find(uint32_t(v));
-    if (keep && box != boxes.end()) {
-      const glm::dvec3 side = box->second.hi - box->second.lo;
-      keep = side.x >= cell || side.y >= cell || side.z >= cell;
+  std::vector<uint8_t> keepRoot(n);
+  std::atomic<int> droppedComponents{0};
+  parallelFor(0, int64_t(n), int64_t(kChunk), [&](int64_t first, int64_t last) {
+    int localDropped = 0;
+    for (size_t v = size_t(first); v < size_t(last); ++v) {
+      keepRoot[v] = 0;
+      if (rootOf[v] != v) continue;
+      const uint8_t b = bits[v].load(std::memory_order_relaxed);
+      if (!(b & kHasTriangle)) continue;  // a vertex no triangle uses
+      bool keep = (b & kBoth) == kBoth;
+      const auto box = boxes.find(uint32_t(v));
+      if (keep && box != boxes.end()) {
+        const glm::dvec3 side = box->second.hi - box->second.lo;
+        keep = side.x >= cell || side.y >= cell || side.z >= cell;
+      }
+      keepRoot[v] = keep ? 1 : 0;
+      localDropped += keep ? 0 : 1;
     }
-    keepRoot[v] = keep ? 1 : 0;
-    dropped.components += keep ? 0 : 1;
-  }
+    droppedComponents += localDropped;
+  });
+  dropped.components = droppedComponents.load();
   if (dropped.components == 0) return dropped;
   // Where nothing would be left, the whole result is thinner than a cell: keep it, so that the
   // export says what it is (the evaluation warns of parts smaller than a cell) rather than fail.

@@ -40,16 +40,25 @@ size_t mergeSlices(const std::vector<SortedRun<T>>& runs, const std::vector<size
   bool any = false;
   uint64_t last = 0;
   while (!heads.empty()) {
-    const Head h = heads.top();
+    const size_t r = heads.top().second;
+    uint64_t k = heads.top().first;
     heads.pop();
-    const size_t r = h.second;
-    if (!unique || !any || h.first != last) {
-      if (emit) (*emit)(first + written, runs[r].data[at[r]]);
-      ++written;
-      any = true;
-      last = h.first;
+    // Run r's elements while they come before every other run's head (ties in run order): the
+    // heap's order without its work, for the long stretches one run holds (a tile's row).
+    for (;;) {
+      if (!unique || !any || k != last) {
+        if (emit) (*emit)(first + written, runs[r].data[at[r]]);
+        ++written;
+        any = true;
+        last = k;
+      }
+      if (++at[r] >= hi[r]) break;
+      k = key(runs[r].data[at[r]]);
+      if (!heads.empty() && !(Head{k, r} < heads.top())) {
+        heads.push({k, r});
+        break;
+      }
     }
-    if (++at[r] < hi[r]) heads.push({key(runs[r].data[at[r]]), r});
   }
   return written;
 }

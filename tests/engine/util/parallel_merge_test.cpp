@@ -55,6 +55,41 @@ TEST(ParallelMerge, KeepsOneElementPerKeyWhenAskedWhereverTheKeyRepeats) {
   expectMergeMatchesSort(4, true);
 }
 
+// Runs of long stretches (a tile's rows) that interleave, with keys repeated across runs: the
+// merge takes equal keys in run order (with `unique`, the first run's), as a stable sort of the
+// runs' concatenation does.
+TEST(ParallelMerge, TakesEqualKeysInRunOrderAcrossLongStretches) {
+  for (const int threads : {1, 4})
+    for (const bool unique : {false, true}) {
+      setWorkerCount(threads);
+      std::vector<std::vector<Item>> runs(5);
+      for (uint32_t r = 0; r < runs.size(); ++r)
+        for (uint64_t row = 0; row < 400; ++row)
+          for (uint64_t k = 0; k < 300; ++k)  // rows of 300, runs overlapping by 40 keys a row
+            runs[r].push_back({row * 2000 + r * 260 + k, r});
+      std::vector<SortedRun<Item>> views;
+      std::vector<Item> expected;
+      for (const auto& r : runs) {
+        views.push_back({r.data(), r.size()});
+        expected.insert(expected.end(), r.begin(), r.end());
+      }
+      std::stable_sort(expected.begin(), expected.end(),
+                       [](const Item& a, const Item& b) { return a.key < b.key; });
+      if (unique)
+        expected.erase(std::unique(expected.begin(), expected.end(),
+                                   [](const Item& a, const Item& b) { return a.key == b.key; }),
+                       expected.end());
+      const std::vector<Item> merged = parallelMergeRuns(
+          views, [](const Item& i) { return i.key; }, unique);
+      ASSERT_EQ(merged.size(), expected.size());
+      for (size_t i = 0; i < merged.size(); ++i) {
+        ASSERT_EQ(merged[i].key, expected[i].key) << i;
+        ASSERT_EQ(merged[i].run, expected[i].run) << i << (unique ? " unique" : "");
+      }
+    }
+  setWorkerCount(0);
+}
+
 // RunMerge::each visits every element of the merge once, at its place, from several threads;
 // one run (the single-tile export) is visited in place, in its own order.
 TEST(ParallelMerge, EachVisitsEveryPlaceOnceAndOneRunInPlace) {
