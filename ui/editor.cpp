@@ -449,18 +449,31 @@ namespace {
 void drawViewportHints(const EditorState& s, const ViewRect& rect, bool ortho) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   if (s.preview && s.preview->splatCount() == 0 && s.previewError.empty()) {
-    const char* hint = "Empty scene: add a primitive from the palette on the left.";
-    ImVec2 size = ImGui::CalcTextSize(hint);
-    draw->AddText(
-        ImVec2(float(rect.x + (rect.width - size.x) * 0.5), float(rect.y + rect.height * 0.5)),
-        IM_COL32(200, 200, 205, 200), hint);
+    // An empty tree, or parts whose result is empty (all hidden, cut away, or not overlapping
+    // where they intersect): the hint says which, so that nothing looks lost.
+    const NodePtr& root = s.document.root();
+    const bool noParts = !root || (isOperation(root->kind) && root->children.empty());
+    const char* hint =
+        noParts ? "Empty scene: add a primitive from the palette on the left."
+                : "The result is empty: its parts are hidden, cut away or do not overlap where "
+                  "they intersect (Ctrl+Z undoes the last edit).";
+    const float wrap = std::max(120.0f, float(rect.width) * 0.8f);
+    const ImVec2 size = ImGui::CalcTextSize(hint, nullptr, false, wrap);
+    draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(),
+                  ImVec2(float(rect.x + (rect.width - size.x) * 0.5),
+                         float(rect.y + rect.height * 0.5 - size.y * 0.5)),
+                  IM_COL32(200, 200, 205, 200), hint, nullptr, wrap);
   }
   char corner[160];
   std::snprintf(corner, sizeof(corner), "%s  \u00B7  %s", ortho ? "orthographic" : "perspective",
                 s.gizmoMode == GizmoMode::Move     ? "move (W)"
                 : s.gizmoMode == GizmoMode::Rotate ? "rotate (E)"
                                                    : "scale (R)");
-  draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 8)), IM_COL32(210, 210, 215, 170),
+  // A dark outline under the light text: readable over light parts as over the background.
+  for (const ImVec2 d : {ImVec2(1, 1), ImVec2(-1, 1), ImVec2(1, -1), ImVec2(-1, -1)})
+    draw->AddText(ImVec2(float(rect.x + 10) + d.x, float(rect.y + 8) + d.y),
+                  IM_COL32(20, 22, 26, 200), corner);
+  draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 8)), IM_COL32(225, 225, 230, 230),
                 corner);
   if (s.measure.active) {
     // What the next click does.
@@ -525,6 +538,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   drawModals(s);
   drawShortcutSheet(s);
   s.dialog.draw();
+  s.gizmoDragging = gl_->viewport.gizmoDragging();
   handleShortcuts(s);
 
   const ImGuiViewport* vp = ImGui::GetMainViewport();

@@ -37,7 +37,14 @@ void rememberRecent(EditorState& state, const std::string& path) {
   }
 }
 
+// Errors shown so far are settled (the document they were about is saved or gone): they stay
+// in the messages, no longer in the status bar.
+void settleErrors(EditorState& state) {
+  for (LogLine& line : state.log) line.dismissed = true;
+}
+
 void replaceDocument(EditorState& state, Document document) {
+  settleErrors(state);
   state.document = std::move(document);
   state.selection.clear();
   state.preview.reset();
@@ -212,9 +219,12 @@ void pruneSelection(EditorState& state) {
                         state.selection.end());
 }
 
-PlaceMode dropMode(const EditorState& state, int mods) {
-  if (mods & 2) return PlaceMode::Cut;        // GLFW_MOD_CONTROL
-  if (mods & 1) return PlaceMode::Intersect;  // GLFW_MOD_SHIFT
+PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged) {
+  if (mods & kDropCut) return PlaceMode::Cut;
+  if (mods & kDropIntersect) return PlaceMode::Intersect;
+  if (mods & kDropAdd) return PlaceMode::Add;
+  if (dragged != 0 && findNode(state.document.root(), dragged))
+    return modeKeepingRole(roleOf(state.document.root(), dragged));
   return state.placeMode;
 }
 
@@ -236,12 +246,24 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
 
 NodeId addPrimitive(EditorState& state, NodeKind kind) {
   NodeId id = 0;
+  // Centred on the top of what it is placed onto (the selection, else the whole scene), so that
+  // it shows: a part added at the origin inside another changed nothing to see. One undo step.
+  const NodeId target = primarySelection(state);
+  const Bounds onto = target ? selectionBounds(state.document.root(), {target})
+                             : sceneBounds(state.document.root());
+  state.document.beginInteraction();
   guarded(state, [&] {
     std::string note;
     NodePtr node = newPrimitive(state, kind, &note);
     id = placeNew(state, node, state.placeMode, note);
+    if (!onto.empty()) {
+      Placement top;
+      top.point = glm::dvec3(onto.center().x, onto.center().y, onto.max.z);
+      placeNode(state, id, top);
+    }
     selectNode(state, id);
   });
+  state.document.endInteraction();
   return id;
 }
 
@@ -382,14 +404,14 @@ void duplicateSelection(EditorState& state) {
 void copySelection(EditorState& state) {
   if (state.selection.empty()) return;
   const NodePtr& root = state.document.root();
-  std::vector<NodePtr> copied;
+  std::vector<EditorState::CopiedPart> copied;
   // Tree order; a node inside another selected node goes with it.
   for (NodeId id : treeOrder(root)) {
     if (!isSelected(state, id)) continue;
     bool nested = false;
     for (NodeId other : state.selection)
       if (other != id && isInSubtree(root, other, id)) nested = true;
-    if (!nested) copied.push_back(findNode(root, id));
+    if (!nested) copied.push_back({findNode(root, id), modeKeepingRole(roleOf(root, id))});
   }
   state.clipboard = copied;
   logInfo(state,
@@ -409,8 +431,8 @@ void pasteClipboard(EditorState& state) {
   std::vector<NodeId> pasted;
   state.document.beginInteraction();
   guarded(state, [&] {
-    for (const NodePtr& part : state.clipboard) {
-      pasted.push_back(placeNew(state, part, state.placeMode));
+    for (const EditorState::CopiedPart& copy : state.clipboard) {
+      pasted.push_back(placeNew(state, copy.part, copy.mode));
       // The next copy lands beside the first, not inside it.
       if (pasted.size() == 1) state.selection.assign(1, pasted[0]);
     }
@@ -606,6 +628,7 @@ bool saveDocument(EditorState& state) {
 bool saveDocumentAs(EditorState& state, const std::string& path) {
   return guarded(state, [&] {
     saveDocumentAs(state.document, path);
+    settleErrors(state);
     logInfo(state, "saved " + path);
     rememberRecent(state, path);
   });

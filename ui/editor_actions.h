@@ -25,17 +25,21 @@ void pruneSelection(EditorState& state);
 // they add, cut or intersect as the mode says and no existing part changes its role
 // (engine/document/roles.h); the log says what the new part does. Each is one undo step.
 
-// The mode a drop uses with the modifier keys held (GLFW bits): Ctrl cuts, Shift intersects,
-// otherwise the palette's mode.
-PlaceMode dropMode(const EditorState& state, int mods);
+// The modifier bits dropMode reads (GLFW's: shift 1, control 2, alt 4).
+constexpr int kDropIntersect = 1, kDropCut = 2, kDropAdd = 4;
+// The mode a drop uses with the modifier keys held: Ctrl cuts, Shift intersects, Alt adds;
+// without one, an existing node `dragged` keeps its role (modeKeepingRole) and a new part from
+// the palette (dragged 0) takes the palette's mode.
+PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged = 0);
 // What a part placed onto `target` (0 = the root) with `mode` would do, for tooltips ("cuts
 // from \"bracket\""), or, for an existing node `dragged`, what it would do once moved there. Sets
 // *refused (when given) and returns the reason when the drop would be refused.
 std::string placementSentence(const EditorState& state, NodeId target, PlaceMode mode,
                               NodeId dragged = 0, bool* refused = nullptr);
 
-// Adds a primitive sized to the scene (about a quarter of its extent, 1 in an empty scene);
-// selects it.
+// Adds a primitive sized to the scene (about a quarter of its extent, 1 in an empty scene),
+// centred on the top of what it is placed onto (the primary selection, else the scene; at the
+// origin in an empty scene) so that the change shows; selects it. One undo step.
 NodeId addPrimitive(EditorState& state, NodeKind kind);
 // Adds an empty operation the same way.
 NodeId addOperation(EditorState& state, NodeKind kind);
@@ -53,7 +57,8 @@ void deleteSelection(EditorState& state);
 void duplicateSelection(EditorState& state);
 // The clipboard: copies of the selected subtrees (a node inside another selected one goes with
 // it). Cut is copy, then delete (one undo step). Paste places the copies onto the primary
-// selection (the root when none) with the place mode, selects them; one undo step.
+// selection (the root when none), each doing what its original did when copied (a cutter's
+// copy cuts), selects them; one undo step.
 void copySelection(EditorState& state);
 void cutSelection(EditorState& state);
 void pasteClipboard(EditorState& state);

@@ -75,11 +75,17 @@ struct KeyPress {
 struct EditorState {
   Document document;
   std::vector<NodeId> selection;  // the primary (inspected, gizmo) node is the last
-  // What new, pasted and dropped parts do where they land (the palette's mode; Ctrl while
-  // dropping cuts, Shift intersects): see engine/document/roles.h.
+  // What new parts from the palette do where they land (the palette's mode; Ctrl while
+  // dropping cuts, Shift intersects, Alt adds): see engine/document/roles.h. Moved and pasted
+  // parts keep their own role instead, unless a modifier picks another.
   PlaceMode placeMode = PlaceMode::Add;
-  // Copied subtrees (Ctrl+C / Ctrl+X), pasted with fresh ids by Ctrl+V.
-  std::vector<NodePtr> clipboard;
+  // Copied subtrees (Ctrl+C / Ctrl+X), each with the mode that keeps the role it had when
+  // copied; pasted with fresh ids by Ctrl+V.
+  struct CopiedPart {
+    NodePtr part;
+    PlaceMode mode = PlaceMode::Add;
+  };
+  std::vector<CopiedPart> clipboard;
   std::function<std::shared_ptr<Backend>()> makeBackend;  // a fresh backend per thread
 
   // Files outside the document.
@@ -153,6 +159,10 @@ struct EditorState {
   int requestAxisView = -1;  // an AxisView (camera.h) from the View menu; -1 none
   bool requestToggleOrtho = false;
   bool showShortcuts = false;  // the shortcut sheet (F1, Help menu)
+  // The viewport's gizmo drag (set by the editor each frame before the shortcuts), and Escape's
+  // request to call it off (the viewport restores what the drag moved, with no undo step).
+  bool gizmoDragging = false;
+  bool cancelGizmoDrag = false;
   bool quitNow = false;
 
   // This frame's key presses, collected from GLFW as they happened: ImGui 1.86 samples key

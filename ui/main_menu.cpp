@@ -1,5 +1,6 @@
 // The menu bar, its keyboard shortcuts, and what happens once a file has been chosen.
 #include <imgui.h>
+#include <imgui_internal.h>  // ClosePopupsOverWindow, GetTopMostPopupModal (Escape on menus)
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
@@ -178,6 +179,13 @@ void drawMainMenu(EditorState& state) {
 void handleShortcuts(EditorState& state) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput || state.dialog.isOpen() || state.pendingReplace) return;
+  // A menu or context menu is open (not a modal dialog, which takes its own keys): Escape closes
+  // it and no shortcut reaches the scene behind it.
+  if (ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel)) {
+    if (!ImGui::GetTopMostPopupModal() && keyPressed(state, GLFW_KEY_ESCAPE))
+      ImGui::ClosePopupsOverWindow(nullptr, false);
+    return;
+  }
   const int ctrl = GLFW_MOD_CONTROL, shift = GLFW_MOD_SHIFT;
   if (keyPressed(state, GLFW_KEY_S, ctrl)) saveOrAsk(state, std::nullopt);
   if (keyPressed(state, GLFW_KEY_S, ctrl | shift))
@@ -206,7 +214,12 @@ void handleShortcuts(EditorState& state) {
     state.renaming = primarySelection(state);
   if (keyPressed(state, GLFW_KEY_M)) setMeasuring(state, !state.measure.active);
   if (keyPressed(state, GLFW_KEY_ESCAPE)) {
-    if (state.measure.active)
+    // The innermost thing under way first: a drag, the sheet, the measure tool, the selection.
+    if (state.gizmoDragging)
+      state.cancelGizmoDrag = true;
+    else if (state.showShortcuts)
+      state.showShortcuts = false;
+    else if (state.measure.active)
       measureEscape(state);
     else
       clearSelection(state);

@@ -2,6 +2,9 @@
 
 #include <imgui.h>
 
+#include <utility>
+#include <vector>
+
 #include <glm/geometric.hpp>
 
 #include <cmath>
@@ -70,10 +73,27 @@ void addMarker(const ScreenMapping& view, const glm::dvec3& p, std::vector<LineV
   }
 }
 
-void label(ImDrawList* draw, ImVec2 at, const std::string& text) {
+// The boxes of the labels drawn so far this frame: a new label that would cover one moves down
+// below it (measurements whose middles fall together stay readable).
+struct LabelBoxes {
+  std::vector<std::pair<ImVec2, ImVec2>> taken;
+  bool overlaps(ImVec2 lo, ImVec2 hi) const {
+    for (const auto& [a, b] : taken)
+      if (lo.x < b.x && a.x < hi.x && lo.y < b.y && a.y < hi.y) return true;
+    return false;
+  }
+};
+
+void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* boxes) {
   const ImVec2 size = ImGui::CalcTextSize(text.c_str());
-  const ImVec2 lo(at.x - size.x * 0.5f - 4.0f, at.y - size.y * 0.5f - 2.0f);
-  const ImVec2 hi(at.x + size.x * 0.5f + 4.0f, at.y + size.y * 0.5f + 2.0f);
+  ImVec2 lo(at.x - size.x * 0.5f - 4.0f, at.y - size.y * 0.5f - 2.0f);
+  ImVec2 hi(at.x + size.x * 0.5f + 4.0f, at.y + size.y * 0.5f + 2.0f);
+  for (int tries = 0; tries < 32 && boxes->overlaps(lo, hi); ++tries) {
+    const float step = ImGui::GetTextLineHeight() * 0.5f;
+    lo.y += step;
+    hi.y += step;
+  }
+  boxes->taken.push_back({lo, hi});
   draw->AddRectFilled(lo, hi, IM_COL32(20, 22, 26, 210), 3.0f);
   draw->AddRect(lo, hi, IM_COL32(255, 220, 64, 160), 3.0f);
   draw->AddText(ImVec2(lo.x + 4.0f, lo.y + 2.0f), IM_COL32(255, 236, 150, 255), text.c_str());
@@ -213,18 +233,20 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
     *out = ImVec2(float(x0 + px.x), float(y0 + px.y));
     return true;
   };
+  LabelBoxes boxes;
   for (const Measurement& m : state.document.scene().measurements) {
     const MeasureValues v = measureValues(root, m);
     ImVec2 at;
     if (screen(0.5 * (v.a + v.b), &at))
       label(draw, at,
             distanceText(state, v.distance) + "\ndx " + distanceText(state, v.delta.x) + "  dy " +
-                distanceText(state, v.delta.y) + "  dz " + distanceText(state, v.delta.z));
+                distanceText(state, v.delta.y) + "  dz " + distanceText(state, v.delta.z),
+            &boxes);
     if (m.points.size() == 3) {
-      if (screen(0.5 * (v.b + v.c), &at)) label(draw, at, distanceText(state, v.distance2));
+      if (screen(0.5 * (v.b + v.c), &at)) label(draw, at, distanceText(state, v.distance2), &boxes);
       char angle[48];
       std::snprintf(angle, sizeof(angle), "%.2f\u00B0", v.angleDegrees);
-      if (v.hasAngle && screen(v.b, &at)) label(draw, ImVec2(at.x, at.y - 22.0f), angle);
+      if (v.hasAngle && screen(v.b, &at)) label(draw, ImVec2(at.x, at.y - 22.0f), angle, &boxes);
     }
   }
 }

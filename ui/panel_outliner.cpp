@@ -39,7 +39,8 @@ bool gShownHintRefused = false;
 
 int heldModifiers() {
   const ImGuiIO& io = ImGui::GetIO();
-  return (io.KeyShift ? 1 : 0) | (io.KeyCtrl ? 2 : 0);
+  return (io.KeyShift ? kDropIntersect : 0) | (io.KeyCtrl ? kDropCut : 0) |
+         (io.KeyAlt ? kDropAdd : 0);
 }
 
 // The drop target of the last item (a row, or the empty space: target 0): says what the
@@ -48,9 +49,9 @@ int heldModifiers() {
 void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
   const ImGuiPayload* payload = ImGui::GetDragDropPayload();
   if (!payload) return;
-  const PlaceMode mode = dropMode(state, heldModifiers());
   NodeId dragged = 0;
   if (payload->IsDataType(kPayload)) std::memcpy(&dragged, payload->Data, sizeof(NodeId));
+  const PlaceMode mode = dropMode(state, heldModifiers(), dragged);
   bool refused = false;
   const std::string sentence = placementSentence(state, target, mode, dragged, &refused);
   drop->hint = refused ? "can't drop here: " + sentence : sentence;
@@ -73,7 +74,8 @@ void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
 // The drag tooltip's second part: what the part would do where it hovers.
 void dragHint() {
   if (gShownHint.empty()) {
-    ImGui::TextDisabled("drop on a row: add (Ctrl: cut, Shift: intersect)");
+    ImGui::TextDisabled(
+        "drop on a row: it keeps what it does (Ctrl: cut, Shift: intersect, Alt: add)");
     return;
   }
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
@@ -81,21 +83,24 @@ void dragHint() {
     ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s", gShownHint.c_str());
   else
     ImGui::TextUnformatted(gShownHint.c_str());
-  ImGui::TextDisabled("Ctrl: cut  Shift: intersect");
+  ImGui::TextDisabled("Ctrl: cut  Shift: intersect  Alt: add");
   ImGui::PopTextWrapPos();
 }
 
-// A child's role in its parent, as a short coloured word.
-void roleBadge(ChildRole role, float x) {
-  ImVec4 colour(0.6f, 0.62f, 0.66f, 1.0f);
+// A child's role in its parent, as a short word coloured by what its material does to the
+// result (`removes`: removesMaterial, roles.h): red where it is taken away, so that a part that
+// adds to a cutter does not look like one that adds material.
+void roleBadge(ChildRole role, bool removes, float x) {
+  const ImVec4 red(1.0f, 0.45f, 0.42f, 1.0f);
+  ImVec4 colour = removes ? red : ImVec4(0.6f, 0.62f, 0.66f, 1.0f);
   const char* word = "base";
   switch (role) {
     case ChildRole::Add:
-      colour = ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
+      colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
       word = "add";
       break;
     case ChildRole::Cut:
-      colour = ImVec4(1.0f, 0.45f, 0.42f, 1.0f);
+      colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
       word = "cut";
       break;
     case ChildRole::Intersect:
@@ -199,8 +204,10 @@ bool chainBelow(const Node& node, int depth) {
   return false;
 }
 
-void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDrop* drop,
-             bool chained = false) {
+// `removes`: whether the node's material is taken away from the result (an odd number of
+// cutters from the root to it, itself included: removesMaterial, roles.h).
+void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool removes,
+             PendingDrop* drop, bool chained = false) {
   const bool isRoot = role == ChildRole::Root;
   ImGui::PushID(static_cast<int>(node->id));
   const bool leaf = node->children.empty();
@@ -228,11 +235,19 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
                               2.0f * ImGui::GetStyle().ItemSpacing.x;
     clipRight = ImGui::GetWindowPos().x + right - badgeColumn;
     ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
+    // A mesh whose file could not be read when the scene opened: amber, marked, and said why on
+    // hover (meshMissing).
+    const bool missing = meshMissing(*node);
     if (!node->visible) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.5f, 0.52f, 1.0f));
     if (chained) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.55f, 0.6f, 0.68f, 1.0f));
+    if (missing) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.72f, 0.3f, 1.0f));
     open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap,
-                             chained ? "%s  \u2026 %s" : "%s  %s", kindGlyph(node->kind),
+                             chained   ? "%s  \u2026 %s"
+                             : missing ? "%s  %s (missing)"
+                                       : "%s  %s",
+                             kindGlyph(node->kind),
                              node->name.empty() ? "(unnamed)" : node->name.c_str());
+    if (missing) ImGui::PopStyleColor();
     if (chained) ImGui::PopStyleColor();
     if (!node->visible) ImGui::PopStyleColor();
     ImGui::PopClipRect();
@@ -254,10 +269,23 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
       dropTarget(state, node->id, drop);
       ImGui::EndDragDropTarget();
     }
-    if (ImGui::IsItemHovered() && !ImGui::GetDragDropPayload() && !isRoot)
+    if (ImGui::IsItemHovered() && !ImGui::GetDragDropPayload() && !isRoot) {
+      // Inside a cutter (the parity of the cutters above differs from its own role's) the
+      // material goes the other way than the role says.
+      const bool ownCut = role == ChildRole::Cut;
+      const char* inside = removes == ownCut ? ""
+                           : ownCut          ? "\ninside a cutter: its material stays in the result"
+                                             : "\ninside a cutter: its material is taken away";
+      const std::string missingNote =
+          meshMissing(*node) ? "\nits file could not be read: \"" + node->meshPath +
+                                   "\"\nnothing of it is evaluated; put the file back and open "
+                                   "the scene again, or delete the node"
+                             : "";
       ImGui::SetTooltip(
-          "%s %s", node->name.c_str(),
-          role == ChildRole::Base ? "is the base: the cutters beside it cut it" : rolePhrase(role));
+          "%s %s%s%s", node->name.empty() ? "(unnamed)" : node->name.c_str(),
+          role == ChildRole::Base ? "is the base: the cutters beside it cut it" : rolePhrase(role),
+          inside, missingNote.c_str());
+    }
     contextMenu(state, node);
   }
   if (isOperation(node->kind) && !chained) {
@@ -266,7 +294,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
     ImGui::TextColored(kindColor(node->kind), "%s", kindLabel(node->kind));
     ImGui::PopClipRect();
   }
-  roleBadge(role, right - ImGui::GetFrameHeight() - ImGui::GetStyle().ItemSpacing.x);
+  roleBadge(role, removes, right - ImGui::GetFrameHeight() - ImGui::GetStyle().ItemSpacing.x);
   ImGui::SameLine(right - ImGui::GetFrameHeight());
   ImGui::SetCursorPosY(rowStart.y);
   ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0, 0, 0, 0));
@@ -280,7 +308,9 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, PendingDro
     for (size_t i = 0; i < node->children.size(); ++i) {
       const NodePtr& child = node->children[i];
       const bool link = sameAssociativeKind(*node, *child) && (chained || chainBelow(*child, 2));
-      nodeRow(state, child, childRole(*node, static_cast<int>(i)), drop, link);
+      const ChildRole childRoleHere = childRole(*node, static_cast<int>(i));
+      nodeRow(state, child, childRoleHere, removes != (childRoleHere == ChildRole::Cut), drop,
+              link);
     }
     if (!chained) ImGui::TreePop();
   }
@@ -313,7 +343,7 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
   PendingDrop drop;
   const NodePtr root = state.document.root();  // this frame's snapshot
-  if (root) nodeRow(state, root, ChildRole::Root, &drop);
+  if (root) nodeRow(state, root, ChildRole::Root, false, &drop);
   // Empty space below the tree: a drop here places the node onto the root.
   ImVec2 avail = ImGui::GetContentRegionAvail();
   ImGui::InvisibleButton("##empty", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 24.0f)));

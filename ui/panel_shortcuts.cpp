@@ -29,19 +29,21 @@ const ShortcutGroup kGroups[] = {
       {"Ctrl+Q", "quit (asks about unsaved changes)"}}},
     {"Edit",
      {{"Ctrl+Z / Ctrl+Y", "undo / redo (Ctrl+Shift+Z too)"},
-      {"Ctrl+C / Ctrl+X / Ctrl+V", "copy / cut / paste onto the selection"},
+      {"Ctrl+C / Ctrl+X / Ctrl+V",
+       "copy / cut / paste onto the selection (copies keep their role)"},
       {"Ctrl+D", "duplicate: the copy does what the original does"},
       {"Alt+D", "instance: a live copy"},
       {"Del", "delete"},
       {"H", "hide / show"},
       {"F2, double-click", "rename"},
       {"Ctrl+G", "group as union (parts that do the same)"},
-      {"Esc", "select none"}}},
-    {"New parts: add, cut or intersect",
-     {{"palette mode", "what a click on the palette adds"},
-      {"drag onto a row", "adds there; the tooltip says what it will do"},
+      {"Esc", "call off a gizmo drag; close a menu or this sheet; select none"}}},
+    {"Placing parts: add, cut or intersect",
+     {{"palette mode", "what a new part from the palette does"},
+      {"drag a row onto a row", "moves the part: it keeps what it does; the tooltip says it"},
       {"Ctrl while dropping", "cuts"},
-      {"Shift while dropping", "intersects"}}},
+      {"Shift while dropping", "intersects"},
+      {"Alt while dropping", "adds"}}},
     {"Select",
      {{"click", "select a part (in the view or the tree)"},
       {"Ctrl+click", "add or remove one"},
@@ -84,7 +86,9 @@ void drawShortcutSheet(EditorState& state) {
         ImGui::TableSetColumnIndex(0);
         ImGui::TextUnformatted(s.keys);
         ImGui::TableSetColumnIndex(1);
-        ImGui::TextDisabled("%s", s.what);
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("%s", s.what);  // a long line wraps in its column, never cut
+        ImGui::PopStyleColor();
       }
       ImGui::EndTable();
     }

@@ -46,13 +46,25 @@ float handle(const char* id, ImVec2 pos, ImVec2 size, bool vertical, bool* ended
 }  // namespace
 
 void clampLayout(PanelLayout& layout, float width, float height) {
+  const PanelSizes& wanted = layout.wanted;
   const float column = height - layout.menuHeight - layout.statusHeight;
-  layout.leftWidth = std::clamp(layout.leftWidth, 200.0f, std::max(200.0f, width * 0.45f));
-  layout.rightWidth = std::clamp(layout.rightWidth, 240.0f, std::max(240.0f, width * 0.45f));
+  constexpr float kMinLeft = 200.0f, kMinRight = 240.0f;
+  float left = std::clamp(wanted.leftWidth, kMinLeft, std::max(kMinLeft, width * 0.45f));
+  float right = std::clamp(wanted.rightWidth, kMinRight, std::max(kMinRight, width * 0.45f));
+  // In a narrow window both columns give up width in proportion (down to their minimums) so
+  // that the view keeps at least 35% of it.
+  const float room = 0.65f * width;
+  if (left + right > room) {
+    const float scale = room / (left + right);
+    left = std::max(kMinLeft, left * scale);
+    right = std::max(kMinRight, right * scale);
+  }
+  layout.leftWidth = left;
+  layout.rightWidth = right;
   layout.paletteHeight =
-      std::clamp(layout.paletteHeight, 120.0f, std::max(120.0f, column - 120.0f));
+      std::clamp(wanted.paletteHeight, 120.0f, std::max(120.0f, column - 120.0f));
   layout.previewHeight =
-      std::clamp(layout.previewHeight, 150.0f, std::max(150.0f, column - 120.0f));
+      std::clamp(wanted.previewHeight, 150.0f, std::max(150.0f, column - 120.0f));
 }
 
 bool drawSplitters(PanelLayout& layout) {
@@ -61,21 +73,29 @@ bool drawSplitters(PanelLayout& layout) {
   const float bottom = vp->Pos.y + vp->Size.y - layout.statusHeight;
   const float column = bottom - top;
   bool ended = false;
+  // A drag sets the size wanted from the size shown: the artist gets what they see.
+  const auto drag = [](float delta, float shown, float* wanted) {
+    if (delta != 0.0f) *wanted = shown + delta;
+  };
   // Column edges: on the view's side of each edge (the view is not an ImGui window).
-  layout.leftWidth += handle("##split left", ImVec2(vp->Pos.x + layout.leftWidth, top),
-                             ImVec2(kHandle, column), true, &ended);
-  layout.rightWidth -=
-      handle("##split right", ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth - kHandle, top),
-             ImVec2(kHandle, column), true, &ended);
+  drag(handle("##split left", ImVec2(vp->Pos.x + layout.leftWidth, top), ImVec2(kHandle, column),
+              true, &ended),
+       layout.leftWidth, &layout.wanted.leftWidth);
+  drag(-handle("##split right", ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth - kHandle, top),
+               ImVec2(kHandle, column), true, &ended),
+       layout.rightWidth, &layout.wanted.rightWidth);
   // The palette's and the preview panel's top edges.
-  layout.paletteHeight -=
-      handle("##split palette", ImVec2(vp->Pos.x, bottom - layout.paletteHeight - kHandle / 2),
-             ImVec2(layout.leftWidth, kHandle), false, &ended);
-  layout.previewHeight -= handle("##split preview",
-                                 ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth,
-                                        bottom - layout.previewHeight - kHandle / 2),
-                                 ImVec2(layout.rightWidth, kHandle), false, &ended);
+  drag(-handle("##split palette", ImVec2(vp->Pos.x, bottom - layout.paletteHeight - kHandle / 2),
+               ImVec2(layout.leftWidth, kHandle), false, &ended),
+       layout.paletteHeight, &layout.wanted.paletteHeight);
+  drag(-handle("##split preview",
+               ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth,
+                      bottom - layout.previewHeight - kHandle / 2),
+               ImVec2(layout.rightWidth, kHandle), false, &ended),
+       layout.previewHeight, &layout.wanted.previewHeight);
   clampLayout(layout, vp->Size.x, vp->Size.y);
+  // What is remembered is what was shown when the drag ended.
+  if (ended) layout.wanted = static_cast<const PanelSizes&>(layout);
   return ended;
 }
 
@@ -87,21 +107,22 @@ PanelLayout readPanelLayout(const std::string& path, PanelLayout layout) {
     std::string name;
     float value = 0.0f;
     if (!(words >> name >> value) || !(value > 0.0f) || value > 100000.0f) continue;
-    if (name == "leftWidth") layout.leftWidth = value;
-    if (name == "rightWidth") layout.rightWidth = value;
-    if (name == "paletteHeight") layout.paletteHeight = value;
-    if (name == "previewHeight") layout.previewHeight = value;
+    if (name == "leftWidth") layout.wanted.leftWidth = value;
+    if (name == "rightWidth") layout.wanted.rightWidth = value;
+    if (name == "paletteHeight") layout.wanted.paletteHeight = value;
+    if (name == "previewHeight") layout.wanted.previewHeight = value;
   }
+  static_cast<PanelSizes&>(layout) = layout.wanted;
   return layout;
 }
 
 void writePanelLayout(const std::string& path, const PanelLayout& layout) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   writeFileAtomically(path, [&](std::ostream& out) {
-    out << "leftWidth " << layout.leftWidth << "\n"
-        << "rightWidth " << layout.rightWidth << "\n"
-        << "paletteHeight " << layout.paletteHeight << "\n"
-        << "previewHeight " << layout.previewHeight << "\n";
+    out << "leftWidth " << layout.wanted.leftWidth << "\n"
+        << "rightWidth " << layout.wanted.rightWidth << "\n"
+        << "paletteHeight " << layout.wanted.paletteHeight << "\n"
+        << "previewHeight " << layout.wanted.previewHeight << "\n";
   });
 }
 

@@ -17,13 +17,14 @@ namespace strata::ui {
 // what leaves every panel and the view usable in the window). Returns true when a drag ended
 // this frame (time to save).
 bool drawSplitters(PanelLayout& layout);
-// Keeps the sizes within the window's `width` x `height` (pixels).
+// The sizes shown: layout.wanted kept within the window's `width` x `height` (pixels), the
+// columns giving up width in proportion in a narrow window.
 void clampLayout(PanelLayout& layout, float width, float height);
 
-// The sizes saved in `path` over the defaults of `layout`; a missing or damaged file (or a line
-// it does not know) leaves the defaults.
+// The sizes saved in `path` (wanted and shown) over the defaults of `layout`; a missing or
+// damaged file (or a line it does not know) leaves the defaults.
 PanelLayout readPanelLayout(const std::string& path, PanelLayout layout);
-// Writes the four sizes atomically, creating the folder. Throws strata::Error.
+// Writes the four wanted sizes atomically, creating the folder. Throws strata::Error.
 void writePanelLayout(const std::string& path, const PanelLayout& layout);
 
 }  // namespace strata::ui

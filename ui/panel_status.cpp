@@ -183,14 +183,26 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
 
 namespace {
 
-// The message the status bar shows: the latest error not yet clicked away (however many messages
-// followed it: a scene that failed to open must not pass unseen), else the latest message for
-// 6 s; null for none.
+// The message the status bar shows: the latest one for 6 s (an error until clicked away or
+// settled by a save or another document), then the latest error not yet clicked away (a scene
+// that failed to open must not pass unseen); null for none.
 LogLine* statusLine(EditorState& state) {
+  if (!state.log.empty()) {
+    LogLine& last = state.log.back();
+    if ((last.level == LogLevel::Error && !last.dismissed) || state.now - last.time < 6.0)
+      return &last;
+  }
   for (auto it = state.log.rbegin(); it != state.log.rend(); ++it)
     if (it->level == LogLevel::Error && !it->dismissed) return &*it;
-  if (!state.log.empty() && state.now - state.log.back().time < 6.0) return &state.log.back();
   return nullptr;
+}
+
+// Errors not yet clicked away besides `shown`.
+int otherOpenErrors(const EditorState& state, const LogLine* shown) {
+  int count = 0;
+  for (const LogLine& line : state.log)
+    count += line.level == LogLevel::Error && !line.dismissed && &line != shown ? 1 : 0;
+  return count;
 }
 
 }  // namespace
@@ -222,13 +234,21 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
       ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
       ImGui::TextUnformatted(last.text.c_str());
       ImGui::TextDisabled("click: all messages, to read or copy%s",
-                          last.level == LogLevel::Error ? " (and clear this one)" : "");
+                          last.level == LogLevel::Error ? " (and clear the errors)" : "");
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }
-    if (ImGui::IsItemClicked()) {
+    bool open = ImGui::IsItemClicked();
+    if (const int others = otherOpenErrors(state, &last)) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "(+%d earlier error%s)", others,
+                         others == 1 ? "" : "s");
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("click: all messages, to read or copy");
+      open = open || ImGui::IsItemClicked();
+    }
+    if (open) {  // the messages show every error: none is left unseen
       state.showDiagnostics = true;
-      last.dismissed = true;
+      for (LogLine& line : state.log) line.dismissed = true;
     }
   }
   if (state.worker.busy) {

@@ -11,13 +11,19 @@ namespace strata::ui {
 constexpr const char* kPalettePayload = "STRATA_PALETTE";
 constexpr int kImportMeshItem = -1;
 
-struct PanelLayout {
-  float menuHeight = 0.0f;
-  float statusHeight = 0.0f;
+// Pixels. The four panel sizes as shown: what the artist set (`wanted`: the splitters, the layout
+// file) kept within the window by clampLayout, so that a window made small and then large again
+// shows the panels as they were set.
+struct PanelSizes {
   float leftWidth = 320.0f;
   float rightWidth = 330.0f;
   float paletteHeight = 250.0f;  // the palette, under the outliner
   float previewHeight = 310.0f;  // the preview settings, under the inspector
+};
+struct PanelLayout : PanelSizes {
+  float menuHeight = 0.0f;
+  float statusHeight = 0.0f;
+  PanelSizes wanted;
 };
 
 // Menu bar (File, Edit, View) and the keyboard shortcuts of its items.

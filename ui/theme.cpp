@@ -23,13 +23,29 @@ const char* findFont() {
 void applyTheme(float scale) {
   ImGuiIO& io = ImGui::GetIO();
   if (const char* font = findFont()) {
-    static const ImWchar ranges[] = {0x0020, 0x00FF,  // Latin-1
+    // File and part names in the languages DejaVu covers (Latin, Greek, Cyrillic), and the
+    // symbols the panels use.
+    static const ImWchar ranges[] = {0x0020, 0x024F,  // Latin-1, Latin Extended-A and -B
+                                     0x0370, 0x03FF,  // Greek
+                                     0x0400, 0x052F,  // Cyrillic
                                      0x2000, 0x206F,  // punctuation: … — ·
                                      0x2190, 0x21FF,  // arrows
                                      0x2200, 0x22FF,  // ∪ ∩ − ×
                                      0x2500, 0x25FF,  // box drawing, ● ○ ■ □ ▲
                                      0};
     if (io.Fonts->AddFontFromFileTTF(font, 15.0f * scale, nullptr, ranges)) g_unicode = true;
+    // Chinese and Japanese names where a CJK font is installed (merged: DejaVu has none).
+    const char* cjk[] = {"/usr/share/fonts/truetype/droid/DroidSansFallbackFull.ttf",
+                         "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc"};
+    for (const char* c : cjk) {
+      std::error_code ec;
+      if (!g_unicode || !std::filesystem::exists(c, ec)) continue;
+      ImFontConfig merge;
+      merge.MergeMode = true;
+      io.Fonts->AddFontFromFileTTF(c, 15.0f * scale, &merge,
+                                   io.Fonts->GetGlyphRangesChineseSimplifiedCommon());
+      break;
+    }
   }
   if (!g_unicode) io.Fonts->AddFontDefault();
 

@@ -163,6 +163,12 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
 
   // An ongoing gizmo drag keeps the mouse wherever it goes.
   if (gizmo_.dragging()) {
+    if (state.cancelGizmoDrag) {  // Escape: everything the drag moved goes back, no undo step
+      state.cancelGizmoDrag = false;
+      gizmo_.end();
+      state.document.cancelInteraction();
+      return;
+    }
     if (io.MouseDown[0] && placeGizmo(state)) {
       NodeId id = primarySelection(state);
       Transform t = gizmo_.drag(view, mouse, state.snap);
@@ -187,7 +193,10 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       !ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) {
     int item = 0;
     std::memcpy(&item, payload->Data, sizeof(item));
-    drop_ = PendingDrop{mouse, item, dropMode(state, (io.KeyShift ? 1 : 0) | (io.KeyCtrl ? 2 : 0))};
+    drop_ =
+        PendingDrop{mouse, item,
+                    dropMode(state, (io.KeyShift ? kDropIntersect : 0) |
+                                        (io.KeyCtrl ? kDropCut : 0) | (io.KeyAlt ? kDropAdd : 0))};
   }
   // A box selection keeps the mouse until released, over panels too.
   if (boxFrom_) {

@@ -264,6 +264,10 @@ void Document::setOperation(NodeId id, NodeKind kind) {
   apply(std::string("make ") + kindName(kind), setOperationKind(root(), id, kind));
 }
 
+void Document::cancelInteraction() {
+  if (std::optional<DocumentState> before = history_.cancelInteraction()) state_ = *before;
+}
+
 bool Document::undo() {
   if (!history_.canUndo()) return false;
   state_ = history_.undo(state_);

@@ -110,6 +110,9 @@ class Document {
   // A drag or a held widget: every edit until endInteraction() is one undo step.
   void beginInteraction() { history_.beginInteraction(); }
   void endInteraction() { history_.endInteraction(); }
+  // Ends a drag that was called off (Escape): the document is as it was before it, with no undo
+  // step for it.
+  void cancelInteraction();
   bool interacting() const { return history_.interacting(); }
 
   // --- files (read and written by engine/io/document_files.h) ---------------------------------

@@ -37,6 +37,16 @@ void History::endInteraction() {
   if (--depth_ == 0) recordedInInteraction_ = false;
 }
 
+std::optional<DocumentState> History::cancelInteraction() {
+  const bool recorded = depth_ > 0 && recordedInInteraction_ && !undo_.empty();
+  depth_ = 0;
+  recordedInInteraction_ = false;
+  if (!recorded) return std::nullopt;
+  DocumentState before = undo_.back().state;
+  undo_.pop_back();
+  return before;
+}
+
 void History::clear() {
   undo_.clear();
   redo_.clear();

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,10 @@ class History {
   // Interactions nest; the step closes when the outermost one ends.
   void beginInteraction();
   void endInteraction();
+  // Ends every open interaction and forgets its step: returns the state before its first edit
+  // (to restore), or nothing when it recorded none. The redo steps its first edit dropped stay
+  // dropped.
+  std::optional<DocumentState> cancelInteraction();
   bool interacting() const { return depth_ > 0; }
 
   void clear();

@@ -59,6 +59,13 @@ struct Node {
   std::vector<NodePtr> children;  // operations only, in order (order matters for Difference)
 };
 
+// A mesh leaf whose file could not be read when its scene was opened (MissingMeshes::Keep,
+// engine/io/scene_file.h): it holds an empty mesh (no reader gives one), so nothing of it is
+// evaluated.
+inline bool meshMissing(const Node& node) {
+  return node.kind == NodeKind::Mesh && node.mesh && node.mesh->triangles.empty();
+}
+
 // Depth of the tree (a leaf alone has depth 1), following instances.
 int treeDepth(const NodePtr& root);
 // Finds a node by id in the subtree (not following instances); nullptr when absent.

@@ -165,6 +165,17 @@ const char* placeModeName(PlaceMode mode) {
   }
 }
 
+PlaceMode modeKeepingRole(ChildRole role) {
+  switch (role) {
+    case ChildRole::Cut:
+      return PlaceMode::Cut;
+    case ChildRole::Intersect:
+      return PlaceMode::Intersect;
+    default:
+      return PlaceMode::Add;
+  }
+}
+
 NodeKind operationKindFor(PlaceMode mode) {
   const RayOp wanted = mode == PlaceMode::Cut         ? RayOp::Difference
                        : mode == PlaceMode::Intersect ? RayOp::Intersection
@@ -181,9 +192,11 @@ PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
     throw Error("there is no node with id " + std::to_string(target));
   const NodePtr node = findNode(root, target);
   const NodeKind kind = operationKindFor(mode);
+  const bool targetRemoves = removesMaterial(root, target);
   PlacePlan plan;
-  // 1. Into an operation of the mode's Boolean, or into an empty operation of any.
+  bool ownCut = false;  // the part's own role is a cutter's
   if (isOperation(node->kind) && (node->kind == kind || node->children.empty())) {
+    // 1. Into an operation of the mode's Boolean, or into an empty operation of any.
     plan.parent = target;
     if (node->children.empty() && nodeKindInfo(node->kind).rayOp == RayOp::Difference)
       plan.sentence = "becomes the base of " + quoted(*node);
@@ -191,19 +204,29 @@ PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
       plan.sentence = "fills the empty " + quoted(*node);
     else
       plan.sentence = verbPhrase(mode, *node);
-    return plan;
-  }
-  // 2. Beside a target that already plays the mode's role.
-  if (where.parent && childRole(*where.parent, where.index) == roleForMode(mode)) {
+    // A later child of a difference (it has children: it is the mode's) cuts.
+    ownCut = mode == PlaceMode::Cut && !node->children.empty();
+    plan.removesMaterial = targetRemoves != ownCut;
+  } else if (where.parent && childRole(*where.parent, where.index) == roleForMode(mode)) {
+    // 2. Beside a target that already plays the mode's role: what it does.
     plan.parent = where.parent->id;
     plan.index = where.index + 1;
     plan.sentence = verbPhrase(mode, *where.parent);
-    return plan;
+    ownCut = mode == PlaceMode::Cut;
+    plan.removesMaterial = targetRemoves;
+  } else {
+    // 3. A new operation in the target's place (what the target did), the part its second child.
+    plan.wrapped = target;
+    plan.wrapKind = kind;
+    plan.sentence = verbPhrase(mode, *node) + " (a new " + kindName(kind) + " takes its place)";
+    ownCut = mode == PlaceMode::Cut;
+    plan.removesMaterial = targetRemoves != ownCut;
   }
-  // 3. A new operation in the target's place.
-  plan.wrapped = target;
-  plan.wrapKind = kind;
-  plan.sentence = verbPhrase(mode, *node) + " (a new " + kindName(kind) + " takes its place)";
+  // Inside a cutter (an odd number of cutters above it) a part's material goes the other way
+  // than its own role says: the sentence says so.
+  if (plan.removesMaterial != ownCut)
+    plan.sentence += ownCut ? ", inside a cutter: its material stays"
+                            : ", inside a cutter: it takes material away";
   return plan;
 }
 

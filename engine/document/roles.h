@@ -61,6 +61,10 @@ std::vector<NodeId> ghostsOf(const NodePtr& root, const std::vector<NodeId>& sel
 enum class PlaceMode { Add, Cut, Intersect };
 // "add", "cut", "intersect".
 const char* placeModeName(PlaceMode mode);
+// The mode that keeps what a part does: cut for a cutter, intersect for a child of an
+// intersection, add for the rest (a base or the root placed elsewhere adds). Moved and pasted
+// parts keep their role unless the artist picks another.
+PlaceMode modeKeepingRole(ChildRole role);
 // The operation kind whose Boolean the mode applies (from the kind table).
 NodeKind operationKindFor(PlaceMode mode);
 
@@ -72,7 +76,11 @@ struct PlacePlan {
   int index = -1;      // before this child of `parent` (-1: at the end)
   NodeId wrapped = 0;  // the node a new operation takes the place of (rule 3)
   NodeKind wrapKind = NodeKind::Union;
-  std::string sentence;
+  // Whether the part's material ends up taken away from the result (removesMaterial once
+  // placed): a cutter, or a part that adds to or intersects a cutter.
+  bool removesMaterial = false;
+  std::string sentence;  // ends with what happens to the material when it is not what the
+                         // mode says (a part that adds inside a cutter takes material away)
 };
 // Throws strata::Error when `target` is not in the tree.
 PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode);

@@ -363,11 +363,21 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
       }
       mesh = made;
     }
-    Bounds bounds;
-    for (const auto& p : mesh->positions) bounds.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
-    checkLeafPlacement(*node, world, bounds);
-    ctx.pending.push_back(Context::PendingLeaf{v.key, mesh, world, uint32_t(leafId),
-                                               smallerThanCellWarning(*node, bounds, ctx.grid.h)});
+    if (mesh->triangles.empty()) {
+      // A mesh node kept without its file (meshMissing: MissingMeshes::Keep): nothing, on any
+      // backend, and said.
+      cache_[v.key] =
+          CacheEntry{backend_->empty(ctx.grid), generation_,
+                     "mesh node '" + node->name + "' has no mesh (its file \"" + node->meshPath +
+                         "\" could not be read): nothing of it is evaluated"};
+      hit = cache_.find(v.key);
+    } else {
+      Bounds bounds;
+      for (const auto& p : mesh->positions) bounds.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+      checkLeafPlacement(*node, world, bounds);
+      ctx.pending.push_back(Context::PendingLeaf{
+          v.key, mesh, world, uint32_t(leafId), smallerThanCellWarning(*node, bounds, ctx.grid.h)});
+    }
   }
   if (ctx.collecting) return v;
   if (hit == cache_.end()) {

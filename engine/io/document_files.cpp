@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 Document openDocument(const std::string& path, std::vector<std::string>* warnings) {
   SceneLoadReport report;
-  Scene scene = loadScene(path, &report);
+  Scene scene = loadScene(path, &report, {}, MissingMeshes::Keep);
   if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
   return Document(std::move(scene), path);
 }

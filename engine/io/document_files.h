@@ -13,7 +13,8 @@
 namespace strata {
 
 // Loads a scene file (loadScene) as a clean document belonging to `path`; warnings, if any, are
-// appended to `warnings`. Throws strata::Error.
+// appended to `warnings`. A mesh file that cannot be read leaves its node without its mesh
+// (MissingMeshes::Keep, said in a warning): the rest of the work opens. Throws strata::Error.
 Document openDocument(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 // Saves to document.path(); throws strata::Error when the document has none.

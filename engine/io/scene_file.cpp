@@ -13,10 +13,10 @@
 namespace strata {
 
 Scene loadScene(const std::string& path, SceneLoadReport* report,
-                const MeshReadOptions& meshOptions) {
+                const MeshReadOptions& meshOptions, MissingMeshes missing) {
   std::string text = readWholeFile(path);
   std::string baseDir = std::filesystem::path(path).parent_path().string();
-  return parseScene(text, path, baseDir, report, meshOptions);
+  return parseScene(text, path, baseDir, report, meshOptions, missing);
 }
 
 void saveScene(const Scene& scene, const std::string& path) {

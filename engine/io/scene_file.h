@@ -25,14 +25,23 @@ struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving
 };
 
+// What loading does with a mesh file that cannot be read (missing, moved, damaged).
+enum class MissingMeshes {
+  Refuse,  // the scene is refused, naming the file (the command line: a batch must not guess)
+  Keep,    // the node is kept with its path and recorded hash but an empty mesh (nothing of it
+           // is evaluated), and a warning says so: the editor opens the rest of the work
+};
+
 // Reads and validates a scene file, loading the meshes it references.
 Scene loadScene(const std::string& path, SceneLoadReport* report = nullptr,
-                const MeshReadOptions& meshOptions = {});
+                const MeshReadOptions& meshOptions = {},
+                MissingMeshes missing = MissingMeshes::Refuse);
 
 // Parses scene JSON text. `sourceName` is used in messages; mesh paths resolve against
 // `baseDir`.
 Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& baseDir,
-                 SceneLoadReport* report = nullptr, const MeshReadOptions& meshOptions = {});
+                 SceneLoadReport* report = nullptr, const MeshReadOptions& meshOptions = {},
+                 MissingMeshes missing = MissingMeshes::Refuse);
 
 // Serialises a scene; mesh paths are written as stored in the nodes.
 std::string sceneToJson(const Scene& scene);

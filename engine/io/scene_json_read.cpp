@@ -262,8 +262,12 @@ std::string typeList() {
 class SceneReader {
  public:
   SceneReader(const std::string& source, const std::string& baseDir, SceneLoadReport* report,
-              const MeshReadOptions& meshOptions)
-      : source_(source), baseDir_(baseDir), report_(report), meshOptions_(meshOptions) {}
+              const MeshReadOptions& meshOptions, MissingMeshes missing)
+      : source_(source),
+        baseDir_(baseDir),
+        report_(report),
+        meshOptions_(meshOptions),
+        missing_(missing) {}
 
   Scene read(const json& doc) {
     if (!doc.is_object()) fail("", "expected a JSON object at the top level, got " + describe(doc));
@@ -784,6 +788,7 @@ class SceneReader {
     struct Loaded {
       std::shared_ptr<const TriangleMesh> mesh;
       std::string hash;
+      std::string error;  // why it could not be read (MissingMeshes::Keep)
     };
     std::map<std::string, Loaded> cache;  // by resolved path: each file is read once
     for (size_t index : meshEntries_) {
@@ -802,11 +807,25 @@ class SceneReader {
           loaded.hash = hashFile(resolved);
           for (const std::string& w : meshReport.warnings) warn(at + "/path", w);
         } catch (const Error& error) {
-          fail(at + "/path", error.what());
+          if (missing_ == MissingMeshes::Refuse) fail(at + "/path", error.what());
+          // Kept without its mesh: an empty one (readers never give one) marks it missing.
+          loaded.mesh = std::make_shared<const TriangleMesh>();
+          loaded.hash.clear();
+          loaded.error = error.what();
         }
         found = cache.emplace(resolved, std::move(loaded)).first;
       }
       node.mesh = found->second.mesh;
+      if (!found->second.error.empty()) {
+        warn(at + "/path", "mesh node " + std::to_string(node.id) +
+                               (node.name.empty() ? "" : " \"" + node.name + "\"") +
+                               " is kept "
+                               "without its mesh (" +
+                               found->second.error +
+                               "): nothing of it is evaluated, and its path and hash are saved as "
+                               "they were; put the file back, or replace or delete the node");
+        continue;  // the recorded hash stays: it still names the content meant
+      }
       std::string label = "mesh node " + std::to_string(node.id) +
                           (node.name.empty() ? "" : " \"" + node.name + "\"");
       if (node.meshHash.empty())
@@ -824,6 +843,7 @@ class SceneReader {
   std::string baseDir_;
   SceneLoadReport* report_;
   MeshReadOptions meshOptions_;
+  MissingMeshes missing_;
   std::vector<Entry> entries_;  // in document order; the root first
   std::unordered_map<NodeId, size_t> byId_;
   std::vector<size_t> meshEntries_;
@@ -832,9 +852,10 @@ class SceneReader {
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& sourceName, const std::string& baseDir,
-                 SceneLoadReport* report, const MeshReadOptions& meshOptions) {
+                 SceneLoadReport* report, const MeshReadOptions& meshOptions,
+                 MissingMeshes missing) {
   json doc = parseJson(text, sourceName);
-  return SceneReader(sourceName, baseDir, report, meshOptions).read(doc);
+  return SceneReader(sourceName, baseDir, report, meshOptions, missing).read(doc);
 }
 
 }  // namespace strata

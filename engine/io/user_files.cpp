@@ -96,7 +96,7 @@ bool recoveryFileExists(const std::string& recoveryPath) {
 
 Document readRecoveryFile(const std::string& recoveryPath, std::vector<std::string>* warnings) {
   SceneLoadReport report;
-  Scene scene = loadScene(recoveryPath, &report);
+  Scene scene = loadScene(recoveryPath, &report, {}, MissingMeshes::Keep);
   if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
   std::string origin;
   std::ifstream in(originPath(recoveryPath));

@@ -180,9 +180,9 @@ TEST(ImportAndPlace, AlignToTheActivePartAndDropToGround) {
 }
 
 // The demo's trap, and the modes: a part added onto the base of a difference with the palette
-// in "add" mode adds material (it does not become a cutter); in "cut" mode it cuts; a paste does
-// what the mode says; a drag onto a cutter with Ctrl held cuts beside it, and the drop's
-// tooltip sentence says so before the release. Each is one undo step.
+// in "add" mode adds material (it does not become a cutter); in "cut" mode it cuts; a paste
+// does what its original did; a drag onto a cutter with Ctrl held cuts beside it, and the
+// drop's tooltip sentence says so before the release. Each is one undo step.
 TEST(Roles, NewPastedAndDroppedPartsDoWhatTheModeSays) {
   EditorState state;
   NodeId plate = addPrimitive(state, NodeKind::Box);
@@ -228,6 +228,59 @@ TEST(Roles, NewPastedAndDroppedPartsDoWhatTheModeSays) {
   const NodeId root = state.document.root()->id;
   placementSentence(state, rib, PlaceMode::Add, root, &refused);
   EXPECT_TRUE(refused);
+}
+
+// An artist's report: with the palette on "add", a cutter dragged onto another row or pasted
+// became a solid and filled its hole. Moved and pasted parts keep their role unless a modifier
+// picks another (Ctrl cut, Shift intersect, Alt add); new parts from the palette take its mode.
+TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {plate};
+  const NodeId rib = [&] {
+    state.placeMode = PlaceMode::Add;
+    return addPrimitive(state, NodeKind::Box);
+  }();
+  ASSERT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  ASSERT_EQ(state.placeMode, PlaceMode::Add);
+  // Dragged with no modifier: it keeps cutting, wherever it lands; the sentence says so.
+  EXPECT_EQ(dropMode(state, 0, hole), PlaceMode::Cut);
+  EXPECT_EQ(dropMode(state, 0, rib), PlaceMode::Add);
+  EXPECT_EQ(dropMode(state, 0), PlaceMode::Add);  // a palette item: the palette's mode
+  EXPECT_EQ(dropMode(state, kDropAdd, hole), PlaceMode::Add);
+  EXPECT_EQ(dropMode(state, kDropIntersect, hole), PlaceMode::Intersect);
+  EXPECT_EQ(dropMode(state, kDropCut, rib), PlaceMode::Cut);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId difference = where.parent->id;
+  bool refused = true;
+  const std::string sentence =
+      placementSentence(state, difference, dropMode(state, 0, hole), hole, &refused);
+  EXPECT_FALSE(refused);
+  EXPECT_NE(sentence.find("cuts"), std::string::npos) << sentence;
+  dropNode(state, hole, difference, dropMode(state, 0, hole));
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  // Copied and pasted with the palette on "add": the copy cuts too.
+  state.selection = {hole};
+  copySelection(state);
+  state.selection = {hole};
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  EXPECT_EQ(roleOf(state.document.root(), state.selection[0]), ChildRole::Cut);
+  EXPECT_TRUE(removesMaterial(state.document.root(), state.selection[0]));
+  // And a copy of the rib, pasted onto the hole, adds (into a new union in the hole's place:
+  // inside a cutter, its material is taken away, and the log says so).
+  state.selection = {rib};
+  copySelection(state);
+  state.selection = {hole};
+  pasteClipboard(state);
+  const NodeId ribCopy = state.selection[0];
+  EXPECT_EQ(roleOf(state.document.root(), ribCopy), ChildRole::Add);
+  EXPECT_TRUE(removesMaterial(state.document.root(), ribCopy));
+  EXPECT_NE(state.log.back().text.find("inside a cutter"), std::string::npos)
+      << state.log.back().text;
 }
 
 TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {

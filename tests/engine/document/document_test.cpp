@@ -125,6 +125,32 @@ TEST(Document, DragIsOneUndoStep) {
   EXPECT_FALSE(doc.canUndo());
 }
 
+// Escape during a drag: the document is as before it, clean if it was, with no undo step.
+TEST(Document, ACancelledDragLeavesNoTraceAndNoUndoStep) {
+  Document doc;
+  NodeId box = doc.addNode(NodeKind::Box);
+  const uint64_t before = doc.revision();
+  const size_t steps = doc.canUndo() ? 1 : 0;
+  doc.beginInteraction();
+  for (int i = 1; i <= 5; ++i) {
+    Transform t;
+    t.translate.x = i;
+    doc.setTransform(box, t);
+  }
+  doc.cancelInteraction();
+  EXPECT_FALSE(doc.interacting());
+  EXPECT_EQ(findNode(doc.root(), box)->transform.translate.x, 0.0);
+  EXPECT_EQ(doc.revision(), before);
+  EXPECT_EQ(doc.undoLabel().rfind("add", 0), 0u) << doc.undoLabel();  // the add, not a move
+  ASSERT_EQ(steps, 1u);
+  ASSERT_TRUE(doc.undo());
+  EXPECT_FALSE(doc.canUndo());
+  // A drag that changed nothing cancels to nothing.
+  doc.beginInteraction();
+  doc.cancelInteraction();
+  EXPECT_FALSE(doc.interacting());
+}
+
 TEST(Document, DropOnEmptySpaceWrapsANonUnionRoot) {
   Scene scene;
   scene.root = makeOperationNode(

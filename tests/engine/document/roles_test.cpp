@@ -289,9 +289,16 @@ TEST(Roles, PartsPlacedOnEveryNodeOfEveryBundledSceneDoWhatTheModeSays) {
         part->transform.translate = centre;
         NodePtr fresh = withFreshIds(part, maxNodeId(scene.root) + 1);
         Scene placed = scene;
-        placed.root =
-            placePart(scene.root, planPlacement(scene.root, target, mode), fresh, fresh->id + 1);
+        const PlacePlan plan = planPlacement(scene.root, target, mode);
+        placed.root = placePart(scene.root, plan, fresh, fresh->id + 1);
         expectRolesKept(scene.root, placed.root, fresh->id, "place");
+        // The plan knows, before the drop, whether the part's material will be taken away, and
+        // its sentence says so where that is not what the part's own role says.
+        const bool removes = removesMaterial(placed.root, fresh->id);
+        EXPECT_EQ(plan.removesMaterial, removes) << plan.sentence;
+        const bool ownCut = roleOf(placed.root, fresh->id) == ChildRole::Cut;
+        EXPECT_EQ(plan.sentence.find("inside a cutter") != std::string::npos, removes != ownCut)
+            << plan.sentence;
         if (!findNode(scene.root, target)->visible) continue;
         // Placed inside a subtree that instances use in another role (or under a shell), the
         // part acts both ways: no direction to check.
