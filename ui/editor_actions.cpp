@@ -559,8 +559,11 @@ void setSelectionOperation(EditorState& state, NodeKind kind) {
     NodePtr n = findNode(state.document.root(), id);
     if (!n || !isOperation(n->kind)) continue;
     const Bounds held = selectionBounds(state.document.root(), {id});
+    const std::string changes = roleChangesOfKind(*n, kind);
     guarded(state, [&] {
       state.document.setOperation(id, kind);
+      if (!changes.empty())
+        logInfo(state, displayName(*n) + " is a " + kindName(kind) + ": " + changes);
       // Becoming a pattern: copies spaced for what it holds.
       if (patternOf(kind) != Pattern::None && patternOf(n->kind) != patternOf(kind))
         state.document.setPattern(id, patternFor(state, kind, held));

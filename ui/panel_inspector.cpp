@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/document/commands.h"
+#include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
@@ -439,7 +440,12 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       if (!rowStarts[i]) ImGui::SameLine();
       // The selection's operations become `op` (a pattern spaced for what it holds).
       if (ImGui::RadioButton(kindLabel(op), node->kind == op)) setSelectionOperation(state, op);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(op).summary);
+      if (ImGui::IsItemHovered()) {
+        // What the click would do to the children's roles, before it is made.
+        const std::string changes = op == node->kind ? "" : roleChangesOfKind(*node, op);
+        ImGui::SetTooltip("%s%s%s", nodeKindInfo(op).summary, changes.empty() ? "" : "\n",
+                          changes.c_str());
+      }
     }
     ImGui::TextDisabled("%zu children%s", node->children.size(),
                         node->kind == NodeKind::Difference ? "; the first minus the others" : "");

@@ -165,6 +165,36 @@ const char* placeModeName(PlaceMode mode) {
   }
 }
 
+std::string roleChangesOfKind(const Node& op, NodeKind kind) {
+  Node changed = op;
+  changed.kind = kind;
+  // Children grouped by the role they would take, those whose role changes only.
+  std::vector<std::string> byRole[5];
+  const int count = int(op.children.size());
+  for (int i = 0; i < count; ++i) {
+    const ChildRole before = childRole(op, i), after = childRole(changed, i);
+    if (before != after) byRole[int(after)].push_back(quoted(*op.children[size_t(i)]));
+  }
+  const auto listed = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (size_t i = 0; i < names.size(); ++i)
+      text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    return text;
+  };
+  std::string sentence;
+  const auto add = [&](ChildRole role, const char* single, const char* plural) {
+    const std::vector<std::string>& names = byRole[int(role)];
+    if (names.empty()) return;
+    sentence += (sentence.empty() ? "" : "; ") + listed(names) + " " +
+                (names.size() == 1 ? single : plural);
+  };
+  add(ChildRole::Base, "becomes the base", "become the base");
+  add(ChildRole::Add, "will add", "will add");
+  add(ChildRole::Cut, "will cut", "will cut");
+  add(ChildRole::Intersect, "will intersect", "will intersect");
+  return sentence;
+}
+
 PlaceMode modeKeepingRole(ChildRole role) {
   switch (role) {
     case ChildRole::Cut:

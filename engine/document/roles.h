@@ -43,6 +43,9 @@ ChildRole roleOf(const NodePtr& root, NodeId id);
 const char* roleWord(ChildRole role);
 // For sentences: "is the root", "is the base", "adds", "cuts", "intersects".
 const char* rolePhrase(ChildRole role);
+// What turning operation `op` into one of `kind` does to its children's roles, for the artist
+// before the click ("\"hub\" and \"ribs\" will cut \"base plate\""); "" when no role changes.
+std::string roleChangesOfKind(const Node& op, NodeKind kind);
 // Whether node `id`'s material ends up taken away from the result: an odd number of cutters
 // on its path from the root (itself included). Intersections count as keeping.
 bool removesMaterial(const NodePtr& root, NodeId id);

@@ -1,11 +1,12 @@
 #!/bin/bash
 # Where one export's host side goes on the device host (sixteenth session, issues #13 and #15):
 # `perf record -e cycles:u` of `strata export SCENE --resolution N --backend cuda`, then the
-# symbols by self and by children time. Run after a script that unpacked .devrt2 (on-device.sh
-# sourced, bin/strata unpacked), e.g. run_host_ab.sh. Carried in .devrt2: bin/perf.tar.xz
-# (/usr/bin/perf and the libraries it loads).
+# symbols by self and by children time. Carried in .devrt2: the runtime (on-device.sh),
+# bin/strata.xz, bin/perf.tar.xz (/usr/bin/perf and the libraries it loads).
 #   usage: run_profile_host.sh SCENE RESOLUTION   (results in $OUT/r/prof-SCENE-N*.txt)
 scene=${1:-armadillo_bunny} res=${2:-4096}
+source .devrt2/on-device.sh
+[ -x .devrt2/bin/strata ] || { xz -dkf .devrt2/bin/strata.xz && chmod +x .devrt2/bin/strata; }
 mkdir -p /tmp/perf && tar xJf .devrt2/bin/perf.tar.xz -C /tmp/perf
 P="env LD_LIBRARY_PATH=/tmp/perf:$LD_LIBRARY_PATH /tmp/perf/perf"
 B=.devrt2/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R

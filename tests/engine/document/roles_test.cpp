@@ -89,6 +89,19 @@ TEST(Roles, TheThreePlacementRules) {
   EXPECT_EQ(fill.sentence, "becomes the base of \"difference 9\"");
 }
 
+// Switching an operation's Boolean changes its children's roles: said before the click.
+TEST(Roles, TheSentenceOfAKindChangeNamesEveryChildWhoseRoleChanges) {
+  const NodePtr body = makeOperationNode(
+      NodeKind::Union, 1,
+      {makePrimitiveNode(NodeKind::Box, 2), makePrimitiveNode(NodeKind::Cylinder, 3),
+       makePrimitiveNode(NodeKind::Sphere, 4)});
+  EXPECT_EQ(roleChangesOfKind(*body, NodeKind::Difference),
+            "\"box 2\" becomes the base; \"cylinder 3\" and \"sphere 4\" will cut");
+  EXPECT_EQ(roleChangesOfKind(*body, NodeKind::Intersection),
+            "\"box 2\", \"cylinder 3\" and \"sphere 4\" will intersect");
+  EXPECT_EQ(roleChangesOfKind(*body, NodeKind::Union), "");
+}
+
 TEST(Roles, RemovingABaseWithCuttersLeavesAnEmptyBase) {
   NodePtr root = sampleTree();
   NodePtr removed = removeNode(root, 4);
