@@ -9,6 +9,7 @@
 #include "engine/io/mesh_formats.h"
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 
@@ -39,6 +40,15 @@ int exportDistributed(const Scene& scene, const CliArgs& args, const std::string
   const bool root = group.rank() == 0;
   const std::string who =
       "process " + std::to_string(group.rank()) + " of " + std::to_string(group.size());
+  // mpirun binds each process to a core or two by default: process 0 would then merge, write and
+  // check the whole mesh on those (several times slower: tests/gpu/RESULTS.md, sixteenth
+  // session). Said, with the remedy; the binding is the launcher's to choose.
+  if (root && usableCores() < onlineCores())
+    std::fprintf(stderr,
+                 "strata: warning: process 0 may run on %d of the %d cores here (mpirun binds "
+                 "processes to cores unless told not to): the merge, write and check of the whole "
+                 "mesh run on those; start mpirun with --bind-to none\n",
+                 usableCores(), onlineCores());
   try {
     DistributedShare share;
     std::vector<std::string> notices;

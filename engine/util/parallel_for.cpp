@@ -1,6 +1,8 @@
 #include "engine/util/parallel_for.h"
 #include "engine/util/thread_priority.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
@@ -20,10 +22,24 @@ int defaultWorkers() {
     int n = std::atoi(env);
     if (n >= 1) return n;
   }
-  unsigned hw = std::thread::hardware_concurrency();
-  return hw == 0 ? 1 : static_cast<int>(hw);
+  return usableCores();
 }
 }  // namespace
+
+int usableCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
+    const int n = CPU_COUNT(&set);
+    if (n >= 1) return n;
+  }
+  return onlineCores();
+}
+
+int onlineCores() {
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw == 0 ? 1 : static_cast<int>(hw);
+}
 
 int workerCount() {
   int n = g_override.load();

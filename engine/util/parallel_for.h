@@ -14,8 +14,12 @@
 namespace strata {
 
 // Number of threads parallelFor uses: setWorkerCount's, else STRATA_THREADS if set (>= 1) when
-// first asked, else the hardware count.
+// first asked, else usableCores().
 int workerCount();
+// The cores this process may run on (its CPU affinity: fewer than the machine's where a launcher
+// such as mpirun bound it), and the cores the machine has online.
+int usableCores();
+int onlineCores();
 // Overrides the worker count for this process (1 = serial). 0 restores the default.
 void setWorkerCount(int threads);
 
