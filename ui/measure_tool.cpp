@@ -2,9 +2,6 @@
 
 #include <imgui.h>
 
-#include <utility>
-#include <vector>
-
 #include <glm/geometric.hpp>
 
 #include <cmath>

@@ -37,11 +37,15 @@ struct PendingDrop {
 std::string gShownHint;
 bool gShownHintRefused = false;
 
-int heldModifiers() {
+}  // namespace
+
+int heldDropModifiers() {
   const ImGuiIO& io = ImGui::GetIO();
   return (io.KeyShift ? kDropIntersect : 0) | (io.KeyCtrl ? kDropCut : 0) |
          (io.KeyAlt ? kDropAdd : 0);
 }
+
+namespace {
 
 // The drop target of the last item (a row, or the empty space: target 0): says what the
 // dragged node or palette item would do there, with the modifiers held now, and accepts it
@@ -51,7 +55,7 @@ void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
   if (!payload) return;
   NodeId dragged = 0;
   if (payload->IsDataType(kPayload)) std::memcpy(&dragged, payload->Data, sizeof(NodeId));
-  const PlaceMode mode = dropMode(state, heldModifiers(), dragged);
+  const PlaceMode mode = dropMode(state, heldDropModifiers(), dragged);
   bool refused = false;
   const std::string sentence = placementSentence(state, target, mode, dragged, &refused);
   drop->hint = refused ? "can't drop here: " + sentence : sentence;

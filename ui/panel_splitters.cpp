@@ -94,8 +94,6 @@ bool drawSplitters(PanelLayout& layout) {
                ImVec2(layout.rightWidth, kHandle), false, &ended),
        layout.previewHeight, &layout.wanted.previewHeight);
   clampLayout(layout, vp->Size.x, vp->Size.y);
-  // What is remembered is what was shown when the drag ended.
-  if (ended) layout.wanted = static_cast<const PanelSizes&>(layout);
   return ended;
 }
 

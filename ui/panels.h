@@ -26,6 +26,9 @@ struct PanelLayout : PanelSizes {
   PanelSizes wanted;
 };
 
+// The modifier keys held now, as dropMode's bits (editor_actions.h; ImGui's keyboard state).
+int heldDropModifiers();
+
 // Menu bar (File, Edit, View) and the keyboard shortcuts of its items.
 void drawMainMenu(EditorState& state);
 void handleShortcuts(EditorState& state);

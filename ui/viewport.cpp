@@ -193,10 +193,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       !ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) {
     int item = 0;
     std::memcpy(&item, payload->Data, sizeof(item));
-    drop_ =
-        PendingDrop{mouse, item,
-                    dropMode(state, (io.KeyShift ? kDropIntersect : 0) |
-                                        (io.KeyCtrl ? kDropCut : 0) | (io.KeyAlt ? kDropAdd : 0))};
+    drop_ = PendingDrop{mouse, item, dropMode(state, heldDropModifiers())};
   }
   // A box selection keeps the mouse until released, over panels too.
   if (boxFrom_) {

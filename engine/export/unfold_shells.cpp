@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/util/parallel_for.h"
+#include "engine/util/union_find.h"
 
 namespace strata {
 namespace {
@@ -67,30 +68,8 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
 
   // Shells: triangles joined through shared vertices, numbered by their first vertex (a root is
   // its component's smallest vertex: shells are the roots' ranks).
-  std::vector<uint32_t> shellOf(n);
-  constexpr size_t kRankChunk = size_t(1) << 18;
-  std::vector<uint32_t> rootsBefore((n + kRankChunk - 1) / kRankChunk + 1, 0);
-  parallelFor(0, int64_t(rootsBefore.size()) - 1, 1, [&](int64_t b, int64_t e) {
-    for (int64_t chunk = b; chunk < e; ++chunk)
-      for (size_t i = size_t(chunk) * kRankChunk; i < std::min(n, size_t(chunk + 1) * kRankChunk);
-           ++i)
-        rootsBefore[size_t(chunk) + 1] += rootOf[i] == i;
-  });
-  for (size_t chunk = 1; chunk < rootsBefore.size(); ++chunk)
-    rootsBefore[chunk] += rootsBefore[chunk - 1];
-  const uint32_t shells = rootsBefore.back();
-  parallelFor(0, int64_t(rootsBefore.size()) - 1, 1, [&](int64_t b, int64_t e) {
-    for (int64_t chunk = b; chunk < e; ++chunk) {
-      uint32_t next = rootsBefore[size_t(chunk)];
-      for (size_t i = size_t(chunk) * kRankChunk; i < std::min(n, size_t(chunk + 1) * kRankChunk);
-           ++i)
-        if (rootOf[i] == i) shellOf[i] = next++;
-    }
-  });
-  parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
-    for (size_t i = size_t(b); i < size_t(e); ++i)
-      if (rootOf[i] != i) shellOf[i] = shellOf[rootOf[i]];  // a root's is set: only read
-  });
+  uint32_t shells = 0;
+  const std::vector<uint32_t> shellOf = numberSetsByRoot(rootOf, &shells);
 
   // Each shell's six volumes, anchored and placed, relative to its first triangle's first
   // anchor: summed in parallel over fixed chunks of triangles (runs of one shell in a chunk

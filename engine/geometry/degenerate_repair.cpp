@@ -196,8 +196,7 @@ size_t repairRound(TriangleMesh& mesh, const StoredPositions& at,
     const Triangle& n = mesh.triangles[size_t(ni)];
     const uint32_t y = n[size_t(cornerOf(n, u) + 1) % 3];
     if (x == y || isTouched({x, y})) continue;
-    // Link condition: u and v share no neighbour but x and y; and neither is left with fewer
-    // than three triangles (a tetrahedron would flatten into two coincident triangles).
+    // Link condition: u and v share no neighbour but x and y.
     std::unordered_set<uint32_t> neighboursOfU;
     for (uint32_t s : aroundOf(u))
       for (uint32_t w : mesh.triangles[s])

@@ -68,7 +68,7 @@ std::vector<uint32_t> canonicalVertices(const std::vector<glm::dvec3>& positions
   };
   const size_t chunks =
       std::max<size_t>(1, std::min<size_t>(size_t(workerCount()) * 4, (n + 65535) / 65536));
-  const size_t chunkSize = (n + chunks - 1) / std::max<size_t>(chunks, 1);
+  const size_t chunkSize = (n + chunks - 1) / chunks;
   // counts[chunk * partitions + p]: the chunk's vertices in partition p, then where they go.
   std::vector<uint32_t> counts(chunks * partitions, 0);
   parallelFor(0, int64_t(chunks), 1, [&](int64_t b, int64_t e) {
@@ -492,41 +492,19 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
   c.nonManifoldEdges = nonManifold.load();
   c.misorientedEdges = misoriented.load();
 
-  // Number the components densely, in order of their first triangle: a component's root is
-  // its smallest triangle (union_find.h), so its number is the count of roots before it.
+  // Number the components densely, in order of their first triangle (a component's root is its
+  // smallest triangle: union_find.h).
   const size_t triangleCount = mesh.triangles.size();
-  std::vector<uint32_t> componentOf(triangleCount);
   constexpr int64_t kChunk = 65536;
   const size_t chunks = (triangleCount + size_t(kChunk) - 1) / size_t(kChunk);
-  std::vector<uint32_t> rootsBefore(chunks + 1, 0);
-  parallelFor(0, int64_t(chunks), 1, [&](int64_t b, int64_t e) {
-    checkCancel();
-    for (int64_t chunk = b; chunk < e; ++chunk) {
-      uint32_t roots = 0;
-      const size_t end = std::min(triangleCount, size_t(chunk + 1) * size_t(kChunk));
-      for (size_t t = size_t(chunk) * size_t(kChunk); t < end; ++t) {
-        componentOf[t] = components.find(uint32_t(t));
-        roots += componentOf[t] == t;
-      }
-      rootsBefore[size_t(chunk) + 1] = roots;
-    }
-  });
-  for (size_t chunk = 0; chunk < chunks; ++chunk) rootsBefore[chunk + 1] += rootsBefore[chunk];
-  c.components = int(rootsBefore[chunks]);
-  // rank[root]: the root's number (written at the roots only), then every triangle's.
-  std::vector<uint32_t> rank(triangleCount);
-  parallelFor(0, int64_t(chunks), 1, [&](int64_t b, int64_t e) {
-    for (int64_t chunk = b; chunk < e; ++chunk) {
-      uint32_t next = rootsBefore[size_t(chunk)];
-      const size_t end = std::min(triangleCount, size_t(chunk + 1) * size_t(kChunk));
-      for (size_t t = size_t(chunk) * size_t(kChunk); t < end; ++t)
-        if (componentOf[t] == t) rank[t] = next++;
-    }
-  });
+  std::vector<uint32_t> componentOf(triangleCount);
   parallelFor(0, int64_t(triangleCount), kChunk, [&](int64_t b, int64_t e) {
-    for (int64_t t = b; t < e; ++t) componentOf[size_t(t)] = rank[componentOf[size_t(t)]];
+    checkCancel();
+    for (int64_t t = b; t < e; ++t) componentOf[size_t(t)] = components.find(uint32_t(t));
   });
-  rank = std::vector<uint32_t>();
+  uint32_t componentCount = 0;
+  componentOf = numberSetsByRoot(componentOf, &componentCount);
+  c.components = int(componentCount);
 
   if (!c.watertight() || mesh.triangles.empty()) return c;
   checkCancel();

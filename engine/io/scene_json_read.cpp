@@ -816,18 +816,14 @@ class SceneReader {
         found = cache.emplace(resolved, std::move(loaded)).first;
       }
       node.mesh = found->second.mesh;
+      std::string label = "mesh node " + std::to_string(node.id) +
+                          (node.name.empty() ? "" : " \"" + node.name + "\"");
       if (!found->second.error.empty()) {
-        warn(at + "/path", "mesh node " + std::to_string(node.id) +
-                               (node.name.empty() ? "" : " \"" + node.name + "\"") +
-                               " is kept "
-                               "without its mesh (" +
-                               found->second.error +
+        warn(at + "/path", label + " is kept without its mesh (" + found->second.error +
                                "): nothing of it is evaluated, and its path and hash are saved as "
                                "they were; put the file back, or replace or delete the node");
         continue;  // the recorded hash stays: it still names the content meant
       }
-      std::string label = "mesh node " + std::to_string(node.id) +
-                          (node.name.empty() ? "" : " \"" + node.name + "\"");
       if (node.meshHash.empty())
         warn(at, label + " records no hash for \"" + node.meshPath +
                      "\", so changes to the file cannot be detected (its hash is now " +

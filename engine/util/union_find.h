@@ -58,4 +58,11 @@ struct ConcurrentUnionFind {
   }
 };
 
+// Dense numbers for the sets of a partition given each element's root, where a root is its
+// set's smallest member (as both finds above leave it): element i gets the rank of its root
+// among all roots in index order, so sets are numbered 0, 1, ... in order of their first member.
+// *sets receives the count. Parallel over fixed chunks (parallel_for.h); the same on any
+// thread count.
+std::vector<uint32_t> numberSetsByRoot(const std::vector<uint32_t>& rootOf, uint32_t* sets);
+
 }  // namespace strata
