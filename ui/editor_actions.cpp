@@ -393,12 +393,34 @@ void deleteSelection(EditorState& state) {
 
 void duplicateSelection(EditorState& state) {
   if (state.selection.empty()) return;
+  // Each copy does what its original does (Document::duplicate) and sits one move-snap step
+  // (the ground grid's spacing while the snap follows it) along world +x from it: a copy on top
+  // of its original would change nothing that can be seen. Pressed again on the copies, the
+  // steps add up to a row.
+  const double step = state.snap.step;
   std::vector<NodeId> copies;
   state.document.beginInteraction();
   for (NodeId id : state.selection)
-    guarded(state, [&] { copies.push_back(state.document.duplicate(id)); });
+    guarded(state, [&] {
+      const NodeId copy = state.document.duplicate(id);
+      copies.push_back(copy);
+      const NodePtr& root = state.document.root();
+      // A world move d is the local move P^-1 d, P the parent's object-to-world matrix.
+      const glm::dvec3 local =
+          glm::dvec3(glm::inverse(parentWorldMatrix(root, copy)) * glm::dvec4(step, 0, 0, 0));
+      Transform t = findNode(root, copy)->transform;
+      t.translate += local;
+      state.document.setTransform(copy, t);
+    });
   state.document.endInteraction();
-  if (!copies.empty()) state.selection = copies;
+  if (copies.empty()) return;
+  state.selection = copies;
+  char text[96];
+  std::snprintf(text, sizeof(text), "%s one grid step (%.4g %s) along +x from %s",
+                copies.size() == 1 ? "the copy sits" : "the copies sit", step,
+                unitSymbol(state.document.scene().settings.unit),
+                copies.size() == 1 ? "its original" : "their originals");
+  logInfo(state, text);
 }
 
 void copySelection(EditorState& state) {

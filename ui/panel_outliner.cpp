@@ -12,6 +12,7 @@
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
+#include "ui/text_fit.h"
 #include "ui/theme.h"
 
 namespace strata::ui {
@@ -245,12 +246,23 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
     if (!node->visible) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.5f, 0.52f, 1.0f));
     if (chained) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.55f, 0.6f, 0.68f, 1.0f));
     if (missing) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.72f, 0.3f, 1.0f));
-    open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap,
-                             chained   ? "%s  \u2026 %s"
-                             : missing ? "%s  %s (missing)"
-                                       : "%s  %s",
-                             kindGlyph(node->kind),
-                             node->name.empty() ? "(unnamed)" : node->name.c_str());
+    // A name too long for the column ends in an ellipsis (the operation's kind word after it
+    // keeps its room); the row's tooltip has it whole.
+    const std::string prefix = std::string(kindGlyph(node->kind)) + (chained ? "  \u2026 " : "  ");
+    const std::string suffix = missing ? " (missing)" : "";
+    const float textStart = ImGui::GetCursorScreenPos().x + ImGui::GetFontSize() +
+                            2.0f * ImGui::GetStyle().FramePadding.x;
+    const float kindRoom =
+        isOperation(node->kind) && !chained
+            ? ImGui::CalcTextSize(kindLabel(node->kind)).x + ImGui::GetStyle().ItemSpacing.x
+            : 0.0f;
+    const float nameRoom =
+        clipRight - textStart - kindRoom - ImGui::CalcTextSize((prefix + suffix).c_str()).x;
+    const std::string name =
+        fitWithEllipsis(node->name.empty() ? "(unnamed)" : node->name, nameRoom,
+                        [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
+    open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s",
+                             (prefix + name + suffix).c_str());
     if (missing) ImGui::PopStyleColor();
     if (chained) ImGui::PopStyleColor();
     if (!node->visible) ImGui::PopStyleColor();

@@ -31,7 +31,7 @@ const ShortcutGroup kGroups[] = {
      {{"Ctrl+Z / Ctrl+Y", "undo / redo (Ctrl+Shift+Z too)"},
       {"Ctrl+C / Ctrl+X / Ctrl+V",
        "copy / cut / paste onto the selection (copies keep their role)"},
-      {"Ctrl+D", "duplicate: the copy does what the original does"},
+      {"Ctrl+D", "duplicate: the copy does what the original does, one grid step along +x"},
       {"Alt+D", "instance: a live copy"},
       {"Del", "delete"},
       {"H", "hide / show"},

@@ -31,7 +31,7 @@ void appendBox(const Bounds& b, const glm::vec4& color, std::vector<LineVertex>*
 }
 
 // The ground grid in the z = 0 plane around the scene, fading out towards its rim, with the x
-// (red) and y (green) axes.
+// (red) and y (green) axes. Drawn as the renderer's backdrop: never across a part's face.
 void appendGrid(const Bounds& scene, std::vector<LineVertex>* lines) {
   const double step = groundGridStep(scene);
   glm::dvec3 centre = scene.empty() ? glm::dvec3(0.0) : scene.center();
@@ -387,8 +387,9 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
   const ViewportFrame frame = makeFrame(state, rect, framebufferHeight, pixelScale);
   const ScreenMapping view = mapping(state, rect);
 
-  std::vector<LineVertex> lines, overlay, triangles;
-  if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &lines);
+  std::vector<LineVertex> grid, lines, overlay, triangles;
+  if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &grid);
+  renderer.setBackdrop(std::move(grid));
   if (frame.sectionOn) appendSectionOutline(state, frame, &lines);
   if (!state.selection.empty()) {
     const Bounds& b = cachedSelectionBounds(state);

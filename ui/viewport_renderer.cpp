@@ -425,6 +425,14 @@ void ViewportRenderer::drawBackground(const ViewportFrame& f) {
   backgroundProgram_.set("topColor", glm::vec3(0.30f, 0.32f, 0.36f));
   glBindVertexArray(emptyVao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (!backdrop_.empty()) {  // setBackdrop: no depth, so everything drawn next covers it
+    lineProgram_.use();
+    lineProgram_.set("viewProjection", glm::mat4(f.viewProjection));
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    drawLines(backdrop_, GL_LINES);
+    glDisable(GL_BLEND);
+  }
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
 }
@@ -631,6 +639,7 @@ uint64_t ViewportRenderer::viewKey(const ViewportFrame& f,
   mix(&f.sectionNormal, sizeof(f.sectionNormal));
   mix(&f.sectionOffset, sizeof(f.sectionOffset));
   if (!lines.empty()) mix(lines.data(), lines.size() * sizeof(LineVertex));
+  if (!backdrop_.empty()) mix(backdrop_.data(), backdrop_.size() * sizeof(LineVertex));
   return h | 1;  // never 0 (nothing shown)
 }
 

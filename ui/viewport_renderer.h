@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "engine/ldi/grid.h"
@@ -117,8 +118,12 @@ class ViewportRenderer {
   void setGhosts(const std::vector<Splat>& cutting, const std::vector<Splat>& intersecting);
   size_t ghostCount() const { return ghosts_[0].count + ghosts_[1].count; }
 
-  // `lines` are depth-tested against the surfels (grid, boxes); `overlay` is drawn on top
-  // (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list. All splats of the
+  // Lines drawn over the background only, under every splat and ghost: the ground grid, which is
+  // then never seen across a solid's face (above the ground or below it). Kept until replaced.
+  void setBackdrop(std::vector<LineVertex> lines) { backdrop_ = std::move(lines); }
+
+  // `lines` are depth-tested against the surfels (section outline, boxes); `overlay` is drawn on
+  // top (gizmo); `overlayTriangles` too (gizmo handles), as a triangle list. All splats of the
   // view's level of detail (detailLevel), at once: screenshots and headless renders.
   void draw(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
             const std::vector<LineVertex>& overlay,
@@ -290,7 +295,8 @@ class ViewportRenderer {
   // The level of an edit's first image in `f` (kFirstImageMs): buildLevel_ or coarser, as the
   // measured cost per splat allows; buildLevel_ before any measurement.
   int firstImageLevel(const ViewportFrame& f) const;
-  SplatLayer ghosts_[2];  // cutting, intersecting
+  SplatLayer ghosts_[2];              // cutting, intersecting
+  std::vector<LineVertex> backdrop_;  // setBackdrop
   GLuint leafTexture_ = 0;
   int leafTextureWidth_ = 1;
   int leafCount_ = 1;

@@ -283,6 +283,48 @@ TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
       << state.log.back().text;
 }
 
+// Ctrl+D: the copy does what its original does and sits one move-snap step along world +x
+// from it (under a turned, scaled parent too), so that it is seen; one undo step for all copies.
+TEST(Roles, DuplicatesKeepTheirRoleAndSitOneGridStepAlongX) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  Transform turned;
+  turned.rotateDegrees = glm::dvec3(0.0, 0.0, 90.0);
+  turned.scale = glm::dvec3(2.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(where.parent->id, turned); }));
+  state.snap.step = 0.5;
+  const Bounds plateBefore = selectionBounds(state.document.root(), {plate});
+  const Bounds holeBefore = selectionBounds(state.document.root(), {hole});
+  state.selection = {plate, hole};
+  duplicateSelection(state);
+  ASSERT_EQ(state.selection.size(), 2u);
+  const NodeId plateCopy = state.selection[0], holeCopy = state.selection[1];
+  const NodePtr& root = state.document.root();
+  EXPECT_EQ(roleOf(root, holeCopy), ChildRole::Cut);
+  // The base's copy unites with it in a union in the base's place: both stay material.
+  ASSERT_TRUE(locateNode(root, plateCopy, &where));
+  EXPECT_EQ(roleOf(root, where.parent->id), ChildRole::Base);
+  EXPECT_FALSE(removesMaterial(root, plate));
+  EXPECT_FALSE(removesMaterial(root, plateCopy));
+  const glm::dvec3 step(0.5, 0.0, 0.0);
+  EXPECT_NEAR(
+      glm::distance(selectionBounds(root, {plateCopy}).center(), plateBefore.center() + step), 0.0,
+      1e-9);
+  EXPECT_NEAR(glm::distance(selectionBounds(root, {holeCopy}).center(), holeBefore.center() + step),
+              0.0, 1e-9);
+  EXPECT_NEAR(glm::distance(selectionBounds(root, {hole}).center(), holeBefore.center()), 0.0,
+              1e-9);
+  EXPECT_NE(state.log.back().text.find("one grid step"), std::string::npos)
+      << state.log.back().text;
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), plateCopy));
+  EXPECT_FALSE(findNode(state.document.root(), holeCopy));
+}
+
 TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {
   EditorState state;
   NodeId box = addPrimitive(state, NodeKind::Box);

@@ -1,0 +1,35 @@
+// Names shortened with an ellipsis to fit the outliner's column (ui/text_fit.h).
+#include <gtest/gtest.h>
+
+#include "ui/text_fit.h"
+
+namespace strata::ui {
+namespace {
+
+// Every character (a whole UTF-8 sequence) is 10 pixels wide.
+float charWidth(const std::string& s) {
+  float w = 0.0f;
+  for (unsigned char c : s)
+    if ((c & 0xC0) != 0x80) w += 10.0f;
+  return w;
+}
+
+TEST(TextFit, ShortTextIsKeptAndLongTextEndsWithAnEllipsisThatFits) {
+  EXPECT_EQ(fitWithEllipsis("plate", 50.0f, charWidth), "plate");
+  EXPECT_EQ(fitWithEllipsis("rounded plate", 60.0f, charWidth), "round\u2026");
+  EXPECT_LE(charWidth(fitWithEllipsis("rounded plate", 60.0f, charWidth)), 60.0f);
+  // A space before the cut is dropped: "rounded\u2026", not "rounded \u2026".
+  EXPECT_EQ(fitWithEllipsis("rounded plate", 90.0f, charWidth), "rounded\u2026");
+  EXPECT_EQ(fitWithEllipsis("rounded plate", 5.0f, charWidth), "\u2026");
+}
+
+TEST(TextFit, CutsOnlyBetweenWholeCharacters) {
+  const std::string name =
+      "\u0434\u0435\u0442\u0430\u043b\u044c \u2116 7";  // Cyrillic, two bytes each
+  const std::string fit = fitWithEllipsis(name, 40.0f, charWidth);
+  EXPECT_EQ(fit, "\u0434\u0435\u0442\u2026");
+  EXPECT_EQ(fitWithEllipsis(name, 1000.0f, charWidth), name);
+}
+
+}  // namespace
+}  // namespace strata::ui
