@@ -3,10 +3,17 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstring>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "engine/util/process_group.h"
 
@@ -24,9 +31,16 @@ void check(int status, const char* what) {
   throw std::runtime_error(std::string("MPI: ") + what + ": " + std::string(text, size_t(length)));
 }
 
+// Every MPI call is made under mutex_ (MPI_THREAD_SERIALIZED): by the thread that uses the
+// group and, for posted messages, by a delivery thread that tests them until they complete
+// (MPI moves a large message only while some call of the process drives it, and the thread
+// that uses the group is busy contouring between its calls). Messages are only ever started by
+// the thread that uses the group, in the order given, so MPI's ordering between two processes
+// holds for sent and posted messages alike. With only MPI_THREAD_FUNNELED, posting sends at
+// once.
 class MpiProcessGroup : public ProcessGroup {
  public:
-  MpiProcessGroup() {
+  explicit MpiProcessGroup(bool deliveryThread) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
     // Errors come back as codes (check above) instead of ending the job without a word.
@@ -37,8 +51,24 @@ class MpiProcessGroup : public ProcessGroup {
       MPI_Comm_rank(host, &rankOnHost_);
       MPI_Comm_free(&host);
     }
+    if (deliveryThread) delivery_ = std::thread([this] { deliver(); });
   }
-  ~MpiProcessGroup() override { MPI_Finalize(); }
+  ~MpiProcessGroup() override {
+    try {
+      flush();
+    } catch (const std::exception&) {
+      // MPI_Finalize below reports what is still pending.
+    }
+    if (delivery_.joinable()) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+      }
+      changed_.notify_all();
+      delivery_.join();
+    }
+    MPI_Finalize();
+  }
 
   int rank() const override { return rank_; }
   int size() const override { return size_; }
@@ -46,6 +76,7 @@ class MpiProcessGroup : public ProcessGroup {
   std::string description() const override {
     char version[MPI_MAX_LIBRARY_VERSION_STRING];
     int length = 0;
+    std::lock_guard<std::mutex> lock(mutex_);
     MPI_Get_library_version(version, &length);
     std::string v(version, size_t(length));
     v = v.substr(0, v.find_first_of(",\n"));
@@ -54,6 +85,7 @@ class MpiProcessGroup : public ProcessGroup {
 
   void send(int to, int tag, const void* data, size_t bytes) override {
     const uint64_t size = bytes;
+    std::lock_guard<std::mutex> lock(mutex_);
     check(MPI_Send(&size, 8, MPI_BYTE, to, tag, MPI_COMM_WORLD), "send");
     const auto* p = static_cast<const uint8_t*>(data);
     for (size_t at = 0; at < bytes; at += kChunk) {
@@ -62,14 +94,49 @@ class MpiProcessGroup : public ProcessGroup {
     }
   }
 
+  void post(int to, int tag, std::vector<uint8_t> bytes) override {
+    if (!delivery_.joinable()) {
+      send(to, tag, bytes.data(), bytes.size());
+      return;
+    }
+    auto message = std::make_unique<Posted>();
+    message->size = bytes.size();
+    message->bytes = std::move(bytes);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      throwIfFailed();
+      MPI_Request request;
+      check(MPI_Isend(&message->size, 8, MPI_BYTE, to, tag, MPI_COMM_WORLD, &request), "post");
+      message->requests.push_back(request);
+      const uint8_t* p = message->bytes.data();
+      for (size_t at = 0; at < message->size; at += kChunk) {
+        const int n = int(std::min<uint64_t>(kChunk, message->size - at));
+        check(MPI_Isend(p + at, n, MPI_BYTE, to, kChunkTag, MPI_COMM_WORLD, &request), "post");
+        message->requests.push_back(request);
+      }
+      posted_.push_back(std::move(message));
+    }
+    changed_.notify_all();
+  }
+
+  void flush() override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return posted_.empty() || !failed_.empty(); });
+    throwIfFailed();
+  }
+
   bool receive(Message* out, bool wait) override {
     MPI_Status status;
-    if (wait) {
-      check(MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status), "probe");
-    } else {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
       int flag = 0;
       check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "probe");
-      if (!flag) return false;
+      if (flag) break;
+      if (!wait) return false;
+      // Not a blocking probe: the delivery thread needs the lock meanwhile.
+      lock.unlock();
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      lock.lock();
     }
     // Messages from one rank arrive in order, so what a probe finds first is a header.
     const int source = status.MPI_SOURCE, tag = status.MPI_TAG;
@@ -87,21 +154,74 @@ class MpiProcessGroup : public ProcessGroup {
     return true;
   }
 
-  void abort(int code) override { MPI_Abort(MPI_COMM_WORLD, code); }
+  void abort(int code) override {
+    std::lock_guard<std::mutex> lock(mutex_);  // the delivery thread may be in a call
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
 
  private:
+  struct Posted {
+    uint64_t size = 0;  // the header, sent first
+    std::vector<uint8_t> bytes;
+    std::vector<MPI_Request> requests;
+  };
+
+  void throwIfFailed() const {
+    if (!failed_.empty()) throw std::runtime_error(failed_);
+  }
+
+  // The delivery thread: tests the posted messages (oldest first) until each completes, then
+  // releases it; sleeps while none is pending.
+  void deliver() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      changed_.wait(lock, [&] { return stopping_ || !posted_.empty(); });
+      if (posted_.empty()) return;  // stopping
+      while (!posted_.empty() && failed_.empty()) {
+        Posted& oldest = *posted_.front();
+        int done = 0;
+        const int status = MPI_Testall(int(oldest.requests.size()), oldest.requests.data(), &done,
+                                       MPI_STATUSES_IGNORE);
+        if (status != MPI_SUCCESS) {
+          try {
+            check(status, "delivering a posted message");
+          } catch (const std::exception& e) {
+            failed_ = e.what();
+          }
+        } else if (done) {
+          posted_.pop_front();
+          continue;
+        }
+        break;
+      }
+      changed_.notify_all();
+      if (!failed_.empty()) return;
+      if (!posted_.empty()) {
+        lock.unlock();
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
+        lock.lock();
+      }
+    }
+  }
+
   int rank_ = 0, size_ = 1, rankOnHost_ = 0;
+  mutable std::mutex mutex_;  // every MPI call; posted_, failed_, stopping_
+  std::condition_variable changed_;
+  std::deque<std::unique_ptr<Posted>> posted_;
+  std::string failed_;  // a posted message's error, thrown by the next post or flush
+  bool stopping_ = false;
+  std::thread delivery_;
 };
 
 }  // namespace
 }  // namespace strata
 
-// Initialises MPI (FUNNELED) and returns the group of MPI_COMM_WORLD, or null with the reason
-// in error (at most errorSize bytes, terminated).
+// Initialises MPI (SERIALIZED, else FUNNELED: posts then send at once) and returns the group of
+// MPI_COMM_WORLD, or null with the reason in error (at most errorSize bytes, terminated).
 extern "C" __attribute__((visibility("default"))) strata::ProcessGroup* strataOpenMpiProcessGroup(
     int* argc, char*** argv, char* error, size_t errorSize) {
   int provided = 0;
-  if (MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+  if (MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
     std::snprintf(error, errorSize, "MPI_Init_thread failed");
     return nullptr;
   }
@@ -111,7 +231,7 @@ extern "C" __attribute__((visibility("default"))) strata::ProcessGroup* strataOp
     return nullptr;
   }
   try {
-    return new strata::MpiProcessGroup();
+    return new strata::MpiProcessGroup(provided >= MPI_THREAD_SERIALIZED);
   } catch (const std::exception& e) {
     std::snprintf(error, errorSize, "%s", e.what());
     return nullptr;

@@ -1,5 +1,6 @@
 #include "engine/export/distributed_export.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -13,10 +14,10 @@ namespace strata {
 namespace {
 
 // Message tags.
-constexpr int kTagTiling = 1;    // 0 -> all: int32 tile edge in cells
-constexpr int kTagProgress = 2;  // r -> 0: int32 a tile just finished
-constexpr int kTagTiles = 3;     // r -> 0: the process's tiles and counters (below)
-constexpr int kTagFailed = 4;    // r -> 0: the error's text
+constexpr int kTagTiling = 1;  // 0 -> all: int32 tile edge in cells
+constexpr int kTagTile = 2;    // r -> 0: a tile just finished, with its contour (writeTile)
+constexpr int kTagDone = 3;    // r -> 0: the process's tiles are all sent; its counters
+constexpr int kTagFailed = 4;  // r -> 0: the error's text
 
 class ByteWriter {
  public:
@@ -78,33 +79,51 @@ class ByteReader {
   size_t at_ = 0;
 };
 
-// A process's tiles and contour counters, as sent to process 0 in one message: a header, then
-// each tile's arrays (copied once into the message: the sender holds its tiles twice while it
-// sends).
-void sendTiles(ProcessGroup& group, const std::vector<TileContour>& tiles, const ContourReport& r) {
+// One finished tile (or, when a tile had no surface, none: `tiles` holds what the tile added),
+// posted to process 0 as soon as it is contoured so that the transfers overlap the tiles left.
+std::vector<uint8_t> tileMessage(int32_t tile, const TileContour* tiles, size_t count) {
   ByteWriter w;
-  w.put(uint64_t(tiles.size()));
+  w.put(tile);
+  w.put(uint64_t(count));
+  for (size_t i = 0; i < count; ++i) {
+    const TileContour& t = tiles[i];
+    w.put(uint64_t(t.vertices.size()));
+    w.putBytes(t.vertices.data(), t.vertices.size() * sizeof(ContourVertex));
+    w.put(uint64_t(t.triangles.size()));
+    w.putBytes(t.triangles.data(), t.triangles.size() * sizeof(ContourTriangle));
+  }
+  return w.bytes();
+}
+
+void receiveTile(const ProcessGroup::Message& m, std::vector<TileContour>* tiles) {
+  ByteReader in(m.bytes, m.source);
+  in.get<int32_t>();
+  for (uint64_t i = 0, count = in.get<uint64_t>(); i < count; ++i) {
+    TileContour t;
+    t.vertices = in.getArray<ContourVertex>();
+    t.triangles = in.getArray<ContourTriangle>();
+    tiles->push_back(std::move(t));
+  }
+}
+
+// The process's contour counters, once its tiles are all posted.
+std::vector<uint8_t> doneMessage(const ContourReport& r) {
+  ByteWriter w;
   w.put(r.surfels);
+  w.put(uint64_t(r.tileLdiBytes));
   w.put(r.synthesizedCrossings);
   w.put(r.signDisagreements);
   w.put(r.evaluateSeconds);
   w.put(r.contourSeconds);
   w.put(uint64_t(r.warnings.size()));
   for (const std::string& s : r.warnings) w.putString(s);
-  for (const TileContour& t : tiles) {
-    w.put(uint64_t(t.vertices.size()));
-    w.putBytes(t.vertices.data(), t.vertices.size() * sizeof(ContourVertex));
-    w.put(uint64_t(t.triangles.size()));
-    w.putBytes(t.triangles.data(), t.triangles.size() * sizeof(ContourTriangle));
-  }
-  group.send(0, kTagTiles, w.bytes().data(), w.bytes().size());
+  return w.bytes();
 }
 
-void receiveTiles(const ProcessGroup::Message& m, std::vector<TileContour>* tiles,
-                  ContourReport* r) {
+void receiveDone(const ProcessGroup::Message& m, ContourReport* r) {
   ByteReader in(m.bytes, m.source);
-  const uint64_t count = in.get<uint64_t>();
   r->surfels += in.get<uint64_t>();
+  r->tileLdiBytes = std::max<size_t>(r->tileLdiBytes, size_t(in.get<uint64_t>()));
   r->synthesizedCrossings += in.get<uint64_t>();
   r->signDisagreements += in.get<uint64_t>();
   r->evaluateSeconds += in.get<double>();
@@ -112,12 +131,6 @@ void receiveTiles(const ProcessGroup::Message& m, std::vector<TileContour>* tile
   std::vector<std::string> warnings;
   for (uint64_t i = 0, n = in.get<uint64_t>(); i < n; ++i) warnings.push_back(in.getString());
   addWarnings(warnings, r);
-  for (uint64_t i = 0; i < count; ++i) {
-    TileContour t;
-    t.vertices = in.getArray<ContourVertex>();
-    t.triangles = in.getArray<ContourTriangle>();
-    tiles->push_back(std::move(t));
-  }
 }
 
 int32_t int32From(const ProcessGroup::Message& m) {
@@ -157,14 +170,16 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       contour.tileCells = int32From(m);
       const ExportTiling tiling = exportTiling(scene, contour, 0);
       const auto mine = [&](int t) { return t % size == rank; };
-      contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice,
-                               [&](int t) {
-                                 ++given;
-                                 const int32_t finished = t;
-                                 group.send(0, kTagProgress, &finished, sizeof(finished));
-                                 maybeKillForTest(rank);
-                               });
-      sendTiles(group, tiles, r);
+      size_t posted = 0;  // tiles[0, posted) were posted, their arrays released
+      contourTilesWithFallback(
+          scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int t) {
+            ++given;
+            group.post(0, kTagTile, tileMessage(t, tiles.data() + posted, tiles.size() - posted));
+            for (; posted < tiles.size(); ++posted) tiles[posted] = TileContour();
+            maybeKillForTest(rank);
+          });
+      group.post(0, kTagDone, doneMessage(r));
+      group.flush();
     } catch (const std::exception& e) {
       const std::string text = e.what();
       group.send(0, kTagFailed, text.data(), text.size());
@@ -181,11 +196,11 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
   std::vector<TileContour> others;
   ContourReport fromOthers;
   const auto handle = [&](const ProcessGroup::Message& m) {
-    if (m.tag == kTagProgress) {
-      int32From(m);
+    if (m.tag == kTagTile) {
+      receiveTile(m, &others);
       ++finished;
-    } else if (m.tag == kTagTiles) {
-      receiveTiles(m, &others, &fromOthers);
+    } else if (m.tag == kTagDone) {
+      receiveDone(m, &fromOthers);
       ++reported;
     } else if (m.tag == kTagFailed) {
       throw Error("process " + std::to_string(m.source) + " of " + std::to_string(size) +
@@ -216,7 +231,7 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
     drain(true);
   }
   const double allTilesSeconds = own.seconds();
-  addTileCounts(fromOthers, &r);
+  addTileCounts(fromOthers, &r);  // tileLdiBytes, surfels, crossings, disagreements, warnings
   r.evaluateSeconds += fromOthers.evaluateSeconds;
   r.contourSeconds += fromOthers.contourSeconds;
   for (TileContour& t : others) tiles.push_back(std::move(t));

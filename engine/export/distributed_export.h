@@ -2,19 +2,19 @@
 // SCENE -o OUT --distributed`): process 0 picks the tiling (exportTiling with its backend's
 // memory) and tells the others; process r evaluates and contours the tiles t with
 // t % N == r on its own backend (CUDA where it has a GPU, else its CPU cores); the others send
-// their tiles to process 0, which merges them with its own (meshFromTiles), writes the file
-// and checks it. Tiles are keyed on the global lattice, so the file is the one a single process
-// writes, byte for byte.
+// each tile to process 0 as soon as it is contoured (posted: the transfer overlaps the tiles
+// left, and the sender keeps no tile it has posted), which merges them with its own
+// (meshFromTiles), writes the file and checks it. Tiles are keyed on the global lattice, so the
+// file is the one a single process writes, byte for byte.
 //
-// Progress: process 0 reports "export" over all tiles (the others tell it each tile they
-// finish, read between its own tiles and while it waits). Failures: a process that fails sends
+// Progress: process 0 reports "export" over all tiles (the others' tiles counted as they
+// arrive, read between its own tiles and while it waits). Failures: a process that fails sends
 // its message to process 0 before it throws; process 0 throws strata::Error naming the process
 // and its message. The caller ends the group then (ProcessGroup::abort), so no process waits
 // for one that has gone; a process killed outright is the launcher's to report (mpirun ends the
 // job). The file is written atomically by process 0 only: a failure anywhere leaves no file.
 //
-// The tiles travel whole: process 0 holds every tile's vertices and triangles at once, as a
-// single-process export does.
+// Process 0 holds every tile's vertices and triangles at once, as a single-process export does.
 #pragma once
 
 #include <memory>

@@ -2,7 +2,8 @@
 // (dist/mpi_process_group.cpp, loaded by the app only for --distributed), or threads standing
 // in for them in tests. The engine sees this interface only, never MPI.
 //
-// Threads: each process uses its group from one thread (MPI_THREAD_FUNNELED).
+// Threads: each process uses its group from one thread (the MPI group may deliver posted
+// messages from a thread of its own: MPI_THREAD_SERIALIZED).
 #pragma once
 
 #include <cstddef>
@@ -31,6 +32,14 @@ class ProcessGroup {
   // Sends `bytes` bytes (any size) to process `to` with `tag` (>= 0, < 1024); returns once the
   // buffer may be reused. Messages from one process to another arrive in the order sent.
   virtual void send(int to, int tag, const void* data, size_t bytes) = 0;
+  // Starts sending `bytes` to process `to` with `tag` and returns at once: the group owns the
+  // bytes until they are delivered (a transport that cannot deliver in the background sends them
+  // before returning). Messages from one process to another, sent or posted, arrive in the order
+  // they were given.
+  virtual void post(int to, int tag, std::vector<uint8_t> bytes) = 0;
+  // Returns once every message posted by this process was delivered; call it before this
+  // process leaves the group.
+  virtual void flush() = 0;
   // The next message from any process: false when none has arrived and !wait; with wait,
   // blocks until one does.
   virtual bool receive(Message* out, bool wait) = 0;
