@@ -6,6 +6,7 @@
 #include "engine/geometry/mesh_check.h"
 
 #include "engine/geometry/box_tree.h"
+#include "engine/util/error.h"
 #include "engine/util/hash.h"
 #include "engine/util/parallel_for.h"
 #include "engine/util/union_find.h"
@@ -144,12 +145,19 @@ std::vector<uint32_t> canonicalVertices(const std::vector<glm::dvec3>& positions
   return canonical;
 }
 
-// One directed edge of a triangle, keyed by its undirected endpoints.
+// One directed edge of a triangle, in the bucket of its smaller endpoint `lo` (which is left
+// implicit): 8 bytes, where the half-edges of a large mesh are its largest array.
 struct HalfEdge {
-  uint32_t lo, hi;
-  uint32_t triangle;
-  uint8_t corner;  // the edge runs from corner to corner + 1
-  bool forward;    // the triangle traverses it lo -> hi
+  uint32_t hiForward;       // hi << 1 | forward (the triangle traverses it lo -> hi)
+  uint32_t triangleCorner;  // triangle * 3 + corner: the edge runs from corner to corner + 1
+  uint32_t hi() const { return hiForward >> 1; }
+  bool forward() const { return (hiForward & 1u) != 0; }
+  uint32_t triangle() const { return triangleCorner / 3; }
+  uint32_t corner() const { return triangleCorner % 3; }
+  // The order within a bucket: (hi, triangle, corner).
+  bool before(const HalfEdge& o) const {
+    return hi() != o.hi() ? hi() < o.hi() : triangleCorner < o.triangleCorner;
+  }
 };
 
 // Half-edges of all triangles (through `canonical` when given), sorted by (lo, hi) so that the
@@ -158,7 +166,8 @@ struct HalfEdge {
 // or 0). Edges whose ends coincide are left out. A counting sort on lo (in parallel: counts
 // and the scatter by atomic increments) and a sort of each bucket (a vertex's few edges) on
 // (hi, triangle, corner): O(n), where a comparison sort of the 3n half-edges took most of a
-// check's time. The result does not depend on the thread count.
+// check's time. The result does not depend on the thread count. Throws strata::Error for a mesh
+// whose indices do not fit (2^31 vertices, 1.4 billion triangles).
 struct SortedHalfEdges {
   std::vector<HalfEdge> edges;
   std::vector<uint32_t> bucketEnd;  // one per vertex
@@ -168,6 +177,10 @@ struct SortedHalfEdges {
 SortedHalfEdges sortedHalfEdges(const TriangleMesh& mesh, const std::vector<uint32_t>* canonical) {
   const auto& triangles = mesh.triangles;
   const size_t vertices = mesh.positions.size();
+  if (vertices >= (size_t(1) << 31) || triangles.size() > size_t(UINT32_MAX) / 3)
+    throw Error("the mesh is too large to check (" + std::to_string(vertices) + " vertices, " +
+                std::to_string(triangles.size()) +
+                " triangles; at most 2^31 vertices and 1.4 billion triangles)");
   auto ends = [&](size_t t, int k, uint32_t& a, uint32_t& b) {
     a = triangles[t][size_t(k)];
     b = triangles[t][size_t((k + 1) % 3)];
@@ -204,9 +217,8 @@ SortedHalfEdges sortedHalfEdges(const TriangleMesh& mesh, const std::vector<uint
         uint32_t x, y;
         ends(size_t(t), k, x, y);
         if (x == y) continue;
-        const uint32_t lo = std::min(x, y);
-        sorted.edges[cursor[lo].fetch_add(1, std::memory_order_relaxed)] = {
-            lo, std::max(x, y), static_cast<uint32_t>(t), uint8_t(k), x < y};
+        sorted.edges[cursor[std::min(x, y)].fetch_add(1, std::memory_order_relaxed)] = {
+            std::max(x, y) << 1 | uint32_t(x < y), uint32_t(t) * 3 + uint32_t(k)};
       }
   });
   parallelFor(0, int64_t(vertices), 4096, [&](int64_t b, int64_t e) {
@@ -216,10 +228,7 @@ SortedHalfEdges sortedHalfEdges(const TriangleMesh& mesh, const std::vector<uint
       for (HalfEdge* i = first + 1; i < last; ++i) {  // insertion sort: a handful of edges
         const HalfEdge h = *i;
         HalfEdge* j = i;
-        for (; j > first && std::tie(j[-1].hi, j[-1].triangle, j[-1].corner) >
-                                std::tie(h.hi, h.triangle, h.corner);
-             --j)
-          *j = j[-1];
+        for (; j > first && h.before(j[-1]); --j) *j = j[-1];
         *j = h;
       }
     }
@@ -227,21 +236,21 @@ SortedHalfEdges sortedHalfEdges(const TriangleMesh& mesh, const std::vector<uint
   return sorted;
 }
 
-// Calls visit(begin, end) for each run of half-edges sharing one undirected edge.
+// Calls visit(begin, end) for each run of half-edges sharing one undirected edge, over the
+// buckets of the vertices [firstVertex, endVertex).
 template <typename Visit>
-void forEachEdge(const std::vector<HalfEdge>& edges, size_t begin, size_t end, Visit visit) {
-  size_t i = begin;
-  while (i < end) {
-    size_t j = i + 1;
-    while (j < end && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
-    visit(i, j);
-    i = j;
+void forEachEdge(const SortedHalfEdges& sorted, size_t firstVertex, size_t endVertex, Visit visit) {
+  const std::vector<HalfEdge>& edges = sorted.edges;
+  for (size_t v = firstVertex; v < endVertex; ++v) {
+    const size_t end = sorted.bucketEnd[v];
+    size_t i = sorted.bucketBegin(v);
+    while (i < end) {
+      size_t j = i + 1;
+      while (j < end && edges[j].hi() == edges[i].hi()) ++j;
+      visit(i, j);
+      i = j;
+    }
   }
-}
-
-template <typename Visit>
-void forEachEdge(const std::vector<HalfEdge>& edges, Visit visit) {
-  forEachEdge(edges, 0, edges.size(), visit);
 }
 
 // An axis-aligned box grown point by point, empty (lo > hi) until the first. NaN coordinates
@@ -474,16 +483,14 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
   parallelFor(0, int64_t(sorted.bucketEnd.size()), 4096, [&](int64_t b, int64_t e) {
     checkCancel();
     size_t localBoundary = 0, localNonManifold = 0, localMisoriented = 0;
-    forEachEdge(edges, sorted.bucketBegin(size_t(b)), sorted.bucketEnd[size_t(e - 1)],
-                [&](size_t begin, size_t end) {
-                  const size_t n = end - begin;
-                  if (n == 1) ++localBoundary;
-                  if (n > 2) ++localNonManifold;
-                  if (n == 2 && edges[begin].forward == edges[begin + 1].forward)
-                    ++localMisoriented;
-                  for (size_t i = begin + 1; i < end; ++i)
-                    components.unite(edges[begin].triangle, edges[i].triangle);
-                });
+    forEachEdge(sorted, size_t(b), size_t(e), [&](size_t begin, size_t end) {
+      const size_t n = end - begin;
+      if (n == 1) ++localBoundary;
+      if (n > 2) ++localNonManifold;
+      if (n == 2 && edges[begin].forward() == edges[begin + 1].forward()) ++localMisoriented;
+      for (size_t i = begin + 1; i < end; ++i)
+        components.unite(edges[begin].triangle(), edges[i].triangle());
+    });
     boundary += localBoundary;
     nonManifold += localNonManifold;
     misoriented += localMisoriented;
@@ -582,8 +589,9 @@ MeshCheck checkWelded(const TriangleMesh& mesh, const std::vector<uint32_t>& can
   // E: each undirected edge once, for the component of its first triangle.
   parallelFor(0, int64_t(sorted.bucketEnd.size()), 4096, [&](int64_t b, int64_t e) {
     RunSum edgeSum{chi};
-    forEachEdge(edges, sorted.bucketBegin(size_t(b)), sorted.bucketEnd[size_t(e - 1)],
-                [&](size_t begin, size_t) { edgeSum.add(componentOf[edges[begin].triangle], -1); });
+    forEachEdge(sorted, size_t(b), size_t(e), [&](size_t begin, size_t) {
+      edgeSum.add(componentOf[edges[begin].triangle()], -1);
+    });
     edgeSum.flush();
   });
   int genus = 0;
@@ -636,16 +644,17 @@ Adjacency manifoldAdjacency(const TriangleMesh& mesh) {
   Adjacency adjacency;
   adjacency.neighbour.assign(mesh.triangles.size() * 3, kNone);
   adjacency.sameWay.assign(mesh.triangles.size() * 3, 0);
-  const std::vector<HalfEdge> edges = sortedHalfEdges(mesh, nullptr).edges;
-  forEachEdge(edges, [&](size_t begin, size_t end) {
+  const SortedHalfEdges sorted = sortedHalfEdges(mesh, nullptr);
+  const std::vector<HalfEdge>& edges = sorted.edges;
+  forEachEdge(sorted, 0, sorted.bucketEnd.size(), [&](size_t begin, size_t end) {
     if (end - begin != 2) return;
     const HalfEdge& x = edges[begin];
     const HalfEdge& y = edges[begin + 1];
-    const bool same = x.forward == y.forward;
-    adjacency.neighbour[3 * x.triangle + x.corner] = y.triangle;
-    adjacency.neighbour[3 * y.triangle + y.corner] = x.triangle;
-    adjacency.sameWay[3 * x.triangle + x.corner] = same;
-    adjacency.sameWay[3 * y.triangle + y.corner] = same;
+    const bool same = x.forward() == y.forward();
+    adjacency.neighbour[x.triangleCorner] = y.triangle();
+    adjacency.neighbour[y.triangleCorner] = x.triangle();
+    adjacency.sameWay[x.triangleCorner] = same;
+    adjacency.sameWay[y.triangleCorner] = same;
   });
   return adjacency;
 }
