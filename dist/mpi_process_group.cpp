@@ -94,24 +94,29 @@ class MpiProcessGroup : public ProcessGroup {
     }
   }
 
-  void post(int to, int tag, std::vector<uint8_t> bytes) override {
+  using ProcessGroup::post;
+  void post(int to, int tag, const void* data, size_t bytes,
+            std::shared_ptr<const void> owner) override {
     if (!delivery_.joinable()) {
-      send(to, tag, bytes.data(), bytes.size());
+      send(to, tag, data, bytes);
       return;
     }
     auto message = std::make_unique<Posted>();
-    message->size = bytes.size();
-    message->bytes = std::move(bytes);
+    message->size = bytes;
+    message->owner = std::move(owner);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       throwIfFailed();
       MPI_Request request;
       check(MPI_Isend(&message->size, 8, MPI_BYTE, to, tag, MPI_COMM_WORLD, &request), "post");
       message->requests.push_back(request);
-      const uint8_t* p = message->bytes.data();
-      for (size_t at = 0; at < message->size; at += kChunk) {
-        const int n = int(std::min<uint64_t>(kChunk, message->size - at));
-        check(MPI_Isend(p + at, n, MPI_BYTE, to, kChunkTag, MPI_COMM_WORLD, &request), "post");
+      const auto* p = static_cast<const uint8_t*>(data);
+      for (size_t at = 0; at < bytes; at += kChunk) {
+        const int n = int(std::min(kChunk, bytes - at));
+        // MPI_Isend takes a non-const buffer in older headers; it only reads it.
+        check(MPI_Isend(const_cast<uint8_t*>(p + at), n, MPI_BYTE, to, kChunkTag, MPI_COMM_WORLD,
+                        &request),
+              "post");
         message->requests.push_back(request);
       }
       posted_.push_back(std::move(message));
@@ -123,6 +128,30 @@ class MpiProcessGroup : public ProcessGroup {
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [&] { return posted_.empty() || !failed_.empty(); });
     throwIfFailed();
+  }
+
+  void receiveInto(int from, int tag, void* data, size_t bytes) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      int flag = 0;
+      check(MPI_Iprobe(from, tag, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "probe");
+      if (flag) break;
+      lock.unlock();  // not a blocking probe: the delivery thread needs the lock meanwhile
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      lock.lock();
+    }
+    uint64_t size = 0;
+    check(MPI_Recv(&size, 8, MPI_BYTE, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "receive");
+    if (size != bytes)
+      throw std::runtime_error("MPI: process " + std::to_string(from) + " sent " +
+                               std::to_string(size) + " bytes where " + std::to_string(bytes) +
+                               " were expected");
+    auto* p = static_cast<uint8_t*>(data);
+    for (size_t at = 0; at < bytes; at += kChunk) {
+      const int n = int(std::min(kChunk, bytes - at));
+      check(MPI_Recv(p + at, n, MPI_BYTE, from, kChunkTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+            "receive");
+    }
   }
 
   bool receive(Message* out, bool wait) override {
@@ -161,8 +190,8 @@ class MpiProcessGroup : public ProcessGroup {
 
  private:
   struct Posted {
-    uint64_t size = 0;  // the header, sent first
-    std::vector<uint8_t> bytes;
+    uint64_t size = 0;                  // the header, sent first
+    std::shared_ptr<const void> owner;  // keeps the bytes until they are delivered
     std::vector<MPI_Request> requests;
   };
 

@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -14,10 +15,12 @@ namespace strata {
 namespace {
 
 // Message tags.
-constexpr int kTagTiling = 1;  // 0 -> all: int32 tile edge in cells
-constexpr int kTagTile = 2;    // r -> 0: a tile just finished, with its contour (writeTile)
-constexpr int kTagDone = 3;    // r -> 0: the process's tiles are all sent; its counters
-constexpr int kTagFailed = 4;  // r -> 0: the error's text
+constexpr int kTagTiling = 1;         // 0 -> all: int32 tile edge in cells
+constexpr int kTagTile = 2;           // r -> 0: a tile just finished (postTiles), then its arrays
+constexpr int kTagDone = 3;           // r -> 0: the process's tiles are all sent; its counters
+constexpr int kTagFailed = 4;         // r -> 0: the error's text
+constexpr int kTagTileVertices = 5;   // r -> 0: a contour's vertices (postTiles)
+constexpr int kTagTileTriangles = 6;  // r -> 0: a contour's triangles
 
 class ByteWriter {
  public:
@@ -79,29 +82,47 @@ class ByteReader {
   size_t at_ = 0;
 };
 
-// One finished tile (or, when a tile had no surface, none: `tiles` holds what the tile added),
-// posted to process 0 as soon as it is contoured so that the transfers overlap the tiles left.
-std::vector<uint8_t> tileMessage(int32_t tile, const TileContour* tiles, size_t count) {
-  ByteWriter w;
-  w.put(tile);
-  w.put(uint64_t(count));
-  for (size_t i = 0; i < count; ++i) {
-    const TileContour& t = tiles[i];
-    w.put(uint64_t(t.vertices.size()));
-    w.putBytes(t.vertices.data(), t.vertices.size() * sizeof(ContourVertex));
-    w.put(uint64_t(t.triangles.size()));
-    w.putBytes(t.triangles.data(), t.triangles.size() * sizeof(ContourTriangle));
+// One finished tile (or, when a tile had no surface, none: the tiles it added), posted to
+// process 0 as soon as it is contoured so that the transfers overlap the tiles left: a header
+// (the tile, then each contour's vertex and triangle counts), then each contour's vertices and
+// triangles as messages of their own, straight from their arrays (the group keeps the contours
+// until they are delivered) into the receiver's.
+void postTiles(ProcessGroup& group, int32_t tile, std::vector<TileContour> contours) {
+  ByteWriter header;
+  header.put(tile);
+  header.put(uint64_t(contours.size()));
+  for (const TileContour& t : contours) {
+    header.put(uint64_t(t.vertices.size()));
+    header.put(uint64_t(t.triangles.size()));
   }
-  return w.bytes();
+  group.post(0, kTagTile, header.bytes());
+  for (TileContour& t : contours) {
+    auto owner = std::make_shared<const TileContour>(std::move(t));
+    group.post(0, kTagTileVertices, owner->vertices.data(),
+               owner->vertices.size() * sizeof(ContourVertex), owner);
+    group.post(0, kTagTileTriangles, owner->triangles.data(),
+               owner->triangles.size() * sizeof(ContourTriangle), owner);
+  }
 }
 
-void receiveTile(const ProcessGroup::Message& m, std::vector<TileContour>* tiles) {
+void receiveTiles(ProcessGroup& group, const ProcessGroup::Message& m,
+                  std::vector<TileContour>* tiles) {
   ByteReader in(m.bytes, m.source);
   in.get<int32_t>();
-  for (uint64_t i = 0, count = in.get<uint64_t>(); i < count; ++i) {
+  const uint64_t count = in.get<uint64_t>();
+  std::vector<std::pair<uint64_t, uint64_t>> sizes;
+  for (uint64_t i = 0; i < count; ++i) {
+    const uint64_t vertices = in.get<uint64_t>();
+    sizes.push_back({vertices, in.get<uint64_t>()});
+  }
+  for (const auto& [vertices, triangles] : sizes) {
     TileContour t;
-    t.vertices = in.getArray<ContourVertex>();
-    t.triangles = in.getArray<ContourTriangle>();
+    t.vertices.resize(vertices);
+    group.receiveInto(m.source, kTagTileVertices, t.vertices.data(),
+                      vertices * sizeof(ContourVertex));
+    t.triangles.resize(triangles);
+    group.receiveInto(m.source, kTagTileTriangles, t.triangles.data(),
+                      triangles * sizeof(ContourTriangle));
     tiles->push_back(std::move(t));
   }
 }
@@ -171,13 +192,15 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       const ExportTiling tiling = exportTiling(scene, contour, 0);
       const auto mine = [&](int t) { return t % size == rank; };
       size_t posted = 0;  // tiles[0, posted) were posted, their arrays released
-      contourTilesWithFallback(
-          scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int t) {
-            ++given;
-            group.post(0, kTagTile, tileMessage(t, tiles.data() + posted, tiles.size() - posted));
-            for (; posted < tiles.size(); ++posted) tiles[posted] = TileContour();
-            maybeKillForTest(rank);
-          });
+      contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice,
+                               [&](int t) {
+                                 ++given;
+                                 std::vector<TileContour> finished;
+                                 for (; posted < tiles.size(); ++posted)
+                                   finished.push_back(std::move(tiles[posted]));
+                                 postTiles(group, t, std::move(finished));
+                                 maybeKillForTest(rank);
+                               });
       group.post(0, kTagDone, doneMessage(r));
       group.flush();
     } catch (const std::exception& e) {
@@ -197,7 +220,7 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
   ContourReport fromOthers;
   const auto handle = [&](const ProcessGroup::Message& m) {
     if (m.tag == kTagTile) {
-      receiveTile(m, &others);
+      receiveTiles(group, m, &others);
       ++finished;
     } else if (m.tag == kTagDone) {
       receiveDone(m, &fromOthers);

@@ -3,7 +3,9 @@
 // process's next or current receive throw GroupAborted.
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
+#include <cstring>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -48,14 +50,25 @@ class ThreadProcessGroup : public ProcessGroup {
     shared_->mailboxes[size_t(to)].push_back(std::move(m));
     shared_->arrived.notify_all();
   }
-  void post(int to, int tag, std::vector<uint8_t> bytes) override {
-    Message m;
-    m.source = rank_;
-    m.tag = tag;
-    m.bytes = std::move(bytes);
-    std::lock_guard<std::mutex> lock(shared_->mutex);
-    shared_->mailboxes[size_t(to)].push_back(std::move(m));
-    shared_->arrived.notify_all();
+  using ProcessGroup::post;
+  void post(int to, int tag, const void* data, size_t bytes, std::shared_ptr<const void>) override {
+    send(to, tag, data, bytes);  // copied: delivered at once
+  }
+  void receiveInto(int from, int tag, void* data, size_t bytes) override {
+    std::unique_lock<std::mutex> lock(shared_->mutex);
+    auto& box = shared_->mailboxes[size_t(rank_)];
+    auto match = [&] {
+      return std::find_if(box.begin(), box.end(),
+                          [&](const Message& m) { return m.source == from && m.tag == tag; });
+    };
+    shared_->arrived.wait(lock, [&] { return shared_->aborted || match() != box.end(); });
+    if (shared_->aborted) throw GroupAborted();
+    auto it = match();
+    if (it->bytes.size() != bytes)
+      throw std::runtime_error("receiveInto: the message has " + std::to_string(it->bytes.size()) +
+                               " bytes, not " + std::to_string(bytes));
+    if (bytes) std::memcpy(data, it->bytes.data(), bytes);
+    box.erase(it);
   }
   void flush() override {}  // a post is delivered at once
   bool receive(Message* out, bool wait) override {
