@@ -1,6 +1,8 @@
 #include "ui/gizmo.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat2x2.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -111,7 +113,7 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
   glm::dvec2 o;
   if (!view.toScreen(origin_, &o)) return -1;
   int best = -1;
-  double bestDistance = kPickPixels;
+  double bestScore = 1e300;
   for (int k = 0; k < 3; ++k) {
     double d = 1e300;
     if (mode == GizmoMode::Rotate) {
@@ -133,12 +135,81 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
       if (!view.toScreen(origin_ + handleAxis(k) * handleLength(view), &tip)) continue;
       d = segmentDistance(mouse, o + (tip - o) * 0.15, tip);
     }
-    if (d < bestDistance) {
-      bestDistance = d;
+    // Where rings cross on screen (an edge-on ring is a line through the others), the one
+    // facing the viewer more is taken: dragging an edge-on ring across its line turns nothing.
+    double score = d;
+    if (mode == GizmoMode::Rotate) {
+      const glm::dvec3 towardViewer =
+          view.ortho ? -view.forward : safeNormalize(view.eye - origin_, -view.forward);
+      score -= 4.0 * std::fabs(glm::dot(handleAxis(k), towardViewer));
+    }
+    if (d < kPickPixels && score < bestScore) {
+      bestScore = score;
       best = k;
     }
   }
   return best;
+}
+
+double Gizmo::ringTurnDegrees(const ScreenMapping& view, glm::dvec2 o, glm::dvec2 mouse) const {
+  // The ring on screen: o + A (cos t, sin t), A's columns the screen images of its radii along
+  // a and b (ring()); t turns from a towards b, a positive turn about the ring's axis.
+  const glm::dvec3 n = handleAxis(axis_);
+  const glm::dvec3 a =
+      safeNormalize(glm::cross(n, std::fabs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)),
+                    glm::dvec3(1, 0, 0));
+  const glm::dvec3 b = glm::cross(n, a);
+  const double r = handleLength(view) * 0.85;
+  glm::dvec2 pa, pb;
+  if (view.toScreen(origin_ + r * a, &pa) && view.toScreen(origin_ + r * b, &pb)) {
+    const glm::dmat2 A(pa - o, pb - o);
+    const double det = glm::determinant(A);
+    const double major = std::max(glm::length(pa - o), glm::length(pb - o));
+    if (major > 1e-9) {
+      const double flatness = std::fabs(det) / (major * major);  // minor / major axis, about
+      if (flatness > 0.3) {
+        // Facing the viewer enough: the cursor's angle on the ellipse, so the ring follows it.
+        const glm::dmat2 inverse = glm::inverse(A);
+        const glm::dvec2 s = inverse * (startMouse_ - o), m = inverse * (mouse - o);
+        return std::remainder(std::atan2(m.y, m.x) - std::atan2(s.y, s.x), 2.0 * kPi) * 180.0 / kPi;
+      }
+      // Seen nearly edge-on: along the ring's tangent at the point grabbed, a turn of one
+      // radian for each radius's length on screen moved along it.
+      // The point grabbed: the ring's nearest to the cursor on screen, of two about as near
+      // (its front and back project onto each other) the one nearer the viewer.
+      constexpr int kSamples = 256;
+      double distance[kSamples], bestDistance = 1e300;
+      for (int i = 0; i < kSamples; ++i) {
+        const double t = 2.0 * kPi * i / kSamples;
+        distance[i] = glm::length(o + A * glm::dvec2(std::cos(t), std::sin(t)) - startMouse_);
+        bestDistance = std::min(bestDistance, distance[i]);
+      }
+      double grabbed = 0.0, nearest = 1e300;
+      for (int i = 0; i < kSamples; ++i) {
+        if (distance[i] > bestDistance + 3.0) continue;
+        const double t = 2.0 * kPi * i / kSamples;
+        const glm::dvec3 p = origin_ + r * (std::cos(t) * a + std::sin(t) * b);
+        const double depth = view.ortho ? glm::dot(p, view.forward) : glm::length(p - view.eye);
+        if (depth < nearest) {
+          nearest = depth;
+          grabbed = t;
+        }
+      }
+      const glm::dvec2 tangent = A * glm::dvec2(-std::sin(grabbed), std::cos(grabbed));
+      const double pixelsPerRadian = glm::length(tangent);
+      if (pixelsPerRadian > 0.05 * major)
+        return glm::dot(mouse - startMouse_, tangent) / (pixelsPerRadian * pixelsPerRadian) *
+               180.0 / kPi;
+    }
+  }
+  // Grabbed where the ring runs towards the viewer: the cursor's angle about the centre.
+  const glm::dvec2 a0 = startMouse_ - o, b0 = mouse - o;
+  double delta = (std::atan2(b0.y, b0.x) - std::atan2(a0.y, a0.x)) * 180.0 / kPi;
+  // Screen y points down: a counter-clockwise turn on screen is a negative angle here. It is
+  // a positive rotation about an axis that points at the viewer.
+  const glm::dvec3 towardViewer = view.ortho ? -view.forward : glm::normalize(view.eye - origin_);
+  if (glm::dot(n, towardViewer) > 0) delta = -delta;
+  return std::remainder(delta, 360.0);
 }
 
 void Gizmo::begin(int axis, const ScreenMapping&, glm::dvec2 mouse) {
@@ -155,12 +226,7 @@ Transform Gizmo::drag(const ScreenMapping& view, glm::dvec2 mouse, const GizmoSn
   const double length = handleLength(view);
   if (!view.toScreen(origin_, &o)) return t;
   if (mode == GizmoMode::Rotate) {
-    glm::dvec2 a = startMouse_ - o, b = mouse - o;
-    double delta = (std::atan2(b.y, b.x) - std::atan2(a.y, a.x)) * 180.0 / kPi;
-    // Screen y points down: a counter-clockwise turn on screen is a negative angle here. It is
-    // a positive rotation about an axis that points at the viewer.
-    glm::dvec3 towardViewer = view.ortho ? -view.forward : glm::normalize(view.eye - origin_);
-    if (glm::dot(handleAxis(k), towardViewer) > 0) delta = -delta;
+    const double delta = ringTurnDegrees(view, o, mouse);
     double angle = start_.rotateDegrees[k] + delta;
     angle = std::remainder(angle, 360.0);
     t.rotateDegrees[k] = snap.enabled ? snapTo(angle, snap.degrees) : angle;

@@ -51,6 +51,8 @@ class Gizmo {
   void begin(int axis, const ScreenMapping& view, glm::dvec2 mouse);
   bool dragging() const { return axis_ >= 0; }
   int activeAxis() const { return axis_; }
+  // The node's transform when the drag began.
+  const Transform& startTransform() const { return start_; }
   // The transform for the mouse at `mouse` while dragging.
   Transform drag(const ScreenMapping& view, glm::dvec2 mouse, const GizmoSnap& snap) const;
   void end() { axis_ = -1; }
@@ -65,6 +67,11 @@ class Gizmo {
   glm::dvec3 handleAxis(int k) const;  // unit world direction of handle k
   double handleLength(const ScreenMapping& view) const;
   std::vector<glm::dvec3> ring(int k, const ScreenMapping& view) const;
+  // While dragging a ring: how far it turned (degrees, about its axis, right-handed) from the
+  // grab at startMouse_ to `mouse`; `o` is the gizmo's centre on screen. The ring follows the
+  // cursor where it faces the viewer; seen nearly edge-on, moving along its tangent at the
+  // point grabbed turns it by the arc moved on screen.
+  double ringTurnDegrees(const ScreenMapping& view, glm::dvec2 o, glm::dvec2 mouse) const;
 
   glm::dmat4 parentWorld_{1.0};
   Transform transform_;

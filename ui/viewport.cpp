@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "engine/document/commands.h"
@@ -72,6 +73,41 @@ void appendSectionOutline(const EditorState& state, const ViewportFrame& frame,
     lines->push_back(lineVertex(c[i], color));
     lines->push_back(lineVertex(c[(i + 1) % 4], color));
   }
+}
+
+// Beside the cursor while a gizmo handle is dragged: how far it has moved, turned or scaled
+// from where the drag began, in the field's units, and the snap when it is on.
+void drawDragReadout(const EditorState& state, const Gizmo& gizmo, const Transform& now,
+                     glm::dvec2 cursor) {
+  const int k = gizmo.activeAxis();
+  if (k < 0) return;
+  const char* axis = k == 0 ? "x" : k == 1 ? "y" : "z";
+  const Transform& from = gizmo.startTransform();
+  char text[128];
+  switch (gizmo.mode) {
+    case GizmoMode::Move:
+      std::snprintf(text, sizeof(text), "move %s %+.4g %s%s", axis,
+                    now.translate[k] - from.translate[k],
+                    unitSymbol(state.document.scene().settings.unit),
+                    state.snap.enabled ? "  (snap on)" : "");
+      break;
+    case GizmoMode::Rotate:
+      std::snprintf(text, sizeof(text), "turn %s %+.1f\u00B0 (now %.1f\u00B0)%s", axis,
+                    std::remainder(now.rotateDegrees[k] - from.rotateDegrees[k], 360.0),
+                    now.rotateDegrees[k], state.snap.enabled ? "  (snap 15\u00B0)" : "");
+      break;
+    case GizmoMode::Scale:
+      std::snprintf(text, sizeof(text), "scale %s \u00D7%.3g (now %.4g)%s", axis,
+                    from.scale[k] != 0.0 ? now.scale[k] / from.scale[k] : 1.0, now.scale[k],
+                    state.snap.enabled ? "  (snap 0.1)" : "");
+      break;
+  }
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const ImVec2 at(float(cursor.x + 18.0), float(cursor.y + 14.0));
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  draw->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2),
+                      IM_COL32(20, 22, 26, 210), 3.0f);
+  draw->AddText(at, IM_COL32(240, 240, 240, 255), text);
 }
 
 }  // namespace
@@ -178,6 +214,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
              followingTransforms(dragStart_, state.selection, id, t))
           state.document.setTransform(follower, transform);
       });
+      drawDragReadout(state, gizmo_, t, glm::dvec2(io.MousePos.x, io.MousePos.y));
     } else {
       gizmo_.end();
       state.document.endInteraction();

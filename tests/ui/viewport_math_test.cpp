@@ -28,7 +28,9 @@ ScreenMapping mappingOf(const Camera& camera, glm::dvec2 size) {
   m.eye = camera.eye();
   m.forward = camera.forward();
   m.ortho = camera.ortho;
-  m.unitsPerPixel = camera.unitsPerPixel(size.y) / camera.distance;
+  // As the viewport's mapping: absolute in orthographic, per unit of depth in perspective.
+  m.unitsPerPixel =
+      camera.ortho ? camera.unitsPerPixel(size.y) : camera.unitsPerPixel(size.y) / camera.distance;
   return m;
 }
 
@@ -104,6 +106,57 @@ TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
   const double r = 90 * 0.85, d = r / std::sqrt(2.0);
   int ring = g.hover(m, glm::dvec2(size.x / 2 + d, size.y / 2 - d));
   EXPECT_EQ(ring, 1);
+}
+
+// A ring seen at a slant is an ellipse on screen: dragging from one of its points to another
+// turns it by the angle between them on the ring (not by the angle about the centre on screen,
+// which overshoots where the ellipse is flat); seen edge-on, the point grabbed (the front one)
+// follows the cursor along the tangent.
+TEST(EditorMath, GizmoRingFollowsTheCursor) {
+  Camera c;
+  c.ortho = true;
+  c.distance = 20.0;
+  c.yawDegrees = -60.0;
+  c.pitchDegrees = 25.0;  // the z ring an ellipse a little under half as high as wide
+  const glm::dvec2 size(400, 400);
+  const ScreenMapping m = mappingOf(c, size);
+  Gizmo g;
+  g.mode = GizmoMode::Rotate;
+  g.place(glm::dmat4(1.0), Transform());
+  // The z ring lies in the xy plane; its angle t runs from +y (a) towards -x (b).
+  auto onRing = [&](double degrees) {
+    const double t = degrees * M_PI / 180.0;
+    glm::dvec2 p;
+    EXPECT_TRUE(m.toScreen(glm::dvec3(-std::sin(t), std::cos(t), 0.0), &p));
+    return p;
+  };
+  glm::dvec2 centre;
+  ASSERT_TRUE(m.toScreen(glm::dvec3(0.0), &centre));
+  const glm::dvec2 s30 = onRing(30.0), s75 = onRing(75.0);
+  ASSERT_GT(std::fabs(s30.y - centre.y), 5.0) << "the view must show the ring as an ellipse";
+  g.begin(2, m, s30);
+  EXPECT_NEAR(g.drag(m, s75, GizmoSnap()).rotateDegrees.z, 45.0, 1e-6);
+  EXPECT_NEAR(g.drag(m, onRing(-20.0), GizmoSnap()).rotateDegrees.z, -50.0, 1e-6);
+  g.end();
+
+  // Edge-on: from the front the z ring is a line through the centre. Grabbed there (its front
+  // point, (0, -1, 0) scaled) and moved 10 pixels right: the front point moves right with the
+  // cursor, a turn of 10 pixels over the ring's radius on screen (0.85 handle lengths, 76.5
+  // pixels), positive about z.
+  Camera front;
+  front.ortho = true;
+  front.distance = 20.0;
+  front.setAxisView(AxisView::Front);
+  const ScreenMapping f = mappingOf(front, size);
+  ASSERT_TRUE(f.toScreen(glm::dvec3(0.0), &centre));
+  g.begin(2, f, centre);
+  EXPECT_NEAR(g.drag(f, centre + glm::dvec2(10.0, 0.0), GizmoSnap()).rotateDegrees.z,
+              10.0 / 76.5 * 180.0 / M_PI, 1e-6);
+  g.end();
+  // Where the edge-on x ring (a vertical line) crosses the y ring (a circle facing the viewer),
+  // the y ring is taken: it is the one a drag there can turn.
+  EXPECT_EQ(g.hover(f, centre + glm::dvec2(0.0, -76.5)), 1);
+  EXPECT_EQ(g.hover(f, centre + glm::dvec2(0.0, -40.0)), 0);  // the x ring alone
 }
 
 }  // namespace
