@@ -111,6 +111,9 @@ struct EditorState {
 
   // Viewport settings.
   GizmoMode gizmoMode = GizmoMode::Move;
+  // With several parts selected, what the gizmo turns and scales them about: the centre of the
+  // selection's box (world axes), or the active part's origin (its axes; the others follow).
+  bool pivotAtSelectionCentre = true;
   GizmoSnap snap;
   bool snapFollowsGrid = true;  // snap.step is the ground grid's spacing (groundGridStep)
   // The height of the world the view shows at the point it orbits (scene units), set by the

@@ -178,6 +178,14 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (ImGui::Combo("##gizmo", &mode, modes, 3)) state.gizmoMode = GizmoMode(mode);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("What the gizmo on the selection does: move (W), rotate (E), scale (R)");
+  const char* pivots[] = {"pivot: selection centre", "pivot: active part"};
+  int pivot = state.pivotAtSelectionCentre ? 0 : 1;
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::Combo("##pivot", &pivot, pivots, 2)) state.pivotAtSelectionCentre = pivot == 0;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "With several parts selected, what the gizmo turns and scales them about:\nthe centre "
+        "of their box (world axes), or the origin of the part clicked last (its axes)");
   ImGui::End();
 }
 

@@ -102,6 +102,35 @@ std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& sta
   return out;
 }
 
+namespace {
+bool insideAnotherSelected(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id) {
+  for (NodeId other : selection)
+    if (other != id && isInSubtree(root, other, id)) return true;
+  return false;
+}
+}  // namespace
+
+std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
+                                                         const std::vector<NodeId>& selection,
+                                                         const glm::dmat4& motion) {
+  std::vector<std::pair<NodeId, Transform>> out;
+  for (NodeId id : selection) {
+    const NodePtr node = findNode(start, id);
+    if (!node || insideAnotherSelected(start, selection, id)) continue;
+    const glm::dmat4 parent = parentWorldMatrix(start, id);
+    const glm::dmat4 world = motion * parent * node->transform.matrix();
+    out.emplace_back(id, transformFromMatrix(glm::inverse(parent) * world));
+  }
+  return out;
+}
+
+size_t independentSelectionCount(const NodePtr& root, const std::vector<NodeId>& selection) {
+  size_t count = 0;
+  for (NodeId id : selection)
+    if (findNode(root, id) && !insideAnotherSelected(root, selection, id)) ++count;
+  return count;
+}
+
 double groundGridStep(const Bounds& scene) {
   const glm::dvec3 size = scene.empty() ? glm::dvec3(10.0) : scene.size();
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);

@@ -38,6 +38,16 @@ std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& sta
                                                               NodeId primary,
                                                               const Transform& primaryNow);
 
+// What every selected node's transform becomes when the world motion `motion` (a matrix applied
+// to world points) moves the whole selection of the tree `start`: motion * (its world matrix in
+// `start`), turned back into a Transform as followingTransforms does. Nodes inside another
+// selected node (they move with it) are left out.
+std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
+                                                         const std::vector<NodeId>& selection,
+                                                         const glm::dmat4& motion);
+// The selected nodes not inside another selected node.
+size_t independentSelectionCount(const NodePtr& root, const std::vector<NodeId>& selection);
+
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);
 

@@ -131,12 +131,42 @@ ScreenMapping Viewport::mapping(const EditorState& state, const ViewRect& rect) 
   return m;
 }
 
-bool Viewport::placeGizmo(const EditorState& state) {
-  NodeId id = primarySelection(state);
-  NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
+bool Viewport::gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld,
+                              Transform* transform, bool* pivot) {
+  if (gizmo_.dragging() && pivotGroup_) {  // the pivot as the drag has moved it
+    *parentWorld = glm::dmat4(1.0);
+    *transform = pivotNow_;
+    *pivot = true;
+    return true;
+  }
+  const NodeId id = primarySelection(state);
+  const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
   if (!node) return false;
+  *pivot = !gizmo_.dragging() && state.pivotAtSelectionCentre &&
+           independentSelectionCount(state.document.root(), state.selection) >= 2;
+  if (*pivot) {
+    const Bounds& b = cachedSelectionBounds(state);
+    if (b.empty()) {
+      *pivot = false;
+    } else {
+      *parentWorld = glm::dmat4(1.0);
+      *transform = Transform();
+      transform->translate = b.center();
+      return true;
+    }
+  }
+  *parentWorld = parentWorldMatrix(state.document.root(), id);
+  *transform = node->transform;
+  return true;
+}
+
+bool Viewport::placeGizmo(const EditorState& state) {
+  glm::dmat4 parentWorld;
+  Transform transform;
+  bool pivot = false;
+  if (!gizmoPlacement(state, &parentWorld, &transform, &pivot)) return false;
   gizmo_.mode = state.gizmoMode;
-  gizmo_.place(parentWorldMatrix(state.document.root(), id), node->transform);
+  gizmo_.place(parentWorld, transform);
   return true;
 }
 
@@ -206,14 +236,24 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       return;
     }
     if (io.MouseDown[0] && placeGizmo(state)) {
-      NodeId id = primarySelection(state);
       Transform t = gizmo_.drag(view, mouse, state.snap);
-      guarded(state, [&] {
-        state.document.setTransform(id, t);
-        for (const auto& [follower, transform] :
-             followingTransforms(dragStart_, state.selection, id, t))
-          state.document.setTransform(follower, transform);
-      });
+      if (pivotGroup_) {
+        // The pivot's motion, applied to every selected part from where the drag began.
+        pivotNow_ = t;
+        const glm::dmat4 motion = t.matrix() * glm::inverse(gizmo_.startTransform().matrix());
+        guarded(state, [&] {
+          for (const auto& [id, transform] : movedSelection(dragStart_, state.selection, motion))
+            state.document.setTransform(id, transform);
+        });
+      } else {
+        NodeId id = primarySelection(state);
+        guarded(state, [&] {
+          state.document.setTransform(id, t);
+          for (const auto& [follower, transform] :
+               followingTransforms(dragStart_, state.selection, id, t))
+            state.document.setTransform(follower, transform);
+        });
+      }
       drawDragReadout(state, gizmo_, t, glm::dvec2(io.MousePos.x, io.MousePos.y));
     } else {
       gizmo_.end();
@@ -275,6 +315,10 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   if (ImGui::IsMouseClicked(0) && inside && !io.KeyAlt) {
     if (hot_ >= 0) {
       state.document.beginInteraction();
+      glm::dmat4 parentWorld;
+      Transform transform;
+      gizmoPlacement(state, &parentWorld, &transform, &pivotGroup_);
+      pivotNow_ = transform;
       gizmo_.begin(hot_, view, mouse);
       dragStart_ = state.document.root();
       return;
@@ -434,14 +478,14 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
   }
   appendMeasureLines(state, view, &overlay);
   Gizmo gizmo = gizmo_;
-  if (!state.selection.empty() && !state.measure.active) {
-    NodeId id = primarySelection(state);
-    NodePtr node = findNode(state.document.root(), id);
-    if (node) {
-      gizmo.mode = state.gizmoMode;
-      gizmo.place(parentWorldMatrix(state.document.root(), id), node->transform);
-      gizmo.appendGeometry(view, hot_, &overlay, &triangles);
-    }
+  glm::dmat4 parentWorld;
+  Transform transform;
+  bool pivot = false;
+  if (!state.selection.empty() && !state.measure.active &&
+      gizmoPlacement(state, &parentWorld, &transform, &pivot)) {
+    gizmo.mode = state.gizmoMode;
+    gizmo.place(parentWorld, transform);
+    gizmo.appendGeometry(view, hot_, &overlay, &triangles);
   }
   if (lastFrameMs >= 0.0)
     renderer.drawCached(frame, lines, overlay, triangles, lastFrameMs);

@@ -60,6 +60,11 @@ class Viewport {
                           double pixelScale) const;
   double sceneRadius(const EditorState& state) const;
   bool placeGizmo(const EditorState& state);
+  // Where the gizmo sits: on the primary selected node (its parent's world matrix and its
+  // transform), or, with several parts selected and the pivot at the selection's centre, on
+  // a pivot there (world axes; *pivot set). False when nothing is selected.
+  bool gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld, Transform* transform,
+                      bool* pivot);
   struct PendingClick {
     glm::dvec2 mouse;  // window pixels from the view's top-left corner
     bool extend = false;
@@ -82,6 +87,10 @@ class Viewport {
   // The tree when a gizmo drag began: the other selected nodes follow the primary from it
   // (followingTransforms), all in the drag's one undo step.
   NodePtr dragStart_;
+  // A drag of the selection's pivot (gizmoPlacement): every selected part moves by the pivot's
+  // motion from dragStart_; pivotNow_ is the pivot's transform as dragged so far.
+  bool pivotGroup_ = false;
+  Transform pivotNow_;
 
   // The selection box drawn each frame, worked out again only when the document or the
   // selection changes: a mesh leaf's bounds walk all its vertices (sceneBounds remembers its own).

@@ -38,6 +38,10 @@ Transform transformFromMatrix(const glm::dmat4& m) {
     c = std::atan2(-r[1][0], r[1][1]);
   }
   t.rotateDegrees = glm::degrees(glm::dvec3(a, b, c));
+  // Rounding leaves angles such as -1e-15 where none was meant (shown as "-0.00"): angles below
+  // a nanodegree are none.
+  for (int i = 0; i < 3; ++i)
+    if (std::fabs(t.rotateDegrees[i]) < 1e-9) t.rotateDegrees[i] = 0.0;
   return t;
 }
 

@@ -24,7 +24,7 @@ struct Transform {
 // its last column, scale from the lengths of its columns (the x column negated when it mirrors),
 // rotation (Euler, degrees, in the matrix() convention) from the columns divided by them. Exact
 // when the columns are orthogonal (no shear), which rigid motions and per-axis scales of an
-// unsheared matrix keep.
+// unsheared matrix keep. Angles under a nanodegree come back as 0.
 Transform transformFromMatrix(const glm::dmat4& m);
 
 // True when the matrix mirrors (negative determinant of its linear part): sampling must then

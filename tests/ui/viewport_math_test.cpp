@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "engine/document/commands.h"
 #include "engine/document/document.h"
 #include "engine/eval/cpu_backend.h"
@@ -182,6 +184,29 @@ NodePtr threeParts() {
 glm::dvec3 worldOrigin(const NodePtr& root, NodeId id) {
   return glm::dvec3(parentWorldMatrix(root, id) * findNode(root, id)->transform.matrix() *
                     glm::dvec4(0, 0, 0, 1));
+}
+
+// The pivot at the selection's centre: a quarter turn about z through (2.5, 2.5, 0) moves every
+// selected part (the one inside a moved group too) about that point; nested ones go with their
+// selected ancestor.
+TEST(GroupDrag, TheSelectionTurnsAboutItsCentre) {
+  const NodePtr start = threeParts();
+  const glm::dvec3 pivot(2.5, 2.5, 0.0);
+  const glm::dmat4 motion = glm::translate(glm::dmat4(1.0), pivot) *
+                            glm::rotate(glm::dmat4(1.0), M_PI / 2.0, glm::dvec3(0, 0, 1)) *
+                            glm::translate(glm::dmat4(1.0), -pivot);
+  EXPECT_EQ(independentSelectionCount(start, {2, 3, 5}), 3u);
+  EXPECT_EQ(independentSelectionCount(start, {4, 5}), 1u);
+  const auto moved = movedSelection(start, {2, 3, 5}, motion);
+  ASSERT_EQ(moved.size(), 3u);
+  NodePtr after = start;
+  for (const auto& [id, t] : moved) after = editNode(after, id, [&](Node& n) { n.transform = t; });
+  expectNear(worldOrigin(after, 2), {5.0, 0.0, 0.0});
+  expectNear(worldOrigin(after, 3), {5.0, 5.0, 0.0});
+  expectNear(worldOrigin(after, 5), {0.0, 0.0, 0.0});
+  for (NodeId id : {2, 3, 5})
+    EXPECT_NEAR(findNode(after, id)->transform.rotateDegrees.z, 90.0, 1e-9) << id;
+  EXPECT_EQ(movedSelection(start, {4, 5}, motion).size(), 1u);
 }
 
 TEST(GroupDrag, OtherSelectedNodesFollowThePrimaryAboutItsOrigin) {

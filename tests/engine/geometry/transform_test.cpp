@@ -2,6 +2,8 @@
 // included) and translation, up to the equivalence of Euler angles.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <random>
 
 #include "engine/geometry/transform.h"
@@ -41,6 +43,23 @@ TEST(Transform, ARigidMotionOfAnUnshearedNodeStaysExact) {
   turn.translate = {-4.0, 0.0, 1.0};
   const glm::dmat4 moved = turn.matrix() * node.matrix();
   EXPECT_LT(maxDifference(transformFromMatrix(moved).matrix(), moved), 1e-9);
+}
+
+// A turn about z and back leaves rounding in the other angles; they come back as 0, not as
+// -1e-15 (which the inspector shows as "-0.00").
+TEST(Transform, AnglesOfRoundingNoiseAreZero) {
+  Transform node;
+  node.rotateDegrees = {0.0, 0.0, 30.0};
+  Transform turn;
+  turn.rotateDegrees = {0.0, 0.0, 29.3};
+  Transform back;
+  back.rotateDegrees = {0.0, 0.0, -29.3};
+  const Transform t = transformFromMatrix(back.matrix() * turn.matrix() * node.matrix());
+  EXPECT_EQ(t.rotateDegrees.x, 0.0);
+  EXPECT_FALSE(std::signbit(t.rotateDegrees.x));
+  EXPECT_EQ(t.rotateDegrees.y, 0.0);
+  EXPECT_FALSE(std::signbit(t.rotateDegrees.y));
+  EXPECT_NEAR(t.rotateDegrees.z, 30.0, 1e-9);
 }
 
 }  // namespace
