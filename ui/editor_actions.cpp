@@ -611,12 +611,20 @@ void setResolution(EditorState& state, int resolution) {
   guarded(state, [&] { state.document.setResolution(resolution); });
 }
 
+// Undo and redo say in the status line what they reverted or repeated: a step that changes
+// nothing in view (a measurement off screen, a rename) must not look like a dead key.
 void undo(EditorState& state) {
-  if (state.document.undo()) pruneSelection(state);
+  const std::string label = state.document.undoLabel();
+  if (!state.document.undo()) return;
+  pruneSelection(state);
+  logInfo(state, "undone: " + label);
 }
 
 void redo(EditorState& state) {
-  if (state.document.redo()) pruneSelection(state);
+  const std::string label = state.document.redoLabel();
+  if (!state.document.redo()) return;
+  pruneSelection(state);
+  logInfo(state, "redone: " + label);
 }
 
 void newDocument(EditorState& state) {

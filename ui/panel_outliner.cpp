@@ -433,31 +433,37 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   }
   paletteDragSource(kImportMeshItem, importLabel.c_str());
   ImGui::Separator();
-  ImGui::TextDisabled("empty operation");
+  // One set of operation buttons: with a selection they apply to it (the selection is put in the
+  // new operation in its place, each part keeping what it does), as an artist expects of
+  // "round" with a part selected; Shift, or nothing selected, adds an empty one as the palette
+  // adds parts.
+  const bool wraps = !state.selection.empty() && !ImGui::GetIO().KeyShift;
+  ImGui::TextDisabled(wraps                     ? "operation on the selection (Shift: empty)"
+                      : state.selection.empty() ? "empty operation"
+                                                : "empty operation (Shift held)");
   const std::vector<NodeKind> ops = operationKinds();
   // Three to a row: the Booleans, then the modifiers, then the patterns.
   const std::vector<bool> rowStarts = operationRowStarts(ops, 3);
   for (size_t i = 0; i < ops.size(); ++i) {
     if (!rowStarts[i]) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s##add%zu", kindLabel(ops[i]), i);
-    if (ImGui::Button(label, ImVec2(w, 0))) addOperation(state, ops[i]);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", nodeKindInfo(ops[i]).summary);
-  }
-  ImGui::TextDisabled("group selection as");
-  ImGui::BeginDisabled(state.selection.empty());
-  for (size_t i = 0; i < ops.size(); ++i) {
-    if (!rowStarts[i]) ImGui::SameLine();
-    char label[64];
-    std::snprintf(label, sizeof(label), "%s %s##group%zu", kindGlyph(ops[i]), kindLabel(ops[i]), i);
-    if (ImGui::Button(label, ImVec2(w, 0))) groupSelection(state, ops[i]);
-    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    std::snprintf(label, sizeof(label), "%s %s##op%zu", kindGlyph(ops[i]), kindLabel(ops[i]), i);
+    if (ImGui::Button(label, ImVec2(w, 0))) {
+      if (wraps)
+        groupSelection(state, ops[i]);
+      else
+        addOperation(state, ops[i]);
+    }
+    if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
-          "Put the selected parts in a new %s in the first one's place (parts that "
-          "do the same: all add, or all cut)",
-          kindLabel(ops[i]));
+          wraps ? "%s\n\nPuts the selected parts in a new %s in the first one's place, each "
+                  "keeping what it does (add or cut).\nShift+click: an empty %s instead."
+                : "%s\n\nAdds an empty %s (then drop parts into it).%s",
+          nodeKindInfo(ops[i]).summary, kindLabel(ops[i]),
+          wraps                     ? kindLabel(ops[i])
+          : state.selection.empty() ? "\nSelect parts first to apply it to them."
+                                    : "");
   }
-  ImGui::EndDisabled();
   ImGui::End();
 }
 

@@ -81,13 +81,6 @@ void Document::applyMeasurements(const std::string& label, std::vector<Measureme
   state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }
 
-void Document::applySettings(const std::string& label, const SceneSettings& settings) {
-  Scene next = scene();
-  next.settings = settings;
-  history_.record(state_, label);
-  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
-}
-
 NodeId Document::parentForAdd(NodeId parent, int* index) const {
   if (parent == 0) parent = root()->id;
   NodePtr target = findNode(root(), parent);
@@ -241,9 +234,19 @@ void Document::setResolution(int resolution) {
     throw Error("resolution must be from " + std::to_string(kMinResolution) + " to " +
                 std::to_string(kMaxResolution));
   if (scene().settings.resolution == resolution) return;
-  SceneSettings settings = scene().settings;
-  settings.resolution = resolution;
-  applySettings("resolution", settings);
+  // A setting of the preview, not an edit of the part: saved with the document (it becomes
+  // unsaved), but no undo step, and undo and redo keep it (withCurrentResolution).
+  Scene next = scene();
+  next.settings.resolution = resolution;
+  state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
+}
+
+DocumentState Document::withCurrentResolution(DocumentState restored) {
+  const int resolution = scene().settings.resolution;
+  if (restored.scene->settings.resolution == resolution) return restored;
+  Scene next = *restored.scene;
+  next.settings.resolution = resolution;
+  return DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }
 
 void Document::move(NodeId id, NodeId parent, int index) {
@@ -270,13 +273,13 @@ void Document::cancelInteraction() {
 
 bool Document::undo() {
   if (!history_.canUndo()) return false;
-  state_ = history_.undo(state_);
+  state_ = withCurrentResolution(history_.undo(state_));
   return true;
 }
 
 bool Document::redo() {
   if (!history_.canRedo()) return false;
-  state_ = history_.redo(state_);
+  state_ = withCurrentResolution(history_.redo(state_));
   return true;
 }
 

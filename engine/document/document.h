@@ -49,7 +49,6 @@ class Document {
   // --- commands (each one undo step) ---------------------------------------------------------
   // Makes `root` current as one undo step named `label`. The other commands go through here.
   void apply(const std::string& label, const NodePtr& root);
-  void applySettings(const std::string& label, const SceneSettings& settings);
   // Replaces the measurements (measurement.h) as one undo step; none is kept when nothing
   // changes. Throws strata::Error for a measurement of fewer than 2 or more than 3 points, or a
   // point on a node that is not in the tree.
@@ -91,6 +90,8 @@ class Document {
   // scene would exceed its leaf limit (engine/document/expansion.h).
   void setPattern(NodeId id, const PatternParams& pattern);
   void setVisible(NodeId id, bool visible);
+  // The preview's resolution: saved with the document, but not an undo step (undo and redo
+  // keep the resolution set last), as a view setting.
   void setResolution(int resolution);
   // Drag and drop: under `parent` before child `index`; never into the node's own subtree.
   void move(NodeId id, NodeId parent, int index = -1);
@@ -128,6 +129,8 @@ class Document {
 
  private:
   NodeId parentForAdd(NodeId parent, int* index) const;
+  // A state restored by undo or redo, with the resolution set last (setResolution).
+  DocumentState withCurrentResolution(DocumentState restored);
 
   DocumentState state_;
   History history_;

@@ -5,7 +5,8 @@
 // mesh_formats.h:
 //   .stl  binary STL: 80-byte header naming Strata and the unit, a unit facet normal computed
 //         from each triangle's winding, attribute 0. Coordinates as float32; no colours.
-//   .obj  OBJ with a companion "<basename>.mtl" beside it (`mtllib <basename>.mtl`): one
+//   .obj  OBJ with a companion "<basename>.mtl" beside it (`mtllib <basename>.mtl`; white space
+//         in the basename becomes '_' in the MTL's name, which mtllib cannot quote): one
 //         material per leaf, named after the leaf (sanitised to [A-Za-z0-9_-], made unique),
 //         Kd its colour; faces grouped by leaf under `usemtl`. Coordinates printed with %.9g.
 //   .ply  binary little-endian PLY: double x y z and uchar red green blue per vertex (a vertex

@@ -1,9 +1,9 @@
 // OBJ + MTL. The OBJ: comments naming Strata, the unit and the counts, `mtllib
-// <basename>.mtl`, every vertex as `v x y z` (%.9g), then per leaf (in leaf id order)
-// `usemtl <material>` followed by its triangles as `f a b c` (1-based). The MTL: per leaf
-// `newmtl`, a comment with the leaf's id and name, Ka 0, Kd = the colour sRGB-encoded, Ks 0,
-// d 1, illum 1. Both files are one atomic set (writeFilesAtomically): both are replaced or
-// neither, the OBJ (written first) replaced after the MTL it refers to.
+// <basename>.mtl` (white space in the basename as '_'), every vertex as `v x y z` (%.9g), then per
+// leaf (in leaf id order) `usemtl <material>` followed by its triangles as `f a b c` (1-based). The
+// MTL: per leaf `newmtl`, a comment with the leaf's id and name, Ka 0, Kd = the colour
+// sRGB-encoded, Ks 0, d 1, illum 1. Both files are one atomic set (writeFilesAtomically): both are
+// replaced or neither, the OBJ (written first) replaced after the MTL it refers to.
 #include <charconv>
 #include <cstdio>
 #include <map>
@@ -75,7 +75,12 @@ void writeObj(const std::string& path, const ExportMesh& em, Progress* progress)
   const std::map<uint32_t, std::string> names = materialNames(em.leaves);
   const size_t slash = path.find_last_of("/\\");
   const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-  const std::string mtlName = stemOf(path) + ".mtl";
+  // `mtllib` takes names separated by white space: a space in the material file's name would
+  // make other programs look for two files, so it becomes '_' there ("part 2.obj" refers to
+  // "part_2.mtl").
+  std::string mtlName = stemOf(path) + ".mtl";
+  for (char& c : mtlName)
+    if (c == ' ' || c == '\t') c = '_';
   const std::string mtlPath = folder + mtlName;
 
   // Triangles grouped by leaf, keeping their order within a leaf.

@@ -72,12 +72,32 @@ TEST(Document, EveryCommandIsOneUndoStep) {
 
   int steps = 0;
   while (doc.undo()) ++steps;
-  EXPECT_EQ(steps, 13);
+  EXPECT_EQ(steps, 12);  // the resolution is a preview setting: no step of its own
+  EXPECT_EQ(doc.scene().settings.resolution, 64);  // and undo keeps it
   EXPECT_TRUE(doc.root()->children.empty());
-  EXPECT_FALSE(doc.dirty());  // back at the state it started from
+  EXPECT_TRUE(doc.dirty());  // the tree it started from, at another resolution
   while (doc.redo()) {
   }
   EXPECT_EQ(doc.root(), final);  // redo restores the very same snapshot
+  EXPECT_EQ(doc.scene().settings.resolution, 64);
+}
+
+// Undoing edits made before a resolution change leaves the resolution as set; an untouched
+// document at its own resolution is not dirty after undo.
+TEST(Document, UndoKeepsThePreviewResolution) {
+  Document doc;
+  const int start = doc.scene().settings.resolution;
+  NodeId box = doc.addNode(NodeKind::Box);
+  doc.rename(box, "block");
+  doc.setResolution(start * 2);
+  EXPECT_TRUE(doc.dirty());
+  ASSERT_TRUE(doc.undo());  // the rename
+  EXPECT_NE(findNode(doc.root(), box)->name, "block");
+  EXPECT_EQ(doc.scene().settings.resolution, start * 2);
+  ASSERT_TRUE(doc.redo());
+  EXPECT_EQ(findNode(doc.root(), box)->name, "block");
+  EXPECT_EQ(doc.scene().settings.resolution, start * 2);
+  EXPECT_EQ(doc.undoLabel(), "rename");
 }
 
 TEST(Document, RefusedCommandsChangeNothing) {

@@ -197,6 +197,20 @@ TEST(MeshWritersObj, KdIsSrgbEncodedAndNumbersUse9Digits) {
   expectContains(obj, {"v 0.1 0.333333333 -2.5e-07\n"});
 }
 
+// `mtllib` names are separated by white space: "part 256.obj" refers to "part_256.mtl", written
+// under that name, so that other programs find the materials.
+TEST(MeshWritersObj, ASpaceInTheNameDoesNotSplitTheMaterialLibrary) {
+  ExportMesh em;
+  addBox(em, {0, 0, 0}, 1.0, 1);
+  em.leaves[1] = {"plate", {0.5f, 0.5f, 0.5f}};
+  const std::string path = tempPath("part 256.obj");
+  writeMeshFile(path, em);
+  expectContains(readWholeFile(path), {"mtllib ", "part_256.mtl\n"});
+  EXPECT_EQ(readWholeFile(path).find("part 256.mtl"), std::string::npos);
+  EXPECT_TRUE(exists(tempPath("part_256.mtl")));
+  EXPECT_FALSE(exists(tempPath("part 256.mtl")));
+}
+
 TEST(MeshWritersPly, RoundTripsWithVertexColours) {
   const std::string path = tempPath("scene.ply");
   writeAndCheck(path);
