@@ -110,6 +110,20 @@ void Camera::setAxisView(AxisView view) {
   }
 }
 
+const char* Camera::axisViewName() const {
+  const auto same = [](double a, double b) {
+    return std::fabs(std::remainder(a - b, 360.0)) < 1e-6;
+  };
+  if (same(pitchDegrees, 90.0)) return same(yawDegrees, -90.0) ? "top" : "";
+  if (same(pitchDegrees, -90.0)) return same(yawDegrees, -90.0) ? "bottom" : "";
+  if (!same(pitchDegrees, 0.0)) return "";
+  if (same(yawDegrees, -90.0)) return "front";
+  if (same(yawDegrees, 90.0)) return "back";
+  if (same(yawDegrees, 0.0)) return "right";
+  if (same(yawDegrees, 180.0)) return "left";
+  return "";
+}
+
 Ray Camera::rayThrough(glm::dvec2 pixel, glm::dvec2 size) const {
   double aspect = size.x / std::max(size.y, 1.0);
   double nx = 2.0 * pixel.x / std::max(size.x, 1.0) - 1.0;

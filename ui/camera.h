@@ -46,6 +46,9 @@ class Camera {
   // small margin, in a view of width / height `aspect`.
   void frame(const Bounds& bounds, double aspect);
   void setAxisView(AxisView view);
+  // "front", "top", ... while the camera looks exactly along an axis (setAxisView, or orbited
+  // there), else "".
+  const char* axisViewName() const;
 
   // The ray through a pixel of a viewport of `size` pixels.
   Ray rayThrough(glm::dvec2 pixel, glm::dvec2 size) const;

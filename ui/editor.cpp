@@ -446,7 +446,8 @@ void Editor::autosave() {
 
 namespace {
 // Hints over the viewport: the empty-scene hint, the projection and the gizmo mode.
-void drawViewportHints(const EditorState& s, const ViewRect& rect, bool ortho) {
+void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera& camera) {
+  const bool ortho = camera.ortho;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   if (s.preview && s.preview->splatCount() == 0 && s.previewError.empty()) {
     // An empty tree, or parts whose result is empty (all hidden, cut away, or not overlapping
@@ -465,7 +466,9 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, bool ortho) {
                   IM_COL32(200, 200, 205, 200), hint, nullptr, wrap);
   }
   char corner[160];
-  std::snprintf(corner, sizeof(corner), "%s  \u00B7  %s", ortho ? "orthographic" : "perspective",
+  const char* axisView = camera.axisViewName();
+  std::snprintf(corner, sizeof(corner), "%s%s%s  \u00B7  %s", axisView, *axisView ? ", " : "",
+                ortho ? "orthographic" : "perspective",
                 s.gizmoMode == GizmoMode::Move     ? "move (W)"
                 : s.gizmoMode == GizmoMode::Rotate ? "rotate (E)"
                                                    : "scale (R)");
@@ -548,6 +551,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   rect.width = std::max(1.0, double(vp->Size.x - layout.leftWidth - layout.rightWidth));
   rect.height = std::max(1.0, double(vp->Size.y - layout.menuHeight - layout.statusHeight));
   gl_->viewport.handleInput(s, rect);
+  gl_->viewport.keepCameraOutside(s);
   if (s.requestAxisView >= 0) gl_->viewport.camera.setAxisView(AxisView(s.requestAxisView));
   if (s.requestToggleOrtho) gl_->viewport.camera.ortho = !gl_->viewport.camera.ortho;
   s.requestAxisView = -1;
@@ -560,7 +564,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
     s.document.endInteraction();
 
   gl_->viewport.drawAnnotations(s, rect);
-  drawViewportHints(s, rect, gl_->viewport.camera.ortho);
+  drawViewportHints(s, rect, gl_->viewport.camera);
   ImGui::Render();
 
   updateLeafStyles();

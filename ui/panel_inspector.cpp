@@ -7,6 +7,7 @@
 #include <imgui_internal.h>  // ImGuiItemFlags_MixedValue: a mixed checkbox
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -179,6 +180,29 @@ void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes
 }
 
 // Which components of `field` differ from the primary node's across `nodes`.
+// What a modifier takes away or fills besides its edges, said under its amount: an artist
+// expects "round 3 mm" to round edges, not to remove every wall thinner than 6 mm.
+void modifierLimit(Modifier modifier, double amount) {
+  char twice[48];
+  std::snprintf(twice, sizeof(twice), gLengthFormat.c_str(), 2.0 * std::fabs(amount));
+  std::string text;
+  if (modifier == Modifier::Round)
+    text = std::string("Walls, ribs and pins thinner than ") + twice +
+           " (twice the radius) vanish: what a ball of that radius cannot reach from inside "
+           "is taken away.";
+  else if (modifier == Modifier::Fillet)
+    text = std::string("Gaps, slots and holes narrower than ") + twice +
+           " (twice the radius) are filled.";
+  else if (modifier == Modifier::Offset && amount < 0.0)
+    text = std::string("Parts thinner than ") + twice + " vanish when shrunk.";
+  else if (modifier == Modifier::Offset && amount > 0.0)
+    text = std::string("Gaps narrower than ") + twice + " close when grown.";
+  if (text.empty()) return;
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("%s", text.c_str());
+  ImGui::PopTextWrapPos();
+}
+
 glm::bvec3 mixedComponents(const NodeList& nodes, glm::dvec3 Transform::*field) {
   glm::bvec3 mixed(false);
   const glm::dvec3 first = nodes.back()->transform.*field;
@@ -447,7 +471,8 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
                           changes.c_str());
       }
     }
-    ImGui::TextDisabled("%zu children%s", node->children.size(),
+    ImGui::TextDisabled("%zu %s%s", node->children.size(),
+                        node->children.size() == 1 ? "child" : "children",
                         node->kind == NodeKind::Difference ? "; the first minus the others" : "");
     if (const char* key = nodeKindInfo(node->kind).amountKey) {
       // A modifier's distance, thickness or radius: dragged, the preview follows.
@@ -466,6 +491,7 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       edited(state, changed, [&] {
         for (const NodePtr& n : nodes) state.document.setAmount(n->id, amount);
       });
+      modifierLimit(modifierOf(node->kind), node->amount);
     }
     if (node->kind == NodeKind::Shell && nodes.size() == 1) shellOpeningField(state, node);
     if (patternOf(node->kind) != Pattern::None) patternFields(state, node, nodes, speed);

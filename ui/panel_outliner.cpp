@@ -447,7 +447,7 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   for (size_t i = 0; i < ops.size(); ++i) {
     if (!rowStarts[i]) ImGui::SameLine();
     char label[64];
-    std::snprintf(label, sizeof(label), "%s %s##op%zu", kindGlyph(ops[i]), kindLabel(ops[i]), i);
+    std::snprintf(label, sizeof(label), "%s##op%zu", kindLabel(ops[i]), i);
     if (ImGui::Button(label, ImVec2(w, 0))) {
       if (wraps)
         groupSelection(state, ops[i]);

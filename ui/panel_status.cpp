@@ -90,10 +90,13 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
   if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
+  // A double-click types a number, as on the inspector's fields (Dear ImGui's sliders take only
+  // Ctrl+click): focusing the slider from code opens its text field.
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) ImGui::SetKeyboardFocusHere(-1);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Cells along the longest side of the grid. Dragging shows a coarse\n"
-        "preview at once; it refines when you let go.");
+        "preview at once; it refines when you let go. Double-click to type a number.");
   Grid grid;
   if (gridAt(state, scene.settings.resolution, &grid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));

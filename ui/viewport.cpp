@@ -181,6 +181,24 @@ void Viewport::viewAll(const EditorState& state) {
   pendingFrame_ = b;
 }
 
+void Viewport::keepCameraOutside(EditorState& state) {
+  if (state.document.interacting() || gizmo_.dragging()) return;  // judged when it ends
+  const uint64_t revision = state.document.revision();
+  const Bounds b = sceneBounds(state.document.root());
+  const glm::dvec3 eye = camera.eye();
+  const bool inside = !b.empty() && eye.x > b.min.x && eye.y > b.min.y && eye.z > b.min.z &&
+                      eye.x < b.max.x && eye.y < b.max.y && eye.z < b.max.z;
+  if (revision != cameraCheckedRevision_ && cameraCheckedRevision_ != ~uint64_t(0) && inside &&
+      !cameraWasInside_) {
+    viewAll(state);
+    logInfo(state, "the result grew around the camera: the view now frames the whole scene");
+    cameraWasInside_ = false;  // framed this frame
+  } else {
+    cameraWasInside_ = inside;
+  }
+  cameraCheckedRevision_ = revision;
+}
+
 void Viewport::frameSelected(const EditorState& state) {
   Bounds b = selectionBounds(state.document.root(), state.selection);
   if (b.empty())

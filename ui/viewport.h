@@ -51,6 +51,10 @@ class Viewport {
   void drawAnnotations(const EditorState& state, const ViewRect& rect);
   // Frame the whole scene / the selection (at the next handleInput or draw).
   void viewAll(const EditorState& state);
+  // After an edit (not during a drag or a held widget) that grew the result around the camera,
+  // which was outside it before: frames the whole scene and says so, since the view then shows
+  // nothing but the inside of a part. Call once a frame, after handleInput.
+  void keepCameraOutside(EditorState& state);
   void frameSelected(const EditorState& state);
   bool gizmoDragging() const { return gizmo_.dragging(); }
 
@@ -87,6 +91,10 @@ class Viewport {
   // The tree when a gizmo drag began: the other selected nodes follow the primary from it
   // (followingTransforms), all in the drag's one undo step.
   NodePtr dragStart_;
+  // keepCameraOutside: the document revision it last looked at, and whether the camera was
+  // inside the scene's box then.
+  uint64_t cameraCheckedRevision_ = ~uint64_t(0);
+  bool cameraWasInside_ = false;
   // A drag of the selection's pivot (gizmoPlacement): every selected part moves by the pivot's
   // motion from dragStart_; pivotNow_ is the pivot's transform as dragged so far.
   bool pivotGroup_ = false;

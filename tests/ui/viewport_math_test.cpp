@@ -47,6 +47,17 @@ TEST(EditorMath, AxisViewsLookAlongTheAxes) {
   expectNear(c.right(), {1, 0, 0});
   c.setAxisView(AxisView::Right);
   expectNear(c.forward(), {-1, 0, 0});
+  EXPECT_STREQ(c.axisViewName(), "right");
+  for (AxisView v :
+       {AxisView::Front, AxisView::Back, AxisView::Left, AxisView::Top, AxisView::Bottom}) {
+    c.setAxisView(v);
+    EXPECT_STRNE(c.axisViewName(), "");
+  }
+  c.setAxisView(AxisView::Top);
+  EXPECT_STREQ(c.axisViewName(), "top");
+  c.orbit(3.0, 0.0);
+  EXPECT_STREQ(c.axisViewName(), "");  // turned away: no longer the top view
+  c.setAxisView(AxisView::Right);
   Ray centre = c.rayThrough({50, 50}, {100, 100});
   expectNear(centre.direction, c.forward());
   expectNear(centre.origin, c.eye());
