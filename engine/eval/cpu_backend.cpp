@@ -58,16 +58,31 @@ LdiHandle Backend::offset(const LdiHandle&, double, Progress&) {
 
 LdiHandle Backend::modify(Modifier modifier, double amount, const LdiHandle& ldi,
                           Progress& progress, const LdiHandle& wallOf) {
+  // Progress "modify" over the whole modifier: a round's or fillet's two offsets each half of it
+  // (an offset reports "offset" over its own passes).
+  const auto part = [&progress](double from, double to) {
+    return Progress(&progress, [&progress, from, to](const std::string&, double f) {
+      progress.report("modify", from + (to - from) * f);
+    });
+  };
   switch (modifier) {
-    case Modifier::Offset:
-      return offset(ldi, amount, progress);
-    case Modifier::Shell:  // the solid minus its inward offset (or that of wallOf)
-      return combine(RayOp::Difference, {ldi, offset(wallOf ? wallOf : ldi, -amount, progress)},
+    case Modifier::Offset: {
+      Progress whole = part(0.0, 1.0);
+      return offset(ldi, amount, whole);
+    }
+    case Modifier::Shell: {  // the solid minus its inward offset (or that of wallOf)
+      Progress whole = part(0.0, 1.0);
+      return combine(RayOp::Difference, {ldi, offset(wallOf ? wallOf : ldi, -amount, whole)},
                      ldi->grid(), progress);
-    case Modifier::Round:  // opening
-      return offset(offset(ldi, -amount, progress), amount, progress);
-    case Modifier::Fillet:  // closing
-      return offset(offset(ldi, amount, progress), -amount, progress);
+    }
+    case Modifier::Round: {  // opening
+      Progress first = part(0.0, 0.5), second = part(0.5, 1.0);
+      return offset(offset(ldi, -amount, first), amount, second);
+    }
+    case Modifier::Fillet: {  // closing
+      Progress first = part(0.0, 0.5), second = part(0.5, 1.0);
+      return offset(offset(ldi, amount, first), -amount, second);
+    }
     case Modifier::None:
       break;
   }

@@ -584,7 +584,13 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
     const LdiHandle united = v.ldi;
     v.ldi = cachedOr(v.key, record, [&] {
       Stopwatch watch;
-      LdiHandle out = backend_->modify(modifier, node->amount, united, *ctx.progress, wallOf);
+      // The modifier's own progress ("modify", over its offsets' passes) moves the evaluation's
+      // bar within this node's step: a round at high resolution is most of an evaluation.
+      Progress within(ctx.progress, [&ctx](const std::string&, double f) {
+        ctx.progress->report("evaluate",
+                             (double(ctx.done) + std::clamp(f, 0.0, 1.0)) / double(ctx.total));
+      });
+      LdiHandle out = backend_->modify(modifier, node->amount, united, within, wallOf);
       record.seconds += watch.seconds();
       ctx.finishStage(kBoolean, watch.seconds(), out->surfelCount());
       return out;

@@ -86,17 +86,30 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
   std::vector<uint8_t> inside(size_t(lat.count), 0);
   float *bd = best.data(), *dd = d.data();
   uint32_t *bl = bestLeaf.data(), *dl = leaf.data();
+  // Progress "offset": a step for each of the eight passes below and each axis written.
+  int stepsDone = 0;
+  const auto stepDone = [&] {
+    if (progress) progress->report("offset", double(++stepsDone) / 11.0);
+  };
   // best = Ez Sx (and the inside flags, from the x rays).
   seedAlongAxis(ldi, lat, 0, band, dd, dl, inside.data(), progress);
+  stepDone();
   envelopeAlongAxis(lat, 2, band, dd, dl, bd, bl, false, progress);
+  stepDone();
   // best = Ey min(best, Ex Sz).
   seedAlongAxis(ldi, lat, 2, band, dd, dl, nullptr, progress);
+  stepDone();
   envelopeAlongAxis(lat, 0, band, dd, dl, bd, bl, true, progress);
+  stepDone();
   envelopeAlongAxis(lat, 1, band, bd, bl, bd, bl, false, progress);
+  stepDone();
   // best = min(best, Ez Ex Sy).
   seedAlongAxis(ldi, lat, 1, band, dd, dl, nullptr, progress);
+  stepDone();
   envelopeAlongAxis(lat, 0, band, dd, dl, dd, dl, false, progress);
+  stepDone();
   envelopeAlongAxis(lat, 2, band, dd, dl, bd, bl, true, progress);
+  stepDone();
   // Signed distance in cells (reusing d): negative inside; far everywhere without a surface.
   float* sd = d.data();
   parallelFor(0, lat.count, 1 << 16, [&](int64_t begin, int64_t end) {
@@ -133,6 +146,7 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
         offsetWriteRay(lat, sd, bestLeaf.data(), axis, ray % raysU, ray / raysU, offsetCells,
                        out.surfels.data() + out.offsets[size_t(ray)]);
     });
+    stepDone();
   }
   return result;
 }

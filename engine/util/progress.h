@@ -25,6 +25,10 @@ class Progress {
   // that runs beside its parent's stages (on a thread of its own) and must stop with them, or
   // alone. The parent must outlive it.
   explicit Progress(const Progress* parent) : parent_(parent) {}
+  // A child that reports through `callback` (a part of the parent's work, mapped onto the
+  // parent's stages by the callback) and is cancelled with `parent`.
+  Progress(const Progress* parent, Callback callback)
+      : parent_(parent), callback_(std::move(callback)) {}
 
   // Asks the operation to stop; it throws Cancelled at its next check(). Any thread.
   void cancel() { cancelled_.store(true, std::memory_order_relaxed); }
