@@ -384,16 +384,17 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
     for (int t = 0; t < tiling.count(); ++t) share += !mine || mine(t) ? 1 : 0;
   for (int t = 0; t < tiling.count(); ++t) {
     if (mine && !mine(t)) continue;
-    // Tiles one after the other: a tile's own stages move the bar of "export" within the tile's
-    // share (its evaluation to 80%, then its contour), never back, where each tile's
-    // "evaluate" restarted from 0 and a long one (a modifier's) held the bar still.
+    // Tiles one after the other: after the first (whose evaluation is the stage "evaluate"), a
+    // tile's own stages move the bar of "export" within the tile's share (its evaluation to
+    // 80%, then its contour), never back, where each tile's "evaluate" restarted from 0 and a
+    // long one (a modifier's) held the bar still.
     double tileAt = 0.0;
     Progress tileProgress(&progress, [&](const std::string& stage, double f) {
       f = std::clamp(f, 0.0, 1.0);
       tileAt = std::max(tileAt, stage == "evaluate" ? 0.8 * f : 0.8 + 0.2 * f);
       progress.report("export", (double(done) + tileAt) / double(share));
     });
-    const bool mapped = !afterTile && tiling.count() > 1;
+    const bool mapped = !afterTile && tiling.count() > 1 && done > 0;
     contourOneTile(scene, evaluator, tiling.grid, tiling.halo, tiling.begin(t), tiling.end(t),
                    mapped ? tileProgress : progress, r, out, &lastEvaluated);
     ++done;
