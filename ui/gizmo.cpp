@@ -94,13 +94,22 @@ double Gizmo::handleLength(const ScreenMapping& view) const {
   return kHandlePixels * upp;
 }
 
-std::vector<glm::dvec3> Gizmo::ring(int k, const ScreenMapping& view) const {
-  glm::dvec3 n = handleAxis(k);
-  glm::dvec3 a =
+void Gizmo::ringBasis(int k, glm::dvec3* a, glm::dvec3* b) const {
+  const glm::dvec3 n = handleAxis(k);
+  *a =
       safeNormalize(glm::cross(n, std::fabs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)),
                     glm::dvec3(1, 0, 0));
-  glm::dvec3 b = glm::cross(n, a);
-  double r = handleLength(view) * 0.85;
+  *b = glm::cross(n, *a);
+}
+
+double Gizmo::ringRadius(const ScreenMapping& view) const {
+  return handleLength(view) * 0.85;
+}
+
+std::vector<glm::dvec3> Gizmo::ring(int k, const ScreenMapping& view) const {
+  glm::dvec3 a, b;
+  ringBasis(k, &a, &b);
+  const double r = ringRadius(view);
   std::vector<glm::dvec3> points;
   for (int i = 0; i <= 64; ++i) {
     double t = 2.0 * kPi * i / 64.0;
@@ -155,11 +164,9 @@ double Gizmo::ringTurnDegrees(const ScreenMapping& view, glm::dvec2 o, glm::dvec
   // The ring on screen: o + A (cos t, sin t), A's columns the screen images of its radii along
   // a and b (ring()); t turns from a towards b, a positive turn about the ring's axis.
   const glm::dvec3 n = handleAxis(axis_);
-  const glm::dvec3 a =
-      safeNormalize(glm::cross(n, std::fabs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)),
-                    glm::dvec3(1, 0, 0));
-  const glm::dvec3 b = glm::cross(n, a);
-  const double r = handleLength(view) * 0.85;
+  glm::dvec3 a, b;
+  ringBasis(axis_, &a, &b);
+  const double r = ringRadius(view);
   glm::dvec2 pa, pb;
   if (view.toScreen(origin_ + r * a, &pa) && view.toScreen(origin_ + r * b, &pb)) {
     const glm::dmat2 A(pa - o, pb - o);

@@ -66,6 +66,10 @@ class Gizmo {
  private:
   glm::dvec3 handleAxis(int k) const;  // unit world direction of handle k
   double handleLength(const ScreenMapping& view) const;
+  // Ring k lies in the plane of *a and *b (unit, b = axis x a): its point at angle t is
+  // origin + radius (cos t a + sin t b), t turning about the axis.
+  void ringBasis(int k, glm::dvec3* a, glm::dvec3* b) const;
+  double ringRadius(const ScreenMapping& view) const;  // scene units
   std::vector<glm::dvec3> ring(int k, const ScreenMapping& view) const;
   // While dragging a ring: how far it turned (degrees, about its axis, right-handed) from the
   // grab at startMouse_ to `mouse`; `o` is the gizmo's centre on screen. The ring follows the

@@ -81,24 +81,19 @@ std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& sta
                                                               const std::vector<NodeId>& selection,
                                                               NodeId primary,
                                                               const Transform& primaryNow) {
-  std::vector<std::pair<NodeId, Transform>> out;
   const NodePtr node = findNode(start, primary);
-  if (!node) return out;
+  if (!node) return {};
   const glm::dmat4 primaryParent = parentWorldMatrix(start, primary);
   const glm::dmat4 motion =
       primaryParent * primaryNow.matrix() * glm::inverse(primaryParent * node->transform.matrix());
-  for (NodeId id : selection) {
-    if (id == primary || isInSubtree(start, id, primary) || isInSubtree(start, primary, id))
-      continue;
-    bool nested = false;
-    for (NodeId other : selection)
-      if (other != id && isInSubtree(start, other, id)) nested = true;
-    const NodePtr follower = findNode(start, id);
-    if (nested || !follower) continue;
-    const glm::dmat4 parent = parentWorldMatrix(start, id);
-    const glm::dmat4 world = motion * parent * follower->transform.matrix();
-    out.emplace_back(id, transformFromMatrix(glm::inverse(parent) * world));
-  }
+  std::vector<std::pair<NodeId, Transform>> out = movedSelection(start, selection, motion);
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [&](const std::pair<NodeId, Transform>& moved) {
+                             const NodeId id = moved.first;
+                             return id == primary || isInSubtree(start, id, primary) ||
+                                    isInSubtree(start, primary, id);
+                           }),
+            out.end());
   return out;
 }
 
