@@ -1,11 +1,14 @@
 // See offset_ldi.h.
 #include "engine/ldi/offset_ldi.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "engine/ldi/offset_math.h"
 #include "engine/util/error.h"
+#include "engine/util/large_array.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
@@ -17,49 +20,121 @@ OffsetLattice latticeOf(const Grid& g) {
   return makeOffsetLattice(cells, first);
 }
 
+// The passes across the layout (along y and z) take their lines in blocks of up to kLineBlock
+// whose nodes are neighbours in memory (consecutive lines along the lattice's fast coordinate,
+// OffsetLattice::lineCoords), gathered into line-major buffers and scattered back: each cache
+// line is then read and written once per block instead of once per line (one line at a time,
+// the gathers and scatters were a third of a round's time at 512 cells). The per-line math
+// runs on the buffers unchanged, so every value is the same.
+constexpr int64_t kLineBlock = 16;
+
+// Calls body(t, count, start, lineStep) for the consecutive blocks of lines [begin, end) along
+// `axis`: lines t .. t + count - 1, the first starting at node `start`, each `lineStep` nodes
+// after the one before. A block ends where the fast coordinate's row ends.
+template <typename Body>
+void forLineBlocks(const OffsetLattice& lat, int axis, int64_t begin, int64_t end, Body&& body) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const int fast = lat.stride[v] < lat.stride[u] ? v : u;
+  const int64_t row = lat.n[fast], lineStep = lat.stride[fast];
+  for (int64_t t = begin; t < end;) {
+    const int64_t last = std::min({end, (t / row + 1) * row, t + kLineBlock});
+    int64_t i, j;
+    lat.lineCoords(axis, t, &i, &j);
+    body(t, int(last - t), lat.lineStart(axis, i, j), lineStep);
+    t = last;
+  }
+}
+
+// Lines `count` of a block (see forLineBlocks; `step` between a line's nodes, n nodes each)
+// from the lattice array `lattice` into the line-major `lines` (count x n), and back.
+template <typename T>
+void gatherLines(const T* lattice, int64_t start, int64_t lineStep, int64_t step, int64_t n,
+                 int count, T* lines) {
+  if (step == 1) {
+    for (int l = 0; l < count; ++l)
+      std::copy(lattice + start + l * lineStep, lattice + start + l * lineStep + n, lines + l * n);
+    return;
+  }
+  for (int64_t q = 0; q < n; ++q) {
+    const T* node = lattice + start + q * step;
+    for (int l = 0; l < count; ++l) lines[l * n + q] = node[l * lineStep];
+  }
+}
+template <typename T>
+void scatterLines(const T* lines, int64_t start, int64_t lineStep, int64_t step, int64_t n,
+                  int count, T* lattice) {
+  if (step == 1) {
+    for (int l = 0; l < count; ++l)
+      std::copy(lines + l * n, lines + (l + 1) * n, lattice + start + l * lineStep);
+    return;
+  }
+  for (int64_t q = 0; q < n; ++q) {
+    T* node = lattice + start + q * step;
+    for (int l = 0; l < count; ++l) node[l * lineStep] = lines[l * n + q];
+  }
+}
+
 // Step 1 for `axis`: each node's squared distance (cells^2) along its line to the nearest surfel
 // of that line, and that surfel's leaf; for axis 0 also whether the node is inside.
 void seedAlongAxis(const Ldi& ldi, const OffsetLattice& lat, int axis, float bandSquared, float* d,
                    uint32_t* leaf, uint8_t* inside, Progress* progress) {
-  const int u = (axis + 1) % 3;
   const AxisLdi& a = ldi.axes[size_t(axis)];
-  const int64_t raysU = lat.n[u], rays = lat.lineCount(axis);
+  const int64_t raysU = lat.n[(axis + 1) % 3], rays = lat.lineCount(axis);
+  const int64_t n = lat.n[axis], step = lat.stride[axis];
   parallelFor(0, rays, 256, [&](int64_t begin, int64_t end) {
     if (progress) progress->check();
-    for (int64_t ray = begin; ray < end; ++ray) {
-      const int64_t start = lat.lineStart(axis, ray % raysU, ray / raysU);
-      const uint32_t from = a.offsets[size_t(ray)];
-      offsetSeedLine(a.surfels.data() + from, int64_t(a.offsets[size_t(ray) + 1]) - int64_t(from),
-                     lat.first[axis], lat.n[axis], lat.stride[axis], bandSquared, d + start,
-                     leaf + start, inside ? inside + start : nullptr);
-    }
+    const size_t block = size_t(kLineBlock * n);
+    std::vector<float> dLines(block);
+    std::vector<uint32_t> leafLines(block);
+    std::vector<uint8_t> insideLines(inside ? block : 0);
+    forLineBlocks(
+        lat, axis, begin, end, [&](int64_t t, int count, int64_t start, int64_t lineStep) {
+          for (int l = 0; l < count; ++l) {
+            int64_t i, j;
+            lat.lineCoords(axis, t + l, &i, &j);
+            const int64_t ray = i + j * raysU;
+            const uint32_t from = a.offsets[size_t(ray)];
+            offsetSeedLine(a.surfels.data() + from,
+                           int64_t(a.offsets[size_t(ray) + 1]) - int64_t(from), lat.first[axis], n,
+                           1, bandSquared, dLines.data() + l * n, leafLines.data() + l * n,
+                           inside ? insideLines.data() + l * n : nullptr);
+          }
+          scatterLines(dLines.data(), start, lineStep, step, n, count, d);
+          scatterLines(leafLines.data(), start, lineStep, step, n, count, leaf);
+          if (inside) scatterLines(insideLines.data(), start, lineStep, step, n, count, inside);
+        });
   });
 }
 
 // Step 2 along `axis` for every line of the lattice: the envelope of d (and its leaves) into out
-// (which may be d itself: each line is copied first); with onlySmaller, out keeps its value
-// where that is smaller (offsetEnvelopeLine).
+// (which may be d itself: each block of lines is copied first); with onlySmaller, out keeps its
+// value where that is smaller (offsetEnvelopeLine).
 void envelopeAlongAxis(const OffsetLattice& lat, int axis, float bandSquared, const float* d,
                        const uint32_t* leaf, float* out, uint32_t* outLeaf, bool onlySmaller,
                        Progress* progress) {
-  const int u = (axis + 1) % 3;
-  const int64_t linesU = lat.n[u], lines = lat.lineCount(axis), n = lat.n[axis];
+  const int64_t lines = lat.lineCount(axis), n = lat.n[axis];
   const int64_t step = lat.stride[axis];
   parallelFor(0, lines, 256, [&](int64_t begin, int64_t end) {
     if (progress) progress->check();
-    std::vector<float> in(static_cast<size_t>(n));
-    std::vector<uint32_t> inLeaf(static_cast<size_t>(n));
+    const size_t block = size_t(kLineBlock * n);
+    std::vector<float> in(block), outLines(block);
+    std::vector<uint32_t> inLeaf(block), outLeafLines(block);
     std::vector<int32_t> v(static_cast<size_t>(n));
     std::vector<double> z(static_cast<size_t>(n));
-    for (int64_t line = begin; line < end; ++line) {
-      const int64_t start = lat.lineStart(axis, line % linesU, line / linesU);
-      for (int64_t q = 0; q < n; ++q) {
-        in[size_t(q)] = d[start + q * step];
-        inLeaf[size_t(q)] = leaf[start + q * step];
+    forLineBlocks(lat, axis, begin, end, [&](int64_t, int count, int64_t start, int64_t lineStep) {
+      gatherLines(d, start, lineStep, step, n, count, in.data());
+      gatherLines(leaf, start, lineStep, step, n, count, inLeaf.data());
+      if (onlySmaller) {  // the values the envelope keeps where they are smaller
+        gatherLines(out, start, lineStep, step, n, count, outLines.data());
+        gatherLines(outLeaf, start, lineStep, step, n, count, outLeafLines.data());
       }
-      offsetEnvelopeLine(in.data(), inLeaf.data(), 1, out + start, outLeaf + start, step, n,
-                         lat.first[axis], v.data(), z.data(), 1, bandSquared, onlySmaller);
-    }
+      for (int l = 0; l < count; ++l)
+        offsetEnvelopeLine(in.data() + l * n, inLeaf.data() + l * n, 1, outLines.data() + l * n,
+                           outLeafLines.data() + l * n, 1, n, lat.first[axis], v.data(), z.data(),
+                           1, bandSquared, onlySmaller);
+      scatterLines(outLines.data(), start, lineStep, step, n, count, out);
+      scatterLines(outLeafLines.data(), start, lineStep, step, n, count, outLeaf);
+    });
   });
 }
 
@@ -81,18 +156,22 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
   // instead of six, in the order the CUDA twin needs for its layouts (gpu/ldi/offset_ldi.cu runs
   // the same passes in the same order). Distances beyond the band are far (offsetBandSquared).
   const float band = offsetBandSquared(offsetCells);
-  std::vector<float> best(size_t(lat.count)), d(size_t(lat.count));
-  std::vector<uint32_t> bestLeaf(size_t(lat.count)), leaf(size_t(lat.count));
-  std::vector<uint8_t> inside(size_t(lat.count), 0);
-  float *bd = best.data(), *dd = d.data();
-  uint32_t *bl = bestLeaf.data(), *dl = leaf.data();
+  // Left uninitialised (the passes below write every node before reading it: the x seeds every
+  // d, leaf and inside flag, the first envelope every best), touched first by the parallel
+  // passes, in huge pages where the system offers them (the passes along z stride by a layer).
+  const size_t nodes = size_t(lat.count);
+  LargeArray<float> best(nodes), d(nodes);
+  LargeArray<uint32_t> bestLeaf(nodes), leaf(nodes);
+  LargeArray<uint8_t> inside(nodes);
+  float *bd = best.get(), *dd = d.get();
+  uint32_t *bl = bestLeaf.get(), *dl = leaf.get();
   // Progress "offset": a step for each of the eight passes below and each axis written.
   int stepsDone = 0;
   const auto stepDone = [&] {
     if (progress) progress->report("offset", double(++stepsDone) / 11.0);
   };
   // best = Ez Sx (and the inside flags, from the x rays).
-  seedAlongAxis(ldi, lat, 0, band, dd, dl, inside.data(), progress);
+  seedAlongAxis(ldi, lat, 0, band, dd, dl, inside.get(), progress);
   stepDone();
   envelopeAlongAxis(lat, 2, band, dd, dl, bd, bl, false, progress);
   stepDone();
@@ -111,12 +190,12 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
   envelopeAlongAxis(lat, 2, band, dd, dl, bd, bl, true, progress);
   stepDone();
   // Signed distance in cells (reusing d): negative inside; far everywhere without a surface.
-  float* sd = d.data();
+  float* sd = d.get();
   parallelFor(0, lat.count, 1 << 16, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i)
       sd[i] = offsetSignedDistance(best[size_t(i)], inside[size_t(i)]);
   });
-  std::vector<float>().swap(best);
+  best.reset();
 
   // Step 3: each ray's crossings of sd = offset, counted, then written.
   auto result = std::make_shared<Ldi>();
@@ -126,10 +205,25 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
     AxisLdi& out = result->axes[size_t(axis)];
     out.whole = true;
     std::vector<uint32_t> counts(size_t(rays), 0);
+    const int64_t n = lat.n[axis];
     parallelFor(0, rays, 1024, [&](int64_t begin, int64_t end) {
       if (progress) progress->check();
-      for (int64_t ray = begin; ray < end; ++ray)
-        counts[size_t(ray)] = offsetRayCount(lat, sd, axis, ray % raysU, ray / raysU, offsetCells);
+      // A block's lines of sd, gathered, are a lattice of their own: line l starts at l * n,
+      // its nodes one apart, the same values in the same order as on the whole lattice.
+      std::vector<float> lines(size_t(kLineBlock * n));
+      OffsetLattice block = lat;
+      block.stride[axis] = 1;
+      block.stride[(axis + 1) % 3] = n;
+      block.stride[(axis + 2) % 3] = 0;
+      forLineBlocks(lat, axis, begin, end, [&](int64_t t, int count, int64_t start, int64_t step) {
+        gatherLines(sd, start, step, lat.stride[axis], n, count, lines.data());
+        for (int l = 0; l < count; ++l) {
+          int64_t i, j;
+          lat.lineCoords(axis, t + l, &i, &j);
+          counts[size_t(i + j * raysU)] =
+              offsetRayCount(block, lines.data(), axis, l, 0, offsetCells);
+        }
+      });
     });
     uint64_t total = 0;
     out.offsets.resize(size_t(rays) + 1);
@@ -142,9 +236,14 @@ std::shared_ptr<Ldi> offsetLdi(const Ldi& input, double distance, Progress* prog
     out.surfels.resize(size_t(total));
     parallelFor(0, rays, 1024, [&](int64_t begin, int64_t end) {
       if (progress) progress->check();
-      for (int64_t ray = begin; ray < end; ++ray)
-        offsetWriteRay(lat, sd, bestLeaf.data(), axis, ray % raysU, ray / raysU, offsetCells,
+      for (int64_t t = begin; t < end; ++t) {
+        int64_t i, j;
+        lat.lineCoords(axis, t, &i, &j);
+        const int64_t ray = i + j * raysU;
+        if (counts[size_t(ray)] == 0) continue;  // no crossing: nothing to write
+        offsetWriteRay(lat, sd, bestLeaf.get(), axis, i, j, offsetCells,
                        out.surfels.data() + out.offsets[size_t(ray)]);
+      }
     });
     stepDone();
   }

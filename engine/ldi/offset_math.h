@@ -31,6 +31,21 @@ struct OffsetLattice {
     return i * stride[(axis + 1) % 3] + j * stride[(axis + 2) % 3];
   }
   STRATA_HD int64_t lineCount(int axis) const { return n[(axis + 1) % 3] * n[(axis + 2) % 3]; }
+  // The window coordinates (i, j) of line t along `axis`, numbered in memory order: t's
+  // neighbours are the lines whose nodes lie next to its own (i on u fastest, except where v
+  // has the smaller stride: along y in the x-fastest layout, where u = z). The CPU's chunks of
+  // consecutive lines then share cache lines, the GPU's neighbouring threads read neighbouring
+  // addresses; the order changes no value (every line is computed on its own).
+  STRATA_HD void lineCoords(int axis, int64_t t, int64_t* i, int64_t* j) const {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (stride[v] < stride[u]) {
+      *j = t % n[v];
+      *i = t / n[v];
+    } else {
+      *i = t % n[u];
+      *j = t / n[u];
+    }
+  }
 };
 
 inline OffsetLattice makeOffsetLattice(const int cells[3], const int first[3]) {

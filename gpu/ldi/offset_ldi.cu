@@ -19,19 +19,6 @@ OffsetLattice yFastest(OffsetLattice lat) {
   return lat;
 }
 
-// The window coordinates (i, j) of line t along `axis`, numbered so that neighbouring threads
-// take neighbouring nodes: i (on u) fastest, except along y in the x-fastest layout (u = z).
-__device__ void lineCoords(const OffsetLattice& lat, int axis, int64_t t, int64_t* i, int64_t* j) {
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  if (lat.stride[v] < lat.stride[u]) {
-    *j = t % lat.n[v];
-    *i = t / lat.n[v];
-  } else {
-    *i = t % lat.n[u];
-    *j = t / lat.n[u];
-  }
-}
-
 __global__ void seedLines(OffsetLattice lat, int axis, const uint32_t* offsets,
                           const Surfel* surfels, float bandSquared, float* d, uint32_t* leaf,
                           uint8_t* inside) {
@@ -39,7 +26,7 @@ __global__ void seedLines(OffsetLattice lat, int axis, const uint32_t* offsets,
   for (int64_t t = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; t < lines;
        t += int64_t(gridDim.x) * blockDim.x) {
     int64_t i, j;
-    lineCoords(lat, axis, t, &i, &j);
+    lat.lineCoords(axis, t, &i, &j);
     const int64_t ray = i + j * raysU, start = lat.lineStart(axis, i, j);
     const uint32_t from = offsets[ray];
     offsetSeedLine(surfels + from, int64_t(offsets[ray + 1]) - int64_t(from), lat.first[axis],
@@ -56,7 +43,7 @@ __global__ void envelopeLines(OffsetLattice lat, int axis, const float* in, cons
   for (int64_t t = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; t < lines;
        t += int64_t(gridDim.x) * blockDim.x) {
     int64_t i, j;
-    lineCoords(lat, axis, t, &i, &j);
+    lat.lineCoords(axis, t, &i, &j);
     const int64_t start = lat.lineStart(axis, i, j), step = lat.stride[axis];
     offsetEnvelopeLine(in + start, inLeaf + start, step, out + start, outLeaf + start, step,
                        lat.n[axis], lat.first[axis], v + t, z + t, lines, bandSquared, onlySmaller);
@@ -176,7 +163,7 @@ __device__ void rayCoords(const RaySpace& space, const RayInputs& in, int64_t r,
                           int64_t* i, int64_t* j) {
   *axis = space.axisOf(r);
   const int64_t t = r - space.base[*axis];
-  lineCoords(in.lat[*axis], *axis, t, i, j);
+  in.lat[*axis].lineCoords(*axis, t, i, j);
 }
 
 __global__ void countRays(RayInputs in, RaySpace space, double offsetCells, uint64_t* wide) {
