@@ -3,6 +3,7 @@
 #include <cuda_runtime.h>
 
 #include "engine/ldi/grid_mesh.h"
+#include "engine/ldi/offset_math.h"
 #include "engine/util/parallel_for.h"
 #include "gpu/contour/contour_tile.cuh"
 #include "gpu/ldi/combine_ldi.cuh"
@@ -124,6 +125,7 @@ class CudaBackend : public Backend {
   bool evaluatesModifiers() const override { return true; }
 
   bool keepsLdisOnHost() const override { return false; }
+  uint64_t offsetBytesPerNode() const override { return kOffsetBytesPerNode; }
 
   // Free device memory, as the driver sees it (the pool's kept blocks not counted).
   uint64_t memoryAvailable() const override {

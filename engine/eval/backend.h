@@ -89,6 +89,10 @@ class Backend {
   virtual uint64_t memoryAvailable() const;
   // Whether LDIs (LdiResource::bytes) take host memory (true) or the device's (false).
   virtual bool keepsLdisOnHost() const { return true; }
+  // Bytes per node of its grid window that an offset holds at once in that memory (sizes the
+  // tiles of exports with modifiers): the CPU's kHostOffsetBytesPerNode by default
+  // (engine/ldi/offset_math.h).
+  virtual uint64_t offsetBytesPerNode() const;
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
   // The default downloads the LDI and builds them on the host.
   virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);

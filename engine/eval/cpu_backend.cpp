@@ -2,6 +2,7 @@
 
 #include "engine/ldi/combine_ldi.h"
 #include "engine/ldi/offset_ldi.h"
+#include "engine/ldi/offset_math.h"
 #include "engine/ldi/sample_mesh.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
@@ -122,6 +123,10 @@ std::vector<LdiHandle> Backend::sampleMeshes(const std::vector<LeafToSample>& le
   for (const LeafToSample& leaf : leaves)
     out.push_back(sampleMesh(*leaf.mesh, leaf.objectToWorld, grid, leaf.leafId, progress));
   return out;
+}
+
+uint64_t Backend::offsetBytesPerNode() const {
+  return kHostOffsetBytesPerNode;
 }
 
 uint64_t Backend::memoryAvailable() const {

@@ -592,6 +592,7 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
       });
       LdiHandle out = backend_->modify(modifier, node->amount, united, within, wallOf);
       record.seconds += watch.seconds();
+      ctx.result->modifySeconds += watch.seconds();
       ctx.finishStage(kBoolean, watch.seconds(), out->surfelCount());
       return out;
     });

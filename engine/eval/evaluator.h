@@ -73,6 +73,9 @@ struct EvalResult {
   int computed = 0;               // nodes with outcome Computed
   int reused = 0;                 // nodes with outcome Cached
   double seconds = 0.0;
+  // Of `seconds`, the modifiers' own (offset, shell, round, fillet nodes computed): work that
+  // grows with the grid's nodes, not with the surface as the rest does (job_estimate.h).
+  double modifySeconds = 0.0;
   uint64_t peakBytes = 0;   // process peak resident memory after the evaluation
   uint64_t cacheBytes = 0;  // LDI memory held by the cache after the evaluation
   std::string backend;

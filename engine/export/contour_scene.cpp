@@ -82,6 +82,11 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, 
   r.evaluateSeconds += evaluate.seconds();
   r.surfels += result.measure.surfels;
   r.tileLdiBytes = std::max(r.tileLdiBytes, result.cacheBytes);
+  if (result.modifySeconds > 0.0) {
+    r.modifySeconds += result.modifySeconds;
+    r.modifiedNodes +=
+        double(evalGrid.cells.x + 1) * double(evalGrid.cells.y + 1) * double(evalGrid.cells.z + 1);
+  }
   addWarnings(result.warnings, &r);
   if (result.measure.surfels == 0) return;
   Stopwatch contour;
@@ -297,8 +302,8 @@ glm::dvec3 grownTileCells(const Grid& grid, int tileCells, int halo) {
   return cells;
 }
 
-int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo) {
-  const uint64_t perNode = halo > 0 ? kOffsetBytesPerNode : kContourBytesPerNode;
+int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo, uint64_t offsetBytesPerNode) {
+  const uint64_t perNode = halo > 0 ? offsetBytesPerNode : kContourBytesPerNode;
   const int longest = std::max({grid.cells.x, grid.cells.y, grid.cells.z, 8});
   for (int parts = 1;; ++parts) {
     const int tile = std::max(8, (longest + parts - 1) / parts);
@@ -345,13 +350,15 @@ glm::ivec3 ExportTiling::end(int tile) const {
   return glm::min(begin(tile) + tileCells, grid.cells);
 }
 
-ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes) {
+ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
+                          uint64_t offsetBytesPerNode) {
   ExportTiling t;
   t.grid = Evaluator::gridFor(scene, options.resolution);
   const Grid& grid = t.grid;
   t.halo = modifierHaloCells(scene.root, grid.h);
-  t.tileCells =
-      options.tileCells > 0 ? options.tileCells : exportTileCells(grid, memoryBytes, t.halo);
+  t.tileCells = options.tileCells > 0
+                    ? options.tileCells
+                    : exportTileCells(grid, memoryBytes, t.halo, offsetBytesPerNode);
   if (t.tileCells == 0)
     throw Error("offset, shell, round and fillet nodes read " + std::to_string(t.halo) +
                 " cells around each point at this resolution (their amounts, nested ones "
@@ -429,7 +436,9 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
   ContourReport local;
   ContourReport& r = report ? *report : local;
   r = ContourReport();
-  const ExportTiling tiling = exportTiling(scene, options, evaluator.backend().memoryAvailable());
+  const Backend& backend = evaluator.backend();
+  const ExportTiling tiling =
+      exportTiling(scene, options, backend.memoryAvailable(), backend.offsetBytesPerNode());
   std::vector<TileContour> tiles;
   contourTiles(scene, evaluator, tiling, {}, progress, r, &tiles);
   return meshFromTiles(scene, std::move(tiles), progress, r);

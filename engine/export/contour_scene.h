@@ -18,6 +18,7 @@
 #include "engine/eval/evaluator.h"
 #include "engine/export/drop_specks.h"
 #include "engine/geometry/export_mesh.h"
+#include "engine/ldi/offset_math.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -40,10 +41,11 @@ constexpr uint64_t kContourBytesPerNode = 2;
 // most a quarter of `memoryBytes` (the backend's memoryAvailable(); the rest is for the tile's
 // LDIs and the mesh). Fewer tiles evaluate the tree fewer times. 0 bytes (unknown): 256.
 // With modifiers (`halo` > 0: modifierHaloCells) each tile is evaluated on its window grown by
-// `halo` cells a side, and the offsets' arrays (kOffsetBytesPerNode) of that window are what
-// must fit; its cells are also kept within 2^32. 0 when no tile fits that (a halo of hundreds of
-// cells).
-int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo = 0);
+// `halo` cells a side, and the offsets' arrays of that window (`offsetBytesPerNode`: the
+// backend's Backend::offsetBytesPerNode) are what must fit; its cells are also kept within
+// 2^32. 0 when no tile fits that (a halo of hundreds of cells).
+int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo = 0,
+                    uint64_t offsetBytesPerNode = kOffsetBytesPerNode);
 // Cells along each axis of the window a tile of `tileCells` is evaluated on: the tile and `halo`
 // cells on both sides, within the grid (the contour's own cell of halo and the nodes not
 // counted).
@@ -59,6 +61,10 @@ struct ContourReport {
   uint64_t peakBytes = 0;        // process peak resident memory afterwards
   uint64_t surfels = 0;          // root surfels over all tiles
   uint64_t tileLdiBytes = 0;     // the most LDI memory one tile's evaluation held (its cache)
+  // Of evaluateSeconds, the modifiers' (EvalResult::modifySeconds), and the nodes of the grid
+  // windows of the tiles they ran in: the estimate scales that time with nodes, not surface.
+  double modifySeconds = 0.0;
+  double modifiedNodes = 0.0;
   uint64_t synthesizedCrossings = 0;
   uint64_t signDisagreements = 0;
   // Every vertex lies in a cell the surface crosses: the distance from any output vertex to
@@ -100,11 +106,13 @@ struct ExportTiling {
   glm::ivec3 begin(int tile) const;
   glm::ivec3 end(int tile) const;
 };
-// The tiling of an export with `options` on a backend with `memoryBytes` free (exportTileCells).
+// The tiling of an export with `options` on a backend with `memoryBytes` free whose offsets
+// hold `offsetBytesPerNode` (exportTileCells).
 // A scene with modifiers is tiled too: each tile is evaluated on its window grown by the
 // modifiers' halo and then cropped to it (Backend::crop), so that it holds what the whole grid
 // holds there. Throws strata::Error when no tile fits.
-ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes);
+ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
+                          uint64_t offsetBytesPerNode);
 
 // Evaluates and contours the tiles t of `tiling` with mine(t) (all when `mine` is empty) in
 // increasing order, appending them to *out and adding to r (grid, tiles, times, counts);

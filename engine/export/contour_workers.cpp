@@ -19,10 +19,13 @@ ExportMesh contourSceneOnWorkers(const Scene& scene,
   ContourReport local;
   ContourReport& r = report ? *report : local;
   r = ContourReport();
-  uint64_t memory = backends[0]->memoryAvailable();
-  for (const auto& b : backends) memory = std::min(memory, b->memoryAvailable());
+  uint64_t memory = backends[0]->memoryAvailable(), perNode = 0;
+  for (const auto& b : backends) {
+    memory = std::min(memory, b->memoryAvailable());
+    perNode = std::max(perNode, b->offsetBytesPerNode());
+  }
   const ExportTiling tiling =
-      exportTiling(scene, options, memory / uint64_t(std::max(1, workersPerMemory)));
+      exportTiling(scene, options, memory / uint64_t(std::max(1, workersPerMemory)), perNode);
   const int count = tiling.count();
   std::unique_ptr<std::atomic<bool>[]> taken(new std::atomic<bool>[size_t(count)]);
   for (int t = 0; t < count; ++t) taken[size_t(t)] = false;

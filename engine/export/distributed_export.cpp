@@ -189,7 +189,7 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       if (m.tag != kTagTiling) throw Error("distributed export: expected the tiling first");
       ContourOptions contour = options;
       contour.tileCells = int32From(m);
-      const ExportTiling tiling = exportTiling(scene, contour, 0);
+      const ExportTiling tiling = exportTiling(scene, contour, 0, backend->offsetBytesPerNode());
       const auto mine = [&](int t) { return t % size == rank; };
       size_t posted = 0;  // tiles[0, posted) were posted, their arrays released
       contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice,
@@ -212,7 +212,8 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
     return report;
   }
 
-  const ExportTiling tiling = exportTiling(scene, options, backend->memoryAvailable());
+  const ExportTiling tiling =
+      exportTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
   const int32_t tileCells = tiling.tileCells;
   for (int p = 1; p < size; ++p) group.send(p, kTagTiling, &tileCells, sizeof(tileCells));
   int finished = 0, reported = 1;  // tiles finished anywhere; processes whose tiles are in

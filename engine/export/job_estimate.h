@@ -4,9 +4,10 @@
 // and (to first order) time all grow with the surface, that is with the square of the resolution;
 // the probe measures the constant for this scene. Time is fitted to two probes (at half and at the
 // whole probe resolution): a part fixed by the input (a big mesh's triangles) plus a part that
-// grows with the surface. Memory: the probe's LDIs of one tile and bytes per triangle, scaled. An
-// estimate, good to a factor of about two: enough to tell a job
-// of seconds from one of hours, or one that fits from one that cannot.
+// grows with the surface; the modifiers' time (an offset walks every node of its window) is taken
+// out of the probes and scaled by the nodes of the job's (grown) tile windows instead. Memory: the
+// probe's LDIs of one tile and bytes per triangle, scaled. An estimate, good to a factor of about
+// two: enough to tell a job of seconds from one of hours, or one that fits from one that cannot.
 //
 // Synchronous; any thread; runs the probe on `backend` (which the caller must not use
 // meanwhile).

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 
+#include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/contour_scene.h"
 #include "engine/io/scene_file.h"
@@ -326,6 +327,18 @@ TEST(ExportTiles, AsFewAsMemoryAllowsAndNeverLargerThanTheLimit) {
   EXPECT_EQ(exportTileCells(flat, 4 * tileArrayBytes(1024, 1024) / 40), 1024);
 }
 
+// With modifiers the offsets' arrays of a tile's grown window must fit, at the bytes a node of
+// the backend that runs them: the CPU's 17 (engine/ldi/offset_ldi.h) take one tile where the
+// device's 40 would take several, each evaluated on its grown window (a rounded part at 1024
+// cells took four tiles and 2.7 times the grid's nodes on the CPU).
+TEST(ExportTiles, ModifierTilesAreSizedByTheBackendsOffsetBytes) {
+  const double nodes = 515.0 * 515.0 * 515.0;  // one tile of the whole grid, grown and clipped
+  const uint64_t memory = uint64_t(4.0 * nodes * double(kHostOffsetBytesPerNode)) + 4;
+  EXPECT_EQ(exportTileCells(cubeGrid(512), memory, 20, kHostOffsetBytesPerNode), 512);
+  EXPECT_LT(exportTileCells(cubeGrid(512), memory, 20, kOffsetBytesPerNode), 512);
+  EXPECT_EQ(CpuBackend().offsetBytesPerNode(), kHostOffsetBytesPerNode);
+}
+
 TEST(ExportTiles, TheDefaultTileGivesTheMeshOfAnyOtherTiling) {
   const Scene s = makeScene(op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.1, {1, 1, 1})}), 40);
   Evaluator evaluator(std::make_shared<CpuBackend>());
@@ -353,7 +366,8 @@ namespace {
 TEST(ExportTiles, ModifierScenesAreTiledWithTheirReachAround) {
   const Scene s =
       makeScene(modifier(NodeKind::Offset, 0.1, {box({2, 1, 1}), sphere(0.5, {1, 0, 0})}), 64);
-  const ExportTiling t = exportTiling(s, ContourOptions{4096, 0}, uint64_t(1) << 40);
+  const ExportTiling t =
+      exportTiling(s, ContourOptions{4096, 0}, uint64_t(1) << 40, kOffsetBytesPerNode);
   EXPECT_GT(t.count(), 1);
   EXPECT_EQ(t.halo, int(std::ceil(0.1 / t.grid.h)) + kOffsetHaloCells);
   const double window = double(t.tileCells + 2 * t.halo + 2);
@@ -381,7 +395,7 @@ TEST(ExportTiles, ModifierScenesAreTiledWithTheirReachAround) {
   // A reach no tile can hold beside its own cells: refused, saying why.
   const Scene huge = makeScene(modifier(NodeKind::Offset, 500.0, {box({2, 1, 1})}), 64);
   try {
-    exportTiling(huge, ContourOptions{4096, 0}, uint64_t(1) << 40);
+    exportTiling(huge, ContourOptions{4096, 0}, uint64_t(1) << 40, kOffsetBytesPerNode);
     FAIL() << "a halo of about a million cells was not refused";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("offset, shell, round and fillet"), std::string::npos)
@@ -428,6 +442,14 @@ TEST(ExportTiles, ATiledModifierSceneGivesTheMeshOfOneTile) {
     const ExportMesh b = contourScene(s, evaluator, ContourOptions{0, 24}, progress, &tiled);
     EXPECT_EQ(one.tiles, 1);
     EXPECT_GT(tiled.tiles, 8);
+    // The modifiers' time and the nodes they ran on (the estimate scales that time by nodes):
+    // one tile's window is the grid; tiles' grown windows add up to more.
+    EXPECT_GT(one.modifySeconds, 0.0);
+    EXPECT_LE(one.modifySeconds, one.evaluateSeconds);
+    const Grid& g = one.grid;
+    EXPECT_EQ(one.modifiedNodes,
+              double(g.cells.x + 1) * double(g.cells.y + 1) * double(g.cells.z + 1));
+    EXPECT_GT(tiled.modifiedNodes, one.modifiedNodes);
     EXPECT_LT(2 * modifierHaloCells(s.root, tiled.grid.h) + 24, tiled.grid.cells.x)
         << "windows as large as the grid";
     ASSERT_GT(a.mesh.triangles.size(), 10000u);
