@@ -429,19 +429,39 @@ void Editor::updateGhosts() {
 void Editor::autosave() {
   EditorState& s = *state_;
   if (s.recoveryPath.empty() || s.offerRecovery) return;
-  if (s.now - lastAutosave_ < options_.autosaveSeconds) return;
-  lastAutosave_ = s.now;
-  if (!s.document.dirty()) {
-    removeRecoveryFile(s.recoveryPath);
+  if (autosaveJob_) {
+    if (!autosaveJob_->done()) return;
+    const std::string error = autosaveJob_->error();
+    if (error.empty())
+      autosavedRevision_ = autosavingRevision_;
+    else
+      logWarning(s, "autosave failed: " + error);
+    autosaveJob_.reset();
+  }
+  const uint64_t revision = s.document.revision();
+  if (revision != seenRevision_) {
+    seenRevision_ = revision;
+    changedAt_ = s.now;
+  }
+  const bool overdue = s.now - lastAutosave_ >= options_.autosaveSeconds;
+  if (!s.document.dirty()) {  // saved, or undone back to the saved state: nothing to recover
+    if (recoveryWritten_ || overdue) {
+      lastAutosave_ = s.now;
+      recoveryWritten_ = false;
+      removeRecoveryFile(s.recoveryPath);
+    }
     return;
   }
-  if (s.document.revision() == autosavedRevision_) return;
-  try {
-    writeRecoveryFile(s.document, s.recoveryPath);
-    autosavedRevision_ = s.document.revision();
-  } catch (const Error& e) {
-    logWarning(s, std::string("autosave failed: ") + e.what());
-  }
+  if (revision == autosavedRevision_) return;
+  if (s.now - changedAt_ < options_.autosaveRestSeconds && !overdue) return;
+  lastAutosave_ = s.now;
+  autosavingRevision_ = revision;
+  recoveryWritten_ = true;
+  autosaveJob_ = std::make_unique<BackgroundJob<bool>>(
+      [scene = s.document.scene(), origin = s.document.path(), path = s.recoveryPath](Progress&) {
+        writeRecoveryFile(scene, origin, path);
+        return true;
+      });
 }
 
 namespace {
@@ -647,7 +667,8 @@ bool Editor::frame() {
 int Editor::run() {
   while (frame()) {
   }
-  // A clean exit: nothing to recover next time.
+  // A clean exit: nothing to recover next time (after an autosave still writing has finished).
+  autosaveJob_.reset();
   if (!state_->offerRecovery) removeRecoveryFile(state_->recoveryPath);
   return 0;
 }

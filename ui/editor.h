@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/eval/backend.h"
+#include "engine/jobs/background_job.h"
 #include "ui/camera.h"
 #include "ui/device_splat_copier.h"
 #include "ui/editor_state.h"
@@ -37,6 +38,10 @@ struct EditorOptions {
   std::string recentFilesPath;  // "" = none
   std::string layoutPath;       // the panel sizes remembered between runs; "" = the defaults
   std::string recoveryPath;     // "" = no autosave and no recovery offer
+  // A change is written for recovery once it has rested autosaveRestSeconds (a crash then loses
+  // seconds of work, not minutes; a burst of edits is written once), and at least every
+  // autosaveSeconds while edits keep coming. Written on a thread of its own.
+  double autosaveRestSeconds = 3.0;
   double autosaveSeconds = 120.0;
   // Tests: every frame takes at least this long (a slow machine), to show that input made
   // during a slow frame is still handled.
@@ -156,6 +161,11 @@ class Editor {
   double activeUntil_ = 0.0;      // draw without waiting for events until then (seconds)
   double lastWaitSeconds_ = 0.0;  // frame()'s wait for events (lastWaitSeconds)
   uint64_t autosavedRevision_ = 0;
+  uint64_t seenRevision_ = 0;  // the document's revision when autosave() last looked
+  double changedAt_ = 0.0;     // when that revision was first seen (seconds)
+  uint64_t autosavingRevision_ = 0;
+  bool recoveryWritten_ = false;                      // a recovery file of this session's may exist
+  std::unique_ptr<BackgroundJob<bool>> autosaveJob_;  // writing autosavingRevision_
   double startTime_ = 0.0;
   PanelLayout layout_;  // the panels' sizes (splitters), read from options_.layoutPath
 };

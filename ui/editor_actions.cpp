@@ -615,14 +615,20 @@ void setResolution(EditorState& state, int resolution) {
 // nothing in view (a measurement off screen, a rename) must not look like a dead key.
 void undo(EditorState& state) {
   const std::string label = state.document.undoLabel();
-  if (!state.document.undo()) return;
+  if (!state.document.undo()) {
+    logInfo(state, "nothing to undo");
+    return;
+  }
   pruneSelection(state);
   logInfo(state, "undone: " + label);
 }
 
 void redo(EditorState& state) {
   const std::string label = state.document.redoLabel();
-  if (!state.document.redo()) return;
+  if (!state.document.redo()) {
+    logInfo(state, "nothing to redo");
+    return;
+  }
   pruneSelection(state);
   logInfo(state, "redone: " + label);
 }
@@ -674,7 +680,9 @@ bool recoverDocument(EditorState& state) {
     Document doc = readRecoveryFile(state.recoveryPath, &warnings);
     replaceDocument(state, std::move(doc));
     for (const auto& w : warnings) logWarning(state, w);
-    logInfo(state, "recovered the unsaved work of the last session");
+    logInfo(state,
+            "recovered the unsaved work of the last session (its undo history was not kept: "
+            "undo starts from here)");
   });
 }
 

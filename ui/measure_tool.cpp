@@ -99,7 +99,8 @@ void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* box
 }  // namespace
 
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
-                            glm::dvec2 mouse, std::string* what) {
+                            glm::dvec2 mouse, const std::function<bool(const glm::dvec3&)>& shown,
+                            std::string* what) {
   if (what) *what = hit.cap ? "section cap" : "surface";
   const NodePtr& root = state.document.root();
   NodePtr leaf = findNode(root, hit.leaf);
@@ -113,6 +114,7 @@ glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view,
     if (!view.toScreen(s.world, &pixel) || glm::length(pixel - mouse) > kMeasureSnapPixels)
       continue;
     const double d = glm::length(s.world - hit.position);
+    if (d >= best || (shown && !shown(s.world))) continue;
     if (d < best) {
       best = d;
       snapped = s.world;

@@ -11,6 +11,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,11 +38,15 @@ struct MeasureTool {
 };
 
 // Where a click at `mouse` (view pixels) on `hit` measures from: of the corners and edge
-// midpoints of the part's box within kMeasureSnapPixels on screen, the nearest to the hit in the
-// world (the one in front, not one behind on the same line of sight), else the hit itself. *what
-// says which ("corner", "edge midpoint", "section cap", "surface").
+// midpoints of the part's box within kMeasureSnapPixels on screen that lie on the surface the
+// view shows (`shown(p)`: the view shows a surface point within a couple of cells of p at p's
+// pixel: a cutter's corner in the air above the part, or a cylinder's box corner beside it, is
+// not taken), the nearest to the hit in the world (the one in front, not one behind on the same
+// line of sight), else the hit itself. *what says which ("corner", "edge midpoint", "section
+// cap", "surface").
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
-                            glm::dvec2 mouse, std::string* what = nullptr);
+                            glm::dvec2 mouse, const std::function<bool(const glm::dvec3&)>& shown,
+                            std::string* what = nullptr);
 // A click of the tool at `world` on leaf `leaf` (0: none): the first point, the second (a
 // distance, one undo step) or the third (an angle, one more).
 void measureClick(EditorState& state, uint32_t leaf, const glm::dvec3& world);

@@ -406,9 +406,39 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
   if (click_ && state.measure.active) {
     std::optional<PickHit> hit = pickAt(renderer, state, rect, click_->mouse, pixelScale);
     if (hit) {
+      // What the view shows around the click, read once: a snap point counts where the view
+      // shows a surface point within two cells (and two pixels) of it, at its pixel or one next
+      // to it (a corner on the silhouette), and where it lies on the surface clicked, near the
+      // hit (not a floor's edge far below a rim on the same line of sight).
+      const ScreenMapping view = mapping(state, rect);
+      const ViewportFrame frame = makeFrame(state, rect, 0, pixelScale);
+      const auto toFrame = [&](glm::dvec2 mouse) {
+        return glm::ivec2(int(std::floor(mouse.x * pixelScale)),
+                          frame.height - 1 - int(std::floor(mouse.y * pixelScale)));
+      };
+      const glm::ivec2 at = toFrame(click_->mouse);
+      const ViewportRenderer::ShownPoints around = renderer.shownAround(
+          frame, at.x, at.y, int(std::ceil((kMeasureSnapPixels + 2.0) * pixelScale)));
+      const double cell = state.preview ? state.preview->stats.grid.h : 0.0;
+      const auto pixelSize = [&](const glm::dvec3& world) {
+        return view.unitsPerPixel *
+               (view.ortho ? 1.0 : std::max(glm::dot(world - view.eye, view.forward), 1e-9));
+      };
+      const double reach = 3.0 * kMeasureSnapPixels * pixelSize(hit->position) + 2.0 * cell;
+      const auto shown = [&](const glm::dvec3& world) {
+        glm::dvec2 pixel;
+        if (glm::length(world - hit->position) > reach || !view.toScreen(world, &pixel))
+          return false;
+        const double tolerance = 2.0 * cell + 2.0 * pixelSize(world);
+        const glm::ivec2 p = toFrame(pixel);
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if (const std::optional<glm::dvec3> q = around.at(p.x + dx, p.y + dy))
+              if (glm::length(*q - world) <= tolerance) return true;
+        return false;
+      };
       std::string what;
-      const glm::dvec3 p =
-          snapMeasurePoint(state, mapping(state, rect), *hit, click_->mouse, &what);
+      const glm::dvec3 p = snapMeasurePoint(state, view, *hit, click_->mouse, shown, &what);
       measureClick(state, hit->leaf, p);
       state.measure.lastSnap = what;
     } else {

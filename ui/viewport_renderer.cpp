@@ -990,6 +990,53 @@ std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, in
   return hit;
 }
 
+ViewportRenderer::ShownPoints ViewportRenderer::shownAround(const ViewportFrame& f, int px, int py,
+                                                            int radius) {
+  ShownPoints shown;
+  if (splatCount_ == 0) return shown;
+  const int x0 = std::max(0, px - radius), y0 = std::max(0, py - radius);
+  const int x1 = std::min(f.width - 1, px + radius), y1 = std::min(f.height - 1, py + radius);
+  if (x1 < x0 || y1 < y0) return shown;
+  const int w = x1 - x0 + 1, hgt = y1 - y0 + 1;
+  GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
+  glGetIntegerv(GL_VIEWPORT, previousViewport);
+  if (drawPickIds(f, x0, y0, w, hgt)) {
+    std::vector<GLuint> ids(size_t(w) * size_t(hgt), 0);
+    std::vector<float> depths(ids.size(), 1.0f);
+    glReadPixels(x0, y0, w, hgt, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+    glReadPixels(x0, y0, w, hgt, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
+    auto unprojectAt = [&](int x, int y, double ndcDepth) {
+      const glm::dvec4 ndc((x + 0.5) / f.width * 2.0 - 1.0, (y + 0.5) / f.height * 2.0 - 1.0,
+                           ndcDepth, 1.0);
+      const glm::dvec4 world = toWorld * ndc;
+      return glm::dvec3(world) / world.w;
+    };
+    shown.x0 = x0, shown.y0 = y0, shown.width = w, shown.height = hgt;
+    shown.points.resize(ids.size());
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const size_t i = size_t(y - y0) * size_t(w) + size_t(x - x0);
+        if (ids[i] == 0) continue;
+        if ((ids[i] & 0x80000000u) != 0) {  // a cap: where the pixel's ray meets the plane
+          const glm::dvec3 a = unprojectAt(x, y, -1.0), b = unprojectAt(x, y, 1.0);
+          const double denom = glm::dot(f.sectionNormal, b - a);
+          if (std::fabs(denom) > 1e-12)
+            shown.points[i] =
+                a + (b - a) * ((f.sectionOffset - glm::dot(f.sectionNormal, a)) / denom);
+          continue;
+        }
+        shown.points[i] = unprojectAt(x, y, double(depths[i]) * 2.0 - 1.0);
+      }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
+  glViewport(previousViewport[0], previousViewport[1], previousViewport[2], previousViewport[3]);
+  return shown;
+}
+
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
   glGenFramebuffers(1, &framebuffer_);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);

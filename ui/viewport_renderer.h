@@ -219,6 +219,19 @@ class ViewportRenderer {
   // bottom-left corner), rendered into an off-screen id buffer; nothing when it shows no splat.
   // Leaves the bound framebuffer and viewport as they were.
   std::optional<PickHit> pick(const ViewportFrame& frame, int px, int py);
+  // The surface points (world, scene units) that the pixels of the square of `radius` pixels
+  // around (px, py) show, clipped to the view, row by row from its bottom-left corner; none where
+  // a pixel shows no splat (a cap's pixels: their point on the section plane). One pass for
+  // many questions: whether a snap point lies on the surface the view shows (measure_tool.h).
+  struct ShownPoints {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+    std::vector<std::optional<glm::dvec3>> points;
+    std::optional<glm::dvec3> at(int x, int y) const {
+      if (x < x0 || y < y0 || x >= x0 + width || y >= y0 + height) return std::nullopt;
+      return points[size_t(y - y0) * size_t(width) + size_t(x - x0)];
+    }
+  };
+  ShownPoints shownAround(const ViewportFrame& frame, int px, int py, int radius);
   // The leaves shown in the pixel rectangle [x0, x1) x [y0, y1) of `frame`'s viewport (from its
   // bottom-left corner; corners in any order), sorted, once each: box selection.
   std::vector<uint32_t> pickLeaves(const ViewportFrame& frame, int x0, int y0, int x1, int y1);

@@ -76,17 +76,22 @@ std::vector<std::string> addRecentFile(const std::string& listPath, const std::s
 }
 
 void writeRecoveryFile(const Document& document, const std::string& recoveryPath) {
+  writeRecoveryFile(document.scene(), document.path(), recoveryPath);
+}
+
+void writeRecoveryFile(const Scene& scene, const std::string& documentPath,
+                       const std::string& recoveryPath) {
   makeFolderFor(recoveryPath);
-  std::string scene;
+  std::string json;
   try {
-    scene = sceneToJson(document.scene());  // mesh paths are absolute (Document)
+    json = sceneToJson(scene);  // mesh paths are absolute (Document)
   } catch (const Error& e) {
     throw Error(recoveryPath + ": " + e.what());
   }
   // One set: a recovery file never sits beside the origin of another document.
   writeFilesAtomically(
-      {{recoveryPath, [&](std::ostream& out) { out << scene; }},
-       {originPath(recoveryPath), [&](std::ostream& out) { out << document.path() << "\n"; }}});
+      {{recoveryPath, [&](std::ostream& out) { out << json; }},
+       {originPath(recoveryPath), [&](std::ostream& out) { out << documentPath << "\n"; }}});
 }
 
 bool recoveryFileExists(const std::string& recoveryPath) {

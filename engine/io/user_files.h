@@ -36,6 +36,10 @@ std::vector<std::string> addRecentFile(const std::string& listPath, const std::s
 // Writes the document's current scene and its origin atomically, as one set (both or neither;
 // engine/util/atomic_file.h). Throws strata::Error.
 void writeRecoveryFile(const Document& document, const std::string& recoveryPath);
+// The same from a scene and the path of the document it belongs to ("" = never saved): what a
+// background thread writes from a snapshot of the document (a Scene's nodes are immutable).
+void writeRecoveryFile(const Scene& scene, const std::string& documentPath,
+                       const std::string& recoveryPath);
 // True when a recovery file exists.
 bool recoveryFileExists(const std::string& recoveryPath);
 // Loads it as a modified document belonging to its origin file (if it had one). Throws

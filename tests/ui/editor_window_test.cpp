@@ -20,6 +20,7 @@
 #include "engine/document/commands.h"
 #include "engine/eval/cpu_backend.h"
 #include "engine/io/scene_file.h"
+#include "engine/io/user_files.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
 #include "ui/png_file.h"
@@ -186,6 +187,41 @@ TEST(EditorWindow, SphereSilhouetteAppearsAndUndoRemovesIt) {
   redo(state);
   ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
   EXPECT_TRUE(reddish(at(editor.renderViewport(w, h), w, w / 2, h / 2)));
+}
+
+// A change is written for recovery once it has rested a moment, not minutes later (an artist's
+// kill -9 fifty seconds after an edit lost it when the only trigger was every two minutes), on
+// a thread of its own; saved or undone back to the saved state, the file goes.
+TEST(EditorWindow, AnEditIsWrittenForRecoveryOnceItHasRested) {
+  REQUIRE_DISPLAY();
+  const std::string folder = ::testing::TempDir() + "/strata_autosave_rest";
+  std::filesystem::remove_all(folder);
+  EditorOptions o = testOptions();
+  o.recoveryPath = folder + "/recovery.strata.json";
+  o.autosaveRestSeconds = 0.3;
+  o.autosaveSeconds = 3600.0;  // only the rest can trigger it here
+  Editor editor(o);
+  EditorState& state = editor.state();
+  const auto framesFor = [&](double seconds, const std::function<bool()>& until) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+      editor.frame();
+      if (until && until()) return true;
+    }
+    return false;
+  };
+  const auto written = [&] { return std::filesystem::exists(o.recoveryPath); };
+  ASSERT_NE(addPrimitive(state, NodeKind::Sphere), 0u);
+  ASSERT_TRUE(state.document.dirty());
+  ASSERT_TRUE(framesFor(20.0, written)) << "not written within 20 s of the edit";
+  const Document recovered = readRecoveryFile(o.recoveryPath);
+  ASSERT_EQ(recovered.root()->children.size(), 1u);
+  EXPECT_EQ(recovered.root()->children[0]->kind, NodeKind::Sphere);
+  // Back to the saved (empty) state: nothing to recover.
+  undo(state);
+  EXPECT_FALSE(state.document.dirty());
+  EXPECT_TRUE(framesFor(20.0, [&] { return !written(); })) << "the recovery file stayed";
+  std::filesystem::remove_all(folder);
 }
 
 // A result too large for one frame's upload goes up in shares over several frames, while the

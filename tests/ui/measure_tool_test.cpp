@@ -101,11 +101,11 @@ TEST(MeasureTool, ClicksSnapToATurnedBoxsCornersAndEdgeMidpoints) {
   std::string what;
   // A hit a few pixels from the corner snaps to it; so does one near an edge's midpoint.
   hit.position = corner + glm::dvec3(0.02, -0.03, 0.0);
-  glm::dvec3 p = snapMeasurePoint(state, view, hit, pixelOf(corner) + glm::dvec2(4, -3), &what);
+  glm::dvec3 p = snapMeasurePoint(state, view, hit, pixelOf(corner) + glm::dvec2(4, -3), {}, &what);
   EXPECT_NEAR(glm::length(p - corner), 0.0, 1e-12);
   EXPECT_EQ(what, "corner");
   hit.position = edgeMid + glm::dvec3(0.01, 0.0, 0.0);
-  p = snapMeasurePoint(state, view, hit, pixelOf(edgeMid) + glm::dvec2(2, 2), &what);
+  p = snapMeasurePoint(state, view, hit, pixelOf(edgeMid) + glm::dvec2(2, 2), {}, &what);
   EXPECT_NEAR(glm::length(p - edgeMid), 0.0, 1e-12);
   EXPECT_EQ(what, "edge midpoint");
   // Two corners on one line of sight (looking straight down on the box): the one in front.
@@ -120,17 +120,31 @@ TEST(MeasureTool, ClicksSnapToATurnedBoxsCornersAndEdgeMidpoints) {
   ASSERT_TRUE(top.toScreen(upper, &upperPixel) && top.toScreen(lower, &lowerPixel));
   ASSERT_LT(glm::length(upperPixel - lowerPixel), kMeasureSnapPixels);
   hit.position = upper + glm::dvec3(0.0, 0.0, -0.01);
-  p = snapMeasurePoint(state, top, hit, lowerPixel, &what);  // the lower one is nearer on screen
+  p = snapMeasurePoint(state, top, hit, lowerPixel, {},
+                       &what);  // the lower one is nearer on screen
   EXPECT_NEAR(glm::length(p - upper), 0.0, 1e-12);
   // Far from every corner and midpoint: the surface point itself.
   const glm::dvec3 face = glm::dvec3(world * glm::dvec4(1.0, 0.3, 1.0, 1.0));
   hit.position = face;
-  p = snapMeasurePoint(state, view, hit, pixelOf(face), &what);
+  p = snapMeasurePoint(state, view, hit, pixelOf(face), {}, &what);
   EXPECT_EQ(p, face);
   EXPECT_EQ(what, "surface");
   hit.cap = true;
-  snapMeasurePoint(state, view, hit, pixelOf(face), &what);
+  snapMeasurePoint(state, view, hit, pixelOf(face), {}, &what);
   EXPECT_EQ(what, "section cap");
+  hit.cap = false;
+  // A corner the view does not show there (a cutter's corner in the air above the part, a
+  // cylinder's box corner beside it) is not taken: the next one that is, or the surface point.
+  hit.position = corner + glm::dvec3(0.02, -0.03, 0.0);
+  const auto notTheCorner = [&](const glm::dvec3& q) { return glm::length(q - corner) > 1e-9; };
+  p = snapMeasurePoint(state, view, hit, pixelOf(corner) + glm::dvec2(4, -3), notTheCorner, &what);
+  EXPECT_GT(glm::length(p - corner), 1e-3);
+  EXPECT_NE(what, "corner");
+  p = snapMeasurePoint(
+      state, view, hit, pixelOf(corner) + glm::dvec2(4, -3),
+      [](const glm::dvec3&) { return false; }, &what);
+  EXPECT_EQ(p, hit.position);
+  EXPECT_EQ(what, "surface");
 }
 
 }  // namespace
