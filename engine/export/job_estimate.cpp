@@ -109,6 +109,18 @@ double nodesOf(const glm::dvec3& cells) {
   return (cells.x + 1.0) * (cells.y + 1.0) * (cells.z + 1.0);
 }
 
+// The export dialog's probe for a job of `jobCells`: half of it, at least kProbeResolution (never
+// finer than the job) and at most kMaxTriangleProbeResolution. Parts thinner than a few probe
+// cells lose surface at coarse probes: an artist's pen holder (3 mm walls in 100 mm) probed at 64
+// cells put its export at 256 cells at 267,000 triangles where it wrote 391,700 (-32%); probed at
+// 128 at 377,000 (-4%), and at 512 cells 1.51 M for 1.65 M (-9%, -35% from 64 cells). It costs
+// about a quarter of the export's surface work, on the dialog's background thread.
+constexpr int kMaxTriangleProbeResolution = 256;
+int triangleProbeResolution(int jobCells) {
+  return std::min(jobCells,
+                  std::clamp(jobCells / 2, kProbeResolution, kMaxTriangleProbeResolution));
+}
+
 // Runs `probe` (returns a ProbeRun) at half and at the whole probe resolution, timing each;
 // returns the fitted seconds of the job on `job` in `tiles` tiles whose modifiers run on
 // `jobModifiedNodes` nodes in all. Two laws: a modifier's distance transform walks every node
@@ -227,7 +239,7 @@ TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, dou
                                          const std::shared_ptr<Backend>& backend,
                                          Progress& progress) {
   const Grid grid = Evaluator::gridFor(scene, resolution);
-  const int probeResolution = std::min(longestSide(grid), kProbeResolution);
+  const int probeResolution = triangleProbeResolution(longestSide(grid));
   Evaluator probe(backend);
   ContourOptions options;
   options.resolution = probeResolution;

@@ -55,12 +55,13 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
 
 // The triangles an export at `resolution` (0 = the scene's) will write, unsimplified and
 // simplified within `simplifyCells` cells (0: not simplified), for the export dialog: one probe
-// contoured at kProbeResolution (or at `resolution` when that is no finer) and simplified at the
-// same tolerance in cells. Unsimplified triangles grow with the surface, the square of the
-// resolution; simplified ones, on curved surfaces, with the resolution (the tolerance shrinks
-// with the cell, and the triangles a curved surface needs within a tolerance grow as its
-// inverse: measured 9,884 -> 19,606 for armadillo - bunny from 128 to 256 cells), on flat faces
-// not at all: the estimate scales linearly, an upper bound for flat parts. Throws Cancelled.
+// contoured at half the resolution (at least kProbeResolution, at most 256 cells, never finer
+// than the job) and simplified at the same tolerance in cells. Unsimplified triangles grow with the
+// surface, the square of the resolution; simplified ones, on curved surfaces, with the resolution
+// (the tolerance shrinks with the cell, and the triangles a curved surface needs within a tolerance
+// grow as its inverse: measured 9,884 -> 19,606 for armadillo - bunny from 128 to 256 cells), on
+// flat faces not at all: the estimate scales linearly, an upper bound for flat parts. Throws
+// Cancelled.
 struct TriangleEstimate {
   uint64_t triangles = 0;
   uint64_t simplified = 0;  // 0 when not simplified
