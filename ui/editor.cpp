@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <filesystem>
 #include <thread>
 
@@ -32,31 +33,37 @@
 namespace strata::ui {
 
 namespace {
-// Keys, between GLFW and ImGui. ImGui 1.86 samples key state once a frame, so a key pressed and
-// released between two frames (a quick tap while frames are slow) would never be seen, by
-// shortcuts or by text fields (Enter). This callback sits in front of ImGui's: it records every
-// press for the shortcuts (EditorState::keyPresses) and holds back the release of a key
-// pressed in the same batch of events until the next frame, so ImGui sees the key down once.
+// Keys and typed characters, between GLFW and ImGui. ImGui 1.86 samples key state once a frame:
+// a key pressed and released between two frames (a quick tap while frames are slow) would never
+// be seen, by shortcuts or by text fields (Enter), and everything typed within one frame would
+// land in it at once (characters typed after Ctrl+A are dropped while Ctrl is still down). So
+// every key and character event waits in a queue with its time, and each frame takes them in
+// order up to the release of a key it pressed (that release, and what follows, go to the next
+// frame: every key is seen down once, a shortcut's modifier is up again before the text after
+// it), and only those made before the first mouse button change the frames have not taken yet
+// (InputQueue below): a click on a field followed at once by Ctrl+A and typing, or a value
+// typed and Enter pressed right after a double-click, reach the field after the click that
+// activates it, as they were made. (Keys went to ImGui at once while clicks waited: an artist's
+// Ctrl+A did nothing and the name typed was appended, and a radius typed during a long
+// evaluation was lost.) The presses also go to the shortcuts (EditorState::keyPresses).
 GLFWkeyfun g_imguiKeyCallback = nullptr;
+GLFWcharfun g_imguiCharCallback = nullptr;
 std::vector<KeyPress> g_keyPresses;
-std::vector<int> g_pressedInBatch;
-struct HeldRelease {
+
+struct KeyEvent {
   GLFWwindow* window;
-  int key, scancode, mods;
+  bool isChar;
+  int key, scancode, action, mods;
+  unsigned codepoint;
+  double time;
 };
-std::vector<HeldRelease> g_heldReleases;
+std::deque<KeyEvent> g_keyEvents;
 
 void onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
-  if (action == GLFW_PRESS) {
-    g_keyPresses.push_back(KeyPress{key, mods});
-    g_pressedInBatch.push_back(key);
-  }
-  if (action == GLFW_RELEASE &&
-      std::find(g_pressedInBatch.begin(), g_pressedInBatch.end(), key) != g_pressedInBatch.end()) {
-    g_heldReleases.push_back(HeldRelease{window, key, scancode, mods});
-    return;
-  }
-  if (g_imguiKeyCallback) g_imguiKeyCallback(window, key, scancode, action, mods);
+  g_keyEvents.push_back(KeyEvent{window, false, key, scancode, action, mods, 0, glfwGetTime()});
+}
+void onChar(GLFWwindow* window, unsigned codepoint) {
+  g_keyEvents.push_back(KeyEvent{window, true, 0, 0, 0, 0, codepoint, glfwGetTime()});
 }
 
 // The mouse, between GLFW and ImGui: every button and cursor event queued with its time, taken
@@ -69,12 +76,34 @@ void onCursor(GLFWwindow*, double x, double y) {
   g_input.cursor(x, y, glfwGetTime());
 }
 
-// Before a frame's events: deliver the releases held back from the previous batch.
-void releaseHeldKeys() {
-  for (const HeldRelease& r : g_heldReleases)
-    if (g_imguiKeyCallback) g_imguiKeyCallback(r.window, r.key, r.scancode, GLFW_RELEASE, r.mods);
-  g_heldReleases.clear();
-  g_pressedInBatch.clear();
+// At the start of a frame, before it takes the mouse: this frame's share of the key events. A
+// key that typed a character needs no frame of its own (the character is the text; Ctrl+A and
+// Enter type none), so typing goes on at full speed in slow frames.
+void deliverKeyEvents() {
+  const double before = g_input.firstButtonTime();  // +infinity: none pending
+  std::vector<int> pressed, typed;
+  int lastPressed = -1;
+  while (!g_keyEvents.empty()) {
+    const KeyEvent& k = g_keyEvents.front();
+    if (k.time >= before) break;
+    if (k.isChar) {
+      if (lastPressed >= 0) typed.push_back(lastPressed);
+      if (g_imguiCharCallback) g_imguiCharCallback(k.window, k.codepoint);
+    } else {
+      const auto in = [&](const std::vector<int>& keys) {
+        return std::find(keys.begin(), keys.end(), k.key) != keys.end();
+      };
+      if (k.action == GLFW_RELEASE && in(pressed) && !in(typed))
+        break;  // pressed in this frame, and seen only as down: released in the next
+      if (k.action == GLFW_PRESS) {
+        g_keyPresses.push_back(KeyPress{k.key, k.mods});
+        pressed.push_back(k.key);
+        lastPressed = k.key;
+      }
+      if (g_imguiKeyCallback) g_imguiKeyCallback(k.window, k.key, k.scancode, k.action, k.mods);
+    }
+    g_keyEvents.pop_front();
+  }
 }
 }  // namespace
 
@@ -98,7 +127,8 @@ struct Editor::Gl {
     applyTheme(scale > 0.5f ? scale : 1.0f);
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
     g_imguiKeyCallback = glfwSetKeyCallback(window.handle(), onKey);  // in front of ImGui's
-    glfwSetMouseButtonCallback(window.handle(), onMouseButton);       // instead of ImGui's
+    g_imguiCharCallback = glfwSetCharCallback(window.handle(), onChar);
+    glfwSetMouseButtonCallback(window.handle(), onMouseButton);  // instead of ImGui's
     glfwSetCursorPosCallback(window.handle(), onCursor);
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(window.handle(), &x, &y);
@@ -108,7 +138,10 @@ struct Editor::Gl {
   }
   ~Gl() {
     glfwSetKeyCallback(window.handle(), g_imguiKeyCallback);
+    glfwSetCharCallback(window.handle(), g_imguiCharCallback);
     g_imguiKeyCallback = nullptr;
+    g_imguiCharCallback = nullptr;
+    g_keyEvents.clear();
     copier.reset();  // unregisters the buffer while it and the context exist
     renderer.reset();
     ImGui_ImplOpenGL3_Shutdown();
@@ -518,6 +551,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   gl_->frameClock.restart();  // the status bar shows the previous frame's drawing time
   s.now = glfwGetTime() - startTime_;
 
+  deliverKeyEvents();
   s.keyPresses.swap(g_keyPresses);
   g_keyPresses.clear();
   pumpPreview();
@@ -632,14 +666,14 @@ bool Editor::frame() {
   for (bool down : io.KeysDown) input = input || down;
   // The viewport's full image is drawn a share a frame, and a large result uploaded a share a
   // frame: keep frames coming until it is shown.
-  if (input || g_input.pending() || gl_->renderer->refining() || uploading())
+  if (input || g_input.pending() || !g_keyEvents.empty() || gl_->renderer->refining() ||
+      uploading())
     activeUntil_ = state_->now + 0.5;
   // An edit made since the last frame without input (a dialog's result, a script, a test) is
   // sent to the worker before sleeping: its result wakes the loop (glfwPostEmptyEvent).
   const bool requested = requestPreviewIfNeeded();
   const bool working =
       state_->worker.busy || (state_->exportJob && state_->exportJob->status().running);
-  releaseHeldKeys();
   if (requested && !input)
     // An edit just went to the engine and nothing else moves: a frame now would show the old
     // result. Wait a little for the new one (its arrival wakes the loop): on a fast engine the
@@ -701,7 +735,6 @@ Placement Editor::placementInViewport(int width, int height, double x, double y)
 
 std::vector<uint8_t> Editor::screenshot(int* width, int* height) {
   std::vector<uint8_t> pixels;
-  releaseHeldKeys();
   glfwPollEvents();
   drawFrame(true, &pixels, width, height);
   return pixels;

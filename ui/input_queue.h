@@ -16,6 +16,7 @@
 #pragma once
 
 #include <deque>
+#include <limits>
 
 namespace strata::ui {
 
@@ -38,6 +39,13 @@ class InputQueue {
   Frame takeFrame();
   // Events not taken yet (a frame takes at most one button change).
   bool pending() const { return !events_.empty(); }
+  // The time of the first button change among them (+infinity: none): keys made after it wait
+  // until a frame has taken it (editor.cpp).
+  double firstButtonTime() const {
+    for (const Event& e : events_)
+      if (e.kind != Event::Move) return e.time;
+    return std::numeric_limits<double>::infinity();
+  }
 
  private:
   struct Event {

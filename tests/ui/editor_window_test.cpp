@@ -641,6 +641,34 @@ TEST(EditorWindow, ClicksKeysAndDoubleClicksDuringSlowFramesAreAllHandled) {
                         << wx << ", " << wy
                         << "; last message: " << (state.log.empty() ? "" : state.log.back().text)
                         << " (the window is in /tmp/slowframes.png)";
+
+  // A click on the inspector's name field, Ctrl+A and a new name typed, all within one frame:
+  // the keys reach the field after the click that activates it (they used to go first: Ctrl+A
+  // did nothing and the typed text was appended to the old name).
+  const NodeId named = state.document.root()->children.at(0)->id;
+  state.selection = {named};
+  for (int i = 0; i < 2; ++i) editor.frame();
+  input.move(wx + 1120, wy + 85);
+  editor.frame();
+  input.button(true);
+  input.button(false);
+  input.key(XK_Control_L, true);
+  input.key(XK_a, true);
+  input.key(XK_a, false);
+  input.key(XK_Control_L, false);
+  for (KeySym k : {XK_h, XK_o, XK_l, XK_e, XK_Return}) {
+    input.key(k, true);
+    input.key(k, false);
+  }
+  const bool renamed =
+      framesUntil(editor, [&] { return findNode(state.document.root(), named)->name == "hole"; });
+  if (!renamed) {
+    int w = 0, h = 0;
+    auto px = editor.screenshot(&w, &h);
+    writePng("/tmp/slowframes_name.png", w, h, px);
+  }
+  EXPECT_TRUE(renamed) << "named '" << findNode(state.document.root(), named)->name
+                       << "' (the window is in /tmp/slowframes_name.png)";
 }
 #endif
 
