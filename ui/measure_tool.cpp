@@ -225,6 +225,9 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
 
 void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  // Within the view: a label beyond its edge showed through the translucent panels beside it.
+  draw->PushClipRect(ImVec2(float(x0), float(y0)),
+                     ImVec2(float(x0 + view.size.x), float(y0 + view.size.y)), true);
   const NodePtr& root = state.document.root();
   auto screen = [&](const glm::dvec3& p, ImVec2* out) {
     glm::dvec2 px;
@@ -248,6 +251,7 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
       if (v.hasAngle && screen(v.b, &at)) label(draw, ImVec2(at.x, at.y - 22.0f), angle, &boxes);
     }
   }
+  draw->PopClipRect();
 }
 
 }  // namespace strata::ui

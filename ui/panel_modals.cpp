@@ -14,6 +14,7 @@
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"
+#include "ui/scene_queries.h"
 
 namespace strata::ui {
 namespace {
@@ -56,7 +57,7 @@ void unsavedQuestion(EditorState& state) {
   if (state.pendingReplace && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   centreNext();
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-  ImGui::Text("%s has unsaved changes.", state.document.title().c_str());
+  ImGui::Text("%s has unsaved changes.", state.document.name().c_str());
   bool proceed = false, close = false;
   if (ImGui::Button("Save", ImVec2(110, 0))) {
     // An untitled document asks where first; the action follows the save (main_menu.cpp).
@@ -119,7 +120,9 @@ void exportWindow(EditorState& state) {
           r.measured.bound(), s.simplifyCells * r.measured.bound() / std::max(r.tolerance, 1e-300));
     ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
                 c.nonManifoldEdges, c.misorientedEdges);
-    ImGui::Text("volume %.6g, area %.6g, %.2f s", c.volume, c.area, s.seconds);
+    const char* unit = unitSymbol(state.document.scene().settings.unit);
+    ImGui::Text("volume %.6g %s^3, area %.6g %s^2, %.2f s", c.volume, unit, c.area, unit,
+                s.seconds);
   } else if (s.cancelled) {
     ImGui::TextUnformatted("cancelled; nothing was written");
   } else {

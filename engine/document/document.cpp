@@ -44,9 +44,12 @@ NodeId Document::nextId() const {
   return maxNodeId(root()) + 1;
 }
 
+std::string Document::name() const {
+  return path_.empty() ? "untitled" : fs::path(path_).filename().string();
+}
+
 std::string Document::title() const {
-  std::string name = path_.empty() ? "untitled" : fs::path(path_).filename().string();
-  return dirty() ? name + " *" : name;
+  return dirty() ? name() + " *" : name();
 }
 
 void Document::apply(const std::string& label, const NodePtr& newRoot) {

@@ -45,6 +45,8 @@ class Document {
   bool dirty() const { return state_.revision != savedRevision_; }
   // The file's name ("untitled" when none), with " *" when there are unsaved changes.
   std::string title() const;
+  // The file's name ("untitled" before the first save), without title()'s unsaved mark.
+  std::string name() const;
 
   // --- commands (each one undo step) ---------------------------------------------------------
   // Makes `root` current as one undo step named `label`. The other commands go through here.
