@@ -120,6 +120,8 @@ struct EditorState {
   // viewport each frame: new parts in an empty scene are sized from it.
   double viewExtent = 0.0;
   bool showGrid = true;
+  // The inspector's scale: a change to one component scales all three by the same factor.
+  bool uniformScale = false;
   // Ghosts (translucent parts that cut or intersect): those of the selection always, all of
   // them with this toggle (View > Ghosts of all cutters, G).
   bool showAllGhosts = false;

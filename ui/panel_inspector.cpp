@@ -254,6 +254,9 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
           for (int i = 0; i < 3; ++i)
             if (v[i] != 0.0 && node->transform.scale[i] != 0.0)
               factor[i] = v[i] / node->transform.scale[i];
+          if (state.uniformScale)  // the component changed sets the factor of all three
+            for (int i = 0; i < 3; ++i)
+              if (factor[i] != 1.0) factor = glm::dvec3(factor[i]);
           applyAll([&](Transform n) {
             n.scale *= factor;
             return n;
@@ -265,6 +268,10 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
       guarded(state, [&] { applyAll([](const Transform&) { return Transform(); }); });
       state.document.endInteraction();
     }
+    ImGui::SameLine();
+    ImGui::Checkbox("uniform scale", &state.uniformScale);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("A scale typed or dragged on one axis scales all three by as much");
   }
 }
 
