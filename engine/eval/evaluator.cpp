@@ -242,6 +242,28 @@ struct Evaluator::Context {
   }
 };
 
+// What a modifier node that left nothing of its (non-empty) parts did.
+std::string emptiedByModifier(const Node& node) {
+  char amount[32];
+  std::snprintf(amount, sizeof(amount), "%.4g", std::fabs(node.amount));
+  char twice[32];
+  std::snprintf(twice, sizeof(twice), "%.4g", 2.0 * std::fabs(node.amount));
+  const std::string who = std::string(kindName(node.kind)) + " '" + node.name + "' ";
+  switch (modifierOf(node.kind)) {
+    case Modifier::Round:
+      return who + "left nothing of its parts: a round of radius " + amount +
+             " removes every wall thinner than " + twice + "; a smaller radius keeps them";
+    case Modifier::Offset:
+      return who + "left nothing of its parts: shrinking by " + amount +
+             " removes every part thinner than " + twice;
+    case Modifier::Shell:
+      return who + "left nothing of its parts: a wall of " + amount +
+             " is thinner than the cell size; raise the resolution or the thickness";
+    default:
+      return who + "left nothing of its parts";
+  }
+}
+
 const char* outcomeName(NodeOutcome outcome) {
   switch (outcome) {
     case NodeOutcome::Computed:
@@ -596,6 +618,9 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
       ctx.finishStage(kBoolean, watch.seconds(), out->surfelCount());
       return out;
     });
+    // A modifier that leaves nothing of its parts says why (an artist's 3 mm round of a part
+    // with 3 mm walls emptied it, and only the inspector's grey note had said it could).
+    if (v.ldi->surfelCount() == 0) ctx.warn(emptiedByModifier(*node));
   }
   if (record.outcome == NodeOutcome::Cached) ++ctx.result->reused;
   if (record.outcome == NodeOutcome::Computed) ++ctx.result->computed;

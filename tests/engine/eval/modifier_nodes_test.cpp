@@ -42,6 +42,30 @@ TEST(ModifierNodes, VolumesOfTheUnitSphereAndTwoBoxes) {
   EXPECT_LT(evaluatedVolume(modifier(NodeKind::Round, 0.2, {pair}), res), plain - 0.05);
 }
 
+// A modifier that leaves nothing of its parts says so, naming the node and why; cached, it still
+// does; one that keeps something says nothing.
+TEST(ModifierNodes, AModifierThatLeavesNothingSaysWhy) {
+  const NodePtr plate = box({4.0, 4.0, 0.4});
+  auto round = std::make_shared<Node>(*modifier(NodeKind::Round, 0.3, {plate}));
+  round->name = "edges";
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  EvalOptions options;
+  options.resolution = 64;
+  const Scene emptied = makeScene(round, 64);
+  for (int pass = 0; pass < 2; ++pass) {  // computed, then from the cache
+    const EvalResult r = evaluator.evaluate(emptied, options, progress);
+    EXPECT_EQ(r.measure.surfels, 0u);
+    ASSERT_EQ(r.warnings.size(), 1u) << "pass " << pass;
+    EXPECT_NE(r.warnings[0].find("round 'edges' left nothing"), std::string::npos) << r.warnings[0];
+    EXPECT_NE(r.warnings[0].find("thinner than 0.6"), std::string::npos) << r.warnings[0];
+  }
+  const EvalResult kept =
+      evaluator.evaluate(makeScene(modifier(NodeKind::Round, 0.1, {plate}), 64), options, progress);
+  EXPECT_GT(kept.measure.surfels, 0u);
+  EXPECT_TRUE(kept.warnings.empty());
+}
+
 TEST(ModifierNodes, TheGridMakesRoomForAGrowth) {
   // Grown by 0.5, the sphere of radius 1 reaches 1.5: the grid must hold it whole (not cut at
   // the sphere's own bounds).
