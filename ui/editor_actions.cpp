@@ -247,7 +247,9 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
 NodeId addPrimitive(EditorState& state, NodeKind kind) {
   NodeId id = 0;
   // Centred on the top of what it is placed onto (the selection, else the whole scene), so that
-  // it shows: a part added at the origin inside another changed nothing to see. One undo step.
+  // it shows: a part added at the origin inside another changed nothing to see. The first part
+  // of a scene stands on the ground (z = 0) at the origin, as a printed part does on the bed
+  // (centred on the origin, half of it was below the ground grid). One undo step.
   const NodeId target = primarySelection(state);
   const Bounds onto = target ? selectionBounds(state.document.root(), {target})
                              : sceneBounds(state.document.root());
@@ -256,11 +258,12 @@ NodeId addPrimitive(EditorState& state, NodeKind kind) {
     std::string note;
     NodePtr node = newPrimitive(state, kind, &note);
     id = placeNew(state, node, state.placeMode, note);
-    if (!onto.empty()) {
-      Placement top;
-      top.point = glm::dvec3(onto.center().x, onto.center().y, onto.max.z);
-      placeNode(state, id, top);
-    }
+    Placement at;
+    if (!onto.empty())
+      at.point = glm::dvec3(onto.center().x, onto.center().y, onto.max.z);
+    else
+      at.onGround = true;
+    placeNode(state, id, at);
     selectNode(state, id);
   });
   state.document.endInteraction();

@@ -434,6 +434,7 @@ class SphereAndBox : public testing::Test {
       PrimitiveParams cube;
       cube.size = glm::dvec3(1.0);
       state.document.setParams(box, cube);
+      state.document.setTransform(sphere, Transform());  // centred on the origin (the views')
       state.document.setColor(sphere, glm::vec3(0.9f, 0.1f, 0.1f));
       state.document.setColor(box, glm::vec3(0.1f, 0.3f, 0.95f));
       Transform t;

@@ -395,6 +395,10 @@ TEST(ScaleAwareDefaults, NewPartsAreSizedFromTheViewOrTheSceneAndSaySo) {
   const NodeId first = addPrimitive(state, NodeKind::Box);
   const Bounds a = selectionBounds(state.document.root(), {first});
   EXPECT_NEAR(a.size().x, 100.0, 1e-9);
+  // The first part stands on the ground at the origin (it was centred there, half below it).
+  EXPECT_NEAR(a.min.z, 0.0, 1e-9);
+  EXPECT_NEAR(a.center().x, 0.0, 1e-9);
+  EXPECT_NEAR(a.center().y, 0.0, 1e-9);
   EXPECT_NE(state.log.back().text.find("a quarter of the view"), std::string::npos)
       << state.log.back().text;
   const NodeId second = addPrimitive(state, NodeKind::Sphere);
