@@ -297,10 +297,22 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
                                    "\"\nnothing of it is evaluated; put the file back and open "
                                    "the scene again, or delete the node"
                              : "";
-      ImGui::SetTooltip(
-          "%s %s%s%s", node->name.empty() ? "(unnamed)" : node->name.c_str(),
-          role == ChildRole::Base ? "is the base: the cutters beside it cut it" : rolePhrase(role),
-          inside, missingNote.c_str());
+      // What it does to what: "bunny adds to 'mirror 10'" (a bare "bunny adds" said to what not).
+      std::vector<const Node*> path;
+      std::string within;
+      if (pathToNode(state.document.root(), node->id, &path) && path.size() >= 2) {
+        const Node& parent = *path[path.size() - 2];
+        const std::string parentName = "'" + (parent.name.empty() ? "(unnamed)" : parent.name) +
+                                       "' (" + kindLabel(parent.kind) + ")";
+        within = role == ChildRole::Add         ? " to " + parentName
+                 : role == ChildRole::Cut       ? " from the base of " + parentName
+                 : role == ChildRole::Intersect ? " the rest of " + parentName
+                                                : " of " + parentName;
+      }
+      ImGui::SetTooltip("%s %s%s%s%s%s", node->name.empty() ? "(unnamed)" : node->name.c_str(),
+                        role == ChildRole::Base ? "is the base" : rolePhrase(role), within.c_str(),
+                        role == ChildRole::Base ? ": the cutters beside it cut it" : "", inside,
+                        missingNote.c_str());
     }
     contextMenu(state, node);
   }
