@@ -354,7 +354,9 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
                         importTransform(scale, import.upAxis), &sentence);
     // Where it was dropped; otherwise resting on the ground beside the scene (right of it, a
     // tenth of its size away; at the origin in an empty scene), never inside another part or
-    // around the camera. Then framed.
+    // around the camera. Then the view shows all of the scene, the new part with it (framing
+    // the new part alone zoomed onto a 10 mm bunny and left the 100 mm part it was for out of
+    // view), and says so.
     Placement where;
     if (import.placement) {
       where = *import.placement;
@@ -371,9 +373,10 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
     }
     placeNode(state, id, where);
     selectNode(state, id);
-    state.requestFrameSelected = true;
+    state.requestViewAll = true;
     logInfo(state, "imported " + import.path + ": " +
-                       displayName(*findNode(state.document.root(), id)) + " " + sentence);
+                       displayName(*findNode(state.document.root(), id)) + " " + sentence +
+                       " (the view shows the whole scene; F frames the new part)");
   });
   state.document.endInteraction();
   return id;
