@@ -345,7 +345,10 @@ int runEdit(const std::vector<std::string>& argv) {
     const std::string screenshot = args.text("--screenshot", "");
     if (screenshot.empty()) {
       options.recentFilesPath = defaultRecentFilesPath();
-      if (!userConfigDir().empty()) options.layoutPath = userConfigDir() + "/layout.txt";
+      if (!userConfigDir().empty()) {
+        options.layoutPath = userConfigDir() + "/layout.txt";
+        options.exportSettingsPath = userConfigDir() + "/export.txt";
+      }
       options.recoveryPath = defaultRecoveryPath();
     }
     ui::Editor editor(options);

@@ -21,6 +21,7 @@
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
 #include "ui/editor_actions.h"
+#include "ui/export_settings.h"
 #include "ui/gl_window.h"
 #include "ui/input_queue.h"
 #include "ui/panel_splitters.h"
@@ -162,6 +163,14 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   s.recentFilesPath = options_.recentFilesPath;
   if (!options_.layoutPath.empty()) layout_ = readPanelLayout(options_.layoutPath, layout_);
   s.recoveryPath = options_.recoveryPath;
+  s.exportSettingsPath = options_.exportSettingsPath;
+  if (!s.exportSettingsPath.empty()) {
+    const ExportSettings kept = readExportSettings(
+        s.exportSettingsPath, {s.exportResolution, s.exportSimplify, s.exportSimplifyCells});
+    s.exportResolution = kept.resolution;
+    s.exportSimplify = kept.simplify;
+    s.exportSimplifyCells = kept.simplifyCells;
+  }
   if (!s.recentFilesPath.empty()) s.recentFiles = readRecentFiles(s.recentFilesPath);
   s.offerRecovery = recoveryFileExists(s.recoveryPath);
 

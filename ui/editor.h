@@ -35,9 +35,10 @@ struct EditorOptions {
   std::function<std::unique_ptr<DeviceSplatCopier>()> makeSplatCopier;
   bool visible = true;  // false: an invisible window for off-screen rendering
   int width = 1600, height = 1000;
-  std::string recentFilesPath;  // "" = none
-  std::string layoutPath;       // the panel sizes remembered between runs; "" = the defaults
-  std::string recoveryPath;     // "" = no autosave and no recovery offer
+  std::string recentFilesPath;     // "" = none
+  std::string layoutPath;          // the panel sizes remembered between runs; "" = the defaults
+  std::string recoveryPath;        // "" = no autosave and no recovery offer
+  std::string exportSettingsPath;  // the export dialog's choices between runs; "" = not kept
   // A change is written for recovery once it has rested autosaveRestSeconds (a crash then loses
   // seconds of work, not minutes; a burst of edits is written once), and at least every
   // autosaveSeconds while edits keep coming. Written on a thread of its own.

@@ -15,6 +15,7 @@
 #include "engine/io/user_files.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
+#include "ui/export_settings.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
@@ -714,6 +715,15 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
     logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
                        (simplifyCells > 0.0 ? ", simplified" : ""));
   });
+  if (!state.exportSettingsPath.empty()) {  // the dialog opens with these choices next time
+    try {
+      writeExportSettings(state.exportSettingsPath,
+                          {resolution, simplifyCells > 0.0,
+                           simplifyCells > 0.0 ? float(simplifyCells) : state.exportSimplifyCells});
+    } catch (const std::exception& e) {
+      logWarning(state, std::string("export options not remembered: ") + e.what());
+    }
+  }
 }
 
 }  // namespace strata::ui

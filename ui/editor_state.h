@@ -145,6 +145,7 @@ struct EditorState {
   int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;
+  std::string exportSettingsPath;  // where those choices are kept between runs ("" = not kept)
   std::unique_ptr<TriangleEstimateJob> exportEstimate;  // the dialog's triangle counts
   // Estimates cancelled (the choice changed, the dialog closed) and not yet finished: dropped
   // once done(), so that the UI never joins a running one.
