@@ -920,120 +920,102 @@ std::vector<uint32_t> ViewportRenderer::pickLeaves(const ViewportFrame& f, int x
   return leaves;
 }
 
-std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, int py) {
-  if (splatCount_ == 0 || px < 0 || py < 0 || px >= f.width || py >= f.height) return {};
+bool ViewportRenderer::readPickWindow(const ViewportFrame& f, int x0, int y0, int w, int h,
+                                      PickWindow* out) {
+  if (splatCount_ == 0 || w <= 0 || h <= 0) return false;
   GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
   glGetIntegerv(GL_VIEWPORT, previousViewport);
-  std::optional<PickHit> hit;
+  const bool drawn = drawPickIds(f, x0, y0, w, h);
+  if (drawn) {
+    out->x0 = x0, out->y0 = y0, out->width = w, out->height = h;
+    out->ids.assign(size_t(w) * size_t(h), 0);
+    out->depths.assign(out->ids.size(), 1.0f);
+    glReadPixels(x0, y0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, out->ids.data());
+    glReadPixels(x0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, out->depths.data());
+    out->toWorld = glm::inverse(f.viewProjection);
+    out->frameWidth = f.width, out->frameHeight = f.height;
+    out->sectionNormal = f.sectionNormal, out->sectionOffset = f.sectionOffset;
+  }
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
+  glViewport(previousViewport[0], previousViewport[1], previousViewport[2], previousViewport[3]);
+  return drawn;
+}
+
+glm::dvec3 ViewportRenderer::PickWindow::unproject(int x, int y, double ndcDepth) const {
+  const glm::dvec4 ndc((x + 0.5) / frameWidth * 2.0 - 1.0, (y + 0.5) / frameHeight * 2.0 - 1.0,
+                       ndcDepth, 1.0);
+  const glm::dvec4 world = toWorld * ndc;
+  return glm::dvec3(world) / world.w;
+}
+
+std::optional<glm::dvec3> ViewportRenderer::PickWindow::pointAt(int x, int y) const {
+  const uint32_t id = idAt(x, y);
+  if (id == 0) return std::nullopt;
+  if ((id & 0x80000000u) == 0) return unproject(x, y, double(depths[index(x, y)]) * 2.0 - 1.0);
+  // A cap: where the pixel's ray meets the section plane.
+  const glm::dvec3 a = unproject(x, y, -1.0), b = unproject(x, y, 1.0);
+  const double denom = glm::dot(sectionNormal, b - a);
+  if (std::fabs(denom) <= 1e-12) return unproject(x, y, double(depths[index(x, y)]) * 2.0 - 1.0);
+  return a + (b - a) * ((sectionOffset - glm::dot(sectionNormal, a)) / denom);
+}
+
+std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, int py) {
+  if (px < 0 || py < 0 || px >= f.width || py >= f.height) return {};
   // The pixel and a window around it (clipped to the view): the window's depths give the
   // surface's normal there.
   constexpr int kNormalRadius = 4;
   const int x0 = std::max(0, px - kNormalRadius), y0 = std::max(0, py - kNormalRadius);
   const int x1 = std::min(f.width - 1, px + kNormalRadius);
   const int y1 = std::min(f.height - 1, py + kNormalRadius);
-  const int w = x1 - x0 + 1, hgt = y1 - y0 + 1;
-  if (drawPickIds(f, x0, y0, w, hgt)) {
-    std::vector<GLuint> ids(size_t(w) * size_t(hgt), 0);
-    std::vector<float> depths(ids.size(), 1.0f);
-    glReadPixels(x0, y0, w, hgt, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
-    glReadPixels(x0, y0, w, hgt, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    auto at = [&](int x, int y) { return size_t(y - y0) * size_t(w) + size_t(x - x0); };
-    const GLuint leafPlusOne = ids[at(px, py)];
-    if (leafPlusOne > 0) {
-      const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
-      auto unprojectAt = [&](int x, int y, double ndcDepth) {
-        const glm::dvec4 ndc((x + 0.5) / f.width * 2.0 - 1.0, (y + 0.5) / f.height * 2.0 - 1.0,
-                             ndcDepth, 1.0);
-        const glm::dvec4 world = toWorld * ndc;
-        return glm::dvec3(world) / world.w;
-      };
-      auto unproject = [&](double ndcDepth) { return unprojectAt(px, py, ndcDepth); };
-      PickHit h;
-      h.cap = (leafPlusOne & 0x80000000u) != 0;
-      h.leaf = (leafPlusOne & 0x7fffffffu) - 1;
-      h.position = unproject(double(depths[at(px, py)]) * 2.0 - 1.0);
-      const glm::dvec3 toEye = f.ortho ? -f.forward : f.eye - h.position;
-      if (h.cap) {  // the view ray through the pixel meets the plane there
-        const glm::dvec3 a = unproject(-1.0), b = unproject(1.0);
-        const double denom = glm::dot(f.sectionNormal, b - a);
-        if (std::fabs(denom) > 1e-12)
-          h.position = a + (b - a) * ((f.sectionOffset - glm::dot(f.sectionNormal, a)) / denom);
-        h.normal = glm::dot(f.sectionNormal, toEye) >= 0.0 ? f.sectionNormal : -f.sectionNormal;
-      } else {
-        // The surface's normal from the same part's depths across the window: the cross product
-        // of the spans between the farthest pixels on each side, facing the viewer.
-        auto point = [&](int x, int y, glm::dvec3* out) {
-          if (x < x0 || x > x1 || y < y0 || y > y1 || ids[at(x, y)] != leafPlusOne) return false;
-          *out = unprojectAt(x, y, double(depths[at(x, y)]) * 2.0 - 1.0);
-          return true;
-        };
-        glm::dvec3 left = h.position, right = h.position, down = h.position, up = h.position;
-        bool any[4] = {false, false, false, false};
-        for (int k = kNormalRadius; k >= 1 && !any[0]; --k) any[0] = point(px - k, py, &left);
-        for (int k = kNormalRadius; k >= 1 && !any[1]; --k) any[1] = point(px + k, py, &right);
-        for (int k = kNormalRadius; k >= 1 && !any[2]; --k) any[2] = point(px, py - k, &down);
-        for (int k = kNormalRadius; k >= 1 && !any[3]; --k) any[3] = point(px, py + k, &up);
-        const glm::dvec3 n = glm::cross(right - left, up - down);
-        if ((any[0] || any[1]) && (any[2] || any[3]) && glm::length(n) > 0.0) {
-          const glm::dvec3 unit = glm::normalize(n);
-          h.normal = glm::dot(unit, toEye) >= 0.0 ? unit : -unit;
-        }
-      }
-      hit = h;
-    }
+  PickWindow window;
+  if (!readPickWindow(f, x0, y0, x1 - x0 + 1, y1 - y0 + 1, &window)) return {};
+  const uint32_t leafPlusOne = window.idAt(px, py);
+  if (leafPlusOne == 0) return {};
+  PickHit h;
+  h.cap = (leafPlusOne & 0x80000000u) != 0;
+  h.leaf = (leafPlusOne & 0x7fffffffu) - 1;
+  h.position = *window.pointAt(px, py);
+  const glm::dvec3 toEye = f.ortho ? -f.forward : f.eye - h.position;
+  if (h.cap) {
+    h.normal = glm::dot(f.sectionNormal, toEye) >= 0.0 ? f.sectionNormal : -f.sectionNormal;
+    return h;
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
-  glViewport(previousViewport[0], previousViewport[1], previousViewport[2], previousViewport[3]);
-  return hit;
+  // The surface's normal from the same part's depths across the window: the cross product of
+  // the spans between the farthest pixels on each side, facing the viewer.
+  auto point = [&](int x, int y, glm::dvec3* out) {
+    if (window.idAt(x, y) != leafPlusOne) return false;
+    *out = *window.pointAt(x, y);
+    return true;
+  };
+  glm::dvec3 left = h.position, right = h.position, down = h.position, up = h.position;
+  bool any[4] = {false, false, false, false};
+  for (int k = kNormalRadius; k >= 1 && !any[0]; --k) any[0] = point(px - k, py, &left);
+  for (int k = kNormalRadius; k >= 1 && !any[1]; --k) any[1] = point(px + k, py, &right);
+  for (int k = kNormalRadius; k >= 1 && !any[2]; --k) any[2] = point(px, py - k, &down);
+  for (int k = kNormalRadius; k >= 1 && !any[3]; --k) any[3] = point(px, py + k, &up);
+  const glm::dvec3 n = glm::cross(right - left, up - down);
+  if ((any[0] || any[1]) && (any[2] || any[3]) && glm::length(n) > 0.0) {
+    const glm::dvec3 unit = glm::normalize(n);
+    h.normal = glm::dot(unit, toEye) >= 0.0 ? unit : -unit;
+  }
+  return h;
 }
 
 ViewportRenderer::ShownPoints ViewportRenderer::shownAround(const ViewportFrame& f, int px, int py,
                                                             int radius) {
   ShownPoints shown;
-  if (splatCount_ == 0) return shown;
   const int x0 = std::max(0, px - radius), y0 = std::max(0, py - radius);
   const int x1 = std::min(f.width - 1, px + radius), y1 = std::min(f.height - 1, py + radius);
-  if (x1 < x0 || y1 < y0) return shown;
-  const int w = x1 - x0 + 1, hgt = y1 - y0 + 1;
-  GLint previousFramebuffer = 0, previousViewport[4] = {0, 0, 1, 1};
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
-  glGetIntegerv(GL_VIEWPORT, previousViewport);
-  if (drawPickIds(f, x0, y0, w, hgt)) {
-    std::vector<GLuint> ids(size_t(w) * size_t(hgt), 0);
-    std::vector<float> depths(ids.size(), 1.0f);
-    glReadPixels(x0, y0, w, hgt, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
-    glReadPixels(x0, y0, w, hgt, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    const glm::dmat4 toWorld = glm::inverse(f.viewProjection);
-    auto unprojectAt = [&](int x, int y, double ndcDepth) {
-      const glm::dvec4 ndc((x + 0.5) / f.width * 2.0 - 1.0, (y + 0.5) / f.height * 2.0 - 1.0,
-                           ndcDepth, 1.0);
-      const glm::dvec4 world = toWorld * ndc;
-      return glm::dvec3(world) / world.w;
-    };
-    shown.x0 = x0, shown.y0 = y0, shown.width = w, shown.height = hgt;
-    shown.points.resize(ids.size());
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const size_t i = size_t(y - y0) * size_t(w) + size_t(x - x0);
-        if (ids[i] == 0) continue;
-        if ((ids[i] & 0x80000000u) != 0) {  // a cap: where the pixel's ray meets the plane
-          const glm::dvec3 a = unprojectAt(x, y, -1.0), b = unprojectAt(x, y, 1.0);
-          const double denom = glm::dot(f.sectionNormal, b - a);
-          if (std::fabs(denom) > 1e-12)
-            shown.points[i] =
-                a + (b - a) * ((f.sectionOffset - glm::dot(f.sectionNormal, a)) / denom);
-          continue;
-        }
-        shown.points[i] = unprojectAt(x, y, double(depths[i]) * 2.0 - 1.0);
-      }
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
-  glViewport(previousViewport[0], previousViewport[1], previousViewport[2], previousViewport[3]);
+  PickWindow window;
+  if (x1 < x0 || y1 < y0 || !readPickWindow(f, x0, y0, x1 - x0 + 1, y1 - y0 + 1, &window))
+    return shown;
+  shown.x0 = x0, shown.y0 = y0, shown.width = window.width, shown.height = window.height;
+  shown.points.resize(window.ids.size());
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) shown.points[window.index(x, y)] = window.pointAt(x, y);
   return shown;
 }
 

@@ -261,6 +261,29 @@ class ViewportRenderer {
   // Draws the leaf ids of the pixels in the rectangle into the pick framebuffer (left bound, with
   // scissoring on) and readies it for glReadPixels; false when the framebuffer is incomplete.
   bool drawPickIds(const ViewportFrame& frame, int x, int y, int width, int height);
+  // The pick ids (leaf + 1, the top bit on a cap; 0: nothing) and depths of the pixel rectangle
+  // (x0, y0, width, height) of a frame's viewport, with what turns them into world points.
+  struct PickWindow {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+    std::vector<uint32_t> ids;
+    std::vector<float> depths;
+    glm::dmat4 toWorld{1.0};
+    int frameWidth = 1, frameHeight = 1;
+    glm::dvec3 sectionNormal{0.0, 0.0, 1.0};
+    double sectionOffset = 0.0;
+    size_t index(int x, int y) const { return size_t(y - y0) * size_t(width) + size_t(x - x0); }
+    uint32_t idAt(int x, int y) const {
+      return x < x0 || y < y0 || x >= x0 + width || y >= y0 + height ? 0u : ids[index(x, y)];
+    }
+    // The world point of pixel (x, y) at NDC depth `ndcDepth`.
+    glm::dvec3 unproject(int x, int y, double ndcDepth) const;
+    // The surface point the pixel shows (a cap's: on the section plane); none where none.
+    std::optional<glm::dvec3> pointAt(int x, int y) const;
+  };
+  // Draws the ids into the rectangle and reads them back; false when there is nothing to draw.
+  // Leaves the bound framebuffer and viewport as they were.
+  bool readPickWindow(const ViewportFrame& frame, int x0, int y0, int width, int height,
+                      PickWindow* out);
   // Binds `program` and sets the uniforms surfel.vert needs.
   void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
   // Whether splats of `radius` cells are drawn as points in `f` (setSplatPrimitive, and every
