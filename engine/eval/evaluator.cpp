@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -619,8 +620,16 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
       return out;
     });
     // A modifier that leaves nothing of its parts says why (an artist's 3 mm round of a part
-    // with 3 mm walls emptied it, and only the inspector's grey note had said it could).
-    if (v.ldi->surfelCount() == 0) ctx.warn(emptiedByModifier(*node));
+    // with 3 mm walls emptied it, and only the inspector's grey note had said it could). Only
+    // where this evaluation's grid holds the whole node: in an export's tile that holds a piece
+    // of it, nothing left there says nothing of the rest.
+    if (v.ldi->surfelCount() == 0) {
+      const Bounds whole = boundsOf(node, ctx.scene->root, parentWorld, false, depth);
+      const Bounds window = ctx.grid.bounds();
+      if (!whole.empty() && glm::all(glm::greaterThanEqual(whole.min, window.min)) &&
+          glm::all(glm::lessThanEqual(whole.max, window.max)))
+        ctx.warn(emptiedByModifier(*node));
+    }
   }
   if (record.outcome == NodeOutcome::Cached) ++ctx.result->reused;
   if (record.outcome == NodeOutcome::Computed) ++ctx.result->computed;

@@ -64,6 +64,18 @@ TEST(ModifierNodes, AModifierThatLeavesNothingSaysWhy) {
       evaluator.evaluate(makeScene(modifier(NodeKind::Round, 0.1, {plate}), 64), options, progress);
   EXPECT_GT(kept.measure.surfels, 0u);
   EXPECT_TRUE(kept.warnings.empty());
+  // In an export's tiles: a tile that holds only the thin plate of a shrunk block-and-plate has
+  // nothing left of it, but the block is kept elsewhere: no warning (one was said per tile).
+  const Scene tiled = makeScene(
+      modifier(NodeKind::Offset, -0.1,
+               {box({1.0, 1.0, 1.0}, {-1.0, 0.0, 0.0}), box({2.0, 1.0, 0.1}, {1.0, 0.0, 0.0})}),
+      64);
+  ContourReport report;
+  const ExportMesh mesh = contourScene(tiled, evaluator, ContourOptions{64, 16}, progress, &report);
+  EXPECT_GT(report.tiles, 4);
+  EXPECT_GT(mesh.mesh.triangles.size(), 100u);
+  for (const std::string& w : report.warnings)
+    EXPECT_EQ(w.find("left nothing"), std::string::npos) << w;
 }
 
 TEST(ModifierNodes, TheGridMakesRoomForAGrowth) {
