@@ -17,7 +17,7 @@ constexpr int kImportMeshItem = -1;
 struct PanelSizes {
   float leftWidth = 320.0f;
   float rightWidth = 330.0f;
-  float paletteHeight = 250.0f;  // the palette, under the outliner
+  float paletteHeight = 330.0f;  // the palette, under the outliner: all its rows at 1000 px
   float previewHeight = 310.0f;  // the preview settings, under the inspector
 };
 struct PanelLayout : PanelSizes {
