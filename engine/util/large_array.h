@@ -3,7 +3,9 @@
 // 2 MiB and marked for transparent huge pages where the system offers them on request
 // (madvise mode, as on Debian and Ubuntu): a walk along z then takes one page-table entry per
 // 2 MiB instead of one per 4 KiB, and the kernel's first-touch faults are 512 times fewer.
-// Elsewhere (huge pages never, or no such call) the same memory in ordinary pages.
+// Elsewhere (huge pages never, or no such call) the same memory in ordinary pages. Under
+// AddressSanitizer or ThreadSanitizer, from the sanitizer's allocator, so that it sees every
+// access.
 //
 // Contents are left uninitialised (the kernel gives zeroed pages; callers write before they
 // read). Move-only; the memory is unmapped on destruction. Throws std::bad_alloc when the
