@@ -115,11 +115,9 @@ glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view,
       continue;
     const double d = glm::length(s.world - hit.position);
     if (d >= best || (shown && !shown(s.world))) continue;
-    if (d < best) {
-      best = d;
-      snapped = s.world;
-      if (what) *what = s.what;
-    }
+    best = d;
+    snapped = s.world;
+    if (what) *what = s.what;
   }
   return snapped;
 }

@@ -417,7 +417,7 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
                           frame.height - 1 - int(std::floor(mouse.y * pixelScale)));
       };
       const glm::ivec2 at = toFrame(click_->mouse);
-      const ViewportRenderer::ShownPoints around = renderer.shownAround(
+      const ViewportRenderer::PickWindow around = renderer.shownAround(
           frame, at.x, at.y, int(std::ceil((kMeasureSnapPixels + 2.0) * pixelScale)));
       const double cell = state.preview ? state.preview->stats.grid.h : 0.0;
       const auto pixelSize = [&](const glm::dvec3& world) {
@@ -433,7 +433,7 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
         const glm::ivec2 p = toFrame(pixel);
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
-            if (const std::optional<glm::dvec3> q = around.at(p.x + dx, p.y + dy))
+            if (const std::optional<glm::dvec3> q = around.pointAt(p.x + dx, p.y + dy))
               if (glm::length(*q - world) <= tolerance) return true;
         return false;
       };

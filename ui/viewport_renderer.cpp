@@ -1004,19 +1004,14 @@ std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, in
   return h;
 }
 
-ViewportRenderer::ShownPoints ViewportRenderer::shownAround(const ViewportFrame& f, int px, int py,
-                                                            int radius) {
-  ShownPoints shown;
+ViewportRenderer::PickWindow ViewportRenderer::shownAround(const ViewportFrame& f, int px, int py,
+                                                           int radius) {
+  PickWindow window;
   const int x0 = std::max(0, px - radius), y0 = std::max(0, py - radius);
   const int x1 = std::min(f.width - 1, px + radius), y1 = std::min(f.height - 1, py + radius);
-  PickWindow window;
   if (x1 < x0 || y1 < y0 || !readPickWindow(f, x0, y0, x1 - x0 + 1, y1 - y0 + 1, &window))
-    return shown;
-  shown.x0 = x0, shown.y0 = y0, shown.width = window.width, shown.height = window.height;
-  shown.points.resize(window.ids.size());
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) shown.points[window.index(x, y)] = window.pointAt(x, y);
-  return shown;
+    return PickWindow();
+  return window;
 }
 
 RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {

@@ -219,19 +219,29 @@ class ViewportRenderer {
   // bottom-left corner), rendered into an off-screen id buffer; nothing when it shows no splat.
   // Leaves the bound framebuffer and viewport as they were.
   std::optional<PickHit> pick(const ViewportFrame& frame, int px, int py);
-  // The surface points (world, scene units) that the pixels of the square of `radius` pixels
-  // around (px, py) show, clipped to the view, row by row from its bottom-left corner; none where
-  // a pixel shows no splat (a cap's pixels: their point on the section plane). One pass for
-  // many questions: whether a snap point lies on the surface the view shows (measure_tool.h).
-  struct ShownPoints {
+  // The pick ids (leaf + 1, the top bit on a cap; 0: nothing) and depths of the pixel rectangle
+  // (x0, y0, width, height) of a frame's viewport, with what turns them into world points.
+  struct PickWindow {
     int x0 = 0, y0 = 0, width = 0, height = 0;
-    std::vector<std::optional<glm::dvec3>> points;
-    std::optional<glm::dvec3> at(int x, int y) const {
-      if (x < x0 || y < y0 || x >= x0 + width || y >= y0 + height) return std::nullopt;
-      return points[size_t(y - y0) * size_t(width) + size_t(x - x0)];
+    std::vector<uint32_t> ids;
+    std::vector<float> depths;
+    glm::dmat4 toWorld{1.0};
+    int frameWidth = 1, frameHeight = 1;
+    glm::dvec3 sectionNormal{0.0, 0.0, 1.0};
+    double sectionOffset = 0.0;
+    size_t index(int x, int y) const { return size_t(y - y0) * size_t(width) + size_t(x - x0); }
+    uint32_t idAt(int x, int y) const {
+      return x < x0 || y < y0 || x >= x0 + width || y >= y0 + height ? 0u : ids[index(x, y)];
     }
+    // The world point of pixel (x, y) at NDC depth `ndcDepth`.
+    glm::dvec3 unproject(int x, int y, double ndcDepth) const;
+    // The surface point the pixel shows (a cap's: on the section plane); none where none.
+    std::optional<glm::dvec3> pointAt(int x, int y) const;
   };
-  ShownPoints shownAround(const ViewportFrame& frame, int px, int py, int radius);
+  // The pixels of the square of `radius` pixels around (px, py), clipped to the view: what each
+  // shows (PickWindow::pointAt). One pass for many questions: whether a snap point lies on the
+  // surface the view shows (measure_tool.h). Empty (width 0) when nothing is drawn.
+  PickWindow shownAround(const ViewportFrame& frame, int px, int py, int radius);
   // The leaves shown in the pixel rectangle [x0, x1) x [y0, y1) of `frame`'s viewport (from its
   // bottom-left corner; corners in any order), sorted, once each: box selection.
   std::vector<uint32_t> pickLeaves(const ViewportFrame& frame, int x0, int y0, int x1, int y1);
@@ -261,25 +271,6 @@ class ViewportRenderer {
   // Draws the leaf ids of the pixels in the rectangle into the pick framebuffer (left bound, with
   // scissoring on) and readies it for glReadPixels; false when the framebuffer is incomplete.
   bool drawPickIds(const ViewportFrame& frame, int x, int y, int width, int height);
-  // The pick ids (leaf + 1, the top bit on a cap; 0: nothing) and depths of the pixel rectangle
-  // (x0, y0, width, height) of a frame's viewport, with what turns them into world points.
-  struct PickWindow {
-    int x0 = 0, y0 = 0, width = 0, height = 0;
-    std::vector<uint32_t> ids;
-    std::vector<float> depths;
-    glm::dmat4 toWorld{1.0};
-    int frameWidth = 1, frameHeight = 1;
-    glm::dvec3 sectionNormal{0.0, 0.0, 1.0};
-    double sectionOffset = 0.0;
-    size_t index(int x, int y) const { return size_t(y - y0) * size_t(width) + size_t(x - x0); }
-    uint32_t idAt(int x, int y) const {
-      return x < x0 || y < y0 || x >= x0 + width || y >= y0 + height ? 0u : ids[index(x, y)];
-    }
-    // The world point of pixel (x, y) at NDC depth `ndcDepth`.
-    glm::dvec3 unproject(int x, int y, double ndcDepth) const;
-    // The surface point the pixel shows (a cap's: on the section plane); none where none.
-    std::optional<glm::dvec3> pointAt(int x, int y) const;
-  };
   // Draws the ids into the rectangle and reads them back; false when there is nothing to draw.
   // Leaves the bound framebuffer and viewport as they were.
   bool readPickWindow(const ViewportFrame& frame, int x0, int y0, int width, int height,

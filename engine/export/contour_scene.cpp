@@ -84,8 +84,7 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, 
   r.tileLdiBytes = std::max(r.tileLdiBytes, result.cacheBytes);
   if (result.modifySeconds > 0.0) {
     r.modifySeconds += result.modifySeconds;
-    r.modifiedNodes +=
-        double(evalGrid.cells.x + 1) * double(evalGrid.cells.y + 1) * double(evalGrid.cells.z + 1);
+    r.modifiedNodes += double(evalGrid.nodeCount());
   }
   addWarnings(result.warnings, &r);
   if (result.measure.surfels == 0) return;

@@ -105,6 +105,7 @@ struct ProbeRun {
   double modifiedNodes = 0.0;
 };
 
+// Nodes of a window of `cells` (Grid::nodeCount for a window that is not a grid).
 double nodesOf(const glm::dvec3& cells) {
   return (cells.x + 1.0) * (cells.y + 1.0) * (cells.z + 1.0);
 }
@@ -157,13 +158,12 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
     return e;  // no bigger than the probe
   EvalResult r;
   try {
-    const double jobNodes = nodesOf(glm::dvec3(e.grid.cells));
-    e.seconds = timeFromProbes(e.grid, 1, jobNodes, [&](int resolution) {
+    e.seconds = timeFromProbes(e.grid, 1, double(e.grid.nodeCount()), [&](int resolution) {
       Evaluator probe(backend);
       EvalOptions options;
       options.resolution = resolution;
       r = probe.evaluate(scene, options, progress);
-      return ProbeRun{r.grid, r.modifySeconds, nodesOf(glm::dvec3(r.grid.cells))};
+      return ProbeRun{r.grid, r.modifySeconds, double(r.grid.nodeCount())};
     });
   } catch (const BackendOutOfMemory&) {
     return e;  // not probed (seconds unset): the evaluation itself falls back to the CPU
@@ -196,7 +196,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   const glm::dvec3 window = grownTileCells(e.grid, tiling.tileCells, tiling.halo);
   const glm::dvec3 whole(e.grid.cells);
   const double jobModifiedNodes =
-      window == whole ? nodesOf(whole) : nodesOf(window) * double(std::max(1, e.tiles));
+      window == whole ? double(e.grid.nodeCount()) : nodesOf(window) * double(std::max(1, e.tiles));
   try {
     seconds = timeFromProbes(e.grid, e.tiles, jobModifiedNodes, [&](int resolution) {
       Evaluator probe(backend);
