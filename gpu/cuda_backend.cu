@@ -117,6 +117,12 @@ class CudaBackend : public Backend {
     return cropOnDevice(std::static_pointer_cast<const DeviceLdi>(ldi), window, stream_);
   }
 
+  LdiHandle rewindow(const LdiHandle& ldi, const Grid& window) override {
+    onDevice();
+    deviceLdi(ldi);  // checks the kind
+    return rewindowOnDevice(std::static_pointer_cast<const DeviceLdi>(ldi), window, stream_);
+  }
+
   LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override {
     onDevice();
     progress.check();

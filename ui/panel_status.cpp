@@ -279,10 +279,19 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
                 countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),
                 bytesText(double(state.uploadedBytes)).c_str());
     ImGui::SameLine();
+    const auto& skipped = shown->stats.skippedModifiers;
     ImGui::Text("|  eval %.0f ms%s", shown->stats.seconds * 1000.0,
-                shown->coarse ? " (coarse)" : "");
+                !shown->coarse    ? ""
+                : skipped.empty() ? " (coarse)"
+                                  : " (coarse, unmodified)");
     if (ImGui::IsItemHovered()) {  // the stages on hover: the bar stays one short line
       ImGui::BeginTooltip();
+      if (shown->coarse && !skipped.empty()) {
+        std::string names;
+        for (const auto& n : skipped) names += (names.empty() ? "" : ", ") + n;
+        ImGui::Text("This coarse image shows the parts without %s:", names.c_str());
+        ImGui::Text("under %.0f of its cells, the full pass applies them.", kCoarseModifierCells);
+      }
       for (const auto& st : shown->stats.stages)
         ImGui::Text("%-10s %8.1f ms", st.name.c_str(), st.seconds * 1000.0);
       ImGui::EndTooltip();

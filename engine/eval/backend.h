@@ -69,6 +69,10 @@ class Backend {
   // (engine/ldi/ldi.h: cropLdi; the CUDA twin gives the same bits): a tile's part of an LDI
   // evaluated on a larger window (a tiled export of modifiers, contour_scene.h).
   virtual LdiHandle crop(const LdiHandle& ldi, const Grid& window, Progress& progress) = 0;
+  // The same LDI on another window of its lattice (engine/ldi/ldi.h: rewindowLdi), for an
+  // evaluation whose grid moved around a cached node that lies within both windows; nullptr
+  // where the backend cannot (the default), and the evaluator computes the node again.
+  virtual LdiHandle rewindow(const LdiHandle& ldi, const Grid& window);
   // `ldi`'s solid grown (distance > 0) or shrunk (distance < 0) by |distance| scene units, on
   // its grid (engine/ldi/offset_ldi.h; the CUDA twin gives the same bits). The default throws
   // strata::Error: a backend that cannot offset says so.

@@ -57,6 +57,10 @@ LdiHandle Backend::offset(const LdiHandle&, double, Progress&) {
               "--backend cpu");
 }
 
+LdiHandle Backend::rewindow(const LdiHandle&, const Grid&) {
+  return nullptr;
+}
+
 LdiHandle Backend::modify(Modifier modifier, double amount, const LdiHandle& ldi,
                           Progress& progress, const LdiHandle& wallOf) {
   // Progress "modify" over the whole modifier: a round's or fillet's two offsets each half of it
@@ -93,6 +97,10 @@ LdiHandle Backend::modify(Modifier modifier, double amount, const LdiHandle& ldi
 LdiHandle CpuBackend::crop(const LdiHandle& ldi, const Grid& window, Progress& progress) {
   progress.check();
   return std::make_shared<CpuLdi>(cropLdi(hostLdi(ldi), window));
+}
+
+LdiHandle CpuBackend::rewindow(const LdiHandle& ldi, const Grid& window) {
+  return std::make_shared<CpuLdi>(rewindowLdi(hostLdi(ldi), window));
 }
 
 LdiHandle CpuBackend::empty(const Grid& grid) {

@@ -15,6 +15,7 @@ class CpuBackend : public Backend {
                     Progress& progress) override;
   LdiHandle empty(const Grid& grid) override;
   LdiHandle crop(const LdiHandle& ldi, const Grid& window, Progress& progress) override;
+  LdiHandle rewindow(const LdiHandle& ldi, const Grid& window) override;
   LdiHandle offset(const LdiHandle& ldi, double distance, Progress& progress) override;
   bool evaluatesModifiers() const override { return true; }
   LdiMeasure measure(const LdiHandle& ldi, Progress& progress) override;

@@ -41,6 +41,21 @@ void hashGrid(Hasher& h, const Grid& grid) {
   h.add(grid.first.x).add(grid.first.y).add(grid.first.z);
 }
 
+// Nodes' LDIs are keyed on the grid's lattice, not its window: an LDI computed on one window
+// serves another of the same lattice when the node lies within both (Evaluator::onGrid).
+void hashLattice(Hasher& h, const Grid& grid) {
+  h.add(grid.origin.x).add(grid.origin.y).add(grid.origin.z).add(grid.h);
+}
+
+// Whether `content` lies within `grid`'s window with two cells to spare on every side (what an
+// offset reads beyond a surface: the node where its sign changes and the gradient's neighbour).
+bool withinWithRoom(const Bounds& content, const Grid& grid) {
+  const Bounds window = grid.bounds();
+  const glm::dvec3 room(2.0 * grid.h);
+  return glm::all(glm::greaterThanEqual(content.min - room, window.min)) &&
+         glm::all(glm::lessThanEqual(content.max + room, window.max));
+}
+
 Bounds transformedBox(const Bounds& local, const glm::dmat4& world) {
   Bounds b;
   if (local.empty()) return b;
@@ -206,6 +221,7 @@ struct Evaluator::Context {
   int done = 0;
   std::unordered_map<uint64_t, NodeId> firstLeafWithContent;  // leaf content key -> leaf id
   std::unordered_set<NodeId> keep;                            // EvalOptions::keep
+  double skipModifiersUnderCells = 0.0;                       // EvalOptions'
   int insideInstance = 0;  // > 0 while visiting an instance's target
 
   // The first walk only collects the leaves to sample (sampleMeshes takes them in one call);
@@ -323,6 +339,32 @@ Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   return makeGrid(b, n, scene.settings.margin);
 }
 
+Grid Evaluator::previewGridFor(const Scene& scene, int resolution, const Grid* previous) {
+  const Grid ideal = gridFor(scene, resolution);
+  if (scene.settings.hasBounds) return ideal;
+  const int n = resolution > 0 ? resolution : scene.settings.resolution;
+  const Bounds wanted = ideal.bounds();
+  if (previous && previous->h <= ideal.h * kLatticeSlack &&
+      previous->h * kLatticeSlack >= ideal.h) {
+    Grid g = *previous;
+    bool fits = true;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = std::floor((wanted.min[a] - g.origin[a]) / g.h + 1e-9);
+      const double hi = std::ceil((wanted.max[a] - g.origin[a]) / g.h - 1e-9);
+      fits = fits && lo >= 0.0 && hi <= 4.0 * n && hi > lo;
+      if (!fits) break;
+      g.first[a] = int(lo);
+      g.cells[a] = int(hi - lo);
+    }
+    if (fits) return g;
+  }
+  Grid fresh = ideal;
+  const int room = n / 4;
+  fresh.origin -= glm::dvec3(room) * ideal.h;
+  fresh.first = glm::ivec3(room);
+  return fresh;
+}
+
 uint64_t Evaluator::meshHash(const std::shared_ptr<const TriangleMesh>& mesh) {
   auto it = meshHashes_.find(mesh.get());
   if (it != meshHashes_.end() && !it->second.mesh.expired() && it->second.mesh.lock() == mesh)
@@ -344,7 +386,7 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
   content.add(uint8_t(node->kind));
   const glm::dmat4& m = world;
   content.bytes(glm::value_ptr(m), sizeof(double) * 16);
-  hashGrid(content, ctx.grid);
+  hashLattice(content, ctx.grid);
   int segments = 0;
   if (node->kind == NodeKind::Mesh) {
     if (!node->mesh) throw Error("mesh node '" + node->name + "' has no mesh loaded");
@@ -369,6 +411,17 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
   // Collecting, a leaf not cached is prepared for the batch; in the second walk every leaf is
   // cached (one that was not collected, should the walks ever differ, is sampled alone now).
   auto hit = cache_.find(v.key);
+  if (hit != cache_.end() && !onGrid(hit->second, ctx.grid, [&] {
+        if (node->kind != NodeKind::Mesh)
+          return transformedBox(primitiveLocalBounds(node->kind, node->params), world);
+        Bounds b;
+        for (const auto& p : node->mesh->positions)
+          b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+        return b;
+      })) {
+    cache_.erase(hit);  // computed on a window that clipped it, or this one clips it
+    hit = cache_.end();
+  }
   if (hit == cache_.end() && ctx.pendingKeys.insert(v.key).second) {
     std::shared_ptr<const TriangleMesh> mesh = node->mesh;
     if (node->kind != NodeKind::Mesh) {
@@ -479,9 +532,28 @@ bool Evaluator::dropDuplicateOperands(RayOp op, std::vector<Visit>* operands) {
   return true;
 }
 
-LdiHandle Evaluator::cachedOr(uint64_t key, NodeRecord& record,
+bool Evaluator::onGrid(CacheEntry& entry, const Grid& grid,
+                       const std::function<Bounds()>& content) {
+  const Grid& had = entry.ldi->grid();
+  if (had == grid) return true;
+  const Bounds b = content();
+  if (b.empty() ? entry.ldi->surfelCount() > 0
+                : !(withinWithRoom(b, had) && withinWithRoom(b, grid)))
+    return false;
+  LdiHandle moved = backend_->rewindow(entry.ldi, grid);
+  if (!moved) return false;
+  entry.ldi = std::move(moved);
+  return true;
+}
+
+LdiHandle Evaluator::cachedOr(uint64_t key, const Grid& grid,
+                              const std::function<Bounds()>& content, NodeRecord& record,
                               const std::function<LdiHandle()>& compute) {
   auto hit = cache_.find(key);
+  if (hit != cache_.end() && !onGrid(hit->second, grid, content)) {
+    cache_.erase(hit);
+    hit = cache_.end();
+  }
   if (hit != cache_.end()) {
     hit->second.generation = generation_;
     record.outcome = NodeOutcome::Cached;
@@ -549,6 +621,9 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   }
   resultEmpty = resultEmpty || !dropDuplicateOperands(op, &operands);
   NodeRecord record{node->id, node->name, kindName(node->kind), NodeOutcome::Computed, 0.0, 0};
+  // Where the node's result can lie (a cached one computed on another window is kept when it
+  // lies within both: onGrid).
+  auto content = [&] { return boundsOf(node, ctx.scene->root, parentWorld, true, depth); };
   Visit v;
   if (resultEmpty || operands.empty()) {
     Hasher key;
@@ -572,10 +647,10 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   } else {
     Hasher key;
     key.add(uint8_t(node->kind));
-    hashGrid(key, ctx.grid);
+    hashLattice(key, ctx.grid);
     for (const auto& c : operands) key.add(c.key);
     v.key = key.digest();
-    v.ldi = cachedOr(v.key, record, [&] {
+    v.ldi = cachedOr(v.key, ctx.grid, content, record, [&] {
       std::vector<LdiHandle> inputs;
       for (const auto& c : operands) inputs.push_back(c.ldi);
       Stopwatch watch;
@@ -586,7 +661,14 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
     });
   }
   const Modifier modifier = modifierOf(node->kind);
-  if (modifier != Modifier::None && v.ldi->surfelCount() > 0 &&
+  const bool skipped = modifier != Modifier::None &&
+                       std::abs(node->amount) < ctx.skipModifiersUnderCells * ctx.grid.h;
+  if (skipped) {
+    const std::string name = std::string(kindName(node->kind)) + " '" + node->name + "'";
+    auto& list = ctx.result->skippedModifiers;
+    if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
+  }
+  if (modifier != Modifier::None && !skipped && v.ldi->surfelCount() > 0 &&
       !(modifier == Modifier::Offset && node->amount == 0.0)) {
     // The children's union, changed by the modifier: keyed on it, the kind and the amount.
     checkModifierAmount(node->kind, node->amount,
@@ -602,10 +684,10 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
         wallOf = wall.ldi;
       }
     }
-    hashGrid(key, ctx.grid);
+    hashLattice(key, ctx.grid);
     v.key = key.digest();
     const LdiHandle united = v.ldi;
-    v.ldi = cachedOr(v.key, record, [&] {
+    v.ldi = cachedOr(v.key, ctx.grid, content, record, [&] {
       Stopwatch watch;
       // The modifier's own progress ("modify", over its offsets' passes) moves the evaluation's
       // bar within this node's step: a round at high resolution is most of an evaluation.
@@ -641,11 +723,11 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
 
 EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options, Progress& progress) {
   if (!scene.root) throw Error("the scene has no root node");
-  return evaluateOn(scene, gridFor(scene, options.resolution), progress, options.keep);
+  return evaluateOn(scene, gridFor(scene, options.resolution), progress, options);
 }
 
 EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
-                                 const std::vector<NodeId>& keep) {
+                                 const EvalOptions& options) {
   if (!scene.root) throw Error("the scene has no root node");
   Stopwatch total;
   EvalResult result;
@@ -656,7 +738,8 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   ctx.grid = grid;
   ctx.progress = &progress;
   ctx.result = &result;
-  ctx.keep.insert(keep.begin(), keep.end());
+  ctx.keep.insert(options.keep.begin(), options.keep.end());
+  ctx.skipModifiersUnderCells = options.skipModifiersUnderCells;
   const TreeExpansion expansion = checkExpansion(scene.root, scene.settings.maxLeaves);
   ctx.total = int(std::min<uint64_t>(expansion.nodes, 1u << 30)) + 1;
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];

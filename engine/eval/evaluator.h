@@ -1,7 +1,8 @@
 // Evaluation of a scene's CSG tree into the root's LDI, with a content-keyed cache.
 //
 // Every node's LDI is cached under a key made of its content: kind and parameters, the world
-// transform (for leaves), the mesh's content hash, the grid, and the keys of its children. After
+// transform (for leaves), the mesh's content hash, the grid's lattice (origin and cell size, not
+// its window: see onGrid), and the keys of its children. After
 // one leaf changes, only the nodes on its path to the root get new keys and are recomputed; the
 // result reports what was computed and what was reused. The tree is walked twice: once to
 // collect the leaves not cached, which the backend samples in one call (sampleMeshes), then to
@@ -28,6 +29,12 @@ struct EvalOptions {
   // Nodes whose own LDIs the result keeps (EvalResult::kept), e.g. the cutters the editor draws
   // as ghosts. A node reached only through instances is not kept.
   std::vector<NodeId> keep;
+  // Modifiers (offset, shell, round, fillet) whose |amount| is under this many cells of the grid
+  // are passed through: their children's union stands for them, unchanged, and each is named in
+  // EvalResult::skippedModifiers. For a coarse preview, whose cells cannot resolve such an
+  // amount (a 1 mm round on cells of 1.1 mm tears 3 mm walls apart), so that it shows the parts
+  // whole until the full pass comes. 0: every modifier applies (exports, the full preview).
+  double skipModifiersUnderCells = 0.0;
 };
 
 // A node's own LDI, before its parent combined it (world space, on the evaluation's grid).
@@ -81,6 +88,8 @@ struct EvalResult {
   std::string backend;
   // Said once each, for the user: parts smaller than a cell (named), ...
   std::vector<std::string> warnings;
+  // Modifiers passed through (EvalOptions::skipModifiersUnderCells), as "round 'rim'".
+  std::vector<std::string> skippedModifiers;
 };
 
 class Evaluator {
@@ -89,12 +98,23 @@ class Evaluator {
 
   // Evaluates the visible tree. Throws strata::Error (e.g. an empty scene) or Cancelled.
   EvalResult evaluate(const Scene& scene, const EvalOptions& options, Progress& progress);
-  // The same on an explicit grid, e.g. one tile (a window) of the scene's grid.
+  // The same on an explicit grid, e.g. one tile (a window) of the scene's grid
+  // (options.resolution is not read).
   EvalResult evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
-                        const std::vector<NodeId>& keep = {});
+                        const EvalOptions& options = {});
 
   // The grid an evaluation at `resolution` (0 = the scene's) would use.
   static Grid gridFor(const Scene& scene, int resolution);
+  // The grid of an interactive preview at `resolution` that follows `previous` (the last one
+  // of that resolution; null for none): gridFor's window on the lattice of `previous` while its
+  // cells stay within kLatticeSlack of gridFor's size and its window can start at a node of
+  // index >= 0 (and below resolution * 4), else gridFor's grid on a lattice of its own whose
+  // window starts at node resolution / 4 on every axis (room for the scene to move toward -x,
+  // -y, -z). An edit that moves, grows or shrinks the scene then keeps the LDIs of the parts it
+  // left alone (onGrid) instead of sampling the whole tree again. Scenes with explicit bounds
+  // get gridFor's grid.
+  static Grid previewGridFor(const Scene& scene, int resolution, const Grid* previous);
+  static constexpr double kLatticeSlack = 1.125;
 
   void clearCache() { cache_.clear(); }
   size_t cacheEntries() const { return cache_.size(); }
@@ -115,9 +135,14 @@ class Evaluator {
   // keeps its LDI when asked (EvalOptions::keep).
   Visit visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
   Visit visitNode(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
-  // The LDI cached under `key` (kept for this generation), or what compute() makes, cached under
-  // it; record.outcome says which.
-  LdiHandle cachedOr(uint64_t key, NodeRecord& record, const std::function<LdiHandle()>& compute);
+  // The LDI cached under `key` (kept for this generation) on `grid` (onGrid), or what compute()
+  // makes, cached under it; record.outcome says which. `content` gives the node's bounds.
+  LdiHandle cachedOr(uint64_t key, const Grid& grid, const std::function<Bounds()>& content,
+                     NodeRecord& record, const std::function<LdiHandle()>& compute);
+  // Whether `entry` serves `grid`: computed on it, or on another window of the same lattice and
+  // moved onto this one (Backend::rewindow) because the node's `content` bounds lie within both
+  // windows with room to spare, so that neither clipped it: what evaluating it here would give.
+  bool onGrid(CacheEntry& entry, const Grid& grid, const std::function<Bounds()>& content);
   Visit visitLeaf(const NodePtr& node, const glm::dmat4& world, Context& ctx);
   // Samples the leaves the collecting walk found (Backend::sampleMeshes) into the cache.
   void sampleCollected(Context& ctx);

@@ -171,19 +171,25 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   EvalOptions options;
   options.resolution = result.resolution;
   options.keep = request.ghosts;
+  options.skipModifiersUnderCells = result.coarse ? kCoarseModifierCells : 0.0;
   // Modifiers on a backend that cannot evaluate them: this pass on the CPU (its own evaluator,
   // so that each cache keeps LDIs of its own backend).
   Backend* backend = backend_.get();
+  if (!request.scene->root) throw Error("the scene has no root node");
+  auto last = lastGrids_.find(result.resolution);
+  const Grid grid = Evaluator::previewGridFor(*request.scene, result.resolution,
+                                              last == lastGrids_.end() ? nullptr : &last->second);
+  lastGrids_[result.resolution] = grid;
   if (hasModifier(request.scene->root) && !backend_->evaluatesModifiers()) {
     if (!modifierEvaluator_)
       modifierEvaluator_ = std::make_unique<Evaluator>(std::make_shared<CpuBackend>());
-    result.stats = modifierEvaluator_->evaluate(*request.scene, options, progress);
+    result.stats = modifierEvaluator_->evaluateOn(*request.scene, grid, progress, options);
     result.stats.warnings.push_back(
         "offset, shell, round and fillet nodes are evaluated on the CPU (the " +
         backend_->description() + " backend cannot yet)");
     backend = &modifierEvaluator_->backend();
   } else {
-    result.stats = evaluator.evaluate(*request.scene, options, progress);
+    result.stats = evaluator.evaluateOn(*request.scene, grid, progress, options);
   }
   Stopwatch splatClock;
   result.surfels = result.stats.root->surfelCount();

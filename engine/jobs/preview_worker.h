@@ -9,6 +9,9 @@
 //     min(requested, coarseResolution); the request made when the hand stops refines it. A
 //     calm request for a new scene shows the coarse result first, then the full one, unless the
 //     last full pass took less than quickPassSeconds (then the full one comes at once).
+//     A coarse pass passes modifiers under kCoarseModifierCells of its cells through
+//     (EvalOptions::skipModifiersUnderCells): it shows the parts whole, unrounded, rather than
+//     torn by a radius its cells cannot resolve, and comes sooner.
 //   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the root's
 //     splats (Backend::splats: made where the backend keeps its LDIs, on the device for CUDA)
 //     and the evaluation's statistics. A pass that finished before it was superseded still
@@ -29,6 +32,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -47,6 +51,9 @@ struct GhostSplats {
   NodeId id = 0;
   std::shared_ptr<const HostSplats> splats;  // always on the host (few; drawn by upload)
 };
+
+// Modifiers whose amount is under this many cells of a coarse pass are left out of it.
+constexpr double kCoarseModifierCells = 2.0;
 
 struct PreviewResult {
   uint64_t tag = 0;                    // the caller's tag of the request (its document revision)
@@ -154,6 +161,9 @@ class PreviewWorker {
   PreviewStatus status_;
   std::shared_ptr<const Scene> lastShown_;  // worker thread only
   double lastFullSeconds_ = -1.0;           // worker thread only: the last full pass; -1 none yet
+  // Worker thread only: the last grid of each resolution evaluated, which the next follows
+  // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
+  std::map<int, Grid> lastGrids_;
   std::thread thread_;
 };
 

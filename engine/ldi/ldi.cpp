@@ -105,6 +105,63 @@ std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& 
   return out;
 }
 
+std::shared_ptr<Ldi> rewindowLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& window) {
+  const Ldi& in = *ldi;
+  if (window.h != in.grid.h || window.origin != in.grid.origin)
+    throw Error("rewindowing an LDI to a window of another lattice");
+  auto out = std::make_shared<Ldi>();
+  out->grid = window;
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    const AxisLdi& from = in.axes[a];
+    const RayWindow source = from.whole ? wholeWindow(in.grid, a) : from.window;
+    // The source's rays in the new window's ray coordinates, and the part of them it holds.
+    const int u0 = source.u0 + in.grid.first[u] - window.first[u];
+    const int v0 = source.v0 + in.grid.first[v] - window.first[v];
+    const int i0 = std::max(u0, 0), j0 = std::max(v0, 0);
+    const int i1 = std::min(u0 + source.uCount, window.raysU(a));
+    const int j1 = std::min(v0 + source.vCount, window.raysV(a));
+    AxisLdi& to = out->axes[a];
+    if (i1 <= i0 || j1 <= j0 || from.surfels.empty()) {
+      to.whole = false;
+      to.window = RayWindow{};
+      to.offsets.assign(1, 0u);
+      continue;
+    }
+    const RayWindow kept{i0, j0, i1 - i0, j1 - j0};
+    if (kept.u0 == u0 && kept.v0 == v0 && kept.uCount == source.uCount &&
+        kept.vCount == source.vCount) {
+      to.offsets = from.offsets;  // every ray kept, in the same order
+      to.surfels = from.surfels;
+    } else {
+      const int64_t rays = kept.rayCount();
+      auto sourceRay = [&](int64_t r) {
+        const int64_t i = r % kept.uCount + kept.u0 - u0, j = r / kept.uCount + kept.v0 - v0;
+        return size_t(i + j * int64_t(source.uCount));
+      };
+      to.offsets.resize(size_t(rays) + 1);
+      uint64_t running = 0;
+      for (int64_t r = 0; r < rays; ++r) {
+        to.offsets[size_t(r)] = uint32_t(running);
+        const size_t s = sourceRay(r);
+        running += from.offsets[s + 1] - from.offsets[s];
+      }
+      to.offsets[size_t(rays)] = uint32_t(running);
+      to.surfels.resize(size_t(running));
+      parallelFor(0, rays, 4096, [&](int64_t b, int64_t e) {
+        for (int64_t r = b; r < e; ++r) {
+          const size_t s = sourceRay(r);
+          std::copy(from.surfels.begin() + from.offsets[s],
+                    from.surfels.begin() + from.offsets[s + 1],
+                    to.surfels.begin() + to.offsets[size_t(r)]);
+        }
+      });
+    }
+    settleAxisWindow(window, a, kept, &to);
+  }
+  return out;
+}
+
 void settleAxisWindow(const Grid& grid, int axisIndex, const RayWindow& window, AxisLdi* axis) {
   if (window.rayCount() * 2 > grid.rayCount(axisIndex)) {
     if (window.u0 != 0 || window.v0 != 0 || window.uCount != grid.raysU(axisIndex) ||

@@ -68,6 +68,13 @@ std::shared_ptr<const Ldi> wholeLdi(std::shared_ptr<const Ldi> ldi);
 // parity, as a sampled ray's clipped ones do). Every axis of the result is whole.
 std::shared_ptr<Ldi> cropLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& window);
 
+// The same lists on another window of `ldi`'s lattice (same origin and h; throws strata::Error
+// otherwise): rays of `window` that `ldi`'s grid holds keep their lists, the others are empty,
+// rays of `ldi` outside `window` are dropped. Exactly what evaluating on `window` gives when the
+// solid lies within both windows (the editor's preview keeps its LDIs when the scene's grid
+// grows or shrinks around them: Evaluator). Axes stay windowed where they were and fit.
+std::shared_ptr<Ldi> rewindowLdi(const std::shared_ptr<const Ldi>& ldi, const Grid& window);
+
 // Where ray (i, j) of `axis` of `window` lies among the rays of `grid` (same lattice, window
 // within the grid): its index there is i + di + (j + dj) * grid.raysU(axis). Throws
 // strata::Error when the window does not lie within the grid.

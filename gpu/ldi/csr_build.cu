@@ -4,6 +4,8 @@
 
 #include "gpu/ldi/csr_build.cuh"
 
+#include "engine/util/error.h"
+
 namespace strata {
 namespace {
 
@@ -90,28 +92,35 @@ __global__ void windowCounts(const uint32_t* offsets, RayWindow window, int rays
   }
 }
 
-// Per ray of a window of `axis` (raysU across, `rays` in all; ray (i, j) is ray
-// i + shift.di + (j + shift.dj) * fromU of the LDI cropped): its surfel count, widened;
-// wide[rays] = 0 (cropLdi's counts).
-__global__ void cropCounts(const uint32_t* offsets, RayShift shift, int fromU, int raysU,
+// The source ray of ray r of a window of `axis` (raysU across; ray (i, j) is ray
+// i + shift.di + (j + shift.dj) * fromU of the LDI's fromU x fromV rays), or -1 where the LDI
+// has no such ray (a window reaching beyond it: rewindowLdi's empty rays).
+__device__ int64_t sourceRay(int64_t r, RayShift shift, int fromU, int fromV, int raysU) {
+  const int64_t i = r % raysU + shift.di, j = r / raysU + shift.dj;
+  return i < 0 || j < 0 || i >= fromU || j >= fromV ? -1 : i + j * int64_t(fromU);
+}
+
+// Per ray of the window: its surfel count, widened; wide[rays] = 0 (cropLdi's counts).
+__global__ void cropCounts(const uint32_t* offsets, RayShift shift, int fromU, int fromV, int raysU,
                            int64_t rays, uint64_t* wide) {
   for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r <= rays;
        r += int64_t(gridDim.x) * blockDim.x) {
     uint64_t n = 0;
     if (r < rays) {
-      const int64_t from = shift.source(r, raysU, fromU);
-      n = offsets[from + 1] - offsets[from];
+      const int64_t from = sourceRay(r, shift, fromU, fromV, raysU);
+      if (from >= 0) n = offsets[from + 1] - offsets[from];
     }
     wide[r] = n;
   }
 }
 
-// Each cropped ray's list copied to its place (wide: the scanned counts).
+// Each window ray's list copied to its place (wide: the scanned counts).
 __global__ void cropCopy(const uint32_t* offsets, const Surfel* surfels, RayShift shift, int fromU,
-                         int raysU, int64_t rays, const uint64_t* wide, Surfel* out) {
+                         int fromV, int raysU, int64_t rays, const uint64_t* wide, Surfel* out) {
   for (int64_t r = blockIdx.x * int64_t(blockDim.x) + threadIdx.x; r < rays;
        r += int64_t(gridDim.x) * blockDim.x) {
-    const int64_t from = shift.source(r, raysU, fromU);
+    const int64_t from = sourceRay(r, shift, fromU, fromV, raysU);
+    if (from < 0) continue;
     const Surfel* in = surfels + offsets[from];
     const uint32_t n = offsets[from + 1] - offsets[from];
     for (uint32_t k = 0; k < n; ++k) out[wide[r] + k] = in[k];
@@ -158,20 +167,23 @@ std::shared_ptr<const DeviceLdi> wholeOnDevice(const std::shared_ptr<const Devic
   return out;
 }
 
-std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
-                                              const Grid& window, const DeviceStream& stream) {
+namespace {
+// The rays of `window` (on ldi's lattice) with their lists from `ldi`, empty where it has none.
+std::shared_ptr<const DeviceLdi> copyWindowRays(const std::shared_ptr<const DeviceLdi>& ldi,
+                                                const Grid& window, const RayShift shifts[3],
+                                                const DeviceStream& stream) {
   const std::shared_ptr<const DeviceLdi> whole = wholeOnDevice(ldi, stream);
   auto out = std::make_shared<DeviceLdi>(window, stream);
   DeviceBuffer<uint64_t> wide[3];
   int64_t rays[3];
-  RayShift shifts[3];
+  const Grid& from = ldi->grid();
   for (int a = 0; a < 3; ++a) {
-    const RayShift shift = shifts[a] = rayShift(ldi->grid(), window, a);  // throws if outside
+    const RayShift shift = shifts[a];
     rays[a] = window.rayCount(a);
     wide[a] = DeviceBuffer<uint64_t>(static_cast<size_t>(rays[a]) + 1, stream);
     cropCounts<<<blocksFor(rays[a] + 1, 256), 256, 0, stream.get()>>>(
-        whole->axes[a].offsets.data(), shift, ldi->grid().raysU(a), window.raysU(a), rays[a],
-        wide[a].data());
+        whole->axes[a].offsets.data(), shift, from.raysU(a), from.raysV(a), window.raysU(a),
+        rays[a], wide[a].data());
     STRATA_CUDA_CHECK(cudaGetLastError());
     exclusiveScanAsync(wide[a].data(), rays[a] + 1, stream);
   }
@@ -190,13 +202,34 @@ std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const Device
     to.surfels = DeviceBuffer<Surfel>(static_cast<size_t>(totals[a]), stream);
     if (rays[a] > 0 && totals[a] > 0) {
       cropCopy<<<blocksFor(rays[a], 256), 256, 0, stream.get()>>>(
-          whole->axes[a].offsets.data(), whole->axes[a].surfels.data(), shift, ldi->grid().raysU(a),
-          window.raysU(a), rays[a], wide[a].data(), to.surfels.data());
+          whole->axes[a].offsets.data(), whole->axes[a].surfels.data(), shift, from.raysU(a),
+          from.raysV(a), window.raysU(a), rays[a], wide[a].data(), to.surfels.data());
       STRATA_CUDA_CHECK(cudaGetLastError());
     }
   }
   stream.synchronize();
   return out;
+}
+}  // namespace
+
+std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                              const Grid& window, const DeviceStream& stream) {
+  RayShift shifts[3];
+  for (int a = 0; a < 3; ++a) shifts[a] = rayShift(ldi->grid(), window, a);  // throws if outside
+  return copyWindowRays(ldi, window, shifts, stream);
+}
+
+std::shared_ptr<const DeviceLdi> rewindowOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                                  const Grid& window, const DeviceStream& stream) {
+  const Grid& from = ldi->grid();
+  if (window.h != from.h || window.origin != from.origin)
+    throw Error("rewindowing an LDI to a window of another lattice");
+  RayShift shifts[3];
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    shifts[a] = RayShift{window.first[u] - from.first[u], window.first[v] - from.first[v]};
+  }
+  return copyWindowRays(ldi, window, shifts, stream);
 }
 
 void exclusiveScanAsync(uint64_t* data, int64_t count, const DeviceStream& stream) {

@@ -116,6 +116,12 @@ std::shared_ptr<const DeviceLdi> wholeOnDevice(const std::shared_ptr<const Devic
 std::shared_ptr<const DeviceLdi> cropOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
                                               const Grid& window, const DeviceStream& stream);
 
+// The same lists on another window of ldi's lattice, empty where ldi has no ray: the CUDA twin
+// of rewindowLdi (engine/ldi/ldi.h), the same lists. Made on `stream`, complete on return.
+// Throws strata::Error for a window on another lattice.
+std::shared_ptr<const DeviceLdi> rewindowOnDevice(const std::shared_ptr<const DeviceLdi>& ldi,
+                                                  const Grid& window, const DeviceStream& stream);
+
 inline unsigned blocksFor(int64_t items, unsigned threads) {
   int64_t blocks = (items + threads - 1) / threads;
   return unsigned(blocks < 1 ? 1 : (blocks > 0x7fffffff ? 0x7fffffff : blocks));

@@ -248,6 +248,41 @@ TEST_F(CudaVsCpu, ModifiersMatchRayByRay) {
   expectSameExport(rounded, cuda_, 64);
 }
 
+// The editor's preview grid follows the scene on one lattice: on the device, a part moved out
+// past the scene's bounds keeps the others' LDIs, moved onto the grown window
+// (Backend::rewindow), and the result is the CPU's fresh evaluation on that window, bit for bit.
+TEST_F(CudaVsCpu, LdisMovedOntoAGrownWindowMatchAFreshEvaluation) {
+  auto plate = std::make_shared<Node>(*modifier(NodeKind::Round, 0.15, {box({2, 2, 0.6})}));
+  const NodePtr drilled = op(NodeKind::Difference, {plate, cylinder(0.3, 0.5, {0.4, -0.4, 0})});
+  auto ball = std::make_shared<Node>(*sphere(0.4, {1.6, 0, 0}));  // moved in place below
+  Scene scene = makeScene(op(NodeKind::Union, {drilled, sphere(0.5, {-1, 1.2, 0}), ball}), 128);
+  Progress progress;
+  Evaluator onGpu(cuda_);
+  Grid grid = Evaluator::previewGridFor(scene, 128, nullptr);
+  onGpu.evaluateOn(scene, grid, progress);
+  for (const double x : {1.9, -1.8}) {
+    ball->transform.translate = {x, 0, 0};
+    const Grid next = Evaluator::previewGridFor(scene, 128, &grid);
+    ASSERT_FALSE(next == grid);
+    ASSERT_EQ(next.h, grid.h);
+    grid = next;
+    const EvalResult b = onGpu.evaluateOn(scene, grid, progress);
+    EXPECT_EQ(b.computed, 2) << "x " << x << ": the ball and the root";
+    Evaluator onCpu(std::make_shared<CpuBackend>());
+    const EvalResult a = onCpu.evaluateOn(scene, grid, progress);
+    auto p = wholeLdi(onCpu.backend().download(a.root));
+    auto q = onGpu.backend().download(b.root);
+    for (int axis = 0; axis < 3; ++axis) {
+      ASSERT_EQ(p->axes[axis].offsets, q->axes[axis].offsets) << "x " << x << " axis " << axis;
+      ASSERT_EQ(p->axes[axis].surfels.size(), q->axes[axis].surfels.size());
+      EXPECT_EQ(std::memcmp(p->axes[axis].surfels.data(), q->axes[axis].surfels.data(),
+                            p->axes[axis].surfels.size() * sizeof(Surfel)),
+                0)
+          << "x " << x << " axis " << axis;
+    }
+  }
+}
+
 // Tiles of a modifier scene are evaluated on a window grown by the modifiers' reach and cropped
 // back (Backend::crop): the device's crop gives the CPU's bits, and a tiled export of the
 // rebuilt scaffold gives the CPU's mesh and that of one tile, vertex for vertex.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <thread>
 
 #include "engine/eval/cpu_backend.h"
@@ -192,6 +193,81 @@ TEST(EvaluatorCache, InstancesShowTheirTargetEvenWhenItIsHidden) {
   EvalResult one = evaluateCpu(fixedGrid(sphere(0.5)));
   // Two copies (not three: the hidden template itself is not drawn), up to sampling noise.
   EXPECT_NEAR(r.measure.volume, 2 * one.measure.volume, 0.02 * one.measure.volume);
+}
+
+// The editor's preview grid follows the scene on one lattice (Evaluator::previewGridFor): a part
+// moved out past the scene's bounds grows the window, and the parts left alone (a round, a
+// fillet, a difference with its cutter, an offset) are reused from the cache, moved onto the new
+// window; the result equals, surfel for surfel, a fresh evaluation on that grid.
+TEST(EvaluatorCache, APartMovedOutKeepsTheOthersCachedOnTheGrownWindow) {
+  auto plate = std::make_shared<Node>(*modifier(NodeKind::Round, 0.15, {box({2, 2, 0.6})}));
+  auto seam = std::make_shared<Node>(
+      *modifier(NodeKind::Fillet, 0.1,
+                {box({0.6, 0.6, 0.6}, {0, 1.4, 0}), box({0.6, 0.6, 0.6}, {0.6, 1.9, 0})}));
+  auto pad =
+      std::make_shared<Node>(*modifier(NodeKind::Offset, 0.1, {sphere(0.3, {-1.3, -1.3, 0})}));
+  const NodePtr drilled = op(NodeKind::Difference, {plate, cylinder(0.3, 2.0, {0.4, -0.4, 0})});
+  auto ball = std::make_shared<Node>(*sphere(0.4, {1.6, 0, 0}));  // moved in place below
+  Scene scene = makeScene(op(NodeKind::Union, {drilled, seam, pad, ball}), 96);
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  const Grid before = Evaluator::previewGridFor(scene, 96, nullptr);
+  const EvalResult first = evaluator.evaluateOn(scene, before, progress);
+  const int nodes = first.computed;
+
+  Grid previous = before;
+  for (const double x : {2.0, 1.0, -2.4}) {  // out along +x, back in, out along -x
+    ball->transform.translate = {x, 0, 0};
+    const Grid grid = Evaluator::previewGridFor(scene, 96, &previous);
+    EXPECT_FALSE(grid == previous) << "x " << x;
+    previous = grid;
+    EXPECT_EQ(grid.origin, before.origin);
+    EXPECT_EQ(grid.h, before.h);
+    const EvalResult moved = evaluator.evaluateOn(scene, grid, progress);
+    EXPECT_EQ(moved.grid, grid);
+    std::string computed;
+    for (const auto& n : moved.nodes)
+      if (n.outcome == NodeOutcome::Computed) computed += n.kind + " ";
+    // The ball, the root, and the drill, whose ends stick out of both windows (clipped, it
+    // cannot be moved); the difference it cuts lies within them: reused.
+    EXPECT_EQ(computed, "cylinder sphere union ") << "x " << x << " (of " << nodes << ")";
+    Evaluator fresh(std::make_shared<CpuBackend>());
+    const EvalResult again = fresh.evaluateOn(scene, grid, progress);
+    const auto a = wholeLdi(evaluator.backend().download(moved.root));
+    const auto b = wholeLdi(fresh.backend().download(again.root));
+    for (int axis = 0; axis < 3; ++axis) {
+      ASSERT_EQ(a->axes[axis].offsets, b->axes[axis].offsets) << "x " << x << " axis " << axis;
+      ASSERT_EQ(a->axes[axis].surfels.size(), b->axes[axis].surfels.size());
+      EXPECT_EQ(0, std::memcmp(a->axes[axis].surfels.data(), b->axes[axis].surfels.data(),
+                               a->axes[axis].surfels.size() * sizeof(Surfel)))
+          << "x " << x << " axis " << axis;
+    }
+  }
+}
+
+// A fresh lattice where the cells would drift too far from the resolution asked for, or the
+// window would leave its room; the same one while the scene stays within.
+TEST(EvaluatorCache, ThePreviewGridFollowsItsLatticeWithinItsSlack) {
+  auto ball = std::make_shared<Node>(*sphere(0.5));  // moved in place below
+  Scene scene = makeScene(op(NodeKind::Union, {box({2, 2, 2}), ball}), 128);
+  const Grid first = Evaluator::previewGridFor(scene, 128, nullptr);
+  const Grid plain = Evaluator::gridFor(scene, 128);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(first.bounds().min[a], plain.bounds().min[a], 1e-12);
+  EXPECT_EQ(first.cells, plain.cells);
+  EXPECT_EQ(first.first, glm::ivec3(32));
+  ball->transform.translate = {0.3, 0, 0};  // inside the box's bounds still: the same grid
+  EXPECT_EQ(Evaluator::previewGridFor(scene, 128, &first), first);
+  ball->transform.translate = {0.7, 0, 0};  // 0.2 beyond: the window grows on the lattice
+  const Grid grown = Evaluator::previewGridFor(scene, 128, &first);
+  EXPECT_EQ(grown.origin, first.origin);
+  EXPECT_GT(grown.cells.x, first.cells.x);
+  ball->transform.translate = {4.0, 0, 0};  // the scene twice as long: a new lattice
+  const Grid relaid = Evaluator::previewGridFor(scene, 128, &grown);
+  EXPECT_NE(relaid.h, first.h);
+  EXPECT_EQ(std::max({relaid.cells.x, relaid.cells.y, relaid.cells.z}), 128);
+  // Explicit bounds keep their exact grid.
+  Scene boxed = makeSceneInBox(sphere(1.0), 64, {-2, -2, -2}, {2, 2, 2});
+  EXPECT_EQ(Evaluator::previewGridFor(boxed, 64, &first), Evaluator::gridFor(boxed, 64));
 }
 
 TEST(EvaluatorCache, CancelStopsTheEvaluation) {

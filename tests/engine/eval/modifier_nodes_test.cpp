@@ -78,6 +78,39 @@ TEST(ModifierNodes, AModifierThatLeavesNothingSaysWhy) {
     EXPECT_EQ(w.find("left nothing"), std::string::npos) << w;
 }
 
+// A coarse preview passes modifiers under its cells through: the result is the children's own
+// (the same surfels as the unmodified part, from the same cache entry), and each is named; a
+// modifier of several cells, and every modifier when none are skipped, applies.
+TEST(ModifierNodes, ModifiersUnderTheSkippedCellsPassThrough) {
+  const NodePtr plate = box({4.0, 4.0, 0.6});
+  auto round = std::make_shared<Node>(*modifier(NodeKind::Round, 0.1, {plate}));
+  round->name = "rim";
+  auto grow = std::make_shared<Node>(*modifier(NodeKind::Offset, 0.5, {round}));
+  grow->name = "pad";
+  const Scene scene = makeScene(grow, 32);  // h = 0.2: the round is half a cell, the pad 2.5
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  EvalOptions skip;
+  skip.resolution = 32;
+  skip.skipModifiersUnderCells = 2.0;
+  const EvalResult coarse = evaluator.evaluate(scene, skip, progress);
+  ASSERT_EQ(coarse.skippedModifiers.size(), 1u);
+  EXPECT_EQ(coarse.skippedModifiers[0], "round 'rim'");
+  const Grid grid = coarse.grid;
+  EXPECT_LT(0.1, 2.0 * grid.h);
+  EXPECT_GT(0.5, 2.0 * grid.h);
+  // The pad of the unrounded plate, on the same grid.
+  const EvalResult plain =
+      evaluator.evaluateOn(makeScene(modifier(NodeKind::Offset, 0.5, {plate}), 32), grid, progress);
+  EXPECT_EQ(coarse.measure.volume, plain.measure.volume);
+  EXPECT_EQ(coarse.measure.surfels, plain.measure.surfels);
+  EvalOptions all = skip;
+  all.skipModifiersUnderCells = 0.0;
+  const EvalResult full = evaluator.evaluate(scene, all, progress);
+  EXPECT_TRUE(full.skippedModifiers.empty());
+  EXPECT_LT(full.measure.volume, coarse.measure.volume - 0.01);  // the round took the edges
+}
+
 TEST(ModifierNodes, TheGridMakesRoomForAGrowth) {
   // Grown by 0.5, the sphere of radius 1 reaches 1.5: the grid must hold it whole (not cut at
   // the sphere's own bounds).

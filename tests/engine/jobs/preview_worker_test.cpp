@@ -147,6 +147,30 @@ TEST(PreviewWorker, CalmEditShowsTheCoarseResultThenTheFullOne) {
   EXPECT_GT(r[1]->surfels, r[0]->surfels);  // the finer grid has more rays
 }
 
+// The coarse pass of a calm edit shows a part under a round smaller than two of its cells
+// unrounded (a round its cells cannot resolve tears thin walls apart), and says so; the full
+// pass rounds it.
+TEST(PreviewWorker, TheCoarsePassLeavesOutModifiersItsCellsCannotResolve) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 16, log.callback());
+  log.attach(&worker);
+  auto round = std::make_shared<Node>(*modifier(NodeKind::Round, 0.2, {box({4.0, 4.0, 1.0})}));
+  round->name = "rim";
+  auto scene = std::make_shared<const Scene>(makeScene(round, 64));
+  worker.request(scene, 64, false, 1);
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 2u);
+  expectShows(r[0], 1, 16, true);
+  expectShows(r[1], 1, 64, false);
+  ASSERT_EQ(r[0]->stats.skippedModifiers.size(), 1u);
+  EXPECT_EQ(r[0]->stats.skippedModifiers[0], "round 'rim'");
+  EXPECT_TRUE(r[1]->stats.skippedModifiers.empty());
+  EXPECT_LT(r[1]->stats.measure.volume, 15.8);  // the box of 16, its edges rounded
+  EXPECT_GT(r[0]->stats.measure.volume, r[1]->stats.measure.volume + 0.3);  // not rounded
+}
+
 TEST(PreviewWorker, DragStaysCoarseAndItsStopRefinesWithoutRepeatingIt) {
   ResultLog log;
   PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback());

@@ -12,6 +12,7 @@
 #include "engine/ldi/combine_ldi.h"
 #include "engine/ldi/sample_mesh.h"
 #include "engine/ldi/splats.h"
+#include "engine/util/error.h"
 #include "tests/support/scene_builder.h"
 
 namespace strata {
@@ -127,6 +128,32 @@ TEST(WindowedLdi, ManyChildrenOnOneRaySortLikeFew) {
                 "nested union");
   EXPECT_EQ(combineLdis(RayOp::Intersection, boxes, grid)->surfelCount(),
             combineLdis(RayOp::Union, {boxes.front()}, grid)->surfelCount());
+}
+
+// An LDI moved onto another window of its lattice (rewindowLdi) is, ray for ray, what sampling
+// on that window gives, for a small (windowed) and a large (whole) solid, onto a larger window
+// shifted against it and back onto a smaller one; rays the solid does not reach stay empty.
+TEST(WindowedLdi, RewindowedLdisEqualSamplingOnTheNewWindow) {
+  Bounds b;
+  b.min = glm::dvec3(-10.0);
+  b.max = glm::dvec3(10.0);
+  const Grid lattice = makeGrid(b, 64, 0.0);
+  const Grid a = lattice.window({10, 12, 14}, {40, 38, 36});
+  const Grid bigger = lattice.window({3, 5, 9}, {56, 52, 50});
+  for (const glm::dvec3 size : {glm::dvec3(1.5, 2.0, 1.0), glm::dvec3(9.0, 8.0, 7.0)}) {
+    const glm::dvec3 at(0.7, -0.4, 0.3);
+    const auto onA = sampleBox(a, at, size, 3);
+    const auto onBigger = sampleBox(bigger, at, size, 3);
+    const auto moved = rewindowLdi(onA, bigger);
+    EXPECT_EQ(moved->grid, bigger);
+    expectSameLdi(*wholeLdi(moved), *wholeLdi(onBigger), "onto the larger window");
+    expectSameLdi(*wholeLdi(rewindowLdi(onBigger, a)), *wholeLdi(onA), "back onto the smaller");
+    EXPECT_EQ(measureLdi(*moved).volume, measureLdi(*onBigger).volume);
+  }
+  // Another lattice is refused.
+  Grid other = a;
+  other.h *= 1.01;
+  EXPECT_THROW(rewindowLdi(sampleBox(a, glm::dvec3(0.0), glm::dvec3(1.0), 1), other), Error);
 }
 
 }  // namespace
