@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,8 +12,11 @@
 
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
+#include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
 #include "engine/io/document_files.h"
 #include "engine/io/user_files.h"
+#include "engine/jobs/part_measure_job.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 #include "ui/export_settings.h"
@@ -322,6 +326,47 @@ double modifierAmountFor(NodeKind kind, const Bounds& bounds) {
   return std::max(step, std::round(x / step) * step);
 }
 
+// The thinnest wall of node `id`'s parts alone (partScene), measured on the CPU at 96 cells
+// along them; +infinity where none was found (or the parts could not be evaluated). On the UI
+// thread, once per press of a button: at 96 cells an evaluation costs milliseconds for meshes
+// of a few hundred thousand triangles.
+double thinnestWallOf(const EditorState& state, NodeId id) {
+  try {
+    const Scene part = partScene(state.document.scene(), id);
+    Evaluator evaluator(std::make_shared<CpuBackend>());
+    Progress progress;
+    EvalOptions options;
+    options.resolution = 96;
+    return evaluator.evaluate(part, options, progress).measure.thinnestWall;
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::infinity();
+  }
+}
+
+// The thinnest wall of the selected parts, each alone (a union of them is no thinner).
+double thinnestWallOfSelection(const EditorState& state) {
+  double wall = std::numeric_limits<double>::infinity();
+  for (NodeId id : state.selection) wall = std::min(wall, thinnestWallOf(state, id));
+  return wall;
+}
+
+// A new round's radius: modifierAmountFor's, but at most a quarter of the thinnest `wall` of
+// the parts it will hold, so that every wall stays (a round of r removes walls thinner than 2r: an
+// artist's first round of a 100 mm cup, 3 mm, took its 3 mm walls away). `why` says so.
+double roundRadiusFor(const EditorState& state, double wall, double fromBox, std::string* why) {
+  if (!std::isfinite(wall) || fromBox <= 0.25 * wall) return fromBox;
+  const double x = 0.25 * wall;
+  const double step = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+  const double radius = std::max(step, std::floor(x / step) * step);
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "radius %.4g %s: a quarter of the thinnest wall it holds (about %.3g), which it "
+                "keeps",
+                radius, unitSymbol(state.document.scene().settings.unit), wall);
+  *why = text;
+  return radius;
+}
+
 // A new pattern's copies from what it holds (`bounds`); an empty one is spaced for parts of
 // the size new parts get (sceneScale).
 PatternParams patternFor(const EditorState& state, NodeKind kind, const Bounds& bounds) {
@@ -508,11 +553,19 @@ void toggleSelectionHidden(EditorState& state) {
 void groupSelection(EditorState& state, NodeKind kind) {
   if (state.selection.empty()) return;
   const Bounds bounds = selectionBounds(state.document.root(), state.selection);
+  const double wall = modifierOf(kind) == Modifier::Round ? thinnestWallOfSelection(state)
+                                                          : std::numeric_limits<double>::infinity();
   state.document.beginInteraction();  // the group and its modifier's distance: one undo step
   guarded(state, [&] {
     NodeId id = state.document.group(state.selection, kind);
-    if (modifierOf(kind) != Modifier::None)
-      state.document.setAmount(id, modifierAmountFor(kind, bounds));
+    if (modifierOf(kind) != Modifier::None) {
+      double amount = modifierAmountFor(kind, bounds);
+      std::string why;
+      if (modifierOf(kind) == Modifier::Round) amount = roundRadiusFor(state, wall, amount, &why);
+      state.document.setAmount(id, amount);
+      if (!why.empty())
+        logInfo(state, displayName(*findNode(state.document.root(), id)) + ": " + why);
+    }
     if (patternOf(kind) != Pattern::None)
       state.document.setPattern(id, patternFor(state, kind, bounds));
     selectNode(state, id);

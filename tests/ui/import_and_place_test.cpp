@@ -179,6 +179,45 @@ TEST(ImportAndPlace, AlignToTheActivePartAndDropToGround) {
   EXPECT_EQ(boundsOf(group).min, before.min);
 }
 
+// A round made from the selection takes 3% of the parts' largest side, but at most a quarter of
+// their thinnest wall (a round of r removes walls thinner than 2r): an open box of 100 mm with
+// 3 mm walls gets a radius under 1 mm, not 3 mm (which removed every wall of an artist's cup),
+// and the log says why; a solid block keeps the 3%.
+TEST(ImportAndPlace, ARoundOfTheSelectionKeepsItsThinnestWalls) {
+  EditorState state;
+  const NodeId outer = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId inner = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Add;
+  ASSERT_TRUE(guarded(state, [&] {
+    PrimitiveParams p;
+    p.size = glm::dvec3(60.0, 60.0, 100.0);
+    state.document.setParams(outer, p);
+    p.size = glm::dvec3(54.0, 54.0, 100.0);
+    state.document.setParams(inner, p);
+    Transform t = findNode(state.document.root(), outer)->transform;
+    t.translate.z += 3.0;  // a 3 mm floor
+    state.document.setTransform(inner, t);
+  }));
+  std::vector<const Node*> path;
+  ASSERT_TRUE(pathToNode(state.document.root(), inner, &path));
+  const NodeId cup = path[path.size() - 2]->id;  // the difference
+  state.selection = {cup};
+  groupSelection(state, NodeKind::Round);
+  NodePtr round = findNode(state.document.root(), state.selection[0]);
+  ASSERT_EQ(round->kind, NodeKind::Round);
+  EXPECT_LE(round->amount, 0.25 * 3.5);
+  EXPECT_GE(round->amount, 0.25 * 2.0);
+  EXPECT_NE(state.log.back().text.find("a quarter of the thinnest wall"), std::string::npos)
+      << state.log.back().text;
+  undo(state);
+
+  state.selection = {outer};  // the block alone, walls of 60 mm: 3% of 100
+  ASSERT_TRUE(guarded(state, [&] { state.document.remove(inner); }));
+  groupSelection(state, NodeKind::Round);
+  EXPECT_DOUBLE_EQ(findNode(state.document.root(), state.selection[0])->amount, 3.0);
+}
+
 // The demo's trap, and the modes: a part added onto the base of a difference with the palette
 // in "add" mode adds material (it does not become a cutter); in "cut" mode it cuts; a paste
 // does what its original did; a drag onto a cutter with Ctrl held cuts beside it, and the
