@@ -42,10 +42,35 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
-  ImGui::TextUnformatted(label);
   const float labelWidth = 72.0f;
+  const float w =
+      (ImGui::GetContentRegionAvail().x - labelWidth - 2 * ImGui::GetStyle().ItemInnerSpacing.x) /
+      3;
+  // The number with its unit in each field where all three fit ("0.003149 mm" cut to
+  // "0.003149 m" read as metres); else the unit once, after the row's label, and the numbers
+  // shorter where even they do not fit.
+  const std::string withUnit = format;
+  const size_t space = withUnit.find(' ');
+  std::string number = withUnit.substr(0, space);
+  const std::string unit = space == std::string::npos ? "" : withUnit.substr(space + 1);
+  auto fits = [&](const std::string& f) {
+    const float room = w - 2 * ImGui::GetStyle().FramePadding.x;
+    for (int i = 0; i < 3; ++i) {
+      char text[64];
+      std::snprintf(text, sizeof(text), f.c_str(), (*value)[i]);
+      if (ImGui::CalcTextSize(mixed[i] ? (std::string("~") + text).c_str() : text).x > room)
+        return false;
+    }
+    return true;
+  };
+  std::string fieldFormat = withUnit;
+  if (!unit.empty() && !fits(withUnit)) {
+    fieldFormat = fits(number) ? number : "%.3g";
+    ImGui::Text("%s %s", label, unit.c_str());
+  } else {
+    ImGui::TextUnformatted(label);
+  }
   ImGui::SameLine(labelWidth);
-  const float w = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemInnerSpacing.x) / 3;
   bool any = false;
   for (int i = 0; i < 3; ++i) {
     if (i) ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
@@ -53,7 +78,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     ImGui::SetNextItemWidth(w);
     ImGui::PushStyleColor(ImGuiCol_Text, colors[i]);
     glm::dvec3 next = *value;
-    const std::string shown = mixed[i] ? std::string("~") + format : std::string(format);
+    const std::string shown = mixed[i] ? std::string("~") + fieldFormat : fieldFormat;
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
                                      nullptr, shown.c_str());
     if (mixed[i] && ImGui::IsItemHovered())
