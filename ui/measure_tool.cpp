@@ -100,7 +100,11 @@ void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* box
 
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
                             glm::dvec2 mouse, const std::function<bool(const glm::dvec3&)>& shown,
-                            std::string* what) {
+                            std::string* what, const std::optional<glm::dvec3>& capEdge) {
+  if (hit.cap && capEdge) {
+    if (what) *what = "the section cap's edge, as drawn (to about a cell)";
+    return *capEdge;
+  }
   if (what) *what = hit.cap ? "section cap" : "surface";
   const NodePtr& root = state.document.root();
   NodePtr leaf = findNode(root, hit.leaf);

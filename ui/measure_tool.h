@@ -2,8 +2,9 @@
 // (engine/document/measurement.h). Two clicks measure a distance (shown with its dx, dy, dz in
 // scene units); a third click, before Esc, turns it into the angle at the second point. A click
 // snaps to the nearest corner or edge midpoint of the clicked part's own box (its frame's
-// bounding box, so a turned box's corners are its corners) within kMeasureSnapPixels, else
-// takes the surface point the view shows (a splat, or the section's cap). The measurements stay
+// bounding box, so a turned box's corners are its corners) within kMeasureSnapPixels, on a
+// section's cap to the cap's nearest edge, else takes the surface point the view shows (a splat,
+// or the section's cap). The measurements stay
 // on screen until removed (Diagnostics, or Edit > Clear measurements) and follow their parts.
 //
 // Threads: the UI thread.
@@ -44,9 +45,13 @@ struct MeasureTool {
 // not taken), the nearest to the hit in the world (the one in front, not one behind on the same
 // line of sight), else the hit itself. *what says which ("corner", "edge midpoint", "section
 // cap", "surface").
+// On the section's cap, `capEdge` (PickWindow::capEdgeNear: the cap's drawn side within
+// kMeasureSnapPixels), when there is one, comes first (as drawn: to about a cell): two clicks near
+// a wall's sides in a section measure its thickness.
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
                             glm::dvec2 mouse, const std::function<bool(const glm::dvec3&)>& shown,
-                            std::string* what = nullptr);
+                            std::string* what = nullptr,
+                            const std::optional<glm::dvec3>& capEdge = std::nullopt);
 // A click of the tool at `world` on leaf `leaf` (0: none): the first point, the second (a
 // distance, one undo step) or the third (an angle, one more).
 void measureClick(EditorState& state, uint32_t leaf, const glm::dvec3& world);

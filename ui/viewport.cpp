@@ -438,7 +438,10 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
         return false;
       };
       std::string what;
-      const glm::dvec3 p = snapMeasurePoint(state, view, *hit, click_->mouse, shown, &what);
+      const std::optional<glm::dvec3> capEdge =
+          hit->cap ? around.capEdgeNear(at.x, at.y, kMeasureSnapPixels * pixelScale) : std::nullopt;
+      const glm::dvec3 p =
+          snapMeasurePoint(state, view, *hit, click_->mouse, shown, &what, capEdge);
       measureClick(state, hit->leaf, p);
       state.measure.lastSnap = what;
     } else {

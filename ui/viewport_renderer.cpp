@@ -955,11 +955,38 @@ std::optional<glm::dvec3> ViewportRenderer::PickWindow::pointAt(int x, int y) co
   const uint32_t id = idAt(x, y);
   if (id == 0) return std::nullopt;
   if ((id & 0x80000000u) == 0) return unproject(x, y, double(depths[index(x, y)]) * 2.0 - 1.0);
-  // A cap: where the pixel's ray meets the section plane.
+  const glm::dvec3 a = unproject(x, y, -1.0), b = unproject(x, y, 1.0);
+  if (std::fabs(glm::dot(sectionNormal, b - a)) <= 1e-12)
+    return unproject(x, y, double(depths[index(x, y)]) * 2.0 - 1.0);
+  return onSectionPlane(x, y);  // a cap: where the pixel's ray meets the section plane
+}
+
+glm::dvec3 ViewportRenderer::PickWindow::onSectionPlane(int x, int y) const {
   const glm::dvec3 a = unproject(x, y, -1.0), b = unproject(x, y, 1.0);
   const double denom = glm::dot(sectionNormal, b - a);
-  if (std::fabs(denom) <= 1e-12) return unproject(x, y, double(depths[index(x, y)]) * 2.0 - 1.0);
+  if (std::fabs(denom) <= 1e-12) return a;  // seen edge-on: the plane is a line on screen
   return a + (b - a) * ((sectionOffset - glm::dot(sectionNormal, a)) / denom);
+}
+
+std::optional<glm::dvec3> ViewportRenderer::PickWindow::capEdgeNear(int px, int py,
+                                                                    double radius) const {
+  const auto isCap = [&](int x, int y) { return (idAt(x, y) & 0x80000000u) != 0; };
+  std::optional<glm::dvec3> best;
+  double bestDistance = radius;
+  for (int y = y0; y < y0 + height; ++y)
+    for (int x = x0; x < x0 + width; ++x) {
+      if (!isCap(x, y)) continue;
+      for (const glm::ivec2 d :
+           {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)}) {
+        const int nx = x + d.x, ny = y + d.y;
+        if (nx < x0 || ny < y0 || nx >= x0 + width || ny >= y0 + height || isCap(nx, ny)) continue;
+        const double distance = std::hypot(x + 0.5 * d.x - px, y + 0.5 * d.y - py);
+        if (distance > bestDistance) continue;
+        bestDistance = distance;
+        best = 0.5 * (onSectionPlane(x, y) + onSectionPlane(nx, ny));
+      }
+    }
+  return best;
 }
 
 std::optional<PickHit> ViewportRenderer::pick(const ViewportFrame& f, int px, int py) {

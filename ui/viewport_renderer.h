@@ -237,6 +237,13 @@ class ViewportRenderer {
     glm::dvec3 unproject(int x, int y, double ndcDepth) const;
     // The surface point the pixel shows (a cap's: on the section plane); none where none.
     std::optional<glm::dvec3> pointAt(int x, int y) const;
+    // Where pixel (x, y)'s line of sight meets the section plane (any pixel, shown or not).
+    glm::dvec3 onSectionPlane(int x, int y) const;
+    // The edge of the section's cap nearest to pixel (px, py) within `radius` pixels: between a
+    // cap pixel and a neighbour (across or along) that shows no cap, the middle of their points
+    // on the section plane (the cap's side as drawn, to half a pixel); none where the window
+    // holds no such pair. For the measure tool: a wall measured across the cap (measure_tool.h).
+    std::optional<glm::dvec3> capEdgeNear(int px, int py, double radius) const;
   };
   // The pixels of the square of `radius` pixels around (px, py), clipped to the view: what each
   // shows (PickWindow::pointAt). One pass for many questions: whether a snap point lies on the

@@ -147,5 +147,36 @@ TEST(MeasureTool, ClicksSnapToATurnedBoxsCornersAndEdgeMidpoints) {
   EXPECT_EQ(what, "surface");
 }
 
+// On a section's cap a click snaps to the cap's nearest drawn side (PickWindow::capEdgeNear):
+// a wall 10 pixels wide (1 unit a pixel, the plane z = 0) measures 10 between clicks near its
+// two sides; with no side within reach, nothing.
+TEST(MeasureTool, ClicksOnASectionCapSnapToItsEdges) {
+  ViewportRenderer::PickWindow w;
+  w.x0 = 0;
+  w.y0 = 30;
+  w.width = 60;
+  w.height = 40;
+  w.frameWidth = w.frameHeight = 100;
+  // NDC (x, y, z) to world (50 x, 50 y, z): pixel x's centre at x + 0.5 - 50.
+  w.toWorld = glm::dmat4(1.0);
+  w.toWorld[0][0] = w.toWorld[1][1] = 50.0;
+  w.sectionNormal = glm::dvec3(0, 0, 1);
+  w.sectionOffset = 0.0;
+  w.ids.assign(size_t(w.width * w.height), 0u);
+  w.depths.assign(w.ids.size(), 0.5f);
+  for (int y = w.y0; y < w.y0 + w.height; ++y)
+    for (int x = 0; x < w.width; ++x)
+      w.ids[w.index(x, y)] = x >= 20 && x < 30 ? 0x80000003u : x >= 45 ? 3u : 0u;
+  const auto left = w.capEdgeNear(23, 50, 10.0), right = w.capEdgeNear(27, 50, 10.0);
+  ASSERT_TRUE(left && right);
+  EXPECT_NEAR(left->x, -30.0, 1e-9);
+  EXPECT_NEAR(right->x, -20.0, 1e-9);
+  EXPECT_NEAR(left->z, 0.0, 1e-9);
+  EXPECT_NEAR(glm::length(*right - *left), 10.0, 1e-9);
+  EXPECT_FALSE(w.capEdgeNear(5, 50, 10.0));   // 15 pixels from the cap
+  EXPECT_TRUE(w.capEdgeNear(10, 50, 10.0));   // its side 10 pixels away
+  EXPECT_FALSE(w.capEdgeNear(48, 50, 10.0));  // a surface, not a cap: no side of a cap near
+}
+
 }  // namespace
 }  // namespace strata::ui
