@@ -289,6 +289,8 @@ const char* outcomeName(NodeOutcome outcome) {
       return "cached";
     case NodeOutcome::PassThrough:
       return "pass-through";
+    case NodeOutcome::Merged:
+      return "merged";
     default:
       return "empty";
   }
@@ -565,6 +567,62 @@ LdiHandle Evaluator::cachedOr(uint64_t key, const Grid& grid,
   return ldi;
 }
 
+namespace {
+// Whether operation `node` (visible, or an instance's target) joins the Boolean `op` of its
+// parent as an operand of the given role (Evaluator::collectOperands): a union into a union, an
+// intersection into an intersection, a difference as the base of a difference, a union as a
+// cutter of one; never a modifier, a pattern or a node kept for its own LDI, nor one without a
+// visible child (it evaluates to nothing, which for an intersection is not the same as no
+// operand) or, for a difference, with a hidden base.
+bool mergeable(const Node& node, RayOp op, bool asCutter, const std::unordered_set<NodeId>& keep) {
+  if (!isOperation(node.kind) || node.kind == NodeKind::Instance ||
+      modifierOf(node.kind) != Modifier::None || patternOf(node.kind) != Pattern::None ||
+      keep.count(node.id))
+    return false;
+  if (std::none_of(node.children.begin(), node.children.end(),
+                   [](const NodePtr& c) { return c->visible; }))
+    return false;
+  const RayOp own = nodeKindInfo(node.kind).rayOp;
+  if (op != RayOp::Difference) return own == op;
+  if (asCutter) return own == RayOp::Union;
+  return own == RayOp::Difference && node.children[0]->visible;
+}
+}  // namespace
+
+void Evaluator::collectOperands(const NodePtr& node, RayOp op, const glm::dmat4& world, int depth,
+                                Context& ctx, std::vector<Visit>* operands) {
+  const RayOp own = nodeKindInfo(node->kind).rayOp;
+  bool first = true;
+  for (const auto& c : node->children) {
+    if (!c->visible) continue;
+    // In a merged difference its own base leads and its cutters follow as cutters; in a
+    // merged union or intersection every part keeps the role the node had in the collector.
+    const bool asCutter =
+        op == RayOp::Difference && (own == RayOp::Difference ? !first : operands->size() > 0);
+    first = false;
+    NodePtr target = c;
+    glm::dmat4 targetWorld = world * c->transform.matrix();
+    const bool instance = c->kind == NodeKind::Instance;
+    if (instance) {
+      target = findNode(ctx.scene->root, c->instanceOf);
+      if (target) targetWorld = targetWorld * target->transform.matrix();
+    }
+    if (!target || depth + 1 > kDepthGuard || !mergeable(*target, op, asCutter, ctx.keep)) {
+      operands->push_back(visit(c, world, depth + 1, ctx));
+      continue;
+    }
+    ctx.progress->check();
+    ctx.insideInstance += instance ? 1 : 0;
+    collectOperands(target, op, targetWorld, depth + (instance ? 2 : 1), ctx, operands);
+    ctx.insideInstance -= instance ? 1 : 0;
+    if (!ctx.collecting) {
+      ctx.result->nodes.push_back(NodeRecord{target->id, target->name, kindName(target->kind),
+                                             NodeOutcome::Merged, 0.0, 0});
+      ctx.nodeDone();
+    }
+  }
+}
+
 Evaluator::Visit Evaluator::visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth,
                                   Context& ctx) {
   const bool instance = node->kind == NodeKind::Instance;
@@ -602,10 +660,7 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
     // placement is the one the editor shows the children at (patterns.h: firstPlacement): kept.
     const int copy = k == 0 ? 0 : 1;
     ctx.insideInstance += copy;
-    for (const auto& c : node->children) {
-      if (!c->visible || hiddenBase) continue;
-      children.push_back(visit(c, world * placements[k], depth + 1, ctx));
-    }
+    if (!hiddenBase) collectOperands(node, op, world * placements[k], depth, ctx, &children);
     ctx.insideInstance -= copy;
   }
   // Collecting leaves: a shell's walls without its opening hold the same leaves.

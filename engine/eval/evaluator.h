@@ -1,5 +1,11 @@
 // Evaluation of a scene's CSG tree into the root's LDI, with a content-keyed cache.
 //
+// Chains of the same Boolean are flattened (union(union(a, b), c) is union(a, b, c); a difference
+// whose base is a difference, or whose cutter is a union, one difference): one Boolean instead
+// of one per level, so a deep tree costs what its parts do, not its depth (the paper's depth-28
+// scaffold: 56 Booleans become 4). Nodes merged so have no LDI of their own (NodeOutcome::Merged);
+// a node kept (EvalOptions::keep), a modifier or a pattern is never merged.
+//
 // Every node's LDI is cached under a key made of its content: kind and parameters, the world
 // transform (for leaves), the mesh's content hash, the grid's lattice (origin and cell size, not
 // its window: see onGrid), and the keys of its children. After
@@ -58,6 +64,7 @@ enum class NodeOutcome : uint8_t {
   Cached,       // taken from the cache
   PassThrough,  // an operation with one non-empty operand: that operand's LDI, no work
   Empty,        // an operation whose result is empty without work (e.g. nothing visible)
+  Merged,       // an operation combined in its parent's Boolean (Evaluator: flattened chains)
 };
 const char* outcomeName(NodeOutcome outcome);
 
@@ -135,6 +142,14 @@ class Evaluator {
   // keeps its LDI when asked (EvalOptions::keep).
   Visit visit(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
   Visit visitNode(const NodePtr& node, const glm::dmat4& parentWorld, int depth, Context& ctx);
+  // The operands of operation `node` (of Boolean `op`, placed by `world`), appended to
+  // *operands: its visible children visited, except that a child operation that can join this
+  // Boolean (mergeable) gives its own operands instead (a chain of unions is one union of all
+  // their parts, a difference of a difference one difference, a union of cutters its parts as
+  // cutters), and is recorded as Merged. `asBase`: node is the base of the difference that
+  // collects (its own cutters follow the base).
+  void collectOperands(const NodePtr& node, RayOp op, const glm::dmat4& world, int depth,
+                       Context& ctx, std::vector<Visit>* operands);
   // The LDI cached under `key` (kept for this generation) on `grid` (onGrid), or what compute()
   // makes, cached under it; record.outcome says which. `content` gives the node's bounds.
   LdiHandle cachedOr(uint64_t key, const Grid& grid, const std::function<Bounds()>& content,

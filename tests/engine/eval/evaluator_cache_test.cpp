@@ -195,6 +195,70 @@ TEST(EvaluatorCache, InstancesShowTheirTargetEvenWhenItIsHidden) {
   EXPECT_NEAR(r.measure.volume, 2 * one.measure.volume, 0.02 * one.measure.volume);
 }
 
+// Chains of one Boolean are evaluated as one (Evaluator: flattened): a chain of 8 unions of
+// cells that are instances of a union of struts, intersected with a chain of intersections,
+// minus a chain of differences whose cutters are unions: 3 Booleans instead of 27, and the root
+// is, surfel for surfel, what the nested evaluation gives (every operation kept for its own LDI
+// is never merged: the same tree evaluated level by level).
+TEST(EvaluatorCache, ChainsOfOneBooleanAreOneBooleanWithTheSameSurfels) {
+  std::vector<NodeId> operations;
+  auto keepOp = [&](NodePtr n) {
+    operations.push_back(n->id);
+    return n;
+  };
+  NodePtr strut = keepOp(op(NodeKind::Union, {cylinder(0.08, 0.9), sphere(0.15, {0, 0, 0.3})}));
+  auto hidden = std::make_shared<Node>(*strut);
+  hidden->visible = false;
+  NodePtr chain = keepOp(op(NodeKind::Union, {sphere(0.2, {-1.2, 0, 0}), hidden}));
+  for (int i = 0; i < 8; ++i) {
+    auto cell = std::make_shared<Node>();
+    cell->id = 95000 + NodeId(i);
+    cell->kind = NodeKind::Instance;
+    cell->instanceOf = hidden->id;
+    cell->transform.translate = {-1.0 + 0.3 * i, 0.1 * (i % 3), 0};
+    chain = keepOp(op(NodeKind::Union, {chain, cell}));
+  }
+  NodePtr lens = keepOp(
+      op(NodeKind::Intersection,
+         {keepOp(op(NodeKind::Intersection, {box({3, 1, 1}), sphere(1.45)})), box({2.6, 2, 2})}));
+  NodePtr both = keepOp(op(NodeKind::Intersection, {chain, lens}));
+  NodePtr drilled = keepOp(op(
+      NodeKind::Difference,
+      {keepOp(op(NodeKind::Difference, {both, cylinder(0.1, 2.0, {0.5, 0, 0})})),
+       keepOp(op(NodeKind::Union, {box({0.2, 0.2, 2.0}, {-0.5, 0, 0}),
+                                   keepOp(op(NodeKind::Union, {sphere(0.2, {0.2, 0.3, 0})}))}))}));
+  const Scene scene = fixedGrid(drilled);
+  Progress progress;
+  Evaluator flat(std::make_shared<CpuBackend>()), nested(std::make_shared<CpuBackend>());
+  const EvalResult a = flat.evaluate(scene, {}, progress);
+  EvalOptions keepAll;
+  keepAll.keep = operations;
+  const EvalResult b = nested.evaluate(scene, keepAll, progress);
+  auto booleans = [](const EvalResult& r) {
+    for (const auto& st : r.stages)
+      if (st.name == "boolean") return st.runs;
+    return -1;
+  };
+  EXPECT_EQ(booleans(a), 3);  // the union of cells, the intersection, the difference
+  EXPECT_GE(booleans(b), 14);
+  int merged = 0;
+  for (const auto& n : a.nodes) merged += n.outcome == NodeOutcome::Merged ? 1 : 0;
+  EXPECT_GE(merged, 12);
+  const auto x = wholeLdi(flat.backend().download(a.root));
+  const auto y = wholeLdi(nested.backend().download(b.root));
+  size_t surfels = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    ASSERT_EQ(x->axes[axis].offsets, y->axes[axis].offsets) << "axis " << axis;
+    ASSERT_EQ(x->axes[axis].surfels.size(), y->axes[axis].surfels.size());
+    surfels += x->axes[axis].surfels.size();
+    EXPECT_EQ(0, std::memcmp(x->axes[axis].surfels.data(), y->axes[axis].surfels.data(),
+                             x->axes[axis].surfels.size() * sizeof(Surfel)))
+        << "axis " << axis;
+  }
+  EXPECT_GT(surfels, 1000u);
+  EXPECT_EQ(a.measure.volume, b.measure.volume);
+}
+
 // The editor's preview grid follows the scene on one lattice (Evaluator::previewGridFor): a part
 // moved out past the scene's bounds grows the window, and the parts left alone (a round, a
 // fillet, a difference with its cutter, an offset) are reused from the cache, moved onto the new
