@@ -10,7 +10,30 @@
 
 namespace strata {
 
+namespace {
+// The choice startChoosingBackend began (main thread only), and the name it was for.
+std::future<BackendChoice> g_started;
+std::string g_startedName;
+
+BackendChoice choose(const std::string& name, int processOnHost);
+}  // namespace
+
+void startChoosingBackend(const std::string& name) {
+  if (name != "auto" && name != "cuda") return;
+  g_startedName = name;
+  g_started = std::async(std::launch::async, [name] { return choose(name, 0); });
+}
+
 BackendChoice chooseBackend(const std::string& name, int processOnHost) {
+  if (g_started.valid() && name == g_startedName && processOnHost == 0) {
+    std::future<BackendChoice> started = std::move(g_started);
+    return started.get();
+  }
+  return choose(name, processOnHost);
+}
+
+namespace {
+BackendChoice choose(const std::string& name, int processOnHost) {
   if (name != "auto" && name != "cpu" && name != "cuda")
     throw Error("--backend: unknown backend '" + name + "' (expected auto, cpu or cuda)");
   if (name == "cpu") {
@@ -32,6 +55,7 @@ BackendChoice chooseBackend(const std::string& name, int processOnHost) {
   auto cpu = std::make_shared<CpuBackend>();
   return {cpu, "backend " + cpu->description() + " (auto: " + why + ")"};
 }
+}  // namespace
 
 std::vector<std::shared_ptr<Backend>> exportWorkers(const BackendChoice& choice,
                                                     const std::string& gpus, bool given,

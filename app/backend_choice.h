@@ -1,6 +1,7 @@
 // The one place that picks a backend: --backend auto|cpu|cuda.
 #pragma once
 
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,7 +20,14 @@ struct BackendChoice {
 // cpu:  the CPU backend. cuda: the CUDA backend, or strata::Error saying why it is unavailable.
 // `processOnHost`: this process's number among those of one job on its host (distributed
 // exports), which picks its GPU: device processOnHost % devices.
+// A choice started by startChoosingBackend(name) for process 0 is taken from there.
 BackendChoice chooseBackend(const std::string& name, int processOnHost = 0);
+
+// Starts chooseBackend(name, 0) on a thread of its own, so that the CUDA driver's start (about
+// 0.3 s a process) overlaps what the command does before it needs the backend (reading its
+// meshes); the next chooseBackend(name, 0) waits for it and takes it. Nothing for "cpu" (made
+// in no time) or any other name. Call from the main thread, before chooseBackend.
+void startChoosingBackend(const std::string& name);
 
 // The backends of an export for `--gpus N|all` (`given`: the option was on the command line;
 // its default is all): the chosen backend first, then CUDA backends on the next devices, worker

@@ -40,6 +40,11 @@ bool quietRequested(const CliArgs& args) {
   return args.has("--quiet") || args.has("-q");
 }
 
+void startBackendEarly(const CliArgs& args) {
+  if (args.has("--threads")) setWorkerCount(args.integer("--threads", 0, 1, 1024));
+  if (!args.has("--distributed")) startChoosingBackend(args.text("--backend", "auto"));
+}
+
 BackendChoice setUpBackend(const CliArgs& args) {
   return setUpBackend(args, quietRequested(args));
 }

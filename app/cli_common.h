@@ -20,6 +20,10 @@ extern const std::vector<std::string> kFlagOptions;
 // bad_alloc give 1, Cancelled gives 130.
 int runGuarded(const std::function<int()>& body);
 
+// Starts choosing the backend of --backend (and applies --threads) while the command goes on
+// to read its inputs (startChoosingBackend): at the top of a command that later calls
+// setUpBackend. Not with --distributed (the process's GPU is known only once MPI has started).
+void startBackendEarly(const CliArgs& args);
 // Applies --threads and picks the backend from --backend (printing the choice unless quiet).
 BackendChoice setUpBackend(const CliArgs& args);
 // The same, printing the choice unless `quiet`; processOnHost: see chooseBackend.

@@ -128,6 +128,7 @@ std::string demoScenePath() {
 int runEval(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
+    startBackendEarly(args);
     if (args.positional().size() != 1)
       throw Error(
           "usage: strata eval SCENE.strata.json [--resolution N] [--report FILE] "
@@ -161,6 +162,7 @@ int runMeshScene(Scene& scene, const CliArgs& args, const std::string& what,
 int runBoolean(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
+    startBackendEarly(args);
     const auto& pos = args.positional();
     if (pos.size() < 3)
       throw Error(
@@ -182,6 +184,7 @@ int runBoolean(const std::vector<std::string>& argv) {
 int runModifier(const std::string& command, const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
+    startBackendEarly(args);
     const auto& files = args.positional();
     NodeKind kind = NodeKind::Offset;
     std::string option = "--distance";
@@ -239,6 +242,7 @@ int runModifier(const std::string& command, const std::vector<std::string>& argv
 int runExport(const std::vector<std::string>& argv) {
   return runGuarded([&] {
     CliArgs args(argv, kValuedOptions, kFlagOptions);
+    startBackendEarly(args);
     if (args.positional().size() != 1 || !(args.has("-o") || args.has("--output")))
       throw Error("usage: strata export SCENE.strata.json -o " + outputAlternatives("part") +
                   " [--resolution N] [--tile N] [--report FILE]");
