@@ -303,6 +303,12 @@ void Editor::stageMore() {
 
 void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
   EditorState& s = *state_;
+  // The splats shown (an edit that changed no part: a measurement, a name): the image stays.
+  if (!staging_ && s.preview && result->splats && result->splats == s.preview->splats) {
+    s.previewError = result->error;
+    s.preview = std::move(result);
+    return;
+  }
   staging_.reset();  // a newer result replaces one still being uploaded
   // A host upload larger than a frame's share, with a result on screen to keep meanwhile (and
   // no CUDA-GL copier registered to the buffer drawn): over several frames.

@@ -149,6 +149,14 @@ void ViewportRenderer::makeSplatLayer(GLuint* vao, GLuint* buffer) {
 void ViewportRenderer::setGhosts(const std::vector<Splat>& cutting,
                                  const std::vector<Splat>& intersecting) {
   const std::vector<Splat>* layers[2] = {&cutting, &intersecting};
+  // The same ghosts (a new result of an edit that changed no part): the image stands.
+  auto same = [](const std::vector<Splat>& a, const std::vector<Splat>& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Splat)) == 0);
+  };
+  if (same(cutting, ghostSplats_[0]) && same(intersecting, ghostSplats_[1])) return;
+  ghostSplats_[0] = cutting;
+  ghostSplats_[1] = intersecting;
   for (int i = 0; i < 2; ++i) {
     ghosts_[i].count = layers[i]->size();
     if (layers[i]->empty()) continue;
@@ -375,6 +383,11 @@ void ViewportRenderer::collectTiming() {
 }
 
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
+  // The same colours and selection (an edit that changed no part's look: a measurement, a
+  // name): the image stands.
+  if (leafTextureWidth_ > 0 && styles.color == styles_.color && styles.selected == styles_.selected)
+    return;
+  styles_ = styles;
   const int count = std::max<int>(1, int(styles.color.size()));
   const int width = std::min(count, 1024);
   const int height = (count + width - 1) / width;
@@ -728,7 +741,36 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glDisable(GL_BLEND);
   };
 
-  if (key != shownKey_) {
+  // The image without lines, kept when one is complete (copyImage: colour and depth).
+  const uint64_t plainKey =
+      viewKey(local, {}) ^ (contentVersion_ * 0x9e3779b97f4a7c15ull) ^ 0x5bd1e995ull;
+  auto copyImage = [&](const RenderTarget& from, RenderTarget& to) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, from.framebuffer());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to.framebuffer());
+    glDisable(GL_SCISSOR_TEST);
+    glBlitFramebuffer(0, 0, from.width(), from.height(), 0, 0, to.width(), to.height(),
+                      GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  };
+  auto keepPlain = [&](RenderTarget& complete) {
+    ensureTarget(&plain_, f.width, f.height);
+    copyImage(complete, *plain_);
+    plainKey_ = plainKey;
+    complete.bind();
+  };
+
+  if (key != shownKey_ && !refining_ && plain_ && plainKey == plainKey_ && shown_ &&
+      plain_->width() == f.width && plain_->height() == f.height) {
+    // Only the lines changed: the complete image kept without them, and the new lines.
+    shownKey_ = key;
+    copyImage(*plain_, *shown_);
+    shown_->bind();
+    glViewport(0, 0, f.width, f.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    drawLinesInto(local);
+    drewSplatsLastFrame_ = 0;
+    show = shown_.get();
+  } else if (key != shownKey_) {
     shownKey_ = key;
     buildDone_ = 0;
     // The full image's splats: those of the level of detail the view needs.
@@ -745,6 +787,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       drawBackground(local);
       drawSplatRange(local, 0, first, 1, float(1 << firstLevel), SplatDraw::WholeImage);
       drawGhosts(local);
+      if (firstLevel == buildLevel_) keepPlain(*shown_);
       drawLinesInto(local);
       refining_ = firstLevel != buildLevel_;
       refineOverShown_ = refining_;
@@ -804,6 +847,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     lastDrawFull_ = true;
     if (buildDone_ >= full) {
       drawGhosts(local);
+      keepPlain(*building_);
       drawLinesInto(local);
       std::swap(shown_, building_);
       refining_ = false;

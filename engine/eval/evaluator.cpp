@@ -298,6 +298,9 @@ const char* outcomeName(NodeOutcome outcome) {
 
 Evaluator::Evaluator(std::shared_ptr<Backend> backend) : backend_(std::move(backend)) {}
 
+// Thrown by evaluateCached's walk where a node would be computed.
+struct Evaluator::NotCached {};
+
 namespace {
 
 // The halo (modifierHaloCells) of `node`'s subtree: its visible children, and what instances
@@ -453,6 +456,7 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
       Bounds bounds;
       for (const auto& p : mesh->positions) bounds.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
       checkLeafPlacement(*node, world, bounds);
+      if (onlyCached_) throw NotCached{};
       ctx.pending.push_back(Context::PendingLeaf{
           v.key, mesh, world, uint32_t(leafId), smallerThanCellWarning(*node, bounds, ctx.grid.h)});
     }
@@ -561,6 +565,7 @@ LdiHandle Evaluator::cachedOr(uint64_t key, const Grid& grid,
     record.outcome = NodeOutcome::Cached;
     return hit->second.ldi;
   }
+  if (onlyCached_) throw NotCached{};
   LdiHandle ldi = compute();
   record.outcome = NodeOutcome::Computed;
   cache_[key] = CacheEntry{ldi, generation_, {}};
@@ -781,6 +786,26 @@ EvalResult Evaluator::evaluate(const Scene& scene, const EvalOptions& options, P
   return evaluateOn(scene, gridFor(scene, options.resolution), progress, options);
 }
 
+std::optional<EvalResult> Evaluator::evaluateCached(const Scene& scene, const Grid& grid,
+                                                    Progress& progress,
+                                                    const EvalOptions& options) {
+  const uint64_t generation = generation_;
+  onlyCached_ = true;
+  try {
+    EvalResult result = evaluateOn(scene, grid, progress, options);
+    onlyCached_ = false;
+    return result;
+  } catch (const NotCached&) {
+    onlyCached_ = false;
+    generation_ = generation;  // as if it had not run: the cache keeps what it kept
+    return std::nullopt;
+  } catch (...) {
+    onlyCached_ = false;
+    generation_ = generation;
+    throw;
+  }
+}
+
 EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
                                  const EvalOptions& options) {
   if (!scene.root) throw Error("the scene has no root node");
@@ -807,6 +832,7 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   sampleCollected(ctx);
   Visit root = visit(scene.root, glm::dmat4(1.0), 0, ctx);
   result.root = root.ldi;
+  result.rootKey = root.key;
   Stopwatch measure;
   result.measure = backend_->measure(root.ldi, progress);
   ctx.finishStage(kMeasure, measure.seconds(), 0);

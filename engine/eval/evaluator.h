@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -97,6 +98,9 @@ struct EvalResult {
   std::vector<std::string> warnings;
   // Modifiers passed through (EvalOptions::skipModifiersUnderCells), as "round 'rim'".
   std::vector<std::string> skippedModifiers;
+  // The root's content key: equal keys (on one grid) mean the same root LDI, surfel for surfel
+  // (the editor keeps its splats when an edit changed nothing they show: a measurement, a name).
+  uint64_t rootKey = 0;
 };
 
 class Evaluator {
@@ -109,6 +113,13 @@ class Evaluator {
   // (options.resolution is not read).
   EvalResult evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
                         const EvalOptions& options = {});
+
+  // evaluateOn where the cache holds every node it needs (on this grid, or on another window of
+  // its lattice that onGrid moves); nothing, computing nothing, where a node would have to be
+  // sampled, combined or modified. For the editor: an edit that changed no part (a measurement,
+  // a rename, an undo back to a state just shown) is shown at once, with no coarse pass first.
+  std::optional<EvalResult> evaluateCached(const Scene& scene, const Grid& grid, Progress& progress,
+                                           const EvalOptions& options = {});
 
   // The grid an evaluation at `resolution` (0 = the scene's) would use.
   static Grid gridFor(const Scene& scene, int resolution);
@@ -134,6 +145,7 @@ class Evaluator {
     std::string warning;      // what sampling this leaf warned about ("" for none)
   };
   struct Context;
+  struct NotCached;
   struct Visit {
     LdiHandle ldi;
     uint64_t key = 0;
@@ -165,6 +177,7 @@ class Evaluator {
   uint64_t meshHash(const std::shared_ptr<const TriangleMesh>& mesh);
 
   std::shared_ptr<Backend> backend_;
+  bool onlyCached_ = false;  // evaluateCached: any computation throws NotCached instead
   std::unordered_map<uint64_t, CacheEntry> cache_;
   uint64_t generation_ = 0;
   struct MeshHashMemo {

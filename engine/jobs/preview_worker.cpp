@@ -131,13 +131,15 @@ void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress
   // first would only cost a frame (on a GPU the edit then reaches the screen a frame later).
   const bool quick = lastFullSeconds_ >= 0.0 && lastFullSeconds_ < quickPassSeconds_;
   if (coarse < full && lastShown_ != request.scene && !quick) {
+    // What the cache holds whole comes at once: no coarse image of an unchanged part.
+    if (evaluatePass(evaluator, request, full, false, progress, true)) return;
     if (!evaluatePass(evaluator, request, coarse, true, progress)) return;
   }
   evaluatePass(evaluator, request, full, false, progress);
 }
 
 bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, int resolution,
-                                 bool coarse, Progress& progress) {
+                                 bool coarse, Progress& progress, bool onlyIfCached) {
   if (progress.cancelled()) return false;  // superseded before it began
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -149,14 +151,16 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   result->resolution = resolution;
   result->coarse = coarse;
   try {
-    computePass(evaluator, request, progress, *result);
+    if (!computePass(evaluator, request, progress, *result, onlyIfCached)) return false;
   } catch (const Cancelled&) {
     return false;
   } catch (...) {
+    if (onlyIfCached) return false;  // the full pass says it
     result->error = jobErrorText(std::current_exception(), "; lower the resolution");
   }
   lastShown_ = request.scene;
-  if (!coarse && result->error.empty())
+  // What a pass that computes costs (one served from the cache says nothing of the next).
+  if (!coarse && result->error.empty() && !onlyIfCached)
     lastFullSeconds_ = result->stats.seconds + result->splatSeconds;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -166,8 +170,8 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   return true;
 }
 
-void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Progress& progress,
-                                PreviewResult& result) {
+bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Progress& progress,
+                                PreviewResult& result, bool onlyIfCached) {
   EvalOptions options;
   options.resolution = result.resolution;
   options.keep = request.ghosts;
@@ -179,28 +183,46 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   auto last = lastGrids_.find(result.resolution);
   const Grid grid = Evaluator::previewGridFor(*request.scene, result.resolution,
                                               last == lastGrids_.end() ? nullptr : &last->second);
-  lastGrids_[result.resolution] = grid;
+  Evaluator* used = &evaluator;
   if (hasModifier(request.scene->root) && !backend_->evaluatesModifiers()) {
     if (!modifierEvaluator_)
       modifierEvaluator_ = std::make_unique<Evaluator>(std::make_shared<CpuBackend>());
-    result.stats = modifierEvaluator_->evaluateOn(*request.scene, grid, progress, options);
+    used = modifierEvaluator_.get();
+    backend = &modifierEvaluator_->backend();
+  }
+  if (onlyIfCached) {
+    std::optional<EvalResult> cached =
+        used->evaluateCached(*request.scene, grid, progress, options);
+    if (!cached) return false;
+    result.stats = std::move(*cached);
+  } else {
+    result.stats = used->evaluateOn(*request.scene, grid, progress, options);
+  }
+  lastGrids_[result.resolution] = grid;
+  if (used != &evaluator)
     result.stats.warnings.push_back(
         "offset, shell, round and fillet nodes are evaluated on the CPU (the " +
         backend_->description() + " backend cannot yet)");
-    backend = &modifierEvaluator_->backend();
-  } else {
-    result.stats = evaluator.evaluateOn(*request.scene, grid, progress, options);
-  }
   Stopwatch splatClock;
   result.surfels = result.stats.root->surfelCount();
   result.ldiBytes = result.stats.root->bytes();
-  SplatsHandle splats = backend->splats(result.stats.root, progress);
-  result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
-  if (hostSplats_ && !splats->hostData()) {
-    std::vector<Splat> host = splatArrays_->take(splats->count());
-    splats->copyToHost(host.data());
-    splats = std::make_shared<HostSplats>(std::move(host), splats->levels(), splatArrays_);
+  // The splats shown now, where this is their root on their grid (made by the same backend,
+  // delivered the same way): the same handle, so the UI keeps its image.
+  SplatsHandle splats;
+  if (!result.coarse && lastRoot_.key == result.stats.rootKey && lastRoot_.grid == grid &&
+      lastRoot_.backend == backend)
+    splats = lastRoot_.splats.lock();
+  if (splats && hostSplats_ && !splats->hostData()) splats.reset();  // now wanted on the host
+  if (!splats) {
+    splats = backend->splats(result.stats.root, progress);
+    if (hostSplats_ && !splats->hostData()) {
+      std::vector<Splat> host = splatArrays_->take(splats->count());
+      splats->copyToHost(host.data());
+      splats = std::make_shared<HostSplats>(std::move(host), splats->levels(), splatArrays_);
+    }
   }
+  result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
+  if (!result.coarse) lastRoot_ = ShownRoot{result.stats.rootKey, grid, backend, splats};
   result.splats = std::move(splats);
   for (KeptLdi& kept : result.stats.kept) {
     SplatsHandle ghost = backend->splats(kept.ldi, progress);
@@ -211,6 +233,7 @@ void PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   }
   result.stats.kept.clear();
   result.splatSeconds = splatClock.seconds();
+  return true;
 }
 
 }  // namespace strata

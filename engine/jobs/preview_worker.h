@@ -9,6 +9,9 @@
 //     min(requested, coarseResolution); the request made when the hand stops refines it. A
 //     calm request for a new scene shows the coarse result first, then the full one, unless the
 //     last full pass took less than quickPassSeconds (then the full one comes at once).
+//     A calm request whose full result the cache holds whole (an edit that changed no part: a
+//     measurement, a name) skips the coarse pass, and where its root is the one shown its
+//     result carries the same splats (the UI keeps its image).
 //     A coarse pass passes modifiers under kCoarseModifierCells of its cells through
 //     (EvalOptions::skipModifiersUnderCells): it shows the parts whole, unrounded, rather than
 //     torn by a radius its cells cannot resolve, and comes sooner.
@@ -133,12 +136,14 @@ class PreviewWorker {
   void run();
   // Evaluates one request: its coarse pass where one applies, then its full pass.
   void serve(Evaluator& evaluator, const Request& request, Progress& progress);
-  // Evaluates one pass and publishes its result; returns false when cancelled.
+  // Evaluates one pass and publishes its result; returns false when cancelled, or with
+  // `onlyIfCached` when the cache does not hold the whole result (nothing computed then).
   bool evaluatePass(Evaluator& evaluator, const Request& request, int resolution, bool coarse,
-                    Progress& progress);
-  // The evaluation and splats of one pass into `result`. Throws what the engine throws.
-  void computePass(Evaluator& evaluator, const Request& request, Progress& progress,
-                   PreviewResult& result);
+                    Progress& progress, bool onlyIfCached = false);
+  // The evaluation and splats of one pass into `result`; false where `onlyIfCached` and the
+  // cache does not hold it (Evaluator::evaluateCached). Throws what the engine throws.
+  bool computePass(Evaluator& evaluator, const Request& request, Progress& progress,
+                   PreviewResult& result, bool onlyIfCached);
 
   std::shared_ptr<Backend> backend_;
   std::string backendDescription_;
@@ -164,6 +169,16 @@ class PreviewWorker {
   // Worker thread only: the last grid of each resolution evaluated, which the next follows
   // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
   std::map<int, Grid> lastGrids_;
+  // Worker thread only: the last full pass's root (its key, grid and backend) and its splats,
+  // while a result still holds them: a pass with the same root hands the same splats on (the
+  // UI then keeps the image it shows) instead of making them again.
+  struct ShownRoot {
+    uint64_t key = 0;
+    Grid grid;
+    const Backend* backend = nullptr;
+    std::weak_ptr<const SplatResource> splats;
+  };
+  ShownRoot lastRoot_;
   std::thread thread_;
 };
 

@@ -334,6 +334,33 @@ TEST(EvaluatorCache, ThePreviewGridFollowsItsLatticeWithinItsSlack) {
   EXPECT_EQ(Evaluator::previewGridFor(boxed, 64, &first), Evaluator::gridFor(boxed, 64));
 }
 
+// evaluateCached computes nothing: nothing where a node is missing (the cache as it was), the
+// evaluation itself where every node is held, with the root's key of a full evaluation.
+TEST(EvaluatorCache, AnEvaluationFromTheCacheAloneComputesNothing) {
+  Tree t;
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  const Scene scene = fixedGrid(t.root);
+  const Grid grid = Evaluator::gridFor(scene, 0);
+  EXPECT_FALSE(evaluator.evaluateCached(scene, grid, progress));
+  EXPECT_EQ(evaluator.cacheEntries(), 0u);
+  const EvalResult full = evaluator.evaluateOn(scene, grid, progress);
+  const size_t entries = evaluator.cacheEntries();
+  const std::optional<EvalResult> again = evaluator.evaluateCached(scene, grid, progress);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->computed, 0);
+  EXPECT_EQ(again->rootKey, full.rootKey);
+  EXPECT_EQ(again->measure.volume, full.measure.volume);
+  auto moved = std::make_shared<Node>(*t.ball);
+  moved->transform.translate = {1.1, 0, 0};
+  const Scene edited = fixedGrid(op(NodeKind::Union, {t.cut, moved, t.lens}));
+  EXPECT_FALSE(evaluator.evaluateCached(edited, grid, progress));
+  EXPECT_EQ(evaluator.cacheEntries(), entries);  // nothing computed, nothing dropped
+  const EvalResult after = evaluator.evaluateOn(edited, grid, progress);
+  EXPECT_NE(after.rootKey, full.rootKey);
+  EXPECT_EQ(evaluator.evaluateCached(scene, grid, progress)->rootKey, full.rootKey);  // undo
+}
+
 TEST(EvaluatorCache, CancelStopsTheEvaluation) {
   Tree t;
   Evaluator evaluator(std::make_shared<CpuBackend>());

@@ -269,5 +269,38 @@ TEST(PreviewWorker, AfterAQuickFullPassACalmEditGoesStraightToTheFullResult) {
   expectShows(r[2], 2, 64, false);
 }
 
+// A calm edit that changed no part (here a rename; a measurement is the same) is served from the
+// cache at once, without a coarse pass, and carries the splats already shown (the same handle:
+// the UI keeps its image); one that changes a part goes coarse, then full, with new splats.
+TEST(PreviewWorker, AnEditThatChangedNoPartKeepsTheSplatsShown) {
+  ResultLog log;
+  // Nothing counts as quick: a changed part always goes coarse first.
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 0.0);
+  log.attach(&worker);
+  auto scene = boxMinusSphere(64, 0);
+  worker.request(scene, 64, false, 1);
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  auto renamed = std::make_shared<Scene>(*scene);
+  auto root = std::make_shared<Node>(*renamed->root);
+  root->name = "renamed";
+  renamed->root = root;
+  worker.request(renamed, 64, false, 2);
+  ASSERT_TRUE(log.waitFor(3));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  worker.request(boxMinusSphere(64, 1), 64, false, 3);  // the sphere grew: a part changed
+  ASSERT_TRUE(log.waitFor(5));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 5u);
+  expectShows(r[1], 1, 64, false);
+  expectShows(r[2], 2, 64, false);  // no coarse result before it
+  EXPECT_EQ(r[2]->splats, r[1]->splats);
+  EXPECT_EQ(r[2]->stats.computed, 0);
+  expectShows(r[3], 3, 32, true);
+  expectShows(r[4], 3, 64, false);
+  EXPECT_NE(r[4]->splats, r[1]->splats);
+}
+
 }  // namespace
 }  // namespace strata::test
