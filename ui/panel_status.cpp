@@ -289,8 +289,10 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
       if (shown->coarse && !skipped.empty()) {
         std::string names;
         for (const auto& n : skipped) names += (names.empty() ? "" : ", ") + n;
-        ImGui::Text("This coarse image shows the parts without %s:", names.c_str());
-        ImGui::Text("under %.0f of its cells, the full pass applies them.", kCoarseModifierCells);
+        ImGui::Text("This quick draft leaves out %s:", names.c_str());
+        ImGui::Text("smaller than %.0f of its cells, they would tear it. The final image,",
+                    kCoarseModifierCells);
+        ImGui::Text("coming next, applies them.");
       }
       for (const auto& st : shown->stats.stages)
         ImGui::Text("%-10s %8.1f ms", st.name.c_str(), st.seconds * 1000.0);
@@ -464,10 +466,16 @@ void drawDiagnostics(EditorState& state) {
           ImGui::Text("%s (%u)", n.name.c_str(), n.id);
           ImGui::TableNextColumn();
           ImGui::TextUnformatted(outcomeName(n.outcome));
+          if (n.outcome == NodeOutcome::Merged && ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "Combined in its parent's Boolean: a chain of one operation (a union of\n"
+                "unions, a difference of a difference) is evaluated as one Boolean,\n"
+                "so this node has no result of its own to time or count.");
           ImGui::TableNextColumn();
           ImGui::Text("%.1f", n.seconds * 1000.0);
           ImGui::TableNextColumn();
-          ImGui::TextUnformatted(countText(n.surfels).c_str());
+          ImGui::TextUnformatted(n.outcome == NodeOutcome::Merged ? "-"
+                                                                  : countText(n.surfels).c_str());
         }
         ImGui::EndTable();
       }
