@@ -49,6 +49,7 @@ BackendChoice choose(const std::string& name, int processOnHost) {
   }
   if (name == "cuda") throw Error("--backend cuda: " + why + "; use --backend cpu");
 #else
+  (void)processOnHost;  // which GPU: none in this build
   const std::string why = "this build has no CUDA backend (nvcc was not found when it was built)";
   if (name == "cuda") throw Error("--backend cuda: " + why + "; use --backend cpu");
 #endif

@@ -53,19 +53,19 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
   const size_t space = withUnit.find(' ');
   std::string number = withUnit.substr(0, space);
   const std::string unit = space == std::string::npos ? "" : withUnit.substr(space + 1);
-  auto fits = [&](const std::string& f) {
+  auto fits = [&](const char* f) {
     const float room = w - 2 * ImGui::GetStyle().FramePadding.x;
     for (int i = 0; i < 3; ++i) {
       char text[64];
-      std::snprintf(text, sizeof(text), f.c_str(), (*value)[i]);
-      if (ImGui::CalcTextSize(mixed[i] ? (std::string("~") + text).c_str() : text).x > room)
-        return false;
+      text[0] = mixed[i] ? '~' : ' ';
+      ImFormatString(text + 1, sizeof(text) - 1, f, (*value)[i]);
+      if (ImGui::CalcTextSize(mixed[i] ? text : text + 1).x > room) return false;
     }
     return true;
   };
   std::string fieldFormat = withUnit;
-  if (!unit.empty() && !fits(withUnit)) {
-    fieldFormat = fits(number) ? number : "%.3g";
+  if (!unit.empty() && !fits(withUnit.c_str())) {
+    fieldFormat = fits(number.c_str()) ? number : "%.3g";
     ImGui::Text("%s %s", label, unit.c_str());
   } else {
     ImGui::TextUnformatted(label);
