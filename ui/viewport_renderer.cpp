@@ -385,8 +385,7 @@ void ViewportRenderer::collectTiming() {
 void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
   // The same colours and selection (an edit that changed no part's look: a measurement, a
   // name): the image stands.
-  if (leafTextureWidth_ > 0 && styles.color == styles_.color && styles.selected == styles_.selected)
-    return;
+  if (styles_ && styles.color == styles_->color && styles.selected == styles_->selected) return;
   styles_ = styles;
   const int count = std::max<int>(1, int(styles.color.size()));
   const int width = std::min(count, 1024);
@@ -787,7 +786,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       drawBackground(local);
       drawSplatRange(local, 0, first, 1, float(1 << firstLevel), SplatDraw::WholeImage);
       drawGhosts(local);
-      if (firstLevel == buildLevel_) keepPlain(*shown_);
+      if (firstLevel == buildLevel_ && !viewMoved) keepPlain(*shown_);  // not every orbit frame
       drawLinesInto(local);
       refining_ = firstLevel != buildLevel_;
       refineOverShown_ = refining_;

@@ -349,12 +349,13 @@ class ViewportRenderer {
   // one being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  // The last complete image without its lines (colour and depth), and the view (lines left
-  // out) and content it shows: a change of the lines alone (a measurement placed, a selection's
-  // box) draws them over a copy of it, instead of all the splats again.
+  // The last complete image drawn at rest (not while the view moves) without its lines (colour
+  // and depth), and the view (lines left out) and content it shows: a change of the lines alone
+  // (a measurement placed, a selection's box) draws them over a copy of it, instead of all the
+  // splats again.
   std::unique_ptr<RenderTarget> plain_;
-  LeafStyleTable styles_;              // the last setLeafStyles' table
-  std::vector<Splat> ghostSplats_[2];  // the last setGhosts' layers
+  std::optional<LeafStyleTable> styles_;  // the last setLeafStyles' table
+  std::vector<Splat> ghostSplats_[2];     // the last setGhosts' layers
   uint64_t plainKey_ = 0;
   uint64_t shownKey_ = 0;         // what shown_ (or coarse_, while refining) holds
   uint64_t shownView_ = 0;        // its view alone (viewKey)

@@ -88,6 +88,19 @@ std::vector<glm::dmat4> placementsOf(const Node& node) {
   return patternPlacements(pattern, node.pattern);
 }
 
+// A mesh's or a primitive's world bounds (empty for a mesh not loaded).
+Bounds leafBounds(const Node& node, const glm::dmat4& world) {
+  Bounds b;
+  if (node.kind == NodeKind::Mesh) {
+    if (node.mesh)
+      for (const auto& p : node.mesh->positions) b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+    return b;
+  }
+  if (isPrimitive(node.kind))
+    return transformedBox(primitiveLocalBounds(node.kind, node.params), world);
+  return b;
+}
+
 Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
                 bool asInstance, int depth) {
   Bounds b;
@@ -95,13 +108,7 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
   glm::dmat4 world = parentWorld * node->transform.matrix();
   if (node->kind == NodeKind::Instance)
     return boundsOf(findNode(root, node->instanceOf), root, world, true, depth + 1);
-  if (node->kind == NodeKind::Mesh) {
-    if (node->mesh)
-      for (const auto& p : node->mesh->positions) b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
-    return b;
-  }
-  if (isPrimitive(node->kind))
-    return transformedBox(primitiveLocalBounds(node->kind, node->params), world);
+  if (!isOperation(node->kind)) return leafBounds(*node, world);
   bool first = true;
   const RayOp op = nodeKindInfo(node->kind).rayOp;
   // A hidden base leaves its difference empty (its cutters never become the base).
@@ -416,14 +423,8 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
   // Collecting, a leaf not cached is prepared for the batch; in the second walk every leaf is
   // cached (one that was not collected, should the walks ever differ, is sampled alone now).
   auto hit = cache_.find(v.key);
-  if (hit != cache_.end() && !onGrid(hit->second, ctx.grid, [&] {
-        if (node->kind != NodeKind::Mesh)
-          return transformedBox(primitiveLocalBounds(node->kind, node->params), world);
-        Bounds b;
-        for (const auto& p : node->mesh->positions)
-          b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
-        return b;
-      })) {
+  if (hit != cache_.end() &&
+      !onGrid(hit->second, ctx.grid, [&] { return leafBounds(*node, world); })) {
     cache_.erase(hit);  // computed on a window that clipped it, or this one clips it
     hit = cache_.end();
   }

@@ -176,13 +176,13 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   options.resolution = result.resolution;
   options.keep = request.ghosts;
   options.skipModifiersUnderCells = result.coarse ? kCoarseModifierCells : 0.0;
-  // Modifiers on a backend that cannot evaluate them: this pass on the CPU (its own evaluator,
-  // so that each cache keeps LDIs of its own backend).
-  Backend* backend = backend_.get();
   if (!request.scene->root) throw Error("the scene has no root node");
   auto last = lastGrids_.find(result.resolution);
   const Grid grid = Evaluator::previewGridFor(*request.scene, result.resolution,
                                               last == lastGrids_.end() ? nullptr : &last->second);
+  // Modifiers on a backend that cannot evaluate them: this pass on the CPU (its own evaluator,
+  // so that each cache keeps LDIs of its own backend).
+  Backend* backend = backend_.get();
   Evaluator* used = &evaluator;
   if (hasModifier(request.scene->root) && !backend_->evaluatesModifiers()) {
     if (!modifierEvaluator_)
