@@ -343,7 +343,10 @@ static bool sceneHasVisibleLeaves(const NodePtr& node) {
 
 bool Editor::requestPreviewIfNeeded() {
   EditorState& s = *state_;
-  const bool interactive = s.document.interacting() || gl_->viewport.gizmoDragging();
+  // A field held while a number is typed into it (ImGui's text input of a drag or slider) is
+  // not a drag: the value shown is the one that stays until Enter, so it refines in full.
+  const bool typing = ImGui::GetIO().WantTextInput;
+  const bool interactive = (s.document.interacting() && !typing) || gl_->viewport.gizmoDragging();
   const int wanted = s.document.scene().settings.resolution;
   const uint64_t revision = s.document.revision();
   // The cap depends on what a full (not coarse) result cost. It is worked out when the wanted

@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -81,15 +82,27 @@ struct LabelBoxes {
   }
 };
 
-void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* boxes) {
+// A label centred on `at` (screen pixels): moved whole into the view [viewLo, viewHi) where it
+// would cross its edge (a measurement near the edge read "12.4" for "12.45 mm"), and down past the
+// labels already drawn; not drawn where none of it would have been in the view.
+void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* boxes, ImVec2 viewLo,
+           ImVec2 viewHi) {
   const ImVec2 size = ImGui::CalcTextSize(text.c_str());
   ImVec2 lo(at.x - size.x * 0.5f - 4.0f, at.y - size.y * 0.5f - 2.0f);
   ImVec2 hi(at.x + size.x * 0.5f + 4.0f, at.y + size.y * 0.5f + 2.0f);
-  for (int tries = 0; tries < 32 && boxes->overlaps(lo, hi); ++tries) {
-    const float step = ImGui::GetTextLineHeight() * 0.5f;
-    lo.y += step;
-    hi.y += step;
-  }
+  auto shift = [&](float dx, float dy) {
+    lo.x += dx, hi.x += dx;
+    lo.y += dy, hi.y += dy;
+  };
+  auto intoView = [&] {
+    shift(std::max(viewLo.x - lo.x, 0.0f) - std::max(hi.x - viewHi.x, 0.0f),
+          std::max(viewLo.y - lo.y, 0.0f) - std::max(hi.y - viewHi.y, 0.0f));
+  };
+  if (hi.x <= viewLo.x || lo.x >= viewHi.x || hi.y <= viewLo.y || lo.y >= viewHi.y) return;
+  intoView();
+  for (int tries = 0; tries < 32 && boxes->overlaps(lo, hi); ++tries)
+    shift(0.0f, ImGui::GetTextLineHeight() * 0.5f);
+  intoView();
   boxes->taken.push_back({lo, hi});
   draw->AddRectFilled(lo, hi, IM_COL32(20, 22, 26, 210), 3.0f);
   draw->AddRect(lo, hi, IM_COL32(255, 220, 64, 160), 3.0f);
@@ -231,6 +244,8 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
   draw->PushClipRect(ImVec2(float(x0), float(y0)),
                      ImVec2(float(x0 + view.size.x), float(y0 + view.size.y)), true);
   const NodePtr& root = state.document.root();
+  const ImVec2 viewLo{float(x0), float(y0)};
+  const ImVec2 viewHi{float(x0 + view.size.x), float(y0 + view.size.y)};
   auto screen = [&](const glm::dvec3& p, ImVec2* out) {
     glm::dvec2 px;
     if (!view.toScreen(p, &px)) return false;
@@ -245,12 +260,14 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
       label(draw, at,
             distanceText(state, v.distance) + "\ndx " + distanceText(state, v.delta.x) + "  dy " +
                 distanceText(state, v.delta.y) + "  dz " + distanceText(state, v.delta.z),
-            &boxes);
+            &boxes, viewLo, viewHi);
     if (m.points.size() == 3) {
-      if (screen(0.5 * (v.b + v.c), &at)) label(draw, at, distanceText(state, v.distance2), &boxes);
+      if (screen(0.5 * (v.b + v.c), &at))
+        label(draw, at, distanceText(state, v.distance2), &boxes, viewLo, viewHi);
       char angle[48];
       std::snprintf(angle, sizeof(angle), "%.2f\u00B0", v.angleDegrees);
-      if (v.hasAngle && screen(v.b, &at)) label(draw, ImVec2(at.x, at.y - 22.0f), angle, &boxes);
+      if (v.hasAngle && screen(v.b, &at))
+        label(draw, ImVec2(at.x, at.y - 22.0f), angle, &boxes, viewLo, viewHi);
     }
   }
   draw->PopClipRect();

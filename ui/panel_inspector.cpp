@@ -2,7 +2,8 @@
 // several nodes selected, the fields they share edit all of them (a value that differs is shown
 // with "~"): transforms change each by the same amount, the rest set the same value. A widget
 // that is held (a drag, a colour picker) makes one undo step from activation to deactivation, for
-// every node it changes.
+// every node it changes; a number typed into a field is applied when the field is left
+// (typed_value.h), not per keystroke.
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGuiItemFlags_MixedValue: a mixed checkbox
 
@@ -19,6 +20,7 @@
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/theme.h"
+#include "ui/typed_value.h"
 
 namespace strata::ui {
 namespace {
@@ -42,31 +44,40 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
-  const float labelWidth = 72.0f;
-  const float w =
-      (ImGui::GetContentRegionAvail().x - labelWidth - 2 * ImGui::GetStyle().ItemInnerSpacing.x) /
-      3;
-  // The number with its unit in each field where all three fit ("0.003149 mm" cut to
-  // "0.003149 m" read as metres); else the unit once, after the row's label, and the numbers
-  // shorter where even they do not fit.
+  float labelWidth = 72.0f;
+  const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+  float w = (ImGui::GetContentRegionAvail().x - labelWidth - 2 * spacing) / 3;
+  // The number with its unit in each field where the widest number the format writes fits with
+  // it ("0.003149 mm" cut to "0.003149 m" read as metres); else the unit once, after the row's
+  // label, and the numbers shorter where even they do not fit. Decided by the fields' width, not
+  // by the values, so that the row keeps its look while a value is dragged.
   const std::string withUnit = format;
   const size_t space = withUnit.find(' ');
   std::string number = withUnit.substr(0, space);
   const std::string unit = space == std::string::npos ? "" : withUnit.substr(space + 1);
+  const bool anyMixed = mixed.x || mixed.y || mixed.z;
   auto fits = [&](const char* f) {
     const float room = w - 2 * ImGui::GetStyle().FramePadding.x;
-    for (int i = 0; i < 3; ++i) {
+    for (const double widest : {-0.000123456789, -123456789.0, -1234.56789}) {
       char text[64];
-      text[0] = mixed[i] ? '~' : ' ';
-      ImFormatString(text + 1, sizeof(text) - 1, f, (*value)[i]);
-      if (ImGui::CalcTextSize(mixed[i] ? text : text + 1).x > room) return false;
+      text[0] = '~';
+      ImFormatString(text + 1, sizeof(text) - 1, f, widest);
+      if (ImGui::CalcTextSize(anyMixed ? text : text + 1).x > room) return false;
     }
     return true;
   };
   std::string fieldFormat = withUnit;
   if (!unit.empty() && !fits(withUnit.c_str())) {
+    // The label column widens for "rotate deg" rather than run into the first field.
+    const std::string labelWithUnit = std::string(label) + " " + unit;
+    const float wanted =
+        ImGui::CalcTextSize(labelWithUnit.c_str()).x + 2 * ImGui::GetStyle().ItemSpacing.x;
+    if (wanted > labelWidth) {
+      w -= (wanted - labelWidth) / 3;
+      labelWidth = wanted;
+    }
     fieldFormat = fits(number.c_str()) ? number : "%.3g";
-    ImGui::Text("%s %s", label, unit.c_str());
+    ImGui::TextUnformatted(labelWithUnit.c_str());
   } else {
     ImGui::TextUnformatted(label);
   }
@@ -81,6 +92,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     const std::string shown = mixed[i] ? std::string("~") + fieldFormat : fieldFormat;
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
                                      nullptr, shown.c_str());
+    changed = commitTypedValue(changed, &next[i]);
     if (mixed[i] && ImGui::IsItemHovered())
       ImGui::SetTooltip("differs across the selection; dragging shifts every one by as much");
     ImGui::PopStyleColor();
@@ -106,6 +118,7 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   bool changed = ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double,
                                    &value, float(speed), &minimum, nullptr,
                                    (mixed ? "~" + gLengthFormat : gLengthFormat).c_str());
+  changed = commitTypedValue(changed, &value);
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
   edited(state, changed, [&] {
@@ -149,6 +162,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
     int segments = p.segments;
     bool changed = ImGui::DragInt("##segments", &segments, 0.5f, 0, kMaxSegments,
                                   segments == 0 ? "automatic" : "%d");
+    changed = commitTypedValue(changed, &segments);
     edited(state, changed, [&] {
       for (const NodePtr& n : nodes) {
         PrimitiveParams q = n->params;
@@ -355,8 +369,10 @@ void countField(EditorState& state, const NodeList& nodes, const char* label, fl
                 int value, bool mixed, const std::function<void(PatternParams&, int)>& set) {
   ImGui::PushID(label);
   ImGui::SetNextItemWidth(width);
-  const bool changed = ImGui::DragInt("##n", &value, 0.1f, 1, kMaxPatternCount,
-                                      mixed ? "~%d" : "%d", ImGuiSliderFlags_AlwaysClamp);
+  const bool changed =
+      commitTypedValue(ImGui::DragInt("##n", &value, 0.1f, 1, kMaxPatternCount,
+                                      mixed ? "~%d" : "%d", ImGuiSliderFlags_AlwaysClamp),
+                       &value);
   edited(state, changed,
          [&] { setPatternField(state, nodes, [&](PatternParams& p) { set(p, value); }); });
   ImGui::PopID();
@@ -437,9 +453,10 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
     ImGui::SetNextItemWidth(-1);
     double angle = p.angle;
     const double lo = -360.0, hi = 360.0;
-    const bool changed =
+    const bool changed = commitTypedValue(
         ImGui::DragScalar("##angle", ImGuiDataType_Double, &angle, 0.5f, &lo, &hi,
-                          mixedAngle ? "~%.4g deg" : "%.4g deg", ImGuiSliderFlags_AlwaysClamp);
+                          mixedAngle ? "~%.4g deg" : "%.4g deg", ImGuiSliderFlags_AlwaysClamp),
+        &angle);
     edited(state, changed, [&] {
       if (angle == 0.0) return;  // no copies on top of each other
       setPatternField(state, nodes, [&](PatternParams& q) { q.angle = angle; });
@@ -514,9 +531,10 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       double amount = node->amount;
       const bool signedAmount = modifierOf(node->kind) == Modifier::Offset;
       const double lo = signedAmount ? -1e300 : 1e-6, hi = 1e300;
-      const bool changed =
+      const bool changed = commitTypedValue(
           ImGui::DragScalar("##amount", ImGuiDataType_Double, &amount, float(speed), &lo, &hi,
-                            gLengthFormat.c_str(), ImGuiSliderFlags_AlwaysClamp);
+                            gLengthFormat.c_str(), ImGuiSliderFlags_AlwaysClamp),
+          &amount);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", signedAmount ? "Grows the children (> 0) or shrinks them (< 0)"
                                              : nodeKindInfo(node->kind).summary);

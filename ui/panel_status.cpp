@@ -13,6 +13,7 @@
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
+#include "ui/typed_value.h"
 
 namespace strata::ui {
 namespace {
@@ -87,6 +88,7 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   ImGui::SetNextItemWidth(-1);
   bool changed = ImGui::SliderInt("##resolution", &resolution, 16, kSliderMaxResolution, "%d cells",
                                   ImGuiSliderFlags_Logarithmic);
+  changed = commitTypedValue(changed, &resolution);  // "512" never evaluates 16 (from "5")
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
   if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
@@ -97,8 +99,15 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     ImGui::SetTooltip(
         "Cells along the longest side of the grid. Dragging shows a coarse\n"
         "preview at once; it refines when you let go. Double-click to type a number.");
+  // The grid of the preview shown where it is this resolution's full pass (the preview keeps its
+  // lattice while parts move: Evaluator::previewGridFor), so that the panel and the status bar
+  // name the same cells; else the grid an evaluation from scratch would use.
   Grid grid;
-  if (gridAt(state, scene.settings.resolution, &grid)) {
+  const PreviewResult* shown = state.preview.get();
+  const bool shownGrid =
+      shown && shown->ok() && !shown->coarse && shown->resolution == scene.settings.resolution;
+  if (shownGrid) grid = shown->stats.grid;
+  if (shownGrid || gridAt(state, scene.settings.resolution, &grid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
     ImGui::Text("root LDI ~ %s",
@@ -153,9 +162,9 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   // ImGui formats the value itself: the label is shown through a %% free format string.
   for (size_t i = sliderFormat.find('%'); i != std::string::npos; i = sliderFormat.find('%', i + 2))
     sliderFormat.insert(i, "%");
-  if (ImGui::SliderScalar("##sectionAt", ImGuiDataType_Double, &where, &lo, &hi,
-                          sliderFormat.c_str()) &&
-      hi > lo)
+  const bool movedSection = ImGui::SliderScalar("##sectionAt", ImGuiDataType_Double, &where, &lo,
+                                                &hi, sliderFormat.c_str());
+  if (commitTypedValue(movedSection, &where) && hi > lo)
     state.section.at = std::clamp((where - lo) / (hi - lo), 0.0, 1.0);
   ImGui::EndDisabled();
   ImGui::Checkbox("ground grid", &state.showGrid);

@@ -117,9 +117,23 @@ void PreviewWorker::run() {
   }
 }
 
+int draftResolutionFor(int full, int coarse, int measuredResolution, double measuredSeconds,
+                       double budgetSeconds) {
+  const int coarsest = std::min(full, coarse);
+  if (measuredSeconds < 0.0 || measuredResolution <= 0) return coarsest;
+  for (const int divisor : {1, 2, 4}) {
+    const int r = full / divisor;
+    if (r <= coarsest) break;
+    const double scale = double(r) / measuredResolution;
+    if (measuredSeconds * scale * scale < budgetSeconds) return r;
+  }
+  return coarsest;
+}
+
 void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress& progress) {
   const int full = request.resolution;
-  const int coarse = std::min(full, coarse_);
+  const int coarse =
+      draftResolutionFor(full, coarse_, lastFullResolution_, lastFullSeconds_, quickPassSeconds_);
   if (request.interactive) {
     evaluatePass(evaluator, request, coarse, coarse < full, progress);
     return;
@@ -161,7 +175,8 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   lastShown_ = request.scene;
   // What a pass that computes costs (one served from the cache says nothing of the next).
   if (!coarse && result->error.empty() && !onlyIfCached)
-    lastFullSeconds_ = result->stats.seconds + result->splatSeconds;
+    lastFullSeconds_ = result->stats.seconds + result->splatSeconds,
+    lastFullResolution_ = resolution;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     finished_ = std::move(result);

@@ -5,9 +5,11 @@
 //     resolution; only the latest request survives, and a new one cancels the running
 //     evaluation (Progress::cancel). Requests replaced before the worker took them are never
 //     evaluated.
-//   - An interactive request (the user is dragging) is evaluated only at a coarse resolution,
-//     min(requested, coarseResolution); the request made when the hand stops refines it. A
-//     calm request for a new scene shows the coarse result first, then the full one, unless the
+//   - An interactive request (the user is dragging) is evaluated only at a draft resolution
+//     (draftResolutionFor: the finest of requested, requested/2, requested/4 that the last full
+//     pass's time predicts within quickPassSeconds, never under coarseResolution; on a GPU a
+//     drag is often evaluated in full); the request made when the hand stops refines it. A
+//     calm request for a new scene shows the draft result first, then the full one, unless the
 //     last full pass took less than quickPassSeconds (then the full one comes at once).
 //     A calm request whose full result the cache holds whole (an edit that changed no part: a
 //     measurement, a name) skips the coarse pass, and where its root is the one shown its
@@ -92,6 +94,15 @@ struct PreviewStatus {
 //   - time, above kSliderMaxResolution only (the slider's range is always honoured): at most
 //     kPreviewSeconds.
 // With nothing shown yet, at most kSliderMaxResolution until a result tells the scene's cost.
+// The resolution of a draft (a drag's, or a calm edit's first) pass when `full` is asked for:
+// the finest of full, full/2 and full/4 whose time, scaled from the last full pass that computed
+// (`measuredSeconds` at `measuredResolution`; time grows with the square of the resolution), is
+// under `budgetSeconds`; never under min(full, coarse) (the coarsest draft worth showing); that
+// while nothing is measured (measuredSeconds < 0). A fixed ladder below `full`, so that drafts
+// keep their lattice (and the cache its LDIs) from one drag to the next.
+int draftResolutionFor(int full, int coarse, int measuredResolution, double measuredSeconds,
+                       double budgetSeconds);
+
 constexpr int kSliderMaxResolution = 1024;
 constexpr double kPreviewSeconds = 5.0;
 int previewResolutionFor(int requested, int shownResolution, uint64_t shownCacheBytes,
@@ -166,6 +177,7 @@ class PreviewWorker {
   PreviewStatus status_;
   std::shared_ptr<const Scene> lastShown_;  // worker thread only
   double lastFullSeconds_ = -1.0;           // worker thread only: the last full pass; -1 none yet
+  int lastFullResolution_ = 0;              // worker thread only: of that pass
   // Worker thread only: the last grid of each resolution evaluated, which the next follows
   // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
   std::map<int, Grid> lastGrids_;

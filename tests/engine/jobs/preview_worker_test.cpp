@@ -251,6 +251,20 @@ TEST(PreviewResolution, CappedToWhatFitsInMemoryAndTime) {
   EXPECT_EQ(previewResolutionFor(64, 256, uint64_t(1) << 40, 0.01, 1), kMinResolution);
 }
 
+// A drag is drafted at the finest of full, full/2, full/4 that the last full pass predicts
+// within the budget (time grows with the square of the resolution), never under the coarse
+// resolution, which is also what it gets while nothing is measured.
+TEST(PreviewResolution, DraftsAsFineAsTheLastFullPassPredictsWithinTheBudget) {
+  EXPECT_EQ(draftResolutionFor(512, 96, 0, -1.0, 0.05), 96);      // nothing measured
+  EXPECT_EQ(draftResolutionFor(512, 96, 512, 0.007, 0.05), 512);  // a GPU: drags in full
+  EXPECT_EQ(draftResolutionFor(512, 96, 512, 0.12, 0.05), 256);   // 0.03 s at 256
+  EXPECT_EQ(draftResolutionFor(512, 96, 512, 0.6, 0.05), 128);    // 0.0375 s at 128
+  EXPECT_EQ(draftResolutionFor(512, 96, 512, 3.0, 0.05), 96);     // too slow for any
+  EXPECT_EQ(draftResolutionFor(256, 96, 1024, 2.4, 0.05), 128);   // measured at another
+  EXPECT_EQ(draftResolutionFor(300, 96, 300, 1.0, 0.05), 96);     // 300/4 is under 96
+  EXPECT_EQ(draftResolutionFor(64, 96, 512, 100.0, 0.05), 64);    // at most the full one
+}
+
 // After a quick full pass, a calm edit skips the coarse pass: its full result comes at once
 // (a coarse one first would only delay the edit on the screen by a frame).
 TEST(PreviewWorker, AfterAQuickFullPassACalmEditGoesStraightToTheFullResult) {

@@ -1,0 +1,103 @@
+// A number typed into a drag or slider field is applied once, when the field is left
+// (ui/typed_value.h), never per keystroke. Drives Dear ImGui without a window: frames with
+// characters and keys fed to its IO, as the editor's GLFW backend feeds them.
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <vector>
+
+#include "ui/typed_value.h"
+
+namespace strata::ui {
+namespace {
+
+constexpr int kEnter = 1, kEscape = 2;
+
+// A field whose value comes from `stored` each frame, as the inspector's come from the
+// document, and writes back to it (recording each write) when commitTypedValue says so.
+class TypedField : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(800, 600);
+    io.DeltaTime = 1.0f / 60.0f;
+    io.IniFilename = nullptr;
+    io.KeyMap[ImGuiKey_Enter] = kEnter;
+    io.KeyMap[ImGuiKey_Escape] = kEscape;
+    unsigned char* pixels = nullptr;
+    int w = 0, h = 0;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    frame();  // lays the window out
+  }
+  void TearDown() override { ImGui::DestroyContext(); }
+
+  // One frame; `focus` opens the field's text input (as a double-click does).
+  void frame(bool focus = false) {
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(ImVec2(300, 200));
+    ImGui::Begin("fields");
+    if (focus) ImGui::SetKeyboardFocusHere();
+    double value = stored;
+    if (commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value))
+      stored = value, writes.push_back(value);
+    ImGui::End();
+    ImGui::Render();
+  }
+  void type(const char* text) {
+    for (const char* c = text; *c; ++c) {
+      ImGui::GetIO().AddInputCharacter(static_cast<unsigned>(*c));
+      frame();
+    }
+  }
+  void press(int key) {
+    ImGui::GetIO().KeysDown[key] = true;
+    frame();
+    ImGui::GetIO().KeysDown[key] = false;
+    frame();
+  }
+
+  double stored = 7.0;
+  std::vector<double> writes;
+};
+
+TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
+  frame(/*focus=*/true);
+  frame();
+  type("25");
+  EXPECT_TRUE(writes.empty()) << "applied while typing: " << writes.front();
+  EXPECT_EQ(stored, 7.0);
+  press(kEnter);
+  ASSERT_EQ(writes.size(), 1u);
+  EXPECT_EQ(stored, 25.0);
+  frame();
+  EXPECT_EQ(writes.size(), 1u);
+}
+
+TEST_F(TypedField, EscapeKeepsTheValue) {
+  frame(/*focus=*/true);
+  frame();
+  type("3");
+  press(kEscape);
+  EXPECT_TRUE(writes.empty());
+  EXPECT_EQ(stored, 7.0);
+}
+
+TEST_F(TypedField, AClickElsewhereAppliesTheTypedNumber) {
+  frame(/*focus=*/true);
+  frame();
+  type("-4.5");
+  EXPECT_TRUE(writes.empty());
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(700, 500);  // outside the window
+  io.MouseDown[0] = true;
+  frame();
+  io.MouseDown[0] = false;
+  frame();
+  ASSERT_EQ(writes.size(), 1u);
+  EXPECT_EQ(stored, -4.5);
+}
+
+}  // namespace
+}  // namespace strata::ui

@@ -1,0 +1,48 @@
+// See typed_value.h.
+#include "ui/typed_value.h"
+
+#include <imgui.h>
+#include <imgui_internal.h>  // TempInputIsActive: is the last item a drag field typing text?
+
+namespace strata::ui {
+namespace {
+
+// The field being typed into, its last value and the last frame it was seen typing; one at a
+// time (one item is active).
+struct Typed {
+  ImGuiID id = 0;
+  double value = 0.0;
+  int frame = 0;
+  bool held = false;
+};
+Typed gTyped;
+
+template <class T>
+bool commit(bool changed, T* value) {
+  const ImGuiID id = ImGui::GetItemID();
+  if (id != 0 && ImGui::TempInputIsActive(id)) {
+    if (gTyped.id != id) gTyped = {id, double(*value), 0, false};
+    if (changed) gTyped.value = double(*value), gTyped.held = true;
+    gTyped.frame = ImGui::GetFrameCount();
+    return false;
+  }
+  if (!gTyped.held || gTyped.id != id) return changed;
+  // The field was left on this frame (it typed on the last): the typed value, unless Escape took
+  // it back. A value held by a field that was not drawn since (its node deselected) is dropped.
+  gTyped.held = false;
+  if (gTyped.frame != ImGui::GetFrameCount() - 1) return changed;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) return false;
+  if (!changed) *value = T(gTyped.value);
+  return true;
+}
+
+}  // namespace
+
+bool commitTypedValue(bool changed, double* value) {
+  return commit(changed, value);
+}
+bool commitTypedValue(bool changed, int* value) {
+  return commit(changed, value);
+}
+
+}  // namespace strata::ui

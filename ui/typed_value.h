@@ -1,0 +1,17 @@
+// A number typed into a drag or slider field is applied once, when it is complete, not per
+// keystroke. Dear ImGui 1.86 writes a field's text input (double-click or Ctrl+click) into the
+// value at every character, so "25" passed through 2 (a part moved, the preview evaluated at a
+// resolution of 16 on the way to 512, an undo step that held the wrong value). Call right after
+// the widget, on the UI thread, with what it returned and the variable it edits.
+#pragma once
+
+namespace strata::ui {
+
+// Returns whether the caller should apply `*value` now. While the last item's text input is
+// active, false, and the typed value is held (at most one field types at a time). On the frame
+// the field is left (Enter, Tab, a click elsewhere), true with `*value` the typed value; Escape
+// drops it (false, as Dear ImGui restores the text). A drag with the mouse: `changed` as given.
+bool commitTypedValue(bool changed, double* value);
+bool commitTypedValue(bool changed, int* value);
+
+}  // namespace strata::ui
