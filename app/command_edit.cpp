@@ -43,6 +43,7 @@ std::vector<std::string> editorFlagOptions() {
   flags.push_back("--no-interop");
   flags.push_back("--ortho");
   flags.push_back("--ghosts");
+  flags.push_back("--drag");
   return flags;
 }
 
@@ -89,11 +90,69 @@ void selectByNames(ui::EditorState& state, const std::string& list) {
 // time from the edit to the end of that frame (buffers swapped, GL finished), and the median; and
 // the same to the end of the frame that first showed the edit's result (a coarser level where
 // the view's would take long: ViewportRenderer::kFirstImageMs).
-int measureLatency(ui::Editor& editor, int count, const std::string& leafName) {
+// With `drag`, the N moves are one drag (the hand held on the part, as the gizmo holds it): each
+// move's time is to the first frame that shows its result, whatever its resolution (a draft:
+// PreviewWorker), printed with that resolution; then the release, to the full result on screen.
+int measureDrag(ui::Editor& editor, NodePtr leaf, int count, double step) {
+  Document& document = editor.state().document;
+  const int full = document.scene().settings.resolution;
+  std::vector<double> ms;
+  int fullSteps = 0;
+  editor.holdDrag(true);
+  document.beginInteraction();
+  for (int k = 0; k < count; ++k) {
+    Transform t = leaf->transform;
+    t.translate.x += (k % 2 == 0 ? step : -step);
+    Stopwatch clock;
+    document.setTransform(leaf->id, t);
+    leaf = findNode(document.root(), leaf->id);
+    const uint64_t revision = document.revision();
+    int frames = 0;
+    for (;;) {
+      editor.frame();
+      ++frames;
+      const auto& p = editor.state().preview;
+      if (p && p->tag == revision) break;
+      if (clock.seconds() > 60.0) throw Error("a drag's move did not reach the screen within 60 s");
+    }
+    ms.push_back(clock.seconds() * 1e3);
+    const auto& shown = *editor.state().preview;
+    fullSteps += shown.resolution == full;
+    std::printf(
+        "drag move %d: %.1f ms to the screen at %d cells (engine %.1f + splats %.1f ms, "
+        "%d frames)\n",
+        k + 1, ms.back(), shown.resolution, shown.stats.seconds * 1e3, shown.splatSeconds * 1e3,
+        frames);
+    std::fflush(stdout);
+  }
+  Stopwatch release;
+  document.endInteraction();
+  editor.holdDrag(false);
+  const uint64_t revision = document.revision();
+  for (;;) {
+    editor.frame();
+    const auto& p = editor.state().preview;
+    if (p && p->tag == revision && !p->coarse && editor.viewSettled()) break;
+    if (release.seconds() > 60.0) throw Error("the drag's full result did not arrive in 60 s");
+  }
+  const double releaseMs = release.seconds() * 1e3;
+  std::sort(ms.begin(), ms.end());
+  std::printf(
+      "drag: median %.1f ms, worst %.1f ms a move over %d moves of '%s', %d of them at the full "
+      "%d cells; released: the full result settled on screen %.1f ms later (%s)\n",
+      ms[ms.size() / 2], ms.back(), count, leaf->name.c_str(), fullSteps, full, releaseMs,
+      editor.state().backendDescription.c_str());
+  return 0;
+}
+
+int measureLatency(ui::Editor& editor, int count, const std::string& leafName, bool drag) {
   NodePtr leaf = findLeaf(editor.state().document.root(), leafName);
   if (!leaf) throw Error("--move-leaf: no leaf named '" + leafName + "'");
   if (!editor.waitForPreview(600.0)) throw Error("the first evaluation did not finish");
   for (int i = 0; i < 3; ++i) editor.frame();
+  if (drag)
+    return measureDrag(editor, leaf, count,
+                       Evaluator::gridFor(editor.state().document.scene(), 0).h * 0.37);
   const double step = Evaluator::gridFor(editor.state().document.scene(), 0).h * 0.37;
   std::vector<double> ms, firstMs;
   const size_t pointsBefore = editor.splatsDrawnAsPoints();
@@ -365,7 +424,7 @@ int runEdit(const std::vector<std::string>& argv) {
         ui::setResolution(editor.state(),
                           args.integer("--resolution", 0, kMinResolution, kMaxResolution));
       return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
-                            args.text("--move-leaf", ""));
+                            args.text("--move-leaf", ""), args.has("--drag"));
     }
     if (screenshot.empty()) return editor.run();
     // Documentation screenshots: the whole window once the preview has settled.

@@ -79,6 +79,7 @@ const char* kUsageOptions =
     "  --ghosts                   edit: show the ghosts of every part that cuts or intersects\n"
     "  --splats auto|points|quads how the view draws splats (auto: the kind the GPU draws faster)\n"
     "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
+    "  --drag                     with --measure-latency: the N moves as one drag (drafts)\n"
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
     "\n";
 const char* kUsageTail =

@@ -346,7 +346,8 @@ bool Editor::requestPreviewIfNeeded() {
   // A field held while a number is typed into it (ImGui's text input of a drag or slider) is
   // not a drag: the value shown is the one that stays until Enter, so it refines in full.
   const bool typing = ImGui::GetIO().WantTextInput;
-  const bool interactive = (s.document.interacting() && !typing) || gl_->viewport.gizmoDragging();
+  const bool interactive =
+      (s.document.interacting() && !typing) || gl_->viewport.gizmoDragging() || dragHeld_;
   const int wanted = s.document.scene().settings.resolution;
   const uint64_t revision = s.document.revision();
   // The cap depends on what a full (not coarse) result cost. It is worked out when the wanted
@@ -632,7 +633,8 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   if (s.requestFrameSelected) gl_->viewport.frameSelected(s);
   s.requestViewAll = s.requestFrameSelected = false;
   // A held widget that vanished (its node was deleted) must not leave the history coalescing.
-  if (s.document.interacting() && !ImGui::IsAnyItemActive() && !gl_->viewport.gizmoDragging())
+  if (s.document.interacting() && !ImGui::IsAnyItemActive() && !gl_->viewport.gizmoDragging() &&
+      !dragHeld_)
     s.document.endInteraction();
 
   gl_->viewport.drawAnnotations(s, rect);

@@ -96,6 +96,10 @@ class Editor {
   // The longest the last frame() waited for events before drawing, in seconds (0: it only
   // polled): frames keep coming at once while the view refines or a result uploads.
   double lastWaitSeconds() const { return lastWaitSeconds_; }
+  // Holds the hand on the scene as a gizmo drag does, for `--measure-latency --drag`: while
+  // held, previews are requested as a drag's (drafts, PreviewWorker) and the document's
+  // interaction (one undo step) stays open.
+  void holdDrag(bool held) { dragHeld_ = held; }
   // Points the camera at the whole scene.
   void viewAll();
   // Renders the 3D view alone (no panels) off-screen: width * height * 4 RGBA bytes, top row
@@ -141,6 +145,7 @@ class Editor {
   bool capFromResult_ = false;  // the cap was scaled from a full result
   int cappedResolution_ = 0;    // what the preview evaluates (previewResolutionFor)
   bool requestedInteractive_ = false;
+  bool dragHeld_ = false;         // holdDrag
   bool requestedGhosts_ = false;  // the last request asked for every ghost candidate's splats
   // Whether the selection has ghosts, worked out when the document or the selection changes.
   uint64_t ghostWantRevision_ = ~uint64_t(0);
