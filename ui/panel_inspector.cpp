@@ -44,7 +44,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
-  float labelWidth = 72.0f;
+  float labelWidth = 80.0f;  // "move mm" and the fields of every row aligned
   const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
   float w = (ImGui::GetContentRegionAvail().x - labelWidth - 2 * spacing) / 3;
   // The number with its unit in each field where the widest number the format writes fits with

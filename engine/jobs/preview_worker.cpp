@@ -132,8 +132,15 @@ int draftResolutionFor(int full, int coarse, int measuredResolution, double meas
 
 void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress& progress) {
   const int full = request.resolution;
-  const int coarse =
-      draftResolutionFor(full, coarse_, lastFullResolution_, lastFullSeconds_, quickPassSeconds_);
+  // What a pass at `full` would cost: the larger of what the last pass that computed every node
+  // (a drag of the resolution slider computes everything anew) and the last full pass (a scene
+  // grown since) predict.
+  double predicted = -1.0;
+  for (const auto& [seconds, resolution] : {std::pair(wholeSeconds_, wholeResolution_),
+                                            std::pair(lastFullSeconds_, lastFullResolution_)})
+    if (seconds >= 0.0 && resolution > 0)
+      predicted = std::max(predicted, seconds * std::pow(double(full) / resolution, 2.0));
+  const int coarse = draftResolutionFor(full, coarse_, full, predicted, quickPassSeconds_);
   if (request.interactive) {
     evaluatePass(evaluator, request, coarse, coarse < full, progress);
     return;
@@ -177,6 +184,9 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   if (!coarse && result->error.empty() && !onlyIfCached)
     lastFullSeconds_ = result->stats.seconds + result->splatSeconds,
     lastFullResolution_ = resolution;
+  if (result->error.empty() && !onlyIfCached && result->stats.reused == 0 &&
+      result->stats.computed > 0)
+    wholeSeconds_ = result->stats.seconds + result->splatSeconds, wholeResolution_ = resolution;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     finished_ = std::move(result);

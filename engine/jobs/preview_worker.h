@@ -7,16 +7,16 @@
 //     evaluated.
 //   - An interactive request (the user is dragging) is evaluated only at a draft resolution
 //     (draftResolutionFor: the finest of requested, requested/2, requested/4 that the last full
-//     pass's time predicts within quickPassSeconds, never under coarseResolution; on a GPU a
-//     drag is often evaluated in full); the request made when the hand stops refines it. A
-//     calm request for a new scene shows the draft result first, then the full one, unless the
-//     last full pass took less than quickPassSeconds (then the full one comes at once).
-//     A calm request whose full result the cache holds whole (an edit that changed no part: a
-//     measurement, a name) skips the coarse pass, and where its root is the one shown its
-//     result carries the same splats (the UI keeps its image).
-//     A coarse pass passes modifiers under kCoarseModifierCells of its cells through
-//     (EvalOptions::skipModifiersUnderCells): it shows the parts whole, unrounded, rather than
-//     torn by a radius its cells cannot resolve, and comes sooner.
+//     pass and the last pass that computed every node predict under quickPassSeconds, never
+//     under coarseResolution; on a GPU a drag is often evaluated in full); the request made when
+//     the hand stops refines it. A calm request for a new scene shows the draft result first, then
+//     the full one, unless the last full pass took less than quickPassSeconds (then the full one
+//     comes at once). A calm request whose full result the cache holds whole (an edit that changed
+//     no part: a measurement, a name) skips the coarse pass, and where its root is the one shown
+//     its result carries the same splats (the UI keeps its image). A coarse pass passes modifiers
+//     under kCoarseModifierCells of its cells through (EvalOptions::skipModifiersUnderCells): it
+//     shows the parts whole, unrounded, rather than torn by a radius its cells cannot resolve, and
+//     comes sooner.
 //   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the root's
 //     splats (Backend::splats: made where the backend keeps its LDIs, on the device for CUDA)
 //     and the evaluation's statistics. A pass that finished before it was superseded still
@@ -178,6 +178,8 @@ class PreviewWorker {
   std::shared_ptr<const Scene> lastShown_;  // worker thread only
   double lastFullSeconds_ = -1.0;           // worker thread only: the last full pass; -1 none yet
   int lastFullResolution_ = 0;              // worker thread only: of that pass
+  double wholeSeconds_ = -1.0;  // worker thread only: the last pass that computed every node
+  int wholeResolution_ = 0;     // worker thread only: of that pass
   // Worker thread only: the last grid of each resolution evaluated, which the next follows
   // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
   std::map<int, Grid> lastGrids_;
