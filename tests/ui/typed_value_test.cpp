@@ -11,7 +11,7 @@
 namespace strata::ui {
 namespace {
 
-constexpr int kEnter = 1, kEscape = 2;
+constexpr int kEnter = 1, kEscape = 2, kTab = 3;
 
 // A field whose value comes from `stored` each frame, as the inspector's come from the
 // document, and writes back to it (recording each write) when commitTypedValue says so.
@@ -25,6 +25,7 @@ class TypedField : public ::testing::Test {
     io.IniFilename = nullptr;
     io.KeyMap[ImGuiKey_Enter] = kEnter;
     io.KeyMap[ImGuiKey_Escape] = kEscape;
+    io.KeyMap[ImGuiKey_Tab] = kTab;
     unsigned char* pixels = nullptr;
     int w = 0, h = 0;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
@@ -42,6 +43,10 @@ class TypedField : public ::testing::Test {
     double value = stored;
     if (commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value))
       stored = value, writes.push_back(value);
+    // A second field after it, which Tab moves to.
+    double other = storedOther;
+    if (commitTypedValue(ImGui::DragScalar("##w", ImGuiDataType_Double, &other, 1.0f), &other))
+      storedOther = other, otherWrites.push_back(other);
     ImGui::End();
     ImGui::Render();
   }
@@ -58,8 +63,8 @@ class TypedField : public ::testing::Test {
     frame();
   }
 
-  double stored = 7.0;
-  std::vector<double> writes;
+  double stored = 7.0, storedOther = 1.0;
+  std::vector<double> writes, otherWrites;
 };
 
 TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
@@ -82,6 +87,21 @@ TEST_F(TypedField, EscapeKeepsTheValue) {
   press(kEscape);
   EXPECT_TRUE(writes.empty());
   EXPECT_EQ(stored, 7.0);
+}
+
+TEST_F(TypedField, TabAppliesTheNumberAndTypesIntoTheNextField) {
+  frame(/*focus=*/true);
+  frame();
+  type("12");
+  press(kTab);
+  ASSERT_EQ(writes.size(), 1u);
+  EXPECT_EQ(stored, 12.0);
+  type("3");  // into the next field, which holds it until it is left
+  EXPECT_TRUE(otherWrites.empty());
+  press(kEnter);
+  ASSERT_EQ(otherWrites.size(), 1u);
+  EXPECT_EQ(storedOther, 3.0);
+  EXPECT_EQ(writes.size(), 1u);
 }
 
 TEST_F(TypedField, AClickElsewhereAppliesTheTypedNumber) {
