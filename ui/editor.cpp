@@ -557,8 +557,12 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera&
                        : open ? "measure (M): click a third point for the angle, Esc to finish"
                               : "measure (M): click the first point; Esc leaves the tool";
     if (!s.measure.lastSnap.empty()) hint += "   (last point: " + s.measure.lastSnap + ")";
-    draw->AddText(ImVec2(float(rect.x + 10), float(rect.y + 26)), IM_COL32(255, 226, 120, 230),
-                  hint.c_str());
+    // On a dark band: the yellow hint was unreadable over a light part.
+    const ImVec2 at(float(rect.x + 10), float(rect.y + 26));
+    const ImVec2 size = ImGui::CalcTextSize(hint.c_str());
+    draw->AddRectFilled(ImVec2(at.x - 4, at.y - 1), ImVec2(at.x + size.x + 4, at.y + size.y + 1),
+                        IM_COL32(20, 22, 26, 190), 3.0f);
+    draw->AddText(at, IM_COL32(255, 226, 120, 235), hint.c_str());
   }
 }
 
@@ -598,9 +602,12 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   layout.statusHeight = ImGui::GetFrameHeight() + 8.0f;
   clampLayout(layout, ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
   drawMainMenu(s);
+  // The inspector before the outliner and the palette: a number being typed into one of its
+  // fields is applied to the part it was typed for when a click on a row or a palette button
+  // selects another (the field sees the click and is left before the selection changes).
+  drawInspector(s, layout);
   drawOutliner(s, layout);
   drawPalette(s, layout);
-  drawInspector(s, layout);
   drawPreviewPanel(s, layout);
   drawStatusBar(s, layout);
   drawDiagnostics(s);

@@ -7,6 +7,8 @@
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGuiItemFlags_MixedValue: a mixed checkbox
 
+#include <glm/vector_relational.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -105,6 +107,14 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
   return any;
 }
 
+// A value under a parameter's minimum (a size of -5 typed) is refused, not clamped to a part too
+// small to see: the field goes back to the value it had, and the log says why.
+void refuseBelowMinimum(EditorState& state, const char* label, double minimum) {
+  logWarning(state, std::string(label) +
+                        (minimum > 0.0 ? " must be greater than 0" : " must be 0 or more") +
+                        ": the value is kept");
+}
+
 // A positive length parameter.
 void lengthField(EditorState& state, const NodePtr& node, const std::vector<NodePtr>& nodes,
                  const char* label, double PrimitiveParams::*field, double speed, double minimum) {
@@ -122,9 +132,10 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
   edited(state, changed, [&] {
+    if (value < minimum) return refuseBelowMinimum(state, label, minimum);
     for (const NodePtr& n : nodes) {
       PrimitiveParams q = n->params;
-      q.*field = std::max(value, minimum);
+      q.*field = value;
       state.document.setParams(n->id, q);
     }
   });
@@ -146,9 +157,11 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
       dragVec3(
           state, param.label, &value, speed,
           [&](const glm::dvec3& v) {
+            if (glm::any(glm::lessThan(v, glm::dvec3(minimum))))
+              return refuseBelowMinimum(state, param.label, minimum);
             for (const NodePtr& n : nodes) {
               PrimitiveParams q = n->params;
-              q.*param.vector = glm::max(v, glm::dvec3(minimum));
+              q.*param.vector = v;
               state.document.setParams(n->id, q);
             }
           },

@@ -86,6 +86,7 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   ImGui::TextUnformatted("resolution");
   ImGui::SameLine(90.0f);
   ImGui::SetNextItemWidth(-1);
+  const int before = resolution;
   bool changed = ImGui::SliderInt("##resolution", &resolution, 16, kSliderMaxResolution, "%d cells",
                                   ImGuiSliderFlags_Logarithmic);
   changed = commitTypedValue(changed, &resolution);  // "512" never evaluates 16 (from "5")
@@ -93,23 +94,41 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
   // A double-click types a number, as on the inspector's fields (Dear ImGui's sliders take only
-  // Ctrl+click): focusing the slider from code opens its text field.
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) ImGui::SetKeyboardFocusHere(-1);
+  // Ctrl+click): focusing the slider from code opens its text field, and the resolution the
+  // double-click's first press jumped from comes back (Escape then keeps it).
+  static int atFirstPress = 0;
+  if (ImGui::IsItemActivated() && !ImGui::IsMouseDoubleClicked(0)) atFirstPress = before;
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
+    ImGui::SetKeyboardFocusHere(-1);
+    if (atFirstPress > 0) setResolution(state, atFirstPress);
+  }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Cells along the longest side of the grid. Dragging shows a coarse\n"
-        "preview at once; it refines when you let go. Double-click to type a number.");
+        "preview at once; it refines when you let go. Double-click or Ctrl+click\n"
+        "to type a number (Enter applies it, Esc keeps the old one).");
   // The grid of the preview shown where it is this resolution's full pass (the preview keeps its
   // lattice while parts move: Evaluator::previewGridFor), so that the panel and the status bar
   // name the same cells; else the grid an evaluation from scratch would use.
-  Grid grid;
+  // While a drag shows drafts, the last full pass's grid (the one the drag's release refines on).
+  static Grid lastFullGrid;
+  static int lastFullResolution = 0;
   const PreviewResult* shown = state.preview.get();
-  const bool shownGrid =
-      shown && shown->ok() && !shown->coarse && shown->resolution == scene.settings.resolution;
-  if (shownGrid) grid = shown->stats.grid;
+  if (shown && shown->ok() && !shown->coarse)
+    lastFullGrid = shown->stats.grid, lastFullResolution = shown->resolution;
+  Grid grid;
+  const bool shownGrid = lastFullResolution == scene.settings.resolution;
+  if (shownGrid) grid = lastFullGrid;
   if (shownGrid || gridAt(state, scene.settings.resolution, &grid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
+    const int longest = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));
+    if (ImGui::IsItemHovered() && longest != scene.settings.resolution)
+      ImGui::SetTooltip(
+          "%d cells along the longest side, not %d: the preview keeps its cells while parts\n"
+          "move (within an eighth of the size asked for), so that what did not change is\n"
+          "not evaluated again.",
+          longest, scene.settings.resolution);
     ImGui::Text("root LDI ~ %s",
                 bytesText(estimateBytes(state, grid, scene.settings.resolution)).c_str());
     if (state.previewCappedAt > 0) {
@@ -155,17 +174,26 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   const double lo = bounds.empty() ? 0.0 : bounds.min[axis];
   const double hi = bounds.empty() ? 1.0 : bounds.max[axis];
   double where = lo + state.section.at * (hi - lo);
-  const std::string format = std::string("at %s = %.4g ") + unitSymbol(scene.settings.unit);
-  char label[96];
-  std::snprintf(label, sizeof(label), format.c_str(), axes[axis], where);
-  std::string sliderFormat = label;
-  // ImGui formats the value itself: the label is shown through a %% free format string.
-  for (size_t i = sliderFormat.find('%'); i != std::string::npos; i = sliderFormat.find('%', i + 2))
-    sliderFormat.insert(i, "%");
+  const double whereBefore = where;
+  // "at x = %.4g mm": ImGui formats the value, and its text field (Ctrl+click, double-click)
+  // shows the number alone.
+  std::string sliderFormat = std::string("at ") + axes[axis] + " = %.4g ";
+  for (const char* c = unitSymbol(scene.settings.unit); *c; ++c)
+    sliderFormat += *c == '%' ? std::string("%%") : std::string(1, *c);
   const bool movedSection = ImGui::SliderScalar("##sectionAt", ImGuiDataType_Double, &where, &lo,
                                                 &hi, sliderFormat.c_str());
   if (commitTypedValue(movedSection, &where) && hi > lo)
     state.section.at = std::clamp((where - lo) / (hi - lo), 0.0, 1.0);
+  // A double-click types a number here too, at the plane's place before the first press moved it.
+  static double sectionAtFirstPress = 0.0;
+  if (ImGui::IsItemActivated() && !ImGui::IsMouseDoubleClicked(0) && hi > lo)
+    sectionAtFirstPress = std::clamp((whereBefore - lo) / (hi - lo), 0.0, 1.0);
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
+    ImGui::SetKeyboardFocusHere(-1);
+    state.section.at = sectionAtFirstPress;
+  }
+  if (ImGui::IsItemHovered() && !ImGui::IsItemActive())
+    ImGui::SetTooltip("Drag to move the plane; double-click or Ctrl+click to type where");
   ImGui::EndDisabled();
   ImGui::Checkbox("ground grid", &state.showGrid);
   if (ImGui::IsItemHovered())
