@@ -446,6 +446,14 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
                  [a](PatternParams& q, int n) { q.counts[a] = n; });
     }
     vecField("step", &PatternParams::step);
+    // Copies along an axis whose step is 0 lie on top of each other: say so (an artist's array
+    // of 2 along y with a step of 0 showed 5 copies, not 10, without a word).
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.35f, 1.0f));
+    for (int a = 0; a < 3; ++a)
+      if (p.counts[a] > 1 && p.step[a] == 0.0)
+        ImGui::TextWrapped("%d copies along %s lie on top of each other: its step is 0",
+                           p.counts[a], axisName(a));
+    ImGui::PopStyleColor();
   } else if (pattern == Pattern::Circular) {
     bool mixedCount = false, mixedAngle = false;
     for (const NodePtr& n : nodes) {
