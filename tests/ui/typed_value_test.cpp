@@ -41,12 +41,22 @@ class TypedField : public ::testing::Test {
     ImGui::Begin("fields");
     if (focus) ImGui::SetKeyboardFocusHere();
     double value = stored;
-    if (commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value))
+    // The field of the part selected (none once the tree's row was clicked).
+    if (!rowClicked &&
+        commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value))
       stored = value, writes.push_back(value);
     // A second field after it, which Tab moves to.
     double other = storedOther;
     if (commitTypedValue(ImGui::DragScalar("##w", ImGuiDataType_Double, &other, 1.0f), &other))
       storedOther = other, otherWrites.push_back(other);
+    ImGui::End();
+    // A tree after the fields, as the editor draws its outliner after the inspector: a click on
+    // its row selects another part, whose fields are not the ones typed into.
+    ImGui::SetNextWindowPos(ImVec2(400, 0));
+    ImGui::SetNextWindowSize(ImVec2(200, 100));
+    ImGui::Begin("tree");
+    ImGui::Selectable("another part", rowClicked);
+    if (ImGui::IsItemClicked(0)) rowClicked = true;  // on the press, as the outliner selects
     ImGui::End();
     ImGui::Render();
   }
@@ -63,6 +73,7 @@ class TypedField : public ::testing::Test {
     frame();
   }
 
+  bool rowClicked = false;
   double stored = 7.0, storedOther = 1.0;
   std::vector<double> writes, otherWrites;
 };
@@ -102,6 +113,24 @@ TEST_F(TypedField, TabAppliesTheNumberAndTypesIntoTheNextField) {
   ASSERT_EQ(otherWrites.size(), 1u);
   EXPECT_EQ(storedOther, 3.0);
   EXPECT_EQ(writes.size(), 1u);
+}
+
+// The editor's case: typing into the inspector, then clicking a tree row that selects another
+// part. The fields are drawn before the tree, so the field is left (and its number applied to the
+// part it was typed for) before the click changes the selection.
+TEST_F(TypedField, AClickOnARowDrawnAfterTheFieldAppliesTheNumberFirst) {
+  frame(/*focus=*/true);
+  frame();
+  type("8");
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(450, 32);  // the tree's row
+  io.MouseDown[0] = true;
+  frame();
+  io.MouseDown[0] = false;
+  frame();
+  EXPECT_TRUE(rowClicked);
+  ASSERT_EQ(writes.size(), 1u);
+  EXPECT_EQ(stored, 8.0);
 }
 
 TEST_F(TypedField, AClickElsewhereAppliesTheTypedNumber) {
