@@ -574,6 +574,7 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   gl_->frameClock.restart();  // the status bar shows the previous frame's drawing time
   s.now = glfwGetTime() - startTime_;
 
+  rememberSelection(s);  // before this frame's input changes it (undo brings it back)
   deliverKeyEvents();
   s.keyPresses.swap(g_keyPresses);
   g_keyPresses.clear();

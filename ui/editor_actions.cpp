@@ -224,6 +224,22 @@ void pruneSelection(EditorState& state) {
                         state.selection.end());
 }
 
+void rememberSelection(EditorState& state) {
+  constexpr size_t kRemembered = 512;  // revisions; the oldest are forgotten first
+  auto& remembered = state.selectionAtRevision;
+  remembered[state.document.revision()] = state.selection;
+  while (remembered.size() > kRemembered) remembered.erase(remembered.begin());
+}
+
+namespace {
+// After undo or redo: the selection remembered at the revision returned to, where there is one.
+void restoreSelection(EditorState& state) {
+  const auto found = state.selectionAtRevision.find(state.document.revision());
+  if (found != state.selectionAtRevision.end()) state.selection = found->second;
+  pruneSelection(state);
+}
+}  // namespace
+
 PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged) {
   if (mods & kDropCut) return PlaceMode::Cut;
   if (mods & kDropIntersect) return PlaceMode::Intersect;
@@ -678,21 +694,23 @@ void setResolution(EditorState& state, int resolution) {
 // nothing in view (a measurement off screen, a rename) must not look like a dead key.
 void undo(EditorState& state) {
   const std::string label = state.document.undoLabel();
+  rememberSelection(state);  // what redo comes back to
   if (!state.document.undo()) {
     logInfo(state, "nothing to undo");
     return;
   }
-  pruneSelection(state);
+  restoreSelection(state);
   logInfo(state, "undone: " + label);
 }
 
 void redo(EditorState& state) {
   const std::string label = state.document.redoLabel();
+  rememberSelection(state);
   if (!state.document.redo()) {
     logInfo(state, "nothing to redo");
     return;
   }
-  pruneSelection(state);
+  restoreSelection(state);
   logInfo(state, "redone: " + label);
 }
 

@@ -20,6 +20,10 @@ void clearSelection(EditorState& state);
 void selectRange(EditorState& state, NodeId id);
 // Drops ids that are no longer in the document (after undo, delete, open).
 void pruneSelection(EditorState& state);
+// Remembers the selection at the document's current revision (the editor calls it once a frame,
+// before input changes either); undo and redo select what was selected in the state they return
+// to (the parts of a group whose making is undone, not nothing).
+void rememberSelection(EditorState& state);
 
 // New parts land on the primary selection (the root when none) with the editor's place mode:
 // they add, cut or intersect as the mode says and no existing part changes its role

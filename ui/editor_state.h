@@ -8,6 +8,7 @@
 
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -75,6 +76,9 @@ struct KeyPress {
 struct EditorState {
   Document document;
   std::vector<NodeId> selection;  // the primary (inspected, gizmo) node is the last
+  // The selection last seen at each document revision (rememberSelection, once a frame): undo
+  // and redo bring back the selection of the state they return to.
+  std::map<uint64_t, std::vector<NodeId>> selectionAtRevision;
   // What new parts from the palette do where they land (the palette's mode; Ctrl while
   // dropping cuts, Shift intersects, Alt adds): see engine/document/roles.h. Moved and pasted
   // parts keep their own role instead, unless a modifier picks another.
