@@ -150,10 +150,8 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName, b
   if (!leaf) throw Error("--move-leaf: no leaf named '" + leafName + "'");
   if (!editor.waitForPreview(600.0)) throw Error("the first evaluation did not finish");
   for (int i = 0; i < 3; ++i) editor.frame();
-  if (drag)
-    return measureDrag(editor, leaf, count,
-                       Evaluator::gridFor(editor.state().document.scene(), 0).h * 0.37);
   const double step = Evaluator::gridFor(editor.state().document.scene(), 0).h * 0.37;
+  if (drag) return measureDrag(editor, leaf, count, step);
   std::vector<double> ms, firstMs;
   const size_t pointsBefore = editor.splatsDrawnAsPoints();
   const size_t quadsBefore = editor.splatsDrawnAsQuads();

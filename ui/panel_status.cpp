@@ -93,15 +93,10 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
   if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
-  // A double-click types a number, as on the inspector's fields (Dear ImGui's sliders take only
-  // Ctrl+click): focusing the slider from code opens its text field, and the resolution the
-  // double-click's first press jumped from comes back (Escape then keeps it).
-  static int atFirstPress = 0;
-  if (ImGui::IsItemActivated() && !ImGui::IsMouseDoubleClicked(0)) atFirstPress = before;
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
-    ImGui::SetKeyboardFocusHere(-1);
-    if (atFirstPress > 0) setResolution(state, atFirstPress);
-  }
+  // A double-click types a number, as on the inspector's fields, from the resolution its first
+  // press jumped from.
+  double beforePress = 0.0;
+  if (doubleClickOpensTyping(before, &beforePress)) setResolution(state, int(beforePress));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Cells along the longest side of the grid. Dragging shows a coarse\n"
@@ -185,13 +180,9 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (commitTypedValue(movedSection, &where) && hi > lo)
     state.section.at = std::clamp((where - lo) / (hi - lo), 0.0, 1.0);
   // A double-click types a number here too, at the plane's place before the first press moved it.
-  static double sectionAtFirstPress = 0.0;
-  if (ImGui::IsItemActivated() && !ImGui::IsMouseDoubleClicked(0) && hi > lo)
-    sectionAtFirstPress = std::clamp((whereBefore - lo) / (hi - lo), 0.0, 1.0);
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) {
-    ImGui::SetKeyboardFocusHere(-1);
-    state.section.at = sectionAtFirstPress;
-  }
+  double planeBeforePress = 0.0;
+  if (doubleClickOpensTyping(whereBefore, &planeBeforePress) && hi > lo)
+    state.section.at = std::clamp((planeBeforePress - lo) / (hi - lo), 0.0, 1.0);
   if (ImGui::IsItemHovered() && !ImGui::IsItemActive())
     ImGui::SetTooltip("Drag to move the plane; double-click or Ctrl+click to type where");
   ImGui::EndDisabled();

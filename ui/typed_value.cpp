@@ -38,6 +38,17 @@ bool commit(bool changed, T* value) {
 
 }  // namespace
 
+bool doubleClickOpensTyping(double before, double* beforePress) {
+  static ImGuiID pressedId = 0;  // the slider last pressed (not by a double-click's second press)
+  static double atPress = 0.0;
+  const ImGuiID id = ImGui::GetItemID();
+  if (ImGui::IsItemActivated() && !ImGui::IsMouseDoubleClicked(0)) pressedId = id, atPress = before;
+  if (!ImGui::IsItemHovered() || !ImGui::IsMouseDoubleClicked(0)) return false;
+  ImGui::SetKeyboardFocusHere(-1);
+  *beforePress = pressedId == id ? atPress : before;
+  return true;
+}
+
 bool commitTypedValue(bool changed, double* value) {
   return commit(changed, value);
 }

@@ -14,4 +14,11 @@ namespace strata::ui {
 bool commitTypedValue(bool changed, double* value);
 bool commitTypedValue(bool changed, int* value);
 
+// A double-click on a slider opens its text field, as it does on a drag field (Dear ImGui 1.86's
+// sliders take only Ctrl+click). Call right after the slider with its value before the call.
+// On the double-click's frame returns true with `*beforePress` the value the double-click's
+// first press jumped from (a slider's press sets the value under the pointer), which the caller
+// puts back, so that the field opens at it and Escape keeps it.
+bool doubleClickOpensTyping(double before, double* beforePress);
+
 }  // namespace strata::ui

@@ -181,12 +181,16 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   }
   lastShown_ = request.scene;
   // What a pass that computes costs (one served from the cache says nothing of the next).
-  if (!coarse && result->error.empty() && !onlyIfCached)
-    lastFullSeconds_ = result->stats.seconds + result->splatSeconds,
+  const double passSeconds = result->stats.seconds + result->splatSeconds;
+  const bool measured = result->error.empty() && !onlyIfCached;
+  if (measured && !coarse) {
+    lastFullSeconds_ = passSeconds;
     lastFullResolution_ = resolution;
-  if (result->error.empty() && !onlyIfCached && result->stats.reused == 0 &&
-      result->stats.computed > 0)
-    wholeSeconds_ = result->stats.seconds + result->splatSeconds, wholeResolution_ = resolution;
+  }
+  if (measured && result->stats.reused == 0 && result->stats.computed > 0) {
+    wholeSeconds_ = passSeconds;
+    wholeResolution_ = resolution;
+  }
   {
     std::lock_guard<std::mutex> lock(mutex_);
     finished_ = std::move(result);

@@ -84,6 +84,15 @@ struct PreviewStatus {
   int resolution = 0;     // of the running pass
 };
 
+// The resolution of a draft (a drag's, or a calm edit's first) pass when `full` is asked for:
+// the finest of full, full/2 and full/4 whose time, scaled from what a pass took
+// (`measuredSeconds` at `measuredResolution`; time grows with the square of the resolution), is
+// under `budgetSeconds`; never under min(full, coarse) (the coarsest draft worth showing); that
+// while nothing is measured (measuredSeconds < 0). A fixed ladder below `full`, so that drafts
+// keep their lattice (and the cache its LDIs) from one drag to the next.
+int draftResolutionFor(int full, int coarse, int measuredResolution, double measuredSeconds,
+                       double budgetSeconds);
+
 // The resolution a preview is evaluated at when `requested` is asked for. The preview evaluates
 // the whole grid at once (no tiles): a resolution typed far past the slider must neither take
 // all memory nor keep the preview busy for minutes (exports tile, and estimate first). Scaled
@@ -94,15 +103,6 @@ struct PreviewStatus {
 //   - time, above kSliderMaxResolution only (the slider's range is always honoured): at most
 //     kPreviewSeconds.
 // With nothing shown yet, at most kSliderMaxResolution until a result tells the scene's cost.
-// The resolution of a draft (a drag's, or a calm edit's first) pass when `full` is asked for:
-// the finest of full, full/2 and full/4 whose time, scaled from the last full pass that computed
-// (`measuredSeconds` at `measuredResolution`; time grows with the square of the resolution), is
-// under `budgetSeconds`; never under min(full, coarse) (the coarsest draft worth showing); that
-// while nothing is measured (measuredSeconds < 0). A fixed ladder below `full`, so that drafts
-// keep their lattice (and the cache its LDIs) from one drag to the next.
-int draftResolutionFor(int full, int coarse, int measuredResolution, double measuredSeconds,
-                       double budgetSeconds);
-
 constexpr int kSliderMaxResolution = 1024;
 constexpr double kPreviewSeconds = 5.0;
 int previewResolutionFor(int requested, int shownResolution, uint64_t shownCacheBytes,

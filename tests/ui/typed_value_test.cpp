@@ -1,6 +1,7 @@
 // A number typed into a drag or slider field is applied once, when the field is left
-// (ui/typed_value.h), never per keystroke. Drives Dear ImGui without a window: frames with
-// characters and keys fed to its IO, as the editor's GLFW backend feeds them.
+// (ui/typed_value.h), never per keystroke; a double-click opens a slider's text field. Drives Dear
+// ImGui without a window: frames with characters and keys fed to its IO, as the editor's GLFW
+// backend feeds them.
 #include <gtest/gtest.h>
 #include <imgui.h>
 
@@ -49,6 +50,15 @@ class TypedField : public ::testing::Test {
     double other = storedOther;
     if (commitTypedValue(ImGui::DragScalar("##w", ImGuiDataType_Double, &other, 1.0f), &other))
       storedOther = other, otherWrites.push_back(other);
+    // A slider whose double-click opens its text field (as the Preview panel's resolution).
+    double slid = storedSlider;
+    const double before = slid;
+    const double lo = 0.0, hi = 100.0;
+    if (commitTypedValue(ImGui::SliderScalar("##s", ImGuiDataType_Double, &slid, &lo, &hi), &slid))
+      storedSlider = slid;
+    sliderMin = ImGui::GetItemRectMin();
+    double beforePress = 0.0;
+    if (doubleClickOpensTyping(before, &beforePress)) storedSlider = beforePress;
     ImGui::End();
     // A tree after the fields, as the editor draws its outliner after the inspector: a click on
     // its row selects another part, whose fields are not the ones typed into.
@@ -74,6 +84,8 @@ class TypedField : public ::testing::Test {
   }
 
   bool rowClicked = false;
+  double storedSlider = 50.0;
+  ImVec2 sliderMin{};
   double stored = 7.0, storedOther = 1.0;
   std::vector<double> writes, otherWrites;
 };
@@ -131,6 +143,28 @@ TEST_F(TypedField, AClickOnARowDrawnAfterTheFieldAppliesTheNumberFirst) {
   EXPECT_TRUE(rowClicked);
   ASSERT_EQ(writes.size(), 1u);
   EXPECT_EQ(stored, 8.0);
+}
+
+// A double-click on a slider opens its text field at the value before its first press (which
+// jumped the slider to the pointer), so that Escape keeps that value.
+TEST_F(TypedField, ADoubleClickOnASliderTypesFromTheValueBeforeItsFirstPress) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(sliderMin.x + 5.0f, sliderMin.y + 5.0f);  // near 0, far from 50
+  frame();
+  for (int press = 0; press < 2; ++press) {
+    io.MouseDown[0] = true;
+    frame();
+    if (press == 0) {
+      EXPECT_LT(storedSlider, 20.0);  // the first press jumped it
+    }
+    io.MouseDown[0] = false;
+    frame();
+  }
+  EXPECT_EQ(storedSlider, 50.0);
+  type("7");
+  EXPECT_EQ(storedSlider, 50.0);  // typed, not applied yet
+  press(kEscape);
+  EXPECT_EQ(storedSlider, 50.0);
 }
 
 TEST_F(TypedField, AClickElsewhereAppliesTheTypedNumber) {
