@@ -1,6 +1,8 @@
 // The preview panel (resolution), the status bar and the diagnostics window.
 #include <imgui.h>
 
+#include <glm/vector_relational.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -109,10 +111,18 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   static Grid lastFullGrid;
   static int lastFullResolution = 0;
   const PreviewResult* shown = state.preview.get();
-  if (shown && shown->ok() && !shown->coarse)
-    lastFullGrid = shown->stats.grid, lastFullResolution = shown->resolution;
+  if (!shown) lastFullResolution = 0;  // a document opened (replaceDocument): nothing shown yet
+  if (shown && shown->ok() && !shown->coarse) {
+    lastFullGrid = shown->stats.grid;
+    lastFullResolution = shown->resolution;
+  }
+  // Only while it still holds the scene (not another document's, nor an empty scene's).
+  const Bounds parts = sceneBounds(state.document.root());
+  const Bounds held = lastFullGrid.bounds();
   Grid grid;
-  const bool shownGrid = lastFullResolution == scene.settings.resolution;
+  const bool shownGrid = lastFullResolution == scene.settings.resolution && !parts.empty() &&
+                         glm::all(glm::greaterThanEqual(parts.min, held.min)) &&
+                         glm::all(glm::lessThanEqual(parts.max, held.max));
   if (shownGrid) grid = lastFullGrid;
   if (shownGrid || gridAt(state, scene.settings.resolution, &grid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));
