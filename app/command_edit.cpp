@@ -334,8 +334,9 @@ ui::SectionState parseSection(const CliArgs& args) {
       continue;
     }
     char* end = nullptr;
-    section.at = std::strtod(parts[i].c_str(), &end);
-    if (parts[i].empty() || *end != '\0' || !(section.at >= 0.0 && section.at <= 1.0))
+    section.startFraction = std::strtod(parts[i].c_str(), &end);
+    if (parts[i].empty() || *end != '\0' ||
+        !(section.startFraction >= 0.0 && section.startFraction <= 1.0))
       throw Error(usage);
   }
   return section;

@@ -55,6 +55,8 @@ void replaceDocument(EditorState& state, Document document) {
   state.preview.reset();
   state.previewError.clear();
   state.requestViewAll = true;
+  state.section.at.reset();  // placed again in the middle of the new document's parts
+  state.section.startFraction = 0.5;
 }
 
 // The size new parts get: a quarter of the scene's largest extent, or in an empty scene a

@@ -40,13 +40,16 @@ struct PendingReplace {
   std::string path;
 };
 
-// The section plane of the viewport: cuts the preview across axis `axis` (0 x, 1 y, 2 z) at the
-// fraction `at` of the scene's bounds, removing the upper side (the lower with `flip`), and
-// caps the cut. A view setting: not part of the document.
+// The section plane of the viewport: cuts the preview across axis `axis` (0 x, 1 y, 2 z) at
+// `at` (scene units along that axis), removing the upper side (the lower with `flip`), and caps
+// the cut. Until it is placed (`at` unset) it lies at the fraction `startFraction` of the scene's
+// bounds; the editor places it there when it is first shown, so that it stays where it is when
+// parts move (sectionAt). A view setting: not part of the document.
 struct SectionState {
   bool on = false;
   int axis = 0;
-  double at = 0.5;
+  std::optional<double> at;
+  double startFraction = 0.5;
   bool flip = false;
 };
 

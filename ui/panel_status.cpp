@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "engine/document/commands.h"
 #include "engine/eval/evaluator.h"
@@ -16,6 +17,7 @@
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/typed_value.h"
+#include "ui/viewport.h"
 
 namespace strata::ui {
 namespace {
@@ -74,6 +76,57 @@ double estimateBytes(const EditorState& state, const Grid& grid, int resolution)
 
 }  // namespace
 
+namespace {
+
+// A slider's grab half transparent, so that the number drawn over it stays readable (an artist:
+// the grab covered a digit). Pop with ImGui::PopStyleColor(2).
+void pushTranslucentGrab() {
+  for (ImGuiCol col : {ImGuiCol_SliderGrab, ImGuiCol_SliderGrabActive}) {
+    ImVec4 color = ImGui::GetStyleColorVec4(col);
+    color.w *= 0.45f;
+    ImGui::PushStyleColor(col, color);
+  }
+}
+
+// The steps up to `hi`, coarse to fine.
+std::vector<int> resolutionSteps(int hi) {
+  std::vector<int> steps;
+  for (int p = 1; p <= hi; p *= 2) {
+    steps.push_back(p);
+    if (p >= 2 && p + p / 2 <= hi) steps.push_back(p + p / 2);
+  }
+  std::sort(steps.begin(), steps.end());
+  return steps;
+}
+
+}  // namespace
+
+int resolutionStepNearest(int resolution) {
+  if (resolution <= 1) return 1;
+  int best = 1;
+  for (int step : resolutionSteps(2 * resolution)) {
+    const double distance = std::abs(std::log(double(step) / resolution));
+    const double bestDistance = std::abs(std::log(double(best) / resolution));
+    if (distance < bestDistance - 1e-12) best = step;
+  }
+  return best;
+}
+
+int resolutionStepAfter(int resolution, int direction, int lo, int hi) {
+  int result = resolution;
+  if (direction > 0) {
+    for (int step : resolutionSteps(2 * std::max(resolution, 1)))
+      if (step > resolution) {
+        result = step;
+        break;
+      }
+  } else {
+    for (int step : resolutionSteps(resolution))
+      if (step < resolution) result = step;
+  }
+  return std::clamp(result, lo, hi);
+}
+
 void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(
@@ -87,11 +140,19 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   int resolution = scene.settings.resolution;
   ImGui::TextUnformatted("resolution");
   ImGui::SameLine(90.0f);
-  ImGui::SetNextItemWidth(-1);
+  // The slider, then - and + (one step coarser or finer each).
+  const float button = ImGui::GetFrameHeight();
+  const float spacing = ImGui::GetStyle().ItemInnerSpacing.x;
+  ImGui::SetNextItemWidth(-2.0f * (button + spacing));
   const int before = resolution;
+  pushTranslucentGrab();
   bool changed = ImGui::SliderInt("##resolution", &resolution, 16, kSliderMaxResolution, "%d cells",
                                   ImGuiSliderFlags_Logarithmic);
+  ImGui::PopStyleColor(2);
   changed = commitTypedValue(changed, &resolution);  // "512" never evaluates 16 (from "5")
+  // Dragged (not typed), the slider lands on the steps: 20 pixels apart rather than a cell every
+  // pixel or two (an artist's 40-pixel drag went from 256 to 117 cells).
+  if (changed && ImGui::IsItemActive()) resolution = resolutionStepNearest(resolution);
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
   if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
@@ -101,9 +162,21 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   if (doubleClickOpensTyping(before, &beforePress)) setResolution(state, int(beforePress));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "Cells along the longest side of the grid. Dragging shows a coarse\n"
-        "preview at once; it refines when you let go. Double-click or Ctrl+click\n"
-        "to type a number (Enter applies it, Esc keeps the old one).");
+        "Cells along the longest side of the grid. Dragging steps through\n"
+        "16, 24, 32, 48 ... 1024 and shows a coarse preview at once; it refines\n"
+        "when you let go. Double-click or Ctrl+click to type any number\n"
+        "(Enter applies it, Esc keeps the old one).");
+  for (int direction : {-1, +1}) {
+    ImGui::SameLine(0.0f, spacing);
+    const int next = resolutionStepAfter(scene.settings.resolution, direction, 16,
+                                         std::max(kSliderMaxResolution, scene.settings.resolution));
+    ImGui::BeginDisabled(next == scene.settings.resolution);
+    if (ImGui::Button(direction < 0 ? "-##coarser" : "+##finer", ImVec2(button, button)))
+      setResolution(state, next);
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(direction < 0 ? "Coarser: %d cells" : "Finer: %d cells", next);
+  }
   // The grid of the preview shown where it is this resolution's full pass (the preview keeps its
   // lattice while parts move: Evaluator::previewGridFor), so that the panel and the status bar
   // name the same cells; else the grid an evaluation from scratch would use.
@@ -166,33 +239,40 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   const char* axes[] = {"x", "y", "z"};
   ImGui::SameLine();
   ImGui::SetNextItemWidth(50.0f);
-  ImGui::Combo("##sectionAxis", &state.section.axis, axes, 3);
+  // Another axis: the plane starts again in the middle of the scene along it.
+  if (ImGui::Combo("##sectionAxis", &state.section.axis, axes, 3)) {
+    state.section.at.reset();
+    state.section.startFraction = 0.5;
+  }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The axis the section plane lies across");
   ImGui::SameLine();
   ImGui::Checkbox("flip", &state.section.flip);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Cut away the other side of the plane");
   ImGui::SetNextItemWidth(-1);
-  // The plane's place in scene units along its axis (stored as a fraction of the bounds, so
-  // that it stays inside them as the scene changes).
+  // The plane's place in scene units along its axis. It is placed (fixed in the scene) the first
+  // time it is shown, so that it stays where it is as parts move; the slider spans the scene's
+  // bounds, and the plane's place where it lies outside them.
   const Bounds bounds = sceneBounds(state.document.root());
   const int axis = std::clamp(state.section.axis, 0, 2);
-  const double lo = bounds.empty() ? 0.0 : bounds.min[axis];
-  const double hi = bounds.empty() ? 1.0 : bounds.max[axis];
-  double where = lo + state.section.at * (hi - lo);
+  placeSection(state);
+  double where = state.section.at ? *state.section.at : 0.0;
+  const double lo = std::min(where, bounds.empty() ? 0.0 : bounds.min[axis]);
+  const double hi = std::max(where, bounds.empty() ? 1.0 : bounds.max[axis]);
   const double whereBefore = where;
   // "at x = %.4g mm": ImGui formats the value, and its text field (Ctrl+click, double-click)
   // shows the number alone.
   std::string sliderFormat = std::string("at ") + axes[axis] + " = %.4g ";
   for (const char* c = unitSymbol(scene.settings.unit); *c; ++c)
     sliderFormat += *c == '%' ? std::string("%%") : std::string(1, *c);
+  pushTranslucentGrab();
   const bool movedSection = ImGui::SliderScalar("##sectionAt", ImGuiDataType_Double, &where, &lo,
                                                 &hi, sliderFormat.c_str());
-  if (commitTypedValue(movedSection, &where) && hi > lo)
-    state.section.at = std::clamp((where - lo) / (hi - lo), 0.0, 1.0);
+  ImGui::PopStyleColor(2);
+  // A typed place is kept as typed, even outside the scene's bounds.
+  if (commitTypedValue(movedSection, &where) && std::isfinite(where)) state.section.at = where;
   // A double-click types a number here too, at the plane's place before the first press moved it.
   double planeBeforePress = 0.0;
-  if (doubleClickOpensTyping(whereBefore, &planeBeforePress) && hi > lo)
-    state.section.at = std::clamp((planeBeforePress - lo) / (hi - lo), 0.0, 1.0);
+  if (doubleClickOpensTyping(whereBefore, &planeBeforePress)) state.section.at = planeBeforePress;
   if (ImGui::IsItemHovered() && !ImGui::IsItemActive())
     ImGui::SetTooltip("Drag to move the plane; double-click or Ctrl+click to type where");
   ImGui::EndDisabled();

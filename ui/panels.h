@@ -26,6 +26,14 @@ struct PanelLayout : PanelSizes {
   PanelSizes wanted;
 };
 
+// The resolutions the Preview panel's slider lands on when dragged, and its - and + buttons step
+// through: the powers of two and the halves between them (16, 24, 32, 48, ... 768, 1024).
+// resolutionStepNearest is the one nearest `resolution` on a log scale (ties: the coarser);
+// resolutionStepAfter the next one finer (`direction` +1) or coarser (-1) than `resolution`,
+// which need not be one (a typed 300 steps to 384 or 256), kept within [lo, hi].
+int resolutionStepNearest(int resolution);
+int resolutionStepAfter(int resolution, int direction, int lo, int hi);
+
 // The modifier keys held now, as dropMode's bits (editor_actions.h; ImGui's keyboard state).
 int heldDropModifiers();
 

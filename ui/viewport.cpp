@@ -495,12 +495,24 @@ bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) 
   const Bounds b = sceneBounds(state.document.root());
   if (b.empty()) return false;
   const int axis = std::clamp(state.section.axis, 0, 2);
-  const double at =
-      b.min[axis] + std::clamp(state.section.at, 0.0, 1.0) * (b.max[axis] - b.min[axis]);
+  const double at = sectionAt(state.section, b);
   *normal = glm::dvec3(0.0);
   (*normal)[axis] = state.section.flip ? -1.0 : 1.0;
   *offset = state.section.flip ? -at : at;
   return true;
+}
+
+double sectionAt(const SectionState& section, const Bounds& scene) {
+  if (section.at) return *section.at;
+  const int axis = std::clamp(section.axis, 0, 2);
+  return scene.min[axis] +
+         std::clamp(section.startFraction, 0.0, 1.0) * (scene.max[axis] - scene.min[axis]);
+}
+
+void placeSection(EditorState& state) {
+  if (!state.section.on || state.section.at) return;
+  const Bounds b = sceneBounds(state.document.root());
+  if (!b.empty()) state.section.at = sectionAt(state.section, b);
 }
 
 const Bounds& Viewport::cachedSelectionBounds(const EditorState& state) {

@@ -122,4 +122,12 @@ class Viewport {
 // dot(normal, p) > offset is cut away). False when it is off or the scene is empty.
 bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset);
 
+// Where `section` lies along its axis (scene units) in a scene of bounds `scene` (not empty): its
+// place once placed, else the fraction `startFraction` of the bounds.
+double sectionAt(const SectionState& section, const Bounds& scene);
+
+// Fixes the section plane of `state` in the scene where it now lies, when it is on, not yet
+// placed and the scene has parts: from then on it stays there as parts move. Each frame.
+void placeSection(EditorState& state);
+
 }  // namespace strata::ui

@@ -90,7 +90,7 @@ TEST(HeadlessRender, RendersASceneWithoutAWindow) {
   // Cut at y = 0 and seen from +y: the cap, flat (no highlight), fills the disc.
   options.section.on = true;
   options.section.axis = 1;
-  options.section.at = 0.5;
+  options.section.startFraction = 0.5;
   SceneRender cut = renderScene(scene, "", backend, options, progress);
   EXPECT_TRUE(reddish(pixel(cut, 200, 100, 80)));
   int differing = 0;
@@ -169,7 +169,7 @@ TEST(HeadlessRender, PointsLookLikeQuads) {
     SCOPED_TRACE(cut ? "section on" : "whole");
     options.section.on = cut;
     options.section.axis = 0;
-    options.section.at = 0.6;
+    options.section.startFraction = 0.6;
     options.splatPrimitive = SplatPrimitive::Quads;
     SceneRender quads = renderScene(scene, "", backend, options, progress);
     options.splatPrimitive = SplatPrimitive::Points;
