@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
@@ -82,12 +83,24 @@ struct LabelBoxes {
   }
 };
 
-// A label centred on `at` (screen pixels): moved whole into the view [viewLo, viewHi) where it
-// would cross its edge (a measurement near the edge read "12.4" for "12.45 mm"), and down past the
-// labels already drawn; not drawn where none of it would have been in the view.
+// The on-screen segment (pixels) a label names, when it has one.
+struct LabelledSegment {
+  ImVec2 a, b;
+};
+
+// A label centred on `at` (screen pixels), or placed by labelCentre when it names `segment`:
+// moved whole into the view [viewLo, viewHi) where it would cross its edge (a measurement near
+// the edge read "12.4" for "12.45 mm"), and down past the labels already drawn; not drawn where
+// none of it would have been in the view.
 void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* boxes, ImVec2 viewLo,
-           ImVec2 viewHi) {
+           ImVec2 viewHi, const std::optional<LabelledSegment>& segment = std::nullopt) {
   const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  if (segment) {
+    const glm::dvec2 centre =
+        measureLabelCentre({segment->a.x, segment->a.y}, {segment->b.x, segment->b.y},
+                           {size.x * 0.5 + 4.0, size.y * 0.5 + 2.0});
+    at = ImVec2(float(centre.x), float(centre.y));
+  }
   ImVec2 lo(at.x - size.x * 0.5f - 4.0f, at.y - size.y * 0.5f - 2.0f);
   ImVec2 hi(at.x + size.x * 0.5f + 4.0f, at.y + size.y * 0.5f + 2.0f);
   auto shift = [&](float dx, float dy) {
@@ -110,6 +123,22 @@ void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* box
 }
 
 }  // namespace
+
+glm::dvec2 measureLabelCentre(glm::dvec2 a, glm::dvec2 b, glm::dvec2 half) {
+  const glm::dvec2 mid = 0.5 * (a + b);
+  const double marker = 6.0;  // addMarker's 5 pixels, and one
+  auto covers = [&](glm::dvec2 p) {
+    return std::abs(p.x - mid.x) < half.x + marker && std::abs(p.y - mid.y) < half.y + marker;
+  };
+  if (!covers(a) && !covers(b)) return mid;
+  const glm::dvec2 d = b - a;
+  const double length = glm::length(d);
+  glm::dvec2 normal(0.0, -1.0);  // a segment seen end-on: above its point
+  if (length > 0.5) normal = glm::dvec2(d.y, -d.x) / length;
+  if (normal.y > 0.0) normal = -normal;
+  const double away = std::abs(normal.x) * half.x + std::abs(normal.y) * half.y + marker;
+  return mid + normal * away;
+}
 
 glm::dvec3 snapMeasurePoint(const EditorState& state, const ScreenMapping& view, const PickHit& hit,
                             glm::dvec2 mouse, const std::function<bool(const glm::dvec3&)>& shown,
@@ -253,6 +282,12 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
     *out = ImVec2(float(x0 + px.x), float(y0 + px.y));
     return true;
   };
+  // The segment from p to q on screen, where both ends are in front of the camera.
+  auto segment = [&](const glm::dvec3& p, const glm::dvec3& q) -> std::optional<LabelledSegment> {
+    LabelledSegment s;
+    if (!screen(p, &s.a) || !screen(q, &s.b)) return std::nullopt;
+    return s;
+  };
   LabelBoxes boxes;
   for (const Measurement& m : state.document.scene().measurements) {
     const MeasureValues v = measureValues(root, m);
@@ -261,10 +296,11 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
       label(draw, at,
             distanceText(state, v.distance) + "\ndx " + distanceText(state, v.delta.x) + "  dy " +
                 distanceText(state, v.delta.y) + "  dz " + distanceText(state, v.delta.z),
-            &boxes, viewLo, viewHi);
+            &boxes, viewLo, viewHi, segment(v.a, v.b));
     if (m.points.size() == 3) {
       if (screen(0.5 * (v.b + v.c), &at))
-        label(draw, at, distanceText(state, v.distance2), &boxes, viewLo, viewHi);
+        label(draw, at, distanceText(state, v.distance2), &boxes, viewLo, viewHi,
+              segment(v.b, v.c));
       char angle[48];
       std::snprintf(angle, sizeof(angle), "%.2f\u00B0", v.angleDegrees);
       if (v.hasAngle && screen(v.b, &at))

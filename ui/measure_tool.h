@@ -73,4 +73,10 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
 // draw list of the frame; (x0, y0) is the view's top-left corner in window pixels.
 void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0);
 
+// Where the label of the on-screen segment a-b goes, the label's half-size `half` (all pixels,
+// y down): on the segment's middle, or, where the label would cover an end's marker (a segment
+// shorter than its label: it hid the whole line), beside the segment, clear of the line through
+// it and of the markers, on its upper side.
+glm::dvec2 measureLabelCentre(glm::dvec2 a, glm::dvec2 b, glm::dvec2 half);
+
 }  // namespace strata::ui

@@ -178,5 +178,32 @@ TEST(MeasureTool, ClicksOnASectionCapSnapToItsEdges) {
   EXPECT_FALSE(w.capEdgeNear(48, 50, 10.0));  // a surface, not a cap: no side of a cap near
 }
 
+// A label (100 x 36 pixels) on a segment longer than it sits on its middle; on a short one it
+// moves beside the segment: clear of the line through it and of both ends' markers, above it.
+TEST(MeasureLabel, AShortSegmentsLabelGoesBesideItsLine) {
+  const glm::dvec2 half(50.0, 18.0);
+  EXPECT_EQ(measureLabelCentre({100, 300}, {400, 300}, half), glm::dvec2(250, 300));
+  auto clear = [&](glm::dvec2 a, glm::dvec2 b) {
+    const glm::dvec2 c = measureLabelCentre(a, b, half);
+    const glm::dvec2 corners[4] = {c + glm::dvec2(-half.x, -half.y),
+                                   c + glm::dvec2(half.x, -half.y), c + glm::dvec2(half.x, half.y),
+                                   c + glm::dvec2(-half.x, half.y)};
+    // Every corner of the box on the same side of the line, at least the marker's 5 pixels away.
+    glm::dvec2 n = b - a;
+    n = glm::length(n) > 0.5 ? glm::dvec2(n.y, -n.x) / glm::length(n) : glm::dvec2(0.0, -1.0);
+    int above = 0;
+    for (const glm::dvec2& p : corners) {
+      const double side = glm::dot(p - a, n);
+      if (std::abs(side) < 5.0) return false;
+      above += side > 0.0 ? 1 : -1;
+    }
+    return std::abs(above) == 4 && c.y < 0.5 * (a.y + b.y) + 1e-9;
+  };
+  EXPECT_TRUE(clear({200, 300}, {230, 300}));  // level
+  EXPECT_TRUE(clear({200, 300}, {205, 270}));  // steep
+  EXPECT_TRUE(clear({200, 300}, {225, 320}));  // falling
+  EXPECT_TRUE(clear({200, 300}, {200, 300}));  // end-on: one point
+}
+
 }  // namespace
 }  // namespace strata::ui
