@@ -55,6 +55,9 @@ struct TileView {
   const uint32_t* boundary;       // boundary cells (mixed corners), increasing index
   const uint8_t* boundaryMasks;   // per boundary cell: bit c set when corner c is inside
   int64_t boundaryCount;
+  // Optional (null: search all of `boundary`): per row of window cells along x, (j, k) at
+  // j + cells[1] * k, its first boundary cell's number, and boundaryCount last.
+  const uint32_t* boundaryRowStart;
   const uint32_t* vertexStart;  // per boundary cell: its first vertex in `vertices`
   const CellVertex* vertices;   // the tile's cell vertices (read by the polygon step)
 };
@@ -265,6 +268,11 @@ STRATA_HD const CellVertex& vertexOfEdge(const TileView& t, const CellCaseTable&
                                          const int c[3], int edge) {
   const uint32_t index = uint32_t(tileCell(t, c[0], c[1], c[2]));
   int64_t lo = 0, hi = t.boundaryCount;  // lower bound of index in t.boundary
+  if (t.boundaryRowStart) {              // within the cell's row: the same lower bound
+    const int64_t row = int64_t(c[1]) + int64_t(t.cells[1]) * c[2];
+    lo = t.boundaryRowStart[row];
+    hi = t.boundaryRowStart[row + 1];
+  }
   while (lo < hi) {
     const int64_t mid = (lo + hi) / 2;
     if (t.boundary[mid] < index)
@@ -508,6 +516,40 @@ STRATA_HD uint8_t edgeResolved(const TileView& t, const int n[3], int axis, bool
   const uint32_t outsideNone = nodeUnanimous(t, outsideNode[0], outsideNode[1], outsideNode[2]);
   return uint8_t((insideAll ? kInsideResolved : 0) |
                  (onOuterFace || outsideNone ? kOutsideResolved : 0));
+}
+
+// What cellPolygons will write for boundary cell number b, from the corner signs alone (no
+// vertex or crossing is read, so it may run before the vertices are placed): returns the number
+// of triangles, and *faceCount the face-segment vertices. A polygon without a split face is two
+// triangles; one with s split faces has 4 + s vertices and is a fan of 2 + s triangles.
+STRATA_HD int cellPolygonCounts(const TileView& t, const CellCaseTable& table, int64_t b,
+                                int* faceCount) {
+  *faceCount = 0;
+  int n[3];
+  tileCellCoords(t, t.boundary[b], n);
+  for (int k = 0; k < 3; ++k)
+    if (n[k] < t.ownedLo[k] || n[k] >= t.ownedHi[k]) return 0;
+  const uint8_t mask = t.boundaryMasks[b];
+  const bool in0 = mask & 1;
+  int triangleCount = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (bool((mask >> (1 << axis)) & 1) == in0) continue;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    int cells[4][3];
+    for (int q = 0; q < 4; ++q) {
+      int offset[2];
+      cellAroundEdge(q, offset);
+      for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
+      cells[q][u] -= offset[0];
+      cells[q][v] -= offset[1];
+    }
+    int splits = 0;
+    for (int q = 0; q < 4; ++q)
+      splits += faceSplitsEdge(t, table, cells, axis, q, faceAroundEdge(axis, q)) ? 1 : 0;
+    triangleCount += 2 + splits;
+    *faceCount += splits;
+  }
+  return triangleCount;
 }
 
 // The polygons of the sign-changing edges owned by boundary cell number b (those running from

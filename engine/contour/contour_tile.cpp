@@ -7,6 +7,7 @@
 
 #include "engine/contour/contour_cells.h"
 #include "engine/contour/tile_sides.h"
+#include "engine/util/error.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
@@ -18,10 +19,68 @@ constexpr CellCaseTable kCellCases = buildCellCaseTable();
 struct HostTile {
   TileSides sides;  // node sides and boundary cells (tile_sides.h)
   std::vector<uint32_t> vertexStart;
+  std::vector<uint32_t> boundaryRowStart;  // TileView::boundaryRowStart
   TileView view{};
 };
 
-void placeVertices(HostTile& tile, TileContour* out, Progress* progress) {
+// Where each row of cells along x starts in the boundary cells (they come in increasing index),
+// so that the polygon step finds a neighbouring cell's vertices within its row, not by a search
+// over all of them (which took half of the polygon step at 1024 cells).
+void indexBoundaryRows(HostTile& tile) {
+  const std::vector<uint32_t>& boundary = tile.sides.boundary;
+  const int64_t rows = int64_t(tile.view.cells[1]) * tile.view.cells[2];
+  const uint32_t cellsX = uint32_t(tile.view.cells[0]);
+  tile.boundaryRowStart.resize(size_t(rows) + 1);
+  int64_t row = 0;
+  for (size_t b = 0; b < boundary.size(); ++b) {
+    const int64_t of = int64_t(boundary[b] / cellsX);
+    while (row <= of) tile.boundaryRowStart[size_t(row++)] = uint32_t(b);
+  }
+  while (row <= rows) tile.boundaryRowStart[size_t(row++)] = uint32_t(boundary.size());
+  tile.view.boundaryRowStart = tile.boundaryRowStart.data();
+}
+
+// Boundary cells per chunk of the vertex and polygon steps.
+constexpr int64_t kGrain = 4096;
+
+// Where each chunk of kGrain boundary cells writes its triangles and face-segment vertices:
+// counted from the corner signs first (cellPolygonCounts), so that the polygon step writes
+// straight into the tile's arrays, sized once (no per-chunk arrays grown and copied together).
+struct ChunkStarts {
+  std::vector<uint64_t> triangles;  // per chunk, and the total last
+  std::vector<uint64_t> faces;      // face vertices after the cell vertices, likewise
+};
+
+ChunkStarts countPolygons(const HostTile& tile, Progress* progress) {
+  const int64_t count = int64_t(tile.sides.boundary.size());
+  const size_t chunkCount = size_t((count + kGrain - 1) / kGrain);
+  ChunkStarts starts;
+  starts.triangles.assign(chunkCount + 1, 0);
+  starts.faces.assign(chunkCount + 1, 0);
+  parallelFor(0, count, kGrain, [&](int64_t first, int64_t last) {
+    if (progress) progress->check();
+    uint64_t triangles = 0, faces = 0;
+    for (int64_t b = first; b < last; ++b) {
+      int f = 0;
+      triangles += uint64_t(cellPolygonCounts(tile.view, kCellCases, b, &f));
+      faces += uint64_t(f);
+    }
+    starts.triangles[size_t(first / kGrain)] = triangles;
+    starts.faces[size_t(first / kGrain)] = faces;
+  });
+  uint64_t triangles = 0, faces = 0;
+  for (size_t c = 0; c <= chunkCount; ++c) {
+    const uint64_t t = starts.triangles[c], f = starts.faces[c];
+    starts.triangles[c] = triangles;
+    starts.faces[c] = faces;
+    triangles += t;
+    faces += f;
+  }
+  return starts;
+}
+
+// The cell vertices, then room for `faces` face-segment vertices after them.
+void placeVertices(HostTile& tile, uint64_t faces, TileContour* out, Progress* progress) {
   const size_t count = tile.sides.boundary.size();
   tile.vertexStart.assign(count + 1, 0);
   uint32_t total = 0;
@@ -30,8 +89,8 @@ void placeVertices(HostTile& tile, TileContour* out, Progress* progress) {
     total += uint32_t(kCellCases.cases[tile.sides.boundaryMasks[b]].components);
   }
   tile.vertexStart[count] = total;
-  out->vertices.resize(total);
-  parallelFor(0, int64_t(count), 2048, [&](int64_t first, int64_t last) {
+  out->vertices.resize(total + faces);
+  parallelFor(0, int64_t(count), kGrain, [&](int64_t first, int64_t last) {
     if (progress) progress->check();
     for (int64_t b = first; b < last; ++b)
       placeCellVertices(tile.view, kCellCases, b,
@@ -41,34 +100,29 @@ void placeVertices(HostTile& tile, TileContour* out, Progress* progress) {
   tile.view.vertices = out->vertices.data();
 }
 
-void emitPolygons(HostTile& tile, TileContour* out, Progress* progress) {
-  const size_t count = tile.sides.boundary.size();
-  constexpr int64_t kGrain = 4096;
-  const size_t chunkCount = size_t((int64_t(count) + kGrain - 1) / kGrain);
-  std::vector<std::vector<ContourTriangle>> chunks(chunkCount);
-  std::vector<std::vector<ContourVertex>> faceVertices(chunkCount);
+void emitPolygons(HostTile& tile, const ChunkStarts& starts, TileContour* out, Progress* progress) {
+  const int64_t count = int64_t(tile.sides.boundary.size());
+  const size_t cellVertices = tile.vertexStart[size_t(count)];
+  out->triangles.resize(starts.triangles.back());
   std::atomic<uint64_t> synthesized{0};
-  parallelFor(0, int64_t(count), kGrain, [&](int64_t first, int64_t last) {
+  parallelFor(0, count, kGrain, [&](int64_t first, int64_t last) {
     if (progress) progress->check();
-    std::vector<ContourTriangle>& tris = chunks[size_t(first / kGrain)];
-    std::vector<ContourVertex>& extra = faceVertices[size_t(first / kGrain)];
+    const size_t chunk = size_t(first / kGrain);
+    ContourTriangle* tris = out->triangles.data() + starts.triangles[chunk];
+    ContourVertex* faces = out->vertices.data() + cellVertices + starts.faces[chunk];
+    const ContourTriangle* trisEnd = out->triangles.data() + starts.triangles[chunk + 1];
+    const ContourVertex* facesEnd = out->vertices.data() + cellVertices + starts.faces[chunk + 1];
     int localSynthesized = 0;
-    CellTriangle cellTris[kMaxCellTriangles];
-    CellVertex cellFaces[kMaxCellFaceVertices];
     for (int64_t b = first; b < last; ++b) {
-      int faces = 0;
-      const int n =
-          cellPolygons(tile.view, kCellCases, b, cellTris, cellFaces, &faces, &localSynthesized);
-      tris.insert(tris.end(), cellTris, cellTris + n);
-      extra.insert(extra.end(), cellFaces, cellFaces + faces);
+      int faceCount = 0;
+      tris += cellPolygons(tile.view, kCellCases, b, tris, faces, &faceCount, &localSynthesized);
+      faces += faceCount;
     }
+    // The count and the polygons disagreeing would leave stale or overwritten entries.
+    if (tris != trisEnd || faces != facesEnd)
+      throw Error("contour: a chunk's polygons differ from their count (internal error)");
     synthesized += uint64_t(localSynthesized);
   });
-  size_t total = 0;
-  for (const auto& c : chunks) total += c.size();
-  out->triangles.reserve(total);
-  for (auto& c : chunks) out->triangles.insert(out->triangles.end(), c.begin(), c.end());
-  for (auto& f : faceVertices) out->vertices.insert(out->vertices.end(), f.begin(), f.end());
   out->synthesizedCrossings = synthesized.load();
 }
 
@@ -107,8 +161,10 @@ TileContour contourTile(const Ldi& ldi, const glm::ivec3& globalCells, const glm
   TileContour out;
   decideTileSides(&tile.view, &tile.sides, progress);
   out.signDisagreements = tile.sides.disagreements;
-  placeVertices(tile, &out, progress);
-  emitPolygons(tile, &out, progress);
+  indexBoundaryRows(tile);
+  const ChunkStarts starts = countPolygons(tile, progress);
+  placeVertices(tile, starts.faces.back(), &out, progress);
+  emitPolygons(tile, starts, &out, progress);
   return out;
 }
 

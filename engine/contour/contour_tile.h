@@ -15,6 +15,7 @@
 
 #include "engine/contour/contour_cells.h"
 #include "engine/ldi/ldi.h"
+#include "engine/util/host_array.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -22,9 +23,10 @@ namespace strata {
 using ContourVertex = CellVertex;  // see contour_cells.h
 using ContourTriangle = CellTriangle;
 
+// Arrays of uninitialised growth (host_array.h): written whole by the contour's workers.
 struct TileContour {
-  std::vector<ContourVertex> vertices;  // may repeat vertices of neighbouring tiles (same keys)
-  std::vector<ContourTriangle> triangles;
+  HostArray<ContourVertex> vertices;  // may repeat vertices of neighbouring tiles (same keys)
+  HostArray<ContourTriangle> triangles;
   uint64_t synthesizedCrossings = 0;  // edges whose ray had no matching surfel (tangent rays)
   uint64_t signDisagreements = 0;     // nodes whose three rays disagreed (majority decided)
 };

@@ -125,7 +125,7 @@ void sortTiles(TiledContour* c, Progress& progress) {
   });
   progress.check();
   if (c->tiles.size() == 1) {
-    std::vector<ContourVertex>& v = c->tiles[0].vertices;
+    auto& v = c->tiles[0].vertices;
     v.erase(
         std::unique(v.begin(), v.end(),
                     [](const ContourVertex& a, const ContourVertex& b) { return a.key == b.key; }),
@@ -220,7 +220,7 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
       }
     });
     r.maxPlaneDistance = std::max(r.maxPlaneDistance, maxPlane.load());
-    for (TileContour& t : c.tiles) t.vertices = std::vector<ContourVertex>();
+    for (TileContour& t : c.tiles) t.vertices = HostArray<ContourVertex>();
   }
   std::vector<SortedRun<ContourTriangle>> runs;
   for (const TileContour& t : c.tiles) runs.push_back({t.triangles.data(), t.triangles.size()});

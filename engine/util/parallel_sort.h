@@ -14,8 +14,8 @@
 namespace strata {
 
 // Sorts `v` by key(element) (a uint64_t), ascending. T: default-constructible and copyable.
-template <typename T, typename Key>
-void parallelSortByKey(std::vector<T>& v, Key key) {
+template <typename T, typename Allocator, typename Key>
+void parallelSortByKey(std::vector<T, Allocator>& v, Key key) {
   const auto less = [&](const T& a, const T& b) { return key(a) < key(b); };
   const size_t n = v.size();
   const int workers = workerCount();
@@ -53,7 +53,7 @@ void parallelSortByKey(std::vector<T>& v, Key key) {
     }
     bucketStart[b + 1] = offset;
   }
-  std::vector<T> out(n);
+  std::vector<T, Allocator> out(n);
   parallelFor(0, int64_t(n), kChunk, [&](int64_t b, int64_t e) {
     uint64_t* cursor = &at[size_t(b / kChunk) * buckets];
     for (int64_t i = b; i < e; ++i) out[cursor[bucketOf(key(v[size_t(i)]))]++] = v[size_t(i)];

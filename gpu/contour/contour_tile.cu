@@ -265,15 +265,19 @@ void emitTilePolygons(DeviceTile& d, const DeviceStream& stream, TileContour* ou
         d.counters.data() + 1);
     STRATA_CUDA_CHECK(cudaGetLastError());
   }
-  std::vector<CellVertex> faceHost;
-  d.vertices.downloadAsync(&out->vertices);
-  faces.downloadAsync(&faceHost);
+  // The cell vertices, then the face-segment vertices after them, in one host array.
+  out->vertices.resize(d.vertices.size() + faces.size());
+  if (d.vertices.size())
+    STRATA_CUDA_CHECK(cudaMemcpyAsync(out->vertices.data(), d.vertices.data(), d.vertices.bytes(),
+                                      cudaMemcpyDeviceToHost, stream.get()));
+  if (faces.size())
+    STRATA_CUDA_CHECK(cudaMemcpyAsync(out->vertices.data() + d.vertices.size(), faces.data(),
+                                      faces.bytes(), cudaMemcpyDeviceToHost, stream.get()));
   triangles.downloadAsync(&out->triangles);
   unsigned long long stats[2] = {0, 0};
   STRATA_CUDA_CHECK(cudaMemcpyAsync(stats, d.counters.data(), sizeof(stats), cudaMemcpyDeviceToHost,
                                     stream.get()));
   stream.synchronize();
-  out->vertices.insert(out->vertices.end(), faceHost.begin(), faceHost.end());
   out->signDisagreements = stats[0];
   out->synthesizedCrossings = stats[1];
 }

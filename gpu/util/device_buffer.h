@@ -61,7 +61,8 @@ class DeviceBuffer {
 
   // Copies the contents into *host (resized to size()), queued on the buffer's stream: *host is
   // complete once that stream is synchronized.
-  void downloadAsync(std::vector<T>* host) const {
+  template <typename Allocator>
+  void downloadAsync(std::vector<T, Allocator>* host) const {
     host->resize(size_);
     if (size_)
       STRATA_CUDA_CHECK(
