@@ -220,18 +220,25 @@ STRATA_HD EdgeCrossing tileCrossing(const TileView& t, int axis, const int n[3],
   return c;
 }
 
-// Writes the vertices of boundary cell number b (one per surface component, in component
-// order) to out.
-STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, int64_t b,
-                                 CellVertex* out) {
-  const uint32_t index = t.boundary[b];
-  int c[3];
-  tileCellCoords(t, index, c);
-  const uint8_t mask = t.boundaryMasks[b];
-  const CellCase& cc = table.cases[mask];
+// The Hermite data of a boundary cell per surface component, and their QEFs: the first step of
+// placing its vertices.
+struct CellPlanes {
+  int c[3];  // the window cell
+  int components;
   double points[kMaxCellComponents][12][3];
   float normals[kMaxCellComponents][12][3];
-  int n[kMaxCellComponents] = {0, 0, 0, 0};
+  int n[kMaxCellComponents];
+  Qef qef[kMaxCellComponents];
+};
+
+STRATA_HD void gatherCellPlanes(const TileView& t, const CellCaseTable& table, int64_t b,
+                                CellPlanes* cp) {
+  tileCellCoords(t, t.boundary[b], cp->c);
+  const int* c = cp->c;
+  const uint8_t mask = t.boundaryMasks[b];
+  const CellCase& cc = table.cases[mask];
+  cp->components = cc.components;
+  for (int comp = 0; comp < kMaxCellComponents; ++comp) cp->n[comp] = 0;
   for (int edge = 0; edge < 12; ++edge) {
     const int comp = cc.edgeComponent[edge];
     if (comp < 0) continue;
@@ -240,27 +247,50 @@ STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, 
     const int axis = edge >> 2;
     const int node[3] = {c[0] + (c0 & 1), c[1] + ((c0 >> 1) & 1), c[2] + ((c0 >> 2) & 1)};
     const EdgeCrossing x = tileCrossing(t, axis, node, (mask >> c0) & 1);
-    double* p = points[comp][n[comp]];
+    double* p = cp->points[comp][cp->n[comp]];
     for (int d = 0; d < 3; ++d) p[d] = double(t.first[d] + node[d]);
     p[axis] = x.t;
-    for (int d = 0; d < 3; ++d) normals[comp][n[comp]][d] = x.normal[d];
-    ++n[comp];
+    for (int d = 0; d < 3; ++d) cp->normals[comp][cp->n[comp]][d] = x.normal[d];
+    ++cp->n[comp];
   }
-  const int64_t cellGlobal[3] = {c[0] + t.first[0], c[1] + t.first[1], c[2] + t.first[2]};
+  for (int comp = 0; comp < cp->components; ++comp)
+    cp->qef[comp] = buildQef(cp->points[comp], cp->normals[comp], cp->n[comp]);
+}
+
+// The last step: the cell's vertices (one per component, in component order) to out, from the
+// decompositions m[comp], v[comp] of its QEFs' matrices (symmetricEigen3 of qefMatrix).
+STRATA_HD void finishCellVertices(const TileView& t, const CellPlanes& cp, const double (*m)[3][3],
+                                  const double (*v)[3][3], CellVertex* out) {
+  const int64_t cellGlobal[3] = {cp.c[0] + t.first[0], cp.c[1] + t.first[1], cp.c[2] + t.first[2]};
   double x[kMaxCellComponents][3];
   double mass[kMaxCellComponents][3];
-  for (int comp = 0; comp < cc.components; ++comp) {
-    Qef q = buildQef(points[comp], normals[comp], n[comp]);
+  for (int comp = 0; comp < cp.components; ++comp) {
+    const Qef& q = cp.qef[comp];
     for (int k = 0; k < 3; ++k) x[comp][k] = mass[comp][k] = q.mass[k];
-    solveQef(q, cellGlobal, x[comp]);
+    solveQefWithEigen(q, m[comp], v[comp], cellGlobal, x[comp]);
   }
-  separateCoincidentVertices(x, mass, cc.components);
-  const uint64_t cellKey = tileGlobalCell(t, c) * 4;
-  for (int comp = 0; comp < cc.components; ++comp) {
+  separateCoincidentVertices(x, mass, cp.components);
+  const uint64_t cellKey = tileGlobalCell(t, cp.c) * 4;
+  for (int comp = 0; comp < cp.components; ++comp) {
     out[comp].key = cellKey + uint64_t(comp);
     for (int k = 0; k < 3; ++k) out[comp].position[k] = x[comp][k];
-    out[comp].planeDistance = qefPlaneDistance(points[comp], normals[comp], n[comp], x[comp]);
+    out[comp].planeDistance =
+        qefPlaneDistance(cp.points[comp], cp.normals[comp], cp.n[comp], x[comp]);
   }
+}
+
+// Writes the vertices of boundary cell number b (one per surface component, in component
+// order) to out. The CPU places two cells at a time with the same steps (contour_tile.cpp).
+STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, int64_t b,
+                                 CellVertex* out) {
+  CellPlanes cp;
+  gatherCellPlanes(t, table, b, &cp);
+  double m[kMaxCellComponents][3][3], v[kMaxCellComponents][3][3];
+  for (int comp = 0; comp < cp.components; ++comp) {
+    qefMatrix(cp.qef[comp], m[comp]);
+    symmetricEigen3(m[comp], v[comp]);
+  }
+  finishCellVertices(t, cp, m, v, out);
 }
 
 // The vertex of the component of window cell c that contains cell edge `edge`.
