@@ -200,23 +200,29 @@ STRATA_HD void symmetricEigen3(double m[3][3], double v[3][3]) {
       for (int q = p + 1; q < 3; ++q) jacobiRotate(m, v, p, q);
 }
 
-// symmetricEigen3 of two matrices at once, each bit for bit as alone: the two chains of
-// dependent divisions and square roots (the decomposition's cost) run side by side, which a
-// processor that executes out of order overlaps (about twice the throughput on the CPU).
-STRATA_HD void symmetricEigen3Pair(double a[3][3], double va[3][3], double b[3][3],
-                                   double vb[3][3]) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) va[i][j] = vb[i][j] = i == j ? 1.0 : 0.0;
-  bool doneA = false, doneB = false;
+// symmetricEigen3 of `count` (at most kEigenBatch) matrices at once, m[i] and v[i] each bit for
+// bit as alone: their chains of dependent divisions and square roots (the decomposition's cost)
+// run side by side, which a processor that executes out of order overlaps (on the CPU about
+// twice the throughput of one at a time).
+constexpr int kEigenBatch = 4;
+STRATA_HD void symmetricEigen3Batch(double (*const* m)[3], double (*const* v)[3], int count) {
+  bool done[kEigenBatch];
+  for (int l = 0; l < count; ++l) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) v[l][i][j] = i == j ? 1.0 : 0.0;
+    done[l] = false;
+  }
   for (int sweep = 0; sweep < kJacobiSweeps; ++sweep) {
-    doneA = doneA || jacobiConverged(a);
-    doneB = doneB || jacobiConverged(b);
-    if (doneA && doneB) break;
+    bool all = true;
+    for (int l = 0; l < count; ++l) {
+      done[l] = done[l] || jacobiConverged(m[l]);
+      all = all && done[l];
+    }
+    if (all) break;
     for (int p = 0; p < 2; ++p)
-      for (int q = p + 1; q < 3; ++q) {
-        if (!doneA) jacobiRotate(a, va, p, q);
-        if (!doneB) jacobiRotate(b, vb, p, q);
-      }
+      for (int q = p + 1; q < 3; ++q)
+        for (int l = 0; l < count; ++l)
+          if (!done[l]) jacobiRotate(m[l], v[l], p, q);
   }
 }
 
@@ -252,7 +258,7 @@ STRATA_HD void clampToCell(double x[3], const int64_t cell[3]) {
 // feature that leaves the cell pulls the vertex along the feature, not off it.
 //
 // In two steps: the decomposition of A^T A (qefMatrix, then symmetricEigen3 or, for two QEFs at
-// once, symmetricEigen3Pair), then solveQefWithEigen from it; solveQef does both.
+// once, symmetricEigen3Batch), then solveQefWithEigen from it; solveQef does both.
 STRATA_HD void qefMatrix(const Qef& q, double m[3][3]) {
   m[0][0] = q.ata[0], m[0][1] = q.ata[1], m[0][2] = q.ata[2];
   m[1][0] = q.ata[1], m[1][1] = q.ata[3], m[1][2] = q.ata[4];

@@ -40,30 +40,30 @@ void indexBoundaryRows(HostTile& tile) {
   tile.view.boundaryRowStart = tile.boundaryRowStart.data();
 }
 
-// placeCellVertices of boundary cells b .. b + cells - 1 (cells: 1 or 2) into `vertices` at
-// their vertexStart, with the decompositions of all their QEFs made two at a time
-// (symmetricEigen3Pair: the same bits, about twice the throughput of one at a time, which is
-// most of the vertices' cost).
+// Boundary cells placed together: placeCellVerticesTogether.
+constexpr int kCellsTogether = 4;
+
+// placeCellVertices of boundary cells b .. b + cells - 1 (cells <= kCellsTogether) into
+// `vertices` at their vertexStart, with the decompositions of all their QEFs made kEigenBatch
+// at a time (symmetricEigen3Batch: the same bits, more throughput than one at a time; the
+// decompositions are most of the vertices' cost).
 void placeCellVerticesTogether(const TileView& t, int64_t b, int cells, CellVertex* vertices) {
-  CellPlanes planes[2];
-  double m[2][kMaxCellComponents][3][3], v[2][kMaxCellComponents][3][3];
-  struct Slot {
-    int cell, comp;
-  } slots[2 * kMaxCellComponents];
+  CellPlanes planes[kCellsTogether];
+  double m[kCellsTogether][kMaxCellComponents][3][3], v[kCellsTogether][kMaxCellComponents][3][3];
+  double(*ms[kCellsTogether * kMaxCellComponents])[3];
+  double(*vs[kCellsTogether * kMaxCellComponents])[3];
   int count = 0;
   for (int i = 0; i < cells; ++i) {
     gatherCellPlanes(t, kCellCases, b + i, &planes[i]);
     for (int comp = 0; comp < planes[i].components; ++comp) {
       qefMatrix(planes[i].qef[comp], m[i][comp]);
-      slots[count++] = {i, comp};
+      ms[count] = m[i][comp];
+      vs[count] = v[i][comp];
+      ++count;
     }
   }
-  int k = 0;
-  for (; k + 1 < count; k += 2) {
-    const Slot a = slots[k], c = slots[k + 1];
-    symmetricEigen3Pair(m[a.cell][a.comp], v[a.cell][a.comp], m[c.cell][c.comp], v[c.cell][c.comp]);
-  }
-  if (k < count) symmetricEigen3(m[slots[k].cell][slots[k].comp], v[slots[k].cell][slots[k].comp]);
+  for (int k = 0; k < count; k += kEigenBatch)
+    symmetricEigen3Batch(ms + k, vs + k, std::min(kEigenBatch, count - k));
   for (int i = 0; i < cells; ++i)
     finishCellVertices(t, planes[i], m[i], v[i], vertices + t.vertexStart[b + i]);
 }
@@ -121,10 +121,9 @@ void placeVertices(HostTile& tile, uint64_t faces, TileContour* out, Progress* p
   tile.view.vertexStart = tile.vertexStart.data();
   parallelFor(0, int64_t(count), kGrain, [&](int64_t first, int64_t last) {
     if (progress) progress->check();
-    for (int64_t b = first; b < last; b += 2) {
-      const int cells = last - b >= 2 ? 2 : 1;
-      placeCellVerticesTogether(tile.view, b, cells, out->vertices.data());
-    }
+    for (int64_t b = first; b < last; b += kCellsTogether)
+      placeCellVerticesTogether(tile.view, b, int(std::min<int64_t>(kCellsTogether, last - b)),
+                                out->vertices.data());
   });
   tile.view.vertices = out->vertices.data();
 }

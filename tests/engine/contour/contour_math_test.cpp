@@ -1,6 +1,6 @@
-// The QEF's decomposition two at a time (contour_math.h: symmetricEigen3Pair) gives the bits of
-// one at a time (symmetricEigen3), whatever each pair's convergence: the CPU's vertex step uses
-// the pair, the device the single one, and their files must be byte for byte the same.
+// The QEF's decompositions several at a time (contour_math.h: symmetricEigen3Batch) give the bits
+// of one at a time (symmetricEigen3), whatever each one's convergence: the CPU's vertex step uses
+// the batch, the device the single one, and their files must be byte for byte the same.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -29,30 +29,34 @@ bool sameBits(const double a[3][3], const double b[3][3]) {
   return std::memcmp(a, b, sizeof(double) * 9) == 0;
 }
 
-TEST(ContourMath, DecompositionsInPairsHaveTheBitsOfOneAtATime) {
+TEST(ContourMath, DecompositionsInBatchesHaveTheBitsOfOneAtATime) {
   std::mt19937 rng(7);
   const double spreads[] = {0.0, 1e-6, 0.05, 0.3, 2.0};
   int compared = 0;
   for (int i = 0; i < 4000; ++i) {
-    double a[3][3], b[3][3];
-    planesMatrix(rng, 1 + i % 6, spreads[i % 5], a);
-    planesMatrix(rng, 1 + (i / 6) % 6, spreads[(i / 5) % 5], b);
-    if (i % 97 == 0)  // already diagonal: converged before the first sweep
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) a[r][c] = r == c ? a[r][c] : 0.0;
-    double a1[3][3], b1[3][3], va1[3][3], vb1[3][3], a2[3][3], b2[3][3], va2[3][3], vb2[3][3];
-    std::memcpy(a1, a, sizeof(a));
-    std::memcpy(b1, b, sizeof(b));
-    std::memcpy(a2, a, sizeof(a));
-    std::memcpy(b2, b, sizeof(b));
-    symmetricEigen3(a1, va1);
-    symmetricEigen3(b1, vb1);
-    symmetricEigen3Pair(a2, va2, b2, vb2);
-    ASSERT_TRUE(sameBits(a1, a2) && sameBits(va1, va2)) << "first matrix of pair " << i;
-    ASSERT_TRUE(sameBits(b1, b2) && sameBits(vb1, vb2)) << "second matrix of pair " << i;
-    ++compared;
+    const int count = 1 + i % kEigenBatch;
+    double m[kEigenBatch][3][3], alone[kEigenBatch][3][3], vAlone[kEigenBatch][3][3];
+    double v[kEigenBatch][3][3];
+    double(*ms[kEigenBatch])[3];
+    double(*vs[kEigenBatch])[3];
+    for (int l = 0; l < count; ++l) {
+      planesMatrix(rng, 1 + (i + l) % 6, spreads[(i / 4 + l) % 5], m[l]);
+      if ((i + l) % 97 == 0)  // already diagonal: converged before the first sweep
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) m[l][r][c] = r == c ? m[l][r][c] : 0.0;
+      std::memcpy(alone[l], m[l], sizeof(m[l]));
+      symmetricEigen3(alone[l], vAlone[l]);
+      ms[l] = m[l];
+      vs[l] = v[l];
+    }
+    symmetricEigen3Batch(ms, vs, count);
+    for (int l = 0; l < count; ++l) {
+      ASSERT_TRUE(sameBits(alone[l], m[l]) && sameBits(vAlone[l], v[l]))
+          << "matrix " << l << " of batch " << i;
+      ++compared;
+    }
   }
-  EXPECT_EQ(compared, 4000);
+  EXPECT_EQ(compared, 10000);
 }
 
 }  // namespace
