@@ -357,6 +357,33 @@ STRATA_HD void cellAroundEdge(int q, int offset[2]) {
   offset[1] = around[q][1];
 }
 
+// The window cells around the edge along `axis` from window node n, q = 0..3 as cellAroundEdge.
+STRATA_HD void cellsAroundEdge(const int n[3], int axis, int cells[4][3]) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  for (int q = 0; q < 4; ++q) {
+    int offset[2];
+    cellAroundEdge(q, offset);
+    for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
+    cells[q][u] -= offset[0];  // >= 0: the grid's outer nodes are outside
+    cells[q][v] -= offset[1];
+  }
+}
+
+// The sign-changing edges boundary cell number b owns (those from its corner 0 whose lower node
+// the tile owns), as a bit per axis; n its window cell (= the edges' lower node), in0 the side
+// of its corner 0.
+STRATA_HD int ownedCrossingEdges(const TileView& t, int64_t b, int n[3], bool* in0) {
+  tileCellCoords(t, t.boundary[b], n);
+  for (int k = 0; k < 3; ++k)
+    if (n[k] < t.ownedLo[k] || n[k] >= t.ownedHi[k]) return 0;
+  const uint8_t mask = t.boundaryMasks[b];
+  *in0 = mask & 1;
+  int axes = 0;
+  for (int axis = 0; axis < 3; ++axis)  // corner 1, 2 or 4 against corner 0
+    if (bool((mask >> (1 << axis)) & 1) != *in0) axes |= 1 << axis;
+  return axes;
+}
+
 // The face shared by cells q and q + 1 around an edge along `axis`.
 struct FaceAroundEdge {
   bool normalU;    // its normal is along u (else along v)
@@ -451,15 +478,8 @@ STRATA_HD void faceSegmentVertex(const TileView& t, const int n[3], int axis, bo
 // them.
 STRATA_HD void edgePolygon(const TileView& t, const CellCaseTable& table, const int n[3], int axis,
                            bool in0, EdgePolygon* p, CellVertex* faceVertices, int* faceCount) {
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   int cells[4][3];
-  for (int q = 0; q < 4; ++q) {
-    int offset[2];
-    cellAroundEdge(q, offset);
-    for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
-    cells[q][u] -= offset[0];  // >= 0: the grid's outer nodes are outside
-    cells[q][v] -= offset[1];
-  }
+  cellsAroundEdge(n, axis, cells);
   p->count = 0;
   p->firstInserted = -1;
   for (int q = 0; q < 4; ++q) {
@@ -556,23 +576,13 @@ STRATA_HD int cellPolygonCounts(const TileView& t, const CellCaseTable& table, i
                                 int* faceCount) {
   *faceCount = 0;
   int n[3];
-  tileCellCoords(t, t.boundary[b], n);
-  for (int k = 0; k < 3; ++k)
-    if (n[k] < t.ownedLo[k] || n[k] >= t.ownedHi[k]) return 0;
-  const uint8_t mask = t.boundaryMasks[b];
-  const bool in0 = mask & 1;
+  bool in0 = false;
+  const int axes = ownedCrossingEdges(t, b, n, &in0);
   int triangleCount = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    if (bool((mask >> (1 << axis)) & 1) == in0) continue;
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if (!((axes >> axis) & 1)) continue;
     int cells[4][3];
-    for (int q = 0; q < 4; ++q) {
-      int offset[2];
-      cellAroundEdge(q, offset);
-      for (int k = 0; k < 3; ++k) cells[q][k] = n[k];
-      cells[q][u] -= offset[0];
-      cells[q][v] -= offset[1];
-    }
+    cellsAroundEdge(n, axis, cells);
     int splits = 0;
     for (int q = 0; q < 4; ++q)
       splits += faceSplitsEdge(t, table, cells, axis, q, faceAroundEdge(axis, q)) ? 1 : 0;
@@ -594,16 +604,12 @@ STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_
                            CellTriangle* tris, CellVertex* faceVertices, int* faceCount,
                            int* synthesized) {
   *faceCount = 0;
-  const uint32_t index = t.boundary[b];
   int n[3];
-  tileCellCoords(t, index, n);
-  for (int k = 0; k < 3; ++k)
-    if (n[k] < t.ownedLo[k] || n[k] >= t.ownedHi[k]) return 0;
-  const uint8_t mask = t.boundaryMasks[b];
-  const bool in0 = mask & 1;
+  bool in0 = false;
+  const int axes = ownedCrossingEdges(t, b, n, &in0);
   int triangleCount = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    if (bool((mask >> (1 << axis)) & 1) == in0) continue;  // corner 1, 2 or 4 vs corner 0
+    if (!((axes >> axis) & 1)) continue;
     EdgePolygon polygon;
     edgePolygon(t, table, n, axis, in0, &polygon, faceVertices, faceCount);
     if (!in0) reverseEdgePolygon(&polygon);
