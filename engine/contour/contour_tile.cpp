@@ -17,7 +17,8 @@ constexpr CellCaseTable kCellCases = buildCellCaseTable();
 
 // The tile's arrays on the host, and the view the shared per-cell steps read.
 struct HostTile {
-  TileSides sides;  // node sides and boundary cells (tile_sides.h)
+  explicit HostTile(TileSides& s) : sides(s) {}
+  TileSides& sides;  // node sides and boundary cells (tile_sides.h)
   std::vector<uint32_t> vertexStart;
   std::vector<uint32_t> boundaryRowStart;  // TileView::boundaryRowStart
   TileView view{};
@@ -179,8 +180,9 @@ TileView makeTileView(const glm::ivec3& first, const glm::ivec3& cells,
 }
 
 TileContour contourTile(const Ldi& ldi, const glm::ivec3& globalCells, const glm::ivec3& begin,
-                        const glm::ivec3& end, Progress* progress) {
-  HostTile tile;
+                        const glm::ivec3& end, Progress* progress, TileSides* reuse) {
+  TileSides own;
+  HostTile tile(reuse ? *reuse : own);
   tile.view = makeTileView(ldi.grid.first, ldi.grid.cells, globalCells, begin, end);
   for (int a = 0; a < 3; ++a) {
     tile.view.offsets[a] = ldi.axes[a].offsets.data();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/contour/contour_cells.h"
+#include "engine/contour/tile_sides.h"
 #include "engine/ldi/ldi.h"
 #include "engine/util/host_array.h"
 #include "engine/util/progress.h"
@@ -39,9 +40,11 @@ struct TileWindow {
 TileWindow tileWindow(const glm::ivec3& begin, const glm::ivec3& end, const glm::ivec3& cells);
 
 // Contours a tile. `ldi` is the root's LDI sampled on grid.window(window.first, window.cells);
-// `globalCells` the whole grid's cells (nodes on its outer faces count as outside).
+// `globalCells` the whole grid's cells (nodes on its outer faces count as outside). `reuse`
+// (may be null): arrays the previous tile left, kept for the next (tile_sides.h); one contour at
+// a time uses it.
 TileContour contourTile(const Ldi& ldi, const glm::ivec3& globalCells, const glm::ivec3& begin,
-                        const glm::ivec3& end, Progress* progress);
+                        const glm::ivec3& end, Progress* progress, TileSides* reuse = nullptr);
 
 // The view of a tile's window for the shared per-cell steps, without its arrays.
 TileView makeTileView(const glm::ivec3& first, const glm::ivec3& cells,

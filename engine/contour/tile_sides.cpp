@@ -231,8 +231,13 @@ void decideTileSides(TileView* view, TileSides* sides, Progress* progress) {
   TileView& t = *view;
   t.rowWords = nodeRowWords(t.cells[0]);
   const size_t planes = size_t(t.rowWords) * size_t(t.cells[1] + 1) * size_t(t.cells[2] + 1);
-  sides->insideBits.reset(new uint64_t[planes]);  // every word written by decideNodes
-  sides->unanimousBits.reset(new uint64_t[planes]);
+  if (sides->planeCapacity < planes) {  // every word of a tile's planes written by decideNodes
+    sides->insideBits.reset();          // the old planes gone before the new ones come
+    sides->unanimousBits.reset();
+    sides->insideBits.reset(new uint64_t[planes]);
+    sides->unanimousBits.reset(new uint64_t[planes]);
+    sides->planeCapacity = planes;
+  }
   const ZToggles z = bucketZToggles(t);
   sides->disagreements = decideNodes(t, z, sides, progress);
   t.insideBits = sides->insideBits.get();

@@ -20,10 +20,14 @@
 
 namespace strata {
 
-// The arrays a TileView's node and boundary pointers address (owned here).
+// The arrays a TileView's node and boundary pointers address (owned here). One TileSides may
+// serve tile after tile (contourTile's `reuse`): its planes are kept and grown only when a tile
+// needs more, so that later tiles write into pages already touched instead of having the kernel
+// zero fresh ones (the planes are a tile's largest arrays: 270 MB at 1024 cells).
 struct TileSides {
   std::unique_ptr<uint64_t[]> insideBits;  // rows of TileView::rowWords words, every word written
   std::unique_ptr<uint64_t[]> unanimousBits;
+  size_t planeCapacity = 0;        // words each of the planes above holds
   std::vector<uint32_t> boundary;  // boundary cells, increasing window cell index
   std::vector<uint8_t> boundaryMasks;
   uint64_t disagreements = 0;  // window nodes whose three rays disagreed

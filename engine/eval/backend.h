@@ -61,7 +61,8 @@ class Backend {
   // A host copy (or view) of the LDI, every axis whole (see AxisLdi).
   virtual std::shared_ptr<const Ldi> download(const LdiHandle& ldi) = 0;
   // Dual contouring of one tile (see engine/contour/contour_tile.h) of `root`, an LDI on the
-  // tile's window grid. The default downloads the LDI and contours it on the CPU.
+  // tile's window grid. The default downloads the LDI and contours it on the CPU, keeping the
+  // node planes for the next tile (hostContourArrays_).
   virtual TileContour contourTile(const LdiHandle& root, const glm::ivec3& globalCells,
                                   const glm::ivec3& begin, const glm::ivec3& end,
                                   Progress& progress);
@@ -100,6 +101,14 @@ class Backend {
   // The splats of `ldi` (engine/ldi/splats.h), made and kept where the backend keeps its LDIs.
   // The default downloads the LDI and builds them on the host.
   virtual SplatsHandle splats(const LdiHandle& ldi, Progress& progress);
+  // Releases what contourTile keeps for the next tile (after an export's last tile, so that its
+  // merge does not hold them).
+  void releaseContourArrays() { hostContourArrays_ = TileSides(); }
+
+ private:
+  // The default contourTile's node planes, kept from tile to tile while the backend lives (an
+  // export's tiles, one after another on one backend); released with it.
+  TileSides hostContourArrays_;
 };
 
 }  // namespace strata

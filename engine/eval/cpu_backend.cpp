@@ -145,7 +145,7 @@ TileContour Backend::contourTile(const LdiHandle& root, const glm::ivec3& global
                                  const glm::ivec3& begin, const glm::ivec3& end,
                                  Progress& progress) {
   std::shared_ptr<const Ldi> ldi = download(root);
-  return strata::contourTile(*ldi, globalCells, begin, end, &progress);
+  return strata::contourTile(*ldi, globalCells, begin, end, &progress, &hostContourArrays_);
 }
 
 }  // namespace strata

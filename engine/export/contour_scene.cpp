@@ -384,6 +384,11 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
   r.tileCells = tiling.tileCells;
   r.tiles = tiling.count();
   int done = 0, share = 0;
+  // The node planes kept from tile to tile are the backend's until the last tile is done.
+  struct ReleaseContourArrays {
+    Backend& backend;
+    ~ReleaseContourArrays() { backend.releaseContourArrays(); }
+  } release{evaluator.backend()};
   Grid lastEvaluated;  // none yet (no tile's grid has zero cells)
   lastEvaluated.cells = glm::ivec3(0);
   if (!afterTile)

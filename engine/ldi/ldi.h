@@ -11,6 +11,7 @@
 
 #include "engine/ldi/grid.h"
 #include "engine/ldi/shared_math.h"
+#include "engine/util/host_array.h"
 
 namespace strata {
 
@@ -37,7 +38,7 @@ struct AxisLdi {
   bool whole = true;
   RayWindow window;  // meaningful when !whole
   std::vector<uint32_t> offsets;
-  std::vector<Surfel> surfels;
+  HostArray<Surfel> surfels;  // resize leaves new surfels unwritten: every site writes them all
 
   size_t bytes() const {
     return offsets.capacity() * sizeof(uint32_t) + surfels.capacity() * sizeof(Surfel);

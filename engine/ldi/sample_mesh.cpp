@@ -98,7 +98,7 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
     counts[r].store(0, std::memory_order_relaxed);  // reused as write cursors
   }
   rawOffsets[size_t(rays)] = total;
-  std::vector<Surfel> raw(total);
+  HostArray<Surfel> raw(total);  // every slot written by pass 2
 
   // Pass 2: write each hit at its ray's next slot.
   parallelFor(0, triangles, triangleGrain, [&](int64_t b, int64_t e) {

@@ -33,7 +33,7 @@ inline float clipHi(const Grid& grid, int axis) {
 // produced chunk by chunk.
 struct RayChunkOutput {
   std::vector<uint32_t> counts;  // per ray of the chunk
-  std::vector<Surfel> surfels;   // the chunk's rays, concatenated
+  HostArray<Surfel> surfels;     // the chunk's rays, concatenated
 };
 // Concatenates chunk outputs (chunk c covers rays [c * raysPerChunk, ...)) into `axis`.
 void assembleAxis(std::vector<RayChunkOutput>& chunks, int64_t rayCount, AxisLdi* axis,
