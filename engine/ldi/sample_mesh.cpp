@@ -80,13 +80,12 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
     if (progress) progress->check();
     for (int64_t t = b; t < e; ++t) {
       ProjectedTriangle pt = project(g, size_t(t), axis, grid);
-      for (int j = pt.rayVMin; j <= pt.rayVMax; ++j)
-        for (int i = pt.rayUMin; i <= pt.rayUMax; ++i) {
-          double depth;
-          if (hitTriangle(pt, i, j, &depth))
-            counts[int64_t(i - window.u0) + int64_t(j - window.v0) * raysU].fetch_add(
-                1, std::memory_order_relaxed);
-        }
+      for (int j = pt.rayVMin; j <= pt.rayVMax; ++j) {
+        int first, last;  // the row's hits (hitTriangle), a run
+        triangleRowSpan(pt, j, &first, &last);
+        const int64_t row = int64_t(j - window.v0) * raysU - window.u0;
+        for (int i = first; i <= last; ++i) counts[row + i].fetch_add(1, std::memory_order_relaxed);
+      }
     }
   });
   // Exclusive scan into raw offsets.
@@ -105,15 +104,16 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
     if (progress) progress->check();
     for (int64_t t = b; t < e; ++t) {
       ProjectedTriangle pt = project(g, size_t(t), axis, grid);
-      for (int j = pt.rayVMin; j <= pt.rayVMax; ++j)
-        for (int i = pt.rayUMin; i <= pt.rayUMax; ++i) {
-          double depth;
-          if (!hitTriangle(pt, i, j, &depth)) continue;
-          int64_t r = int64_t(i - window.u0) + int64_t(j - window.v0) * raysU;
-          uint32_t slot = counts[r].fetch_add(1, std::memory_order_relaxed);
+      for (int j = pt.rayVMin; j <= pt.rayVMax; ++j) {
+        int first, last;  // the same run as pass 1's
+        triangleRowSpan(pt, j, &first, &last);
+        for (int i = first; i <= last; ++i) {
+          const int64_t r = int64_t(i - window.u0) + int64_t(j - window.v0) * raysU;
+          const uint32_t slot = counts[r].fetch_add(1, std::memory_order_relaxed);
           raw[rawOffsets[size_t(r)] + slot] =
-              Surfel{float(depth), pt.normal, makeSurfelTag(leafId, pt.enters)};
+              Surfel{float(hitDepth(pt, i, j)), pt.normal, makeSurfelTag(leafId, pt.enters)};
         }
+      }
     }
   });
   counts.reset();

@@ -255,21 +255,93 @@ STRATA_HD ProjectedTriangle projectTriangle(const double p[3][3], const double n
   return t;
 }
 
-// True when the window's ray (i, j) hits the triangle (with the perturbation tie rule); then
-// *depth is the depth of the hit in global grid units.
-STRATA_HD bool hitTriangle(const ProjectedTriangle& t, int i, int j, double* depth) {
+// The depth in global grid units at which the window's ray (i, j) meets the triangle's plane,
+// for a ray that hits it (hitTriangle, triangleRowSpan). Barycentric weights from exact edge
+// values; depth written as d0 + ... so that a triangle with equal corner depths (an axis-aligned
+// face) gives exactly that depth.
+STRATA_HD double hitDepth(const ProjectedTriangle& t, int i, int j) {
   const int64_t pu = (t.firstU + i) * kSubcell, pv = (t.firstV + j) * kSubcell;
-  if (edgeSign(t.u[0], t.v[0], t.u[1], t.v[1], pu, pv) != t.orientation) return false;
-  if (edgeSign(t.u[1], t.v[1], t.u[2], t.v[2], pu, pv) != t.orientation) return false;
-  if (edgeSign(t.u[2], t.v[2], t.u[0], t.v[0], pu, pv) != t.orientation) return false;
-  // Barycentric weights from exact edge values; depth written as d0 + ... so that a triangle
-  // with equal corner depths (an axis-aligned face) gives exactly that depth.
   double w1 = double(edgeValue(t.u[2], t.v[2], t.u[0], t.v[0], pu, pv));
   double w2 = double(edgeValue(t.u[0], t.v[0], t.u[1], t.v[1], pu, pv));
   double w0 = double(edgeValue(t.u[1], t.v[1], t.u[2], t.v[2], pu, pv));
   double sum = w0 + w1 + w2;
-  *depth = t.depth[0] + (w1 * (t.depth[1] - t.depth[0]) + w2 * (t.depth[2] - t.depth[0])) / sum;
+  return t.depth[0] + (w1 * (t.depth[1] - t.depth[0]) + w2 * (t.depth[2] - t.depth[0])) / sum;
+}
+
+// Whether the window's ray (i, j) lies on the triangle's inner side of its edge k -> k + 1.
+STRATA_HD bool insideEdge(const ProjectedTriangle& t, int k, int i, int j) {
+  const int n = k == 2 ? 0 : k + 1;
+  return edgeSign(t.u[k], t.v[k], t.u[n], t.v[n], (t.firstU + i) * kSubcell,
+                  (t.firstV + j) * kSubcell) == t.orientation;
+}
+
+// True when the window's ray (i, j) hits the triangle (with the perturbation tie rule); then
+// *depth is the depth of the hit in global grid units.
+STRATA_HD bool hitTriangle(const ProjectedTriangle& t, int i, int j, double* depth) {
+  if (!insideEdge(t, 0, i, j) || !insideEdge(t, 1, i, j) || !insideEdge(t, 2, i, j)) return false;
+  *depth = hitDepth(t, i, j);
   return true;
+}
+
+// The rays of window row j that hit the triangle: i in [*first, *last] (none when *first >
+// *last), exactly those for which hitTriangle is true, found with a few edge tests a row
+// instead of three a ray. Along a row an edge's perturbed sign is monotone in i (its edge
+// function is linear in u; a zero is decided as for a point just beyond it, see edgeSign), so
+// each edge keeps a prefix or a suffix of the row and the hits are one run. Each end is found
+// by edgeSign itself, starting next to where the edge's line crosses the row.
+// Rows of at most kNarrowRow rays are tested ray by ray (fewer edge tests than the ends').
+constexpr int kNarrowRow = 4;
+STRATA_HD void triangleRowSpan(const ProjectedTriangle& t, int j, int* first, int* last) {
+  int lo = t.rayUMin, hi = t.rayUMax;
+  if (hi - lo < kNarrowRow) {
+    *first = hi + 1;
+    *last = hi;
+    for (int i = lo; i <= hi; ++i)
+      if (insideEdge(t, 0, i, j) && insideEdge(t, 1, i, j) && insideEdge(t, 2, i, j)) {
+        if (*first > i) *first = i;
+        *last = i;  // the hits are one run: [first hit, last hit]
+      }
+    return;
+  }
+  for (int k = 0; k < 3 && lo <= hi; ++k) {
+    const bool atLo = insideEdge(t, k, lo, j), atHi = insideEdge(t, k, hi, j);
+    if (atLo && atHi) continue;  // the whole run so far
+    if (!atLo && !atHi) {        // none of it (monotone)
+      lo = 1;
+      hi = 0;
+      break;
+    }
+    // One change within (lo, hi]: the first i on the inner side (a suffix) or the first past it
+    // (a prefix). Bisection, with its first probes at the crossing of the edge's line.
+    const int n = k == 2 ? 0 : k + 1;
+    const double du = double(t.u[n] - t.u[k]), dv = double(t.v[n] - t.v[k]);
+    const double pv = double((t.firstV + j) * kSubcell);
+    double guess = double(lo) + 1.0;
+    if (dv != 0.0) {
+      const double cross =
+          (double(t.u[k]) + du * (pv - double(t.v[k])) / dv) / double(kSubcell) - double(t.firstU);
+      guess = cross < double(lo) + 1.0 ? double(lo) + 1.0
+                                       : (cross > double(hi) ? double(hi) : ceil(cross));
+    }
+    // Invariant: insideEdge(lo) == atLo, insideEdge(hi) == atHi, the change in (a, b].
+    int a = lo, b = hi, probe = int(guess);
+    for (int step = 0; b - a > 1; ++step) {
+      if (step >= 2 || probe <= a || probe >= b) probe = a + (b - a) / 2;
+      if (insideEdge(t, k, probe, j) == atLo) {
+        a = probe;
+        probe = a + 1;
+      } else {
+        b = probe;
+        probe = b - 1;
+      }
+    }
+    if (atLo)
+      hi = a;  // a prefix: [lo, a]
+    else
+      lo = b;  // a suffix: [b, hi]
+  }
+  *first = lo;
+  *last = hi;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -64,6 +64,50 @@ TEST(SharedMath, RayThroughSharedVertexHitsExactlyOneFanTriangle) {
   EXPECT_GT(checked, 1000) << "most fans must be valid, or the test checks nothing";
 }
 
+// triangleRowSpan gives each row's hits exactly as hitTriangle does ray by ray, on triangles of
+// every shape and orientation: corners snapped to the rays' lattice (edges and corners exactly
+// on rays, where the perturbation decides), to the sub-cell lattice, and anywhere; slivers,
+// triangles wider than the window, windows that start away from the origin. It fails on a run
+// that misses an end ray or takes one too many.
+TEST(SharedMath, RowSpansAreExactlyTheRaysThatHit) {
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<int> kind(0, 2), axisPick(0, 2);
+  std::uniform_real_distribution<double> anywhere(-3.0, 40.0), depth(-5.0, 5.0);
+  std::uniform_int_distribution<int> onRay(-3, 40), sub(-3 * 256, 40 * 256);
+  int hits = 0, ends = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int k = kind(rng);
+    double p[3][3];
+    for (auto& corner : p)
+      for (int c = 0; c < 3; ++c)
+        corner[c] = k == 0 ? double(onRay(rng)) : k == 1 ? double(sub(rng)) / 256.0 : anywhere(rng);
+    if (trial % 7 == 0)  // a sliver: the third corner near the line of the first two
+      for (int c = 0; c < 3; ++c) p[2][c] = p[0][c] + (p[1][c] - p[0][c]) * 0.5 + 1e-3 * c;
+    const int axis = axisPick(rng);
+    for (int c = 0; c < 3; ++c) p[c][axis] = depth(rng);
+    const double normal[3] = {0, 0, 1};
+    const int firstU = trial % 3 == 0 ? 5 : 0, firstV = trial % 5 == 0 ? -2 : 0;
+    const ProjectedTriangle t = projectTriangle(p, normal, axis, firstU, firstV, 32, 30);
+    for (int j = t.rayVMin; j <= t.rayVMax; ++j) {
+      int first = 0, last = -1;
+      triangleRowSpan(t, j, &first, &last);
+      for (int i = t.rayUMin; i <= t.rayUMax; ++i) {
+        double d = 0.0;
+        const bool hit = hitTriangle(t, i, j, &d);
+        ASSERT_EQ(hit, i >= first && i <= last) << "trial " << trial << " row " << j << " ray " << i
+                                                << ": span [" << first << ", " << last << "]";
+        if (hit) {
+          ++hits;
+          EXPECT_EQ(d, hitDepth(t, i, j));
+          if (i == first || i == last) ++ends;
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 100000) << "the triangles must cover rays, or the test checks nothing";
+  EXPECT_GT(ends, 10000);
+}
+
 // A triangle far outside the window on either side (a tool parked away, up to the 2^51 grid
 // units toGridUnits accepts) gives an empty ray range, not one that wrapped around 32 bits.
 TEST(SharedMath, FarTrianglesProjectToAnEmptyRange) {
