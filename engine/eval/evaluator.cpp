@@ -835,7 +835,10 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   result.root = root.ldi;
   result.rootKey = root.key;
   Stopwatch measure;
-  result.measure = backend_->measure(root.ldi, progress);
+  if (options.measureRoot)
+    result.measure = backend_->measure(root.ldi, progress);
+  else
+    result.measure.surfels = root.ldi->surfelCount();
   ctx.finishStage(kMeasure, measure.seconds(), 0);
   ctx.nodeDone();
 

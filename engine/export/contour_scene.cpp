@@ -74,7 +74,9 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, 
     evaluator.clearCache();
   }
   *lastEvaluated = evalGrid;
-  EvalResult result = evaluator.evaluateOn(scene, evalGrid, progress);
+  EvalOptions surfelCountOnly;
+  surfelCountOnly.measureRoot = false;
+  EvalResult result = evaluator.evaluateOn(scene, evalGrid, progress, surfelCountOnly);
   if (!(evalGrid == tileGrid) && result.measure.surfels > 0) {
     result.root = evaluator.backend().crop(result.root, tileGrid, progress);
     result.measure.surfels = result.root->surfelCount();
