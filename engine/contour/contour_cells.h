@@ -60,7 +60,16 @@ struct TileView {
   const uint32_t* boundaryRowStart;
   const uint32_t* vertexStart;  // per boundary cell: its first vertex in `vertices`
   const CellVertex* vertices;   // the tile's cell vertices (read by the polygon step)
+  // Optional (null: the polygon step looks the crossings up again): per boundary cell, for
+  // each axis, its corner-0 edge's crossing as the vertex step found it, cornerCrossingWord.
+  uint32_t* cornerCrossings;
 };
+
+// An edge crossing's leaf and whether it was synthesised, in one word (leaves are below 2^31:
+// surfelLeaf), for TileView::cornerCrossings.
+STRATA_HD uint32_t cornerCrossingWord(uint32_t leaf, bool synthesized) {
+  return leaf | (synthesized ? 0x80000000u : 0u);
+}
 
 STRATA_HD int64_t tileNode(const TileView& t, int i, int j, int k) {
   return int64_t(i) + int64_t(t.cells[0] + 1) * (int64_t(j) + int64_t(t.cells[1] + 1) * k);
@@ -225,6 +234,7 @@ STRATA_HD EdgeCrossing tileCrossing(const TileView& t, int axis, const int n[3],
 struct CellPlanes {
   int c[3];  // the window cell
   int components;
+  uint32_t cornerCrossing[3];  // per axis, its corner-0 edge's crossing (cornerCrossingWord)
   double points[kMaxCellComponents][12][3];
   float normals[kMaxCellComponents][12][3];
   int n[kMaxCellComponents];
@@ -239,6 +249,7 @@ STRATA_HD void gatherCellPlanes(const TileView& t, const CellCaseTable& table, i
   const CellCase& cc = table.cases[mask];
   cp->components = cc.components;
   for (int comp = 0; comp < kMaxCellComponents; ++comp) cp->n[comp] = 0;
+  for (int axis = 0; axis < 3; ++axis) cp->cornerCrossing[axis] = 0;
   for (int edge = 0; edge < 12; ++edge) {
     const int comp = cc.edgeComponent[edge];
     if (comp < 0) continue;
@@ -247,6 +258,7 @@ STRATA_HD void gatherCellPlanes(const TileView& t, const CellCaseTable& table, i
     const int axis = edge >> 2;
     const int node[3] = {c[0] + (c0 & 1), c[1] + ((c0 >> 1) & 1), c[2] + ((c0 >> 2) & 1)};
     const EdgeCrossing x = tileCrossing(t, axis, node, (mask >> c0) & 1);
+    if (c0 == 0) cp->cornerCrossing[axis] = cornerCrossingWord(x.leaf, x.synthesized);
     double* p = cp->points[comp][cp->n[comp]];
     for (int d = 0; d < 3; ++d) p[d] = double(t.first[d] + node[d]);
     p[axis] = x.t;
@@ -613,11 +625,19 @@ STRATA_HD int cellPolygons(const TileView& t, const CellCaseTable& table, int64_
     EdgePolygon polygon;
     edgePolygon(t, table, n, axis, in0, &polygon, faceVertices, faceCount);
     if (!in0) reverseEdgePolygon(&polygon);
-    const EdgeCrossing x = tileCrossing(t, axis, n, in0);
-    *synthesized += x.synthesized ? 1 : 0;
+    uint32_t leaf;
+    if (t.cornerCrossings) {  // the vertex step's crossing of this edge (the same lookup)
+      const uint32_t word = t.cornerCrossings[b * 3 + axis];
+      leaf = word & 0x7fffffffu;
+      *synthesized += int(word >> 31);
+    } else {
+      const EdgeCrossing x = tileCrossing(t, axis, n, in0);
+      leaf = x.leaf;
+      *synthesized += x.synthesized ? 1 : 0;
+    }
     const int g[3] = {n[0] + t.first[0], n[1] + t.first[1], n[2] + t.first[2]};
     const uint64_t order = globalEdgeKey(t.globalCells, axis, g) * 8;
-    triangleCount += edgePolygonTriangles(polygon, order, x.leaf, edgeResolved(t, n, axis, in0),
+    triangleCount += edgePolygonTriangles(polygon, order, leaf, edgeResolved(t, n, axis, in0),
                                           tris ? tris + triangleCount : nullptr);
   }
   return triangleCount;

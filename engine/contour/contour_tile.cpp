@@ -21,6 +21,7 @@ struct HostTile {
   TileSides& sides;  // node sides and boundary cells (tile_sides.h)
   std::vector<uint32_t> vertexStart;
   std::vector<uint32_t> boundaryRowStart;  // TileView::boundaryRowStart
+  HostArray<uint32_t> cornerCrossings;     // TileView::cornerCrossings, written by placeVertices
   TileView view{};
 };
 
@@ -65,8 +66,11 @@ void placeCellVerticesTogether(const TileView& t, int64_t b, int cells, CellVert
   }
   for (int k = 0; k < count; k += kEigenBatch)
     symmetricEigen3Batch(ms + k, vs + k, std::min(kEigenBatch, count - k));
-  for (int i = 0; i < cells; ++i)
+  for (int i = 0; i < cells; ++i) {
     finishCellVertices(t, planes[i], m[i], v[i], vertices + t.vertexStart[b + i]);
+    for (int axis = 0; axis < 3; ++axis)
+      t.cornerCrossings[(b + i) * 3 + axis] = planes[i].cornerCrossing[axis];
+  }
 }
 
 // Boundary cells per chunk of the vertex and polygon steps.
@@ -120,6 +124,8 @@ void placeVertices(HostTile& tile, uint64_t faces, TileContour* out, Progress* p
   tile.vertexStart[count] = total;
   out->vertices.resize(total + faces);
   tile.view.vertexStart = tile.vertexStart.data();
+  tile.cornerCrossings.resize(count * 3);  // every entry written with its cell's vertices
+  tile.view.cornerCrossings = tile.cornerCrossings.data();
   parallelFor(0, int64_t(count), kGrain, [&](int64_t first, int64_t last) {
     if (progress) progress->check();
     for (int64_t b = first; b < last; b += kCellsTogether)
