@@ -303,6 +303,8 @@ STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, 
     symmetricEigen3(m[comp], v[comp]);
   }
   finishCellVertices(t, cp, m, v, out);
+  if (t.cornerCrossings)
+    for (int axis = 0; axis < 3; ++axis) t.cornerCrossings[b * 3 + axis] = cp.cornerCrossing[axis];
 }
 
 // The vertex of the component of window cell c that contains cell edge `edge`.

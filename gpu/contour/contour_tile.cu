@@ -126,9 +126,8 @@ __global__ void countPolygons(TileView t, uint32_t* triangles, uint32_t* faces) 
       triangles[b] = faces[b] = 0;
       continue;
     }
-    int faceCount = 0, synthesized = 0;
-    triangles[b] =
-        uint32_t(cellPolygons(t, c_cellCases, b, nullptr, nullptr, &faceCount, &synthesized));
+    int faceCount = 0;  // from the corner signs, as the CPU counts them
+    triangles[b] = uint32_t(cellPolygonCounts(t, c_cellCases, b, &faceCount));
     faces[b] = uint32_t(faceCount);
   }
 }
@@ -168,7 +167,7 @@ struct DeviceTile {
   int64_t nodes = 0, cells = 0;
   DeviceBuffer<unsigned long long> counters;  // disagreements, synthesised crossings
   DeviceBuffer<uint64_t> insideBits, unanimousBits;
-  DeviceBuffer<uint32_t> boundary, vertexStart;
+  DeviceBuffer<uint32_t> boundary, vertexStart, cornerCrossings;
   DeviceBuffer<uint8_t> boundaryMasks;
   DeviceBuffer<CellVertex> vertices;
 };
@@ -239,6 +238,9 @@ void placeTileVertices(DeviceTile& d, const DeviceStream& stream) {
   const uint32_t vertexCount = scan32(d.vertexStart.data(), boundaryCount, stream);
   d.t.vertexStart = d.vertexStart.data();
   d.vertices = DeviceBuffer<CellVertex>(vertexCount, stream);
+  // Each boundary cell's corner-0 crossings, written with its vertices, read by the polygons.
+  d.cornerCrossings = DeviceBuffer<uint32_t>(static_cast<size_t>(boundaryCount) * 3, stream);
+  d.t.cornerCrossings = d.cornerCrossings.data();
   if (boundaryCount > 0) {
     placeVertices<<<blocksFor(boundaryCount, 128), 128, 0, stream.get()>>>(d.t, d.vertices.data());
     STRATA_CUDA_CHECK(cudaGetLastError());

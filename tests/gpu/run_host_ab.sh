@@ -7,12 +7,19 @@
 # bin/strata_base.xz (before), bin/strata_gpu_tests.xz, data/setmeshes.tar.xz. Results go to
 # $OUT/r as they come (a lease may end early). JOBS="scene:cells ..." replaces the exports'
 # list; QUICK=1 leaves out the GPU tests, the boolean set and the simplification.
-source .devrt2/on-device.sh
-for f in .devrt2/bin/strata.xz .devrt2/bin/strata_base.xz .devrt2/bin/strata_gpu_tests.xz; do
+# DEVRT names the carried folder (.devrt2 unless set); its libs.tar.xz, where present, holds
+# libraries the binaries need that the host lacks.
+D=${DEVRT:-.devrt2}
+source $D/on-device.sh
+if [ -f $D/libs.tar.xz ]; then
+  mkdir -p /tmp/devlib && tar xJf $D/libs.tar.xz -C /tmp/devlib
+  export LD_LIBRARY_PATH=/tmp/devlib:$LD_LIBRARY_PATH
+fi
+for f in $D/bin/strata.xz $D/bin/strata_base.xz $D/bin/strata_gpu_tests.xz; do
   xz -dkf "$f"
 done
-chmod +x .devrt2/bin/strata .devrt2/bin/strata_base .devrt2/bin/strata_gpu_tests
-B=.devrt2/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
+chmod +x $D/bin/strata $D/bin/strata_base $D/bin/strata_gpu_tests
+B=$D/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
 export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
 nvidia-smi -L > $R/host.txt 2>&1; nproc >> $R/host.txt; free -g >> $R/host.txt; df -T /tmp >> $R/host.txt
 [ -z "$QUICK" ] && { timeout 200 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt; }
@@ -30,7 +37,7 @@ for job in ${JOBS:-bone_scaffold_scaled_copy:512 bone_scaffold_scaled_copy:1024 
 done
 } > $R/export.txt 2>&1
 if [ -n "$QUICK" ]; then tar czf $OUT/results.tgz -C $OUT r; exit 0; fi
-tar xJf .devrt2/data/setmeshes.tar.xz -C /tmp; M=/tmp/meshes; A=/tmp/analytic
+tar xJf $D/data/setmeshes.tar.xz -C /tmp; M=/tmp/meshes; A=/tmp/analytic
 cp assets/meshes/armadillo.obj assets/meshes/bunny.obj $M/
 for bk in cuda cpu; do for bin in strata_base strata; do
   bash tests/bench/boolean_set.sh $B/$bin $M $A /tmp/set-$bin-$bk $bk 512 | tail -1 > $R/set-$bin-$bk.txt 2>&1
