@@ -62,6 +62,8 @@ struct TileView {
   const CellVertex* vertices;   // the tile's cell vertices (read by the polygon step)
   // Optional (null: the polygon step looks the crossings up again): per boundary cell, for
   // each axis, its corner-0 edge's crossing as the vertex step found it, cornerCrossingWord.
+  // Written by the vertex step (placeCellVertices and the CPU's batches of it); a view that
+  // points here must not reach the polygon step before every cell's vertices are placed.
   uint32_t* cornerCrossings;
 };
 
