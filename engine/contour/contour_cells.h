@@ -293,6 +293,13 @@ STRATA_HD void finishCellVertices(const TileView& t, const CellPlanes& cp, const
   }
 }
 
+// Keeps boundary cell number b's corner-0 crossings for the polygon step, where the view has
+// room for them (TileView::cornerCrossings).
+STRATA_HD void keepCornerCrossings(const TileView& t, int64_t b, const CellPlanes& cp) {
+  if (t.cornerCrossings)
+    for (int axis = 0; axis < 3; ++axis) t.cornerCrossings[b * 3 + axis] = cp.cornerCrossing[axis];
+}
+
 // Writes the vertices of boundary cell number b (one per surface component, in component
 // order) to out. The CPU places two cells at a time with the same steps (contour_tile.cpp).
 STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, int64_t b,
@@ -305,8 +312,7 @@ STRATA_HD void placeCellVertices(const TileView& t, const CellCaseTable& table, 
     symmetricEigen3(m[comp], v[comp]);
   }
   finishCellVertices(t, cp, m, v, out);
-  if (t.cornerCrossings)
-    for (int axis = 0; axis < 3; ++axis) t.cornerCrossings[b * 3 + axis] = cp.cornerCrossing[axis];
+  keepCornerCrossings(t, b, cp);
 }
 
 // The vertex of the component of window cell c that contains cell edge `edge`.

@@ -68,8 +68,7 @@ void placeCellVerticesTogether(const TileView& t, int64_t b, int cells, CellVert
     symmetricEigen3Batch(ms + k, vs + k, std::min(kEigenBatch, count - k));
   for (int i = 0; i < cells; ++i) {
     finishCellVertices(t, planes[i], m[i], v[i], vertices + t.vertexStart[b + i]);
-    for (int axis = 0; axis < 3; ++axis)
-      t.cornerCrossings[(b + i) * 3 + axis] = planes[i].cornerCrossing[axis];
+    keepCornerCrossings(t, b + i, planes[i]);
   }
 }
 

@@ -107,8 +107,9 @@ void sampleAxis(const GridMesh& g, const Grid& grid, int axis, uint32_t leafId, 
       for (int j = pt.rayVMin; j <= pt.rayVMax; ++j) {
         int first, last;  // the same run as pass 1's
         triangleRowSpan(pt, j, &first, &last);
+        const int64_t row = int64_t(j - window.v0) * raysU - window.u0;
         for (int i = first; i <= last; ++i) {
-          const int64_t r = int64_t(i - window.u0) + int64_t(j - window.v0) * raysU;
+          const int64_t r = row + i;
           const uint32_t slot = counts[r].fetch_add(1, std::memory_order_relaxed);
           raw[rawOffsets[size_t(r)] + slot] =
               Surfel{float(hitDepth(pt, i, j)), pt.normal, makeSurfelTag(leafId, pt.enters)};

@@ -275,10 +275,15 @@ STRATA_HD bool insideEdge(const ProjectedTriangle& t, int k, int i, int j) {
                   (t.firstV + j) * kSubcell) == t.orientation;
 }
 
-// True when the window's ray (i, j) hits the triangle (with the perturbation tie rule); then
-// *depth is the depth of the hit in global grid units.
+// Whether the window's ray (i, j) hits the triangle (with the perturbation tie rule).
+STRATA_HD bool rayHitsTriangle(const ProjectedTriangle& t, int i, int j) {
+  return insideEdge(t, 0, i, j) && insideEdge(t, 1, i, j) && insideEdge(t, 2, i, j);
+}
+
+// True when the window's ray (i, j) hits the triangle; then *depth is the depth of the hit in
+// global grid units.
 STRATA_HD bool hitTriangle(const ProjectedTriangle& t, int i, int j, double* depth) {
-  if (!insideEdge(t, 0, i, j) || !insideEdge(t, 1, i, j) || !insideEdge(t, 2, i, j)) return false;
+  if (!rayHitsTriangle(t, i, j)) return false;
   *depth = hitDepth(t, i, j);
   return true;
 }
@@ -297,7 +302,7 @@ STRATA_HD void triangleRowSpan(const ProjectedTriangle& t, int j, int* first, in
     *first = hi + 1;
     *last = hi;
     for (int i = lo; i <= hi; ++i)
-      if (insideEdge(t, 0, i, j) && insideEdge(t, 1, i, j) && insideEdge(t, 2, i, j)) {
+      if (rayHitsTriangle(t, i, j)) {
         if (*first > i) *first = i;
         *last = i;  // the hits are one run: [first hit, last hit]
       }
