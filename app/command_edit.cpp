@@ -401,7 +401,13 @@ int runEdit(const std::vector<std::string>& argv) {
     options.width = args.integer("--width", 1600, 320, 8192);
     options.height = args.integer("--height", 1000, 240, 8192);
     const std::string screenshot = args.text("--screenshot", "");
-    if (screenshot.empty()) {
+    // A screenshot or a measurement is a batch run: it neither reads nor writes the user's
+    // recovery file, recent files or panel sizes (a measurement's edit left a recovery file
+    // that the user's next session offered, and its prompt then sat over every later
+    // measurement).
+    const bool batch =
+        !screenshot.empty() || args.has("--measure-frames") || args.has("--measure-latency");
+    if (!batch) {
       options.recentFilesPath = defaultRecentFilesPath();
       if (!userConfigDir().empty()) {
         options.layoutPath = userConfigDir() + "/layout.txt";

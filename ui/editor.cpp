@@ -6,7 +6,6 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
-#include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -24,12 +23,14 @@
 #include "ui/export_settings.h"
 #include "ui/gl_window.h"
 #include "ui/input_queue.h"
+#include "ui/panel_renderer.h"
 #include "ui/panel_splitters.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/theme.h"
 #include "ui/viewport.h"
 #include "ui/viewport_renderer.h"
+#include "ui/window_redraw.h"
 
 namespace strata::ui {
 
@@ -114,10 +115,13 @@ struct Editor::Gl {
   ImGuiContext* imgui = nullptr;
   std::unique_ptr<ViewportRenderer> renderer;
   std::unique_ptr<DeviceSplatCopier> copier;  // null: host upload
+  std::unique_ptr<PanelRenderer> panels;      // Dear ImGui's draw data in GL
   Viewport viewport;
+  WindowRedraw redraw;  // what each frame redraws (window_redraw.h)
   Stopwatch frameClock;
 
-  Gl(const EditorOptions& o) : window(o.width, o.height, "Strata", o.visible) {
+  Gl(const EditorOptions& o)
+      : window(o.width, o.height, "Strata", o.visible), redraw(window.presentsParts()) {
     renderer = std::make_unique<ViewportRenderer>();  // may throw: nothing else to undo yet
     renderer->setSplatPrimitive(o.splatPrimitive);
     IMGUI_CHECKVERSION();
@@ -126,6 +130,12 @@ struct Editor::Gl {
     float scale = 1.0f;
     glfwGetWindowContentScale(window.handle(), &scale, nullptr);
     applyTheme(scale > 0.5f ? scale : 1.0f);
+    try {
+      panels = std::make_unique<PanelRenderer>();  // after the theme's fonts: their atlas
+    } catch (...) {
+      ImGui::DestroyContext(imgui);
+      throw;
+    }
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
     g_imguiKeyCallback = glfwSetKeyCallback(window.handle(), onKey);  // in front of ImGui's
     g_imguiCharCallback = glfwSetCharCallback(window.handle(), onChar);
@@ -135,7 +145,6 @@ struct Editor::Gl {
     glfwGetCursorPos(window.handle(), &x, &y);
     g_input = InputQueue();
     g_input.cursor(x, y, glfwGetTime());
-    ImGui_ImplOpenGL3_Init("#version 330 core");
   }
   ~Gl() {
     glfwSetKeyCallback(window.handle(), g_imguiKeyCallback);
@@ -145,7 +154,7 @@ struct Editor::Gl {
     g_keyEvents.clear();
     copier.reset();  // unregisters the buffer while it and the context exist
     renderer.reset();
-    ImGui_ImplOpenGL3_Shutdown();
+    panels.reset();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext(imgui);
   }
@@ -568,7 +577,7 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera&
 
 }  // namespace
 
-void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height) {
+void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   EditorState& s = *state_;
   GLFWwindow* window = gl_->window.handle();
   gl_->frameClock.restart();  // the status bar shows the previous frame's drawing time
@@ -581,7 +590,6 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   pumpPreview();
   handleDialogResult(s);
 
-  ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   {
     // The mouse as this frame's share of the queued events left it (not as it is now).
@@ -658,23 +666,32 @@ void Editor::drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int
   gl_->viewport.resolvePicks(*gl_->renderer, s, rect, pixelScale);
   updateLeafStyles();  // a pick may have changed the selection
   updateGhosts();
-  glViewport(0, 0, fbWidth, fbHeight);
-  // The panels and the view tile the window, so a window frame needs no clear (a software GL
-  // driver spends a millisecond on it); the full draw of a capture uses the window's depth.
+  const ImDrawData& drawData = *ImGui::GetDrawData();
   if (capture) {
-    glClearColor(0.09f, 0.095f, 0.105f, 1.0f);
+    // Everything drawn at once (the window's depth included), every splat shown, and read.
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fbWidth, fbHeight);
+    glClearColor(kWindowBackground[0], kWindowBackground[1], kWindowBackground[2],
+                 kWindowBackground[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  }
-  // The window's view within the frame budget; a capture shows every splat at once.
-  gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, capture ? -1.0 : s.frameMs);
-  glViewport(0, 0, fbWidth, fbHeight);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (capture) {
+    gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, -1.0);
+    gl_->panels->draw(drawData, fbWidth, fbHeight, {0, 0, fbWidth, fbHeight});
     *capture = readWindowPixels(fbWidth, fbHeight);
     *width = fbWidth;
     *height = fbHeight;
+    gl_->redraw.invalidate();
+    gl_->window.present({{0, 0, fbWidth, fbHeight}});
+  } else {
+    // The view within the frame budget, then the panels; where the window keeps its back
+    // buffer, only the panels that changed (or that reach the view) and only those pixels sent.
+    if (gl_->window.takeExposed()) gl_->redraw.invalidate();
+    int x = 0, y = 0, w = 0, h = 0;
+    viewPixels(rect, fbHeight, pixelScale, &x, &y, &w, &h);
+    gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h});
+    gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, s.frameMs);
+    gl_->redraw.drawPanels(*gl_->panels, drawData);
+    gl_->window.present(gl_->redraw.rects());
   }
-  if (swap) glfwSwapBuffers(window);
   if (options_.slowFrameSeconds > 0.0)
     std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));
   s.frameMs = gl_->frameClock.seconds() * 1000.0;
@@ -722,7 +739,7 @@ bool Editor::frame() {
     else
       state_->quitNow = true;
   }
-  drawFrame(true, nullptr, nullptr, nullptr);
+  drawFrame(nullptr, nullptr, nullptr);
   return !state_->quitNow;
 }
 
@@ -764,7 +781,7 @@ Placement Editor::placementInViewport(int width, int height, double x, double y)
 std::vector<uint8_t> Editor::screenshot(int* width, int* height) {
   std::vector<uint8_t> pixels;
   glfwPollEvents();
-  drawFrame(true, &pixels, width, height);
+  drawFrame(&pixels, width, height);
   return pixels;
 }
 

@@ -66,7 +66,7 @@ class Editor {
 
   // Runs frames until the window is closed (asking about unsaved changes). Returns 0.
   int run();
-  // One frame: events, preview results, panels, viewport, swap. Returns false once the editor
+  // One frame: events, preview results, panels, viewport, present. Returns false once the editor
   // should close.
   bool frame();
 
@@ -132,7 +132,7 @@ class Editor {
   // Gives the renderer the ghosts of the selection (or all) from the shown result.
   void updateGhosts();
   void autosave();
-  void drawFrame(bool swap, std::vector<uint8_t>* capture, int* width, int* height);
+  void drawFrame(std::vector<uint8_t>* capture, int* width, int* height);
 
   EditorOptions options_;
   std::unique_ptr<EditorState> state_;

@@ -9,6 +9,7 @@
 
 #include "engine/util/error.h"
 #include "ui/gl_program.h"
+#include "ui/partial_present.h"
 
 namespace strata::ui {
 namespace {
@@ -77,6 +78,7 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
   std::string why;
   if (!acquireGlfw(&why)) throw Error("cannot open a window: " + why);
   int samples = multisamples();
+  bool software = false;
   for (int attempt = 0; attempt < 2; ++attempt) {
     createWindow(width, height, title, visible, samples);
     if (!window_) {
@@ -88,19 +90,29 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
     description_ = describeGlContext();
     // Software rasterisers pay for every sample (a frame takes twice as long with 4): open the
     // window again single-sampled there, unless STRATA_MSAA asks for samples.
-    const bool software = description_.find("llvmpipe") != std::string::npos ||
-                          description_.find("softpipe") != std::string::npos;
+    software = description_.find("llvmpipe") != std::string::npos ||
+               description_.find("softpipe") != std::string::npos;
     if (!software || samples == 0 || std::getenv("STRATA_MSAA")) break;
     glfwDestroyWindow(window_);
     window_ = nullptr;
     samples = 0;
   }
+  // Partial presents where pixels cost (software rasterisers); STRATA_PARTIAL_PRESENT=0 turns
+  // them off, =1 asks for them on any driver that offers them.
+  const char* partial = std::getenv("STRATA_PARTIAL_PRESENT");
+  const bool wanted = partial && *partial ? std::atoi(partial) != 0 : software;
+  partial_ = wanted && canPresentParts(window_);
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) {
+    static_cast<GlWindow*>(glfwGetWindowUserPointer(w))->exposed_ = true;
+  });
   // No vertical sync: a swap must not wait up to a refresh (16.7 ms at 60 Hz) before an edit's
   // result shows. The editor draws only while there is input or work (Editor::frame sleeps in
   // glfwWaitEvents otherwise), so frames are not drawn for nothing.
   glfwSwapInterval(0);
   description_ +=
       samples > 0 ? ", " + std::to_string(samples) + "x multisampling" : ", no multisampling";
+  if (partial_) description_ += ", partial presents";
 }
 
 void GlWindow::createWindow(int width, int height, const std::string& title, bool visible,
@@ -126,6 +138,19 @@ void GlWindow::createWindow(int width, int height, const std::string& title, boo
 GlWindow::~GlWindow() {
   if (window_) glfwDestroyWindow(window_);
   releaseGlfw();
+}
+
+void GlWindow::present(const std::vector<PixelRect>& rects) {
+  if (partial_)
+    presentParts(window_, rects);
+  else
+    glfwSwapBuffers(window_);
+}
+
+bool GlWindow::takeExposed() {
+  const bool exposed = exposed_;
+  exposed_ = false;
+  return exposed;
 }
 
 void GlWindow::setTitle(const std::string& title) {

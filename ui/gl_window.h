@@ -5,6 +5,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "ui/pixel_rect.h"
 
 struct GLFWwindow;
 
@@ -31,6 +34,17 @@ class GlWindow {
   const std::string& description() const { return description_; }
   void setTitle(const std::string& title);
 
+  // Whether present() shows only the rectangles it is given (partial_present.h; chosen on
+  // software rasterisers, where every pixel sent costs): the back buffer is then never swapped
+  // and keeps its pixels from frame to frame. Otherwise present() swaps, after which the back
+  // buffer's pixels are undefined.
+  bool presentsParts() const { return partial_; }
+  // Shows the frame: `rects` of the back buffer where presentsParts(), else all of it.
+  void present(const std::vector<PixelRect>& rects);
+  // Whether the window system lost the window's pixels (an expose) since the last call: the
+  // next frame must then present everything.
+  bool takeExposed();
+
  private:
   void createWindow(int width, int height, const std::string& title, bool visible, int samples);
 
@@ -38,6 +52,8 @@ class GlWindow {
   int major_ = 0, minor_ = 0;
   std::string description_;
   std::string title_;
+  bool partial_ = false;
+  bool exposed_ = false;
 };
 
 }  // namespace strata::ui

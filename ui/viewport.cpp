@@ -354,6 +354,14 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   }
 }
 
+void viewPixels(const ViewRect& rect, int framebufferHeight, double pixelScale, int* x, int* y,
+                int* width, int* height) {
+  *x = int(std::lround(rect.x * pixelScale));
+  *width = std::max(1, int(std::lround(rect.width * pixelScale)));
+  *height = std::max(1, int(std::lround(rect.height * pixelScale)));
+  *y = framebufferHeight - int(std::lround((rect.y + rect.height) * pixelScale));
+}
+
 ViewportFrame Viewport::makeFrame(const EditorState& state, const ViewRect& rect,
                                   int framebufferHeight, double pixelScale) const {
   ViewportFrame frame;
@@ -363,10 +371,7 @@ ViewportFrame Viewport::makeFrame(const EditorState& state, const ViewRect& rect
   frame.forward = camera.forward();
   frame.up = camera.up();
   frame.ortho = camera.ortho;
-  frame.x = int(std::lround(rect.x * pixelScale));
-  frame.width = std::max(1, int(std::lround(rect.width * pixelScale)));
-  frame.height = std::max(1, int(std::lround(rect.height * pixelScale)));
-  frame.y = framebufferHeight - int(std::lround((rect.y + rect.height) * pixelScale));
+  viewPixels(rect, framebufferHeight, pixelScale, &frame.x, &frame.y, &frame.width, &frame.height);
   frame.sectionOn = sectionPlane(state, &frame.sectionNormal, &frame.sectionOffset);
   return frame;
 }

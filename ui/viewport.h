@@ -26,6 +26,11 @@ struct ViewRect {
   double x = 0.0, y = 0.0, width = 1.0, height = 1.0;
 };
 
+// `rect` in the framebuffer's pixels (GL's origin, bottom left): the x, y, width and height
+// of the frame the view draws into, `pixelScale` framebuffer pixels per window pixel.
+void viewPixels(const ViewRect& rect, int framebufferHeight, double pixelScale, int* x, int* y,
+                int* width, int* height);
+
 class Viewport {
  public:
   Camera camera;

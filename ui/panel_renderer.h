@@ -1,0 +1,44 @@
+// Dear ImGui's draw data in OpenGL: the panels, menus and text of the editor. Does what Dear
+// ImGui's OpenGL 3 backend does (the same shader, blending and scissor boxes, so the same
+// pixels), and can draw only within a rectangle of the framebuffer: each command's scissor box
+// is cut to it, which is what the window's kept image needs (window_image.h) and the backend
+// cannot do (it sets the scissor itself).
+//
+// Threads: the UI thread, with the GL context current. Construct after the fonts are added
+// (theme.h): it uploads the font atlas and names it as the atlas's texture.
+#pragma once
+
+#include <imgui.h>
+
+#include <vector>
+
+#include "ui/gl_program.h"
+#include "ui/pixel_rect.h"
+
+namespace strata::ui {
+
+// The scissor box of `command` in a framebuffer `height` pixels high, as Dear ImGui's OpenGL
+// backend sets it (the clip rectangle scaled, its corner and size truncated); empty when the
+// command is clipped away.
+PixelRect scissorBox(const ImDrawCmd& command, const ImDrawData& data, int height);
+
+class PanelRenderer {
+ public:
+  PanelRenderer();
+  ~PanelRenderer();
+  PanelRenderer(const PanelRenderer&) = delete;
+  PanelRenderer& operator=(const PanelRenderer&) = delete;
+
+  // Draws the lists of `data` (all, or those with lists[i] true) into the bound framebuffer of
+  // width x height pixels, only within `within`. Leaves blending and the scissor test off.
+  void draw(const ImDrawData& data, int width, int height, const PixelRect& within,
+            const std::vector<bool>* lists = nullptr);
+
+ private:
+  void setUp(const ImDrawData& data, int width, int height);
+
+  GlProgram program_;
+  GLuint vertexArray_ = 0, vertices_ = 0, indices_ = 0, atlas_ = 0;
+};
+
+}  // namespace strata::ui
