@@ -94,13 +94,11 @@ void PanelRenderer::setUp(const ImDrawData& data, int width, int height) {
   glBindBuffer(GL_ARRAY_BUFFER, vertices_);
 }
 
-void PanelRenderer::draw(const ImDrawData& data, int width, int height, const PixelRect& within,
-                         const std::vector<bool>* lists) {
+void PanelRenderer::draw(const ImDrawData& data, int width, int height, const PixelRect& within) {
   if (width <= 0 || height <= 0 || within.empty()) return;
   setUp(data, width, height);
   const GLenum indexType = sizeof(ImDrawIdx) == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
   for (int n = 0; n < data.CmdListsCount; ++n) {
-    if (lists && !(*lists)[size_t(n)]) continue;
     const ImDrawList& list = *data.CmdLists[n];
     // Nothing uploaded for a list that draws nothing within the rectangle.
     bool touches = false;

@@ -1,16 +1,14 @@
 // Dear ImGui's draw data in OpenGL: the panels, menus and text of the editor. Does what Dear
 // ImGui's OpenGL 3 backend does (the same shader, blending and scissor boxes, so the same
 // pixels), and can draw only within a rectangle of the framebuffer: each command's scissor box
-// is cut to it, which is what the window's kept image needs (window_image.h) and the backend
-// cannot do (it sets the scissor itself).
+// is cut to it, which is what redrawing only part of the window needs (window_redraw.h) and
+// the backend cannot do (it sets the scissor itself).
 //
 // Threads: the UI thread, with the GL context current. Construct after the fonts are added
 // (theme.h): it uploads the font atlas and names it as the atlas's texture.
 #pragma once
 
 #include <imgui.h>
-
-#include <vector>
 
 #include "ui/gl_program.h"
 #include "ui/pixel_rect.h"
@@ -29,10 +27,9 @@ class PanelRenderer {
   PanelRenderer(const PanelRenderer&) = delete;
   PanelRenderer& operator=(const PanelRenderer&) = delete;
 
-  // Draws the lists of `data` (all, or those with lists[i] true) into the bound framebuffer of
-  // width x height pixels, only within `within`. Leaves blending and the scissor test off.
-  void draw(const ImDrawData& data, int width, int height, const PixelRect& within,
-            const std::vector<bool>* lists = nullptr);
+  // Draws every list of `data` into the bound framebuffer of width x height pixels, only within
+  // `within`. Leaves blending and the scissor test off.
+  void draw(const ImDrawData& data, int width, int height, const PixelRect& within);
 
  private:
   void setUp(const ImDrawData& data, int width, int height);
