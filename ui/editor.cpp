@@ -679,8 +679,8 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     *capture = readWindowPixels(fbWidth, fbHeight);
     *width = fbWidth;
     *height = fbHeight;
-    gl_->redraw.invalidate();
     gl_->window.present({{0, 0, fbWidth, fbHeight}});
+    gl_->redraw.invalidate();  // the next frame redraws everything
   } else {
     // The view within the frame budget, then the panels; where the window keeps its back
     // buffer, only the panels that changed (or that reach the view) and only those pixels sent.
@@ -690,7 +690,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h});
     gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, s.frameMs);
     gl_->redraw.drawPanels(*gl_->panels, drawData);
-    gl_->window.present(gl_->redraw.rects());
+    if (!gl_->window.present(gl_->redraw.rects())) gl_->redraw.invalidate();  // swapped
   }
   if (options_.slowFrameSeconds > 0.0)
     std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));

@@ -140,11 +140,17 @@ GlWindow::~GlWindow() {
   releaseGlfw();
 }
 
-void GlWindow::present(const std::vector<PixelRect>& rects) {
-  if (partial_)
+bool GlWindow::present(const std::vector<PixelRect>& rects) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  if (partial_ && width == swappedWidth_ && height == swappedHeight_) {
     presentParts(window_, rects);
-  else
-    glfwSwapBuffers(window_);
+    return true;
+  }
+  glfwSwapBuffers(window_);
+  swappedWidth_ = width;
+  swappedHeight_ = height;
+  return false;
 }
 
 bool GlWindow::takeExposed() {

@@ -39,8 +39,13 @@ class GlWindow {
   // and keeps its pixels from frame to frame. Otherwise present() swaps, after which the back
   // buffer's pixels are undefined.
   bool presentsParts() const { return partial_; }
-  // Shows the frame: `rects` of the back buffer where presentsParts(), else all of it.
-  void present(const std::vector<PixelRect>& rects);
+  // Shows the frame: `rects` of the back buffer where presentsParts(), else all of it by a
+  // swap. Returns whether the back buffer kept its pixels (false after a swap). Where parts are
+  // presented, a frame whose framebuffer size differs from the last swapped one is swapped
+  // whole: the driver resizes the back buffer only at a swap, and until then the window's new
+  // size and the buffer disagree (copying a rectangle beyond the old buffer is an X error that
+  // ends the process; a smaller window showed the frame shifted).
+  bool present(const std::vector<PixelRect>& rects);
   // Whether the window system lost the window's pixels (an expose) since the last call: the
   // next frame must then present everything.
   bool takeExposed();
@@ -54,6 +59,7 @@ class GlWindow {
   std::string title_;
   bool partial_ = false;
   bool exposed_ = false;
+  int swappedWidth_ = -1, swappedHeight_ = -1;  // the framebuffer's size at the last swap
 };
 
 }  // namespace strata::ui
