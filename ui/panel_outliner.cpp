@@ -121,14 +121,6 @@ void roleBadge(ChildRole role, bool removes, float x) {
   ImGui::TextColored(colour, "%s", word);
 }
 
-// The palette's height: its default, plus a row of buttons for every three primitives beyond six.
-float paletteHeightFor(const PanelLayout& layout) {
-  const int rows = int((primitiveTable().size() + 2) / 3);
-  // The mode row and the line saying what a click does come on top.
-  return layout.paletteHeight +
-         float(std::max(0, rows - 2) + 2) * ImGui::GetFrameHeightWithSpacing();
-}
-
 // Operations are coloured by the Boolean they apply; leaves are grey.
 ImVec4 kindColor(NodeKind kind) {
   const NodeKindInfo& info = nodeKindInfo(kind);
@@ -359,6 +351,12 @@ void paletteDragSource(int item, const char* label) {
 }
 
 }  // namespace
+
+float paletteHeightFor(const PanelLayout& layout) {
+  const int rows = int((primitiveTable().size() + 2) / 3);
+  return layout.paletteHeight +
+         float(std::max(0, rows - 2) + 2) * ImGui::GetFrameHeightWithSpacing();
+}
 
 void drawOutliner(EditorState& state, const PanelLayout& layout) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();

@@ -84,10 +84,12 @@ bool drawSplitters(PanelLayout& layout) {
   drag(-handle("##split right", ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth - kHandle, top),
                ImVec2(kHandle, column), true, &ended),
        layout.rightWidth, &layout.wanted.rightWidth);
-  // The palette's and the preview panel's top edges.
-  drag(-handle("##split palette", ImVec2(vp->Pos.x, bottom - layout.paletteHeight - kHandle / 2),
-               ImVec2(layout.leftWidth, kHandle), false, &ended),
-       layout.paletteHeight, &layout.wanted.paletteHeight);
+  // The palette's and the preview panel's top edges (the palette's as drawn: its rows beyond
+  // layout.paletteHeight included; the handle sat inside it before).
+  drag(
+      -handle("##split palette", ImVec2(vp->Pos.x, bottom - paletteHeightFor(layout) - kHandle / 2),
+              ImVec2(layout.leftWidth, kHandle), false, &ended),
+      layout.paletteHeight, &layout.wanted.paletteHeight);
   drag(-handle("##split preview",
                ImVec2(vp->Pos.x + vp->Size.x - layout.rightWidth,
                       bottom - layout.previewHeight - kHandle / 2),

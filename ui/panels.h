@@ -51,6 +51,9 @@ bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then);
 // Left column: the scene tree and the palette of things to add.
 void drawOutliner(EditorState& state, const PanelLayout& layout);
 void drawPalette(EditorState& state, const PanelLayout& layout);
+// The palette's height as drawn: layout.paletteHeight (what its splitter sets) plus its mode
+// row, its hint line and a row of buttons for every three primitives beyond six.
+float paletteHeightFor(const PanelLayout& layout);
 // Right column: the selected node's properties and the preview settings.
 void drawInspector(EditorState& state, const PanelLayout& layout);
 void drawPreviewPanel(EditorState& state, const PanelLayout& layout);
