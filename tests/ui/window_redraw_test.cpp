@@ -140,6 +140,29 @@ void drawView(const PixelRect& view, int frame) {
   glDisable(GL_SCISSOR_TEST);
 }
 
+// The pixels (RGB) where the window's back buffer differs from the current ImGui frame drawn
+// whole over the view of `frame`, into an image of its own.
+size_t pixelsDifferingFromAFullDraw(PanelRenderer& panels, int width, int height,
+                                    const PixelRect& view, int frame) {
+  glFinish();
+  const std::vector<uint8_t> kept = readWindowPixels(width, height);
+  RenderTarget whole(width, height);
+  whole.bind();
+  glViewport(0, 0, width, height);
+  glClearColor(kWindowBackground[0], kWindowBackground[1], kWindowBackground[2],
+               kWindowBackground[3]);
+  glClear(GL_COLOR_BUFFER_BIT);
+  drawView(view, frame);
+  panels.draw(*ImGui::GetDrawData(), width, height, {0, 0, width, height});
+  const std::vector<uint8_t> full = whole.read();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (kept.size() != full.size()) return kept.size() / 4;
+  size_t differ = 0;
+  for (size_t i = 0; i < kept.size(); i += 4)
+    differ += kept[i] != full[i] || kept[i + 1] != full[i + 1] || kept[i + 2] != full[i + 2];
+  return differ;
+}
+
 TEST(WindowRedraw, FramesThatRedrawOnlyWhatChangedShowWhatAFullDrawShows) {
   std::string why;
   if (!editorDisplayAvailable(&why)) GTEST_SKIP() << "no display: " << why;
@@ -163,23 +186,7 @@ TEST(WindowRedraw, FramesThatRedrawOnlyWhatChangedShowWhatAFullDrawShows) {
       redraw.drawPanels(panels, *ImGui::GetDrawData());
       if (frame % 2 == 1 && frame > 2) viewOnly = std::max(viewOnly, redraw.pixelsRedrawn());
     }
-    const std::vector<uint8_t> kept = readWindowPixels(width, height);
-    // The last frame drawn whole, into an image of its own.
-    RenderTarget whole(width, height);
-    whole.bind();
-    glViewport(0, 0, width, height);
-    glClearColor(kWindowBackground[0], kWindowBackground[1], kWindowBackground[2],
-                 kWindowBackground[3]);
-    glClear(GL_COLOR_BUFFER_BIT);
-    drawView(view, 11);
-    panels.draw(*ImGui::GetDrawData(), width, height, {0, 0, width, height});
-    const std::vector<uint8_t> full = whole.read();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    ASSERT_EQ(kept.size(), full.size());
-    size_t differ = 0;
-    for (size_t i = 0; i < kept.size(); i += 4)
-      differ += kept[i] != full[i] || kept[i + 1] != full[i + 1] || kept[i + 2] != full[i + 2];
-    EXPECT_EQ(differ, 0u) << "pixels that differ from a full draw";
+    EXPECT_EQ(pixelsDifferingFromAFullDraw(panels, width, height, view, 11), 0u);
     // Frames where the left panel kept its text redrew the view, the popup's old and new place
     // and the hint: well under the whole window.
     EXPECT_GT(viewOnly, 0);
@@ -223,23 +230,10 @@ TEST(WindowRedraw, AResizedWindowPresentsWholeFramesOfItsNewSize) {
         if (!window.present(redraw.rects())) redraw.invalidate();
       }
     }
-    glFinish();
-    const std::vector<uint8_t> kept = readWindowPixels(width, height);
-    RenderTarget whole(width, height);
-    whole.bind();
-    glViewport(0, 0, width, height);
-    glClearColor(kWindowBackground[0], kWindowBackground[1], kWindowBackground[2],
-                 kWindowBackground[3]);
-    glClear(GL_COLOR_BUFFER_BIT);
-    drawView({160, 0, width - 120, height}, frame - 1);
-    panels.draw(*ImGui::GetDrawData(), width, height, {0, 0, width, height});
-    const std::vector<uint8_t> full = whole.read();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    ASSERT_EQ(kept.size(), full.size());
-    size_t differ = 0;
-    for (size_t i = 0; i < kept.size(); i += 4)
-      differ += kept[i] != full[i] || kept[i + 1] != full[i + 1] || kept[i + 2] != full[i + 2];
-    EXPECT_EQ(differ, 0u) << "pixels that differ from a full draw at " << width << " x " << height;
+    EXPECT_EQ(pixelsDifferingFromAFullDraw(panels, width, height, {160, 0, width - 120, height},
+                                           frame - 1),
+              0u)
+        << "at " << width << " x " << height;
   }
   ImGui::DestroyContext(context);
 }
