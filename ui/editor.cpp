@@ -609,6 +609,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   PanelLayout& layout = layout_;
   layout.menuHeight = ImGui::GetFrameHeight();
   layout.statusHeight = ImGui::GetFrameHeight() + 8.0f;
+  layout.paletteRows = paletteRowsHeight();
   clampLayout(layout, ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y);
   drawMainMenu(s);
   // The inspector before the outliner and the palette: a number being typed into one of its
@@ -679,7 +680,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     *capture = readWindowPixels(fbWidth, fbHeight);
     *width = fbWidth;
     *height = fbHeight;
-    gl_->window.present({{0, 0, fbWidth, fbHeight}});
+    gl_->window.present({{0, 0, fbWidth, fbHeight}}, fbWidth, fbHeight);
     gl_->redraw.invalidate();  // the next frame redraws everything
   } else {
     // The view within the frame budget, then the panels; where the window keeps its back
@@ -690,7 +691,8 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h});
     gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, s.frameMs);
     gl_->redraw.drawPanels(*gl_->panels, drawData);
-    if (!gl_->window.present(gl_->redraw.rects())) gl_->redraw.invalidate();  // swapped
+    if (!gl_->window.present(gl_->redraw.rects(), fbWidth, fbHeight))
+      gl_->redraw.invalidate();  // swapped: the back buffer's pixels are undefined
   }
   if (options_.slowFrameSeconds > 0.0)
     std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));

@@ -101,7 +101,8 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
   // them off, =1 asks for them on any driver that offers them.
   const char* partial = std::getenv("STRATA_PARTIAL_PRESENT");
   const bool wanted = partial && *partial ? std::atoi(partial) != 0 : software;
-  partial_ = wanted && canPresentParts(window_);
+  // Not on a multisampled window: the driver resolves its samples only at a swap.
+  partial_ = wanted && samples == 0 && canPresentParts(window_);
   glfwSetWindowUserPointer(window_, this);
   glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) {
     static_cast<GlWindow*>(glfwGetWindowUserPointer(w))->exposed_ = true;
@@ -140,13 +141,18 @@ GlWindow::~GlWindow() {
   releaseGlfw();
 }
 
-bool GlWindow::present(const std::vector<PixelRect>& rects) {
-  int width = 0, height = 0;
-  glfwGetFramebufferSize(window_, &width, &height);
-  if (partial_ && width == swappedWidth_ && height == swappedHeight_) {
-    presentParts(window_, rects);
-    return true;
+bool GlWindow::present(const std::vector<PixelRect>& rects, int width, int height) {
+  int nowWidth = 0, nowHeight = 0;
+  glfwGetFramebufferSize(window_, &nowWidth, &nowHeight);
+  const bool sameSize = width == swappedWidth_ && height == swappedHeight_ && nowWidth == width &&
+                        nowHeight == height;
+  if (partial_ && sameSize) {
+    if (presentParts(window_, rects)) return true;
+    partial_ = false;  // the X server refused: swap from now on
+    description_ += " (turned off after an X error)";
   }
+  width = nowWidth;
+  height = nowHeight;
   glfwSwapBuffers(window_);
   swappedWidth_ = width;
   swappedHeight_ = height;

@@ -39,13 +39,14 @@ class GlWindow {
   // and keeps its pixels from frame to frame. Otherwise present() swaps, after which the back
   // buffer's pixels are undefined.
   bool presentsParts() const { return partial_; }
-  // Shows the frame: `rects` of the back buffer where presentsParts(), else all of it by a
-  // swap. Returns whether the back buffer kept its pixels (false after a swap). Where parts are
-  // presented, a frame whose framebuffer size differs from the last swapped one is swapped
-  // whole: the driver resizes the back buffer only at a swap, and until then the window's new
-  // size and the buffer disagree (copying a rectangle beyond the old buffer is an X error that
-  // ends the process; a smaller window showed the frame shifted).
-  bool present(const std::vector<PixelRect>& rects);
+  // Shows the frame drawn at width x height framebuffer pixels: `rects` of the back buffer where
+  // presentsParts(), else all of it by a swap. Returns whether the back buffer kept its pixels
+  // (false after a swap: the next frame must be drawn whole). Parts are presented only when the
+  // frame's size, the window's size now and the size at the last swap agree, since the driver
+  // resizes the back buffer only at a swap (a rectangle beyond the old buffer is an X error; a
+  // smaller window showed the frame shifted); otherwise the frame is swapped whole. An X error
+  // while presenting parts turns them off for good (the frame is then swapped).
+  bool present(const std::vector<PixelRect>& rects, int width, int height);
   // Whether the window system lost the window's pixels (an expose) since the last call: the
   // next frame must then present everything.
   bool takeExposed();

@@ -352,10 +352,13 @@ void paletteDragSource(int item, const char* label) {
 
 }  // namespace
 
-float paletteHeightFor(const PanelLayout& layout) {
+float paletteRowsHeight() {
   const int rows = int((primitiveTable().size() + 2) / 3);
-  return layout.paletteHeight +
-         float(std::max(0, rows - 2) + 2) * ImGui::GetFrameHeightWithSpacing();
+  return float(std::max(0, rows - 2) + 2) * ImGui::GetFrameHeightWithSpacing();
+}
+
+float paletteHeightFor(const PanelLayout& layout) {
+  return layout.paletteHeight + layout.paletteRows;
 }
 
 void drawOutliner(EditorState& state, const PanelLayout& layout) {

@@ -115,8 +115,10 @@ void PanelRenderer::draw(const ImDrawData& data, int width, int height, const Pi
       if (c.UserCallback) {
         if (c.UserCallback == ImDrawCallback_ResetRenderState)
           setUp(data, width, height);
-        else
-          c.UserCallback(&list, &c);
+        else {
+          glScissor(within.x0, within.y0, within.x1 - within.x0, within.y1 - within.y0);
+          c.UserCallback(&list, &c);  // must draw within the scissor box it is given
+        }
         continue;
       }
       const PixelRect box = scissorBox(c, data, height).intersect(within);

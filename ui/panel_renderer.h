@@ -28,7 +28,8 @@ class PanelRenderer {
   PanelRenderer& operator=(const PanelRenderer&) = delete;
 
   // Draws every list of `data` into the bound framebuffer of width x height pixels, only within
-  // `within`. Leaves blending and the scissor test off.
+  // `within`. Leaves blending and the scissor test off, the blend function ImGui's, the viewport
+  // the whole framebuffer, texture unit 0 active with no texture, no program, no vertex array.
   void draw(const ImDrawData& data, int width, int height, const PixelRect& within);
 
  private:

@@ -61,8 +61,9 @@ void clampLayout(PanelLayout& layout, float width, float height) {
   }
   layout.leftWidth = left;
   layout.rightWidth = right;
-  layout.paletteHeight =
-      std::clamp(wanted.paletteHeight, 120.0f, std::max(120.0f, column - 120.0f));
+  // The outliner keeps 120 px above the palette as drawn (its rows beyond paletteHeight too).
+  layout.paletteHeight = std::clamp(wanted.paletteHeight, 120.0f,
+                                    std::max(120.0f, column - 120.0f - layout.paletteRows));
   layout.previewHeight =
       std::clamp(wanted.previewHeight, 150.0f, std::max(150.0f, column - 120.0f));
 }

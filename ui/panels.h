@@ -23,6 +23,7 @@ struct PanelSizes {
 struct PanelLayout : PanelSizes {
   float menuHeight = 0.0f;
   float statusHeight = 0.0f;
+  float paletteRows = 0.0f;  // the palette's rows beyond paletteHeight (paletteRowsHeight)
   PanelSizes wanted;
 };
 
@@ -51,9 +52,11 @@ bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then);
 // Left column: the scene tree and the palette of things to add.
 void drawOutliner(EditorState& state, const PanelLayout& layout);
 void drawPalette(EditorState& state, const PanelLayout& layout);
-// The palette's height as drawn: layout.paletteHeight (what its splitter sets) plus its mode
-// row, its hint line and a row of buttons for every three primitives beyond six.
+// The palette's height as drawn: layout.paletteHeight (what its splitter sets) plus
+// layout.paletteRows, set each frame from paletteRowsHeight: its mode row, its hint line and a
+// row of buttons for every three primitives beyond six (needs the ImGui context).
 float paletteHeightFor(const PanelLayout& layout);
+float paletteRowsHeight();
 // Right column: the selected node's properties and the preview settings.
 void drawInspector(EditorState& state, const PanelLayout& layout);
 void drawPreviewPanel(EditorState& state, const PanelLayout& layout);

@@ -17,6 +17,17 @@ GetGlxWindow getGlxWindow() {
   return reinterpret_cast<GetGlxWindow>(dlsym(RTLD_DEFAULT, "glfwGetGLXWindow"));
 }
 
+// Xlib's, found the same way (loaded by GLFW's X11 build; not a link dependency of ours).
+using Sync = int (*)(Display*, Bool);
+using SetErrorHandler = XErrorHandler (*)(XErrorHandler);
+
+bool g_failed = false;
+
+int onXError(Display*, XErrorEvent*) {
+  g_failed = true;
+  return 0;
+}
+
 }  // namespace
 
 bool canPresentParts(GLFWwindow* window) {
@@ -28,11 +39,24 @@ bool canPresentParts(GLFWwindow* window) {
   return epoxy_has_glx_extension(x, DefaultScreen(x), "GLX_MESA_copy_sub_buffer");
 }
 
-void presentParts(GLFWwindow* window, const std::vector<PixelRect>& rects) {
-  Display* x = getDisplay()();
-  const GLXWindow drawable = getGlxWindow()(window);
+bool presentParts(GLFWwindow* window, const std::vector<PixelRect>& rects) {
+  static const GetDisplay display = getDisplay();
+  static const GetGlxWindow glxWindow = getGlxWindow();
+  static const auto sync = reinterpret_cast<Sync>(dlsym(RTLD_DEFAULT, "XSync"));
+  static const auto setErrorHandler =
+      reinterpret_cast<SetErrorHandler>(dlsym(RTLD_DEFAULT, "XSetErrorHandler"));
+  if (!display || !glxWindow || !sync || !setErrorHandler) return false;
+  Display* x = display();
+  const GLXWindow drawable = glxWindow(window);
+  // Errors trapped for these requests only (the UI thread is Xlib's only user here).
+  sync(x, False);
+  g_failed = false;
+  const XErrorHandler previous = setErrorHandler(onXError);
   for (const PixelRect& r : rects)
     if (!r.empty()) glXCopySubBufferMESA(x, drawable, r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+  sync(x, False);
+  setErrorHandler(previous);
+  return !g_failed;
 }
 
 }  // namespace strata::ui

@@ -18,7 +18,9 @@ namespace strata::ui {
 // time, so a GLFW built for Wayland only answers false).
 bool canPresentParts(GLFWwindow* window);
 
-// Copies `rects` (framebuffer pixels) of the back buffer to the window on the screen.
-void presentParts(GLFWwindow* window, const std::vector<PixelRect>& rects);
+// Copies `rects` (framebuffer pixels) of the back buffer to the window on the screen and waits
+// for the X server's answer. Returns false when it reported an error (trapped: Xlib's default
+// handler would end the process); the window then shows what it showed before.
+bool presentParts(GLFWwindow* window, const std::vector<PixelRect>& rects);
 
 }  // namespace strata::ui

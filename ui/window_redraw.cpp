@@ -76,7 +76,9 @@ DrawListRecord recordDrawList(const ImDrawList& list, const ImDrawData& data, in
   for (const ImDrawCmd& c : list.CmdBuffer) {
     r.commands.push_back({c.ClipRect, c.TextureId, c.VtxOffset, c.IdxOffset, c.ElemCount,
                           c.UserCallback, c.UserCallbackData});
-    if (c.UserCallback) callback = true;  // draws what it likes
+    // A user callback may draw anything: the whole framebuffer (resetting the render state
+    // draws nothing).
+    if (c.UserCallback && c.UserCallback != ImDrawCallback_ResetRenderState) callback = true;
     if (c.ElemCount > 0) r.rect = unite(r.rect, scissorBox(c, data, height).intersect(reach));
   }
   if (callback) r.rect = {0, 0, width, height};

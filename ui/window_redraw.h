@@ -9,6 +9,11 @@
 // pixels are those of drawing everything: within each redrawn rectangle, the background, the
 // view and every list that reaches it, in order; the rest is what the last frame left.
 //
+// What the promise rests on: the caller draws every pixel of the view's rectangle (opaque) in
+// each frame; a texture's contents never change under the same ImTextureID (the font atlas is
+// uploaded once); user callbacks in the draw lists draw only within the scissor box they are
+// given (their lists count as covering the whole window).
+//
 // Threads: the UI thread, with the window's GL context current.
 #pragma once
 
