@@ -367,6 +367,10 @@ ui::AxisView parseView(const std::string& view, bool* iso) {
 
 }  // namespace
 
+// What `strata edit` does without a user: a screenshot or a measurement. Each needs a window,
+// and none reads or writes the user's files (recovery, recent files, panel sizes).
+const char* const kBatchOptions[] = {"--screenshot", "--measure-frames", "--measure-latency"};
+
 bool looksLikeScenePath(const std::string& arg) {
   return arg.size() > 5 && arg.compare(arg.size() - 5, 5, ".json") == 0;
 }
@@ -385,7 +389,7 @@ int runEdit(const std::vector<std::string>& argv) {
     std::string why;
     if (!ui::editorDisplayAvailable(&why)) {
       // What only a window can do is an error without one, not an evaluation that exits 0.
-      for (const char* windowOnly : {"--screenshot", "--measure-frames", "--measure-latency"})
+      for (const char* windowOnly : kBatchOptions)
         if (args.has(windowOnly))
           throw Error(std::string("strata edit ") + windowOnly + " needs a window, and " + why +
                       (std::string(windowOnly) == "--screenshot"
@@ -405,8 +409,8 @@ int runEdit(const std::vector<std::string>& argv) {
     // recovery file, recent files or panel sizes (a measurement's edit left a recovery file
     // that the user's next session offered, and its prompt then sat over every later
     // measurement).
-    const bool batch =
-        !screenshot.empty() || args.has("--measure-frames") || args.has("--measure-latency");
+    bool batch = false;
+    for (const char* option : kBatchOptions) batch = batch || args.has(option);
     if (!batch) {
       options.recentFilesPath = defaultRecentFilesPath();
       if (!userConfigDir().empty()) {
