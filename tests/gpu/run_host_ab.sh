@@ -6,7 +6,8 @@
 # and `--simplify 0.25` of the demo. Carried in .devrt2: bin/strata.xz (after),
 # bin/strata_base.xz (before), bin/strata_gpu_tests.xz, data/setmeshes.tar.xz. Results go to
 # $OUT/r as they come (a lease may end early). JOBS="scene:cells ..." replaces the exports'
-# list; QUICK=1 leaves out the GPU tests, the boolean set and the simplification.
+# list; QUICK=1 leaves out the GPU tests, the boolean set and the simplification; CROSS=1 also
+# exports each scene up to 2048 cells with the new binary on the CPU backend and compares files.
 # DEVRT names the carried folder (.devrt2 unless set); its libs.tar.xz, where present, holds
 # libraries the binaries need that the host lacks.
 D=${DEVRT:-.devrt2}
@@ -34,6 +35,12 @@ for job in ${JOBS:-bone_scaffold_scaled_copy:512 bone_scaffold_scaled_copy:1024 
     echo "== $scene $res $bin #$round: $(cat /tmp/t.txt | tail -1) | $(stages /tmp/x-$bin.json 2>&1 | tail -1)"
   done; done
   cmp -s /tmp/x-strata_base.stl /tmp/x-strata.stl && echo "   before = after, byte for byte" || echo "   FILES DIFFER"
+  # The new binary's file on the CPU backend (the reference) against its file on CUDA.
+  if [ -n "$CROSS" ] && [ "$res" -le 2048 ]; then
+    timeout 120 $B/strata export $S/$scene.strata.json --resolution $res --backend cpu -q \
+      -o /tmp/x-cpu.stl > /dev/null 2>&1
+    cmp -s /tmp/x-cpu.stl /tmp/x-strata.stl && echo "   cpu = cuda, byte for byte" || echo "   CPU AND CUDA DIFFER"
+  fi
 done
 } > $R/export.txt 2>&1
 if [ -n "$QUICK" ]; then tar czf $OUT/results.tgz -C $OUT r; exit 0; fi
