@@ -688,8 +688,17 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     if (gl_->window.takeExposed()) gl_->redraw.invalidate();
     int x = 0, y = 0, w = 0, h = 0;
     viewPixels(rect, fbHeight, pixelScale, &x, &y, &w, &h);
-    gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h});
-    gl_->viewport.draw(*gl_->renderer, s, rect, fbHeight, pixelScale, s.frameMs);
+    // A view that would draw what the window shows (a panel changed, not the view) is kept:
+    // neither drawn nor sent, but where a changed panel reaches it.
+    const bool viewShown = gl_->viewport.prepare(*gl_->renderer, s, rect, fbHeight, pixelScale);
+    gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h}, viewShown);
+    if (gl_->redraw.viewKept()) {
+      gl_->renderer->skipFrame();
+      for (const PixelRect& r : gl_->redraw.viewRepaints())
+        gl_->viewport.repaintPrepared(*gl_->renderer, r);
+    } else {
+      gl_->viewport.drawPrepared(*gl_->renderer, s.frameMs);
+    }
     gl_->redraw.drawPanels(*gl_->panels, drawData);
     if (!gl_->window.present(gl_->redraw.rects(), fbWidth, fbHeight))
       gl_->redraw.invalidate();  // swapped: the back buffer's pixels are undefined

@@ -532,6 +532,24 @@ const Bounds& Viewport::cachedSelectionBounds(const EditorState& state) {
 
 void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
                     int framebufferHeight, double pixelScale, double lastFrameMs) {
+  prepare(renderer, state, rect, framebufferHeight, pixelScale);
+  drawPrepared(renderer, lastFrameMs);
+}
+
+void Viewport::drawPrepared(ViewportRenderer& renderer, double lastFrameMs) {
+  const Prepared& p = prepared_;
+  if (lastFrameMs >= 0.0)
+    renderer.drawCached(p.frame, p.lines, p.overlay, p.triangles, lastFrameMs);
+  else
+    renderer.draw(p.frame, p.lines, p.overlay, p.triangles);
+}
+
+void Viewport::repaintPrepared(ViewportRenderer& renderer, const PixelRect& clip) const {
+  renderer.repaintWindow(prepared_.frame, prepared_.overlay, prepared_.triangles, clip);
+}
+
+bool Viewport::prepare(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
+                       int framebufferHeight, double pixelScale) {
   framePending(rect);
   const ViewportFrame frame = makeFrame(state, rect, framebufferHeight, pixelScale);
   const ScreenMapping view = mapping(state, rect);
@@ -555,10 +573,9 @@ void Viewport::draw(ViewportRenderer& renderer, const EditorState& state, const 
     gizmo.place(parentWorld, transform);
     gizmo.appendGeometry(view, hot_, &overlay, &triangles);
   }
-  if (lastFrameMs >= 0.0)
-    renderer.drawCached(frame, lines, overlay, triangles, lastFrameMs);
-  else
-    renderer.draw(frame, lines, overlay, triangles);
+  const bool shown = renderer.windowShows(frame, lines, overlay, triangles);
+  prepared_ = Prepared{frame, std::move(lines), std::move(overlay), std::move(triangles)};
+  return shown;
 }
 
 }  // namespace strata::ui

@@ -52,6 +52,15 @@ class Viewport {
   // (screenshots, headless renders).
   void draw(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
             int framebufferHeight, double pixelScale, double lastFrameMs = -1.0);
+  // draw in two steps, for a frame that may leave the view as it is: prepare makes the frame's
+  // camera, lines and overlay (and the renderer's backdrop) and says whether the window already
+  // shows them (ViewportRenderer::windowShows); drawPrepared then draws them like draw.
+  bool prepare(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
+               int framebufferHeight, double pixelScale);
+  void drawPrepared(ViewportRenderer& renderer, double lastFrameMs);
+  // The prepared view drawn again within `clip` (window pixels) where the window keeps it
+  // (ViewportRenderer::repaintWindow).
+  void repaintPrepared(ViewportRenderer& renderer, const PixelRect& clip) const;
   // The measurements' labels (measure_tool.h), in this frame's ImGui draw lists.
   void drawAnnotations(const EditorState& state, const ViewRect& rect);
   // Frame the whole scene / the selection (at the next handleInput or draw).
@@ -114,6 +123,11 @@ class Viewport {
 
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;
+  // What prepare made for drawPrepared.
+  struct Prepared {
+    ViewportFrame frame;
+    std::vector<LineVertex> lines, overlay, triangles;
+  } prepared_;
   int hot_ = -1;
   bool navigating_ = false;
   bool clickPending_ = false;

@@ -600,10 +600,13 @@ void ViewportRenderer::drawGhosts(const ViewportFrame& f) {
 }
 
 void ViewportRenderer::drawOverlay(const ViewportFrame& f, const std::vector<LineVertex>& overlay,
-                                   const std::vector<LineVertex>& overlayTriangles) {
+                                   const std::vector<LineVertex>& overlayTriangles,
+                                   const PixelRect& clip) {
   glViewport(f.x, f.y, f.width, f.height);
   glEnable(GL_SCISSOR_TEST);
-  glScissor(f.x, f.y, f.width, f.height);
+  const PixelRect view{f.x, f.y, f.x + f.width, f.y + f.height};
+  const PixelRect r = clip.empty() ? view : clip.intersect(view);
+  glScissor(r.x0, r.y0, std::max(0, r.x1 - r.x0), std::max(0, r.y1 - r.y0));
   lineProgram_.use();
   lineProgram_.set("viewProjection", glm::mat4(f.viewProjection));
   glEnable(GL_BLEND);
@@ -619,6 +622,7 @@ void ViewportRenderer::drawOverlay(const ViewportFrame& f, const std::vector<Lin
 void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex>& lines,
                             const std::vector<LineVertex>& overlay,
                             const std::vector<LineVertex>& overlayTriangles) {
+  windowKey_ = 0;  // drawn another way than drawCached's
   drawBackground(f);
   if (splatCount_ > 0) {
     const int level = detailLevel(f);
@@ -635,6 +639,52 @@ void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex
   glDepthMask(GL_TRUE);
   drawOverlay(f, overlay, overlayTriangles);
   glDisable(GL_DEPTH_TEST);
+}
+
+uint64_t ViewportRenderer::windowKeyFor(const ViewportFrame& f,
+                                        const std::vector<LineVertex>& lines,
+                                        const std::vector<LineVertex>& overlay,
+                                        const std::vector<LineVertex>& overlayTriangles) const {
+  uint64_t h = viewKey(f, lines) ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
+  auto mix = [&](const std::vector<LineVertex>& v) {
+    const auto* p = reinterpret_cast<const uint8_t*>(v.data());
+    for (size_t i = 0; i < v.size() * sizeof(LineVertex); ++i) h = (h ^ p[i]) * 1099511628211ull;
+    h = (h ^ v.size()) * 1099511628211ull;
+  };
+  mix(overlay);
+  mix(overlayTriangles);
+  return h | 1;
+}
+
+bool ViewportRenderer::windowShows(const ViewportFrame& f, const std::vector<LineVertex>& lines,
+                                   const std::vector<LineVertex>& overlay,
+                                   const std::vector<LineVertex>& overlayTriangles) const {
+  return windowKey_ != 0 && !refining_ &&
+         windowKey_ == windowKeyFor(f, lines, overlay, overlayTriangles);
+}
+
+void ViewportRenderer::repaintWindow(const ViewportFrame& f, const std::vector<LineVertex>& overlay,
+                                     const std::vector<LineVertex>& overlayTriangles,
+                                     const PixelRect& clip) {
+  const PixelRect r = clip.intersect({f.x, f.y, f.x + f.width, f.y + f.height});
+  if (!shown_ || r.empty()) return;
+  GLint window = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &window);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, shown_->framebuffer());
+  glEnable(GL_SCISSOR_TEST);  // a blit is scissored too
+  glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+  glBlitFramebuffer(0, 0, shown_->width(), shown_->height(), f.x, f.y, f.x + f.width,
+                    f.y + f.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(window));
+  drawOverlay(f, overlay, overlayTriangles, r);
+  glDisable(GL_DEPTH_TEST);
+}
+
+void ViewportRenderer::skipFrame() {
+  // As drawCached's start does: the last frame's time goes with no splats drawn.
+  uploadMsLastFrame_ = uploadMsThisFrame_;
+  uploadMsThisFrame_ = 0.0;
+  drewSplatsLastFrame_ = 0;
 }
 
 uint64_t ViewportRenderer::viewKey(const ViewportFrame& f,
@@ -873,6 +923,11 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   }
   drawOverlay(f, overlay, overlayTriangles);
   glDisable(GL_DEPTH_TEST);
+  // The window now holds the complete image (until the view or the content changes), or one
+  // that a later frame replaces.
+  windowKey_ = show != nullptr && show == shown_.get() && !refining_ && !showCoarse
+                   ? windowKeyFor(f, lines, overlay, overlayTriangles)
+                   : 0;
 }
 
 void ViewportRenderer::useSurfelProgram(const GlProgram& program, const ViewportFrame& f) {

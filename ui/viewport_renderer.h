@@ -22,6 +22,7 @@
 #include "engine/ldi/grid.h"
 #include "engine/ldi/splats.h"
 #include "ui/gl_program.h"
+#include "ui/pixel_rect.h"
 #include "ui/splat_primitive.h"
 
 namespace strata::ui {
@@ -142,6 +143,22 @@ class ViewportRenderer {
   void drawCached(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
                   const std::vector<LineVertex>& overlay,
                   const std::vector<LineVertex>& overlayTriangles, double lastFrameMs);
+  // Whether the window's pixels at `frame` already show what drawCached would draw with these
+  // arguments: the last drawCached left its complete image there (not a coarse or partial one)
+  // with the same view, content, lines and overlay, and nothing was drawn into the window by
+  // draw since. A caller whose window keeps its back buffer (window_redraw.h) may then leave
+  // the view as it is and call skipFrame instead of drawCached.
+  bool windowShows(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
+                   const std::vector<LineVertex>& overlay,
+                   const std::vector<LineVertex>& overlayTriangles) const;
+  // A frame that keeps the view's pixels as they are (windowShows): the frame budget's
+  // bookkeeping is told that no splats were drawn.
+  void skipFrame();
+  // Draws the window's view again within `clip` (window pixels), as the last drawCached left
+  // it: its complete image and `overlay` on top. Only where windowShows(frame, ..., overlay,
+  // overlayTriangles) holds; the scissor test is off on return.
+  void repaintWindow(const ViewportFrame& frame, const std::vector<LineVertex>& overlay,
+                     const std::vector<LineVertex>& overlayTriangles, const PixelRect& clip);
   // The full image is still being drawn: the frame loop must keep frames coming.
   bool refining() const { return refining_; }
   // The view shows the coarse image (half resolution, every k-th splat) while it refines.
@@ -273,8 +290,13 @@ class ViewportRenderer {
   void drawGhosts(const ViewportFrame& f);
   // The key of the view the scene image shows: camera, viewport, section and lines.
   uint64_t viewKey(const ViewportFrame& f, const std::vector<LineVertex>& lines) const;
+  // The key of the window's pixels drawn by drawCached with these arguments (never 0).
+  uint64_t windowKeyFor(const ViewportFrame& f, const std::vector<LineVertex>& lines,
+                        const std::vector<LineVertex>& overlay,
+                        const std::vector<LineVertex>& overlayTriangles) const;
+  // The overlay over the view, within `clip` (window pixels; empty: the whole view).
   void drawOverlay(const ViewportFrame& f, const std::vector<LineVertex>& overlay,
-                   const std::vector<LineVertex>& overlayTriangles);
+                   const std::vector<LineVertex>& overlayTriangles, const PixelRect& clip = {});
   // Draws the leaf ids of the pixels in the rectangle into the pick framebuffer (left bound, with
   // scissoring on) and readies it for glReadPixels; false when the framebuffer is incomplete.
   bool drawPickIds(const ViewportFrame& frame, int x, int y, int width, int height);
@@ -358,6 +380,7 @@ class ViewportRenderer {
   std::vector<Splat> ghostSplats_[2];     // the last setGhosts' layers
   uint64_t plainKey_ = 0;
   uint64_t shownKey_ = 0;         // what shown_ (or coarse_, while refining) holds
+  uint64_t windowKey_ = 0;        // what the window shows (windowShows); 0: unknown
   uint64_t shownView_ = 0;        // its view alone (viewKey)
   bool refining_ = false;         // building_ is being drawn for shownKey_
   bool refineOverShown_ = false;  // meanwhile shown_ holds a first image (else coarse_ is shown)

@@ -114,7 +114,8 @@ std::vector<PixelRect> damagedRects(const std::vector<DrawListRecord>& previous,
   return disjointRects(damage);
 }
 
-void WindowRedraw::begin(const ImDrawData& data, int width, int height, const PixelRect& view) {
+void WindowRedraw::begin(const ImDrawData& data, int width, int height, const PixelRect& view,
+                         bool viewUnchanged) {
   const PixelRect window{0, 0, width, height};
   if (width != width_ || height != height_) all_ = true;  // a new back buffer
   width_ = width;
@@ -126,10 +127,18 @@ void WindowRedraw::begin(const ImDrawData& data, int width, int height, const Pi
       current.push_back(recordDrawList(*data.CmdLists[i], data, width, height));
   }
   whole_ = all_ || !keeps_;
-  if (whole_)
+  viewKept_ = !whole_ && viewUnchanged;
+  viewRepaints_.clear();
+  if (whole_) {
     rects_ = disjointRects({view.intersect(window), window});
-  else
+  } else if (viewKept_) {
+    // The panels' damage alone; where it reaches the view, the view is drawn again there.
+    rects_ = damagedRects(records_, current, PixelRect{});
+    for (const PixelRect& r : rects_)
+      if (r.overlaps(view)) viewRepaints_.push_back(r.intersect(view));
+  } else {
     rects_ = damagedRects(records_, current, view.intersect(window));
+  }
   all_ = false;
   records_ = std::move(current);
 
@@ -139,7 +148,7 @@ void WindowRedraw::begin(const ImDrawData& data, int width, int height, const Pi
                kWindowBackground[3]);
   glEnable(GL_SCISSOR_TEST);
   for (const PixelRect& r : rects_) {
-    if (view.intersect(window) == r) continue;  // the view covers its rectangle
+    if (!viewKept_ && view.intersect(window) == r) continue;  // the view covers it
     glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
     glClear(GL_COLOR_BUFFER_BIT);
   }

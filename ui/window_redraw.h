@@ -10,9 +10,10 @@
 // view and every list that reaches it, in order; the rest is what the last frame left.
 //
 // What the promise rests on: the caller draws every pixel of the view's rectangle (opaque) in
-// each frame; a texture's contents never change under the same ImTextureID (the font atlas is
-// uploaded once); user callbacks in the draw lists draw only within the scissor box they are
-// given (their lists count as covering the whole window).
+// each frame that does not keep it (a kept view shows what it showed); a texture's contents
+// never change under the same ImTextureID (the font atlas is uploaded once); user callbacks in the
+// draw lists draw only within the scissor box they are given (their lists count as covering the
+// whole window).
 //
 // Threads: the UI thread, with the window's GL context current.
 #pragma once
@@ -69,11 +70,21 @@ class WindowRedraw {
   explicit WindowRedraw(bool keepsBackBuffer) : keeps_(keepsBackBuffer) {}
 
   // Chooses what this frame redraws in the window's back buffer (width x height pixels, bound
-  // for drawing on return): `view`, and what damagedRects finds in `data` (after
+  // for drawing on return): `view` (unless kept), and what damagedRects finds in `data` (after
   // ImGui::Render), or everything where the back buffer is not kept (or after invalidate, a
   // resize). Clears the chosen rectangles outside `view` to kWindowBackground. The caller then
   // draws the whole view into `view`, calls drawPanels and presents rects().
-  void begin(const ImDrawData& data, int width, int height, const PixelRect& view);
+  // `viewUnchanged`: the view would draw the pixels it drew last (ViewportRenderer::windowShows);
+  // where the back buffer is kept, the view is then kept (viewKept): not drawn and not
+  // presented, except within viewRepaints, where changed panels reach it (a popup closed over
+  // it, a panel's edge): there the caller draws the view again (ViewportRenderer::repaintWindow)
+  // before drawPanels.
+  void begin(const ImDrawData& data, int width, int height, const PixelRect& view,
+             bool viewUnchanged = false);
+  // This frame keeps the view's pixels as the last frame left them, but for viewRepaints.
+  bool viewKept() const { return viewKept_; }
+  // Where a kept view must be drawn again (within the view, pairwise disjoint).
+  const std::vector<PixelRect>& viewRepaints() const { return viewRepaints_; }
   // Draws `data`'s lists (the same as given to begin) within the chosen rectangles.
   void drawPanels(PanelRenderer& renderer, const ImDrawData& data) const;
   // The rectangles this frame redrew (pairwise disjoint), to present.
@@ -91,6 +102,8 @@ class WindowRedraw {
   std::vector<DrawListRecord> records_;
   std::vector<PixelRect> rects_;
   bool whole_ = true;  // this frame redraws the whole window: the panels drawn once, whole
+  bool viewKept_ = false;
+  std::vector<PixelRect> viewRepaints_;
 };
 
 // The window's colour where neither the view nor a panel draws (also a capture's clear).

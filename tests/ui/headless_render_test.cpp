@@ -375,5 +375,45 @@ TEST(HeadlessRender, CoarseImageTurnsToAQuarterWhenFillBound) {
   EXPECT_EQ(renderer.coarseShrink(), 2);
 }
 
+// The window shows drawCached's complete image only after the frame that drew it whole, for
+// exactly that view, content, lines and overlay: a moved camera, new splats, another overlay or
+// a draw by other means (a screenshot) each make the view be drawn again.
+TEST(HeadlessRender, TheWindowShowsACompleteImageUntilSomethingInItChanges) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  ViewportRenderer renderer;
+  uploadSphere(renderer);
+  renderer.setFrameShares(1 << 22, 1 << 22);  // every splat in one frame
+  RenderTarget window(200, 150);
+  window.bind();
+  const ViewportFrame frame = sphereFrame();
+  const std::vector<LineVertex> none;
+  EXPECT_FALSE(renderer.windowShows(frame, none, none, none)) << "nothing drawn yet";
+  renderer.drawCached(frame, none, none, none, 16.0);
+  ASSERT_FALSE(renderer.refining());
+  EXPECT_TRUE(renderer.windowShows(frame, none, none, none));
+  renderer.skipFrame();
+  EXPECT_TRUE(renderer.windowShows(frame, none, none, none)) << "a skipped frame changes nothing";
+
+  ViewportFrame moved = frame;
+  moved.eye.x += 0.01;
+  EXPECT_FALSE(renderer.windowShows(moved, none, none, none)) << "the camera moved";
+  ViewportFrame shifted = frame;
+  shifted.x += 1;
+  EXPECT_FALSE(renderer.windowShows(shifted, none, none, none)) << "the view moved in the window";
+  const std::vector<LineVertex> gizmo = {lineVertex(glm::dvec3(0.0), glm::vec4(1.0f)),
+                                         lineVertex(glm::dvec3(1.0), glm::vec4(1.0f))};
+  EXPECT_FALSE(renderer.windowShows(frame, none, gizmo, none)) << "another overlay";
+  EXPECT_FALSE(renderer.windowShows(frame, gizmo, none, none)) << "other lines";
+
+  renderer.draw(frame, none, none, none);
+  EXPECT_FALSE(renderer.windowShows(frame, none, none, none)) << "drawn by other means";
+  renderer.drawCached(frame, none, none, none, 16.0);
+  EXPECT_TRUE(renderer.windowShows(frame, none, none, none));
+  uploadSphere(renderer);
+  EXPECT_FALSE(renderer.windowShows(frame, none, none, none)) << "new splats";
+}
+
 }  // namespace
 }  // namespace strata::ui

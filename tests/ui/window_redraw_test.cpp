@@ -198,6 +198,54 @@ TEST(WindowRedraw, FramesThatRedrawOnlyWhatChangedShowWhatAFullDrawShows) {
   ImGui::DestroyContext(context);
 }
 
+// A frame whose view would draw what the window shows keeps the view's pixels and does not
+// send them (a panel changed, not the view), but where a changed panel reaches the view (a popup
+// moving over it, a panel's edge): there the view is drawn again. The pixels stay those of a
+// full draw.
+TEST(WindowRedraw, AnUnchangedViewIsKeptButWhereChangedPanelsReachIt) {
+  std::string why;
+  if (!editorDisplayAvailable(&why)) GTEST_SKIP() << "no display: " << why;
+  const int width = 480, height = 320;
+  setenv("STRATA_MSAA", "0", 1);
+  GlWindow window(width, height, "window redraw test", false);
+  unsetenv("STRATA_MSAA");
+  ImGuiContext* context = ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  {
+    PanelRenderer panels;
+    WindowRedraw redraw(true);
+    const PixelRect view{160, 0, width - 120, height};
+    const int still = 3;  // the view's last change
+    for (int frame = 0; frame < 16; ++frame) {
+      buildPanels(frame, width, height);
+      redraw.begin(*ImGui::GetDrawData(), width, height, view, frame > still);
+      EXPECT_EQ(redraw.viewKept(), frame > still) << "frame " << frame;
+      long long repainted = 0;
+      for (const PixelRect& r : redraw.viewRepaints()) {
+        EXPECT_TRUE(r.intersect(view) == r) << "a repaint outside the view";
+        repainted += r.area();
+      }
+      if (frame == 4) {
+        EXPECT_GT(repainted, 0) << "the popup moved over the view";
+      }
+      if (frame >= 13) {
+        // Only the left panel changes (every other frame), beside the view: its pixels and at
+        // most a sliver of the view along its edge, where the whole view was redrawn before.
+        EXPECT_LE(redraw.pixelsRedrawn(), 160LL * height + 2LL * height) << "frame " << frame;
+        EXPECT_LT(repainted, view.area() / 20) << "frame " << frame;
+      }
+      if (!redraw.viewKept()) {
+        drawView(view, std::min(frame, still));
+      } else {
+        for (const PixelRect& r : redraw.viewRepaints()) drawView(r, still);
+      }
+      redraw.drawPanels(panels, *ImGui::GetDrawData());
+    }
+    EXPECT_EQ(pixelsDifferingFromAFullDraw(panels, width, height, view, still), 0u);
+  }
+  ImGui::DestroyContext(context);
+}
+
 // Where parts are presented, the driver resizes the back buffer only at a swap: a window made
 // larger once ended the process (an X error copying beyond the old buffer), a smaller one showed
 // its frames shifted. Frames over a series of sizes must present without error and leave the
