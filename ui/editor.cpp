@@ -693,7 +693,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     const bool viewShown = gl_->viewport.prepare(*gl_->renderer, s, rect, fbHeight, pixelScale);
     gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h}, viewShown);
     if (gl_->redraw.viewKept()) {
-      gl_->renderer->skipFrame();
+      gl_->renderer->skipFrame(s.frameMs);
       for (const PixelRect& r : gl_->redraw.viewRepaints())
         gl_->viewport.repaintPrepared(*gl_->renderer, r);
     } else {

@@ -680,11 +680,34 @@ void ViewportRenderer::repaintWindow(const ViewportFrame& f, const std::vector<L
   glDisable(GL_DEPTH_TEST);
 }
 
-void ViewportRenderer::skipFrame() {
-  // As drawCached's start does: the last frame's time goes with no splats drawn.
+void ViewportRenderer::followFrameTime(double lastFrameMs) {
+  // The share follows the frame time: scaled by target / time from the splats the last frame
+  // drew, when they were at least half a share (a small draw, such as a coarse result of a few
+  // thousand splats, costs mostly the frame's base and says little about splats). An upload in
+  // the last frame is not drawing.
+  const double drawMs = lastFrameMs - uploadMsLastFrame_;
   uploadMsLastFrame_ = uploadMsThisFrame_;
   uploadMsThisFrame_ = 0.0;
+  // Two shares, one per kind of drawing, since a splat drawn at full resolution costs far more
+  // than one of the coarse image: mixing them made the share swing between a cheap coarse frame
+  // and a full one many times dearer.
+  if (drawMs > 0.0 && drewSplatsLastFrame_ > 0) {
+    const double factor = std::clamp(kTargetFrameMs / drawMs, 0.5, 1.5);
+    size_t& share = lastDrawFull_ ? fullShare_ : splatsPerFrame_;
+    // A coarse frame over the target at the fewest splats is bound by the pixels it fills.
+    if (!lastDrawFull_ && share <= kMinShare && drawMs > kTargetFrameMs) coarseShrink_ = 4;
+    // Back to half only where a half image would fit even if the whole frame were pixels to
+    // fill (4 times as many): otherwise it would turn again within frames.
+    if (!lastDrawFull_ && coarseShrink_ > 2 && drawMs < 0.25 * kTargetFrameMs) coarseShrink_ = 2;
+    if (drewSplatsLastFrame_ >= share / 2)
+      share = std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), kMinShare,
+                                 size_t(1) << 26);
+  }
   drewSplatsLastFrame_ = 0;
+}
+
+void ViewportRenderer::skipFrame(double lastFrameMs) {
+  followFrameTime(lastFrameMs);  // the last frame may have drawn: its time counts
 }
 
 uint64_t ViewportRenderer::viewKey(const ViewportFrame& f,
@@ -739,29 +762,7 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
                                   const std::vector<LineVertex>& overlay,
                                   const std::vector<LineVertex>& overlayTriangles,
                                   double lastFrameMs) {
-  // The share follows the frame time: scaled by target / time from the splats the last frame
-  // drew, when they were at least half a share (a small draw, such as a coarse result of a few
-  // thousand splats, costs mostly the frame's base and says little about splats). An upload in
-  // the last frame is not drawing.
-  const double drawMs = lastFrameMs - uploadMsLastFrame_;
-  uploadMsLastFrame_ = uploadMsThisFrame_;
-  uploadMsThisFrame_ = 0.0;
-  // Two shares, one per kind of drawing, since a splat drawn at full resolution costs far more
-  // than one of the coarse image: mixing them made the share swing between a cheap coarse frame
-  // and a full one many times dearer.
-  if (drawMs > 0.0 && drewSplatsLastFrame_ > 0) {
-    const double factor = std::clamp(kTargetFrameMs / drawMs, 0.5, 1.5);
-    size_t& share = lastDrawFull_ ? fullShare_ : splatsPerFrame_;
-    // A coarse frame over the target at the fewest splats is bound by the pixels it fills.
-    if (!lastDrawFull_ && share <= kMinShare && drawMs > kTargetFrameMs) coarseShrink_ = 4;
-    // Back to half only where a half image would fit even if the whole frame were pixels to
-    // fill (4 times as many): otherwise it would turn again within frames.
-    if (!lastDrawFull_ && coarseShrink_ > 2 && drawMs < 0.25 * kTargetFrameMs) coarseShrink_ = 2;
-    if (drewSplatsLastFrame_ >= share / 2)
-      share = std::clamp<size_t>(size_t(double(drewSplatsLastFrame_) * factor), kMinShare,
-                                 size_t(1) << 26);
-  }
-  drewSplatsLastFrame_ = 0;
+  followFrameTime(lastFrameMs);
   GLint window = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &window);
   // The image's own frame: the same view, at the image's origin.

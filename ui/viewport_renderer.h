@@ -151,9 +151,10 @@ class ViewportRenderer {
   bool windowShows(const ViewportFrame& frame, const std::vector<LineVertex>& lines,
                    const std::vector<LineVertex>& overlay,
                    const std::vector<LineVertex>& overlayTriangles) const;
-  // A frame that keeps the view's pixels as they are (windowShows): the frame budget's
-  // bookkeeping is told that no splats were drawn.
-  void skipFrame();
+  // A frame that keeps the view's pixels as they are (windowShows): the frame budget follows
+  // `lastFrameMs` (the previous frame's whole time) as drawCached would, and this frame draws
+  // no splats.
+  void skipFrame(double lastFrameMs);
   // Draws the window's view again within `clip` (window pixels), as the last drawCached left
   // it: its complete image and `overlay` on top. Only where windowShows(frame, ..., overlay,
   // overlayTriangles) holds; the scissor test is off on return.
@@ -290,6 +291,9 @@ class ViewportRenderer {
   void drawGhosts(const ViewportFrame& f);
   // The key of the view the scene image shows: camera, viewport, section and lines.
   uint64_t viewKey(const ViewportFrame& f, const std::vector<LineVertex>& lines) const;
+  // drawCached's and skipFrame's start: the splats a frame follow the last frame's time (the
+  // splats it drew against what it took), and this frame has drawn none yet.
+  void followFrameTime(double lastFrameMs);
   // The key of the window's pixels drawn by drawCached with these arguments (never 0).
   uint64_t windowKeyFor(const ViewportFrame& f, const std::vector<LineVertex>& lines,
                         const std::vector<LineVertex>& overlay,

@@ -72,8 +72,9 @@ class WindowRedraw {
   // Chooses what this frame redraws in the window's back buffer (width x height pixels, bound
   // for drawing on return): `view` (unless kept), and what damagedRects finds in `data` (after
   // ImGui::Render), or everything where the back buffer is not kept (or after invalidate, a
-  // resize). Clears the chosen rectangles outside `view` to kWindowBackground. The caller then
-  // draws the whole view into `view`, calls drawPanels and presents rects().
+  // resize). Clears the chosen rectangles outside `view` to kWindowBackground (inside it too
+  // where the view is kept). The caller then draws the whole view into `view` (a kept view:
+  // within viewRepaints only), calls drawPanels and presents rects().
   // `viewUnchanged`: the view would draw the pixels it drew last (ViewportRenderer::windowShows);
   // where the back buffer is kept, the view is then kept (viewKept): not drawn and not
   // presented, except within viewRepaints, where changed panels reach it (a popup closed over

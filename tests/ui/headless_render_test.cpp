@@ -393,7 +393,7 @@ TEST(HeadlessRender, TheWindowShowsACompleteImageUntilSomethingInItChanges) {
   renderer.drawCached(frame, none, none, none, 16.0);
   ASSERT_FALSE(renderer.refining());
   EXPECT_TRUE(renderer.windowShows(frame, none, none, none));
-  renderer.skipFrame();
+  renderer.skipFrame(16.0);
   EXPECT_TRUE(renderer.windowShows(frame, none, none, none)) << "a skipped frame changes nothing";
 
   ViewportFrame moved = frame;
@@ -405,14 +405,73 @@ TEST(HeadlessRender, TheWindowShowsACompleteImageUntilSomethingInItChanges) {
   const std::vector<LineVertex> gizmo = {lineVertex(glm::dvec3(0.0), glm::vec4(1.0f)),
                                          lineVertex(glm::dvec3(1.0), glm::vec4(1.0f))};
   EXPECT_FALSE(renderer.windowShows(frame, none, gizmo, none)) << "another overlay";
+  EXPECT_FALSE(renderer.windowShows(frame, none, none, gizmo)) << "other overlay triangles";
   EXPECT_FALSE(renderer.windowShows(frame, gizmo, none, none)) << "other lines";
 
   renderer.draw(frame, none, none, none);
   EXPECT_FALSE(renderer.windowShows(frame, none, none, none)) << "drawn by other means";
   renderer.drawCached(frame, none, none, none, 16.0);
   EXPECT_TRUE(renderer.windowShows(frame, none, none, none));
+  renderer.setLeafStyles(LeafStyleTable{{glm::vec3(0.9f, 0.1f, 0.1f)}, {1}});
+  EXPECT_FALSE(renderer.windowShows(frame, none, none, none)) << "other colours or selection";
+  renderer.drawCached(frame, none, none, none, 16.0);
+  EXPECT_TRUE(renderer.windowShows(frame, none, none, none));
   uploadSphere(renderer);
   EXPECT_FALSE(renderer.windowShows(frame, none, none, none)) << "new splats";
+}
+
+// A kept view drawn again within a rectangle (where a panel that changed reaches it) gets there
+// the pixels the whole view had, with its overlay, and leaves every other pixel alone.
+TEST(HeadlessRender, AKeptViewRepaintsExactlyWithinTheRectangleGiven) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  ViewportRenderer renderer;
+  uploadSphere(renderer);
+  renderer.setFrameShares(1 << 22, 1 << 22);
+  const int width = 260, height = 190;
+  RenderTarget window(width, height);
+  window.bind();
+  glViewport(0, 0, width, height);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  ViewportFrame frame = sphereFrame();  // 200 x 150
+  frame.x = 40;
+  frame.y = 25;
+  const std::vector<LineVertex> none;
+  const std::vector<LineVertex> overlay = {lineVertex(glm::dvec3(-1.2, 0.0, -0.8), glm::vec4(1.0f)),
+                                           lineVertex(glm::dvec3(1.2, 0.0, 0.8), glm::vec4(1.0f))};
+  renderer.drawCached(frame, none, overlay, none, 16.0);
+  ASSERT_TRUE(renderer.windowShows(frame, none, overlay, none));
+  const std::vector<uint8_t> whole = window.read();
+  // Something else over everything (a panel's background), then the view repainted in part.
+  window.bind();
+  glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  const PixelRect clip{20, 60, 150, 120};  // reaches out of the view on the left
+  renderer.repaintWindow(frame, overlay, none, clip);
+  const std::vector<uint8_t> after = window.read();
+  const PixelRect inside =
+      clip.intersect({frame.x, frame.y, frame.x + frame.width, frame.y + frame.height});
+  size_t wrongInside = 0, touchedOutside = 0, differsFromMarker = 0;
+  for (int row = 0; row < height; ++row)  // read() gives the top row first; GL counts from below
+    for (int x = 0; x < width; ++x) {
+      const int y = height - 1 - row;
+      const size_t i = (size_t(row) * width + size_t(x)) * 4;
+      const bool in = x >= inside.x0 && x < inside.x1 && y >= inside.y0 && y < inside.y1;
+      const bool marker = after[i] == 255 && after[i + 1] == 0 && after[i + 2] == 255;
+      if (in) {
+        wrongInside +=
+            after[i] != whole[i] || after[i + 1] != whole[i + 1] || after[i + 2] != whole[i + 2];
+        differsFromMarker += marker ? 0 : 1;
+      } else {
+        touchedOutside += marker ? 0 : 1;
+      }
+    }
+  EXPECT_EQ(wrongInside, 0u) << "pixels of the repainted rectangle unlike the whole view's";
+  EXPECT_EQ(touchedOutside, 0u) << "pixels outside the rectangle (or the view) drawn";
+  EXPECT_GT(differsFromMarker, size_t(inside.area()) / 2) << "the repaint drew nothing";
+  EXPECT_FALSE(glIsEnabled(GL_SCISSOR_TEST));
 }
 
 }  // namespace
