@@ -59,6 +59,6 @@ for res in 1024 2048 4096; do
   timeout 120 $B/strata render $S/demo.strata.json --resolution $res --width 900 --height 700 -o $R/demo-$res.png --backend cuda 2>&1 | tail -1
 done
 echo "== frames demo 1024"
-timeout 120 $B/strata edit $S/demo.strata.json --measure-frames 5 --resolution 1024 --backend cuda 2>&1 | tail -5
+timeout 120 $B/strata edit $S/demo.strata.json --measure-frames 5 --resolution 1024 --backend cuda 2>&1 | tail -6
 } > $R/editor.txt 2>&1
 cat $R/editor.txt | grep -E "^(==|first image|latency)"

@@ -29,7 +29,7 @@ if [ -n "$DISPLAY" ]; then
     timeout 120 $B/strata edit $S/flange_patterns.strata.json --measure-latency 20 --move-leaf "bolt hole" --resolution $res --backend cuda 2>&1 | tail -4
   done
   echo "== frames array200 1024"
-  timeout 120 $B/strata edit $D/array200.strata.json --measure-frames 8 --resolution 1024 --backend cuda --width 1400 --height 900 2>&1 | tail -5
+  timeout 120 $B/strata edit $D/array200.strata.json --measure-frames 8 --resolution 1024 --backend cuda --width 1400 --height 900 2>&1 | tail -6
   } > $R/editor.txt 2>&1
 else
   echo "no display" > $R/editor.txt
