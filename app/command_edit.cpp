@@ -285,6 +285,8 @@ int measureFrames(ui::Editor& editor, double seconds, int resolution) {
     refining.push_back(state.frameMs);
   }
   report("at rest, refining the view's full image", refining);
+  if (!editor.viewSettled())
+    std::printf("the view's full image was not complete after 60 s: the still frames refine it\n");
   for (int i = 0; i < 60; ++i) {
     editor.frame();
     still.push_back(state.frameMs);

@@ -619,6 +619,17 @@ void ViewportRenderer::drawOverlay(const ViewportFrame& f, const std::vector<Lin
   glDisable(GL_SCISSOR_TEST);
 }
 
+namespace {
+
+// FNV-1a of `bytes` bytes at `data`, continuing from `h` (the keys of what a view shows).
+uint64_t fnv1a(uint64_t h, const void* data, size_t bytes) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
+
+}  // namespace
+
 void ViewportRenderer::draw(const ViewportFrame& f, const std::vector<LineVertex>& lines,
                             const std::vector<LineVertex>& overlay,
                             const std::vector<LineVertex>& overlayTriangles) {
@@ -646,13 +657,10 @@ uint64_t ViewportRenderer::windowKeyFor(const ViewportFrame& f,
                                         const std::vector<LineVertex>& overlay,
                                         const std::vector<LineVertex>& overlayTriangles) const {
   uint64_t h = viewKey(f, lines) ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
-  auto mix = [&](const std::vector<LineVertex>& v) {
-    const auto* p = reinterpret_cast<const uint8_t*>(v.data());
-    for (size_t i = 0; i < v.size() * sizeof(LineVertex); ++i) h = (h ^ p[i]) * 1099511628211ull;
-    h = (h ^ v.size()) * 1099511628211ull;
-  };
-  mix(overlay);
-  mix(overlayTriangles);
+  for (const std::vector<LineVertex>* v : {&overlay, &overlayTriangles}) {
+    const size_t count = v->size();
+    h = fnv1a(fnv1a(h, v->data(), count * sizeof(LineVertex)), &count, sizeof(count));
+  }
   return h | 1;
 }
 
@@ -713,10 +721,7 @@ void ViewportRenderer::skipFrame(double lastFrameMs) {
 uint64_t ViewportRenderer::viewKey(const ViewportFrame& f,
                                    const std::vector<LineVertex>& lines) const {
   uint64_t h = 1469598103934665603ull;
-  auto mix = [&](const void* data, size_t bytes) {
-    const auto* p = static_cast<const uint8_t*>(data);
-    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
+  auto mix = [&](const void* data, size_t bytes) { h = fnv1a(h, data, bytes); };
   mix(&f.viewProjection, sizeof(f.viewProjection));
   mix(&f.eye, sizeof(f.eye));
   const int ints[6] = {f.x, f.y, f.width, f.height, f.ortho ? 1 : 0, f.sectionOn ? 1 : 0};
