@@ -58,6 +58,12 @@ TriangleFingerprint fingerprintFile(const std::string& path, const Progress& pro
 
 }  // namespace
 
+void addToFingerprint(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                      TriangleFingerprint* f) {
+  ++f->triangles;
+  addTriangle(a, b, c, &f->sum, &f->mixedSum);
+}
+
 TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh) {
   TriangleFingerprint f;
   f.triangles = mesh.triangles.size();
@@ -148,6 +154,29 @@ WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Pr
     progress.check();
     const InputLimitLifted ownFile;
     result.check = checkMesh(readMeshFileRaw(path), &progress);
+  }
+  progress.report("check", 1.0);
+  return result;
+}
+
+WrittenCheck checkStreamedFile(const std::string& path, const TriangleFingerprint& expected,
+                               Progress& progress) {
+  WrittenCheck result;
+  progress.report("check", 0.0);
+  const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
+  const TriangleFingerprint found = fingerprintFile(path, progress);
+  progress.report("check", 0.3);
+  if (!(found == expected)) {
+    result.fileDifference =
+        found.triangles != expected.triangles
+            ? path + ": the file holds " + std::to_string(found.triangles) +
+                  " triangles, not the " + std::to_string(expected.triangles) + " written"
+            : path +
+                  ": the file's triangles are not those written (a coordinate or a winding "
+                  "differs)";
+    result.check = checkMesh(readMeshFileRaw(path), &progress);
+  } else {
+    result.check = checkMesh(readMeshFileVerbatim(path, nullptr, &progress), &progress);
   }
   progress.report("check", 1.0);
   return result;

@@ -52,6 +52,9 @@ struct TriangleFingerprint {
   }
 };
 TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh);
+// Adds one triangle (its corners as the file stores them) to *f.
+void addToFingerprint(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                      TriangleFingerprint* f);
 
 // The half of the check that needs no file, on a thread of its own from construction: the
 // mesh as the format of `path` will store it (storedMesh) measured by checkMesh and
@@ -78,6 +81,13 @@ class MeantMeshCheck {
 // Checks the file at `path`, just written from the mesh `meant` measures: reads it back and
 // compares. Throws strata::Error when the file cannot be read or parsed, Cancelled.
 WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Progress& progress);
+// The check of a file written in pieces (streamed_export.h), whose mesh was never held: the
+// file read back in pieces and fingerprinted against `expected` (the stored corners of every
+// triangle written, addToFingerprint), and checkMesh on the file's mesh as readMeshFileVerbatim
+// reads it back (STL's identical positions welded; held whole for this step). Where the
+// fingerprints differ, the file read back raw, as above.
+WrittenCheck checkStreamedFile(const std::string& path, const TriangleFingerprint& expected,
+                               Progress& progress);
 // The same in one call, from the mesh written (scene units, as given to writeMeshFile).
 WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
                               Progress& progress);

@@ -418,18 +418,27 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
   }
 }
 
+MergedTiles mergeTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
+                       ContourReport& r) {
+  TiledContour contour;
+  contour.tiles = std::move(tiles);
+  sortTiles(&contour, progress);
+  MergedTiles out;
+  out.mesh = indexedMesh(scene, r.grid, contour, r, &out.resolved);
+  out.keys = std::move(contour.keys);
+  return out;
+}
+
 ExportMesh meshFromTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
                          ContourReport& r) {
   const Grid& grid = r.grid;
   Stopwatch merge;
-  TiledContour contour;
-  contour.tiles = std::move(tiles);
-  sortTiles(&contour, progress);
-  std::vector<uint8_t> resolved;
-  ExportMesh out = indexedMesh(scene, grid, contour, r, &resolved);
+  MergedTiles merged = mergeTiles(scene, std::move(tiles), progress, r);
+  ExportMesh out = std::move(merged.mesh);
+  std::vector<uint8_t>& resolved = merged.resolved;
   // Components once, for both (unfolding moves vertices, not triangles).
   const std::vector<uint32_t> roots = vertexComponentRoots(out.mesh);
-  r.unfoldedShells = unfoldInvertedShells(grid, contour.keys, roots, &out.mesh);
+  r.unfoldedShells = unfoldInvertedShells(grid, merged.keys, roots, &out.mesh);
   r.droppedSpecks = dropUnresolvedSpecks(&out, &resolved, grid.h, &roots);
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;

@@ -123,6 +123,19 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
                   const std::function<bool(int)>& mine, Progress& progress, ContourReport& r,
                   std::vector<TileContour>* out, const std::function<void(int)>& afterTile = {});
 
+// Contoured tiles (any subset, in any order: each tile once) merged into one indexed mesh in
+// scene units on r.grid, before the component steps: vertices one per key in key order (keys[i]
+// is vertex i's), triangles in edge order, each with its leaf and CellTriangle::resolved bits.
+// The tiles' vertices include those of their windows' halo cells, so a subset of tiles gives
+// every vertex its triangles use (and some no triangle uses). Adds to r.maxPlaneDistance.
+struct MergedTiles {
+  ExportMesh mesh;
+  std::vector<uint64_t> keys;
+  std::vector<uint8_t> resolved;
+};
+MergedTiles mergeTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
+                       ContourReport& r);
+
 // The mesh from contoured tiles (any subset, in any order: each tile once): merged, indexed,
 // shells unfolded, specks dropped. Sets r's merge time, deviation bound and peak memory.
 ExportMesh meshFromTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,

@@ -15,10 +15,7 @@
 namespace strata {
 namespace {
 
-// A component that fits in a box of side h touches at most 2 x 2 x 2 cells, with at most four
-// vertices each and a face vertex per split face segment: far fewer than this. Only components
-// this small have their boxes measured.
-constexpr uint32_t kMeasuredVertices = 256;
+constexpr uint32_t kMeasuredVertices = kMeasuredSpeckVertices;
 
 struct Box {
   glm::dvec3 lo{std::numeric_limits<double>::infinity()};
@@ -63,6 +60,15 @@ size_t compactInOrder(size_t count, Keep keep, Move move) {
 }
 
 }  // namespace
+
+bool keepComponent(uint8_t bits, uint32_t vertices, const glm::dvec3& lo, const glm::dvec3& hi,
+                   double cell) {
+  constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
+  if ((bits & kBoth) != kBoth) return false;
+  if (vertices > kMeasuredSpeckVertices) return true;
+  const glm::dvec3 side = hi - lo;
+  return side.x >= cell || side.y >= cell || side.z >= cell;
+}
 
 DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resolved, double cell,
                                    const std::vector<uint32_t>* roots) {
@@ -141,7 +147,6 @@ DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resol
     }
   chunkBoxes.clear();
   // Which roots stay.
-  constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
   std::vector<uint8_t> keepRoot(n);
   std::atomic<int> droppedComponents{0};
   parallelFor(0, int64_t(n), int64_t(kChunk), [&](int64_t first, int64_t last) {
@@ -151,12 +156,11 @@ DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resol
       if (rootOf[v] != v) continue;
       const uint8_t b = bits[v].load(std::memory_order_relaxed);
       if (!(b & kHasTriangle)) continue;  // a vertex no triangle uses
-      bool keep = (b & kBoth) == kBoth;
       const auto box = boxes.find(uint32_t(v));
-      if (keep && box != boxes.end()) {
-        const glm::dvec3 side = box->second.hi - box->second.lo;
-        keep = side.x >= cell || side.y >= cell || side.z >= cell;
-      }
+      const bool keep =
+          box == boxes.end()
+              ? keepComponent(b, kMeasuredVertices + 1, glm::dvec3(0.0), glm::dvec3(0.0), cell)
+              : keepComponent(b, kMeasuredVertices, box->second.lo, box->second.hi, cell);
       keepRoot[v] = keep ? 1 : 0;
       localDropped += keep ? 0 : 1;
     }

@@ -21,6 +21,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "engine/geometry/export_mesh.h"
 
 namespace strata {
@@ -37,6 +39,15 @@ struct DroppedSpecks {
 // `cell` is h in the mesh's units.
 // `roots`: the mesh's vertex component roots (vertexComponentRoots) when the caller has them;
 // computed here otherwise.
+// The rule above for one component, shared with the streamed export (streamed_export.h): `bits`
+// its triangles' CellTriangle::resolved bits ORed, `vertices` how many it has, (lo, hi) the box
+// around them (read only when vertices <= kMeasuredSpeckVertices: a component that fits in a
+// box of side h touches at most 2 x 2 x 2 cells, with at most four vertices each and a face
+// vertex per split face segment, far fewer than this). True: the component stays.
+constexpr uint32_t kMeasuredSpeckVertices = 256;
+bool keepComponent(uint8_t bits, uint32_t vertices, const glm::dvec3& lo, const glm::dvec3& hi,
+                   double cell);
+
 DroppedSpecks dropUnresolvedSpecks(ExportMesh* mesh, std::vector<uint8_t>* resolved, double cell,
                                    const std::vector<uint32_t>* roots = nullptr);
 

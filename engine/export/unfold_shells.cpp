@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -16,30 +17,44 @@ namespace {
 
 constexpr uint64_t kFaceVertexBit = uint64_t(1) << 63;  // faceSegmentKey (contour_cells.h)
 
-// Six times the signed volume of one triangle (corners relative to a reference point).
+}  // namespace
+
 double sixVolumeTerm(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   return glm::dot(a, glm::cross(b, c));
 }
 
-// Six times the signed volume of the shell's triangles with vertex positions `at(i)`, relative
-// to `ref` (a point of the shell, so that the sum does not cancel far from the origin).
-template <typename At>
-double sixVolume(const TriangleMesh& mesh, const std::vector<uint32_t>& shellTriangles,
-                 const glm::dvec3& ref, At at) {
-  double sum = 0.0;
-  for (uint32_t t : shellTriangles) {
-    const auto& tri = mesh.triangles[t];
-    const glm::dvec3 a = at(tri[0]) - ref, b = at(tri[1]) - ref, c = at(tri[2]) - ref;
-    sum += sixVolumeTerm(a, b, c);
-  }
-  return sum;
-}
-
-int sign(double x) {
+int volumeSign(double x) {
   return (x > 0.0) - (x < 0.0);
 }
 
-}  // namespace
+glm::dvec3 shellAnchor(const Grid& grid, uint64_t key, bool sharedCell,
+                       const glm::dvec3& position) {
+  if (key & kFaceVertexBit) return position;  // on a cell face, between two crossings: stays
+  const uint64_t cell = key / 4;
+  const uint64_t gx = uint64_t(grid.cells.x), gy = uint64_t(grid.cells.y);
+  const glm::dvec3 index(double(cell % gx), double(cell / gx % gy), double(cell / gx / gy));
+  const glm::dvec3 centre = grid.origin + grid.h * (index + 0.5);
+  return sharedCell ? 0.5 * (centre + position) : centre;
+}
+
+double pullBackKeep(const std::vector<std::array<uint32_t, 3>>& triangles,
+                    const std::vector<glm::dvec3>& anchors,
+                    const std::vector<glm::dvec3>& positions, const glm::dvec3& ref, int want) {
+  double keep = 0.5;
+  for (;; keep *= 0.5) {
+    if (keep < 1.0 / 64) break;
+    double sum = 0.0;
+    for (const auto& tri : triangles) {
+      glm::dvec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = anchors[tri[size_t(k)]] +
+               keep * (positions[tri[size_t(k)]] - anchors[tri[size_t(k)]]) - ref;
+      sum += sixVolumeTerm(p[0], p[1], p[2]);
+    }
+    if (volumeSign(sum) == want) break;
+  }
+  return keep < 1.0 / 64 ? 0.0 : keep;
+}
 
 int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
                          const std::vector<uint32_t>& rootOf, TriangleMesh* mesh) {
@@ -51,18 +66,7 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
   std::vector<glm::dvec3> anchor(n);
   parallelFor(0, int64_t(n), 65536, [&](int64_t b, int64_t e) {
     for (size_t i = size_t(b); i < size_t(e); ++i) {
-      const uint64_t key = keys[i];
-      if (key & kFaceVertexBit) {  // on a cell face, between two crossings: stays
-        anchor[i] = mesh->positions[i];
-        continue;
-      }
-      const uint64_t cell = key / 4;
-      const uint64_t gx = uint64_t(grid.cells.x), gy = uint64_t(grid.cells.y);
-      const glm::dvec3 index(double(cell % gx), double(cell / gx % gy), double(cell / gx / gy));
-      const glm::dvec3 centre = grid.origin + grid.h * (index + 0.5);
-      const bool shared =
-          (i > 0 && keys[i - 1] / 4 == cell) || (i + 1 < n && keys[i + 1] / 4 == cell);
-      anchor[i] = shared ? 0.5 * (centre + mesh->positions[i]) : centre;
+      anchor[i] = shellAnchor(grid, keys[i], sharesCell(keys, i), mesh->positions[i]);
     }
   });
 
@@ -129,8 +133,8 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
   std::vector<uint8_t> inverted(shells, 0);
   bool any = false;
   for (uint32_t s = 0; s < shells; ++s) {
-    const int want = sign(sums[s].anchored);
-    inverted[s] = want != 0 && sign(sums[s].placed) != want;
+    const int want = volumeSign(sums[s].anchored);
+    inverted[s] = want != 0 && volumeSign(sums[s].placed) != want;
     any = any || inverted[s];
   }
   if (!any) return 0;
@@ -145,17 +149,10 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
   for (uint32_t s = 0; s < shells; ++s) {
     if (!inverted[s]) continue;
     const std::vector<uint32_t>& tris = shellTriangles[s];
-    const glm::dvec3 ref = sums[s].ref;
-    const int want = sign(sums[s].anchored);
-    // Pulled back from the anchors: keep `keep` of each vertex's offset from its anchor.
-    double keep = 0.5;
-    for (;; keep *= 0.5) {
-      const auto pulled = [&](uint32_t v) {
-        return anchor[v] + keep * (mesh->positions[v] - anchor[v]);
-      };
-      if (keep < 1.0 / 64 || sign(sixVolume(*mesh, tris, ref, pulled)) == want) break;
-    }
-    if (keep < 1.0 / 64) keep = 0.0;
+    std::vector<std::array<uint32_t, 3>> corners(tris.size());
+    for (size_t k = 0; k < tris.size(); ++k) corners[k] = mesh->triangles[tris[k]];
+    const double keep =
+        pullBackKeep(corners, anchor, mesh->positions, sums[s].ref, volumeSign(sums[s].anchored));
     for (uint32_t t : tris)
       for (uint32_t v : mesh->triangles[t]) {
         if (done[v]) continue;

@@ -15,6 +15,7 @@
 // position instead, so that they stay apart.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -30,5 +31,27 @@ namespace strata {
 // vertices of inverted shells; returns how many shells it moved.
 int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
                          const std::vector<uint32_t>& rootOf, TriangleMesh* mesh);
+
+// The steps above, shared with the streamed export (streamed_export.h), which runs them on a
+// mesh it holds a piece at a time.
+//
+// Whether vertex i of keys sorted in key order shares its cell with another component's vertex
+// (their keys are adjacent: cell * 4 + component).
+inline bool sharesCell(const std::vector<uint64_t>& keys, size_t i) {
+  const uint64_t cell = keys[i] / 4;
+  return (i > 0 && keys[i - 1] / 4 == cell) || (i + 1 < keys.size() && keys[i + 1] / 4 == cell);
+}
+// Where the vertex with `key` at `position` goes at the grid's own placement: its cell's
+// centre, or halfway there when `sharedCell`; a face-segment vertex stays.
+glm::dvec3 shellAnchor(const Grid& grid, uint64_t key, bool sharedCell, const glm::dvec3& position);
+// Six times the signed volume of one triangle, corners relative to a reference point.
+double sixVolumeTerm(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+int volumeSign(double x);
+// How much of each vertex's offset from its anchor an inverted shell keeps (1/2, 1/4, ...,
+// 1/32, else 0): the first at which the shell's six volume (its triangles in order, corners
+// indexing anchors and positions, relative to `ref`) has the sign `want`.
+double pullBackKeep(const std::vector<std::array<uint32_t, 3>>& triangles,
+                    const std::vector<glm::dvec3>& anchors,
+                    const std::vector<glm::dvec3>& positions, const glm::dvec3& ref, int want);
 
 }  // namespace strata

@@ -238,14 +238,38 @@ size_t repairRound(TriangleMesh& mesh, const StoredPositions& at,
 
 }  // namespace
 
+bool storedFlawed(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                  StoredRounding stored) {
+  const TriangleMesh corners{{a, b, c}, {{0, 1, 2}}};
+  return flawOf(StoredPositions(corners, stored), corners.triangles[0]) != Flaw::None;
+}
+
 DegenerateRepair repairDegenerateTriangles(TriangleMesh* mesh, StoredRounding stored,
                                            std::vector<uint32_t>* triangleData) {
   DegenerateRepair report;
+  repairDegenerateTriangles(mesh, stored, triangleData, nullptr, &report);
+  return report;
+}
+
+bool repairDegenerateTriangles(TriangleMesh* mesh, StoredRounding stored,
+                               std::vector<uint32_t>* triangleData,
+                               const std::vector<uint8_t>* ringComplete, DegenerateRepair* out) {
+  DegenerateRepair& report = *out;
+  report = DegenerateRepair();
   const StoredPositions at(*mesh, stored);
   std::vector<uint32_t> flawed = flawedTriangles(*mesh, at);
+  // A round reads the triangles around every corner of the flawed triangles.
+  const auto ringsKnown = [&] {
+    if (!ringComplete) return true;
+    for (uint32_t t : flawed)
+      for (uint32_t v : mesh->triangles[t])
+        if (!(*ringComplete)[v]) return false;
+    return true;
+  };
   // Each round repairs at least one triangle or stops; repairs next to each other wait for the
   // next round (their neighbourhoods changed), so a few rounds do.
   while (!flawed.empty()) {
+    if (!ringsKnown()) return false;
     std::vector<uint8_t> dead(mesh->triangles.size(), 0);
     const size_t repaired = repairRound(*mesh, at, flawed, dead, report);
     if (std::find(dead.begin(), dead.end(), uint8_t(1)) != dead.end()) {
@@ -263,7 +287,7 @@ DegenerateRepair repairDegenerateTriangles(TriangleMesh* mesh, StoredRounding st
     if (repaired == 0) break;
   }
   report.left = flawed.size();
-  return report;
+  return true;
 }
 
 }  // namespace strata

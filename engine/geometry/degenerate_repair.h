@@ -46,4 +46,19 @@ using StoredRounding = double (*)(double value);
 DegenerateRepair repairDegenerateTriangles(TriangleMesh* mesh, StoredRounding stored,
                                            std::vector<uint32_t>* triangleData = nullptr);
 
+// The same on a part of a mesh (the streamed export, engine/export/streamed_export.h), which
+// repairs it as the whole mesh would be repaired there: `ringComplete[v]` (per vertex of `mesh`)
+// says that every triangle around v is in the part, with the whole mesh's triangles in their
+// order and every flawed one among them. Returns false, with *mesh part-way repaired, where a
+// round would read around a vertex whose ring is not complete (the caller then repeats on a
+// larger part); true with *report as above otherwise.
+bool repairDegenerateTriangles(TriangleMesh* mesh, StoredRounding stored,
+                               std::vector<uint32_t>* triangleData,
+                               const std::vector<uint8_t>* ringComplete, DegenerateRepair* report);
+
+// Whether a triangle with these corners is flawed (coincident or collinear corners) as `stored`
+// rounds them: what the repair above repairs.
+bool storedFlawed(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                  StoredRounding stored);
+
 }  // namespace strata

@@ -31,7 +31,11 @@
 // readMeshFileRaw (engine/io/mesh_io.h), which repairs nothing, and run checkMesh on it.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
+
+#include <glm/vec3.hpp>
 
 #include "engine/geometry/export_mesh.h"
 #include "engine/io/mesh_formats.h"
@@ -55,5 +59,14 @@ TriangleMesh storedMesh(const std::string& path, TriangleMesh mesh);
 // How the format of `path` rounds a coordinate it stores (storedMesh's rounding, one value).
 // Throws strata::Error for an extension no format writes.
 StoredCoordinate storedCoordinate(const std::string& path);
+
+// Binary STL in pieces (the streamed export, engine/export/streamed_export.h; writeMeshFile
+// writes with the same): the 84 bytes before the facets (the header naming the unit, the facet
+// count), a coordinate's range (throws strata::Error naming `path` where float32 cannot hold
+// it), and one facet's kStlFacetBytes: its unit normal from the winding, the corners as float32.
+constexpr size_t kStlFacetBytes = 50;
+std::string binaryStlHeader(const std::string& unit, uint32_t facets);
+void checkStlCoordinates(const std::string& path, const glm::dvec3& p);
+void encodeStlFacet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, char* out);
 
 }  // namespace strata

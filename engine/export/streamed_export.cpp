@@ -1,0 +1,628 @@
+// See streamed_export.h.
+#include "engine/export/streamed_export.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "engine/export/check_written.h"
+#include "engine/export/contour_scene.h"
+#include "engine/export/drop_specks.h"
+#include "engine/export/unfold_shells.h"
+#include "engine/geometry/degenerate_repair.h"
+#include "engine/io/mesh_formats.h"
+#include "engine/io/mesh_writers.h"
+#include "engine/util/atomic_file.h"
+#include "engine/util/error.h"
+#include "engine/util/memory.h"
+#include "engine/util/timer.h"
+#include "engine/util/union_find.h"
+
+namespace strata {
+namespace {
+
+constexpr uint64_t kFaceKeyBit = uint64_t(1) << 63;  // faceSegmentKey (contour_cells.h)
+constexpr uint8_t kHasTriangle = 4;                  // beside the resolved bits
+// unfold_shells.cpp sums each shell's six volumes over runs within chunks of this many
+// triangles (in the mesh's order): the same runs here give the same sums.
+constexpr uint64_t kShellChunk = 65536;
+constexpr uint32_t kNoId = std::numeric_limits<uint32_t>::max();
+constexpr uint64_t kWriteBlock = 1 << 16;  // facets encoded per write
+
+// The scratch file the pieces are spilled to: created beside the output (the same file system,
+// whose space the output needs anyway) and unlinked at once, so that it goes with the process
+// whatever happens. Appends only; reads anywhere.
+class ScratchFile {
+ public:
+  explicit ScratchFile(const std::string& besides) : path_(besides) {
+    const size_t slash = besides.find_last_of('/');
+    std::string name = (slash == std::string::npos ? std::string(".") : besides.substr(0, slash)) +
+                       "/.strata-stream-XXXXXX";
+    fd_ = mkstemp(&name[0]);
+    if (fd_ < 0)
+      throw Error(path_ + ": cannot create the streamed export's scratch file beside it (" +
+                  std::strerror(errno) + ")");
+    unlink(name.c_str());
+  }
+  ~ScratchFile() { close(fd_); }
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+
+  uint64_t size() const { return end_; }
+
+  template <typename T>
+  void append(const std::vector<T>& values) {
+    const char* data = reinterpret_cast<const char*>(values.data());
+    size_t left = values.size() * sizeof(T);
+    while (left > 0) {
+      const ssize_t n = pwrite(fd_, data, std::min<size_t>(left, size_t(1) << 30), off_t(end_));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        throw Error(path_ + ": cannot write the streamed export's scratch file beside it (" +
+                    std::strerror(n < 0 ? errno : ENOSPC) + ")");
+      data += n;
+      left -= size_t(n);
+      end_ += uint64_t(n);
+    }
+  }
+
+  template <typename T>
+  void read(uint64_t* at, size_t count, std::vector<T>* values) const {
+    values->resize(count);
+    char* data = reinterpret_cast<char*>(values->data());
+    size_t left = count * sizeof(T);
+    while (left > 0) {
+      const ssize_t n = pread(fd_, data, std::min<size_t>(left, size_t(1) << 30), off_t(*at));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        throw Error(path_ + ": cannot read the streamed export's scratch file back (" +
+                    std::string(n < 0 ? std::strerror(errno) : "it ended early") + ")");
+      data += n;
+      left -= size_t(n);
+      *at += uint64_t(n);
+    }
+  }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  uint64_t end_ = 0;
+};
+
+// One slab's piece: its merged mesh (mergeTiles) and each vertex's global id.
+struct Piece {
+  std::vector<uint64_t> keys;  // in key order
+  std::vector<glm::dvec3> positions;
+  std::vector<uint32_t> ids;
+  std::vector<std::array<uint32_t, 3>> triangles;  // piece vertices, in edge order
+  std::vector<uint8_t> resolved;
+};
+
+struct PieceRecord {
+  uint64_t offset = 0;
+  size_t vertices = 0, triangles = 0;
+};
+
+void spill(ScratchFile& file, const Piece& p, std::vector<PieceRecord>* records) {
+  records->push_back({file.size(), p.keys.size(), p.triangles.size()});
+  file.append(p.keys);
+  file.append(p.positions);
+  file.append(p.ids);
+  file.append(p.triangles);
+  file.append(p.resolved);
+}
+
+void load(const ScratchFile& file, const PieceRecord& r, Piece* p) {
+  uint64_t at = r.offset;
+  file.read(&at, r.vertices, &p->keys);
+  file.read(&at, r.vertices, &p->positions);
+  file.read(&at, r.vertices, &p->ids);
+  file.read(&at, r.triangles, &p->triangles);
+  file.read(&at, r.triangles, &p->resolved);
+}
+
+struct Box {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+  glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+  void include(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+};
+
+// What the component steps know of a shell (a component with triangles), by its root id.
+struct Shell {
+  glm::dvec3 ref{0.0};  // the anchor of its first triangle's first corner
+  bool hasRef = false;
+  double anchored = 0.0, placed = 0.0;  // six volumes (unfold_shells.cpp)
+  uint8_t bits = 0;                     // resolved bits ORed, and kHasTriangle
+  uint64_t triangles = 0;
+  bool inverted = false;
+  bool kept = true;
+};
+
+// The passes, in order; each a method over the pieces in the scratch file.
+class StreamedExport {
+ public:
+  StreamedExport(const Scene& scene, const std::string& path, const ExportOptions& options,
+                 std::shared_ptr<Backend> backend, Progress& progress, ExportReport& report)
+      : scene_(scene),
+        path_(path),
+        options_(options),
+        backend_(std::move(backend)),
+        progress_(progress),
+        report_(report),
+        r_(report.contour),
+        stored_(storedCoordinate(path)),
+        scratch_(path) {}
+
+  void run() {
+    contourPieces();
+    Stopwatch steps;
+    progress_.report("merge", 0.0);
+    sumShells();
+    progress_.report("merge", 0.4);
+    unfoldShells();
+    dropSpecks();
+    progress_.report("merge", 0.7);
+    repairFlaws();
+    progress_.report("merge", 1.0);
+    r_.mergeSeconds += steps.seconds();
+    r_.deviationBound = std::sqrt(3.0) * r_.grid.h;
+    Stopwatch write;
+    writeStl();
+    report_.writeSeconds = write.seconds();
+    r_.peakBytes = peakResidentBytes();
+    Stopwatch check;
+    const WrittenCheck written = checkStreamedFile(path_, fingerprint_, progress_);
+    report_.check = written.check;
+    report_.fileDifference = written.fileDifference;
+    report_.checkSeconds = check.seconds();
+  }
+
+ private:
+  uint32_t newId() {
+    sets_.parent.push_back(uint32_t(sets_.parent.size()));
+    if (sets_.parent.size() >= size_t(kNoId))
+      throw Error(path_ + ": more than 2^32 vertices: too many for one export");
+    return uint32_t(sets_.parent.size() - 1);
+  }
+
+  // Pass 1: the slabs' tiles contoured and merged into pieces, given global vertex ids (a
+  // vertex shared with the slab below keeps its id there) and joined into components.
+  void contourPieces() {
+    Evaluator evaluator(backend_);
+    const ExportTiling tiling =
+        exportTiling(scene_, options_, backend_->memoryAvailable(), backend_->offsetBytesPerNode());
+    const Grid& grid = tiling.grid;
+    const int perSlab = tiling.counts.x * tiling.counts.y;
+    const int slabs = tiling.counts.z;
+    const uint64_t layerKeys = uint64_t(grid.cells.x) * uint64_t(grid.cells.y) * 4;
+    std::unordered_map<uint64_t, uint32_t> below, faces;  // keys -> ids
+    for (int z = 0; z < slabs; ++z) {
+      Progress slabProgress(&progress_, [&](const std::string& stage, double f) {
+        progress_.report(stage, stage == "export" ? (double(z) + f) / double(slabs) : f);
+      });
+      std::vector<TileContour> tiles;
+      evaluator.clearCache();  // the last slab's tile is no use to this one
+      contourTiles(
+          scene_, evaluator, tiling, [&](int t) { return t / perSlab == z; }, slabProgress, r_,
+          &tiles);
+      Stopwatch merge;
+      const uint64_t firstKey = uint64_t(tiling.begin(z * perSlab).z) * layerKeys;
+      const uint64_t topKey = uint64_t(tiling.end(z * perSlab).z - 1) * layerKeys;
+      Piece piece;
+      if (!tiles.empty()) {
+        MergedTiles merged = mergeTiles(scene_, std::move(tiles), progress_, r_);
+        unit_ = merged.mesh.unit;
+        piece.keys = std::move(merged.keys);
+        piece.positions = std::move(merged.mesh.mesh.positions);
+        piece.triangles = std::move(merged.mesh.mesh.triangles);
+        piece.resolved = std::move(merged.resolved);
+      }
+      piece.ids.resize(piece.keys.size());
+      std::unordered_map<uint64_t, uint32_t> top;
+      for (size_t i = 0; i < piece.keys.size(); ++i) {
+        const uint64_t key = piece.keys[i];
+        uint32_t id;
+        if (key & kFaceKeyBit) {
+          const auto found = faces.find(key);
+          id = found != faces.end() ? found->second : (faces[key] = newId());
+        } else if (key < firstKey) {
+          // A halo cell of the slab below: its vertex was that slab's.
+          const auto found = below.find(key);
+          if (found == below.end())
+            throw Error(path_ + ": internal: a vertex of the slab below was not merged there");
+          id = found->second;
+        } else {
+          id = newId();
+        }
+        piece.ids[i] = id;
+        if (!(key & kFaceKeyBit) && key >= topKey) top[key] = id;
+      }
+      for (const auto& t : piece.triangles) {
+        sets_.unite(piece.ids[t[0]], piece.ids[t[1]]);
+        sets_.unite(piece.ids[t[0]], piece.ids[t[2]]);
+      }
+      triangles_ += piece.triangles.size();
+      spill(scratch_, piece, &pieces_);
+      below = std::move(top);
+      r_.mergeSeconds += merge.seconds();
+    }
+    grid_ = grid;
+    // Each id's root, and how many ids each root has.
+    const size_t n = sets_.parent.size();
+    for (size_t i = 0; i < n; ++i) sets_.parent[i] = sets_.find(uint32_t(i));
+    vertexCount_.assign(n, 0);
+    for (size_t i = 0; i < n; ++i) ++vertexCount_[sets_.parent[i]];
+  }
+
+  uint32_t rootOf(uint32_t id) const { return sets_.parent[id]; }
+
+  template <typename Visit>
+  void eachPiece(Visit visit) {
+    Piece piece;
+    for (const PieceRecord& record : pieces_) {
+      progress_.check();
+      load(scratch_, record, &piece);
+      visit(piece);
+    }
+  }
+
+  static std::vector<glm::dvec3> anchorsOf(const Grid& grid, const Piece& p) {
+    std::vector<glm::dvec3> anchors(p.keys.size());
+    for (size_t i = 0; i < p.keys.size(); ++i)
+      anchors[i] = shellAnchor(grid, p.keys[i], sharesCell(p.keys, i), p.positions[i]);
+    return anchors;
+  }
+
+  // Pass 2: each shell's six volumes, anchored and placed, summed as unfoldInvertedShells sums
+  // them (relative to its first triangle's first anchor, runs of one shell within fixed chunks
+  // of triangles, added in order); its resolved bits and triangle count; the boxes of the
+  // components small enough for the speck rule to measure.
+  void sumShells() {
+    struct Run {
+      uint32_t shell = kNoId;
+      uint64_t chunk = 0;
+      double anchored = 0.0, placed = 0.0;
+    } run;
+    const auto flush = [&] {
+      if (run.shell == kNoId) return;
+      Shell& s = shells_[run.shell];
+      s.anchored += run.anchored;
+      s.placed += run.placed;
+    };
+    uint64_t g = 0;  // the triangle's place in the whole mesh
+    eachPiece([&](const Piece& p) {
+      const std::vector<glm::dvec3> anchors = anchorsOf(grid_, p);
+      for (size_t i = 0; i < p.ids.size(); ++i) {
+        const uint32_t root = rootOf(p.ids[i]);
+        if (vertexCount_[root] <= kMeasuredSpeckVertices) boxes_[root].include(p.positions[i]);
+      }
+      for (size_t t = 0; t < p.triangles.size(); ++t, ++g) {
+        const auto& tri = p.triangles[t];
+        const uint32_t shell = rootOf(p.ids[tri[0]]);
+        Shell& s = shells_[shell];
+        if (!s.hasRef) {
+          s.ref = anchors[tri[0]];
+          s.hasRef = true;
+        }
+        s.bits |= uint8_t(p.resolved[t] | kHasTriangle);
+        ++s.triangles;
+        if (shell != run.shell || g / kShellChunk != run.chunk) {
+          flush();
+          run = Run{shell, g / kShellChunk, 0.0, 0.0};
+        }
+        const glm::dvec3& ref = s.ref;
+        run.anchored +=
+            sixVolumeTerm(anchors[tri[0]] - ref, anchors[tri[1]] - ref, anchors[tri[2]] - ref);
+        run.placed += sixVolumeTerm(p.positions[tri[0]] - ref, p.positions[tri[1]] - ref,
+                                    p.positions[tri[2]] - ref);
+      }
+    });
+    flush();
+    for (auto& [root, s] : shells_) {
+      const int want = volumeSign(s.anchored);
+      s.inverted = want != 0 && volumeSign(s.placed) != want;
+      anyInverted_ = anyInverted_ || s.inverted;
+    }
+  }
+
+  // Pass 3 (where a shell is inverted): its triangles gathered (few: shells thinner than a
+  // cell), pulled back from their anchors as unfoldInvertedShells pulls them.
+  void unfoldShells() {
+    if (!anyInverted_) return;
+    struct Gathered {
+      std::unordered_map<uint32_t, uint32_t> local;  // id -> index below
+      std::vector<uint32_t> ids;
+      std::vector<glm::dvec3> anchors, positions;
+      std::vector<std::array<uint32_t, 3>> triangles;
+    };
+    std::unordered_map<uint32_t, Gathered> gathered;
+    eachPiece([&](const Piece& p) {
+      std::vector<glm::dvec3> anchors;
+      for (const auto& tri : p.triangles) {
+        const uint32_t shell = rootOf(p.ids[tri[0]]);
+        if (!shells_[shell].inverted) continue;
+        if (anchors.empty()) anchors = anchorsOf(grid_, p);
+        Gathered& g = gathered[shell];
+        std::array<uint32_t, 3> corners;
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t v = tri[size_t(k)], id = p.ids[v];
+          const auto found = g.local.find(id);
+          if (found != g.local.end()) {
+            corners[size_t(k)] = found->second;
+            continue;
+          }
+          corners[size_t(k)] = g.local[id] = uint32_t(g.ids.size());
+          g.ids.push_back(id);
+          g.anchors.push_back(anchors[v]);
+          g.positions.push_back(p.positions[v]);
+        }
+        g.triangles.push_back(corners);
+      }
+    });
+    for (auto& [shell, g] : gathered) {
+      const Shell& s = shells_[shell];
+      const double keep =
+          pullBackKeep(g.triangles, g.anchors, g.positions, s.ref, volumeSign(s.anchored));
+      Box box;
+      for (size_t i = 0; i < g.ids.size(); ++i) {
+        const glm::dvec3 p = g.anchors[i] + keep * (g.positions[i] - g.anchors[i]);
+        moved_[g.ids[i]] = p;
+        box.include(p);
+      }
+      if (boxes_.count(shell)) boxes_[shell] = box;
+      ++r_.unfoldedShells;
+    }
+  }
+
+  // The speck rule per component (drop_specks.h), with its exception: where every component
+  // would go, none does.
+  void dropSpecks() {
+    DroppedSpecks dropped;
+    bool anyKept = false;
+    for (auto& [root, s] : shells_) {
+      const auto box = boxes_.find(root);
+      s.kept =
+          box == boxes_.end()
+              ? keepComponent(s.bits, vertexCount_[root], glm::dvec3(0.0), glm::dvec3(0.0), grid_.h)
+              : keepComponent(s.bits, vertexCount_[root], box->second.lo, box->second.hi, grid_.h);
+      anyKept = anyKept || s.kept;
+      if (!s.kept) {
+        ++dropped.components;
+        dropped.triangles += s.triangles;
+      }
+    }
+    if (!anyKept) {
+      for (auto& [root, s] : shells_) s.kept = true;
+      dropped = DroppedSpecks();
+    }
+    r_.droppedSpecks = dropped;
+    keptTriangles_ = triangles_ - dropped.triangles;
+    boxes_.clear();
+  }
+
+  glm::dvec3 finalPosition(const Piece& p, uint32_t v) const {
+    const auto found = moved_.find(p.ids[v]);
+    return found == moved_.end() ? p.positions[v] : found->second;
+  }
+
+  bool keptTriangle(const Piece& p, size_t t) const {
+    return shells_.at(rootOf(p.ids[p.triangles[t][0]])).kept;
+  }
+
+  // Pass 4: the triangles flawed as the file stores them (degenerate_repair.h), repaired on the
+  // part of the mesh around them: the triangles around every vertex within `rings` of their
+  // corners, grown until the repair found the ring of each corner it read there.
+  void repairFlaws() {
+    std::unordered_set<uint32_t> region;  // ids
+    eachPiece([&](const Piece& p) {
+      for (size_t t = 0; t < p.triangles.size(); ++t) {
+        if (!keptTriangle(p, t)) continue;
+        const auto& tri = p.triangles[t];
+        if (storedFlawed(finalPosition(p, tri[0]), finalPosition(p, tri[1]),
+                         finalPosition(p, tri[2]), stored_))
+          for (uint32_t v : tri) region.insert(p.ids[v]);
+      }
+    });
+    if (region.empty()) return;
+    for (int rings = 2;; ++rings) {
+      // The vertices within `rings` - 1 of the flawed corners have complete rings in the part:
+      // the triangles around each vertex within rings - 1 of them.
+      std::unordered_set<uint32_t> complete = region;
+      for (int ring = 1; ring < rings; ++ring) {
+        std::unordered_set<uint32_t> grown = complete;
+        eachPiece([&](const Piece& p) {
+          for (size_t t = 0; t < p.triangles.size(); ++t) {
+            if (!keptTriangle(p, t)) continue;
+            const auto& tri = p.triangles[t];
+            if (complete.count(p.ids[tri[0]]) || complete.count(p.ids[tri[1]]) ||
+                complete.count(p.ids[tri[2]]))
+              for (uint32_t v : tri) grown.insert(p.ids[v]);
+          }
+        });
+        complete = std::move(grown);
+      }
+      // The part: every kept triangle around a complete vertex, in the mesh's order; its
+      // vertices in key order (the mesh's), each with its key.
+      struct PartTriangle {
+        uint64_t place;  // among the kept triangles
+        std::array<uint64_t, 3> keys;
+        std::array<glm::dvec3, 3> corners;
+        std::array<uint32_t, 3> ids;
+      };
+      std::vector<PartTriangle> part;
+      uint64_t place = 0;
+      eachPiece([&](const Piece& p) {
+        for (size_t t = 0; t < p.triangles.size(); ++t) {
+          if (!keptTriangle(p, t)) continue;
+          const auto& tri = p.triangles[t];
+          if (complete.count(p.ids[tri[0]]) || complete.count(p.ids[tri[1]]) ||
+              complete.count(p.ids[tri[2]])) {
+            PartTriangle pt{place, {}, {}, {}};
+            for (int k = 0; k < 3; ++k) {
+              pt.keys[size_t(k)] = p.keys[tri[size_t(k)]];
+              pt.corners[size_t(k)] = finalPosition(p, tri[size_t(k)]);
+              pt.ids[size_t(k)] = p.ids[tri[size_t(k)]];
+            }
+            part.push_back(pt);
+          }
+          ++place;
+        }
+      });
+      std::vector<std::pair<uint64_t, uint32_t>> byKey;  // (key, id)
+      for (const PartTriangle& pt : part)
+        for (int k = 0; k < 3; ++k) byKey.push_back({pt.keys[size_t(k)], pt.ids[size_t(k)]});
+      std::sort(byKey.begin(), byKey.end());
+      byKey.erase(std::unique(byKey.begin(), byKey.end()), byKey.end());
+      TriangleMesh mesh;
+      std::vector<uint8_t> ringComplete(byKey.size());
+      std::unordered_map<uint32_t, uint32_t> local;  // id -> part vertex
+      mesh.positions.resize(byKey.size());
+      for (size_t i = 0; i < byKey.size(); ++i) {
+        local[byKey[i].second] = uint32_t(i);
+        ringComplete[i] = complete.count(byKey[i].second) ? 1 : 0;
+      }
+      std::vector<uint32_t> partIndex(part.size());
+      for (size_t t = 0; t < part.size(); ++t) {
+        std::array<uint32_t, 3> tri;
+        for (int k = 0; k < 3; ++k) {
+          tri[size_t(k)] = local.at(part[t].ids[size_t(k)]);
+          mesh.positions[tri[size_t(k)]] = part[t].corners[size_t(k)];
+        }
+        mesh.triangles.push_back(tri);
+        partIndex[t] = uint32_t(t);
+      }
+      DegenerateRepair repair;
+      if (!repairDegenerateTriangles(&mesh, stored_, &partIndex, &ringComplete, &repair)) {
+        if (rings >= 64)
+          throw Error(path_ + ": internal: the repair of flat triangles reached too far");
+        continue;
+      }
+      report_.degenerateRepair = repair;
+      // What the repair left of the part: the surviving triangles' corners; the rest removed.
+      for (const PartTriangle& pt : part) repaired_[pt.place] = {};  // removed unless listed
+      for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        std::array<glm::dvec3, 3> corners;
+        for (int k = 0; k < 3; ++k)
+          corners[size_t(k)] = mesh.positions[mesh.triangles[t][size_t(k)]];
+        repaired_[part[partIndex[t]].place] = Replacement{true, corners};
+      }
+      keptTriangles_ -= 2 * repair.collapsed;
+      return;
+    }
+  }
+
+  // Pass 5: the facets in the mesh's order, a block at a time, fingerprinted as stored.
+  void writeStl() {
+    if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
+    if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
+      throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
+    progress_.report("write STL", 0.0);
+    writeFileAtomically(path_, [&](std::ostream& out) {
+      const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
+      out.write(header.data(), std::streamsize(header.size()));
+      std::string block;
+      uint64_t place = 0, written = 0;
+      const auto emit = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+        for (const glm::dvec3* x : {&a, &b, &c}) {
+          if (!std::isfinite(x->x) || !std::isfinite(x->y) || !std::isfinite(x->z))
+            throw Error(path_ + ": cannot write: a vertex is not finite");
+          checkStlCoordinates(path_, *x);
+        }
+        const size_t at = block.size();
+        block.resize(at + kStlFacetBytes);
+        encodeStlFacet(a, b, c, &block[at]);
+        const auto s = [&](const glm::dvec3& p) {
+          return glm::dvec3(stored_(p.x), stored_(p.y), stored_(p.z));
+        };
+        addToFingerprint(s(a), s(b), s(c), &fingerprint_);
+        ++written;
+        if (block.size() >= kWriteBlock * kStlFacetBytes) {
+          out.write(block.data(), std::streamsize(block.size()));
+          block.clear();
+          progress_.report("write STL", double(written) / double(keptTriangles_));
+        }
+      };
+      eachPiece([&](const Piece& p) {
+        for (size_t t = 0; t < p.triangles.size(); ++t) {
+          if (!keptTriangle(p, t)) continue;
+          const auto found = repaired_.find(place++);
+          if (found != repaired_.end()) {
+            if (found->second.alive)
+              emit(found->second.corners[0], found->second.corners[1], found->second.corners[2]);
+            continue;
+          }
+          const auto& tri = p.triangles[t];
+          emit(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]));
+        }
+      });
+      out.write(block.data(), std::streamsize(block.size()));
+      if (written != keptTriangles_)
+        throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +
+                    std::to_string(keptTriangles_));
+      progress_.check();  // a cancel during the write replaces nothing
+    });
+  }
+
+  const Scene& scene_;
+  const std::string path_;
+  const ExportOptions options_;
+  std::shared_ptr<Backend> backend_;
+  Progress& progress_;
+  ExportReport& report_;
+  ContourReport& r_;
+  const StoredCoordinate stored_;
+  ScratchFile scratch_;
+  Grid grid_;
+  std::string unit_ = "millimetre";
+  UnionFind sets_{0};  // over global vertex ids; after pass 1 each id's parent is its root
+  std::vector<uint32_t> vertexCount_;  // per root
+  std::vector<PieceRecord> pieces_;
+  uint64_t triangles_ = 0, keptTriangles_ = 0;
+  std::unordered_map<uint32_t, Shell> shells_;  // by root
+  std::unordered_map<uint32_t, Box> boxes_;     // by root, the small components'
+  bool anyInverted_ = false;
+  std::unordered_map<uint32_t, glm::dvec3> moved_;  // ids of unfolded shells
+  struct Replacement {
+    bool alive = false;
+    std::array<glm::dvec3, 3> corners{};
+  };
+  std::unordered_map<uint64_t, Replacement> repaired_;  // by place among the kept triangles
+  TriangleFingerprint fingerprint_;
+};
+
+}  // namespace
+
+std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {
+  if (lowerExtension(path) != "stl")
+    return "--stream writes binary STL (.stl) only: the other formats list every vertex before "
+           "the triangles, which a mesh written in pieces does not have yet";
+  if (options.simplifyCells > 0.0)
+    return "--stream and --simplify do not go together: simplifying needs the whole mesh";
+  return "";
+}
+
+ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
+                                 const ExportOptions& options, std::shared_ptr<Backend> backend,
+                                 Progress& progress) {
+  const std::string refusal = streamedExportRefusal(path, options);
+  if (!refusal.empty()) throw Error(path + ": " + refusal);
+  ExportReport report;
+  StreamedExport(scene, path, options, std::move(backend), progress, report).run();
+  return report;
+}
+
+}  // namespace strata

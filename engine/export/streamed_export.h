@@ -1,0 +1,50 @@
+// A watertight export written in pieces, for meshes larger than the memory that holds them
+// (`strata export SCENE -o OUT.stl --stream`).
+//
+// The single-process export (export_scene.h) holds every tile's vertices and triangles and then
+// the whole indexed mesh (about 90 bytes a triangle at its peak). This one contours the tiles a
+// slab at a time (the tiles sharing a z index, in increasing z), merges each slab into an
+// indexed piece (contour_scene.h: mergeTiles) and spills it to a scratch file beside the output
+// (unlinked at once: nothing is left behind, whatever happens), keeping in memory only what
+// the component steps need across pieces: one 32-bit set per vertex of the whole mesh (its
+// component, by union-find over the global vertex keys that neighbouring slabs share) and one
+// record per component. Later passes over the scratch file replay the component steps exactly
+// as the single-process export runs them on the whole mesh, in the same global orders and
+// with the same sums (unfold_shells.h: the shells' six volumes in the same chunks and runs;
+// drop_specks.h: the same rule per component; degenerate_repair.h on the neighbourhood of the
+// flawed triangles, grown until it holds every triangle around each corner the repair reads),
+// then write the file a piece at a time. The file is the single-process export's, byte for byte.
+//
+// Memory: one slab's tiles and piece (what --tile sizes) plus about 12 bytes a vertex of the
+// whole mesh (sets and counts) and the check's read-back (below). Disk: the scratch file, about
+// 100 bytes a triangle, beside the output.
+//
+// Formats: binary STL (.stl) only, whose facets are written in order as they come; --simplify
+// needs the whole mesh and is refused. The check (check_written.h: checkStreamedFile) compares
+// the file's fingerprint, read back in pieces, with the one accumulated while writing, and runs
+// checkMesh on the file's mesh read back (that step still holds the file's positions and
+// triangles at once: about 40 bytes a triangle).
+//
+// Synchronous; one backend; progress stages "export" (a step per tile), "merge" (the passes
+// over the pieces), "write STL" and "check", checked between and within them. Throws
+// strata::Error naming `path`, or Cancelled; the file is written atomically (nothing is replaced
+// unless the write completes).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "engine/eval/backend.h"
+#include "engine/export/export_scene.h"
+#include "engine/util/progress.h"
+
+namespace strata {
+
+// Why `path` and `options` cannot be streamed ("" when they can).
+std::string streamedExportRefusal(const std::string& path, const ExportOptions& options);
+
+ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
+                                 const ExportOptions& options, std::shared_ptr<Backend> backend,
+                                 Progress& progress);
+
+}  // namespace strata
