@@ -18,8 +18,8 @@ const std::vector<std::string> kValuedOptions = {
     "--max-leaves", "--max-file-size", "--max-memory", "--max-triangles", "--distance",
     "--thickness",  "--radius",        "--fillet",     "--opening",       "--simplify",
     "--gpus"};
-const std::vector<std::string> kFlagOptions = {"--quiet",      "-q",      "--nodes",
-                                               "--allow-open", "--force", "--distributed"};
+const std::vector<std::string> kFlagOptions = {
+    "--quiet", "-q", "--nodes", "--allow-open", "--force", "--distributed", "--stream"};
 
 int runGuarded(const std::function<int()>& body) {
   try {
@@ -101,16 +101,19 @@ void applySceneLimits(const CliArgs& args, Scene* scene) {
     scene->settings.maxLeaves = uint64_t(args.integer("--max-leaves", 0, 1, INT32_MAX));
 }
 
+uint64_t jobMemoryBytes(const CliArgs& args) {
+  return args.has("--max-memory") ? sizeOption(args, "--max-memory") : availableMemoryBytes();
+}
+
 void tellOrRefuseEstimate(const JobEstimate& estimate, const CliArgs& args, const std::string& job,
-                          const std::string& outputPath) {
-  const uint64_t memory =
-      args.has("--max-memory") ? sizeOption(args, "--max-memory") : availableMemoryBytes();
+                          const std::string& outputPath, const std::string& otherWay) {
+  const uint64_t memory = jobMemoryBytes(args);
   const std::string refusal =
       estimateRefusal(estimate, memory, outputPath.empty() ? 0 : freeDiskBytesForFile(outputPath));
   const bool force = args.has("--force");
   if (!refusal.empty() && !force)
     throw Error(job + " " + refusal + " (estimate: " + describeEstimate(estimate) +
-                "). Lower --resolution, or run it anyway with --force");
+                "). Lower --resolution" + otherWay + ", or run it anyway with --force");
   if (!refusal.empty() || (estimateWorthTelling(estimate) && !quietRequested(args)))
     std::fprintf(stderr, "strata: estimate for %s: %s%s\n", job.c_str(),
                  describeEstimate(estimate).c_str(),

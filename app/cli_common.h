@@ -38,13 +38,17 @@ void applyInputLimits(const CliArgs& args);
 // Applies --max-leaves to the scene's settings (engine/document/expansion.h).
 void applySceneLimits(const CliArgs& args, Scene* scene);
 
+// The memory a job may use: --max-memory, else what the machine has available.
+uint64_t jobMemoryBytes(const CliArgs& args);
+
 // Before a long job: refuses (strata::Error naming the job, the need and what is available) a
 // job whose estimate does not fit in the memory available (or --max-memory) or, writing
 // `outputPath`, on its disk, unless --force; prints the estimate of a job worth telling about
 // (estimateWorthTelling) or forced, unless --quiet. `job` names it: "export of part.strata.json at
-// 4096 cells".
+// 4096 cells". `otherWay` (may be empty): a further way on that the refusal names (", or write
+// it in pieces with --stream, ...").
 void tellOrRefuseEstimate(const JobEstimate& estimate, const CliArgs& args, const std::string& job,
-                          const std::string& outputPath);
+                          const std::string& outputPath, const std::string& otherWay = "");
 
 // "mm" for "millimetre" and the other units scene files name; anything else unchanged.
 std::string unitAbbreviation(const std::string& unit);

@@ -6,6 +6,7 @@
 #include "app/terminal_progress.h"
 #include "engine/export/distributed_export.h"
 #include "engine/export/export_scene.h"
+#include "engine/export/streamed_export.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
@@ -107,6 +108,9 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
         "--gpus and --distributed: a distributed export runs one backend per process "
         "(the processes of a host take its GPUs in turn); start one process per GPU");
   std::unique_ptr<ProcessGroup> group;
+  if (args.has("--stream") && (args.has("--distributed") || args.has("--gpus")))
+    throw Error(std::string("--stream and ") + (args.has("--gpus") ? "--gpus" : "--distributed") +
+                ": a streamed export runs on one backend in one process");
   if (args.has("--distributed")) group = openMpiProcessGroup();
   const bool root = !group || group->rank() == 0;
   BackendChoice choice =
@@ -115,15 +119,32 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   options.resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
   options.tileCells = args.integer("--tile", 0, 8, kMaxTileCells);  // 0: sized to memory
   options.simplifyCells = args.number("--simplify", 0.0, 0.0, 8.0);
+  const bool streamed = args.has("--stream");
+  if (streamed) {
+    const std::string refusal = streamedExportRefusal(output, options);
+    if (!refusal.empty()) throw Error(output + ": " + refusal);
+  }
 
   if (root) {
     Progress probe;
-    const JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
+    JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
+    if (streamed) {
+      estimate.peakBytes = estimate.streamedPeakBytes;
+      estimate.fileBytes += estimate.scratchBytes;
+    }
     const glm::ivec3 c = estimate.grid.cells;
+    // Where the mesh would not fit but its pieces would: say so.
+    std::string otherWay;
+    if (!streamed && estimate.probed && streamedExportRefusal(output, options).empty() &&
+        estimate.peakBytes > jobMemoryBytes(args) &&
+        estimate.streamedPeakBytes <= jobMemoryBytes(args))
+      otherWay = ", write it in pieces with --stream (about " +
+                 bytesText(double(estimate.streamedPeakBytes)) + " of memory and a " +
+                 bytesText(double(estimate.scratchBytes)) + " scratch file beside it)";
     tellOrRefuseEstimate(estimate, args,
                          "export of " + input + " at " +
                              std::to_string(std::max(c.x, std::max(c.y, c.z))) + " cells",
-                         output);
+                         output, otherWay);
   }
   ExportSummary summary;
   summary.input = input;
@@ -132,6 +153,13 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   summary.backend = choice.backend->description();
   summary.warnings = warnings;
   if (group) return exportDistributed(scene, args, output, options, choice, *group, summary);
+  if (streamed) {
+    summary.backend += ", streamed (--stream)";
+    TerminalProgress terminal(quietRequested(args));
+    summary.result =
+        exportSceneStreamed(scene, output, options, choice.backend, terminal.progress());
+    return printExportSummary(args, summary);
+  }
   int perDevice = 1;
   const std::vector<std::shared_ptr<Backend>> workers =
       exportWorkers(choice, args.text("--gpus", "all"), args.has("--gpus"), &perDevice);

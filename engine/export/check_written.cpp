@@ -32,9 +32,17 @@ void addTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, 
   *mixedSum += avalanche64(g ^ 0xa4093822299f31d0ull);
 }
 
-// The fingerprint of the triangles the file at `path` lists, read back as
-// readMeshFileVerbatim reads it: in pieces where the format allows (visitFileTriangles: a
-// binary STL never held whole), else whole.
+}  // namespace
+
+std::string fingerprintDifference(const std::string& path, const TriangleFingerprint& found,
+                                  const TriangleFingerprint& expected) {
+  if (found == expected) return "";
+  if (found.triangles != expected.triangles)
+    return path + ": the file holds " + std::to_string(found.triangles) + " triangles, not the " +
+           std::to_string(expected.triangles) + " written";
+  return path + ": the file's triangles are not those written (a coordinate or a winding differs)";
+}
+
 TriangleFingerprint fingerprintFile(const std::string& path, const Progress& progress) {
   std::atomic<uint64_t> triangles{0}, sum{0}, mixedSum{0};
   const bool inPieces = visitFileTriangles(
@@ -55,8 +63,6 @@ TriangleFingerprint fingerprintFile(const std::string& path, const Progress& pro
   f.mixedSum = mixedSum.load();
   return f;
 }
-
-}  // namespace
 
 void addToFingerprint(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                       TriangleFingerprint* f) {
@@ -143,40 +149,11 @@ WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Pr
   TriangleFingerprint expected;
   meant.wait(&result.check, &expected);
   progress.report("check", 0.9);
-  if (!(found == expected)) {
-    result.fileDifference =
-        found.triangles != expected.triangles
-            ? path + ": the file holds " + std::to_string(found.triangles) +
-                  " triangles, not the " + std::to_string(expected.triangles) + " written"
-            : path +
-                  ": the file's triangles are not those written (a coordinate or a winding "
-                  "differs)";
+  result.fileDifference = fingerprintDifference(path, found, expected);
+  if (!result.fileDifference.empty()) {
     progress.check();
     const InputLimitLifted ownFile;
     result.check = checkMesh(readMeshFileRaw(path), &progress);
-  }
-  progress.report("check", 1.0);
-  return result;
-}
-
-WrittenCheck checkStreamedFile(const std::string& path, const TriangleFingerprint& expected,
-                               Progress& progress) {
-  WrittenCheck result;
-  progress.report("check", 0.0);
-  const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-  const TriangleFingerprint found = fingerprintFile(path, progress);
-  progress.report("check", 0.3);
-  if (!(found == expected)) {
-    result.fileDifference =
-        found.triangles != expected.triangles
-            ? path + ": the file holds " + std::to_string(found.triangles) +
-                  " triangles, not the " + std::to_string(expected.triangles) + " written"
-            : path +
-                  ": the file's triangles are not those written (a coordinate or a winding "
-                  "differs)";
-    result.check = checkMesh(readMeshFileRaw(path), &progress);
-  } else {
-    result.check = checkMesh(readMeshFileVerbatim(path, nullptr, &progress), &progress);
   }
   progress.report("check", 1.0);
   return result;

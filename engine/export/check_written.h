@@ -52,6 +52,14 @@ struct TriangleFingerprint {
   }
 };
 TriangleFingerprint fingerprintTriangles(const TriangleMesh& mesh);
+// The fingerprint of the triangles the file at `path` lists, read back as
+// readMeshFileVerbatim reads it: in pieces where the format allows (visitFileTriangles: a
+// binary STL never held whole), else whole.
+TriangleFingerprint fingerprintFile(const std::string& path, const Progress& progress);
+// What a file's fingerprint `found` says against the one `expected` of the triangles written, a
+// line naming `path` ("" when they are equal).
+std::string fingerprintDifference(const std::string& path, const TriangleFingerprint& found,
+                                  const TriangleFingerprint& expected);
 // Adds one triangle (its corners as the file stores them) to *f.
 void addToFingerprint(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                       TriangleFingerprint* f);
@@ -81,13 +89,6 @@ class MeantMeshCheck {
 // Checks the file at `path`, just written from the mesh `meant` measures: reads it back and
 // compares. Throws strata::Error when the file cannot be read or parsed, Cancelled.
 WrittenCheck checkWrittenFile(const std::string& path, MeantMeshCheck& meant, Progress& progress);
-// The check of a file written in pieces (streamed_export.h), whose mesh was never held: the
-// file read back in pieces and fingerprinted against `expected` (the stored corners of every
-// triangle written, addToFingerprint), and checkMesh on the file's mesh as readMeshFileVerbatim
-// reads it back (STL's identical positions welded; held whole for this step). Where the
-// fingerprints differ, the file read back raw, as above.
-WrittenCheck checkStreamedFile(const std::string& path, const TriangleFingerprint& expected,
-                               Progress& progress);
 // The same in one call, from the mesh written (scene units, as given to writeMeshFile).
 WrittenCheck checkWrittenFile(const std::string& path, const TriangleMesh& written,
                               Progress& progress);

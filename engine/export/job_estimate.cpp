@@ -1,4 +1,5 @@
 #include "engine/export/job_estimate.h"
+#include "engine/export/streamed_export.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,13 @@ namespace {
 // 4096 cells (54-64 tiles, 72-78 M triangles) took 113-116 bytes a triangle: 100 is between.
 constexpr double kExportBytesPerTriangle = 100.0;
 constexpr double kTileBytesPerTriangle = 80.0;
+// A streamed export (streamed_export.h) holds, beside a slab's tiles and its merged piece (the
+// bytes above per triangle of the slab), a set and a count per vertex of the whole mesh (about
+// half a vertex a triangle) and the check's two words per facet; its scratch file holds per
+// vertex a key, a position and an id, per triangle three indices and a byte (vertices of the
+// slabs' shared layers twice).
+constexpr double kStreamedBytesPerTriangle = 14.0;
+constexpr double kScratchBytesPerTriangle = 36.0;
 // Writing and checking, per triangle (they are not in the probes' times): measured 0.12 to
 // 0.18 microseconds on this 2-core machine in the same six exports.
 constexpr double kWriteCheckSecondsPerTriangle = 2e-7;
@@ -30,18 +38,6 @@ constexpr double kWriteCheckSecondsPerTriangle = 2e-7;
 double scaleFrom(const Grid& probe, const Grid& job) {
   const double ratio = probe.h / job.h;
   return ratio * ratio;
-}
-
-std::string bytesText(double bytes) {
-  char text[64];
-  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB"};
-  int u = 0;
-  while (bytes >= 1024.0 && u < 5) {
-    bytes /= 1024.0;
-    ++u;
-  }
-  std::snprintf(text, sizeof(text), u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
-  return text;
 }
 
 std::string countText(double n) {
@@ -229,6 +225,17 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   e.peakBytes =
       present + uint64_t(tileBytes + offsetBytes + double(e.triangles) * kExportBytesPerTriangle);
+  // Streamed: its own tiling (streamedTiling), a slab's tiles' arrays and piece at a time.
+  const ExportTiling streamedTiles =
+      streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+  const double slabs = double(std::max(1, streamedTiles.counts.z));
+  const double streamedScale = tiles / double(std::max(1, streamedTiles.count()));
+  e.streamedPeakBytes =
+      present +
+      uint64_t(ldiBytes / tiles * streamedScale + offsetBytes +
+               double(e.triangles) * ((kTileBytesPerTriangle + kExportBytesPerTriangle) / slabs +
+                                      kStreamedBytesPerTriangle));
+  e.scratchBytes = uint64_t(double(e.triangles) * kScratchBytesPerTriangle);
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
   e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);
@@ -254,6 +261,18 @@ TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, dou
     e.simplified = std::min(e.triangles, uint64_t(double(r.trianglesAfter) * linear));
   }
   return e;
+}
+
+std::string bytesText(double bytes) {
+  char text[64];
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB"};
+  int u = 0;
+  while (bytes >= 1024.0 && u < 5) {
+    bytes /= 1024.0;
+    ++u;
+  }
+  std::snprintf(text, sizeof(text), u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
+  return text;
 }
 
 std::string describeEstimate(const JobEstimate& e) {

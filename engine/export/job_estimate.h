@@ -39,8 +39,11 @@ struct JobEstimate {
   uint64_t triangles = 0;  // export only
   uint64_t peakBytes = 0;  // host memory at the peak, the process's present use included
   uint64_t fileBytes = 0;  // export only: the written file
-  double seconds = 0.0;    // wall time of the job on this backend
-  bool probed = false;     // false: the job is no bigger than the probe; only grid and tiles set
+  // Export only: the same written in pieces (streamed_export.h): its peak, and its scratch file.
+  uint64_t streamedPeakBytes = 0;
+  uint64_t scratchBytes = 0;
+  double seconds = 0.0;  // wall time of the job on this backend
+  bool probed = false;   // false: the job is no bigger than the probe; only grid and tiles set
 };
 
 // An evaluation of `scene` at `resolution` (0 = the scene's setting).
@@ -69,6 +72,9 @@ struct TriangleEstimate {
 TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, double simplifyCells,
                                          const std::shared_ptr<Backend>& backend,
                                          Progress& progress);
+
+// A size for the user: "13.2 GiB", "512 bytes".
+std::string bytesText(double bytes);
 
 // One line for the user: "4096 x 3600 x 3080 cells, 1,024 tiles, about 52 million triangles,
 // 13 GiB of memory, a 2.6 GB file, 3 minutes".

@@ -16,6 +16,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "engine/export/check_streamed.h"
 #include "engine/export/check_written.h"
 #include "engine/export/contour_scene.h"
 #include "engine/export/drop_specks.h"
@@ -180,12 +181,16 @@ class StreamedExport {
     progress_.report("merge", 1.0);
     r_.mergeSeconds += steps.seconds();
     r_.deviationBound = std::sqrt(3.0) * r_.grid.h;
+    // The facets measured as checkMesh would (check_streamed.h) on a thread of their own as they
+    // are written; the file read back afterwards and compared by fingerprint.
     Stopwatch write;
-    writeStl();
+    StreamedMeshCheck measures(grid_, keptTriangles_, used_.lo, used_.hi, progress_);
+    writeStl(&measures);
     report_.writeSeconds = write.seconds();
-    r_.peakBytes = peakResidentBytes();
     Stopwatch check;
-    const WrittenCheck written = checkStreamedFile(path_, fingerprint_, progress_);
+    const MeshCheck measured = measures.finish();
+    r_.peakBytes = peakResidentBytes();
+    const WrittenCheck written = compareStreamedFile(path_, measured, fingerprint_, progress_);
     report_.check = written.check;
     report_.fileDifference = written.fileDifference;
     report_.checkSeconds = check.seconds();
@@ -203,8 +208,8 @@ class StreamedExport {
   // vertex shared with the slab below keeps its id there) and joined into components.
   void contourPieces() {
     Evaluator evaluator(backend_);
-    const ExportTiling tiling =
-        exportTiling(scene_, options_, backend_->memoryAvailable(), backend_->offsetBytesPerNode());
+    const ExportTiling tiling = streamedTiling(scene_, options_, backend_->memoryAvailable(),
+                                               backend_->offsetBytesPerNode());
     const Grid& grid = tiling.grid;
     const int perSlab = tiling.counts.x * tiling.counts.y;
     const int slabs = tiling.counts.z;
@@ -304,6 +309,8 @@ class StreamedExport {
       s.placed += run.placed;
     };
     uint64_t g = 0;  // the triangle's place in the whole mesh
+    uint32_t lastShell = kNoId;
+    Shell* last = nullptr;
     eachPiece([&](const Piece& p) {
       const std::vector<glm::dvec3> anchors = anchorsOf(grid_, p);
       for (size_t i = 0; i < p.ids.size(); ++i) {
@@ -313,7 +320,11 @@ class StreamedExport {
       for (size_t t = 0; t < p.triangles.size(); ++t, ++g) {
         const auto& tri = p.triangles[t];
         const uint32_t shell = rootOf(p.ids[tri[0]]);
-        Shell& s = shells_[shell];
+        if (shell != lastShell) {
+          last = &shells_[shell];  // pointers into an unordered_map stay valid
+          lastShell = shell;
+        }
+        Shell& s = *last;
         if (!s.hasRef) {
           s.ref = anchors[tri[0]];
           s.hasRef = true;
@@ -415,12 +426,13 @@ class StreamedExport {
   }
 
   glm::dvec3 finalPosition(const Piece& p, uint32_t v) const {
+    if (moved_.empty()) return p.positions[v];
     const auto found = moved_.find(p.ids[v]);
     return found == moved_.end() ? p.positions[v] : found->second;
   }
 
   bool keptTriangle(const Piece& p, size_t t) const {
-    return shells_.at(rootOf(p.ids[p.triangles[t][0]])).kept;
+    return r_.droppedSpecks.components == 0 || shells_.at(rootOf(p.ids[p.triangles[t][0]])).kept;
   }
 
   // Pass 4: the triangles flawed as the file stores them (degenerate_repair.h), repaired on the
@@ -428,12 +440,17 @@ class StreamedExport {
   // corners, grown until the repair found the ring of each corner it read there.
   void repairFlaws() {
     std::unordered_set<uint32_t> region;  // ids
+    const auto storedAt = [&](const glm::dvec3& x) {
+      return glm::dvec3(stored_(x.x), stored_(x.y), stored_(x.z));
+    };
     eachPiece([&](const Piece& p) {
       for (size_t t = 0; t < p.triangles.size(); ++t) {
         if (!keptTriangle(p, t)) continue;
         const auto& tri = p.triangles[t];
-        if (storedFlawed(finalPosition(p, tri[0]), finalPosition(p, tri[1]),
-                         finalPosition(p, tri[2]), stored_))
+        const glm::dvec3 a = finalPosition(p, tri[0]), b = finalPosition(p, tri[1]),
+                         c = finalPosition(p, tri[2]);
+        for (const glm::dvec3& x : {a, b, c}) used_.include(storedAt(x));
+        if (storedFlawed(a, b, c, stored_))
           for (uint32_t v : tri) region.insert(p.ids[v]);
       }
     });
@@ -521,12 +538,29 @@ class StreamedExport {
         repaired_[part[partIndex[t]].place] = Replacement{true, corners};
       }
       keptTriangles_ -= 2 * repair.collapsed;
+      if (repair.collapsed > 0) {
+        // A collapse lets a corner go: the box of the corners the facets still use.
+        used_ = Box();
+        uint64_t at = 0;
+        eachPiece([&](const Piece& p) {
+          for (size_t t = 0; t < p.triangles.size(); ++t) {
+            if (!keptTriangle(p, t)) continue;
+            const auto found = repaired_.find(at++);
+            if (found != repaired_.end()) {
+              if (found->second.alive)
+                for (const glm::dvec3& x : found->second.corners) used_.include(storedAt(x));
+              continue;
+            }
+            for (uint32_t v : p.triangles[t]) used_.include(storedAt(finalPosition(p, v)));
+          }
+        });
+      }
       return;
     }
   }
 
   // Pass 5: the facets in the mesh's order, a block at a time, fingerprinted as stored.
-  void writeStl() {
+  void writeStl(StreamedMeshCheck* measures) {
     if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
     if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
       throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
@@ -535,6 +569,7 @@ class StreamedExport {
       const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
       out.write(header.data(), std::streamsize(header.size()));
       std::string block;
+      std::vector<glm::dvec3> corners;  // as stored, for the measures
       uint64_t place = 0, written = 0;
       const auto emit = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
         for (const glm::dvec3* x : {&a, &b, &c}) {
@@ -548,9 +583,14 @@ class StreamedExport {
         const auto s = [&](const glm::dvec3& p) {
           return glm::dvec3(stored_(p.x), stored_(p.y), stored_(p.z));
         };
-        addToFingerprint(s(a), s(b), s(c), &fingerprint_);
+        const glm::dvec3 sa = s(a), sb = s(b), sc = s(c);
+        addToFingerprint(sa, sb, sc, &fingerprint_);
+        corners.insert(corners.end(), {sa, sb, sc});
         ++written;
         if (block.size() >= kWriteBlock * kStlFacetBytes) {
+          measures->add(std::move(corners));
+          corners = std::vector<glm::dvec3>();
+          corners.reserve(3 * kWriteBlock);
           out.write(block.data(), std::streamsize(block.size()));
           block.clear();
           progress_.report("write STL", double(written) / double(keptTriangles_));
@@ -559,7 +599,8 @@ class StreamedExport {
       eachPiece([&](const Piece& p) {
         for (size_t t = 0; t < p.triangles.size(); ++t) {
           if (!keptTriangle(p, t)) continue;
-          const auto found = repaired_.find(place++);
+          const auto found = repaired_.empty() ? repaired_.end() : repaired_.find(place);
+          ++place;
           if (found != repaired_.end()) {
             if (found->second.alive)
               emit(found->second.corners[0], found->second.corners[1], found->second.corners[2]);
@@ -569,6 +610,7 @@ class StreamedExport {
           emit(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]));
         }
       });
+      measures->add(std::move(corners));
       out.write(block.data(), std::streamsize(block.size()));
       if (written != keptTriangles_)
         throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +
@@ -602,9 +644,22 @@ class StreamedExport {
   };
   std::unordered_map<uint64_t, Replacement> repaired_;  // by place among the kept triangles
   TriangleFingerprint fingerprint_;
+  Box used_;  // around the corners the facets use, as stored
 };
 
 }  // namespace
+
+ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
+                            uint64_t offsetBytesPerNode) {
+  ExportTiling tiling = exportTiling(scene, options, memoryBytes, offsetBytesPerNode);
+  if (options.tileCells > 0) return tiling;
+  const int longest = std::max({tiling.grid.cells.x, tiling.grid.cells.y, tiling.grid.cells.z});
+  const int thin = std::max(kMinStreamedTile, (longest + kStreamedSlabs - 1) / kStreamedSlabs);
+  if (thin >= tiling.tileCells) return tiling;
+  ContourOptions thinner = options;
+  thinner.tileCells = thin;
+  return exportTiling(scene, thinner, memoryBytes, offsetBytesPerNode);
+}
 
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {
   if (lowerExtension(path) != "stl")

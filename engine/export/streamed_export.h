@@ -16,14 +16,13 @@
 // then write the file a piece at a time. The file is the single-process export's, byte for byte.
 //
 // Memory: one slab's tiles and piece (what --tile sizes) plus about 12 bytes a vertex of the
-// whole mesh (sets and counts) and the check's read-back (below). Disk: the scratch file, about
-// 100 bytes a triangle, beside the output.
+// whole mesh (sets and counts) and, for the check, 8 bytes a triangle; disk: the scratch file,
+// about 36 bytes a triangle, beside the output.
 //
 // Formats: binary STL (.stl) only, whose facets are written in order as they come; --simplify
-// needs the whole mesh and is refused. The check (check_written.h: checkStreamedFile) compares
-// the file's fingerprint, read back in pieces, with the one accumulated while writing, and runs
-// checkMesh on the file's mesh read back (that step still holds the file's positions and
-// triangles at once: about 40 bytes a triangle).
+// needs the whole mesh and is refused. The check (check_streamed.h) reads the file back once in
+// its order, compares its fingerprint with the one accumulated while writing and measures it as
+// checkMesh would, without holding it.
 //
 // Synchronous; one backend; progress stages "export" (a step per tile), "merge" (the passes
 // over the pieces), "write STL" and "check", checked between and within them. Throws
@@ -39,6 +38,14 @@
 #include "engine/util/progress.h"
 
 namespace strata {
+
+// The tiling a streamed export uses: exportTiling's, but with at least kStreamedSlabs slabs where
+// tiles of kMinStreamedTile cells allow (a slab's tiles and piece are what it holds at once),
+// unless options.tileCells sets the tile.
+constexpr int kStreamedSlabs = 4;
+constexpr int kMinStreamedTile = 64;
+ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
+                            uint64_t offsetBytesPerNode);
 
 // Why `path` and `options` cannot be streamed ("" when they can).
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options);

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 namespace strata {
@@ -290,13 +291,9 @@ class LocalFrame {
  public:
   explicit LocalFrame(const TriangleMesh& mesh) {
     const auto [lo, hi] = usedBox(mesh);
-    const glm::dvec3 halfSide = hi * 0.5 - lo * 0.5;
-    const double half = std::max({halfSide.x, halfSide.y, halfSide.z});
-    if (!(half > 0.0 && half < std::numeric_limits<double>::infinity())) return;  // no size
-    exponent_ = std::max(std::ilogb(half) + 1, -1022);  // 2^-exponent_ stays finite
-    scale_ = std::ldexp(1.0, -exponent_);
-    centre_ = (lo * 0.5 + hi * 0.5) * scale_;
+    set(lo, hi);
   }
+  LocalFrame(const glm::dvec3& lo, const glm::dvec3& hi) { set(lo, hi); }
 
   glm::dvec3 local(const glm::dvec3& p) const { return p * scale_ - centre_; }
   glm::dvec3 edge(const glm::dvec3& from, const glm::dvec3& to) const {
@@ -306,6 +303,15 @@ class LocalFrame {
   double volumeToWorld(double volume) const { return std::ldexp(volume, 3 * exponent_); }
 
  private:
+  void set(const glm::dvec3& lo, const glm::dvec3& hi) {
+    const glm::dvec3 halfSide = hi * 0.5 - lo * 0.5;
+    const double half = std::max({halfSide.x, halfSide.y, halfSide.z});
+    if (!(half > 0.0 && half < std::numeric_limits<double>::infinity())) return;  // no size
+    exponent_ = std::max(std::ilogb(half) + 1, -1022);  // 2^-exponent_ stays finite
+    scale_ = std::ldexp(1.0, -exponent_);
+    centre_ = (lo * 0.5 + hi * 0.5) * scale_;
+  }
+
   int exponent_ = 0;
   double scale_ = 1.0;      // 2^-exponent_
   glm::dvec3 centre_{0.0};  // scaled
@@ -392,51 +398,93 @@ size_t weldInPlace(TriangleMesh& mesh) {
 // Degenerate triangles (a repeated vertex through `canonical`, or zero area), the volume, the
 // area and the smallest triangle's area, into c. In parallel over fixed blocks of triangles
 // whose sums are added in block order: the result does not depend on the thread count.
-void measureTriangles(const TriangleMesh& mesh, const std::vector<uint32_t>& canonical,
-                      MeshCheck& c) {
-  const LocalFrame frame(mesh);
-  struct Sums {
-    double smallest = std::numeric_limits<double>::infinity();
-    double twiceArea = 0.0;
-    double sixVolume = 0.0;
-    size_t degenerate = 0;
-  };
-  constexpr size_t kBlock = 32768;
-  const size_t count = mesh.triangles.size();
-  std::vector<Sums> blocks((count + kBlock - 1) / kBlock);
-  parallelFor(0, int64_t(blocks.size()), 1, [&](int64_t first, int64_t last) {
-    for (int64_t block = first; block < last; ++block) {
-      Sums s;
-      const size_t end = std::min(count, size_t(block + 1) * kBlock);
-      for (size_t i = size_t(block) * kBlock; i < end; ++i) {
-        const auto& t = mesh.triangles[i];
-        const glm::dvec3 n = cornerCross(mesh, frame, t);
-        const uint32_t a = canonical[t[0]], b = canonical[t[1]], d = canonical[t[2]];
-        if (a == b || b == d || a == d || isZero(n)) ++s.degenerate;
-        const double length = glm::length(n);
-        s.smallest = std::min(s.smallest, 0.5 * length);
-        s.twiceArea += length;
-        // Six times the signed volume of the tetrahedron of the triangle and the frame's
-        // centre: a . (b x c) = a . ((b - a) x (c - a)) about that centre.
-        s.sixVolume += glm::dot(frame.local(mesh.positions[t[0]]), n);
-      }
-      blocks[size_t(block)] = s;
-    }
-  });
-  Sums total;
-  for (const Sums& s : blocks) {
-    total.smallest = std::min(total.smallest, s.smallest);
-    total.twiceArea += s.twiceArea;
-    total.sixVolume += s.sixVolume;
-    total.degenerate += s.degenerate;
-  }
+struct MeasureSums {
+  double smallest = std::numeric_limits<double>::infinity();
+  double twiceArea = 0.0;
+  double sixVolume = 0.0;
+  size_t degenerate = 0;
+};
+
+// One triangle's measures added to s: its corners, and whether two of them weld.
+void measureTriangle(const LocalFrame& frame, const glm::dvec3& a, const glm::dvec3& b,
+                     const glm::dvec3& c, bool repeated, MeasureSums& s) {
+  const glm::dvec3 n = glm::cross(frame.edge(a, b), frame.edge(a, c));
+  if (repeated || isZero(n)) ++s.degenerate;
+  const double length = glm::length(n);
+  s.smallest = std::min(s.smallest, 0.5 * length);
+  s.twiceArea += length;
+  // Six times the signed volume of the tetrahedron of the triangle and the frame's centre:
+  // a . (b x c) = a . ((b - a) x (c - a)) about that centre.
+  s.sixVolume += glm::dot(frame.local(a), n);
+}
+
+void addBlock(const MeasureSums& block, MeasureSums& total) {
+  total.smallest = std::min(total.smallest, block.smallest);
+  total.twiceArea += block.twiceArea;
+  total.sixVolume += block.sixVolume;
+  total.degenerate += block.degenerate;
+}
+
+void finishMeasures(const LocalFrame& frame, const MeasureSums& total, size_t count, MeshCheck& c) {
   c.degenerateTriangles += total.degenerate;
   c.smallestTriangleArea = count == 0 ? 0.0 : frame.areaToWorld(total.smallest);
   c.area = frame.areaToWorld(total.twiceArea * 0.5);
   c.volume = frame.volumeToWorld(total.sixVolume / 6.0);
 }
 
+void measureTriangles(const TriangleMesh& mesh, const std::vector<uint32_t>& canonical,
+                      MeshCheck& c) {
+  const LocalFrame frame(mesh);
+  const size_t count = mesh.triangles.size();
+  std::vector<MeasureSums> blocks((count + kMeasureBlock - 1) / kMeasureBlock);
+  parallelFor(0, int64_t(blocks.size()), 1, [&](int64_t first, int64_t last) {
+    for (int64_t block = first; block < last; ++block) {
+      MeasureSums s;
+      const size_t end = std::min(count, size_t(block + 1) * kMeasureBlock);
+      for (size_t i = size_t(block) * kMeasureBlock; i < end; ++i) {
+        const auto& t = mesh.triangles[i];
+        const uint32_t a = canonical[t[0]], b = canonical[t[1]], d = canonical[t[2]];
+        measureTriangle(frame, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]],
+                        a == b || b == d || a == d, s);
+      }
+      blocks[size_t(block)] = s;
+    }
+  });
+  MeasureSums total;
+  for (const MeasureSums& s : blocks) addBlock(s, total);
+  finishMeasures(frame, total, count, c);
+}
+
 }  // namespace
+
+struct TriangleMeasures::State {
+  State(const glm::dvec3& lo, const glm::dvec3& hi) : frame(lo, hi) {}
+  LocalFrame frame;
+  MeasureSums block, total;
+  size_t count = 0;
+};
+
+TriangleMeasures::TriangleMeasures(const glm::dvec3& usedLo, const glm::dvec3& usedHi)
+    : state_(std::make_unique<State>(usedLo, usedHi)) {}
+
+TriangleMeasures::~TriangleMeasures() = default;
+
+void TriangleMeasures::add(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                           bool repeatedVertex) {
+  State& s = *state_;
+  measureTriangle(s.frame, a, b, c, repeatedVertex, s.block);
+  if (++s.count % kMeasureBlock == 0) {
+    addBlock(s.block, s.total);
+    s.block = MeasureSums();
+  }
+}
+
+void TriangleMeasures::finish(MeshCheck* check) {
+  State& s = *state_;
+  if (s.count % kMeasureBlock != 0) addBlock(s.block, s.total);
+  s.block = MeasureSums();
+  finishMeasures(s.frame, s.total, s.count, *check);
+}
 
 double largestExtent(const std::vector<glm::dvec3>& positions) {
   Box box;

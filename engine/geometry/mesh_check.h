@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,26 @@ struct MeshCheck {
 // running (the welding sort, the triangles' measures, the half-edges' sort; the whole check of
 // 4.8 million triangles took 0.53 s on a 2-core machine).
 MeshCheck checkMesh(const TriangleMesh& mesh, const Progress* progress = nullptr);
+
+// checkMesh's triangle measures (degenerate triangles, area, smallest area, signed volume) for a
+// check that never holds the mesh (engine/export/check_streamed.h): triangles fed one at a time
+// in the mesh's order, summed as checkMesh sums them (in blocks of kMeasureBlock), so that the
+// measures equal checkMesh's on the same triangles. (usedLo, usedHi): the box around the
+// vertices the triangles use. finish() adds the degenerate count to *check and sets its area,
+// volume and smallest triangle area. Not thread-safe.
+constexpr size_t kMeasureBlock = 32768;
+class TriangleMeasures {
+ public:
+  TriangleMeasures(const glm::dvec3& usedLo, const glm::dvec3& usedHi);
+  ~TriangleMeasures();
+  // `repeatedVertex`: two corners weld (checkMesh counts the triangle as degenerate).
+  void add(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, bool repeatedVertex);
+  void finish(MeshCheck* check);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // The bits of a coordinate, -0.0 as 0.0: two positions weld (checkMesh, prepareMesh) exactly
 // when their coordinates' bits are equal.

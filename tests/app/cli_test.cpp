@@ -374,6 +374,44 @@ TEST(CliExport, AJobThatCannotFitIsRefusedWithItsEstimate) {
   EXPECT_EQ(small.output.find("estimate"), std::string::npos) << small.output;
 }
 
+// --stream: the same file written in pieces; what it cannot write, refused by name.
+TEST(CliExport, AStreamedExportWritesTheSameFile) {
+  const std::string whole = temp("whole.stl"), streamed = temp("streamed.stl");
+  const std::string job = "boolean difference " + data("bunny.obj") + " " + data("eight.obj") +
+                          " --unit-scale 1 --resolution 96 -q --tile 16 -o ";
+  CliRun a = strata(job + whole);
+  ASSERT_EQ(a.code, 0) << a.output;
+  CliRun b = strata(job + streamed + " --stream");
+  ASSERT_EQ(b.code, 0) << b.output;
+  EXPECT_NE(b.output.find("passed the watertight check"), std::string::npos) << b.output;
+  std::ifstream x(whole, std::ios::binary), y(streamed, std::ios::binary);
+  std::stringstream bx, by;
+  bx << x.rdbuf();
+  by << y.rdbuf();
+  EXPECT_GT(bx.str().size(), 84u);
+  EXPECT_EQ(bx.str(), by.str());
+  CliRun ply = strata(job + temp("streamed.ply") + " --stream");
+  EXPECT_EQ(ply.code, 1);
+  EXPECT_NE(ply.output.find("--stream writes binary STL"), std::string::npos) << ply.output;
+  CliRun gpus = strata(job + streamed + " --stream --gpus 2");
+  EXPECT_EQ(gpus.code, 1);
+  EXPECT_NE(gpus.output.find("--stream and --gpus"), std::string::npos) << gpus.output;
+}
+
+// A job whose mesh would not fit, but whose pieces would, names --stream.
+TEST(CliExport, ARefusedExportNamesTheStreamedOneWhereItWouldFit) {
+  const std::string scene = std::string(STRATA_ASSETS) + "/scenes/bone_scaffold.strata.json";
+  const std::string out = temp("refused_streamed.stl");
+  // Its estimate (12 GiB whole, 8 GiB in pieces: most of it the offsets' windows) against
+  // 10 GiB allowed, and against 2 GiB, where --stream would not fit either.
+  CliRun r = strata("export " + scene + " --resolution 4096 --max-memory 10G -o " + out);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("write it in pieces with --stream"), std::string::npos) << r.output;
+  CliRun tight = strata("export " + scene + " --resolution 4096 --max-memory 2G -o " + out);
+  EXPECT_EQ(tight.code, 1) << tight.output;
+  EXPECT_EQ(tight.output.find("--stream"), std::string::npos) << tight.output;
+}
+
 TEST(Cli, AScreenshotWithoutADisplayIsAnError) {
   const std::string out = temp("nodisplay.png");
   std::remove(out.c_str());

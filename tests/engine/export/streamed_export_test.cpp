@@ -5,13 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <sstream>
 
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
+#include "engine/export/check_streamed.h"
 #include "engine/geometry/mesh_check.h"
+#include "engine/io/mesh_io.h"
 #include "engine/util/error.h"
 #include "tests/support/scene_builder.h"
 
@@ -147,10 +152,20 @@ TEST(StreamedExport, WritesTheSingleProcessFileByteForByte) {
     EXPECT_EQ(a.degenerateRepair.left, b.degenerateRepair.left);
     EXPECT_TRUE(b.fileDifference.empty()) << b.fileDifference;
     EXPECT_EQ(a.passed(), b.passed());
+    // The streamed check measures what checkMesh measures, the same numbers (but the vertex
+    // count: checkMesh counts the mesh's vertices, the streamed check the file's positions).
     EXPECT_EQ(a.check.triangles, b.check.triangles);
+    EXPECT_EQ(a.check.boundaryEdges, b.check.boundaryEdges);
+    EXPECT_EQ(a.check.nonManifoldEdges, b.check.nonManifoldEdges);
+    EXPECT_EQ(a.check.misorientedEdges, b.check.misorientedEdges);
+    EXPECT_EQ(a.check.degenerateTriangles, b.check.degenerateTriangles);
     EXPECT_EQ(a.check.components, b.check.components);
     EXPECT_EQ(a.check.genus, b.check.genus);
-    EXPECT_NEAR(a.check.volume, b.check.volume, 1e-12 * std::abs(a.check.volume));
+    EXPECT_EQ(a.check.volume, b.check.volume);
+    EXPECT_EQ(a.check.area, b.check.area);
+    EXPECT_EQ(a.check.smallestTriangleArea, b.check.smallestTriangleArea);
+    const MeshCheck file = checkMesh(readMeshFileRaw(streamed));
+    EXPECT_EQ(file.vertices, b.check.vertices);
     unfolded += b.contour.unfoldedShells;
     dropped += b.contour.droppedSpecks.components;
     repaired +=
@@ -161,6 +176,96 @@ TEST(StreamedExport, WritesTheSingleProcessFileByteForByte) {
   EXPECT_GT(dropped, 0);
   EXPECT_GT(repaired, 0u);
   EXPECT_EQ(entriesIn(folder), 2 * cases().size());  // no scratch file left behind
+}
+
+// The streamed check on files that are not what they should be: it counts what checkMesh counts
+// on the file read back whole.
+void expectTheCheckOfTheFile(const std::string& path, const Grid& grid) {
+  const TriangleMesh verbatim = readMeshFileVerbatim(path);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (const auto& t : verbatim.triangles)
+    for (uint32_t v : t) {
+      lo = glm::min(lo, verbatim.positions[v]);
+      hi = glm::max(hi, verbatim.positions[v]);
+    }
+  Progress progress;
+  const WrittenCheck streamed =
+      checkStreamedStl(path, grid, lo, hi, fingerprintTriangles(verbatim), progress);
+  EXPECT_TRUE(streamed.fileDifference.empty());
+  const MeshCheck whole = checkMesh(readMeshFileRaw(path));
+  EXPECT_EQ(whole.vertices, streamed.check.vertices);
+  EXPECT_EQ(whole.triangles, streamed.check.triangles);
+  EXPECT_EQ(whole.boundaryEdges, streamed.check.boundaryEdges);
+  EXPECT_EQ(whole.nonManifoldEdges, streamed.check.nonManifoldEdges);
+  EXPECT_EQ(whole.misorientedEdges, streamed.check.misorientedEdges);
+  EXPECT_EQ(whole.degenerateTriangles, streamed.check.degenerateTriangles);
+  EXPECT_EQ(whole.components, streamed.check.components);
+  EXPECT_EQ(whole.genus, streamed.check.genus);
+  EXPECT_EQ(whole.volume, streamed.check.volume);
+  EXPECT_EQ(whole.area, streamed.check.area);
+}
+
+// Rewrites an STL with facet `facet` changed by `change` (or left out when it returns false).
+void rewriteStl(const std::string& from, const std::string& to, size_t facet,
+                const std::function<bool(std::string&)>& change) {
+  const std::string bytes = bytesOf(from);
+  std::string out = bytes.substr(0, 84);
+  uint32_t count = 0;
+  for (size_t f = 0; 84 + 50 * f < bytes.size(); ++f) {
+    std::string record = bytes.substr(84 + 50 * f, 50);
+    if (f == facet && !change(record)) continue;
+    out += record;
+    ++count;
+  }
+  std::memcpy(&out[80], &count, 4);
+  std::ofstream(to, std::ios::binary) << out;
+}
+
+TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
+  const std::string folder = freshFolder("check");
+  const Case c = cases()[0];
+  const std::string good = folder + "/good.stl";
+  Progress progress;
+  ExportOptions pieces;
+  pieces.tileCells = c.tile;
+  const ExportReport r =
+      exportSceneStreamed(c.scene, good, pieces, std::make_shared<CpuBackend>(), progress);
+  ASSERT_TRUE(r.passed());
+  const size_t middle = r.check.triangles / 2;
+  {
+    SCOPED_TRACE("as written");
+    expectTheCheckOfTheFile(good, r.contour.grid);
+  }
+  {
+    SCOPED_TRACE("a facet left out: a hole");
+    rewriteStl(good, folder + "/hole.stl", middle, [](std::string&) { return false; });
+    expectTheCheckOfTheFile(folder + "/hole.stl", r.contour.grid);
+  }
+  {
+    SCOPED_TRACE("a facet turned over");
+    rewriteStl(good, folder + "/turned.stl", middle, [](std::string& record) {
+      std::string b = record.substr(24, 12);  // corners 2 and 3 swapped
+      record.replace(24, 12, record.substr(36, 12));
+      record.replace(36, 12, b);
+      return true;
+    });
+    expectTheCheckOfTheFile(folder + "/turned.stl", r.contour.grid);
+  }
+  {
+    SCOPED_TRACE("a facet twice");
+    std::string twice;
+    rewriteStl(good, folder + "/twice.stl", middle, [&](std::string& record) {
+      twice = record;
+      return true;
+    });
+    const std::string bytes = bytesOf(folder + "/twice.stl");
+    std::string out =
+        bytes.substr(0, 84 + 50 * (middle + 1)) + twice + bytes.substr(84 + 50 * (middle + 1));
+    const uint32_t count = uint32_t(r.check.triangles + 1);
+    std::memcpy(&out[80], &count, 4);
+    std::ofstream(folder + "/twice.stl", std::ios::binary) << out;
+    expectTheCheckOfTheFile(folder + "/twice.stl", r.contour.grid);
+  }
 }
 
 TEST(StreamedExport, RefusesWhatCannotBeWrittenInPieces) {
