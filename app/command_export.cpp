@@ -108,9 +108,10 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
         "--gpus and --distributed: a distributed export runs one backend per process "
         "(the processes of a host take its GPUs in turn); start one process per GPU");
   std::unique_ptr<ProcessGroup> group;
-  if (args.has("--stream") && (args.has("--distributed") || args.has("--gpus")))
-    throw Error(std::string("--stream and ") + (args.has("--gpus") ? "--gpus" : "--distributed") +
-                ": a streamed export runs on one backend in one process");
+  if (args.has("--stream") && args.has("--gpus"))
+    throw Error(
+        "--stream and --gpus: a streamed export contours its tiles on one backend (or one per "
+        "process with --distributed: start one process per GPU)");
   if (args.has("--distributed")) group = openMpiProcessGroup();
   const bool root = !group || group->rank() == 0;
   BackendChoice choice =
@@ -120,6 +121,7 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   options.tileCells = args.integer("--tile", 0, 8, kMaxTileCells);  // 0: sized to memory
   options.simplifyCells = args.number("--simplify", 0.0, 0.0, 8.0);
   const bool streamed = args.has("--stream");
+  options.streamed = streamed;
   if (streamed) {
     const std::string refusal = streamedExportRefusal(output, options);
     if (!refusal.empty()) throw Error(output + ": " + refusal);

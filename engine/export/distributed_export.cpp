@@ -4,10 +4,12 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
 
+#include "engine/export/streamed_export.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
 
@@ -105,10 +107,11 @@ void postTiles(ProcessGroup& group, int32_t tile, std::vector<TileContour> conto
   }
 }
 
-void receiveTiles(ProcessGroup& group, const ProcessGroup::Message& m,
-                  std::vector<TileContour>* tiles) {
+// Appends the contours of the tile a kTagTile message announces to *tiles; returns the tile.
+int32_t receiveTiles(ProcessGroup& group, const ProcessGroup::Message& m,
+                     std::vector<TileContour>* tiles) {
   ByteReader in(m.bytes, m.source);
-  in.get<int32_t>();
+  const int32_t tile = in.get<int32_t>();
   const uint64_t count = in.get<uint64_t>();
   std::vector<std::pair<uint64_t, uint64_t>> sizes;
   for (uint64_t i = 0; i < count; ++i) {
@@ -125,6 +128,7 @@ void receiveTiles(ProcessGroup& group, const ProcessGroup::Message& m,
                       triangles * sizeof(ContourTriangle));
     tiles->push_back(std::move(t));
   }
+  return tile;
 }
 
 // The process's contour counters, once its tiles are all posted.
@@ -213,15 +217,45 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
   }
 
   const ExportTiling tiling =
-      exportTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+      options.streamed
+          ? streamedTiling(scene, options, backend->memoryAvailable(),
+                           backend->offsetBytesPerNode())
+          : exportTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
   const int32_t tileCells = tiling.tileCells;
+  // Streamed (options.streamed): each slab of tiles goes to the writer once all its tiles are
+  // in, from here or from the others, in increasing z; the tiles of slabs not complete yet wait.
+  std::unique_ptr<StreamedExportWriter> writer;
+  if (options.streamed)
+    writer =
+        std::make_unique<StreamedExportWriter>(scene, path, options, tiling, progress, &report);
+  const int perSlab = tiling.counts.x * tiling.counts.y;
+  std::map<int, std::vector<TileContour>> waiting;  // by slab
+  std::vector<int> slabTilesIn(size_t(tiling.counts.z), 0);
+  int nextSlab = 0;
+  const auto tileIn = [&](int tile, std::vector<TileContour>* contours) {
+    const int z = tile / perSlab;
+    std::vector<TileContour>& slab = waiting[z];
+    for (TileContour& t : *contours) slab.push_back(std::move(t));
+    contours->clear();
+    ++slabTilesIn[size_t(z)];
+    while (nextSlab < tiling.counts.z && slabTilesIn[size_t(nextSlab)] == perSlab) {
+      std::vector<TileContour> complete = std::move(waiting[nextSlab]);
+      waiting.erase(nextSlab);
+      writer->addSlab(nextSlab++, std::move(complete));
+    }
+  };
   for (int p = 1; p < size; ++p) group.send(p, kTagTiling, &tileCells, sizeof(tileCells));
   int finished = 0, reported = 1;  // tiles finished anywhere; processes whose tiles are in
   std::vector<TileContour> others;
   ContourReport fromOthers;
   const auto handle = [&](const ProcessGroup::Message& m) {
     if (m.tag == kTagTile) {
-      receiveTiles(group, m, &others);
+      if (writer) {
+        std::vector<TileContour> contours;
+        tileIn(receiveTiles(group, m, &contours), &contours);
+      } else {
+        receiveTiles(group, m, &others);
+      }
       ++finished;
     } else if (m.tag == kTagDone) {
       receiveDone(m, &fromOthers);
@@ -243,9 +277,15 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
     }
   };
   const auto mine = [&](int t) { return t % size == 0; };
-  contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int) {
+  size_t taken = 0;  // tiles[0, taken) went to the writer
+  contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int t) {
     ++given;
     ++finished;
+    if (writer) {
+      std::vector<TileContour> contours;
+      for (; taken < tiles.size(); ++taken) contours.push_back(std::move(tiles[taken]));
+      tileIn(t, &contours);
+    }
     drain(false);
     progress.report("export", double(finished) / tiling.count());
   });
@@ -258,10 +298,14 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
   addTileCounts(fromOthers, &r);  // tileLdiBytes, surfels, crossings, disagreements, warnings
   r.evaluateSeconds += fromOthers.evaluateSeconds;
   r.contourSeconds += fromOthers.contourSeconds;
-  for (TileContour& t : others) tiles.push_back(std::move(t));
-  others.clear();
-  ExportMesh mesh = meshFromTiles(scene, std::move(tiles), progress, r);
-  writeAndCheckExport(std::move(mesh), path, options, progress, &report);
+  if (writer) {
+    writer->finish();
+  } else {
+    for (TileContour& t : others) tiles.push_back(std::move(t));
+    others.clear();
+    ExportMesh mesh = meshFromTiles(scene, std::move(tiles), progress, r);
+    writeAndCheckExport(std::move(mesh), path, options, progress, &report);
+  }
   if (share) *share = DistributedShare{size, tiling.count(), given, ownSeconds, allTilesSeconds};
   return report;
 }

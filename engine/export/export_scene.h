@@ -34,6 +34,9 @@ struct ExportOptions : ContourOptions {
   // > 0: the contoured mesh is simplified (simplify_mesh.h) with every vertex of the
   // unsimplified surface kept within simplifyCells * h of the file's surface.
   double simplifyCells = 0.0;
+  // The distributed export (distributed_export.h): process 0 writes the file in pieces
+  // (streamed_export.h) as the slabs of tiles come in, never holding the whole mesh.
+  bool streamed = false;
 };
 
 struct ExportReport {

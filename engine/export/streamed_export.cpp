@@ -154,22 +154,31 @@ struct Shell {
 };
 
 // The passes, in order; each a method over the pieces in the scratch file.
-class StreamedExport {
+}  // namespace
+
+class StreamedExportWriter::Impl {
  public:
-  StreamedExport(const Scene& scene, const std::string& path, const ExportOptions& options,
-                 std::shared_ptr<Backend> backend, Progress& progress, ExportReport& report)
+  Impl(const Scene& scene, const std::string& path, const ExportTiling& tiling, Progress& progress,
+       ExportReport& report)
       : scene_(scene),
         path_(path),
-        options_(options),
-        backend_(std::move(backend)),
+        tiling_(tiling),
         progress_(progress),
         report_(report),
         r_(report.contour),
         stored_(storedCoordinate(path)),
-        scratch_(path) {}
+        scratch_(path),
+        grid_(tiling.grid) {
+    r_.grid = tiling.grid;
+    r_.tileCells = tiling.tileCells;
+    r_.tiles = tiling.count();
+  }
 
-  void run() {
-    contourPieces();
+  void finish() {
+    if (nextSlab_ != tiling_.counts.z)
+      throw Error(path_ + ": internal: the streamed export ended after " +
+                  std::to_string(nextSlab_) + " of " + std::to_string(tiling_.counts.z) + " slabs");
+    finishPieces();
     Stopwatch steps;
     progress_.report("merge", 0.0);
     sumShells();
@@ -196,7 +205,6 @@ class StreamedExport {
     report_.checkSeconds = check.seconds();
   }
 
- private:
   uint32_t newId() {
     sets_.parent.push_back(uint32_t(sets_.parent.size()));
     if (sets_.parent.size() >= size_t(kNoId))
@@ -204,69 +212,62 @@ class StreamedExport {
     return uint32_t(sets_.parent.size() - 1);
   }
 
-  // Pass 1: the slabs' tiles contoured and merged into pieces, given global vertex ids (a
-  // vertex shared with the slab below keeps its id there) and joined into components.
-  void contourPieces() {
-    Evaluator evaluator(backend_);
-    const ExportTiling tiling = streamedTiling(scene_, options_, backend_->memoryAvailable(),
-                                               backend_->offsetBytesPerNode());
-    const Grid& grid = tiling.grid;
-    const int perSlab = tiling.counts.x * tiling.counts.y;
-    const int slabs = tiling.counts.z;
-    const uint64_t layerKeys = uint64_t(grid.cells.x) * uint64_t(grid.cells.y) * 4;
-    std::unordered_map<uint64_t, uint32_t> below, faces;  // keys -> ids
-    for (int z = 0; z < slabs; ++z) {
-      Progress slabProgress(&progress_, [&](const std::string& stage, double f) {
-        progress_.report(stage, stage == "export" ? (double(z) + f) / double(slabs) : f);
-      });
-      std::vector<TileContour> tiles;
-      evaluator.clearCache();  // the last slab's tile is no use to this one
-      contourTiles(
-          scene_, evaluator, tiling, [&](int t) { return t / perSlab == z; }, slabProgress, r_,
-          &tiles);
-      Stopwatch merge;
-      const uint64_t firstKey = uint64_t(tiling.begin(z * perSlab).z) * layerKeys;
-      const uint64_t topKey = uint64_t(tiling.end(z * perSlab).z - 1) * layerKeys;
-      Piece piece;
-      if (!tiles.empty()) {
-        MergedTiles merged = mergeTiles(scene_, std::move(tiles), progress_, r_);
-        unit_ = merged.mesh.unit;
-        piece.keys = std::move(merged.keys);
-        piece.positions = std::move(merged.mesh.mesh.positions);
-        piece.triangles = std::move(merged.mesh.mesh.triangles);
-        piece.resolved = std::move(merged.resolved);
-      }
-      piece.ids.resize(piece.keys.size());
-      std::unordered_map<uint64_t, uint32_t> top;
-      for (size_t i = 0; i < piece.keys.size(); ++i) {
-        const uint64_t key = piece.keys[i];
-        uint32_t id;
-        if (key & kFaceKeyBit) {
-          const auto found = faces.find(key);
-          id = found != faces.end() ? found->second : (faces[key] = newId());
-        } else if (key < firstKey) {
-          // A halo cell of the slab below: its vertex was that slab's.
-          const auto found = below.find(key);
-          if (found == below.end())
-            throw Error(path_ + ": internal: a vertex of the slab below was not merged there");
-          id = found->second;
-        } else {
-          id = newId();
-        }
-        piece.ids[i] = id;
-        if (!(key & kFaceKeyBit) && key >= topKey) top[key] = id;
-      }
-      for (const auto& t : piece.triangles) {
-        sets_.unite(piece.ids[t[0]], piece.ids[t[1]]);
-        sets_.unite(piece.ids[t[0]], piece.ids[t[2]]);
-      }
-      triangles_ += piece.triangles.size();
-      spill(scratch_, piece, &pieces_);
-      below = std::move(top);
-      r_.mergeSeconds += merge.seconds();
+  // Pass 1, a slab at a time: its tiles merged into a piece, given global vertex ids (a vertex
+  // shared with the slab below keeps its id there) and joined into components, spilled.
+  void addSlab(int z, std::vector<TileContour> tiles) {
+    if (z != nextSlab_)
+      throw Error(path_ + ": internal: slab " + std::to_string(z) + " came before slab " +
+                  std::to_string(nextSlab_));
+    ++nextSlab_;
+    Stopwatch merge;
+    const int perSlab = tiling_.counts.x * tiling_.counts.y;
+    const uint64_t layerKeys = uint64_t(grid_.cells.x) * uint64_t(grid_.cells.y) * 4;
+    const uint64_t firstKey = uint64_t(tiling_.begin(z * perSlab).z) * layerKeys;
+    const uint64_t topKey = uint64_t(tiling_.end(z * perSlab).z - 1) * layerKeys;
+    Piece piece;
+    if (!tiles.empty()) {
+      MergedTiles merged = mergeTiles(scene_, std::move(tiles), progress_, r_);
+      unit_ = merged.mesh.unit;
+      piece.keys = std::move(merged.keys);
+      piece.positions = std::move(merged.mesh.mesh.positions);
+      piece.triangles = std::move(merged.mesh.mesh.triangles);
+      piece.resolved = std::move(merged.resolved);
     }
-    grid_ = grid;
-    // Each id's root, and how many ids each root has.
+    piece.ids.resize(piece.keys.size());
+    std::unordered_map<uint64_t, uint32_t> top;
+    for (size_t i = 0; i < piece.keys.size(); ++i) {
+      const uint64_t key = piece.keys[i];
+      uint32_t id;
+      if (key & kFaceKeyBit) {
+        const auto found = faces_.find(key);
+        id = found != faces_.end() ? found->second : (faces_[key] = newId());
+      } else if (key < firstKey) {
+        // A halo cell of the slab below: its vertex was that slab's.
+        const auto found = below_.find(key);
+        if (found == below_.end())
+          throw Error(path_ + ": internal: a vertex of the slab below was not merged there");
+        id = found->second;
+      } else {
+        id = newId();
+      }
+      piece.ids[i] = id;
+      if (!(key & kFaceKeyBit) && key >= topKey) top[key] = id;
+    }
+    for (const auto& t : piece.triangles) {
+      sets_.unite(piece.ids[t[0]], piece.ids[t[1]]);
+      sets_.unite(piece.ids[t[0]], piece.ids[t[2]]);
+    }
+    triangles_ += piece.triangles.size();
+    spill(scratch_, piece, &pieces_);
+    below_ = std::move(top);
+    r_.mergeSeconds += merge.seconds();
+  }
+
+ private:
+  // After the last slab: each id's root, and how many ids each root has.
+  void finishPieces() {
+    below_.clear();
+    faces_.clear();
     const size_t n = sets_.parent.size();
     for (size_t i = 0; i < n; ++i) sets_.parent[i] = sets_.find(uint32_t(i));
     vertexCount_.assign(n, 0);
@@ -621,14 +622,15 @@ class StreamedExport {
 
   const Scene& scene_;
   const std::string path_;
-  const ExportOptions options_;
-  std::shared_ptr<Backend> backend_;
+  const ExportTiling tiling_;
   Progress& progress_;
   ExportReport& report_;
   ContourReport& r_;
   const StoredCoordinate stored_;
   ScratchFile scratch_;
-  Grid grid_;
+  const Grid grid_;
+  int nextSlab_ = 0;
+  std::unordered_map<uint64_t, uint32_t> below_, faces_;  // keys -> ids
   std::string unit_ = "millimetre";
   UnionFind sets_{0};  // over global vertex ids; after pass 1 each id's parent is its root
   std::vector<uint32_t> vertexCount_;  // per root
@@ -647,7 +649,23 @@ class StreamedExport {
   Box used_;  // around the corners the facets use, as stored
 };
 
-}  // namespace
+StreamedExportWriter::StreamedExportWriter(const Scene& scene, const std::string& path,
+                                           const ExportOptions& options, const ExportTiling& tiling,
+                                           Progress& progress, ExportReport* report) {
+  const std::string refusal = streamedExportRefusal(path, options);
+  if (!refusal.empty()) throw Error(path + ": " + refusal);
+  impl_ = std::make_unique<Impl>(scene, path, tiling, progress, *report);
+}
+
+StreamedExportWriter::~StreamedExportWriter() = default;
+
+void StreamedExportWriter::addSlab(int z, std::vector<TileContour> tiles) {
+  impl_->addSlab(z, std::move(tiles));
+}
+
+void StreamedExportWriter::finish() {
+  impl_->finish();
+}
 
 ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
                             uint64_t offsetBytesPerNode) {
@@ -673,10 +691,26 @@ std::string streamedExportRefusal(const std::string& path, const ExportOptions& 
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
                                  const ExportOptions& options, std::shared_ptr<Backend> backend,
                                  Progress& progress) {
-  const std::string refusal = streamedExportRefusal(path, options);
-  if (!refusal.empty()) throw Error(path + ": " + refusal);
   ExportReport report;
-  StreamedExport(scene, path, options, std::move(backend), progress, report).run();
+  const ExportTiling tiling =
+      streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+  StreamedExportWriter writer(scene, path, options, tiling, progress, &report);
+  {
+    Evaluator evaluator(std::move(backend));
+    const int perSlab = tiling.counts.x * tiling.counts.y, slabs = tiling.counts.z;
+    for (int z = 0; z < slabs; ++z) {
+      Progress slabProgress(&progress, [&](const std::string& stage, double f) {
+        progress.report(stage, stage == "export" ? (double(z) + f) / double(slabs) : f);
+      });
+      std::vector<TileContour> tiles;
+      evaluator.clearCache();  // the last slab's tile is no use to this one
+      contourTiles(
+          scene, evaluator, tiling, [&](int t) { return t / perSlab == z; }, slabProgress,
+          report.contour, &tiles);
+      writer.addSlab(z, std::move(tiles));
+    }
+  }  // the evaluator's cached LDIs go before the passes and the write
+  writer.finish();
   return report;
 }
 

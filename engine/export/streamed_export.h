@@ -32,8 +32,11 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "engine/contour/contour_tile.h"
 #include "engine/eval/backend.h"
+#include "engine/export/contour_scene.h"
 #include "engine/export/export_scene.h"
 #include "engine/util/progress.h"
 
@@ -49,6 +52,27 @@ ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, u
 
 // Why `path` and `options` cannot be streamed ("" when they can).
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options);
+
+// The export's pieces as they come, for a caller that contours the tiles itself (the
+// distributed export's process 0, distributed_export.h): addSlab(z, tiles) with every tile of
+// slab z (tiles numbered as ExportTiling numbers them: z = t / (counts.x * counts.y)), slabs in
+// increasing z, then finish() (the passes, the write, the check into *report). `tiling`: the
+// export's (streamedTiling); report->contour gets the merge's counts and times, the caller's
+// tiles' counters are the caller's to add. Throws as exportSceneStreamed.
+class StreamedExportWriter {
+ public:
+  StreamedExportWriter(const Scene& scene, const std::string& path, const ExportOptions& options,
+                       const ExportTiling& tiling, Progress& progress, ExportReport* report);
+  ~StreamedExportWriter();
+  StreamedExportWriter(const StreamedExportWriter&) = delete;
+  StreamedExportWriter& operator=(const StreamedExportWriter&) = delete;
+  void addSlab(int z, std::vector<TileContour> tiles);
+  void finish();
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
                                  const ExportOptions& options, std::shared_ptr<Backend> backend,

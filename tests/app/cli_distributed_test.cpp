@@ -82,6 +82,14 @@ TEST_F(DistributedCli, ThreeProcessesWriteTheFileOfOne) {
   const std::string a = bytesOf(one), b = bytesOf(three);
   ASSERT_GT(a.size(), 10000u);
   EXPECT_TRUE(a == b) << "the three processes' file differs from the one process's";
+  // Process 0 writing the file in pieces as the slabs of tiles come in: the same bytes.
+  const std::string streamed = temp("three_streamed.stl");
+  std::remove(streamed.c_str());
+  const ShellRun pieces = shell(std::string(kMpiEnvironment) + "mpirun -np 3 --oversubscribe " +
+                                STRATA_BINARY + args + "--distributed --stream -o " + streamed);
+  ASSERT_EQ(pieces.code, 0) << pieces.output;
+  EXPECT_NE(pieces.output.find("passed the watertight check"), std::string::npos) << pieces.output;
+  EXPECT_TRUE(a == bytesOf(streamed)) << "the streamed file differs from the one process's";
 }
 
 TEST_F(DistributedCli, AProcessKilledHalfwayEndsTheJobAndLeavesTheOldFile) {
@@ -97,6 +105,12 @@ TEST_F(DistributedCli, AProcessKilledHalfwayEndsTheJobAndLeavesTheOldFile) {
   EXPECT_NE(group.code, 0) << group.output;
   EXPECT_NE(group.output.find("rank 1"), std::string::npos) << group.output;
   EXPECT_NE(group.output.find("signal 9"), std::string::npos) << group.output;
+  EXPECT_EQ(bytesOf(path), "the good file from before");
+  const ShellRun streamed = shell(
+      std::string(kMpiEnvironment) + "mpirun -np 3 --oversubscribe -x STRATA_TEST_KILL_PROCESS=1 " +
+      STRATA_BINARY + " export " + scene() +
+      " --resolution 120 --tile 32 --backend cpu --distributed --stream -q -o " + path);
+  EXPECT_NE(streamed.code, 0) << streamed.output;
   EXPECT_EQ(bytesOf(path), "the good file from before");
 }
 
