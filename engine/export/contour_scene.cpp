@@ -28,17 +28,18 @@ void collectLeafStyles(const NodePtr& node, std::map<uint32_t, LeafStyle>* style
   for (const auto& c : node->children) collectLeafStyles(c, styles);
 }
 
-// The tiles of `grid`, refused where cell indices or the tile count would overflow.
-glm::ivec3 tileCounts(const Grid& grid, int tileCells) {
-  if (tileCells < 8) throw Error("tile size must be at least 8 cells");
-  const glm::ivec3 tiles = (grid.cells + tileCells - 1) / tileCells;
+// The tiles of `grid` of `size` cells per axis, refused where cell indices or the tile count
+// would overflow.
+glm::ivec3 tileCounts(const Grid& grid, const glm::ivec3& size) {
+  if (size.x < 8 || size.y < 8 || size.z < 8) throw Error("tile size must be at least 8 cells");
+  const glm::ivec3 tiles = (grid.cells + size - 1) / size;
   // Cells of a tile are indexed in 32 bits (contour_cells.h, both backends); the tile count is
   // an int. Refuse what would overflow rather than wrap around into a wrong mesh.
   uint64_t tileWindowCells = 1;
   for (int a = 0; a < 3; ++a)
-    tileWindowCells *= uint64_t(std::min(tileCells, grid.cells[a]) + 4);  // with halo
+    tileWindowCells *= uint64_t(std::min(size[a], grid.cells[a]) + 4);  // with halo
   if (tileWindowCells > uint64_t(UINT32_MAX))
-    throw Error("a tile of " + std::to_string(tileCells) +
+    throw Error("a tile of " + std::to_string(std::max({size.x, size.y, size.z})) +
                 " cells a side is too large to contour; use --tile 1024 or less");
   const int64_t tileCount = int64_t(tiles.x) * tiles.y * tiles.z;
   if (tileCount > INT32_MAX)
@@ -297,9 +298,13 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
 }  // namespace
 
 glm::dvec3 grownTileCells(const Grid& grid, int tileCells, int halo) {
+  return grownTileCells(grid, glm::ivec3(tileCells), halo);
+}
+
+glm::dvec3 grownTileCells(const Grid& grid, const glm::ivec3& size, int halo) {
   glm::dvec3 cells;
   for (int a = 0; a < 3; ++a)
-    cells[a] = double(std::min(int64_t(tileCells) + 2 * int64_t(halo), int64_t(grid.cells[a])));
+    cells[a] = double(std::min(int64_t(size[a]) + 2 * int64_t(halo), int64_t(grid.cells[a])));
   return cells;
 }
 
@@ -344,11 +349,11 @@ int ExportTiling::count() const {
 
 glm::ivec3 ExportTiling::begin(int tile) const {
   return glm::ivec3(tile % counts.x, (tile / counts.x) % counts.y, tile / (counts.x * counts.y)) *
-         tileCells;
+         size;
 }
 
 glm::ivec3 ExportTiling::end(int tile) const {
-  return glm::min(begin(tile) + tileCells, grid.cells);
+  return glm::min(begin(tile) + size, grid.cells);
 }
 
 ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
@@ -366,16 +371,27 @@ ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uin
                 "added up): no tile's window grown by that fits in a quarter of the " +
                 std::to_string(memoryBytes >> 20) +
                 " MiB the backend has free. Lower --resolution or the amounts");
+  return exportTilingOfSize(scene, options, glm::ivec3(t.tileCells));
+}
+
+ExportTiling exportTilingOfSize(const Scene& scene, const ContourOptions& options,
+                                const glm::ivec3& size) {
+  ExportTiling t;
+  t.grid = Evaluator::gridFor(scene, options.resolution);
+  const Grid& grid = t.grid;
+  t.halo = modifierHaloCells(scene.root, grid.h);
+  t.size = size;
+  t.tileCells = size.x == size.y && size.y == size.z ? size.x : size.z;
   if (t.halo > 0) {
     // The grown window's cells, within 2^32 (asked for with --tile as well).
-    const glm::dvec3 window = grownTileCells(grid, t.tileCells, t.halo);
+    const glm::dvec3 window = grownTileCells(grid, size, t.halo);
     if ((window.x + 2) * (window.y + 2) * (window.z + 2) > double(UINT32_MAX))
-      throw Error("a tile of " + std::to_string(t.tileCells) + " cells grown by the modifiers' " +
-                  std::to_string(t.halo) +
+      throw Error("a tile of " + std::to_string(std::max({size.x, size.y, size.z})) +
+                  " cells grown by the modifiers' " + std::to_string(t.halo) +
                   " cells a side holds more than 2^32 cells: use a "
                   "smaller --tile");
   }
-  t.counts = tileCounts(grid, t.tileCells);
+  t.counts = tileCounts(grid, size);
   return t;
 }
 

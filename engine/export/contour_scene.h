@@ -50,6 +50,7 @@ int exportTileCells(const Grid& grid, uint64_t memoryBytes, int halo = 0,
 // cells on both sides, within the grid (the contour's own cell of halo and the nodes not
 // counted).
 glm::dvec3 grownTileCells(const Grid& grid, int tileCells, int halo);
+glm::dvec3 grownTileCells(const Grid& grid, const glm::ivec3& size, int halo);
 
 struct ContourReport {
   Grid grid;
@@ -98,7 +99,8 @@ ExportMesh contourScene(const Scene& scene, Evaluator& evaluator, const ContourO
 // one process makes, vertex for vertex.
 struct ExportTiling {
   Grid grid;             // the whole export's grid
-  int tileCells = 0;     // tile edge in cells
+  int tileCells = 0;     // tile edge in cells (of a slab tiling: its slabs' depth along z)
+  glm::ivec3 size{0};    // cells of a tile per axis: tileCells each, or a slab's (whole x and y)
   glm::ivec3 counts{0};  // tiles per axis
   int halo = 0;          // cells evaluated around each tile's window (modifierHaloCells)
   int count() const;
@@ -113,6 +115,11 @@ struct ExportTiling {
 // holds there. Throws strata::Error when no tile fits.
 ExportTiling exportTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
                           uint64_t offsetBytesPerNode);
+// The tiling of the export with tiles of `size` cells per axis (another process's choice,
+// distributed_export.h; a slab tiling, streamed_export.h). Throws strata::Error where a tile's
+// window (grown by the modifiers' halo) would hold more than 2^32 cells.
+ExportTiling exportTilingOfSize(const Scene& scene, const ContourOptions& options,
+                                const glm::ivec3& size);
 
 // Evaluates and contours the tiles t of `tiling` with mine(t) (all when `mine` is empty) in
 // increasing order, appending them to *out and adding to r (grid, tiles, times, counts);

@@ -17,7 +17,7 @@ namespace strata {
 namespace {
 
 // Message tags.
-constexpr int kTagTiling = 1;         // 0 -> all: int32 tile edge in cells
+constexpr int kTagTiling = 1;         // 0 -> all: int32 x 3, the tiles' cells per axis
 constexpr int kTagTile = 2;           // r -> 0: a tile just finished (postTiles), then its arrays
 constexpr int kTagDone = 3;           // r -> 0: the process's tiles are all sent; its counters
 constexpr int kTagFailed = 4;         // r -> 0: the error's text
@@ -158,15 +158,6 @@ void receiveDone(const ProcessGroup::Message& m, ContourReport* r) {
   addWarnings(warnings, r);
 }
 
-int32_t int32From(const ProcessGroup::Message& m) {
-  int32_t v = 0;
-  if (m.bytes.size() != sizeof(v))
-    throw Error("distributed export: process " + std::to_string(m.source) +
-                " sent a message of the wrong size");
-  std::memcpy(&v, m.bytes.data(), sizeof(v));
-  return v;
-}
-
 // Test hook (tests/app/cli_distributed_test.cpp): STRATA_TEST_KILL_PROCESS=R makes process R
 // kill itself once its first tile is done, as a crashed or killed rank would.
 void maybeKillForTest(int rank) {
@@ -191,9 +182,12 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       ProcessGroup::Message m;
       group.receive(&m, true);
       if (m.tag != kTagTiling) throw Error("distributed export: expected the tiling first");
-      ContourOptions contour = options;
-      contour.tileCells = int32From(m);
-      const ExportTiling tiling = exportTiling(scene, contour, 0, backend->offsetBytesPerNode());
+      if (m.bytes.size() != 3 * sizeof(int32_t))
+        throw Error("distributed export: process 0 sent a tiling of the wrong size");
+      int32_t cells[3];
+      std::memcpy(cells, m.bytes.data(), sizeof(cells));
+      const ExportTiling tiling =
+          exportTilingOfSize(scene, options, glm::ivec3(cells[0], cells[1], cells[2]));
       const auto mine = [&](int t) { return t % size == rank; };
       size_t posted = 0;  // tiles[0, posted) were posted, their arrays released
       contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice,
@@ -221,7 +215,7 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
           ? streamedTiling(scene, options, backend->memoryAvailable(),
                            backend->offsetBytesPerNode())
           : exportTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
-  const int32_t tileCells = tiling.tileCells;
+  const int32_t tileSize[3] = {tiling.size.x, tiling.size.y, tiling.size.z};
   // Streamed (options.streamed): each slab of tiles goes to the writer once all its tiles are
   // in, from here or from the others, in increasing z; the tiles of slabs not complete yet wait.
   std::unique_ptr<StreamedExportWriter> writer;
@@ -244,7 +238,7 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       writer->addSlab(nextSlab++, std::move(complete));
     }
   };
-  for (int p = 1; p < size; ++p) group.send(p, kTagTiling, &tileCells, sizeof(tileCells));
+  for (int p = 1; p < size; ++p) group.send(p, kTagTiling, tileSize, sizeof(tileSize));
   int finished = 0, reported = 1;  // tiles finished anywhere; processes whose tiles are in
   std::vector<TileContour> others;
   ContourReport fromOthers;

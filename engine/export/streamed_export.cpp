@@ -669,14 +669,19 @@ void StreamedExportWriter::finish() {
 
 ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
                             uint64_t offsetBytesPerNode) {
-  ExportTiling tiling = exportTiling(scene, options, memoryBytes, offsetBytesPerNode);
-  if (options.tileCells > 0) return tiling;
-  const int longest = std::max({tiling.grid.cells.x, tiling.grid.cells.y, tiling.grid.cells.z});
-  const int thin = std::max(kMinStreamedTile, (longest + kStreamedSlabs - 1) / kStreamedSlabs);
-  if (thin >= tiling.tileCells) return tiling;
-  ContourOptions thinner = options;
-  thinner.tileCells = thin;
-  return exportTiling(scene, thinner, memoryBytes, offsetBytesPerNode);
+  const ExportTiling cubes = exportTiling(scene, options, memoryBytes, offsetBytesPerNode);
+  if (options.tileCells > 0) return cubes;  // --tile: the user's cubes
+  // Slabs of the whole x and y extent whose windows hold no more nodes than a cube's (what the
+  // memory allowed it), at least kStreamedSlabs of them, and cells indexed in 32 bits.
+  const Grid& g = cubes.grid;
+  const double plane = double(g.cells.x + 3) * double(g.cells.y + 3);
+  const double cube = std::pow(double(cubes.tileCells + 2 * cubes.halo + 3), 3.0);
+  int depth = std::min((g.cells.z + kStreamedSlabs - 1) / kStreamedSlabs,
+                       int(cube / plane) - 2 * cubes.halo - 3);
+  const double indexable = double(UINT32_MAX) / (double(g.cells.x + 2) * double(g.cells.y + 2));
+  depth = std::min(depth, int(indexable) - 2 * cubes.halo - 2);
+  if (depth < kMinStreamedTile) return cubes;
+  return exportTilingOfSize(scene, options, glm::ivec3(g.cells.x, g.cells.y, depth));
 }
 
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {

@@ -42,11 +42,13 @@
 
 namespace strata {
 
-// The tiling a streamed export uses: exportTiling's, but with at least kStreamedSlabs slabs where
-// tiles of kMinStreamedTile cells allow (a slab's tiles and piece are what it holds at once),
-// unless options.tileCells sets the tile.
-constexpr int kStreamedSlabs = 4;
-constexpr int kMinStreamedTile = 64;
+// The tiling a streamed export uses: slabs of the grid's whole x and y extent, at least
+// kStreamedSlabs of them, each window holding no more nodes than a tile of exportTiling's (what
+// the backend's memory allows) and its cells indexed in 32 bits; exportTiling's cubes where
+// such slabs would be thinner than kMinStreamedTile cells, or where options.tileCells sets the
+// tile. A slab's tiles and piece are what the export holds at once.
+constexpr int kStreamedSlabs = 8;
+constexpr int kMinStreamedTile = 16;
 ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
                             uint64_t offsetBytesPerNode);
 

@@ -221,6 +221,28 @@ void rewriteStl(const std::string& from, const std::string& to, size_t facet,
   std::ofstream(to, std::ios::binary) << out;
 }
 
+// Without --tile: slabs of the whole x and y extent, eight of them here, the same bytes.
+TEST(StreamedExport, SlabsOfTheWholeCrossSectionGiveTheSameFile) {
+  const std::string folder = freshFolder("slabs");
+  const Scene scene = makeScene(
+      op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2), torus(0.9, 0.15, {0, 0, 0.7})}), 160);
+  const auto backend = std::make_shared<CpuBackend>();
+  const ExportTiling slabs = streamedTiling(scene, ExportOptions(), backend->memoryAvailable(),
+                                            backend->offsetBytesPerNode());
+  EXPECT_EQ(slabs.size.x, slabs.grid.cells.x);
+  EXPECT_EQ(slabs.size.y, slabs.grid.cells.y);
+  EXPECT_EQ(slabs.counts, glm::ivec3(1, 1, kStreamedSlabs));
+  Progress progress;
+  const ExportReport a =
+      exportScene(scene, folder + "/whole.stl", ExportOptions(), backend, progress);
+  const ExportReport b =
+      exportSceneStreamed(scene, folder + "/streamed.stl", ExportOptions(), backend, progress);
+  EXPECT_EQ(b.contour.tiles, kStreamedSlabs);
+  EXPECT_TRUE(b.passed());
+  EXPECT_EQ(a.check.genus, b.check.genus);
+  EXPECT_EQ(bytesOf(folder + "/whole.stl"), bytesOf(folder + "/streamed.stl"));
+}
+
 TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
   const std::string folder = freshFolder("check");
   const Case c = cases()[0];
