@@ -15,14 +15,14 @@
 // flawed triangles, grown until it holds every triangle around each corner the repair reads),
 // then write the file a piece at a time. The file is the single-process export's, byte for byte.
 //
-// Memory: one slab's tiles and piece (what --tile sizes) plus about 12 bytes a vertex of the
+// Memory: one slab's tiles and piece (streamedTiling below) plus about 8 bytes a vertex of the
 // whole mesh (sets and counts) and, for the check, 8 bytes a triangle; disk: the scratch file,
 // about 36 bytes a triangle, beside the output.
 //
 // Formats: binary STL (.stl) only, whose facets are written in order as they come; --simplify
-// needs the whole mesh and is refused. The check (check_streamed.h) reads the file back once in
-// its order, compares its fingerprint with the one accumulated while writing and measures it as
-// checkMesh would, without holding it.
+// needs the whole mesh and is refused. The check (check_streamed.h) measures the facets as
+// checkMesh would, on a thread of its own as they are written, and then reads the file back in
+// pieces to compare its fingerprint with the one accumulated while writing.
 //
 // Synchronous; one backend; progress stages "export" (a step per tile), "merge" (the passes
 // over the pieces), "write STL" and "check", checked between and within them. Throws
