@@ -158,8 +158,11 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   if (streamed) {
     summary.backend += ", streamed (--stream)";
     TerminalProgress terminal(quietRequested(args));
-    summary.result =
-        exportSceneStreamed(scene, output, options, choice.backend, terminal.progress());
+    summary.result = exportSceneStreamed(scene, output, options, choice.backend,
+                                         terminal.progress(), [&](const std::string& line) {
+                                           terminal.finish();
+                                           std::fprintf(stderr, "strata: %s\n", line.c_str());
+                                         });
     return printExportSummary(args, summary);
   }
   int perDevice = 1;

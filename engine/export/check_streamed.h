@@ -7,10 +7,12 @@
 // layer L + 3. The pass welds identical positions (as checkMesh does) within a window of a few
 // layers, matches each edge's half-edges there, and lets a vertex and its edges go once the
 // facets have moved kWindowLayers past it. It computes what checkMesh computes on the file's
-// mesh (mesh_check.h), the same numbers: welded vertices, boundary, non-manifold and misoriented
-// edges, degenerate triangles, edge-connected components (union-find over the facets: 8 bytes a
-// facet, the one array that grows with the mesh), genus from each component's V - E + F, and
-// the area and volume summed as checkMesh sums them (TriangleMeasures). A vertex that came back
+// mesh (mesh_check.h), the same numbers: boundary, non-manifold and misoriented edges,
+// degenerate triangles, edge-connected components (union-find over the facets: 8 bytes a facet,
+// the one array that grows with the mesh), genus from each component's V - E + F, and the area
+// and volume summed as checkMesh sums them (TriangleMeasures); the vertices counted are the
+// distinct positions (checkMesh on the file read back; on an indexed mesh it counts the mesh's
+// vertices, unused ones and ones at one position included). A vertex that came back
 // after its window had passed (a file not written in that order) would count as new: its edges
 // then show as boundary edges and the check fails; it never passes a file it could not check.
 //

@@ -14,7 +14,10 @@
 // for one that has gone; a process killed outright is the launcher's to report (mpirun ends the
 // job). The file is written atomically by process 0 only: a failure anywhere leaves no file.
 //
-// Process 0 holds every tile's vertices and triangles at once, as a single-process export does.
+// Process 0 holds every tile's vertices and triangles at once, as a single-process export does;
+// with options.streamed it writes the file in pieces instead (streamed_export.h), a slab as soon
+// as all its tiles are in, and holds the tiles of the slabs not complete yet (a process that
+// falls behind keeps the slabs after its tiles waiting: their tiles are held meanwhile).
 #pragma once
 
 #include <memory>

@@ -9,6 +9,7 @@
 #include "engine/export/simplify_mesh.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/ldi/offset_math.h"
+#include "engine/util/error.h"
 #include "engine/util/memory.h"
 #include "engine/util/timer.h"
 
@@ -225,9 +226,14 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   e.peakBytes =
       present + uint64_t(tileBytes + offsetBytes + double(e.triangles) * kExportBytesPerTriangle);
-  // Streamed: its own tiling (streamedTiling), a slab's tiles' arrays and piece at a time.
-  const ExportTiling streamedTiles =
-      streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+  // Streamed: its own tiling (streamedTiling), a slab's tiles' arrays and piece at a time
+  // (where it has none, the whole export's figures).
+  ExportTiling streamedTiles = tiling;
+  try {
+    streamedTiles =
+        streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+  } catch (const Error&) {
+  }
   const double slabs = double(std::max(1, streamedTiles.counts.z));
   const double streamedScale = tiles / double(std::max(1, streamedTiles.count()));
   e.streamedPeakBytes =

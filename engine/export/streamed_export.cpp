@@ -20,6 +20,7 @@
 #include "engine/export/check_written.h"
 #include "engine/export/contour_scene.h"
 #include "engine/export/drop_specks.h"
+#include "engine/export/fallback.h"
 #include "engine/export/unfold_shells.h"
 #include "engine/geometry/degenerate_repair.h"
 #include "engine/io/mesh_formats.h"
@@ -192,6 +193,9 @@ class StreamedExportWriter::Impl {
     r_.deviationBound = std::sqrt(3.0) * r_.grid.h;
     // The facets measured as checkMesh would (check_streamed.h) on a thread of their own as they
     // are written; the file read back afterwards and compared by fingerprint.
+    if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
+    if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
+      throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
     Stopwatch write;
     StreamedMeshCheck measures(grid_, keptTriangles_, used_.lo, used_.hi, progress_);
     writeStl(&measures);
@@ -456,11 +460,11 @@ class StreamedExportWriter::Impl {
       }
     });
     if (region.empty()) return;
-    for (int rings = 2;; ++rings) {
-      // The vertices within `rings` - 1 of the flawed corners have complete rings in the part:
-      // the triangles around each vertex within rings - 1 of them.
-      std::unordered_set<uint32_t> complete = region;
-      for (int ring = 1; ring < rings; ++ring) {
+    // The vertices whose rings the part holds whole: the flawed corners and, a ring at a time
+    // (one more after each try that needed it), the vertices around them.
+    std::unordered_set<uint32_t> complete = region;
+    for (int rings = 1;; ++rings) {
+      {
         std::unordered_set<uint32_t> grown = complete;
         eachPiece([&](const Piece& p) {
           for (size_t t = 0; t < p.triangles.size(); ++t) {
@@ -562,9 +566,6 @@ class StreamedExportWriter::Impl {
 
   // Pass 5: the facets in the mesh's order, a block at a time, fingerprinted as stored.
   void writeStl(StreamedMeshCheck* measures) {
-    if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
-    if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
-      throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
     progress_.report("write STL", 0.0);
     writeFileAtomically(path_, [&](std::ostream& out) {
       const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
@@ -681,7 +682,9 @@ ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, u
   const double indexable = double(UINT32_MAX) / (double(g.cells.x + 2) * double(g.cells.y + 2));
   depth = std::min(depth, int(indexable) - 2 * cubes.halo - 2);
   if (depth < kMinStreamedTile) return cubes;
-  return exportTilingOfSize(scene, options, glm::ivec3(g.cells.x, g.cells.y, depth));
+  // (A side under 8 cells is a tile's least: the tile then reaches past the grid there.)
+  return exportTilingOfSize(scene, options,
+                            glm::ivec3(std::max(g.cells.x, 8), std::max(g.cells.y, 8), depth));
 }
 
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {
@@ -695,26 +698,29 @@ std::string streamedExportRefusal(const std::string& path, const ExportOptions& 
 
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
                                  const ExportOptions& options, std::shared_ptr<Backend> backend,
-                                 Progress& progress) {
+                                 Progress& progress, const FallbackNotice& notice) {
   ExportReport report;
   const ExportTiling tiling =
       streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
   StreamedExportWriter writer(scene, path, options, tiling, progress, &report);
-  {
-    Evaluator evaluator(std::move(backend));
-    const int perSlab = tiling.counts.x * tiling.counts.y, slabs = tiling.counts.z;
-    for (int z = 0; z < slabs; ++z) {
-      Progress slabProgress(&progress, [&](const std::string& stage, double f) {
-        progress.report(stage, stage == "export" ? (double(z) + f) / double(slabs) : f);
+  // The tiles in order (each evaluated on its own window; a backend that cannot evaluate the
+  // modifiers or runs out of memory hands the tiles left to the CPU: fallback.h), each slab to
+  // the writer as its last tile is done.
+  const int perSlab = tiling.counts.x * tiling.counts.y;
+  std::vector<TileContour> tiles;
+  contourTilesWithFallback(
+      scene, std::move(backend), tiling, [](int) { return true; }, progress, report.contour, &tiles,
+      [&](const std::string& line) {
+        report.notices.push_back(line);
+        if (notice) notice(line);
+      },
+      [&](int t) {
+        progress.report("export", double(t + 1) / double(tiling.count()));
+        if ((t + 1) % perSlab != 0) return;
+        std::vector<TileContour> slab = std::move(tiles);
+        tiles.clear();
+        writer.addSlab(t / perSlab, std::move(slab));
       });
-      std::vector<TileContour> tiles;
-      evaluator.clearCache();  // the last slab's tile is no use to this one
-      contourTiles(
-          scene, evaluator, tiling, [&](int t) { return t / perSlab == z; }, slabProgress,
-          report.contour, &tiles);
-      writer.addSlab(z, std::move(tiles));
-    }
-  }  // the evaluator's cached LDIs go before the passes and the write
   writer.finish();
   return report;
 }

@@ -38,6 +38,7 @@
 #include "engine/eval/backend.h"
 #include "engine/export/contour_scene.h"
 #include "engine/export/export_scene.h"
+#include "engine/export/fallback.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -76,8 +77,11 @@ class StreamedExportWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+// `notice` (may be empty): a line for the user each time a fallback is taken (fallback.h: the
+// tiles left go on on the CPU when the backend runs out of memory or cannot evaluate the
+// scene's modifiers), also kept in the report's notices.
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
                                  const ExportOptions& options, std::shared_ptr<Backend> backend,
-                                 Progress& progress);
+                                 Progress& progress, const FallbackNotice& notice = {});
 
 }  // namespace strata

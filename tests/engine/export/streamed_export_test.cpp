@@ -15,6 +15,7 @@
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
 #include "engine/export/check_streamed.h"
+#include "engine/export/job_estimate.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/util/error.h"
@@ -240,6 +241,28 @@ TEST(StreamedExport, SlabsOfTheWholeCrossSectionGiveTheSameFile) {
   EXPECT_EQ(b.contour.tiles, kStreamedSlabs);
   EXPECT_TRUE(b.passed());
   EXPECT_EQ(a.check.genus, b.check.genus);
+  EXPECT_EQ(bytesOf(folder + "/whole.stl"), bytesOf(folder + "/streamed.stl"));
+}
+
+// A grid fewer than 8 cells across (a thin plate): its slabs reach past the grid there, and the
+// estimate of any export of it (which reckons the streamed one too) still stands.
+TEST(StreamedExport, AGridThinnerThanATileIsStillSlabbed) {
+  const std::string folder = freshFolder("thin");
+  const Scene plate =
+      makeSceneInBox(box({0.01, 2, 2}), 240, {-0.02, -1.05, -1.05}, {0.02, 1.05, 1.05});
+  ASSERT_LT(Evaluator::gridFor(plate, 0).cells.x, 8);
+  const auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  JobEstimate estimate;
+  EXPECT_NO_THROW(estimate = estimateExport(plate, ContourOptions{1024, 0}, folder + "/x.stl",
+                                            backend, progress));
+  EXPECT_GT(estimate.streamedPeakBytes, 0u);
+  const ExportReport a =
+      exportScene(plate, folder + "/whole.stl", ExportOptions(), backend, progress);
+  const ExportReport b =
+      exportSceneStreamed(plate, folder + "/streamed.stl", ExportOptions(), backend, progress);
+  EXPECT_GT(b.contour.tiles, 1);
+  EXPECT_TRUE(b.passed());
   EXPECT_EQ(bytesOf(folder + "/whole.stl"), bytesOf(folder + "/streamed.stl"));
 }
 
