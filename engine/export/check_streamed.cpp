@@ -18,6 +18,7 @@
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
+#include "engine/util/union_find.h"
 #include "engine/util/window_hash_map.h"
 
 namespace strata {
@@ -63,12 +64,10 @@ class SmallList {
 class WindowCheck {
  public:
   WindowCheck(const Grid& grid, size_t triangles, const glm::dvec3& lo, const glm::dvec3& hi)
-      : grid_(grid), parent_(triangles), chi_(triangles, 1), measures_(lo, hi) {
-    for (size_t t = 0; t < triangles; ++t) parent_[t] = uint32_t(t);
-  }
+      : grid_(grid), sets_(triangles), chi_(triangles, 1), measures_(lo, hi) {}
 
   void add(const glm::dvec3* c) {
-    if (next_ >= parent_.size()) throw Error("the file holds more facets than its count says");
+    if (next_ >= sets_.parent.size()) throw Error("the file holds more facets than its count says");
     const uint32_t t = uint32_t(next_++);
     uint32_t w[3];
     int highest = INT_MIN;
@@ -91,17 +90,17 @@ class WindowCheck {
         e = &owner.edges[owner.edges.size() - 1];
       } else {
         if (e->count == 1) e->forward1 = a < b;
-        unite(e->first, t);
+        sets_.unite(e->first, t);
       }
       ++e->count;
     }
     // Each vertex keeps a facet of each component around it: t where it is in none of theirs
     // yet (components only ever join, so a facet joined to a kept one stays redundant).
-    const uint32_t root = find(t);
+    const uint32_t root = sets_.find(t);
     for (int k = 0; k < 3; ++k) {
       Vertex& x = vertex(w[k]);
       bool known = false;
-      for (size_t i = 0; i < x.reps.size() && !known; ++i) known = find(x.reps[i]) == root;
+      for (size_t i = 0; i < x.reps.size() && !known; ++i) known = sets_.find(x.reps[i]) == root;
       if (!known) x.reps.push_back(t);
     }
     // Facets come in the order of their edges' z layers, and a facet's corners lie at most a
@@ -113,32 +112,42 @@ class WindowCheck {
   }
 
   MeshCheck finish() {
-    if (next_ != parent_.size()) throw Error("the file holds fewer facets than its count says");
+    if (next_ != sets_.parent.size())
+      throw Error("the file holds fewer facets than its count says");
     evictBelow(INT_MAX);
     MeshCheck c;
     c.vertices = welded_;
-    c.triangles = parent_.size();
+    c.triangles = sets_.parent.size();
     c.boundaryEdges = boundary_;
     c.nonManifoldEdges = nonManifold_;
     c.misorientedEdges = misoriented_;
     measures_.finish(&c);
-    // Vertices counted once for each current component around them, where components joined
-    // later: counted once per final component.
+    // Each component's V - E + F: the facets' shares added up by root.
+    std::map<uint32_t, long long> chi;
+    long long* last = nullptr;  // neighbouring facets mostly share a component
+    uint32_t lastRoot = UINT32_MAX;
+    for (size_t t = 0; t < sets_.parent.size(); ++t) {
+      const uint32_t root = sets_.find(uint32_t(t));
+      if (root != lastRoot) {
+        last = &chi[root];
+        lastRoot = root;
+      }
+      *last += chi_[t];
+    }
+    // Vertices counted once for each component around them when they left, where components
+    // joined later: counted once per final component.
     for (const std::vector<uint32_t>& reps : shared_) {
       std::vector<uint32_t> roots;
-      for (uint32_t t : reps) roots.push_back(find(t));
+      for (uint32_t t : reps) roots.push_back(sets_.find(t));
       std::sort(roots.begin(), roots.end());
       for (size_t i = 1; i < roots.size(); ++i)
-        if (roots[i] == roots[i - 1]) chi_[roots[i]] -= 1;
+        if (roots[i] == roots[i - 1]) chi[roots[i]] -= 1;
     }
-    std::vector<uint32_t> roots;
-    for (size_t t = 0; t < parent_.size(); ++t)
-      if (parent_[t] == t) roots.push_back(uint32_t(t));
-    c.components = int(roots.size());
-    if (!c.watertight() || parent_.empty()) return c;
+    c.components = int(chi.size());
+    if (!c.watertight() || sets_.parent.empty()) return c;
     int genus = 0;
-    for (uint32_t r : roots) {
-      const long long twiceGenus = 2 - (long long)chi_[r];
+    for (const auto& [root, sum] : chi) {
+      const long long twiceGenus = 2 - sum;
       if (twiceGenus < 0 || twiceGenus % 2 != 0) return c;  // not a closed surface after all
       genus += int(twiceGenus / 2);
     }
@@ -190,22 +199,6 @@ class WindowCheck {
     return *id;
   }
 
-  uint32_t find(uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a > b) std::swap(a, b);
-    parent_[b] = a;
-    chi_[a] += chi_[b];
-  }
-
   // The vertices of the layers below `layer`, which no later facet reaches, and the edges they
   // keep: counted, and let go.
   void evictBelow(int layer) {
@@ -217,16 +210,16 @@ class WindowCheck {
           if (e.count == 1) ++boundary_;
           if (e.count > 2) ++nonManifold_;
           if (e.count == 2 && e.forward0 == e.forward1) ++misoriented_;
-          chi_[find(e.first)] -= 1;
+          chi_[e.first] -= 1;  // E: for the component of its first facet
         }
         std::vector<uint32_t> reps;  // a facet per component around it now
         std::vector<uint32_t> roots;
         for (size_t i = 0; i < v.reps.size(); ++i) {
-          const uint32_t r = find(v.reps[i]);
+          const uint32_t r = sets_.find(v.reps[i]);
           if (std::find(roots.begin(), roots.end(), r) != roots.end()) continue;
           roots.push_back(r);
           reps.push_back(v.reps[i]);
-          chi_[r] += 1;
+          chi_[v.reps[i]] += 1;  // V: once for each component around it
         }
         if (reps.size() > 1) shared_.push_back(std::move(reps));
         ids_.erase(v.key);
@@ -243,8 +236,8 @@ class WindowCheck {
   }
 
   const Grid grid_;
-  std::vector<uint32_t> parent_;  // union-find over facets: edge-connected components
-  std::vector<int32_t> chi_;      // per root: V - E + F of its component so far
+  UnionFind sets_;            // over facets: edge-connected components
+  std::vector<int32_t> chi_;  // per facet: its share of its component's V - E + F
   TriangleMeasures measures_;
   size_t next_ = 0;
   size_t welded_ = 0;

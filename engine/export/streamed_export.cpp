@@ -134,15 +134,6 @@ void load(const ScratchFile& file, const PieceRecord& r, Piece* p) {
   file.read(&at, r.triangles, &p->resolved);
 }
 
-struct Box {
-  glm::dvec3 lo{std::numeric_limits<double>::infinity()};
-  glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
-  void include(const glm::dvec3& p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-};
-
 // What the component steps know of a shell (a component with triangles), by its root id.
 struct Shell {
   glm::dvec3 ref{0.0};  // the anchor of its first triangle's first corner
@@ -197,7 +188,7 @@ class StreamedExportWriter::Impl {
     if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
       throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
     Stopwatch write;
-    StreamedMeshCheck measures(grid_, keptTriangles_, used_.lo, used_.hi, progress_);
+    StreamedMeshCheck measures(grid_, keptTriangles_, used_.min, used_.max, progress_);
     writeStl(&measures);
     report_.writeSeconds = write.seconds();
     Stopwatch check;
@@ -393,7 +384,7 @@ class StreamedExportWriter::Impl {
       const Shell& s = shells_[shell];
       const double keep =
           pullBackKeep(g.triangles, g.anchors, g.positions, s.ref, volumeSign(s.anchored));
-      Box box;
+      Bounds box;
       for (size_t i = 0; i < g.ids.size(); ++i) {
         const glm::dvec3 p = g.anchors[i] + keep * (g.positions[i] - g.anchors[i]);
         moved_[g.ids[i]] = p;
@@ -411,10 +402,10 @@ class StreamedExportWriter::Impl {
     bool anyKept = false;
     for (auto& [root, s] : shells_) {
       const auto box = boxes_.find(root);
-      s.kept =
-          box == boxes_.end()
-              ? keepComponent(s.bits, vertexCount_[root], glm::dvec3(0.0), glm::dvec3(0.0), grid_.h)
-              : keepComponent(s.bits, vertexCount_[root], box->second.lo, box->second.hi, grid_.h);
+      s.kept = box == boxes_.end() ? keepComponent(s.bits, vertexCount_[root], glm::dvec3(0.0),
+                                                   glm::dvec3(0.0), grid_.h)
+                                   : keepComponent(s.bits, vertexCount_[root], box->second.min,
+                                                   box->second.max, grid_.h);
       anyKept = anyKept || s.kept;
       if (!s.kept) {
         ++dropped.components;
@@ -545,7 +536,7 @@ class StreamedExportWriter::Impl {
       keptTriangles_ -= 2 * repair.collapsed;
       if (repair.collapsed > 0) {
         // A collapse lets a corner go: the box of the corners the facets still use.
-        used_ = Box();
+        used_ = Bounds();
         uint64_t at = 0;
         eachPiece([&](const Piece& p) {
           for (size_t t = 0; t < p.triangles.size(); ++t) {
@@ -638,7 +629,7 @@ class StreamedExportWriter::Impl {
   std::vector<PieceRecord> pieces_;
   uint64_t triangles_ = 0, keptTriangles_ = 0;
   std::unordered_map<uint32_t, Shell> shells_;  // by root
-  std::unordered_map<uint32_t, Box> boxes_;     // by root, the small components'
+  std::unordered_map<uint32_t, Bounds> boxes_;  // by root, the small components'
   bool anyInverted_ = false;
   std::unordered_map<uint32_t, glm::dvec3> moved_;  // ids of unfolded shells
   struct Replacement {
@@ -647,7 +638,7 @@ class StreamedExportWriter::Impl {
   };
   std::unordered_map<uint64_t, Replacement> repaired_;  // by place among the kept triangles
   TriangleFingerprint fingerprint_;
-  Box used_;  // around the corners the facets use, as stored
+  Bounds used_;  // around the corners the facets use, as stored
 };
 
 StreamedExportWriter::StreamedExportWriter(const Scene& scene, const std::string& path,

@@ -13,6 +13,7 @@
 #include "engine/export/contour_scene.h"
 #include "engine/io/scene_file.h"
 #include "engine/ldi/offset_math.h"
+#include "tests/support/export_cases.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
 
@@ -264,25 +265,10 @@ TEST(ContourRegression, ScaffoldWithMovedOffsetHasNoPinchedVertices) {
   EXPECT_TRUE(r.check.manifold());  // checkMesh welds identical positions first
 }
 
-// Found by fuzz_pipeline (tests/fuzz/seeds/pipeline/folded_sliver): an octahedron folded into
-// a sliver thinner than a cell, mirrored, at 8 cells. Its one inside node gave a closed shell of
-// 12 triangles whose QEF vertices crowded onto the sliver and turned it inside out (volume
-// -5.6e-6 mm^3: a void to a slicer). The shell is pulled back towards its cell centres.
+// The folded sliver (tests/support/export_cases.h): its shell turned inside out (volume
+// -5.6e-6 mm^3: a void to a slicer) is pulled back towards its cell centres.
 TEST(ContourRegression, FoldedSliverShellIsTurnedRightSideOut) {
-  auto mesh = std::make_shared<TriangleMesh>();
-  mesh->positions = {{0.961176, 0.501176, 0.501176},
-                     {-1.72941, -0.6, -0.581176},
-                     {-0.6, -0.236863, -0.6},
-                     {-0.6, -0.8, -0.6},
-                     {-0.6, -0.6, -0.4},
-                     {-0.6, -0.6, -0.8}};
-  mesh->triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                     {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  prepareMesh(*mesh);
-  Transform t;
-  t.translate = glm::dvec3(-1.0);
-  t.scale = glm::dvec3(-0.3, 0.3, 0.3);
-  Contoured r = contour(makeScene(withTransform(meshLeaf(mesh), t), 8), 8);
+  Contoured r = contour(makeScene(foldedSliver(), 8), 8);
   EXPECT_TRUE(isWatertight(r.mesh.mesh));
   EXPECT_EQ(r.report.unfoldedShells, 1);
   EXPECT_GT(r.check.volume, 0.0);

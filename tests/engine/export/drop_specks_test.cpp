@@ -13,6 +13,7 @@
 #include "engine/eval/cpu_backend.h"
 #include "engine/export/contour_scene.h"
 #include "engine/geometry/mesh_check.h"
+#include "tests/support/export_cases.h"
 #include "tests/support/scene_builder.h"
 
 namespace strata::test {
@@ -93,28 +94,6 @@ TEST(DropSpecks, NothingToDropChangesNothing) {
   EXPECT_EQ(dropped.components, 0);
   EXPECT_EQ(m.mesh.positions, before.mesh.positions);
   EXPECT_EQ(m.mesh.triangles, before.mesh.triangles);
-}
-
-// A UV sphere and a faceted torus whose tube pokes out of it: their faceted surfaces meet at
-// grazing angles, where slivers thinner than a cell hold single grid nodes.
-std::shared_ptr<const TriangleMesh> facetedTorus(double major, double minor, int around,
-                                                 int across) {
-  auto m = std::make_shared<TriangleMesh>();
-  for (int i = 0; i < around; ++i)
-    for (int j = 0; j < across; ++j) {
-      const double u = 2 * M_PI * i / around, v = 2 * M_PI * j / across;
-      const double r = major + minor * std::cos(v);
-      m->positions.push_back({r * std::cos(u), r * std::sin(u), minor * std::sin(v)});
-    }
-  for (int i = 0; i < around; ++i)
-    for (int j = 0; j < across; ++j) {
-      const uint32_t a = uint32_t(i * across + j), b = uint32_t(((i + 1) % around) * across + j),
-                     c = uint32_t(((i + 1) % around) * across + (j + 1) % across),
-                     d = uint32_t(i * across + (j + 1) % across);
-      m->triangles.push_back({a, b, c});
-      m->triangles.push_back({a, c, d});
-    }
-  return m;
 }
 
 TEST(DropSpecks, ASphereMinusAGrazingTorusExportsOnePart) {
