@@ -1,25 +1,25 @@
 // The check of a binary STL written in pieces (streamed_export.h), in memory that does not grow
-// with the mesh's vertices and edges: one pass over the file in its order.
+// with the mesh's vertices and edges: the facets measured in the file's order as they are
+// written, in runs ("chunks") on several threads.
 //
 // The streamed export writes its facets in the contour's edge order, the z index of each facet's
 // grid edge never decreasing, and every vertex lies within the cell it was placed in (or on its
-// faces): a vertex at z layer L (of the grid's cells) appears only in facets of edges below
-// layer L + 3. The pass welds identical positions (as checkMesh does) within a window of a few
-// layers, matches each edge's half-edges there, and lets a vertex and its edges go once the
-// facets have moved kWindowLayers past it. It computes what checkMesh computes on the file's
-// mesh (mesh_check.h), the same numbers: boundary, non-manifold and misoriented edges,
-// degenerate triangles, edge-connected components (union-find over the facets: 8 bytes a facet,
-// the one array that grows with the mesh), genus from each component's V - E + F, and the area
-// and volume summed as checkMesh sums them (TriangleMeasures); the vertices counted are the
-// distinct positions (checkMesh on the file read back; on an indexed mesh it counts the mesh's
-// vertices, unused ones and ones at one position included). A vertex that came back
-// after its window had passed (a file not written in that order) would count as new: its edges
-// then show as boundary edges and the check fails; it never passes a file it could not check.
-//
-// Also the file's fingerprint (check_written.h), in the same pass.
-//
-// Synchronous; one thread (the file's decoding is parallel); `progress` receives stage "check"
-// and is checked once per piece of the file read.
+// faces): a facet of edge layer E has its corners in layers E - 1 .. E + 1. Each chunk welds
+// identical positions (as checkMesh does) within a window of a few layers, matches each edge's
+// half-edges there, and lets a vertex and its edges go once the facets have moved kWindowLayers
+// past it. A vertex that may also be used by another chunk (one within kWindowLayers + 1 layers
+// above its chunk's first facet's lowest corner, or still in the window at the chunk's end) is
+// "open": it and the edges between open vertices are handed on, and a window of its own over
+// them, in chunk order, welds them by position across chunks and counts them. The result is
+// what checkMesh computes on the file's mesh (mesh_check.h), the same numbers, whatever the
+// chunks: boundary, non-manifold and misoriented edges, degenerate triangles, edge-connected
+// components (union-find over the facets: 8 bytes a facet, the one array that grows with the
+// mesh), genus from each component's V - E + F, and the area and volume summed as checkMesh
+// sums them (TriangleMeasures); the vertices counted are the distinct positions (checkMesh on the
+// file read back; on an indexed mesh it counts the mesh's vertices, unused ones and ones at one
+// position included). A vertex that came back after its window had passed (a file not written in
+// that order) counts as new: its edges then show as boundary edges and the check fails; it never
+// passes a file it could not check.
 #pragma once
 
 #include <memory>
@@ -37,21 +37,38 @@ namespace strata {
 
 // Layers a welded vertex stays after the facets' lowest possible edge layer has passed its own.
 constexpr int kWindowLayers = 4;
+// The facets of a chunk of the check (a multiple of kMeasureBlock): about 128 of the grid's z
+// layers' worth (facets / layers x 128, so that its open vertices, within a few layers of its
+// two ends, are a small share), from 8 to 32 measure blocks (9 to 38 MB of corners).
+size_t streamedCheckChunkFacets(const Grid& grid, size_t facets);
+// The threads of the check: one fewer than workerCount() (the writer has one), at most 4 (each
+// holds a window of vertices: tens of MB at 4096 cells; 8 on the 16-core H200 host held 0.8 GB
+// more at peak than one); one where there are two cores or fewer.
+int streamedCheckThreads();
+// The bytes of corners the check holds at most (streamedCheckThreads' threads).
+uint64_t streamedCheckBytes(const Grid& grid, size_t facets);
 
 // The measures above on facets fed in the file's order as they are written (the streamed
 // export's write: check_written.h's split, where the mesh meant is measured beside the write and
-// the file read back is compared with it by fingerprint), on a thread of its own. `facets`: how
-// many will come; `grid`, (usedLo, usedHi): as below; `progress`: cancels it.
+// the file read back is compared with it by fingerprint), on threads of their own: chunks of
+// `chunkFacets` facets (a positive multiple of kMeasureBlock; 0: streamedCheckChunkFacets, or
+// all of them on one thread) on `threads` threads (0: streamedCheckThreads), each chunk taken by
+// a thread as its first block comes and measured as the rest come. Facets added and not yet
+// measured (12 bytes a corner) are held up to threads + 1 chunks (one thread: 8 measure blocks);
+// add() waits beyond that.
+// `facets`: how many will come; `grid`: the export's; (usedLo, usedHi): the box of the vertices
+// the facets use, as the file stores them (the measures' frame); `progress`: cancels it.
 class StreamedMeshCheck {
  public:
-  static constexpr size_t kQueuedBlocks = 4;  // add() waits while this many are queued
   StreamedMeshCheck(const Grid& grid, size_t facets, const glm::dvec3& usedLo,
-                    const glm::dvec3& usedHi, const Progress& progress);
+                    const glm::dvec3& usedHi, const Progress& progress, size_t chunkFacets = 0,
+                    int threads = 0);
   ~StreamedMeshCheck();
   StreamedMeshCheck(const StreamedMeshCheck&) = delete;
   StreamedMeshCheck& operator=(const StreamedMeshCheck&) = delete;
-  // A block of facets, three corners each as the file stores them.
-  void add(std::vector<glm::dvec3> corners);
+  // A block of facets, three corners each as the file stores them (binary STL: float32). Waits
+  // while as many chunks as allowed are held.
+  void add(const std::vector<glm::vec3>& corners);
   // Waits for the measures; rethrows what stopped them (Cancelled included).
   MeshCheck finish();
 
@@ -66,14 +83,5 @@ class StreamedMeshCheck {
 // checkWrittenFile does.
 WrittenCheck compareStreamedFile(const std::string& path, const MeshCheck& measured,
                                  const TriangleFingerprint& expected, Progress& progress);
-
-// The whole check of a file on its own, read back in its order.
-// `grid`: the export's; (usedLo, usedHi): the box of the vertices the facets use, as the file
-// stores them (for the measures' frame); `expected`: the fingerprint of the facets written.
-// Where the file's fingerprint differs, the file is read back raw and checked whole, as
-// checkWrittenFile does. Throws strata::Error when the file cannot be read, Cancelled.
-WrittenCheck checkStreamedStl(const std::string& path, const Grid& grid, const glm::dvec3& usedLo,
-                              const glm::dvec3& usedHi, const TriangleFingerprint& expected,
-                              Progress& progress);
 
 }  // namespace strata

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "engine/eval/evaluator.h"
+#include "engine/export/check_streamed.h"
 #include "engine/export/simplify_mesh.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/ldi/offset_math.h"
@@ -240,7 +241,8 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
       present +
       uint64_t(ldiBytes / tiles * streamedScale + offsetBytes +
                double(e.triangles) * ((kTileBytesPerTriangle + kExportBytesPerTriangle) / slabs +
-                                      kStreamedBytesPerTriangle));
+                                      kStreamedBytesPerTriangle)) +
+      streamedCheckBytes(e.grid, e.triangles);
   e.scratchBytes = uint64_t(double(e.triangles) * kScratchBytesPerTriangle);
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));

@@ -562,7 +562,7 @@ class StreamedExportWriter::Impl {
       const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
       out.write(header.data(), std::streamsize(header.size()));
       std::string block;
-      std::vector<glm::dvec3> corners;  // as stored, for the measures
+      std::vector<glm::vec3> corners;  // as stored (float32: exact), for the measures
       uint64_t place = 0, written = 0;
       const auto emit = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
         for (const glm::dvec3* x : {&a, &b, &c}) {
@@ -578,12 +578,15 @@ class StreamedExportWriter::Impl {
         };
         const glm::dvec3 sa = s(a), sb = s(b), sc = s(c);
         addToFingerprint(sa, sb, sc, &fingerprint_);
-        corners.insert(corners.end(), {sa, sb, sc});
+        for (const glm::dvec3* x : {&sa, &sb, &sc}) {
+          corners.push_back(glm::vec3(*x));
+          if (glm::dvec3(corners.back()) != *x)
+            throw Error(path_ + ": internal: a stored coordinate is not a float32");
+        }
         ++written;
         if (block.size() >= kWriteBlock * kStlFacetBytes) {
-          measures->add(std::move(corners));
-          corners = std::vector<glm::dvec3>();
-          corners.reserve(3 * kWriteBlock);
+          measures->add(corners);
+          corners.clear();
           out.write(block.data(), std::streamsize(block.size()));
           block.clear();
           progress_.report("write STL", double(written) / double(keptTriangles_));
@@ -603,7 +606,7 @@ class StreamedExportWriter::Impl {
           emit(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]));
         }
       });
-      measures->add(std::move(corners));
+      measures->add(corners);
       out.write(block.data(), std::streamsize(block.size()));
       if (written != keptTriangles_)
         throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +

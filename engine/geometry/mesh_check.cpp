@@ -460,7 +460,8 @@ void measureTriangles(const TriangleMesh& mesh, const std::vector<uint32_t>& can
 struct TriangleMeasures::State {
   State(const glm::dvec3& lo, const glm::dvec3& hi) : frame(lo, hi) {}
   LocalFrame frame;
-  MeasureSums block, total;
+  MeasureSums block;
+  std::vector<MeasureSums> blocks;  // the whole blocks so far, in order
   size_t count = 0;
 };
 
@@ -468,22 +469,35 @@ TriangleMeasures::TriangleMeasures(const glm::dvec3& usedLo, const glm::dvec3& u
     : state_(std::make_unique<State>(usedLo, usedHi)) {}
 
 TriangleMeasures::~TriangleMeasures() = default;
+TriangleMeasures::TriangleMeasures(TriangleMeasures&&) noexcept = default;
+TriangleMeasures& TriangleMeasures::operator=(TriangleMeasures&&) noexcept = default;
 
 void TriangleMeasures::add(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                            bool repeatedVertex) {
   State& s = *state_;
   measureTriangle(s.frame, a, b, c, repeatedVertex, s.block);
   if (++s.count % kMeasureBlock == 0) {
-    addBlock(s.block, s.total);
+    s.blocks.push_back(s.block);
     s.block = MeasureSums();
   }
 }
 
+void TriangleMeasures::append(TriangleMeasures&& later) {
+  State& s = *state_;
+  State& l = *later.state_;
+  if (s.count % kMeasureBlock != 0)
+    throw Error("internal: triangle measures appended within a block");
+  s.blocks.insert(s.blocks.end(), l.blocks.begin(), l.blocks.end());
+  s.block = l.block;
+  s.count += l.count;
+}
+
 void TriangleMeasures::finish(MeshCheck* check) {
   State& s = *state_;
-  if (s.count % kMeasureBlock != 0) addBlock(s.block, s.total);
-  s.block = MeasureSums();
-  finishMeasures(s.frame, s.total, s.count, *check);
+  MeasureSums total;
+  for (const MeasureSums& b : s.blocks) addBlock(b, total);
+  if (s.count % kMeasureBlock != 0) addBlock(s.block, total);
+  finishMeasures(s.frame, total, s.count, *check);
 }
 
 double largestExtent(const std::vector<glm::dvec3>& positions) {

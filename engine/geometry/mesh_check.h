@@ -50,14 +50,21 @@ MeshCheck checkMesh(const TriangleMesh& mesh, const Progress* progress = nullptr
 // in the mesh's order, summed as checkMesh sums them (in blocks of kMeasureBlock), so that the
 // measures equal checkMesh's on the same triangles. (usedLo, usedHi): the box around the
 // vertices the triangles use. finish() adds the degenerate count to *check and sets its area,
-// volume and smallest triangle area. Not thread-safe.
+// volume and smallest triangle area. A run of the triangles may be measured apart (on another
+// thread) and appended after the run before it, where that run ends on a block boundary: the
+// sums stay checkMesh's. Not thread-safe.
 constexpr size_t kMeasureBlock = 32768;
 class TriangleMeasures {
  public:
   TriangleMeasures(const glm::dvec3& usedLo, const glm::dvec3& usedHi);
   ~TriangleMeasures();
+  TriangleMeasures(TriangleMeasures&&) noexcept;
+  TriangleMeasures& operator=(TriangleMeasures&&) noexcept;
   // `repeatedVertex`: two corners weld (checkMesh counts the triangle as degenerate).
   void add(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, bool repeatedVertex);
+  // The triangles `later` measured, after this one's: throws strata::Error where this one's
+  // count is not a multiple of kMeasureBlock (a block would be summed in two parts).
+  void append(TriangleMeasures&& later);
   void finish(MeshCheck* check);
 
  private:

@@ -40,10 +40,9 @@ using MeshWriter = void (*)(const std::string& path, const ExportMesh& mesh, Pro
 using StoredCoordinate = double (*)(double value);
 
 // Visits the triangles of the file at `path` in blocks without holding it (visitFileTriangles,
-// mesh_io.h; `inOrder`: one block at a time, in the file's order, from the calling thread);
-// false when the file is not in the form this reader streams.
+// mesh_io.h); false when the file is not in the form this reader streams.
 using MeshBlockReader = bool (*)(const std::string& path, const TriangleBlockVisitor& visit,
-                                 const Progress* progress, bool inOrder);
+                                 const Progress* progress);
 
 // Reading a format (import, readMeshFile) or writing it (export, writeMeshFile).
 enum class MeshAccess { Read, Write };

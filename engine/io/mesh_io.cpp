@@ -192,13 +192,7 @@ TriangleMesh readMeshFileVerbatim(const std::string& path, MeshReadReport* repor
 bool visitFileTriangles(const std::string& path, const TriangleBlockVisitor& visit,
                         const Progress* progress) {
   const MeshFormat* format = meshFormatFor(path, MeshAccess::Read);
-  return format && format->blocks && format->blocks(path, visit, progress, false);
-}
-
-bool visitFileTrianglesInOrder(const std::string& path, const TriangleBlockVisitor& visit,
-                               const Progress* progress) {
-  const MeshFormat* format = meshFormatFor(path, MeshAccess::Read);
-  return format && format->blocks && format->blocks(path, visit, progress, true);
+  return format && format->blocks && format->blocks(path, visit, progress);
 }
 
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,

@@ -85,9 +85,5 @@ using TriangleBlockVisitor =
 // file cannot be read or changes while read; Cancelled from `progress` between pieces.
 bool visitFileTriangles(const std::string& path, const TriangleBlockVisitor& visit,
                         const Progress* progress = nullptr);
-// The same with the blocks visited one at a time, in the file's order, from the calling thread
-// (decoded in parallel before each visit): for a pass that needs the triangles' order.
-bool visitFileTrianglesInOrder(const std::string& path, const TriangleBlockVisitor& visit,
-                               const Progress* progress = nullptr);
 
 }  // namespace strata

@@ -24,7 +24,7 @@ TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshRea
 // A binary STL's facets in blocks, read in pieces (the format's MeshBlockReader): false for an
 // ASCII STL or a count that does not match the size (parseStl then reads or refuses it).
 bool visitStlBlocks(const std::string& path, const TriangleBlockVisitor& visit,
-                    const Progress* progress, bool inOrder);
+                    const Progress* progress);
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report);
 TriangleMesh parseOff(const std::string& name, const std::string& bytes, MeshReadReport* report);
 // 3MF: a zip package; the geometry its build places, in the model's unit (read_3mf.cpp).

@@ -247,7 +247,7 @@ class AsciiStlParser {
 }  // namespace
 
 bool visitStlBlocks(const std::string& path, const TriangleBlockVisitor& visit,
-                    const Progress* progress, bool inOrder) {
+                    const Progress* progress) {
   InputFile file(path);
   if (file.size() < kHeaderBytes + 4) return false;
   char head[kHeaderBytes + 4];
@@ -259,29 +259,26 @@ bool visitStlBlocks(const std::string& path, const TriangleBlockVisitor& visit,
   constexpr uint64_t kPieceFacets = uint64_t(1) << 18;  // 13 MB a read
   constexpr int64_t kBlockFacets = 4096;                // a visit
   std::string piece(size_t(std::min(count, kPieceFacets) * kFacetBytes), '\0');
-  // In order: the piece decoded in parallel, then visited whole from this thread.
-  std::vector<glm::dvec3> ordered(inOrder ? size_t(3 * std::min(count, kPieceFacets)) : 0);
   for (uint64_t done = 0; done < count;) {
     if (progress) progress->check();
     const uint64_t n = std::min(kPieceFacets, count - done);
     file.readExactly(piece.data(), size_t(n * kFacetBytes));
     std::atomic<uint64_t> firstBad{n};
     parallelFor(0, int64_t(n), kBlockFacets, [&](int64_t first, int64_t last) {
-      std::vector<glm::dvec3> corners(inOrder ? 0 : size_t(3 * kBlockFacets));
+      std::vector<glm::dvec3> corners(size_t(3 * kBlockFacets));
       for (int64_t b = first; b < last; b += kBlockFacets) {
         const int64_t e = std::min(last, b + kBlockFacets);
-        glm::dvec3* out = inOrder ? &ordered[3 * size_t(b)] : corners.data();
+        glm::dvec3* out = corners.data();
         for (int64_t f = b; f < e; ++f)
           if (!decodeFacet(piece.data() + kFacetBytes * size_t(f), &out[3 * size_t(f - b)]))
             keepFirst(&firstBad, uint64_t(f));
-        if (!inOrder) visit(done + uint64_t(b), corners.data(), size_t(e - b));
+        visit(done + uint64_t(b), corners.data(), size_t(e - b));
       }
     });
     if (firstBad.load() < n) {
       const size_t at = size_t(kHeaderBytes + 4 + kFacetBytes * (done + firstBad.load()));
       requireFiniteFacet(path, piece.data() + kFacetBytes * size_t(firstBad.load()), at);
     }
-    if (inOrder) visit(done, ordered.data(), size_t(n));
     done += n;
   }
   return true;

@@ -141,10 +141,10 @@ TEST(StreamedExport, WritesTheSingleProcessFileByteForByte) {
   EXPECT_EQ(entriesIn(folder), 2 * cases().size());  // no scratch file left behind
 }
 
-// The streamed check on files that are not what they should be: it counts what checkMesh counts
-// on the file read back whole.
-void expectTheCheckOfTheFile(const std::string& path, const Grid& grid) {
-  const TriangleMesh verbatim = readMeshFileVerbatim(path);
+// The streamed check of the facets of `verbatim` fed in blocks of 10,000, in chunks of
+// `chunkFacets` on `threads` threads.
+MeshCheck streamedCheckOf(const TriangleMesh& verbatim, const Grid& grid, size_t chunkFacets,
+                          int threads) {
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (const auto& t : verbatim.triangles)
     for (uint32_t v : t) {
@@ -152,20 +152,42 @@ void expectTheCheckOfTheFile(const std::string& path, const Grid& grid) {
       hi = glm::max(hi, verbatim.positions[v]);
     }
   Progress progress;
-  const WrittenCheck streamed =
-      checkStreamedStl(path, grid, lo, hi, fingerprintTriangles(verbatim), progress);
-  EXPECT_TRUE(streamed.fileDifference.empty());
+  StreamedMeshCheck check(grid, verbatim.triangles.size(), lo, hi, progress, chunkFacets, threads);
+  std::vector<glm::vec3> block;
+  for (size_t t = 0; t < verbatim.triangles.size(); ++t) {
+    for (uint32_t v : verbatim.triangles[t]) block.push_back(glm::vec3(verbatim.positions[v]));
+    if (block.size() == 3 * 10000) {
+      check.add(block);
+      block.clear();
+    }
+  }
+  check.add(block);
+  return check.finish();
+}
+
+// The streamed check on files that are not what they should be: it counts what checkMesh counts
+// on the file read back whole, whatever its chunks and threads.
+void expectTheCheckOfTheFile(const std::string& path, const Grid& grid) {
+  const TriangleMesh verbatim = readMeshFileVerbatim(path);
+  ASSERT_GT(verbatim.triangles.size(), 3 * kMeasureBlock);  // chunks of one block: at least 4
   const MeshCheck whole = checkMesh(readMeshFileRaw(path));
-  EXPECT_EQ(whole.vertices, streamed.check.vertices);
-  EXPECT_EQ(whole.triangles, streamed.check.triangles);
-  EXPECT_EQ(whole.boundaryEdges, streamed.check.boundaryEdges);
-  EXPECT_EQ(whole.nonManifoldEdges, streamed.check.nonManifoldEdges);
-  EXPECT_EQ(whole.misorientedEdges, streamed.check.misorientedEdges);
-  EXPECT_EQ(whole.degenerateTriangles, streamed.check.degenerateTriangles);
-  EXPECT_EQ(whole.components, streamed.check.components);
-  EXPECT_EQ(whole.genus, streamed.check.genus);
-  EXPECT_EQ(whole.volume, streamed.check.volume);
-  EXPECT_EQ(whole.area, streamed.check.area);
+  const std::pair<size_t, int> runs[] = {{kMeasureBlock, 1}, {2 * kMeasureBlock, 3}, {0, 0}};
+  for (const auto& [chunk, threads] : runs) {
+    SCOPED_TRACE("chunks of " + std::to_string(chunk) + " facets on " + std::to_string(threads) +
+                 " threads");
+    const MeshCheck streamed = streamedCheckOf(verbatim, grid, chunk, threads);
+    EXPECT_EQ(whole.vertices, streamed.vertices);
+    EXPECT_EQ(whole.triangles, streamed.triangles);
+    EXPECT_EQ(whole.boundaryEdges, streamed.boundaryEdges);
+    EXPECT_EQ(whole.nonManifoldEdges, streamed.nonManifoldEdges);
+    EXPECT_EQ(whole.misorientedEdges, streamed.misorientedEdges);
+    EXPECT_EQ(whole.degenerateTriangles, streamed.degenerateTriangles);
+    EXPECT_EQ(whole.components, streamed.components);
+    EXPECT_EQ(whole.genus, streamed.genus);
+    EXPECT_EQ(whole.volume, streamed.volume);
+    EXPECT_EQ(whole.area, streamed.area);
+    EXPECT_EQ(whole.smallestTriangleArea, streamed.smallestTriangleArea);
+  }
 }
 
 // Rewrites an STL with facet `facet` changed by `change` (or left out when it returns false).
@@ -184,11 +206,16 @@ void rewriteStl(const std::string& from, const std::string& to, size_t facet,
   std::ofstream(to, std::ios::binary) << out;
 }
 
+// A box less a sphere and a ring, its eight slabs.
+Scene slabbedScene() {
+  return makeScene(
+      op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2), torus(0.9, 0.15, {0, 0, 0.7})}), 160);
+}
+
 // Without --tile: slabs of the whole x and y extent, eight of them here, the same bytes.
 TEST(StreamedExport, SlabsOfTheWholeCrossSectionGiveTheSameFile) {
   const std::string folder = freshFolder("slabs");
-  const Scene scene = makeScene(
-      op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2), torus(0.9, 0.15, {0, 0, 0.7})}), 160);
+  const Scene scene = slabbedScene();
   const auto backend = std::make_shared<CpuBackend>();
   const ExportTiling slabs = streamedTiling(scene, ExportOptions(), backend->memoryAvailable(),
                                             backend->offsetBytesPerNode());
@@ -230,49 +257,72 @@ TEST(StreamedExport, AGridThinnerThanATileIsStillSlabbed) {
 
 TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
   const std::string folder = freshFolder("check");
-  const Case c = cases()[0];
   const std::string good = folder + "/good.stl";
   Progress progress;
-  ExportOptions pieces;
-  pieces.tileCells = c.tile;
-  const ExportReport r =
-      exportSceneStreamed(c.scene, good, pieces, std::make_shared<CpuBackend>(), progress);
+  const ExportReport r = exportSceneStreamed(slabbedScene(), good, ExportOptions(),
+                                             std::make_shared<CpuBackend>(), progress);
   ASSERT_TRUE(r.passed());
-  const size_t middle = r.check.triangles / 2;
   {
     SCOPED_TRACE("as written");
     expectTheCheckOfTheFile(good, r.contour.grid);
   }
-  {
-    SCOPED_TRACE("a facet left out: a hole");
-    rewriteStl(good, folder + "/hole.stl", middle, [](std::string&) { return false; });
-    expectTheCheckOfTheFile(folder + "/hole.stl", r.contour.grid);
+  // In the middle, and at the first facet of a chunk and the last of the one before.
+  for (const size_t facet : {r.check.triangles / 2, kMeasureBlock, 2 * kMeasureBlock - 1}) {
+    SCOPED_TRACE("facet " + std::to_string(facet));
+    {
+      SCOPED_TRACE("left out: a hole");
+      rewriteStl(good, folder + "/hole.stl", facet, [](std::string&) { return false; });
+      expectTheCheckOfTheFile(folder + "/hole.stl", r.contour.grid);
+    }
+    {
+      SCOPED_TRACE("turned over");
+      rewriteStl(good, folder + "/turned.stl", facet, [](std::string& record) {
+        std::string b = record.substr(24, 12);  // corners 2 and 3 swapped
+        record.replace(24, 12, record.substr(36, 12));
+        record.replace(36, 12, b);
+        return true;
+      });
+      expectTheCheckOfTheFile(folder + "/turned.stl", r.contour.grid);
+    }
+    {
+      SCOPED_TRACE("twice");
+      std::string twice;
+      rewriteStl(good, folder + "/twice.stl", facet, [&](std::string& record) {
+        twice = record;
+        return true;
+      });
+      const std::string bytes = bytesOf(folder + "/twice.stl");
+      std::string out =
+          bytes.substr(0, 84 + 50 * (facet + 1)) + twice + bytes.substr(84 + 50 * (facet + 1));
+      const uint32_t count = uint32_t(r.check.triangles + 1);
+      std::memcpy(&out[80], &count, 4);
+      std::ofstream(folder + "/twice.stl", std::ios::binary) << out;
+      expectTheCheckOfTheFile(folder + "/twice.stl", r.contour.grid);
+    }
   }
-  {
-    SCOPED_TRACE("a facet turned over");
-    rewriteStl(good, folder + "/turned.stl", middle, [](std::string& record) {
-      std::string b = record.substr(24, 12);  // corners 2 and 3 swapped
-      record.replace(24, 12, record.substr(36, 12));
-      record.replace(36, 12, b);
-      return true;
-    });
-    expectTheCheckOfTheFile(folder + "/turned.stl", r.contour.grid);
-  }
-  {
-    SCOPED_TRACE("a facet twice");
-    std::string twice;
-    rewriteStl(good, folder + "/twice.stl", middle, [&](std::string& record) {
-      twice = record;
-      return true;
-    });
-    const std::string bytes = bytesOf(folder + "/twice.stl");
-    std::string out =
-        bytes.substr(0, 84 + 50 * (middle + 1)) + twice + bytes.substr(84 + 50 * (middle + 1));
-    const uint32_t count = uint32_t(r.check.triangles + 1);
-    std::memcpy(&out[80], &count, 4);
-    std::ofstream(folder + "/twice.stl", std::ios::binary) << out;
-    expectTheCheckOfTheFile(folder + "/twice.stl", r.contour.grid);
-  }
+}
+
+// The check's chunks measured on several threads at once and joined as they finish (CI runs this
+// one under ThreadSanitizer): the numbers of one chunk on one thread.
+TEST(StreamedExport, TheCheckOnThreadsCountsWhatOneThreadCounts) {
+  const std::string folder = freshFolder("threads");
+  const std::string path = folder + "/part.stl";
+  Progress progress;
+  const ExportReport r = exportSceneStreamed(slabbedScene(), path, ExportOptions(),
+                                             std::make_shared<CpuBackend>(), progress);
+  ASSERT_TRUE(r.passed());
+  const TriangleMesh verbatim = readMeshFileVerbatim(path);
+  ASSERT_GT(verbatim.triangles.size(), 3 * kMeasureBlock);
+  const MeshCheck one = streamedCheckOf(verbatim, r.contour.grid, 0, 1);
+  const MeshCheck many = streamedCheckOf(verbatim, r.contour.grid, kMeasureBlock, 3);
+  EXPECT_EQ(one.vertices, many.vertices);
+  EXPECT_EQ(one.boundaryEdges, many.boundaryEdges);
+  EXPECT_EQ(one.components, many.components);
+  EXPECT_EQ(one.genus, many.genus);
+  EXPECT_EQ(one.volume, many.volume);
+  EXPECT_EQ(one.area, many.area);
+  EXPECT_EQ(r.check.genus, many.genus);
+  EXPECT_EQ(r.check.vertices, many.vertices);
 }
 
 TEST(StreamedExport, RefusesWhatCannotBeWrittenInPieces) {
