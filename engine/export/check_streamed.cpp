@@ -191,6 +191,7 @@ class Window {
     int layer = 0;
     bool openStart = false;
     bool gone = false;            // let go (its key and openStart stay for its edges' owners)
+    bool leftEarly = false;       // let go before the window's last call (a chunk's end)
     SmallList<Edge, 4> edges;     // to larger-numbered vertices
     SmallList<uint32_t, 2> reps;  // a facet of each component around it (usually one)
   };
@@ -208,7 +209,7 @@ class Window {
       // An edge another chunk may also hold: both ends used before this chunk, or both after it.
       // Any other edge has all its half-edges here (an end used only here, or one end used only
       // before and the other only after: no other chunk holds both).
-      if (open && ((v.openStart && o.openStart) || (atEnd && !o.gone))) {
+      if (open && ((v.openStart && o.openStart) || (atEnd && !o.leftEarly))) {
         openEdges->push_back(OpenEdge{v.key, o.key, e.halves});
         continue;
       }
@@ -240,6 +241,7 @@ class Window {
     v.key = key;
     v.openStart = openStart;
     v.gone = true;
+    v.leftEarly = !atEnd;
   }
 
   UnionFind& sets_;

@@ -7,10 +7,11 @@
 // faces): a facet of edge layer E has its corners in layers E - 1 .. E + 1. Each chunk welds
 // identical positions (as checkMesh does) within a window of a few layers, matches each edge's
 // half-edges there, and lets a vertex and its edges go once the facets have moved kWindowLayers
-// past it. A vertex that may also be used by another chunk (one within kWindowLayers + 1 layers
-// above its chunk's first facet's lowest corner, or still in the window at the chunk's end) is
-// "open": it and the edges between open vertices are handed on, and a window of its own over
-// them, in chunk order, welds them by position across chunks and counts them. The result is
+// past it. A vertex that may also be used by another chunk (one at or below the highest layer
+// of any corner before the chunk, or still in the window at the chunk's end) is "open": it, and
+// each edge between two vertices open on the same side (both used before the chunk, or both
+// still there at its end), are handed on, and a window of its own over them, in chunk order,
+// welds them by position across chunks and counts them. The result is
 // what checkMesh computes on the file's mesh (mesh_check.h), the same numbers, whatever the
 // chunks: boundary, non-manifold and misoriented edges, degenerate triangles, edge-connected
 // components (union-find over the facets: 8 bytes a facet, the one array that grows with the

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <numeric>
+#include <random>
 #include <sstream>
 
 #include "engine/eval/cpu_backend.h"
@@ -302,6 +304,37 @@ TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
   }
 }
 
+// Chunks a few layers thick (a grid of three z layers over the whole part, its facets in a
+// shuffled order, which is then still "in layer order"): every vertex is open at both ends of
+// every chunk but the first's start, and the joining window counts them all.
+TEST(StreamedExport, TheCheckOfChunksAFewLayersThickCountsWhatTheWholeCheckCounts) {
+  const std::string folder = freshFolder("thin_chunks");
+  const std::string good = folder + "/good.stl";
+  Progress progress;
+  const ExportReport r = exportSceneStreamed(slabbedScene(), good, ExportOptions(),
+                                             std::make_shared<CpuBackend>(), progress);
+  ASSERT_TRUE(r.passed());
+  const std::string bytes = bytesOf(good);
+  std::vector<size_t> order(r.check.triangles);
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  std::string shuffled = bytes.substr(0, 84);
+  for (size_t f : order) shuffled += bytes.substr(84 + 50 * f, 50);
+  const std::string path = folder + "/shuffled.stl";
+  std::ofstream(path, std::ios::binary) << shuffled;
+  const TriangleMesh verbatim = readMeshFileVerbatim(path);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const glm::dvec3& p : verbatim.positions) {
+    lo = std::min(lo, p.z);
+    hi = std::max(hi, p.z);
+  }
+  Grid coarse = r.contour.grid;
+  coarse.h = 0.5001 * (hi - lo);
+  coarse.origin.z = lo - 0.0001 * (hi - lo);
+  coarse.cells.z = 2;
+  expectTheCheckOfTheFile(path, coarse);
+}
+
 // The check's chunks measured on several threads at once and joined as they finish (CI runs this
 // one under ThreadSanitizer): the numbers of one chunk on one thread.
 TEST(StreamedExport, TheCheckOnThreadsCountsWhatOneThreadCounts) {
@@ -316,11 +349,16 @@ TEST(StreamedExport, TheCheckOnThreadsCountsWhatOneThreadCounts) {
   const MeshCheck one = streamedCheckOf(verbatim, r.contour.grid, 0, 1);
   const MeshCheck many = streamedCheckOf(verbatim, r.contour.grid, kMeasureBlock, 3);
   EXPECT_EQ(one.vertices, many.vertices);
+  EXPECT_EQ(one.triangles, many.triangles);
   EXPECT_EQ(one.boundaryEdges, many.boundaryEdges);
+  EXPECT_EQ(one.nonManifoldEdges, many.nonManifoldEdges);
+  EXPECT_EQ(one.misorientedEdges, many.misorientedEdges);
+  EXPECT_EQ(one.degenerateTriangles, many.degenerateTriangles);
   EXPECT_EQ(one.components, many.components);
   EXPECT_EQ(one.genus, many.genus);
   EXPECT_EQ(one.volume, many.volume);
   EXPECT_EQ(one.area, many.area);
+  EXPECT_EQ(one.smallestTriangleArea, many.smallestTriangleArea);
   EXPECT_EQ(r.check.genus, many.genus);
   EXPECT_EQ(r.check.vertices, many.vertices);
 }
