@@ -257,12 +257,17 @@ TEST(StreamedExport, AGridThinnerThanATileIsStillSlabbed) {
   EXPECT_EQ(bytesOf(folder + "/whole.stl"), bytesOf(folder + "/streamed.stl"));
 }
 
+// slabbedScene exported in pieces to `path` on the CPU.
+ExportReport exportSlabbedScene(const std::string& path) {
+  Progress progress;
+  return exportSceneStreamed(slabbedScene(), path, ExportOptions(), std::make_shared<CpuBackend>(),
+                             progress);
+}
+
 TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
   const std::string folder = freshFolder("check");
   const std::string good = folder + "/good.stl";
-  Progress progress;
-  const ExportReport r = exportSceneStreamed(slabbedScene(), good, ExportOptions(),
-                                             std::make_shared<CpuBackend>(), progress);
+  const ExportReport r = exportSlabbedScene(good);
   ASSERT_TRUE(r.passed());
   {
     SCOPED_TRACE("as written");
@@ -310,9 +315,7 @@ TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
 TEST(StreamedExport, TheCheckOfChunksAFewLayersThickCountsWhatTheWholeCheckCounts) {
   const std::string folder = freshFolder("thin_chunks");
   const std::string good = folder + "/good.stl";
-  Progress progress;
-  const ExportReport r = exportSceneStreamed(slabbedScene(), good, ExportOptions(),
-                                             std::make_shared<CpuBackend>(), progress);
+  const ExportReport r = exportSlabbedScene(good);
   ASSERT_TRUE(r.passed());
   const std::string bytes = bytesOf(good);
   std::vector<size_t> order(r.check.triangles);
@@ -340,9 +343,7 @@ TEST(StreamedExport, TheCheckOfChunksAFewLayersThickCountsWhatTheWholeCheckCount
 TEST(StreamedExport, TheCheckOnThreadsCountsWhatOneThreadCounts) {
   const std::string folder = freshFolder("threads");
   const std::string path = folder + "/part.stl";
-  Progress progress;
-  const ExportReport r = exportSceneStreamed(slabbedScene(), path, ExportOptions(),
-                                             std::make_shared<CpuBackend>(), progress);
+  const ExportReport r = exportSlabbedScene(path);
   ASSERT_TRUE(r.passed());
   const TriangleMesh verbatim = readMeshFileVerbatim(path);
   ASSERT_GT(verbatim.triangles.size(), 3 * kMeasureBlock);
