@@ -133,6 +133,13 @@ class Window {
     return *id;
   }
 
+  // The vertex at `key`, which is here.
+  uint32_t idOf(const PositionKey& key) {
+    const uint32_t* id = ids_.find(key);
+    if (!id) throw Error("internal: the streamed check lost an open vertex");
+    return *id;
+  }
+
   // Half-edges `h` of the edge from vertex a to vertex b (a != b).
   void addHalfEdges(uint32_t a, uint32_t b, HalfEdges h) {
     if (a > b) {
@@ -450,7 +457,7 @@ struct StreamedMeshCheck::State {
     }
     // Both ends are among the open vertices just welded.
     for (const OpenEdge& e : r.openEdges)
-      joining.addHalfEdges(joining.weld(e.from, 0, false), joining.weld(e.to, 0, false), e.halves);
+      joining.addHalfEdges(joining.idOf(e.from), joining.idOf(e.to), e.halves);
     joining.evictBelow(r.front - kWindowLayers, nullptr, nullptr);
     counts.add(std::move(r.counts));
     // Chunks of whole blocks: summed as checkMesh sums them.
@@ -515,7 +522,7 @@ StreamedMeshCheck::~StreamedMeshCheck() {
     if (t.joinable()) t.join();
 }
 
-void StreamedMeshCheck::add(const std::vector<glm::vec3>& corners) {
+void StreamedMeshCheck::add(std::vector<glm::vec3> corners) {
   State& s = *state_;
   const size_t facets = corners.size() / 3;
   for (size_t at = 0; at < facets;) {
@@ -542,8 +549,13 @@ void StreamedMeshCheck::add(const std::vector<glm::vec3>& corners) {
       if (s.failure) return;
       take = std::min(facets - at, s.chunkFacets - s.filling->facets);
     }
-    std::vector<glm::vec3> block(corners.begin() + ptrdiff_t(3 * at),
-                                 corners.begin() + ptrdiff_t(3 * (at + take)));
+    // The whole block kept as it came where it lies in one chunk (the usual case), else a copy
+    // of its part in this chunk.
+    std::vector<glm::vec3> block =
+        at == 0 && take == facets
+            ? std::move(corners)
+            : std::vector<glm::vec3>(corners.begin() + ptrdiff_t(3 * at),
+                                     corners.begin() + ptrdiff_t(3 * (at + take)));
     int highest = s.highestLayer;
     for (const glm::vec3& c : block) highest = std::max(highest, layerOf(s.grid, double(c.z)));
     {

@@ -69,7 +69,7 @@ class StreamedMeshCheck {
   StreamedMeshCheck& operator=(const StreamedMeshCheck&) = delete;
   // A block of facets, three corners each as the file stores them (binary STL: float32). Waits
   // while as many chunks as allowed are held.
-  void add(const std::vector<glm::vec3>& corners);
+  void add(std::vector<glm::vec3> corners);
   // Waits for the measures; rethrows what stopped them (Cancelled included).
   MeshCheck finish();
 

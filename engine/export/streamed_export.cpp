@@ -585,8 +585,9 @@ class StreamedExportWriter::Impl {
         }
         ++written;
         if (block.size() >= kWriteBlock * kStlFacetBytes) {
-          measures->add(corners);
-          corners.clear();
+          measures->add(std::move(corners));
+          corners = std::vector<glm::vec3>();
+          corners.reserve(3 * kWriteBlock);
           out.write(block.data(), std::streamsize(block.size()));
           block.clear();
           progress_.report("write STL", double(written) / double(keptTriangles_));
@@ -606,7 +607,7 @@ class StreamedExportWriter::Impl {
           emit(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]));
         }
       });
-      measures->add(corners);
+      measures->add(std::move(corners));
       out.write(block.data(), std::streamsize(block.size()));
       if (written != keptTriangles_)
         throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +
