@@ -108,10 +108,6 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
         "--gpus and --distributed: a distributed export runs one backend per process "
         "(the processes of a host take its GPUs in turn); start one process per GPU");
   std::unique_ptr<ProcessGroup> group;
-  if (args.has("--stream") && args.has("--gpus"))
-    throw Error(
-        "--stream and --gpus: a streamed export contours its tiles on one backend (or one per "
-        "process with --distributed: start one process per GPU)");
   if (args.has("--distributed")) group = openMpiProcessGroup();
   const bool root = !group || group->rank() == 0;
   BackendChoice choice =
@@ -127,11 +123,18 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     if (!refusal.empty()) throw Error(output + ": " + refusal);
   }
 
+  // One process: its tiles on every worker --gpus asks for (one a CUDA device by default).
+  int perDevice = 1;
+  std::vector<std::shared_ptr<Backend>> workers{choice.backend};
+  if (!group)
+    workers = exportWorkers(choice, args.text("--gpus", "all"), args.has("--gpus"), &perDevice);
+
   if (root) {
     Progress probe;
     JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
     if (streamed) {
-      estimate.peakBytes = estimate.streamedPeakBytes;
+      estimate.peakBytes =
+          estimate.streamedPeakBytes + (workers.size() - 1) * estimate.streamedWorkerBytes;
       estimate.fileBytes += estimate.scratchBytes;
     }
     const glm::ivec3 c = estimate.grid.cells;
@@ -155,29 +158,20 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   summary.backend = choice.backend->description();
   summary.warnings = warnings;
   if (group) return exportDistributed(scene, args, output, options, choice, *group, summary);
-  if (streamed) {
-    summary.backend += ", streamed (--stream)";
-    TerminalProgress terminal(quietRequested(args));
-    summary.result = exportSceneStreamed(scene, output, options, choice.backend,
-                                         terminal.progress(), [&](const std::string& line) {
-                                           terminal.finish();
-                                           std::fprintf(stderr, "strata: %s\n", line.c_str());
-                                         });
-    return printExportSummary(args, summary);
-  }
-  int perDevice = 1;
-  const std::vector<std::shared_ptr<Backend>> workers =
-      exportWorkers(choice, args.text("--gpus", "all"), args.has("--gpus"), &perDevice);
   if (workers.size() > 1)
     summary.backend += ", " + std::to_string(workers.size()) + " workers (--gpus), up to " +
                        std::to_string(perDevice) + " a device";
+  if (streamed) summary.backend += ", streamed (--stream)";
   {
     TerminalProgress terminal(quietRequested(args));
-    summary.result = exportScene(scene, output, options, workers, perDevice, terminal.progress(),
-                                 [&](const std::string& line) {
-                                   terminal.finish();
-                                   std::fprintf(stderr, "strata: %s\n", line.c_str());
-                                 });
+    const FallbackNotice notice = [&](const std::string& line) {
+      terminal.finish();
+      std::fprintf(stderr, "strata: %s\n", line.c_str());
+    };
+    summary.result = streamed ? exportSceneStreamed(scene, output, options, workers, perDevice,
+                                                    terminal.progress(), notice)
+                              : exportScene(scene, output, options, workers, perDevice,
+                                            terminal.progress(), notice);
   }
   return printExportSummary(args, summary);
 }

@@ -48,7 +48,7 @@ const char* kUsageOptions =
     "                    (default all: one a device; more than the devices share them)\n"
     "  --stream          export, boolean -o to .stl: written in pieces (a slab of tiles at a\n"
     "                    time, through a scratch file beside the output), never holding the\n"
-    "                    mesh: for meshes larger than memory; the same bytes\n"
+    "                    mesh: for meshes larger than memory; the same bytes (--gpus too)\n"
     "  --distributed     export, boolean -o under mpirun: the tiles shared among the MPI\n"
     "                    processes, process 0 writes the file (the same bytes as one process)\n"
     "  --surfels F.ply   eval, boolean: write the result's surfels as a point cloud\n"

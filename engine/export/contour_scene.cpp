@@ -64,9 +64,8 @@ void contourOneTile(const Scene& scene, Evaluator& evaluator, const Grid& grid, 
   const TileWindow window = tileWindow(begin, end, grid.cells);
   const bool whole = window.first == glm::ivec3(0) && window.cells == grid.cells;
   const Grid tileGrid = whole ? grid : grid.window(window.first, window.cells);
-  const glm::ivec3 evalFirst = glm::max(window.first - halo, glm::ivec3(0));
-  const glm::ivec3 evalEnd = glm::min(window.first + window.cells + halo, grid.cells);
-  const Grid evalGrid = whole ? grid : grid.window(evalFirst, evalEnd - evalFirst);
+  const EvaluationWindow grown = evaluationWindow(grid, halo, begin, end);
+  const Grid evalGrid = whole ? grid : grid.window(grown.first, grown.end - grown.first);
   Stopwatch evaluate;
   if (r.tiles > 1 && !(evalGrid == *lastEvaluated)) {
     // Each tile has its own grid, so no cache entry serves another tile: keep none, so that
@@ -341,6 +340,25 @@ void addTileCounts(const ContourReport& from, ContourReport* into) {
   into->synthesizedCrossings += from.synthesizedCrossings;
   into->signDisagreements += from.signDisagreements;
   addWarnings(from.warnings, into);
+}
+
+EvaluationWindow evaluationWindow(const Grid& grid, int halo, const glm::ivec3& begin,
+                                  const glm::ivec3& end) {
+  const TileWindow window = tileWindow(begin, end, grid.cells);
+  EvaluationWindow w;
+  w.first = glm::max(window.first - halo, glm::ivec3(0));
+  w.end = glm::min(window.first + window.cells + halo, grid.cells);
+  return w;
+}
+
+double ExportTiling::evaluatedNodes() const {
+  double nodes = 0.0;
+  for (int t = 0; t < count(); ++t) {
+    const EvaluationWindow w = evaluationWindow(grid, halo, begin(t), end(t));
+    const glm::dvec3 n = glm::dvec3(w.end - w.first) + 1.0;
+    nodes += n.x * n.y * n.z;
+  }
+  return nodes;
 }
 
 int ExportTiling::count() const {

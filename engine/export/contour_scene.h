@@ -107,7 +107,17 @@ struct ExportTiling {
   // Tile t's owned cells [begin, end): tiles numbered x fastest, then y, then z.
   glm::ivec3 begin(int tile) const;
   glm::ivec3 end(int tile) const;
+  // The nodes every tile's evaluation samples, summed (evaluationWindow): the work a tiling
+  // costs beyond the grid's own nodes, in the halos its tiles share.
+  double evaluatedNodes() const;
 };
+// The cells tile [begin, end) of `grid` is evaluated on: its window (tileWindow: its cells and
+// a cell of its neighbours') grown by `halo` cells on every side, within the grid; [first, end).
+struct EvaluationWindow {
+  glm::ivec3 first{0}, end{0};
+};
+EvaluationWindow evaluationWindow(const Grid& grid, int halo, const glm::ivec3& begin,
+                                  const glm::ivec3& end);
 // The tiling of an export with `options` on a backend with `memoryBytes` free whose offsets
 // hold `offsetBytesPerNode` (exportTileCells).
 // A scene with modifiers is tiled too: each tile is evaluated on its window grown by the

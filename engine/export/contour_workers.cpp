@@ -1,94 +1,124 @@
 #include "engine/export/contour_workers.h"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "engine/util/error.h"
 
 namespace strata {
+
+TileWorkers::TileWorkers(const Scene& scene, const std::vector<std::shared_ptr<Backend>>& backends,
+                         const ExportTiling& tiling, Progress& progress,
+                         const FallbackNotice& notice, MayTake mayTake, TileDone tileDone)
+    : scene_(scene),
+      backends_(backends),
+      tiling_(tiling),
+      progress_(progress),
+      stop_(&progress),
+      notice_(notice),
+      mayTake_(std::move(mayTake)),
+      tileDone_(std::move(tileDone)),
+      taken_(new std::atomic<bool>[size_t(std::max(1, tiling.count()))]),
+      reports_(backends.size()),
+      contours_(backends.size()) {
+  if (backends_.empty()) throw Error("internal: an export on no backend");
+  for (int t = 0; t < tiling_.count(); ++t) taken_[size_t(t)] = false;
+  for (size_t w = 0; w < backends_.size(); ++w) threads_.emplace_back([this, w] { work(w); });
+}
+
+TileWorkers::~TileWorkers() {
+  stop();
+  for (auto& t : threads_)
+    if (t.joinable()) t.join();
+}
+
+void TileWorkers::work(size_t w) {
+  // The worker's own progress: its evaluations' stages are not the export's; it stops with the
+  // export, or when another worker failed.
+  Progress workerProgress(&stop_);
+  int pending = -1;  // a tile this worker took and has not finished
+  const auto claim = [&](int t) {
+    workerProgress.check();
+    if (t == pending) return true;  // the tile again, on the CPU after running out of memory
+    if (taken_[size_t(t)].load()) return false;
+    if (mayTake_) mayTake_(t, workerProgress);
+    workerProgress.check();
+    bool expected = false;
+    if (!taken_[size_t(t)].compare_exchange_strong(expected, true)) return false;
+    pending = t;
+    return true;
+  };
+  std::vector<TileContour>& mine = contours_[w];
+  const auto finished = [&](int t) {
+    pending = -1;
+    if (tileDone_) {
+      std::vector<TileContour> tile = std::move(mine);
+      mine.clear();
+      tileDone_(t, std::move(tile));
+    }
+    progress_.report("export", double(++done_) / tiling_.count());
+  };
+  const FallbackNotice said = [&](const std::string& line) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (notice_) notice_(line);
+  };
+  try {
+    contourTilesWithFallback(scene_, backends_[w], tiling_, claim, workerProgress, reports_[w],
+                             &mine, said, finished);
+  } catch (...) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!failure_ && !progress_.cancelled()) failure_ = std::current_exception();
+    }
+    stop();
+  }
+}
+
+void TileWorkers::join(ContourReport* report, std::vector<TileContour>* contours) {
+  for (auto& t : threads_) t.join();
+  if (progress_.cancelled()) throw Cancelled();
+  if (failure_) std::rethrow_exception(failure_);
+  ContourReport& r = *report;
+  r.grid = tiling_.grid;
+  r.tileCells = tiling_.tileCells;
+  r.tiles = tiling_.count();
+  for (size_t w = 0; w < backends_.size(); ++w) {
+    const ContourReport& wr = reports_[w];
+    // Evaluate and contour: the longest worker's (the wall time of that part of the export).
+    r.evaluateSeconds = std::max(r.evaluateSeconds, wr.evaluateSeconds);
+    r.contourSeconds = std::max(r.contourSeconds, wr.contourSeconds);
+    addTileCounts(wr, &r);
+    for (TileContour& t : contours_[w]) contours->push_back(std::move(t));
+    contours_[w].clear();
+  }
+}
+
+WorkersMemory workersMemory(const std::vector<std::shared_ptr<Backend>>& backends,
+                            int workersPerMemory) {
+  if (backends.empty()) throw Error("internal: an export on no backend");
+  WorkersMemory m;
+  m.bytes = backends[0]->memoryAvailable();
+  for (const auto& b : backends) {
+    m.bytes = std::min(m.bytes, b->memoryAvailable());
+    m.offsetBytesPerNode = std::max(m.offsetBytesPerNode, b->offsetBytesPerNode());
+  }
+  m.bytes /= uint64_t(std::max(1, workersPerMemory));
+  return m;
+}
 
 ExportMesh contourSceneOnWorkers(const Scene& scene,
                                  const std::vector<std::shared_ptr<Backend>>& backends,
                                  const ContourOptions& options, int workersPerMemory,
                                  Progress& progress, ContourReport* report,
                                  const FallbackNotice& notice) {
-  if (backends.empty()) throw Error("internal: an export on no backend");
   ContourReport local;
   ContourReport& r = report ? *report : local;
   r = ContourReport();
-  uint64_t memory = backends[0]->memoryAvailable(), perNode = 0;
-  for (const auto& b : backends) {
-    memory = std::min(memory, b->memoryAvailable());
-    perNode = std::max(perNode, b->offsetBytesPerNode());
-  }
-  const ExportTiling tiling =
-      exportTiling(scene, options, memory / uint64_t(std::max(1, workersPerMemory)), perNode);
-  const int count = tiling.count();
-  std::unique_ptr<std::atomic<bool>[]> taken(new std::atomic<bool>[size_t(count)]);
-  for (int t = 0; t < count; ++t) taken[size_t(t)] = false;
-  std::atomic<int> done{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;  // guards failure and notice
-  std::exception_ptr failure;
-  const size_t workers = backends.size();
-  std::vector<ContourReport> reports(workers);
-  std::vector<std::vector<TileContour>> tiles(workers);
-
-  const auto work = [&](size_t w) {
-    // The worker's own progress: its evaluations' stages are not the export's; it stops when the
-    // export is cancelled.
-    Progress workerProgress([&](const std::string&, double) {
-      if (progress.cancelled() || stop) workerProgress.cancel();
-    });
-    int pending = -1;  // a tile this worker took and has not finished
-    const auto claim = [&](int t) {
-      if (progress.cancelled() || stop) workerProgress.cancel();
-      if (t == pending) return true;
-      bool expected = false;
-      if (!taken[size_t(t)].compare_exchange_strong(expected, true)) return false;
-      pending = t;
-      return true;
-    };
-    const auto finished = [&](int) {
-      pending = -1;
-      progress.report("export", double(++done) / count);
-    };
-    // Fallback notices from any worker, one at a time.
-    const FallbackNotice said = [&](const std::string& line) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (notice) notice(line);
-    };
-    try {
-      contourTilesWithFallback(scene, backends[w], tiling, claim, workerProgress, reports[w],
-                               &tiles[w], said, finished);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!failure) failure = std::current_exception();
-      stop = true;
-    }
-  };
-  std::vector<std::thread> threads;
-  for (size_t w = 1; w < workers; ++w) threads.emplace_back(work, w);
-  work(0);
-  for (auto& t : threads) t.join();
-  if (progress.cancelled()) throw Cancelled();
-  if (failure) std::rethrow_exception(failure);
-
-  r.grid = tiling.grid;
-  r.tileCells = tiling.tileCells;
-  r.tiles = count;
+  const WorkersMemory memory = workersMemory(backends, workersPerMemory);
+  const ExportTiling tiling = exportTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
   std::vector<TileContour> all;
-  for (size_t w = 0; w < workers; ++w) {
-    const ContourReport& wr = reports[w];
-    // Evaluate and contour: the longest worker's (the wall time of that part of the export).
-    r.evaluateSeconds = std::max(r.evaluateSeconds, wr.evaluateSeconds);
-    r.contourSeconds = std::max(r.contourSeconds, wr.contourSeconds);
-    addTileCounts(wr, &r);
-    for (TileContour& t : tiles[w]) all.push_back(std::move(t));
-    tiles[w].clear();
+  {
+    TileWorkers workers(scene, backends, tiling, progress, notice);
+    workers.join(&r, &all);
   }
   return meshFromTiles(scene, std::move(all), progress, r);
 }

@@ -227,8 +227,8 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   e.peakBytes =
       present + uint64_t(tileBytes + offsetBytes + double(e.triangles) * kExportBytesPerTriangle);
-  // Streamed: its own tiling (streamedTiling), a slab's tiles' arrays and piece at a time
-  // (where it has none, the whole export's figures).
+  // Streamed: its own tiling (streamedTiling), the tiles' arrays and piece of the slab being
+  // merged and a worker's slab ahead of it (where it has no slabs, the whole export's figures).
   ExportTiling streamedTiles = tiling;
   try {
     streamedTiles =
@@ -237,10 +237,14 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   const double slabs = double(std::max(1, streamedTiles.counts.z));
   const double streamedScale = tiles / double(std::max(1, streamedTiles.count()));
-  e.streamedPeakBytes =
-      present +
+  // A worker's share: the tile it evaluates, and the tiles of the slab it contours ahead of
+  // the one being merged (streamedSlabsAhead: one slab a worker).
+  e.streamedWorkerBytes =
       uint64_t(ldiBytes / tiles * streamedScale + offsetBytes +
-               double(e.triangles) * ((kTileBytesPerTriangle + kExportBytesPerTriangle) / slabs +
+               double(e.triangles) * kTileBytesPerTriangle / slabs * double(streamedSlabsAhead(1)));
+  e.streamedPeakBytes =
+      present + e.streamedWorkerBytes +
+      uint64_t(double(e.triangles) * ((kTileBytesPerTriangle + kExportBytesPerTriangle) / slabs +
                                       kStreamedBytesPerTriangle)) +
       streamedCheckBytes(e.grid, e.triangles);
   e.scratchBytes = uint64_t(double(e.triangles) * kScratchBytesPerTriangle);

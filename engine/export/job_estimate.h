@@ -39,8 +39,11 @@ struct JobEstimate {
   uint64_t triangles = 0;  // export only
   uint64_t peakBytes = 0;  // host memory at the peak, the process's present use included
   uint64_t fileBytes = 0;  // export only: the written file
-  // Export only: the same written in pieces (streamed_export.h): its peak, and its scratch file.
+  // Export only: the same written in pieces (streamed_export.h) on one backend: its peak, and
+  // its scratch file; each further worker (--gpus) holds streamedWorkerBytes more (its tile's
+  // share of the work and the tiles of the slab it contours ahead of the merge).
   uint64_t streamedPeakBytes = 0;
+  uint64_t streamedWorkerBytes = 0;
   uint64_t scratchBytes = 0;
   double seconds = 0.0;  // wall time of the job on this backend
   bool probed = false;   // false: the job is no bigger than the probe; only grid and tiles set

@@ -9,9 +9,12 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -19,6 +22,7 @@
 #include "engine/export/check_streamed.h"
 #include "engine/export/check_written.h"
 #include "engine/export/contour_scene.h"
+#include "engine/export/contour_workers.h"
 #include "engine/export/drop_specks.h"
 #include "engine/export/fallback.h"
 #include "engine/export/unfold_shells.h"
@@ -678,8 +682,15 @@ ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, u
   depth = std::min(depth, int(indexable) - 2 * cubes.halo - 2);
   if (depth < kMinStreamedTile) return cubes;
   // (A side under 8 cells is a tile's least: the tile then reaches past the grid there.)
-  return exportTilingOfSize(scene, options,
-                            glm::ivec3(std::max(g.cells.x, 8), std::max(g.cells.y, 8), depth));
+  const ExportTiling slabs = exportTilingOfSize(
+      scene, options, glm::ivec3(std::max(g.cells.x, 8), std::max(g.cells.y, 8), depth));
+  // Where the modifiers' halo makes thin slabs evaluate more (each slab's window grown by it
+  // along z: twice the halo over a slab's depth), cubes no larger than the export's in at least
+  // kStreamedSlabs layers (a layer of them holds no more of the mesh than a slab) where they
+  // evaluate fewer nodes.
+  const int edge = std::min(cubes.tileCells, (g.cells.z + kStreamedSlabs - 1) / kStreamedSlabs);
+  const ExportTiling layers = exportTilingOfSize(scene, options, glm::ivec3(edge));
+  return layers.evaluatedNodes() < slabs.evaluatedNodes() ? layers : slabs;
 }
 
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {
@@ -691,31 +702,70 @@ std::string streamedExportRefusal(const std::string& path, const ExportOptions& 
   return "";
 }
 
+int streamedSlabsAhead(int workers) {
+  return std::max(1, workers);
+}
+
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
                                  const ExportOptions& options, std::shared_ptr<Backend> backend,
                                  Progress& progress, const FallbackNotice& notice) {
+  return exportSceneStreamed(scene, path, options, {std::move(backend)}, 1, progress, notice);
+}
+
+ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
+                                 const ExportOptions& options,
+                                 const std::vector<std::shared_ptr<Backend>>& backends,
+                                 int workersPerMemory, Progress& progress,
+                                 const FallbackNotice& notice) {
   ExportReport report;
+  const WorkersMemory memory = workersMemory(backends, workersPerMemory);
   const ExportTiling tiling =
-      streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+      streamedTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
   StreamedExportWriter writer(scene, path, options, tiling, progress, &report);
-  // The tiles in order (each evaluated on its own window; a backend that cannot evaluate the
-  // modifiers or runs out of memory hands the tiles left to the CPU: fallback.h), each slab to
-  // the writer as its last tile is done.
-  const int perSlab = tiling.counts.x * tiling.counts.y;
-  std::vector<TileContour> tiles;
-  contourTilesWithFallback(
-      scene, std::move(backend), tiling, [](int) { return true; }, progress, report.contour, &tiles,
+  // The workers contour the tiles (each on its own window; a backend that cannot evaluate the
+  // modifiers or runs out of memory hands its tiles left to the CPU: fallback.h) at most
+  // `ahead` slabs past the last slab handed to the writer, which merges it meanwhile on this
+  // thread.
+  const int perSlab = tiling.counts.x * tiling.counts.y, slabs = tiling.counts.z;
+  const int ahead = streamedSlabsAhead(int(backends.size()));
+  std::mutex mutex;  // guards the three below
+  std::condition_variable changed;
+  std::vector<std::vector<TileContour>> slabTiles(static_cast<size_t>(slabs));
+  std::vector<int> slabDone(size_t(slabs), 0);
+  int handed = 0;                                   // slabs handed to the writer
+  const auto poll = std::chrono::milliseconds(50);  // for a cancel or a failure, not notified
+  TileWorkers workers(
+      scene, backends, tiling, progress,
       [&](const std::string& line) {
-        report.notices.push_back(line);
+        report.notices.push_back(line);  // the workers call it one at a time
         if (notice) notice(line);
       },
-      [&](int t) {
-        progress.report("export", double(t + 1) / double(tiling.count()));
-        if ((t + 1) % perSlab != 0) return;
-        std::vector<TileContour> slab = std::move(tiles);
-        tiles.clear();
-        writer.addSlab(t / perSlab, std::move(slab));
+      [&](int t, const Progress& stopping) {
+        std::unique_lock<std::mutex> lock(mutex);
+        while (t / perSlab >= handed + ahead && !stopping.cancelled()) changed.wait_for(lock, poll);
+      },
+      [&](int t, std::vector<TileContour> contours) {
+        std::lock_guard<std::mutex> lock(mutex);
+        std::vector<TileContour>& slab = slabTiles[size_t(t / perSlab)];
+        for (TileContour& c : contours) slab.push_back(std::move(c));
+        ++slabDone[size_t(t / perSlab)];
+        changed.notify_all();
       });
+  for (int z = 0; z < slabs; ++z) {
+    std::vector<TileContour> slab;
+    {
+      std::unique_lock<std::mutex> lock(mutex);
+      while (slabDone[size_t(z)] < perSlab && !workers.stopping()) changed.wait_for(lock, poll);
+      if (slabDone[size_t(z)] < perSlab) break;  // stopped: join() says why
+      slab = std::move(slabTiles[size_t(z)]);
+      handed = z + 1;
+    }
+    changed.notify_all();
+    writer.addSlab(z, std::move(slab));  // a throw stops and joins the workers
+  }
+  std::vector<TileContour> unhanded;
+  workers.join(&report.contour, &unhanded);
+  if (!unhanded.empty()) throw Error(path + ": internal: tiles left out of the streamed export");
   writer.finish();
   return report;
 }

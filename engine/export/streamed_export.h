@@ -15,7 +15,8 @@
 // flawed triangles, grown until it holds every triangle around each corner the repair reads),
 // then write the file a piece at a time. The file is the single-process export's, byte for byte.
 //
-// Memory: one slab's tiles and piece (streamedTiling below) plus about 8 bytes a vertex of the
+// Memory: the tiles and piece of the slab being merged (streamedTiling below), the tiles of the
+// slabs the workers contour meanwhile (streamedSlabsAhead), plus about 8 bytes a vertex of the
 // whole mesh (sets and counts) and, for the check, 8 bytes a triangle; disk: the scratch file,
 // about 36 bytes a triangle, beside the output.
 //
@@ -24,8 +25,9 @@
 // checkMesh would, on a thread of its own as they are written, and then reads the file back in
 // pieces to compare its fingerprint with the one accumulated while writing.
 //
-// Synchronous; one backend; progress stages "export" (a step per tile), "merge" (the passes
-// over the pieces), "write STL" and "check", checked between and within them. Throws
+// Synchronous (the tiles contoured on worker threads, a slab or so ahead of the merge on the
+// calling thread: exportSceneStreamed below); progress stages "export" (a step per tile), "merge"
+// (the passes over the pieces), "write STL" and "check", checked between and within them. Throws
 // strata::Error naming `path`, or Cancelled; the file is written atomically (nothing is replaced
 // unless the write completes).
 #pragma once
@@ -47,7 +49,10 @@ namespace strata {
 // kStreamedSlabs of them, each window holding no more nodes than a tile of exportTiling's (what
 // the backend's memory allows) and its cells indexed in 32 bits; exportTiling's cubes where
 // such slabs would be thinner than kMinStreamedTile cells, or where options.tileCells sets the
-// tile. A slab's tiles and piece are what the export holds at once.
+// tile; cubes no larger than exportTiling's in at least kStreamedSlabs layers where the slabs'
+// windows would evaluate more nodes (ExportTiling::evaluatedNodes: a modifier's halo around
+// thin slabs). A slab's tiles and piece are what the export
+// holds at once.
 constexpr int kStreamedSlabs = 8;
 constexpr int kMinStreamedTile = 16;
 ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
@@ -77,9 +82,22 @@ class StreamedExportWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// `notice` (may be empty): a line for the user each time a fallback is taken (fallback.h: the
-// tiles left go on on the CPU when the backend runs out of memory or cannot evaluate the
-// scene's modifiers), also kept in the report's notices.
+// How many slabs the workers contour ahead of the one the writer merges: one a worker (each
+// holds its slab's tiles until the writer takes them; the estimate counts them).
+int streamedSlabsAhead(int workers);
+
+// The export on `backends`, one worker thread each (contour_workers.h: TileWorkers;
+// `workersPerMemory` of them share one backend's memory), while the calling thread merges each
+// slab as its last tile comes in: the same file as on one backend. `notice` (may be empty): a
+// line for the user each time a fallback is taken (fallback.h: the tiles left go on on the CPU
+// when a backend runs out of memory or cannot evaluate the scene's modifiers), also kept in the
+// report's notices; called from the workers, one call at a time.
+ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
+                                 const ExportOptions& options,
+                                 const std::vector<std::shared_ptr<Backend>>& backends,
+                                 int workersPerMemory, Progress& progress,
+                                 const FallbackNotice& notice = {});
+// The same on one backend.
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
                                  const ExportOptions& options, std::shared_ptr<Backend> backend,
                                  Progress& progress, const FallbackNotice& notice = {});

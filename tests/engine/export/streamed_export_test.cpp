@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -143,6 +144,90 @@ TEST(StreamedExport, WritesTheSingleProcessFileByteForByte) {
   EXPECT_EQ(entriesIn(folder), 2 * cases().size());  // no scratch file left behind
 }
 
+// A box less a sphere and a ring, its eight slabs.
+Scene slabbedScene() {
+  return makeScene(
+      op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2), torus(0.9, 0.15, {0, 0, 0.7})}), 160);
+}
+
+std::vector<std::shared_ptr<Backend>> cpuBackends(int n) {
+  std::vector<std::shared_ptr<Backend>> b;
+  for (int i = 0; i < n; ++i) b.push_back(std::make_shared<CpuBackend>());
+  return b;
+}
+
+// On several workers (--gpus), the slabs' tiles contoured ahead of the merge in whatever order
+// the workers finish them: the same file as on one backend; in cubes of a few cells (many tiles
+// a slab) and in slabs of the grid's whole cross-section (a tile a slab).
+TEST(StreamedExport, OnSeveralWorkersWritesTheFileOfOne) {
+  const std::string folder = freshFolder("workers");
+  std::vector<Case> all = cases();
+  all.push_back({"slabbed", slabbedScene(), 0});  // slabs of the whole cross-section
+  for (const Case& c : all) {
+    SCOPED_TRACE(c.name);
+    ExportOptions pieces;
+    pieces.tileCells = c.tile;
+    const std::string one = folder + "/one.stl", three = folder + "/three.stl";
+    Progress progress;
+    const ExportReport a = exportSceneStreamed(c.scene, one, pieces, cpuBackends(1), 1, progress);
+    const ExportReport b = exportSceneStreamed(c.scene, three, pieces, cpuBackends(3), 3, progress);
+    EXPECT_GE(b.contour.grid.cells.z / b.contour.tileCells, 2);  // several slabs (most: > 3)
+    EXPECT_EQ(a.contour.tiles, b.contour.tiles);
+    EXPECT_EQ(a.contour.surfels, b.contour.surfels);
+    EXPECT_TRUE(b.passed());
+    EXPECT_EQ(a.check.triangles, b.check.triangles);
+    EXPECT_EQ(bytesOf(one), bytesOf(three));
+  }
+  EXPECT_EQ(entriesIn(folder), 2u);
+}
+
+// A CPU backend whose sampling fails (not for memory) from its `failAt`-th call on.
+class FailingBackend : public CpuBackend {
+ public:
+  explicit FailingBackend(int failAt) : failAt_(failAt) {}
+  std::string description() const override { return "failing test backend"; }
+  LdiHandle sampleMesh(const TriangleMesh& mesh, const glm::dmat4& objectToWorld, const Grid& grid,
+                       uint32_t leafId, Progress& progress) override {
+    if (++calls_ >= failAt_) throw Error("pretend: the device was lost");
+    return CpuBackend::sampleMesh(mesh, objectToWorld, grid, leafId, progress);
+  }
+
+ private:
+  const int failAt_;
+  std::atomic<int> calls_{0};
+};
+
+// A worker that fails, or a cancel while the workers contour and the writer merges: every
+// worker stops, the failure (or Cancelled) comes out, and nothing is left in the folder.
+TEST(StreamedExport, AFailedWorkerOrACancelStopsTheWholeExport) {
+  const std::string folder = freshFolder("worker_failure");
+  ExportOptions pieces;
+  pieces.tileCells = 8;
+  const Scene scene = cases()[0].scene;
+  {
+    std::vector<std::shared_ptr<Backend>> backends = cpuBackends(2);
+    backends.push_back(std::make_shared<FailingBackend>(7));
+    Progress progress;
+    try {
+      exportSceneStreamed(scene, folder + "/part.stl", pieces, backends, 3, progress);
+      ADD_FAILURE() << "no failure came out";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("the device was lost"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(entriesIn(folder), 0u);
+  {
+    // Half the tiles done: the first slabs handed to the writer, the workers on the next.
+    Progress progress([&](const std::string& stage, double f) {
+      if (stage == "export" && f > 0.5) progress.cancel();
+    });
+    EXPECT_THROW(
+        exportSceneStreamed(scene, folder + "/part.stl", pieces, cpuBackends(3), 3, progress),
+        Cancelled);
+  }
+  EXPECT_EQ(entriesIn(folder), 0u);
+}
+
 // The streamed check of the facets of `verbatim` fed in blocks of 10,000, in chunks of
 // `chunkFacets` on `threads` threads.
 MeshCheck streamedCheckOf(const TriangleMesh& verbatim, const Grid& grid, size_t chunkFacets,
@@ -208,12 +293,6 @@ void rewriteStl(const std::string& from, const std::string& to, size_t facet,
   std::ofstream(to, std::ios::binary) << out;
 }
 
-// A box less a sphere and a ring, its eight slabs.
-Scene slabbedScene() {
-  return makeScene(
-      op(NodeKind::Difference, {box({2, 2, 2}), sphere(1.2), torus(0.9, 0.15, {0, 0, 0.7})}), 160);
-}
-
 // Without --tile: slabs of the whole x and y extent, eight of them here, the same bytes.
 TEST(StreamedExport, SlabsOfTheWholeCrossSectionGiveTheSameFile) {
   const std::string folder = freshFolder("slabs");
@@ -233,6 +312,40 @@ TEST(StreamedExport, SlabsOfTheWholeCrossSectionGiveTheSameFile) {
   EXPECT_TRUE(b.passed());
   EXPECT_EQ(a.check.genus, b.check.genus);
   EXPECT_EQ(bytesOf(folder + "/whole.stl"), bytesOf(folder + "/streamed.stl"));
+}
+
+// Where a modifier's halo would grow thin slabs' windows severalfold along z, the streamed
+// export takes cubes in at least kStreamedSlabs layers when they evaluate fewer nodes (the
+// rebuilt bone scaffold at 4096 cells on the H200: 121 slabs, evaluate 20.7 s; 128 cubes,
+// 6.4 s); without a halo, slabs. Figures only: the cubes' file is --tile's, tested above.
+TEST(StreamedExport, AHaloThatWouldSwellThinSlabsGivesCubesInLayers) {
+  const NodePtr block = box({1.8, 1.6, 4});  // the scaffold's proportions
+  const Scene thick = makeScene(modifier(NodeKind::Offset, 0.03, {block}), 4096);
+  const Scene plain = makeScene(block, 4096);
+  const CpuBackend cpu;
+  const uint64_t memory = uint64_t(40) << 30;
+  const ExportTiling chosen =
+      streamedTiling(thick, ExportOptions(), memory, cpu.offsetBytesPerNode());
+  ASSERT_GT(chosen.halo, 16);
+  const glm::ivec3 cells = chosen.grid.cells;
+  EXPECT_LT(chosen.size.x, cells.x);  // cubes, not slabs of the whole cross-section
+  EXPECT_EQ(chosen.size.x, chosen.size.z);
+  EXPECT_GE(chosen.counts.z, kStreamedSlabs);
+  // The slabs the memory allows (windows no larger than the export's cubes'): thin, and they
+  // would have evaluated more.
+  const ExportTiling cubes = exportTiling(thick, ExportOptions(), memory, cpu.offsetBytesPerNode());
+  const double cube = std::pow(double(cubes.tileCells + 2 * cubes.halo + 3), 3.0);
+  const int depth = int(cube / (double(cells.x + 3) * double(cells.y + 3))) - 2 * cubes.halo - 3;
+  ASSERT_GE(depth, kMinStreamedTile);
+  ASSERT_LT(depth, 2 * chosen.halo);  // windows of about three slabs' depth
+  const ExportTiling slabs = exportTilingOfSize(thick, ExportOptions(), {cells.x, cells.y, depth});
+  EXPECT_LT(chosen.evaluatedNodes(), 0.6 * slabs.evaluatedNodes());  // 0.48 when written
+  // Without the halo: slabs of the whole cross-section.
+  const ExportTiling plainChosen =
+      streamedTiling(plain, ExportOptions(), memory, cpu.offsetBytesPerNode());
+  EXPECT_EQ(plainChosen.size.x, plainChosen.grid.cells.x);
+  EXPECT_EQ(plainChosen.size.y, plainChosen.grid.cells.y);
+  EXPECT_GE(plainChosen.counts.z, kStreamedSlabs);
 }
 
 // A grid fewer than 8 cells across (a thin plate): its slabs reach past the grid there, and the
