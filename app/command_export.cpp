@@ -132,20 +132,19 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   if (root) {
     Progress probe;
     JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
+    const uint64_t streamedPeak = streamedPeakOnWorkers(estimate, int(workers.size()));
     if (streamed) {
-      estimate.peakBytes =
-          estimate.streamedPeakBytes + (workers.size() - 1) * estimate.streamedWorkerBytes;
+      estimate.peakBytes = streamedPeak;
       estimate.fileBytes += estimate.scratchBytes;
     }
     const glm::ivec3 c = estimate.grid.cells;
     // Where the mesh would not fit but its pieces would: say so.
     std::string otherWay;
     if (!streamed && estimate.probed && streamedExportRefusal(output, options).empty() &&
-        estimate.peakBytes > jobMemoryBytes(args) &&
-        estimate.streamedPeakBytes <= jobMemoryBytes(args))
-      otherWay = ", write it in pieces with --stream (about " +
-                 bytesText(double(estimate.streamedPeakBytes)) + " of memory and a " +
-                 bytesText(double(estimate.scratchBytes)) + " scratch file beside it)";
+        estimate.peakBytes > jobMemoryBytes(args) && streamedPeak <= jobMemoryBytes(args))
+      otherWay = ", write it in pieces with --stream (about " + bytesText(double(streamedPeak)) +
+                 " of memory and a " + bytesText(double(estimate.scratchBytes)) +
+                 " scratch file beside it)";
     tellOrRefuseEstimate(estimate, args,
                          "export of " + input + " at " +
                              std::to_string(std::max(c.x, std::max(c.y, c.z))) + " cells",

@@ -9,6 +9,7 @@ namespace strata {
 TerminalProgress::TerminalProgress(bool quiet)
     : progress_([this, quiet](const std::string& stage, double fraction) {
         if (quiet || !isatty(STDERR_FILENO)) return;
+        std::lock_guard<std::mutex> lock(mutex_);
         const int width = 30;
         int filled = int(fraction * width + 0.5);
         std::fprintf(stderr, "\r%-10s [", stage.c_str());
@@ -23,6 +24,7 @@ TerminalProgress::~TerminalProgress() {
 }
 
 void TerminalProgress::finish() {
+  std::lock_guard<std::mutex> lock(mutex_);
   if (drawn_) std::fprintf(stderr, "\r%70s\r", "");
   drawn_ = false;
 }

@@ -2,6 +2,8 @@
 // command line.
 #pragma once
 
+#include <mutex>
+
 #include "app/signal_cancellation.h"
 #include "engine/util/progress.h"
 
@@ -16,12 +18,13 @@ class TerminalProgress {
   explicit TerminalProgress(bool quiet);
   ~TerminalProgress();
   Progress& progress() { return progress_; }
-  // Clears the bar line (call before printing results).
+  // Clears the bar line (call before printing results). Any thread (a worker's notice).
   void finish();
 
  private:
-  Progress progress_;
+  std::mutex mutex_;  // guards drawn_ and the bar's line: drawn and cleared from any thread
   bool drawn_ = false;
+  Progress progress_;
   CancellableScope cancellable_{progress_};
 };
 

@@ -22,7 +22,13 @@ TileWorkers::TileWorkers(const Scene& scene, const std::vector<std::shared_ptr<B
       contours_(backends.size()) {
   if (backends_.empty()) throw Error("internal: an export on no backend");
   for (int t = 0; t < tiling_.count(); ++t) taken_[size_t(t)] = false;
-  for (size_t w = 0; w < backends_.size(); ++w) threads_.emplace_back([this, w] { work(w); });
+  try {
+    for (size_t w = 0; w < backends_.size(); ++w) threads_.emplace_back([this, w] { work(w); });
+  } catch (...) {  // a thread that could not start: the others stopped before this throws
+    stop();
+    for (auto& t : threads_) t.join();
+    throw;
+  }
 }
 
 TileWorkers::~TileWorkers() {
@@ -86,6 +92,8 @@ void TileWorkers::join(ContourReport* report, std::vector<TileContour>* contours
     // Evaluate and contour: the longest worker's (the wall time of that part of the export).
     r.evaluateSeconds = std::max(r.evaluateSeconds, wr.evaluateSeconds);
     r.contourSeconds = std::max(r.contourSeconds, wr.contourSeconds);
+    r.modifySeconds = std::max(r.modifySeconds, wr.modifySeconds);
+    r.modifiedNodes += wr.modifiedNodes;
     addTileCounts(wr, &r);
     for (TileContour& t : contours_[w]) contours->push_back(std::move(t));
     contours_[w].clear();

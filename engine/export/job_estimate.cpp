@@ -237,13 +237,14 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   const double slabs = double(std::max(1, streamedTiles.counts.z));
   const double streamedScale = tiles / double(std::max(1, streamedTiles.count()));
-  // A worker's share: the tile it evaluates, and the tiles of the slab it contours ahead of
-  // the one being merged (streamedSlabsAhead: one slab a worker).
-  e.streamedWorkerBytes =
-      uint64_t(ldiBytes / tiles * streamedScale + offsetBytes +
-               double(e.triangles) * kTileBytesPerTriangle / slabs * double(streamedSlabsAhead(1)));
+  // One worker: the tile it evaluates, and the tiles of the slab it contours ahead of the one
+  // being merged (streamedSlabsAhead).
+  e.streamedSlabs = int(slabs);
+  e.streamedWorkerBytes = uint64_t(ldiBytes / tiles * streamedScale + offsetBytes);
+  e.streamedSlabTileBytes = uint64_t(double(e.triangles) * kTileBytesPerTriangle / slabs);
   e.streamedPeakBytes =
       present + e.streamedWorkerBytes +
+      uint64_t(streamedSlabsAhead(1, e.streamedSlabs)) * e.streamedSlabTileBytes +
       uint64_t(double(e.triangles) * ((kTileBytesPerTriangle + kExportBytesPerTriangle) / slabs +
                                       kStreamedBytesPerTriangle)) +
       streamedCheckBytes(e.grid, e.triangles);
@@ -252,6 +253,14 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
   e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);
   return e;
+}
+
+uint64_t streamedPeakOnWorkers(const JobEstimate& e, int workers) {
+  workers = std::max(1, workers);
+  const int more =
+      streamedSlabsAhead(workers, e.streamedSlabs) - streamedSlabsAhead(1, e.streamedSlabs);
+  return e.streamedPeakBytes + uint64_t(workers - 1) * e.streamedWorkerBytes +
+         uint64_t(more) * e.streamedSlabTileBytes;
 }
 
 TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, double simplifyCells,

@@ -40,11 +40,14 @@ struct JobEstimate {
   uint64_t peakBytes = 0;  // host memory at the peak, the process's present use included
   uint64_t fileBytes = 0;  // export only: the written file
   // Export only: the same written in pieces (streamed_export.h) on one backend: its peak, and
-  // its scratch file; each further worker (--gpus) holds streamedWorkerBytes more (its tile's
-  // share of the work and the tiles of the slab it contours ahead of the merge).
+  // its scratch file (streamedPeakOnWorkers below: on several).
   uint64_t streamedPeakBytes = 0;
-  uint64_t streamedWorkerBytes = 0;
   uint64_t scratchBytes = 0;
+  // Export only, streamed: its slabs (or layers of cubes), the bytes of one slab's tiles, and
+  // what one worker holds of the tile it evaluates (its share of the LDIs and offsets).
+  int streamedSlabs = 1;
+  uint64_t streamedSlabTileBytes = 0;
+  uint64_t streamedWorkerBytes = 0;
   double seconds = 0.0;  // wall time of the job on this backend
   bool probed = false;   // false: the job is no bigger than the probe; only grid and tiles set
 };
@@ -58,6 +61,10 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
                            Progress& progress, int probeAbove = kProbeAbove);
+
+// The streamed export's peak on `workers` backends (--gpus): each evaluates a tile of its own,
+// and they hold the tiles of up to streamedSlabsAhead slabs ahead of the merge.
+uint64_t streamedPeakOnWorkers(const JobEstimate& estimate, int workers);
 
 // The triangles an export at `resolution` (0 = the scene's) will write, unsimplified and
 // simplified within `simplifyCells` cells (0: not simplified), for the export dialog: one probe

@@ -686,8 +686,9 @@ ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, u
       scene, options, glm::ivec3(std::max(g.cells.x, 8), std::max(g.cells.y, 8), depth));
   // Where the modifiers' halo makes thin slabs evaluate more (each slab's window grown by it
   // along z: twice the halo over a slab's depth), cubes no larger than the export's in at least
-  // kStreamedSlabs layers (a layer of them holds no more of the mesh than a slab) where they
-  // evaluate fewer nodes.
+  // kStreamedSlabs layers where they evaluate fewer nodes: faster, and a layer holds at most an
+  // eighth of the mesh, as a slab does at the least (but more than these thin slabs: the
+  // estimate follows the tiling chosen).
   const int edge = std::min(cubes.tileCells, (g.cells.z + kStreamedSlabs - 1) / kStreamedSlabs);
   const ExportTiling layers = exportTilingOfSize(scene, options, glm::ivec3(edge));
   return layers.evaluatedNodes() < slabs.evaluatedNodes() ? layers : slabs;
@@ -702,8 +703,8 @@ std::string streamedExportRefusal(const std::string& path, const ExportOptions& 
   return "";
 }
 
-int streamedSlabsAhead(int workers) {
-  return std::max(1, workers);
+int streamedSlabsAhead(int workers, int slabs) {
+  return std::clamp(workers, 1, std::max(1, slabs / kStreamedSlabs));
 }
 
 ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
@@ -727,7 +728,7 @@ ExportReport exportSceneStreamed(const Scene& scene, const std::string& path,
   // `ahead` slabs past the last slab handed to the writer, which merges it meanwhile on this
   // thread.
   const int perSlab = tiling.counts.x * tiling.counts.y, slabs = tiling.counts.z;
-  const int ahead = streamedSlabsAhead(int(backends.size()));
+  const int ahead = streamedSlabsAhead(int(backends.size()), slabs);
   std::mutex mutex;  // guards the three below
   std::condition_variable changed;
   std::vector<std::vector<TileContour>> slabTiles(static_cast<size_t>(slabs));

@@ -82,9 +82,11 @@ class StreamedExportWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// How many slabs the workers contour ahead of the one the writer merges: one a worker (each
-// holds its slab's tiles until the writer takes them; the estimate counts them).
-int streamedSlabsAhead(int workers);
+// How many of a tiling's `slabs` the workers contour ahead of the one the writer merges: one a
+// worker, but no more than an eighth of the slabs (at least one), so that the tiles held stay a
+// small share of the mesh however many workers there are (the estimate counts them:
+// streamedPeakOnWorkers, job_estimate.h).
+int streamedSlabsAhead(int workers, int slabs);
 
 // The export on `backends`, one worker thread each (contour_workers.h: TileWorkers;
 // `workersPerMemory` of them share one backend's memory), while the calling thread merges each

@@ -181,6 +181,55 @@ TEST(StreamedExport, OnSeveralWorkersWritesTheFileOfOne) {
   EXPECT_EQ(entriesIn(folder), 2u);
 }
 
+// A CPU backend that runs out of memory on every window: its worker's tiles go on on the CPU
+// (the same bits), the one that failed included.
+class OutOfMemoryBackend : public CpuBackend {
+ public:
+  std::string description() const override { return "out-of-memory test backend"; }
+  LdiHandle sampleMesh(const TriangleMesh&, const glm::dmat4&, const Grid&, uint32_t,
+                       Progress&) override {
+    throw BackendOutOfMemory("pretend: out of device memory");
+  }
+};
+
+TEST(StreamedExport, AWorkerOutOfMemoryGoesOnOnTheCpu) {
+  const std::string folder = freshFolder("worker_memory");
+  const Case c = cases()[0];
+  ExportOptions pieces;
+  pieces.tileCells = c.tile;
+  Progress progress;
+  exportSceneStreamed(c.scene, folder + "/one.stl", pieces, cpuBackends(1), 1, progress);
+  std::vector<std::shared_ptr<Backend>> backends{std::make_shared<OutOfMemoryBackend>()};
+  for (const auto& b : cpuBackends(2)) backends.push_back(b);
+  std::vector<std::string> notices;
+  const ExportReport r =
+      exportSceneStreamed(c.scene, folder + "/three.stl", pieces, backends, 3, progress,
+                          [&](const std::string& line) { notices.push_back(line); });
+  EXPECT_TRUE(r.passed());
+  EXPECT_EQ(bytesOf(folder + "/one.stl"), bytesOf(folder + "/three.stl"));
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_NE(notices[0].find("its tiles go on on the CPU"), std::string::npos) << notices[0];
+  EXPECT_EQ(r.notices, notices);
+}
+
+// How far the workers run ahead: one slab a worker, at most an eighth of the slabs (one at
+// least); the estimate's peak grows with them.
+TEST(StreamedExport, WorkersRunAheadByNoMoreThanAnEighthOfTheSlabs) {
+  EXPECT_EQ(streamedSlabsAhead(1, 8), 1);
+  EXPECT_EQ(streamedSlabsAhead(8, 8), 1);
+  EXPECT_EQ(streamedSlabsAhead(2, 45), 2);
+  EXPECT_EQ(streamedSlabsAhead(16, 45), 5);
+  EXPECT_EQ(streamedSlabsAhead(64, 121), 15);
+  JobEstimate e;
+  e.streamedPeakBytes = 1000;
+  e.streamedSlabs = 45;
+  e.streamedWorkerBytes = 10;
+  e.streamedSlabTileBytes = 100;
+  EXPECT_EQ(streamedPeakOnWorkers(e, 1), 1000u);
+  EXPECT_EQ(streamedPeakOnWorkers(e, 2), 1000u + 10u + 100u);
+  EXPECT_EQ(streamedPeakOnWorkers(e, 16), 1000u + 15u * 10u + 4u * 100u);
+}
+
 // A CPU backend whose sampling fails (not for memory) from its `failAt`-th call on.
 class FailingBackend : public CpuBackend {
  public:
@@ -206,7 +255,7 @@ TEST(StreamedExport, AFailedWorkerOrACancelStopsTheWholeExport) {
   const Scene scene = cases()[0].scene;
   {
     std::vector<std::shared_ptr<Backend>> backends = cpuBackends(2);
-    backends.push_back(std::make_shared<FailingBackend>(7));
+    backends.push_back(std::make_shared<FailingBackend>(1));
     Progress progress;
     try {
       exportSceneStreamed(scene, folder + "/part.stl", pieces, backends, 3, progress);
