@@ -684,14 +684,18 @@ ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, u
   // (A side under 8 cells is a tile's least: the tile then reaches past the grid there.)
   const ExportTiling slabs = exportTilingOfSize(
       scene, options, glm::ivec3(std::max(g.cells.x, 8), std::max(g.cells.y, 8), depth));
-  // Where the modifiers' halo makes thin slabs evaluate more (each slab's window grown by it
-  // along z: twice the halo over a slab's depth), cubes no larger than the export's in at least
-  // kStreamedSlabs layers where they evaluate fewer nodes: faster, and a layer holds at most an
-  // eighth of the mesh, as a slab does at the least (but more than these thin slabs: the
-  // estimate follows the tiling chosen).
+  // Where the modifiers' halo makes thin slabs evaluate more than twice the grid's nodes (each
+  // slab's window grown by it along z: twice the halo over a slab's depth), cubes no larger
+  // than the export's in at least kStreamedSlabs layers if they evaluate fewer: faster, and a
+  // layer holds at most an eighth of the mesh, as a slab does at the least (but more than thin
+  // slabs: the estimate follows the tiling chosen). Short of that the slabs' smaller share of
+  // the mesh is worth their extra evaluation.
+  const double gridNodes = double(g.cells.x + 1) * double(g.cells.y + 1) * double(g.cells.z + 1);
+  const double slabNodes = slabs.evaluatedNodes();
+  if (slabNodes <= kStreamedHaloWork * gridNodes) return slabs;
   const int edge = std::min(cubes.tileCells, (g.cells.z + kStreamedSlabs - 1) / kStreamedSlabs);
   const ExportTiling layers = exportTilingOfSize(scene, options, glm::ivec3(edge));
-  return layers.evaluatedNodes() < slabs.evaluatedNodes() ? layers : slabs;
+  return layers.evaluatedNodes() < slabNodes ? layers : slabs;
 }
 
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {

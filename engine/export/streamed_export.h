@@ -50,11 +50,12 @@ namespace strata {
 // the backend's memory allows) and its cells indexed in 32 bits; exportTiling's cubes where
 // such slabs would be thinner than kMinStreamedTile cells, or where options.tileCells sets the
 // tile; cubes no larger than exportTiling's in at least kStreamedSlabs layers where the slabs'
-// windows would evaluate more nodes (ExportTiling::evaluatedNodes: a modifier's halo around
-// thin slabs). A slab's tiles and piece are what the export
-// holds at once.
+// windows would evaluate more than kStreamedHaloWork times the grid's nodes and more than the
+// cubes' (ExportTiling::evaluatedNodes: a modifier's halo around thin slabs). A slab's tiles and
+// piece are what the export holds at once.
 constexpr int kStreamedSlabs = 8;
 constexpr int kMinStreamedTile = 16;
+constexpr double kStreamedHaloWork = 2.0;
 ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, uint64_t memoryBytes,
                             uint64_t offsetBytesPerNode);
 
