@@ -161,10 +161,10 @@ class Window {
   }
 
   // A facet of a component around vertex `id` (kept where it is in none of theirs yet:
-  // components only ever join, so a facet joined to a kept one stays redundant).
-  void addRep(uint32_t id, uint32_t facet) {
+  // components only ever join, so a facet joined to a kept one stays redundant). `root`: the
+  // facet's component now (sets.find(facet)).
+  void addRep(uint32_t id, uint32_t facet, uint32_t root) {
     Vertex& x = vertex(id);
-    const uint32_t root = sets_.find(facet);
     for (size_t i = 0; i < x.reps.size(); ++i)
       if (sets_.find(x.reps[i]) == root) return;
     x.reps.push_back(facet);
@@ -187,6 +187,7 @@ class Window {
   }
 
   Counts& counts() { return counts_; }
+  uint32_t rootOf(uint32_t facet) { return sets_.find(facet); }
 
  private:
   struct Edge {
@@ -225,21 +226,22 @@ class Window {
       if (e.halves.count == 2 && e.halves.forward0 == e.halves.forward1) ++counts_.misoriented;
       chi_[e.halves.first] -= 1;  // E: for the component of its first facet
     }
-    std::vector<uint32_t> reps;  // a facet per component around it now
-    std::vector<uint32_t> roots;
+    // A facet per component around it now (kept in members: no allocation per vertex).
+    reps_.clear();
+    roots_.clear();
     for (size_t i = 0; i < v.reps.size(); ++i) {
       const uint32_t r = sets_.find(v.reps[i]);
-      if (std::find(roots.begin(), roots.end(), r) != roots.end()) continue;
-      roots.push_back(r);
-      reps.push_back(v.reps[i]);
+      if (std::find(roots_.begin(), roots_.end(), r) != roots_.end()) continue;
+      roots_.push_back(r);
+      reps_.push_back(v.reps[i]);
     }
     if (open) {
       openVertices->push_back(OpenVertex{v.key, v.layer, {}});
-      for (uint32_t t : reps) openVertices->back().reps.push_back(t);
+      for (uint32_t t : reps_) openVertices->back().reps.push_back(t);
     } else {
       ++counts_.vertices;
-      for (uint32_t t : reps) chi_[t] += 1;  // V: once for each component around it
-      if (reps.size() > 1) counts_.shared.push_back(std::move(reps));
+      for (uint32_t t : reps_) chi_[t] += 1;  // V: once for each component around it
+      if (reps_.size() > 1) counts_.shared.push_back(reps_);
     }
     ids_.erase(v.key);
     const PositionKey key = v.key;
@@ -261,6 +263,7 @@ class Window {
   uint32_t first_ = 0;
   std::map<int, std::vector<uint32_t>> vertexLayers_;
   Counts counts_;
+  std::vector<uint32_t> reps_, roots_;  // evict's
 };
 
 // What one chunk measured.
@@ -302,7 +305,8 @@ class ChunkCheck {
         const uint32_t a = w[k], b = w[(k + 1) % 3];
         if (a != b) window_.addHalfEdges(a, b, HalfEdges{facet, 1, true, false});
       }
-      for (int k = 0; k < 3; ++k) window_.addRep(w[k], facet);
+      const uint32_t root = window_.rootOf(facet);
+      for (int k = 0; k < 3; ++k) window_.addRep(w[k], facet, root);
       // Facets come in the order of their edges' z layers, and a facet's corners lie at most a
       // layer above its edge's: no later facet reaches below this.
       if (highest - 1 > r_.front) {
@@ -453,7 +457,8 @@ struct StreamedMeshCheck::State {
     progress.check();
     for (OpenVertex& v : r.openVertices) {
       const uint32_t id = joining.weld(v.key, v.layer, false);
-      for (size_t i = 0; i < v.reps.size(); ++i) joining.addRep(id, v.reps[i]);
+      for (size_t i = 0; i < v.reps.size(); ++i)
+        joining.addRep(id, v.reps[i], joining.rootOf(v.reps[i]));
     }
     // Both ends are among the open vertices just welded.
     for (const OpenEdge& e : r.openEdges)
