@@ -25,21 +25,15 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # One host, no network fabric: shared memory between the processes.
 export OMPI_MCA_btl=self,vader OMPI_MCA_pml=ob1 OMPI_MCA_osc=^ucx OMPI_MCA_plm_rsh_agent=false
 orterun --version > $R/mpi.txt 2>&1
-gpumax() { python3 -c "
-import collections; m=collections.defaultdict(int)
-for l in open('/tmp/mem.txt'):
-  p=[x.strip() for x in l.split(',')]
-  if len(p)==2 and p[1].isdigit(): m[p[0]]=max(m[p[0]],int(p[1]))
-print('GPU peak MiB', dict(m))"; }
+source tests/gpu/gpu_memory.sh
 run() {  # name scene resolution options launcher... (the build: $bin)
   local name=$1 scene=$2 res=$3 options=$4; shift 4
-  nvidia-smi --query-gpu=index,memory.used --format=csv,noheader,nounits -lms 100 > /tmp/mem.txt 2>/dev/null &
-  local sampler=$!
+  gpu_sampler_start
   /usr/bin/time -f "wall %e s, host peak %M KiB" -o /tmp/t.txt timeout 280 "$@" /tmp/bins/$bin/strata export \
     $S/$scene.strata.json --resolution $res --backend cuda -q -o /tmp/$name.stl $options \
     > /tmp/$name.txt 2>&1
   local rc=$?
-  kill $sampler 2>/dev/null; wait $sampler 2>/dev/null
+  gpu_sampler_stop
   echo "== $scene $res $bin $name: rc $rc $(cat /tmp/t.txt | tail -1) | $(gpumax) | $(ls -l /tmp/$name.stl 2>/dev/null | awk '{print $5}') bytes"
   grep -E "^(time|processes|result)" /tmp/$name.txt
   [ $rc = 0 ] || tail -15 /tmp/$name.txt

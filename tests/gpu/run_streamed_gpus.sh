@@ -21,22 +21,16 @@ nvidia-smi -L > $R/host.txt 2>&1; nproc >> $R/host.txt; free -g >> $R/host.txt
 timeout 200 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
 tail -3 $R/gpu_tests.txt
 stages() { python3 -c "import json;d=json.load(open('$1'));print(d['tiles'], 'tiles', ' '.join('%s %.3f'%(s['name'],s['seconds']) for s in d['stages']), 'triangles', d['check']['triangles'], 'passed', d['check']['passed'])"; }
-gpumax() { python3 -c "
-import collections; m=collections.defaultdict(int)
-for l in open('/tmp/mem.txt'):
-  p=[x.strip() for x in l.split(',')]
-  if len(p)==2 and p[1].isdigit(): m[p[0]]=max(m[p[0]],int(p[1]))
-print('GPU peak MiB', dict(m))"; }
+source tests/gpu/gpu_memory.sh
 for job in ${JOBS:-armadillo_bunny:4096 bone_scaffold:4096}; do
   scene=${job%%:*} res=${job##*:}
   for run in "memory strata --gpus 1" "base strata_base --stream" "stream1 strata --stream --gpus 1" "stream2 strata --stream --gpus 2"; do
     set -- $run; name=$1 bin=$2; shift 2
-    nvidia-smi --query-gpu=index,memory.used --format=csv,noheader,nounits -lms 100 > /tmp/mem.txt 2>/dev/null &
-    sampler=$!
+    gpu_sampler_start
     /usr/bin/time -f "wall %e s peak %M KiB" -o /tmp/t.txt timeout 280 $B/$bin export $S/$scene.strata.json \
       --resolution $res --backend cuda "$@" -q -o /tmp/x-$name.stl --report /tmp/x-$name.json > /tmp/x-$name.log 2>&1
     rc=$?
-    kill $sampler 2>/dev/null; wait $sampler 2>/dev/null
+    gpu_sampler_stop
     echo "== $scene $res $name ($*): rc $rc $(tail -1 /tmp/t.txt) | $(stages /tmp/x-$name.json 2>&1 | tail -1) | $(gpumax)" >> $R/export.txt
     [ $rc = 0 ] || tail -3 /tmp/x-$name.log >> $R/export.txt
   done

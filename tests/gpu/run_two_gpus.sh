@@ -7,19 +7,13 @@
 # bin/strata_gpu_tests.xz. Results go to $OUT/r as they come (a lease may end early).
 source tests/gpu/lease_start.sh
 stages() { python3 -c "import json;d=json.load(open('/tmp/x.json'));print(' '.join('%s %.3f'%(s['name'],s['seconds']) for s in d['stages']), 'tiles', d['tiles'])"; }
-gpumax() { python3 -c "
-import collections; m=collections.defaultdict(int)
-for l in open('/tmp/mem.txt'):
-  p=[x.strip() for x in l.split(',')]
-  if len(p)==2 and p[1].isdigit(): m[p[0]]=max(m[p[0]],int(p[1]))
-print('GPU peak MiB', dict(m))"; }
+source tests/gpu/gpu_memory.sh
 run() {  # scene resolution gpus
-  nvidia-smi --query-gpu=index,memory.used --format=csv,noheader,nounits -lms 100 > /tmp/mem.txt 2>/dev/null &
-  local sampler=$!
+  gpu_sampler_start
   /usr/bin/time -f "wall %e s, host peak %M KiB" timeout 280 $B/strata export $S/$1.strata.json --resolution $2 \
     --backend cuda --gpus $3 -q -o /tmp/x-$3.stl --report /tmp/x.json > /tmp/x.txt 2>&1
   local rc=$?
-  kill $sampler 2>/dev/null; wait $sampler 2>/dev/null
+  gpu_sampler_stop
   echo "== $1 $2 --gpus $3: rc $rc $(tail -1 /tmp/x.txt) | $(stages 2>&1 | tail -1) | $(gpumax) | $(ls -l /tmp/x-$3.stl 2>/dev/null | awk '{print $5}') bytes"
   [ $rc = 0 ] || tail -5 /tmp/x.txt
 }
