@@ -30,9 +30,9 @@ namespace strata {
 // it calls mayTake(t, stopping) (may be empty; it may block until the tile's turn comes, and
 // should return soon once stopping.cancelled(): the worker's own Progress, cancelled with the
 // export, by stop() or when another worker failed); each tile it finishes it hands to tileDone(t,
-// contours) (the tile's contours, moved; empty: they stay in the worker until join() collects
-// them). Both are called from the worker threads, concurrently. The destructor stops the workers
-// (after their tile) and joins them.
+// contours) (the tile's contours, moved; may be empty: without it the contours stay with the
+// worker until join() collects them). Both are called from the worker threads, concurrently. The
+// destructor stops the workers (after their tile) and joins them.
 class TileWorkers {
  public:
   using MayTake = std::function<void(int tile, const Progress& stopping)>;
