@@ -155,6 +155,7 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName, b
   std::vector<double> ms, firstMs;
   const size_t pointsBefore = editor.splatsDrawnAsPoints();
   const size_t quadsBefore = editor.splatsDrawnAsQuads();
+  const size_t computedBefore = editor.splatsDrawnByCompute();
   for (int k = 0; k < count; ++k) {
     Transform t = leaf->transform;
     t.translate.x += (k % 2 == 0 ? step : -step);
@@ -208,13 +209,15 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName, b
   std::printf(
       "latency: median %.1f ms, best %.1f ms, worst %.1f ms over %d edits of '%s' (%s; %zu "
       "splats, %zu drawn at level of detail %d; over the edits %zu splats drawn as points, %zu "
-      "as quads; measured %.2f ns a splat as points, %.2f as quads)\n",
+      "as quads, %zu by compute; measured %.2f ns a splat as points, %.2f as quads, %.2f by "
+      "compute)\n",
       ms[ms.size() / 2], ms.front(), ms.back(), count, leaf->name.c_str(),
       editor.state().backendDescription.c_str(), editor.state().preview->splatCount(),
       editor.shownSplats(), editor.shownDetailLevel(), editor.splatsDrawnAsPoints() - pointsBefore,
-      editor.splatsDrawnAsQuads() - quadsBefore,
+      editor.splatsDrawnAsQuads() - quadsBefore, editor.splatsDrawnByCompute() - computedBefore,
       editor.splatNanoseconds(ui::SplatPrimitive::Points),
-      editor.splatNanoseconds(ui::SplatPrimitive::Quads));
+      editor.splatNanoseconds(ui::SplatPrimitive::Quads),
+      editor.splatNanoseconds(ui::SplatPrimitive::Compute));
   return 0;
 }
 #endif
@@ -293,11 +296,12 @@ int measureFrames(ui::Editor& editor, double seconds, int resolution) {
   }
   report("still (panels and the cached view)", still);
   std::printf(
-      "splats drawn as points %zu, as quads %zu; measured %.2f ns a splat as points, %.2f "
-      "as quads\n",
-      editor.splatsDrawnAsPoints(), editor.splatsDrawnAsQuads(),
+      "splats drawn as points %zu, as quads %zu, by compute %zu; measured %.2f ns a splat as "
+      "points, %.2f as quads, %.2f by compute\n",
+      editor.splatsDrawnAsPoints(), editor.splatsDrawnAsQuads(), editor.splatsDrawnByCompute(),
       editor.splatNanoseconds(ui::SplatPrimitive::Points),
-      editor.splatNanoseconds(ui::SplatPrimitive::Quads));
+      editor.splatNanoseconds(ui::SplatPrimitive::Quads),
+      editor.splatNanoseconds(ui::SplatPrimitive::Compute));
   return 0;
 }
 
@@ -355,7 +359,7 @@ ui::SplatPrimitive parseSplats(const CliArgs& args) {
   const std::string word = args.text("--splats", "auto");
   if (auto primitive = ui::parseSplatPrimitive(word)) return *primitive;
   throw Error("--splats: unknown way to draw splats '" + word +
-              "' (expected auto, points or quads)");
+              "' (expected auto, points, quads or compute)");
 }
 
 ui::AxisView parseView(const std::string& view, bool* iso) {

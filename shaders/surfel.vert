@@ -19,7 +19,6 @@ layout(location = 1) in vec3 surfelPosition;  // per instance: world position, s
 layout(location = 2) in uint surfelNormal;    // per instance: octahedral normal, 2 x snorm16
 layout(location = 3) in uint surfelLeafAxis;  // per instance: leaf id << 2 | ray axis
 
-uniform mat4 viewProjection;
 uniform vec3 eye;         // camera position (perspective)
 uniform vec3 viewForward; // camera forward direction (orthographic)
 uniform bool ortho;
@@ -36,6 +35,7 @@ out vec3 vColor;
 out float vSelected;
 out float vFacing;      // dot(normal, direction to the eye): < 0 faces away
 flat out uint vLeaf;
+#include "surfel_geometry.glsl"
 #ifdef SPLAT_POINTS
 uniform vec4 viewportRect;  // the GL viewport: x, y, width, height in pixels
 uniform float maxPointSize;  // pixels; the renderer draws quads where splats would need more
@@ -47,25 +47,6 @@ out vec2 vCorner;
 out vec3 vToEye;
 out vec3 vWorld;        // the fragment's world position, scene units
 #endif
-
-float snorm16(uint bits) {
-  int v = int(bits);
-  if (v >= 32768) v -= 65536;
-  return float(v) / 32767.0;
-}
-
-vec3 decodeOctahedral(uint bits) {
-  float x = snorm16(bits & 0xffffu);
-  float y = snorm16(bits >> 16);
-  float z = 1.0 - abs(x) - abs(y);
-  if (z < 0.0) {
-    float ox = (1.0 - abs(y)) * (x >= 0.0 ? 1.0 : -1.0);
-    float oy = (1.0 - abs(x)) * (y >= 0.0 ? 1.0 : -1.0);
-    x = ox;
-    y = oy;
-  }
-  return normalize(vec3(x, y, z));
-}
 
 void main() {
   vec3 n = decodeOctahedral(surfelNormal);
@@ -89,27 +70,13 @@ void main() {
 
   // The quad lies in the plane through the surfel whose normal is n with its ray-axis component
   // kept away from 0 (a lift of at most 1 / 0.3 per unit across the axis).
-  float na = n[axis];
-  vec3 planeNormal = n;
-  planeNormal[axis] = abs(na) < 0.3 ? sign(na + 1e-6) * 0.3 : na;
+  vec3 planeNormal = splatPlaneNormal(n, axis);
   float radius = splatRadius * cellSize;
 #ifdef SPLAT_POINTS
-  // The sprite covers the projections of the quad's corners (tighter than a bound of the sphere
-  // through them, which cost 8-14% more per splat on the H200 and 4 times more under Mesa).
-  vec4 centre = viewProjection * vec4(surfelPosition, 1.0);
-  vec2 extent = vec2(0.0);  // the corners' largest distance from the centre, NDC
-  bool behind = centre.w <= 0.0;
-  for (int k = 0; k < 4; ++k) {
-    vec2 c = vec2((k & 1) == 0 ? -radius : radius, (k & 2) == 0 ? -radius : radius);
-    vec3 offset = vec3(0.0);
-    offset[u] = c.x;
-    offset[v] = c.y;
-    offset[axis] = -(planeNormal[u] * c.x + planeNormal[v] * c.y) / planeNormal[axis];
-    vec4 q = viewProjection * vec4(surfelPosition + offset, 1.0);
-    behind = behind || q.w <= 0.0;
-    extent = max(extent, abs(q.xy / q.w - centre.xy / centre.w));
-  }
-  if (behind) {  // crosses the eye's plane: left out, as the near plane would clip it
+  vec4 centre;
+  vec2 extent;
+  if (!splatExtent(surfelPosition, planeNormal, axis, radius, centre, extent)) {
+    // crosses the eye's plane: left out, as the near plane would clip it
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }

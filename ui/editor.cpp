@@ -452,6 +452,10 @@ size_t Editor::splatsDrawnAsQuads() const {
   return gl_->renderer->quadsDrawn();
 }
 
+size_t Editor::splatsDrawnByCompute() const {
+  return gl_->renderer->computedDrawn();
+}
+
 double Editor::splatNanoseconds(SplatPrimitive kind) const {
   return gl_->renderer->nsPerSplat(kind);
 }

@@ -86,9 +86,11 @@ class Editor {
   size_t shownSplats() const;
   // The view shows its coarse image while the full one is drawn (ViewportRenderer).
   bool showsCoarseImage() const;
-  // Splats drawn so far as points and as quads (ViewportRenderer::pointsDrawn, quadsDrawn).
+  // Splats drawn so far as points, as quads and by compute (ViewportRenderer::pointsDrawn,
+  // quadsDrawn, computedDrawn).
   size_t splatsDrawnAsPoints() const;
   size_t splatsDrawnAsQuads() const;
+  size_t splatsDrawnByCompute() const;
   // The GPU time per splat measured for each kind (ViewportRenderer::nsPerSplat).
   double splatNanoseconds(SplatPrimitive kind) const;
   // Whether a result is being uploaded over several frames (shown once all of it is there).

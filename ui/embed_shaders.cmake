@@ -1,6 +1,7 @@
 # Writes OUTPUT: a C++ table of every *.vert / *.frag in SHADER_DIR as raw string literals, for
 # ui/embedded_shaders.h. Run by ui/CMakeLists.txt whenever a shader changes.
-file(GLOB shaders RELATIVE ${SHADER_DIR} ${SHADER_DIR}/*.vert ${SHADER_DIR}/*.frag)
+file(GLOB shaders RELATIVE ${SHADER_DIR} ${SHADER_DIR}/*.vert ${SHADER_DIR}/*.frag
+     ${SHADER_DIR}/*.comp ${SHADER_DIR}/*.glsl)
 list(SORT shaders)
 set(body "// Generated from shaders/ by ui/embed_shaders.cmake. Do not edit.\n")
 string(APPEND body "#include \"ui/embedded_shaders.h\"\n\n#include <cstring>\n\nnamespace strata::ui {\n")

@@ -3,6 +3,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cstring>
+#include <initializer_list>
+#include <string>
 
 #include "engine/util/error.h"
 #include "ui/embedded_shaders.h"
@@ -18,12 +20,47 @@ std::string shaderLog(GLuint shader) {
   return log.c_str();
 }
 
-// `defines` go right after the source's first line (its #version).
+// `source` (the embedded shaders/<name>) with each line `#include "FILE"` replaced by the
+// embedded shaders/FILE (itself expanded, at most kMaxDepth deep), each followed by a #line that
+// gives the including file's numbering back (the driver's log names lines of the file the
+// error is in, or of the file included, by their own numbers).
+std::string expandIncludes(const char* name, const char* source, int depth = 0) {
+  constexpr int kMaxDepth = 4;
+  std::string out;
+  int line = 1;
+  for (const char* at = source; *at; ++line) {
+    const char* end = std::strchr(at, '\n');
+    const std::string text(at, end ? end : at + std::strlen(at));
+    at = end ? end + 1 : at + text.size();
+    const char* directive = "#include \"";
+    if (text.rfind(directive, 0) != 0) {
+      out += text + "\n";
+      continue;
+    }
+    const size_t close = text.find('"', std::strlen(directive));
+    const std::string included =
+        close == std::string::npos
+            ? ""
+            : text.substr(std::strlen(directive), close - std::strlen(directive));
+    const char* body = included.empty() ? nullptr : embeddedShader(included.c_str());
+    if (!body || depth >= kMaxDepth)
+      throw Error(std::string("shaders/") + name + ":" + std::to_string(line) + ": " +
+                  (body ? "includes nested too deep" : "includes a file that was not embedded") +
+                  " (" + text + ")");
+    out += "#line 1\n" + expandIncludes(included.c_str(), body, depth + 1);
+    out += "#line " + std::to_string(line + 1) + "\n";
+  }
+  return out;
+}
+
+// `defines` go right after the source's first line (its #version); included files are expanded.
 GLuint compile(GLenum type, const char* name, const char* defines) {
-  const char* source = embeddedShader(name);
-  if (!source)
+  const char* embedded = embeddedShader(name);
+  if (!embedded)
     throw Error(std::string("shaders/") + name +
                 ": no such shader was embedded into this build (ui/embed_shaders.cmake)");
+  const std::string expanded = expandIncludes(name, embedded);
+  const char* source = expanded.c_str();
   const char* firstLineEnd = std::strchr(source, '\n');
   const char* rest = firstLineEnd ? firstLineEnd + 1 : source + std::strlen(source);
   const std::string version(source, rest);
@@ -43,6 +80,25 @@ GLuint compile(GLenum type, const char* name, const char* defines) {
   return shader;
 }
 
+// Links `shaders` (deleting them) into a program; throws naming `what` with the driver's log.
+GLuint link(std::initializer_list<GLuint> shaders, const std::string& what) {
+  GLuint program = glCreateProgram();
+  for (GLuint shader : shaders) glAttachShader(program, shader);
+  glLinkProgram(program);
+  for (GLuint shader : shaders) glDeleteShader(shader);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
+    glGetProgramInfoLog(program, length, nullptr, log.data());
+    glDeleteProgram(program);
+    throw Error("shaders/" + what + ": do not link:\n" + log.c_str());
+  }
+  return program;
+}
+
 }  // namespace
 
 GlProgram::GlProgram(const char* vertexName, const char* fragmentName, const char* defines) {
@@ -54,24 +110,13 @@ GlProgram::GlProgram(const char* vertexName, const char* fragmentName, const cha
     glDeleteShader(vs);
     throw;
   }
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetProgramiv(program_, GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-    glGetProgramInfoLog(program_, length, nullptr, log.data());
-    glDeleteProgram(program_);
-    program_ = 0;
-    throw Error(std::string("shaders/") + vertexName + " + " + fragmentName + ": do not link:\n" +
-                log.c_str());
-  }
+  program_ = link({vs, fs}, std::string(vertexName) + " + " + fragmentName);
+}
+
+GlProgram GlProgram::compute(const char* computeName, const char* defines) {
+  GlProgram program;
+  program.program_ = link({compile(GL_COMPUTE_SHADER, computeName, defines)}, computeName);
+  return program;
 }
 
 GlProgram::~GlProgram() {
@@ -108,6 +153,12 @@ void GlProgram::set(const char* name, float value) const {
 }
 void GlProgram::set(const char* name, int value) const {
   glUniform1i(glGetUniformLocation(program_, name), value);
+}
+void GlProgram::set(const char* name, unsigned value) const {
+  glUniform1ui(glGetUniformLocation(program_, name), value);
+}
+void GlProgram::set(const char* name, const glm::ivec2& value) const {
+  glUniform2iv(glGetUniformLocation(program_, name), 1, glm::value_ptr(value));
 }
 
 std::string describeGlContext() {

@@ -21,7 +21,10 @@ class GlProgram {
   // Compiles shaders/<vertexName> and shaders/<fragmentName>, with `defines` (lines such as
   // "#define X\n", or nullptr) right after each one's #version line. Throws strata::Error naming
   // the file and quoting the driver's log when a shader is missing or fails to compile or link.
+  // A line `#include "FILE"` in a shader is replaced by the embedded shaders/FILE.
   GlProgram(const char* vertexName, const char* fragmentName, const char* defines = nullptr);
+  // A compute program from shaders/<computeName> (GL 4.3), likewise.
+  static GlProgram compute(const char* computeName, const char* defines = nullptr);
   ~GlProgram();
   GlProgram(GlProgram&& other) noexcept;
   GlProgram& operator=(GlProgram&& other) noexcept;
@@ -37,6 +40,8 @@ class GlProgram {
   void set(const char* name, float value) const;
   void set(const char* name, int value) const;
   void set(const char* name, const glm::vec2& value) const;
+  void set(const char* name, unsigned value) const;
+  void set(const char* name, const glm::ivec2& value) const;
 
  private:
   GLuint program_ = 0;

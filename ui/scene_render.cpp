@@ -57,6 +57,7 @@ SceneRender renderScene(const Scene& scene, const std::string& scenePath,
   out.detailLevel = std::max(0, renderer.drawnLevel());
   out.splatsDrawn = renderer.drawnLevelSplats();
   out.drawnAsPoints = renderer.pointsDrawn() > 0;
+  out.drawnByCompute = renderer.computedDrawn() > 0;
   return out;
 }
 

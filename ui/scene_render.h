@@ -37,7 +37,8 @@ struct SceneRender {
   size_t splats = 0;
   size_t splatsDrawn = 0;  // those of the level of detail drawn
   int detailLevel = 0;
-  bool drawnAsPoints = false;  // the splats were drawn as points (else quads)
+  bool drawnAsPoints = false;   // the splats were drawn as points
+  bool drawnByCompute = false;  // the splats were drawn by compute (neither: quads)
   int resolution = 0;
   double evaluateSeconds = 0.0;
 };

@@ -6,13 +6,14 @@
 
 namespace strata::ui {
 
-// Automatic: whichever of points and quads the renderer's timing of whole images finds cheaper
-// (ViewportRenderer::kTimedDrawSplats), quads on software rasterizers and wherever a sprite could
-// exceed the driver's largest point (close-ups). Quads or Points: that kind alone (points only
-// where they fit).
-enum class SplatPrimitive { Automatic, Quads, Points };
+// Automatic: whichever of points, quads and compute the renderer's timing of whole images finds
+// cheapest (ViewportRenderer::kTimedDrawSplats), quads on software rasterizers and wherever a
+// sprite could exceed the driver's largest point (close-ups). Quads, Points or Compute: that
+// kind alone (points and compute only where they fit and, for compute, where the GL context
+// has compute shaders; quads elsewhere).
+enum class SplatPrimitive { Automatic, Quads, Points, Compute };
 
-// "auto", "quads" or "points"; nothing for another word.
+// "auto", "quads", "points" or "compute"; nothing for another word.
 std::optional<SplatPrimitive> parseSplatPrimitive(const std::string& word);
 
 }  // namespace strata::ui

@@ -110,6 +110,19 @@ ViewportRenderer::ViewportRenderer()
   // GL 4.4 names the limit (at least 2048 bytes); older contexts have no query and none below.
   if (epoxy_gl_version() >= 44) glGetIntegerv(GL_MAX_VERTEX_ATTRIB_STRIDE, &maxAttribStride_);
   for (KindTiming& t : timing_) glGenQueries(1, &t.query);
+  // Splats by compute where the context has compute shaders (4.3) and glClearTexImage (4.4),
+  // and the driver builds the programs; quads and points otherwise.
+  if (epoxy_gl_version() >= 44) {
+    try {
+      computeProgram_ = GlProgram::compute("surfel_splat.comp");
+      resolveProgram_ = GlProgram("surfel_resolve.vert", "surfel_resolve.frag");
+      computeReady_ = true;
+    } catch (const Error& e) {
+      computeProblem_ = e.what();
+    }
+  } else {
+    computeProblem_ = "the GL context is older than 4.4";
+  }
   // Software rasterizers queue a draw's pixels for worker threads after the timer query has
   // ended: their times count little of the work (Mesa llvmpipe timed points at 1 ns a splat
   // against 215 for quads, then drew points 2-4 times slower than quads). There, Automatic
@@ -178,6 +191,8 @@ ViewportRenderer::~ViewportRenderer() {
     glDeleteRenderbuffers(2, targets);
   }
   glDeleteTextures(1, &leafTexture_);
+  GLuint computeImages[] = {computeDepth_, computeIds_};
+  glDeleteTextures(2, computeImages);
   for (KindTiming& t : timing_) glDeleteQueries(1, &t.query);
   GLuint buffers[] = {cornerBuffer_,     splatBuffer_,      lineBuffer_,
                       ghosts_[0].buffer, ghosts_[1].buffer, stagingBuffer_};
@@ -328,21 +343,50 @@ bool ViewportRenderer::pointsFit(const ViewportFrame& f, float radius) const {
   return spriteBoundPx(f, radius) <= double(maxPointSize_);
 }
 
-bool ViewportRenderer::usePoints(const ViewportFrame& f, float radius) const {
-  if (primitive_ == SplatPrimitive::Quads || !pointsFit(f, radius)) return false;
-  if (primitive_ == SplatPrimitive::Points) return true;
-  if (!timersTrusted_) return false;
-  // Automatic: each kind until it has a time, then the cheaper (drawSplatRange retries the
-  // other now and then).
-  const KindTiming &quads = timing_[0], &points = timing_[1];
-  if (points.reads == 0) return true;
-  if (quads.reads == 0) return false;
-  return points.nsPerSplat < quads.nsPerSplat;
+bool ViewportRenderer::kindFits(const ViewportFrame& f, float radius, SplatKind kind) const {
+  switch (kind) {
+    case SplatKind::Points:
+      return pointsFit(f, radius);
+    case SplatKind::Compute:
+      return computeReady() && spriteBoundPx(f, radius) <= kMaxComputeFootprintPx;
+    default:
+      return true;
+  }
+}
+
+ViewportRenderer::SplatKind ViewportRenderer::preferredKind(const ViewportFrame& f,
+                                                            float radius) const {
+  switch (primitive_) {
+    case SplatPrimitive::Quads:
+      return SplatKind::Quads;
+    case SplatPrimitive::Points:
+      return pointsFit(f, radius) ? SplatKind::Points : SplatKind::Quads;
+    case SplatPrimitive::Compute:
+      return kindFits(f, radius, SplatKind::Compute) ? SplatKind::Compute : SplatKind::Quads;
+    case SplatPrimitive::Automatic:
+      break;
+  }
+  if (!timersTrusted_) return SplatKind::Quads;
+  // Automatic: each kind that fits until it has a time (points, compute, quads), then the
+  // cheapest (drawSplatRange retries the others now and then).
+  for (SplatKind kind : {SplatKind::Points, SplatKind::Compute, SplatKind::Quads})
+    if (kindFits(f, radius, kind) && timing_[int(kind)].reads == 0) return kind;
+  SplatKind best = SplatKind::Quads;
+  for (SplatKind kind : {SplatKind::Points, SplatKind::Compute})
+    if (kindFits(f, radius, kind) && timing_[int(kind)].nsPerSplat < timing_[int(best)].nsPerSplat)
+      best = kind;
+  return best;
+}
+
+bool ViewportRenderer::everyFittingKindTimed(const ViewportFrame& f, float radius) const {
+  for (int k = 0; k < kSplatKinds; ++k)
+    if (kindFits(f, radius, SplatKind(k)) && timing_[k].reads == 0) return false;
+  return true;
 }
 
 int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
   int level = buildLevel_;
-  const double ns = timing_[usePoints(f, float(1 << level)) ? 1 : 0].nsPerSplat;
+  const double ns = timing_[int(preferredKind(f, float(1 << level)))].nsPerSplat;
   if (ns <= 0.0) return level;  // not measured yet: the view's level
   while (level + 1 < kSplatLevels && shape_.levels.end[level + 1] > 0 &&
          double(levelEnd(level)) * ns * 1e-6 > kFirstImageMs)
@@ -351,12 +395,53 @@ int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
 }
 
 double ViewportRenderer::nsPerSplat(SplatPrimitive kind) const {
-  return kind == SplatPrimitive::Points  ? timing_[1].nsPerSplat
-         : kind == SplatPrimitive::Quads ? timing_[0].nsPerSplat
-                                         : 0.0;
+  switch (kind) {
+    case SplatPrimitive::Quads:
+      return timing_[int(SplatKind::Quads)].nsPerSplat;
+    case SplatPrimitive::Points:
+      return timing_[int(SplatKind::Points)].nsPerSplat;
+    case SplatPrimitive::Compute:
+      return timing_[int(SplatKind::Compute)].nsPerSplat;
+    default:
+      return 0.0;
+  }
+}
+
+void ViewportRenderer::assumeNsPerSplat(SplatPrimitive kind, double ns) {
+  const SplatKind k = kind == SplatPrimitive::Points    ? SplatKind::Points
+                      : kind == SplatPrimitive::Compute ? SplatKind::Compute
+                                                        : SplatKind::Quads;
+  KindTiming& t = timing_[int(k)];
+  t.nsPerSplat = ns;
+  t.nsSum = ns * 1e6;
+  t.splatSum = 1e6;
+  t.reads = std::max(t.reads, 1);
 }
 
 namespace {
+
+// The view rays of surfel_geometry.glsl (rayOnDisc) for `viewProjection`: near-plane points and
+// directions, affine in NDC (x, y), the directions scaled alike (their length does not matter)
+// to keep floats well within range.
+void setViewRays(const GlProgram& program, const glm::dmat4& viewProjection) {
+  const glm::dmat4 toWorld = glm::inverse(viewProjection);
+  auto unproject = [&](double x, double y, double z) {
+    const glm::dvec4 p = toWorld * glm::dvec4(x, y, z, 1.0);
+    return glm::dvec3(p) / p.w;
+  };
+  const glm::dvec3 near0 = unproject(0, 0, -1), nearX = unproject(1, 0, -1) - near0,
+                   nearY = unproject(0, 1, -1) - near0;
+  const glm::dvec3 dir0 = unproject(0, 0, 1) - near0;
+  const glm::dvec3 dirX = unproject(1, 0, 1) - near0 - nearX - dir0;
+  const glm::dvec3 dirY = unproject(0, 1, 1) - near0 - nearY - dir0;
+  const double scale = 1.0 / std::max(1e-300, glm::length(dir0));
+  program.set("rayOrigin0", glm::vec3(near0));
+  program.set("rayOriginX", glm::vec3(nearX));
+  program.set("rayOriginY", glm::vec3(nearY));
+  program.set("rayDir0", glm::vec3(dir0 * scale));
+  program.set("rayDirX", glm::vec3(dirX * scale));
+  program.set("rayDirY", glm::vec3(dirY * scale));
+}
 
 // Reads `t`'s query when the GPU has it (never waits): its time joins the sums, older draws
 // fading, so that a large draw weighs more than a small one, whose fixed cost (a draw's setup,
@@ -455,44 +540,57 @@ void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size
   collectTiming();
   // The coarse image of a moving view: quads, whose large discs points would draw only where
   // their centres lie in the view (a point is clipped by its vertex).
-  bool points = what != SplatDraw::Coarse && usePoints(f, radius);
+  SplatKind kind = what == SplatDraw::Coarse ? SplatKind::Quads : preferredKind(f, radius);
   const bool whole = what == SplatDraw::WholeImage;
+  const bool automatic = primitive_ == SplatPrimitive::Automatic && timersTrusted_;
   // Automatic tries a kind on whole images only, where it is timed: a share of an image drawn
-  // over frames goes as quads until both kinds have a time.
-  if (!whole && primitive_ == SplatPrimitive::Automatic &&
-      (timing_[0].reads == 0 || timing_[1].reads == 0))
-    points = false;
-  if (whole && primitive_ == SplatPrimitive::Automatic && timersTrusted_ && timing_[0].reads > 0 &&
-      timing_[1].reads > 0 && pointsFit(f, radius)) {
-    // The other kind again, once every kRetryEvery times of the one drawn.
-    const KindTiming &drawn = timing_[points ? 1 : 0], &other = timing_[points ? 0 : 1];
-    if (!other.pending && drawn.reads >= retryAfterReads_) {
-      points = !points;
-      retryAfterReads_ = drawn.reads + kRetryEvery;
+  // over frames goes as quads until every kind that fits has a time. (Timing shares instead was
+  // tried: a compute draw's fixed cost, its images cleared and the view's pixels resolved, made
+  // shares of 30,000 splats time 6.5-19 ns a splat on the H200 against 0.4-1.0 for whole
+  // images, and Automatic then kept the slower kinds.)
+  if (!whole && automatic && !everyFittingKindTimed(f, radius)) kind = SplatKind::Quads;
+  if (whole && automatic && everyFittingKindTimed(f, radius) &&
+      timing_[int(kind)].reads >= retryAfterReads_) {
+    // Another kind again, once every kRetryEvery times of the one drawn: the one timed least.
+    const int drawnReads = timing_[int(kind)].reads;
+    std::optional<SplatKind> retry;
+    for (int k = 0; k < kSplatKinds; ++k)
+      if (SplatKind(k) != kind && kindFits(f, radius, SplatKind(k)) && !timing_[k].pending &&
+          (!retry || timing_[k].reads < timing_[int(*retry)].reads))
+        retry = SplatKind(k);
+    if (retry) {
+      kind = *retry;
+      retryAfterReads_ = drawnReads + kRetryEvery;
     }
   }
-  drawSplatsAs(f, points, first, count, stride, radius, whole ? timerFor(points, count) : nullptr);
+  drawSplatsAs(f, kind, first, count, stride, radius, whole ? timerFor(kind, count) : nullptr);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-ViewportRenderer::KindTiming* ViewportRenderer::timerFor(bool points, size_t count) {
+ViewportRenderer::KindTiming* ViewportRenderer::timerFor(SplatKind kind, size_t count) {
   // Timed: whole images' draws (every splat of a level from the buffer's start; draws of other
   // ranges, such as the refinement's shares, hold other mixes of splats far apart and close
-  // together, which cost differently), of kTimedDrawSplats or more, one a kind at a time.
-  KindTiming& t = timing_[points ? 1 : 0];
+  // together, which cost differently, and a compute draw's fixed cost weighs on a small one),
+  // of kTimedDrawSplats or more, one a kind at a time.
+  KindTiming& t = timing_[int(kind)];
   if (t.pending || count < kTimedDrawSplats) return nullptr;
   t.splats = count;
   t.pending = true;
   return &t;
 }
 
-void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count,
-                                    size_t stride, float radius, KindTiming* timer) {
+void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, SplatKind kind, size_t first,
+                                    size_t count, size_t stride, float radius, KindTiming* timer) {
   if (count == 0) {
     if (timer) timer->pending = false;
     return;
   }
+  if (kind == SplatKind::Compute) {
+    drawSplatsComputed(f, first, count, stride, radius, timer);
+    return;
+  }
+  const bool points = kind == SplatKind::Points;
   const GlProgram& program = points ? pointProgram_ : surfelProgram_;
   useSurfelProgram(program, f);
   program.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
@@ -530,25 +628,7 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
                 glm::vec4(float(viewport[0] - margin), float(viewport[1] - margin),
                           float(viewport[2] + 2 * margin), float(viewport[3] + 2 * margin)));
     program.set("maxPointSize", maxPointSize_);
-    // The view rays (surfel.frag): near-plane points and directions, affine in NDC (x, y), the
-    // directions scaled alike (their length does not matter) to keep floats well within range.
-    const glm::dmat4 toWorld = glm::inverse(viewProjection);
-    auto unproject = [&](double x, double y, double z) {
-      const glm::dvec4 p = toWorld * glm::dvec4(x, y, z, 1.0);
-      return glm::dvec3(p) / p.w;
-    };
-    const glm::dvec3 near0 = unproject(0, 0, -1), nearX = unproject(1, 0, -1) - near0,
-                     nearY = unproject(0, 1, -1) - near0;
-    const glm::dvec3 dir0 = unproject(0, 0, 1) - near0;
-    const glm::dvec3 dirX = unproject(1, 0, 1) - near0 - nearX - dir0;
-    const glm::dvec3 dirY = unproject(0, 1, 1) - near0 - nearY - dir0;
-    const double scale = 1.0 / std::max(1e-300, glm::length(dir0));
-    program.set("rayOrigin0", glm::vec3(near0));
-    program.set("rayOriginX", glm::vec3(nearX));
-    program.set("rayOriginY", glm::vec3(nearY));
-    program.set("rayDir0", glm::vec3(dir0 * scale));
-    program.set("rayDirX", glm::vec3(dirX * scale));
-    program.set("rayDirY", glm::vec3(dirY * scale));
+    setViewRays(program, viewProjection);
     glBindVertexArray(pointVao_);
   }
   glBindBuffer(GL_ARRAY_BUFFER, splatBuffer_);
@@ -561,7 +641,7 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
   if (timer) glBeginQuery(GL_TIME_ELAPSED, timer->query);
   if (points) {
     glDrawArrays(GL_POINTS, 0, GLsizei(count));
-    pointsDrawn_ += count;
+    drawn_[int(SplatKind::Points)] += count;
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     if (!scissorOn) {
       glScissor(scissorBox[0], scissorBox[1], scissorBox[2], scissorBox[3]);
@@ -569,11 +649,96 @@ void ViewportRenderer::drawSplatsAs(const ViewportFrame& f, bool points, size_t 
     }
   } else {
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
-    quadsDrawn_ += count;
+    drawn_[int(SplatKind::Quads)] += count;
     // Back to every splat from the first, as pick() and the CUDA-GL copier expect.
     if (first != 0 || stride != 1) pointSplatAttributes(sizeof(Splat), 0);
   }
   if (timer) glEndQuery(GL_TIME_ELAPSED);
+}
+
+void ViewportRenderer::drawSplatsComputed(const ViewportFrame& f, size_t first, size_t count,
+                                          size_t stride, float radius, KindTiming* timer) {
+  GLint viewport[4] = {0, 0, 1, 1};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const int width = std::max(1, viewport[2]), height = std::max(1, viewport[3]);
+  if (computeWidth_ != width || computeHeight_ != height) {
+    for (GLuint* texture : {&computeDepth_, &computeIds_}) {
+      if (*texture) glDeleteTextures(1, texture);
+      glGenTextures(1, texture);
+      glBindTexture(GL_TEXTURE_2D, *texture);
+      glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32UI, width, height);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+    computeWidth_ = width;
+    computeHeight_ = height;
+  }
+  if (timer) glBeginQuery(GL_TIME_ELAPSED, timer->query);
+  const GLuint none = 0xffffffffu;
+  glClearTexImage(computeDepth_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+  glClearTexImage(computeIds_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, splatBuffer_);
+  glBindImageTexture(0, computeDepth_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(1, computeIds_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  // What the splats' discs and culling read, in both programs.
+  auto setView = [&](const GlProgram& program) {
+    program.use();
+    program.set("viewProjection", glm::mat4(f.viewProjection));
+    setViewRays(program, f.viewProjection);
+    program.set("eye", glm::vec3(f.eye));
+    program.set("viewForward", glm::vec3(f.forward));
+    program.set("ortho", f.ortho ? 1 : 0);
+    program.set("cellSize", float(cellSize_));
+    program.set("splatRadius", radius);
+    program.set("sectionOn", f.sectionOn ? 1 : 0);
+    program.set("sectionPlane", glm::vec4(glm::vec3(f.sectionNormal), float(f.sectionOffset)));
+  };
+  setView(computeProgram_);
+  computeProgram_.set("viewSize", glm::ivec2(width, height));
+  computeProgram_.set("maxFootprint", int(kMaxComputeFootprintPx) + 2);
+  computeProgram_.set("splatStride", unsigned(stride));
+  // At most kMaxGroups groups a dispatch (GL guarantees 65,535 along x).
+  constexpr size_t kGroupSize = 64, kMaxGroups = 65535;
+  for (int pass = 0; pass < 2; ++pass) {
+    computeProgram_.set("pass", pass);
+    for (size_t done = 0; done < count; done += kGroupSize * kMaxGroups) {
+      const size_t n = std::min(count - done, kGroupSize * kMaxGroups);
+      computeProgram_.set("firstSplat", unsigned(first + done * stride));
+      computeProgram_.set("splatCount", unsigned(n));
+      glDispatchCompute(GLuint((n + kGroupSize - 1) / kGroupSize), 1, 1);
+    }
+    glMemoryBarrier(pass == 0 ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT : GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  // Each pixel's splat lit and written with its depth, through the depth test.
+  setView(resolveProgram_);
+  resolveProgram_.set("keyLight", cameraLight(f, -0.5, 0.8, 0.6));
+  resolveProgram_.set("fillLight", cameraLight(f, 0.7, -0.3, 0.4));
+  resolveProgram_.set("ghostColor", glm::vec4(0.0f));
+  resolveProgram_.set("viewportRect", glm::vec4(float(viewport[0]), float(viewport[1]),
+                                                float(width), float(height)));
+  resolveProgram_.set("leafTexture", 0);
+  resolveProgram_.set("leafTextureWidth", leafTextureWidth_);
+  resolveProgram_.set("leafCount", leafCount_);
+  resolveProgram_.set("depthImage", 1);
+  resolveProgram_.set("idImage", 2);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, computeDepth_);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, computeIds_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, leafTexture_);
+  glBindVertexArray(emptyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (timer) glEndQuery(GL_TIME_ELAPSED);
+  drawn_[int(SplatKind::Compute)] += count;
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+  glBindVertexArray(surfelVao_);
 }
 
 void ViewportRenderer::drawGhosts(const ViewportFrame& f) {
@@ -781,7 +946,14 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   const bool viewMoved = view != shownView_;
   const uint64_t key = view ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
   shownView_ = view;
-  const size_t allowed = viewMoved ? fullShare_ : fullShare_ * 5 / 2;
+  size_t allowed = viewMoved ? fullShare_ : fullShare_ * 5 / 2;
+  // Where the GPU's measured time per splat says that a whole image of the view's level costs
+  // at most half the frame's target, it is drawn whole, a moving view's too, whatever share the
+  // frames have taught so far (which a view in motion, drawing coarse images, never raises).
+  if (timersTrusted_) {
+    const double ns = timing_[int(preferredKind(local, float(1 << detailLevel(local))))].nsPerSplat;
+    if (ns > 0.0) allowed = std::max(allowed, size_t(0.5 * kTargetFrameMs * 1e6 / ns));
+  }
   const RenderTarget* show = nullptr;
   bool showCoarse = false;
 
@@ -895,8 +1067,21 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     const size_t full = levelEnd(buildLevel_);
-    const size_t count = std::min(fullShare_, full - std::min(full, buildDone_));
-    drawSplatRange(local, buildDone_, count, 1, float(1 << buildLevel_), SplatDraw::Share);
+    const size_t rest = full - std::min(full, buildDone_);
+    size_t count = std::min(fullShare_, rest);
+    SplatDraw what = SplatDraw::Share;
+    // Automatic learns a kind's cost from whole draws only (drawSplatRange): while a kind has
+    // no time yet, the rest of the image is drawn at once, timed, as that kind (once a kind, at
+    // most kCalibrationSplats), so that a view whose images are drawn a share a frame learns
+    // them too.
+    const float radius = float(1 << buildLevel_);
+    if (primitive_ == SplatPrimitive::Automatic && timersTrusted_ &&
+        !everyFittingKindTimed(local, radius) && rest >= kTimedDrawSplats &&
+        rest <= kCalibrationSplats) {
+      count = rest;
+      what = SplatDraw::WholeImage;
+    }
+    drawSplatRange(local, buildDone_, count, 1, radius, what);
     buildDone_ += count;
     drewSplatsLastFrame_ = count;
     lastDrawFull_ = true;

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -167,21 +168,37 @@ class ViewportRenderer {
   // How splats are drawn (ui/splat_primitive.h). Points because a GPU's draw of millions of
   // splats is bound by vertex work (four vertices a quad); quads where sprites would not fit.
   void setSplatPrimitive(SplatPrimitive primitive) { primitive_ = primitive; }
-  // Splats drawn so far as points and as quads (each drawn splat counted once per draw).
-  size_t pointsDrawn() const { return pointsDrawn_; }
-  size_t quadsDrawn() const { return quadsDrawn_; }
+  // Splats drawn so far as points, as quads and by compute (each drawn splat counted once per
+  // draw).
+  size_t pointsDrawn() const { return drawn_[int(SplatKind::Points)]; }
+  size_t quadsDrawn() const { return drawn_[int(SplatKind::Quads)]; }
+  size_t computedDrawn() const { return drawn_[int(SplatKind::Compute)]; }
+  // Whether this context draws splats by compute (GL 4.4 and the programs built); else why not.
+  bool computeReady() const { return computeReady_; }
+  const std::string& computeProblem() const { return computeProblem_; }
+  // By compute, splats whose sprites' bound (spriteBoundPx, loose: a splat of 6 px gets 77) is
+  // at most this many pixels (a splat's pixels are one invocation's loop); quads or points where
+  // they could be larger (close-ups). Automatic's timing weighs what the loops cost.
+  static constexpr double kMaxComputeFootprintPx = 128.0;
   // Automatic picks by measurement: which is cheaper depends on where the driver spends its time
-  // (a GPU: vertices, where points save three of four; a software rasterizer: fragments, where
-  // the points' depth written per fragment costs more) and on the splats' size on screen.
+  // (a GPU: vertices, where points save three of four, and where its graphics stages run on few
+  // of its units, as on the H100 and H200, compute; a software rasterizer: fragments, where the
+  // points' depth written per fragment costs more) and on the splats' size on screen.
   // Whole images' draws (kTimedDrawSplats or more) are timed with GL_TIME_ELAPSED, read back
-  // frames later without waiting; each kind is drawn until it has a time, then the cheaper,
-  // and the other again every kRetryEvery times (views change what each costs). Whole draws,
+  // frames later without waiting; each kind is drawn until it has a time, then the cheapest,
+  // and another again every kRetryEvery times (views change what each costs). Whole draws,
   // not slices of one: on the H200 a slice of points drawn after quads timed 8.5 ns a splat,
   // whole draws of points 3.6 (a pipelined GPU's timer spans what is still in flight).
   static constexpr size_t kTimedDrawSplats = 2000;
+  // The most splats drawn at once, in place of a frame's share, to time a kind that has no time
+  // yet (drawCached's refinement): a frame of at most 20 ms at 5 ns a splat.
+  static constexpr size_t kCalibrationSplats = size_t(1) << 22;
   static constexpr int kRetryEvery = 32;
   // The measured GPU time per splat of each kind in nanoseconds (0: not measured yet).
   double nsPerSplat(SplatPrimitive kind) const;
+  // Tests: takes `ns` as the measured time per splat of `kind` (Quads, Points or Compute), as
+  // if read back from a timed draw.
+  void assumeNsPerSplat(SplatPrimitive kind, double ns);
   // Times of draws of one kind.
   struct KindTiming {
     double nsPerSplat = 0.0;             // nsSum / splatSum; 0 before the first
@@ -276,9 +293,9 @@ class ViewportRenderer {
   // Clears the bound target's viewport and draws the background gradient.
   void drawBackground(const ViewportFrame& f);
   // Splats [first, first + count * stride) of the instance buffer, every `stride`-th, with the
-  // disc radius `radius` cells, lit for `f`, as points or quads (usePoints; the coarse image as
-  // quads; a whole image now and then as the other kind, timed). Into the bound target's
-  // current viewport.
+  // disc radius `radius` cells, lit for `f`, as points, quads or by compute (preferredKind; the
+  // coarse image as quads; a whole image now and then as the other kind, timed). Into the bound
+  // target's current viewport.
   void drawSplatRange(const ViewportFrame& f, size_t first, size_t count, size_t stride,
                       float radius, SplatDraw what);
   // The splats' box's nearest depth along the view (its corners' least), scene units.
@@ -310,17 +327,32 @@ class ViewportRenderer {
                       PickWindow* out);
   // Binds `program` and sets the uniforms surfel.vert needs.
   void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
-  // Whether splats of `radius` cells are drawn as points in `f` (setSplatPrimitive, and every
-  // splat's sprite within the driver's largest point).
-  bool usePoints(const ViewportFrame& f, float radius) const;
+  // The kinds of draw (timing_, drawn_): quads (four vertices a splat), points (one vertex, the
+  // disc cut per fragment), compute (surfel_splat.comp and surfel_resolve.frag).
+  enum class SplatKind { Quads = 0, Points = 1, Compute = 2 };
+  static constexpr int kSplatKinds = 3;
+  // Whether splats of `radius` cells can be drawn as `kind` in `f` (points: every sprite within
+  // the driver's largest point; compute: computeReady and every box within
+  // kMaxComputeFootprintPx).
+  bool kindFits(const ViewportFrame& f, float radius, SplatKind kind) const;
+  // The kind a whole image of splats of `radius` cells is drawn as in `f` (setSplatPrimitive;
+  // Automatic: a kind that fits and has no time yet, else the cheapest measured), before
+  // drawSplatRange's retries.
+  SplatKind preferredKind(const ViewportFrame& f, float radius) const;
+  // Whether every kind that fits in `f` has been timed.
+  bool everyFittingKindTimed(const ViewportFrame& f, float radius) const;
   // Whether every splat's sprite of `radius` cells fits the driver's largest point in `f`.
   bool pointsFit(const ViewportFrame& f, float radius) const;
   // A bound on the sprites' size in pixels (infinity where a splat may reach the eye's plane).
   double spriteBoundPx(const ViewportFrame& f, float radius) const;
   // drawSplatRange's draw of one kind, timed into `timer` (marked pending) when given; leaves
   // the vertex array and buffer bound.
-  void drawSplatsAs(const ViewportFrame& f, bool points, size_t first, size_t count, size_t stride,
-                    float radius, KindTiming* timer);
+  void drawSplatsAs(const ViewportFrame& f, SplatKind kind, size_t first, size_t count,
+                    size_t stride, float radius, KindTiming* timer);
+  // drawSplatsAs by compute: the splats' nearest depths and then their indices per pixel of the
+  // current viewport (computeDepth_, computeIds_), then each pixel lit through the depth test.
+  void drawSplatsComputed(const ViewportFrame& f, size_t first, size_t count, size_t stride,
+                          float radius, KindTiming* timer);
 
   // A splat instance buffer with its vertex array (corners + instances).
   struct SplatLayer {
@@ -334,6 +366,12 @@ class ViewportRenderer {
   GlProgram pickProgram_;
   GlProgram lineProgram_;
   GlProgram backgroundProgram_;
+  GlProgram computeProgram_;  // surfel_splat.comp, where computeReady_
+  GlProgram resolveProgram_;  // surfel_resolve.vert + .frag
+  bool computeReady_ = false;
+  std::string computeProblem_;
+  GLuint computeDepth_ = 0, computeIds_ = 0;  // r32ui, the viewport's size when last drawn
+  int computeWidth_ = 0, computeHeight_ = 0;
   GLuint surfelVao_ = 0, cornerBuffer_ = 0, splatBuffer_ = 0;
   GLuint stagingVao_ = 0, stagingBuffer_ = 0;  // stageSplats' buffer, and a VAO to draw it
   size_t stagingCapacity_ = 0;
@@ -343,12 +381,12 @@ class ViewportRenderer {
   float maxPointSize_ = 1.0f;     // pixels, the driver's largest
   GLint maxAttribStride_ = 2048;  // bytes, the driver's largest vertex attribute stride
   SplatPrimitive primitive_ = SplatPrimitive::Automatic;
-  size_t pointsDrawn_ = 0, quadsDrawn_ = 0;  // splats drawn as each so far
-  // Whole images' times of the two kinds (see kTimedDrawSplats): [0] quads, [1] points.
-  KindTiming timing_[2];
-  // The timer of a whole image's draw of `count` splats of one kind (marked pending), or none.
-  KindTiming* timerFor(bool points, size_t count);
-  int retryAfterReads_ = kRetryEvery;  // the other kind again once the drawn one has as many
+  size_t drawn_[kSplatKinds] = {};  // splats drawn as each kind so far
+  // Whole images' times of each kind (see kTimedDrawSplats), by SplatKind.
+  KindTiming timing_[kSplatKinds];
+  // The timer of a whole image's draw of `count` splats of `kind` (marked pending), or none.
+  KindTiming* timerFor(SplatKind kind, size_t count);
+  int retryAfterReads_ = kRetryEvery;  // another kind again once the drawn one has as many
   bool timersTrusted_ = true;          // see timersTrusted()
   // Reads the pending timer queries back when the GPU has them (never waits).
   void collectTiming();

@@ -145,10 +145,11 @@ TEST(HeadlessRender, LevelsOfDetailLookLikeEverySplat) {
   EXPECT_EQ(near.splatsDrawn, near.splats);
 }
 
-// Points (ui/splat_primitive.h): one vertex per splat, the disc and its depth found in the
-// fragment shader by casting the pixel's ray onto the splat's plane, look as the quads do: the
-// same silhouettes, the same part in front where two overlap, the same section caps.
-TEST(HeadlessRender, PointsLookLikeQuads) {
+// Points and compute (ui/splat_primitive.h): one vertex per splat, or one compute invocation,
+// the disc and its depth found per pixel by casting the pixel's ray onto the splat's plane, look
+// as the quads do: the same silhouettes, the same part in front where two overlap, the same
+// section caps.
+TEST(HeadlessRender, PointsAndComputeLookLikeQuads) {
   std::string why;
   auto gl = headlessOrSkipReason(&why);
   if (!gl) GTEST_SKIP() << why;
@@ -165,33 +166,41 @@ TEST(HeadlessRender, PointsLookLikeQuads) {
   options.grid = false;
   options.everySplat = true;
   Progress progress;
+  const bool compute = ViewportRenderer().computeReady();
   for (bool cut : {false, true}) {
-    SCOPED_TRACE(cut ? "section on" : "whole");
     options.section.on = cut;
     options.section.axis = 0;
     options.section.startFraction = 0.6;
     options.splatPrimitive = SplatPrimitive::Quads;
     SceneRender quads = renderScene(scene, "", backend, options, progress);
-    options.splatPrimitive = SplatPrimitive::Points;
-    SceneRender points = renderScene(scene, "", backend, options, progress);
     EXPECT_FALSE(quads.drawnAsPoints);
-    EXPECT_TRUE(points.drawnAsPoints);
-    int far = 0, covered = 0, greenPixels = 0;
-    const Rgb background = pixel(quads, 240, 0, 0);
-    for (int y = 0; y < 180; ++y)
-      for (int x = 0; x < 240; ++x) {
-        Rgb a = pixel(quads, 240, x, y), b = pixel(points, 240, x, y);
-        const int d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
-        far += d > 24 ? 1 : 0;
-        covered += (a.r != background.r || a.g != background.g || a.b != background.b) ? 1 : 0;
-        greenPixels += a.g > a.r + 60 ? 1 : 0;
-      }
-    EXPECT_GT(covered, 8000) << "the parts fill part of the image";
-    EXPECT_GT(greenPixels, 1000) << "the sphere shows in front of the box";
-    // Mesa draws them alike to the pixel here; discs 1.2 times as wide differ in 145-194 pixels
-    // of 43,000, the depth of the splat's centre instead of the pixel's in 51-72.
-    EXPECT_LT(far, covered / 2000) << "pixels that differ visibly between points and quads";
+    EXPECT_FALSE(quads.drawnByCompute);
+    for (SplatPrimitive kind : {SplatPrimitive::Points, SplatPrimitive::Compute}) {
+      if (kind == SplatPrimitive::Compute && !compute) continue;
+      SCOPED_TRACE(std::string(cut ? "section on, " : "whole, ") +
+                   (kind == SplatPrimitive::Points ? "points" : "compute"));
+      options.splatPrimitive = kind;
+      SceneRender other = renderScene(scene, "", backend, options, progress);
+      EXPECT_EQ(other.drawnAsPoints, kind == SplatPrimitive::Points);
+      EXPECT_EQ(other.drawnByCompute, kind == SplatPrimitive::Compute);
+      int far = 0, covered = 0, greenPixels = 0;
+      const Rgb background = pixel(quads, 240, 0, 0);
+      for (int y = 0; y < 180; ++y)
+        for (int x = 0; x < 240; ++x) {
+          Rgb a = pixel(quads, 240, x, y), b = pixel(other, 240, x, y);
+          const int d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+          far += d > 24 ? 1 : 0;
+          covered += (a.r != background.r || a.g != background.g || a.b != background.b) ? 1 : 0;
+          greenPixels += a.g > a.r + 60 ? 1 : 0;
+        }
+      EXPECT_GT(covered, 8000) << "the parts fill part of the image";
+      EXPECT_GT(greenPixels, 1000) << "the sphere shows in front of the box";
+      // Mesa draws them alike to the pixel here; discs 1.2 times as wide differ in 145-194
+      // pixels of 43,000, the depth of the splat's centre instead of the pixel's in 51-72.
+      EXPECT_LT(far, covered / 2000) << "pixels that differ visibly from the quads";
+    }
   }
+  if (!compute) std::printf("compute not tried: %s\n", ViewportRenderer().computeProblem().c_str());
 }
 
 // Automatic: the renderer times its draws and settles on the kind it measured cheaper, after
@@ -218,33 +227,111 @@ TEST(HeadlessRender, AutomaticDrawsTheKindItMeasuredCheaper) {
     EXPECT_EQ(renderer.nsPerSplat(SplatPrimitive::Points), 0.0);
     renderer.trustTimers(true);  // the choice itself, on whatever times this driver gives
   }
-  for (int i = 0; i < 4; ++i) {
+  const bool compute = renderer.computeReady();
+  for (int i = 0; i < 6; ++i) {
     renderer.draw(frame, {}, {}, {});
     glFinish();  // the timer's result is there for the next draw
   }
   EXPECT_GT(renderer.nsPerSplat(SplatPrimitive::Points), 0.0);
   EXPECT_GT(renderer.nsPerSplat(SplatPrimitive::Quads), 0.0);
+  EXPECT_EQ(renderer.nsPerSplat(SplatPrimitive::Compute) > 0.0, compute);
   EXPECT_GT(renderer.pointsDrawn(), 0u);
   EXPECT_GT(renderer.quadsDrawn(), 0u);
-  // From here on each image is drawn as the kind measured cheaper before it, but for a retry of
-  // the other every kRetryEvery images (not more: an earlier version, once it retried, kept
+  EXPECT_EQ(renderer.computedDrawn() > 0, compute);
+  // From here on each image is drawn as the kind measured cheapest before it, but for a retry
+  // of another every kRetryEvery images (not more: an earlier version, once it retried, kept
   // drawing the dearer kind).
   constexpr int kImages = 80;
   int otherKind = 0;
   for (int i = 0; i < kImages; ++i) {
-    const size_t pointsBefore = renderer.pointsDrawn();
+    const size_t before[3] = {renderer.quadsDrawn(), renderer.pointsDrawn(),
+                              renderer.computedDrawn()};
     renderer.draw(frame, {}, {}, {});
     glFinish();
     // The times the draw chose by: it reads the last timer's result before it chooses (on a
-    // busy machine the two kinds' times cross now and then; the times before the draw would
-    // then count its right choice as a wrong one).
-    const bool pointsCheaper =
-        renderer.nsPerSplat(SplatPrimitive::Points) < renderer.nsPerSplat(SplatPrimitive::Quads);
-    const bool drewPoints = renderer.pointsDrawn() > pointsBefore;
-    otherKind += drewPoints != pointsCheaper ? 1 : 0;
+    // busy machine the kinds' times cross now and then; the times before the draw would then
+    // count its right choice as a wrong one).
+    const double ns[3] = {renderer.nsPerSplat(SplatPrimitive::Quads),
+                          renderer.nsPerSplat(SplatPrimitive::Points),
+                          compute ? renderer.nsPerSplat(SplatPrimitive::Compute) : 1e300};
+    const size_t after[3] = {renderer.quadsDrawn(), renderer.pointsDrawn(),
+                             renderer.computedDrawn()};
+    const int cheapest = int(std::min_element(ns, ns + 3) - ns);
+    otherKind += after[cheapest] > before[cheapest] ? 0 : 1;
   }
   EXPECT_LE(otherKind, kImages / ViewportRenderer::kRetryEvery + 1);
   target.read();
+}
+
+// Views whose images are drawn a share a frame (a coarse image first) still time each kind: a
+// kind with no time draws the rest of the image at once, timed, in place of a share. Without
+// it, shares went as quads until every kind had a time from a whole image, which such views never
+// draw, and Automatic never learnt that another kind was cheaper.
+TEST(HeadlessRender, ImagesDrawnAShareAFrameStillTimeEachKind) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  ViewportRenderer renderer;
+  ASSERT_GT(uploadSphere(renderer), 3 * ViewportRenderer::kMinShare);
+  renderer.limitDetailLevel(0);
+  renderer.trustTimers(true);
+  ViewportFrame frame = sphereFrame();
+  RenderTarget target(frame.width, frame.height);
+  target.bind();
+  for (int view = 0; view < 4; ++view) {
+    frame.eye = glm::dvec3(0.3 * view, -4.0, 1.0);
+    frame.forward = glm::normalize(-frame.eye);
+    frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                           glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+    for (int i = 0; i < 2; ++i) {  // the view moved (a coarse image), then at rest (refined)
+      renderer.setFrameShares(ViewportRenderer::kMinShare, ViewportRenderer::kMinShare);
+      renderer.drawCached(frame, {}, {}, {}, 100.0);
+      if (i == 0) {
+        EXPECT_TRUE(renderer.showsCoarseImage()) << "view " << view;
+      }
+      glFinish();  // the timer's result is there for the next frame
+    }
+  }
+  EXPECT_GT(renderer.nsPerSplat(SplatPrimitive::Points), 0.0);
+  EXPECT_GT(renderer.nsPerSplat(SplatPrimitive::Quads), 0.0);
+  EXPECT_EQ(renderer.nsPerSplat(SplatPrimitive::Compute) > 0.0, renderer.computeReady());
+  target.read();
+}
+
+// A moving view draws its whole image, not the coarse one, where the measured time per splat
+// says that the whole costs at most half the frame's target, even while the frames' share is
+// small (a view in motion never raises it); the coarse image where it would cost more.
+TEST(HeadlessRender, AMovingViewIsDrawnWholeWhereTheSplatsTimeSaysItFits) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  for (bool fits : {true, false}) {
+    SCOPED_TRACE(fits ? "splats cheap enough" : "splats too dear");
+    ViewportRenderer renderer;
+    const size_t splats = uploadSphere(renderer);
+    ASSERT_GT(splats, 3 * ViewportRenderer::kMinShare);
+    renderer.limitDetailLevel(0);
+    renderer.trustTimers(true);
+    // A whole image at half the frame's target, just within or just beyond.
+    const double ns =
+        0.5 * ViewportRenderer::kTargetFrameMs * 1e6 / double(splats) * (fits ? 0.9 : 1.1);
+    for (SplatPrimitive kind :
+         {SplatPrimitive::Quads, SplatPrimitive::Points, SplatPrimitive::Compute})
+      renderer.assumeNsPerSplat(kind, ns);
+    renderer.setFrameShares(ViewportRenderer::kMinShare, ViewportRenderer::kMinShare);
+    ViewportFrame frame = sphereFrame();
+    RenderTarget target(frame.width, frame.height);
+    target.bind();
+    for (int i = 0; i < 3; ++i) {  // the camera turning a little each frame
+      frame.eye = glm::dvec3(0.3 * i, -4.0, 1.0);
+      frame.forward = glm::normalize(-frame.eye);
+      frame.viewProjection = glm::perspective(0.8, 200.0 / 150.0, 0.1, 20.0) *
+                             glm::lookAt(frame.eye, glm::dvec3(0.0), frame.up);
+      renderer.drawCached(frame, {}, {}, {}, 30.0);
+      EXPECT_EQ(renderer.showsCoarseImage(), !fits) << "frame " << i;
+    }
+    target.read();
+  }
 }
 
 // Close up, the sphere runs off the image's edges: points whose centres lie just outside the view
