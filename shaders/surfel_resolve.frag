@@ -3,7 +3,8 @@
 // whose idImage names a splat is lit as surfel.frag lights a point's pixel (the same disc point
 // from the pixel's view ray, surfel_shade.glsl) and written with the depth depthImage holds, so
 // that the depth test merges it with what the target holds (an image drawn over frames) and
-// what is drawn next (ghosts, lines) is hidden behind it.
+// what is drawn next (ghosts, lines) is hidden behind it. depthImage holds 24-bit depths
+// (surfel_splat.comp), which the depth buffer keeps as they are.
 
 // engine/ldi/splats.h: Splat, 5 words each.
 layout(std430, binding = 0) readonly buffer SplatWords {
@@ -39,7 +40,7 @@ void main() {
   vec3 world;
   float depth;
   rayOnDisc(ndc, position, splatPlaneNormal(n, axis), axis, splatRadius * cellSize, world, depth);
-  gl_FragDepth = uintBitsToFloat(texelFetch(depthImage, pixel, 0).x);
+  gl_FragDepth = float(texelFetch(depthImage, pixel, 0).x) / 16777215.0;  // 24 bits, as kept
   vec3 toEye = ortho ? -viewForward : normalize(eye - world);
   vec4 colour;
   if (!shadeSurfel(world, toEye, n, leafData.rgb, leafData.a, facing, colour)) discard;
