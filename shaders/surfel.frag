@@ -16,13 +16,14 @@ flat in vec3 vPlaneNormal;
 flat in int vAxis;
 uniform vec4 viewportRect;  // the GL viewport: x, y, width, height in pixels
 uniform float splatRadius;  // in cells
-#include "surfel_geometry.glsl"
 #else
 in vec2 vCorner;
 in vec3 vToEye;
 in vec3 vWorld;
 #endif
 
+// Outside the #ifdef (an include within a block left out would shift the log's line numbers).
+#include "surfel_geometry.glsl"
 #include "surfel_shade.glsl"
 
 out vec4 fragColor;
@@ -43,6 +44,6 @@ void main() {
   if (dot(corner, corner) > 1.0) discard;
 #endif
   vec4 colour;
-  if (!shadeSurfel(world, toEye, vNormal, vColor, vSelected, vFacing, colour)) discard;
+  if (!shadeSurfel(world, toEye, vNormal, vColor, vSelected, vFacing, false, colour)) discard;
   fragColor = colour;
 }

@@ -1,8 +1,12 @@
 // Included (GlProgram: #include "surfel_geometry.glsl") by the shaders that read splats
 // (engine/ldi/splats.h: Splat) and find their discs: surfel.vert, surfel.frag with SPLAT_POINTS,
-// surfel_splat.comp and surfel_resolve.frag. A splat's disc lies in the plane through its surfel across its normal
-// with the ray-axis component kept away from 0 (surfel.vert's lifted quad), and is the disc of
-// `radius` around the surfel measured across the ray axis (the quad's inscribed disc).
+// surfel_splat.comp and surfel_resolve.frag. A splat's disc lies in the plane through its
+// surfel across its normal with the ray-axis component kept away from 0 (surfel.vert's lifted
+// quad), and is the disc of `radius` around the surfel measured across the ray axis (the quad's
+// inscribed disc).
+
+#ifndef SURFEL_GEOMETRY_GLSL
+#define SURFEL_GEOMETRY_GLSL
 
 uniform mat4 viewProjection;  // scene units to clip space
 // The view ray through NDC (x, y): from rayOrigin0 + x rayOriginX + y rayOriginY (the near
@@ -86,3 +90,5 @@ bool rayOnDisc(vec2 ndc, vec3 center, vec3 planeNormal, int axis, float radius, 
   depth = 0.5 * ndcDepth + 0.5;
   return true;
 }
+
+#endif  // SURFEL_GEOMETRY_GLSL

@@ -3,8 +3,10 @@
 // whose idImage names a splat is lit as surfel.frag lights a point's pixel (the same disc point
 // from the pixel's view ray, surfel_shade.glsl) and written with the depth depthImage holds, so
 // that the depth test merges it with what the target holds (an image drawn over frames) and
-// what is drawn next (ghosts, lines) is hidden behind it. depthImage holds 24-bit depths
-// (surfel_splat.comp), which the depth buffer keeps as they are.
+// what is drawn next (ghosts, lines) is hidden behind it. depthImage holds depths on the 24-bit
+// buffer's steps (surfel_splat.comp), which the depth buffer keeps as they are. The section cut
+// was decided there: a pixel kept is not cut again here (a recomputed point a rounding away
+// could fall on the cut side and leave a hole).
 
 // engine/ldi/splats.h: Splat, 5 words each.
 layout(std430, binding = 0) readonly buffer SplatWords {
@@ -40,9 +42,9 @@ void main() {
   vec3 world;
   float depth;
   rayOnDisc(ndc, position, splatPlaneNormal(n, axis), axis, splatRadius * cellSize, world, depth);
-  gl_FragDepth = float(texelFetch(depthImage, pixel, 0).x) / 16777215.0;  // 24 bits, as kept
+  gl_FragDepth = uintBitsToFloat(texelFetch(depthImage, pixel, 0).x);  // on a 24-bit step
   vec3 toEye = ortho ? -viewForward : normalize(eye - world);
   vec4 colour;
-  if (!shadeSurfel(world, toEye, n, leafData.rgb, leafData.a, facing, colour)) discard;
+  if (!shadeSurfel(world, toEye, n, leafData.rgb, leafData.a, facing, true, colour)) discard;
   fragColor = colour;
 }

@@ -5,6 +5,9 @@
 // splat facing away from the camera is drawn as the cap: the leaf's colour, flat-lit by the
 // plane's normal, with a faint hatch on the plane.
 
+#ifndef SURFEL_SHADE_GLSL
+#define SURFEL_SHADE_GLSL
+
 uniform vec3 keyLight;   // unit direction towards the light, world space
 uniform vec3 fillLight;
 uniform bool sectionOn;
@@ -32,9 +35,9 @@ vec3 onSectionPlane(vec3 world) {
 // the eye), of a surfel with normal `normal` (any length), leaf colour `color` (linear),
 // `selected` (> 0.5: tinted) and `facing` (dot of its normal with the direction to the eye at
 // the surfel: < 0 faces away). False where the pixel is not drawn: cut away by the section
-// plane, or a ghost's back.
+// plane (unless `kept`: the cut was decided before), or a ghost's back.
 bool shadeSurfel(vec3 world, vec3 toEye, vec3 normal, vec3 color, float selected, float facing,
-                 out vec4 colour) {
+                 bool kept, out vec4 colour) {
   colour = vec4(0.0);
   if (ghostColor.a > 0.0) {
     if (sectionOn && dot(sectionPlane.xyz, world) > sectionPlane.w) return false;
@@ -48,7 +51,7 @@ bool shadeSurfel(vec3 world, vec3 toEye, vec3 normal, vec3 color, float selected
   vec3 base = color;
   if (selected > 0.5) base = mix(base, vec3(1.0, 0.55, 0.12), 0.45);
   if (sectionOn) {
-    if (dot(sectionPlane.xyz, world) > sectionPlane.w) return false;
+    if (!kept && dot(sectionPlane.xyz, world) > sectionPlane.w) return false;
     if (facing < 0.0) {
       // The cap: lit as the plane (its normal turned to the viewer), hatched every 8 cells.
       vec3 eyeDir = ortho ? -viewForward : normalize(eye - world);
@@ -71,3 +74,5 @@ bool shadeSurfel(vec3 world, vec3 toEye, vec3 normal, vec3 color, float selected
   colour = vec4(gammaEncode(linear), 1.0);
   return true;
 }
+
+#endif  // SURFEL_SHADE_GLSL

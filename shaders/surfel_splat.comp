@@ -8,7 +8,9 @@
 // millions of small splats at several nanoseconds each, where its compute units take a fraction.
 //
 // Images: depthImage (r32ui, the view's pixels, cleared to 0xffffffff) holds the nearest depth
-// in [0, 1] as the 24-bit depth buffer stores it (round(depth * (2^24 - 1))), so that splats at
+// in [0, 1] rounded to the 24-bit depth buffer's steps (round(depth * (2^24 - 1)) / (2^24 - 1),
+// as float bits, which order as the floats do: none is negative; surfel_resolve.frag writes
+// that float as it is, which the depth buffer keeps exactly), so that splats at
 // depths that buffer cannot tell apart tie and the first in the buffer wins, as the quads' depth
 // test (GL_LESS) decides: with the floats' full precision instead, two parts' coincident faces
 // showed a speckle of both in a section's cap; idImage (r32ui, cleared to 0xffffffff) the
@@ -75,7 +77,7 @@ void main() {
       float depth;
       if (!rayOnDisc(ndc, position, planeNormal, axis, radius, world, depth)) continue;
       if (sectionOn && dot(sectionPlane.xyz, world) > sectionPlane.w) continue;
-      uint bits = uint(round(depth * 16777215.0));
+      uint bits = floatBitsToUint(round(depth * 16777215.0) / 16777215.0);
       if (pass == 0) {
         imageAtomicMin(depthImage, ivec2(x, y), bits);
       } else if (imageLoad(depthImage, ivec2(x, y)).x == bits) {

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "engine/util/error.h"
 #include "ui/embedded_shaders.h"
@@ -21,11 +22,15 @@ std::string shaderLog(GLuint shader) {
 }
 
 // `source` (the embedded shaders/<name>) with each line `#include "FILE"` replaced by the
-// embedded shaders/FILE (itself expanded, at most kMaxDepth deep), each followed by a #line that
-// gives the including file's numbering back (the driver's log names lines of the file the
-// error is in, or of the file included, by their own numbers).
-std::string expandIncludes(const char* name, const char* source, int depth = 0) {
+// embedded shaders/FILE (itself expanded, at most kMaxDepth deep). Each included file gets a
+// source-string number of its own (`files`: the numbers' names, the shader itself 0), and #line
+// directives give every line its file's number and line, so that the driver's log ("N:LINE")
+// names the file and line of an error. (A file included inside a block an #if leaves out keeps
+// the lines after it off by its length: the shaders include outside such blocks.)
+std::string expandIncludes(const char* name, const char* source, std::vector<std::string>* files,
+                           int depth = 0) {
   constexpr int kMaxDepth = 4;
+  const size_t self = files->size() - 1;  // this file's number
   std::string out;
   int line = 1;
   for (const char* at = source; *at; ++line) {
@@ -47,8 +52,10 @@ std::string expandIncludes(const char* name, const char* source, int depth = 0) 
       throw Error(std::string("shaders/") + name + ":" + std::to_string(line) + ": " +
                   (body ? "includes nested too deep" : "includes a file that was not embedded") +
                   " (" + text + ")");
-    out += "#line 1\n" + expandIncludes(included.c_str(), body, depth + 1);
-    out += "#line " + std::to_string(line + 1) + "\n";
+    files->push_back(included);
+    out += "#line 1 " + std::to_string(files->size() - 1) + "\n";
+    out += expandIncludes(included.c_str(), body, files, depth + 1);
+    out += "#line " + std::to_string(line + 1) + " " + std::to_string(self) + "\n";
   }
   return out;
 }
@@ -59,13 +66,14 @@ GLuint compile(GLenum type, const char* name, const char* defines) {
   if (!embedded)
     throw Error(std::string("shaders/") + name +
                 ": no such shader was embedded into this build (ui/embed_shaders.cmake)");
-  const std::string expanded = expandIncludes(name, embedded);
+  std::vector<std::string> files{name};
+  const std::string expanded = expandIncludes(name, embedded, &files);
   const char* source = expanded.c_str();
   const char* firstLineEnd = std::strchr(source, '\n');
   const char* rest = firstLineEnd ? firstLineEnd + 1 : source + std::strlen(source);
   const std::string version(source, rest);
   // After the defines, the source's own line numbers again (the driver's log names them).
-  const std::string inserted = defines && *defines ? std::string(defines) + "#line 2\n" : "";
+  const std::string inserted = defines && *defines ? std::string(defines) + "#line 2 0\n" : "";
   const char* parts[3] = {version.c_str(), inserted.c_str(), rest};
   GLuint shader = glCreateShader(type);
   glShaderSource(shader, 3, parts, nullptr);
@@ -75,7 +83,11 @@ GLuint compile(GLenum type, const char* name, const char* defines) {
   if (!ok) {
     std::string log = shaderLog(shader);
     glDeleteShader(shader);
-    throw Error(std::string("shaders/") + name + ": does not compile:\n" + log);
+    std::string numbers;  // which file each source-string number in the log is
+    for (size_t i = 1; i < files.size(); ++i)
+      numbers += (i == 1 ? " (source strings: 0 " + std::string(name) : std::string()) + ", " +
+                 std::to_string(i) + " " + files[i] + (i + 1 == files.size() ? ")" : "");
+    throw Error(std::string("shaders/") + name + ": does not compile" + numbers + ":\n" + log);
   }
   return shader;
 }

@@ -113,6 +113,9 @@ ViewportRenderer::ViewportRenderer()
   // Splats by compute where the context has compute shaders (4.3) and glClearTexImage (4.4),
   // and the driver builds the programs; quads and points otherwise.
   if (epoxy_gl_version() >= 44) {
+    GLint64 blockBytes = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &blockBytes);
+    maxStorageBlockBytes_ = double(blockBytes);
     try {
       computeProgram_ = GlProgram::compute("surfel_splat.comp");
       resolveProgram_ = GlProgram("surfel_resolve.vert", "surfel_resolve.frag");
@@ -348,7 +351,10 @@ bool ViewportRenderer::kindFits(const ViewportFrame& f, float radius, SplatKind 
     case SplatKind::Points:
       return pointsFit(f, radius);
     case SplatKind::Compute:
-      return computeReady() && spriteBoundPx(f, radius) <= kMaxComputeFootprintPx;
+      // The splats are read as one shader storage block, which the driver bounds (the spec's
+      // least is 16 MiB; Mesa's and older NVIDIA drivers' 128 MiB: 6.7 M splats).
+      return computeReady() && double(splatCount_) * sizeof(Splat) <= maxStorageBlockBytes_ &&
+             spriteBoundPx(f, radius) <= kMaxComputeFootprintPx;
     default:
       return true;
   }
@@ -367,15 +373,18 @@ ViewportRenderer::SplatKind ViewportRenderer::preferredKind(const ViewportFrame&
       break;
   }
   if (!timersTrusted_) return SplatKind::Quads;
-  // Automatic: each kind that fits until it has a time (points, compute, quads), then the
-  // cheapest (drawSplatRange retries the others now and then).
+  // Automatic: each kind that fits until it has a time (points, compute, quads; not again
+  // while its timer is still in flight, which would draw it untimed), then the cheapest
+  // (drawSplatRange retries the others now and then).
   for (SplatKind kind : {SplatKind::Points, SplatKind::Compute, SplatKind::Quads})
-    if (kindFits(f, radius, kind) && timing_[int(kind)].reads == 0) return kind;
-  SplatKind best = SplatKind::Quads;
-  for (SplatKind kind : {SplatKind::Points, SplatKind::Compute})
-    if (kindFits(f, radius, kind) && timing_[int(kind)].nsPerSplat < timing_[int(best)].nsPerSplat)
+    if (kindFits(f, radius, kind) && timing_[int(kind)].reads == 0 && !timing_[int(kind)].pending)
+      return kind;
+  std::optional<SplatKind> best;  // the cheapest kind measured (untimed ones have no cost)
+  for (SplatKind kind : {SplatKind::Quads, SplatKind::Points, SplatKind::Compute})
+    if (kindFits(f, radius, kind) && timing_[int(kind)].reads > 0 &&
+        (!best || timing_[int(kind)].nsPerSplat < timing_[int(*best)].nsPerSplat))
       best = kind;
-  return best;
+  return best.value_or(SplatKind::Quads);
 }
 
 bool ViewportRenderer::everyFittingKindTimed(const ViewportFrame& f, float radius) const {
@@ -386,6 +395,9 @@ bool ViewportRenderer::everyFittingKindTimed(const ViewportFrame& f, float radiu
 
 int ViewportRenderer::firstImageLevel(const ViewportFrame& f) const {
   int level = buildLevel_;
+  // Not from a software rasterizer's timers, which count little of a draw's work (and under
+  // load read anything: a test of the window's image saw a coarser first image now and then).
+  if (!timersTrusted_) return level;
   const double ns = timing_[int(preferredKind(f, float(1 << level)))].nsPerSplat;
   if (ns <= 0.0) return level;  // not measured yet: the view's level
   while (level + 1 < kSplatLevels && shape_.levels.end[level + 1] > 0 &&
@@ -554,8 +566,11 @@ void ViewportRenderer::drawSplatRange(const ViewportFrame& f, size_t first, size
     // Another kind again, once every kRetryEvery times of the one drawn: the one timed least.
     const int drawnReads = timing_[int(kind)].reads;
     std::optional<SplatKind> retry;
+    // Not a kind this draw would make a hitch of: where a whole image was allowed for the
+    // cheapest kind's time (a moving view, drawCached), a dearer kind may take many frames.
     for (int k = 0; k < kSplatKinds; ++k)
       if (SplatKind(k) != kind && kindFits(f, radius, SplatKind(k)) && !timing_[k].pending &&
+          double(count) * timing_[k].nsPerSplat * 1e-6 <= kTargetFrameMs &&
           (!retry || timing_[k].reads < timing_[int(*retry)].reads))
         retry = SplatKind(k);
     if (retry) {
@@ -678,7 +693,8 @@ void ViewportRenderer::drawSplatsComputed(const ViewportFrame& f, size_t first, 
   const GLuint none = 0xffffffffu;
   glClearTexImage(computeDepth_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
   glClearTexImage(computeIds_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, splatBuffer_);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, splatBuffer_, 0,
+                    GLsizeiptr(std::max<size_t>(1, splatCount_) * sizeof(Splat)));
   glBindImageTexture(0, computeDepth_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindImageTexture(1, computeIds_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   // What the splats' discs and culling read, in both programs.
@@ -708,7 +724,10 @@ void ViewportRenderer::drawSplatsComputed(const ViewportFrame& f, size_t first, 
       computeProgram_.set("splatCount", unsigned(n));
       glDispatchCompute(GLuint((n + kGroupSize - 1) / kGroupSize), 1, 1);
     }
-    glMemoryBarrier(pass == 0 ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT : GL_TEXTURE_FETCH_BARRIER_BIT);
+    // Pass 1 reads pass 0's depths; the resolve fetches both images; the next draw's clears
+    // follow these passes' image writes.
+    glMemoryBarrier(pass == 0 ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT
+                              : GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   }
   // Each pixel's splat lit and written with its depth, through the depth test.
   setView(resolveProgram_);
@@ -1083,7 +1102,9 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     }
     drawSplatRange(local, buildDone_, count, 1, radius, what);
     buildDone_ += count;
-    drewSplatsLastFrame_ = count;
+    // A calibration's draw says nothing of the share a frame (it may be far larger): the share
+    // stays as it is.
+    drewSplatsLastFrame_ = what == SplatDraw::WholeImage ? 0 : count;
     lastDrawFull_ = true;
     if (buildDone_ >= full) {
       drawGhosts(local);

@@ -370,6 +370,7 @@ class ViewportRenderer {
   GlProgram resolveProgram_;  // surfel_resolve.vert + .frag
   bool computeReady_ = false;
   std::string computeProblem_;
+  double maxStorageBlockBytes_ = 0.0;         // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   GLuint computeDepth_ = 0, computeIds_ = 0;  // r32ui, the viewport's size when last drawn
   int computeWidth_ = 0, computeHeight_ = 0;
   GLuint surfelVao_ = 0, cornerBuffer_ = 0, splatBuffer_ = 0;
@@ -391,7 +392,8 @@ class ViewportRenderer {
   // Reads the pending timer queries back when the GPU has them (never waits).
   void collectTiming();
   // The level of an edit's first image in `f` (kFirstImageMs): buildLevel_ or coarser, as the
-  // measured cost per splat allows; buildLevel_ before any measurement.
+  // measured cost per splat allows; buildLevel_ before any measurement and where the timers
+  // are not trusted (the frames' share then decides between a whole image and the coarse one).
   int firstImageLevel(const ViewportFrame& f) const;
   SplatLayer ghosts_[2];              // cutting, intersecting
   std::vector<LineVertex> backdrop_;  // setBackdrop
