@@ -697,18 +697,12 @@ void ViewportRenderer::drawSplatsComputed(const ViewportFrame& f, size_t first, 
                     GLsizeiptr(std::max<size_t>(1, splatCount_) * sizeof(Splat)));
   glBindImageTexture(0, computeDepth_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindImageTexture(1, computeIds_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  // What the splats' discs and culling read, in both programs.
+  // What the splats' discs, culling and colours read, in both programs: surfel.vert's uniforms
+  // (and the leaf texture on unit 0), the disc's radius and the view rays.
   auto setView = [&](const GlProgram& program) {
-    program.use();
-    program.set("viewProjection", glm::mat4(f.viewProjection));
-    setViewRays(program, f.viewProjection);
-    program.set("eye", glm::vec3(f.eye));
-    program.set("viewForward", glm::vec3(f.forward));
-    program.set("ortho", f.ortho ? 1 : 0);
-    program.set("cellSize", float(cellSize_));
+    useSurfelProgram(program, f);
     program.set("splatRadius", radius);
-    program.set("sectionOn", f.sectionOn ? 1 : 0);
-    program.set("sectionPlane", glm::vec4(glm::vec3(f.sectionNormal), float(f.sectionOffset)));
+    setViewRays(program, f.viewProjection);
   };
   setView(computeProgram_);
   computeProgram_.set("viewSize", glm::ivec2(width, height));
@@ -736,9 +730,6 @@ void ViewportRenderer::drawSplatsComputed(const ViewportFrame& f, size_t first, 
   resolveProgram_.set("ghostColor", glm::vec4(0.0f));
   resolveProgram_.set("viewportRect", glm::vec4(float(viewport[0]), float(viewport[1]),
                                                 float(width), float(height)));
-  resolveProgram_.set("leafTexture", 0);
-  resolveProgram_.set("leafTextureWidth", leafTextureWidth_);
-  resolveProgram_.set("leafCount", leafCount_);
   resolveProgram_.set("depthImage", 1);
   resolveProgram_.set("idImage", 2);
   glActiveTexture(GL_TEXTURE1);
@@ -746,7 +737,6 @@ void ViewportRenderer::drawSplatsComputed(const ViewportFrame& f, size_t first, 
   glActiveTexture(GL_TEXTURE2);
   glBindTexture(GL_TEXTURE_2D, computeIds_);
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, leafTexture_);
   glBindVertexArray(emptyVao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   if (timer) glEndQuery(GL_TIME_ELAPSED);

@@ -325,7 +325,8 @@ class ViewportRenderer {
   // Leaves the bound framebuffer and viewport as they were.
   bool readPickWindow(const ViewportFrame& frame, int x0, int y0, int width, int height,
                       PickWindow* out);
-  // Binds `program` and sets the uniforms surfel.vert needs.
+  // Binds `program` and sets the uniforms surfel.vert needs (which the compute kind's programs
+  // read too), the leaf texture on unit 0 and the splat vertex array.
   void useSurfelProgram(const GlProgram& program, const ViewportFrame& f);
   // The kinds of draw (timing_, drawn_): quads (four vertices a splat), points (one vertex, the
   // disc cut per fragment), compute (surfel_splat.comp and surfel_resolve.frag).
