@@ -19,6 +19,7 @@
 #include "engine/util/timer.h"
 #if defined(STRATA_HAS_EDITOR)
 #include "app/cuda_gl_splat_copier.h"
+#include "app/cuda_host_pinning.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
 #include "ui/gl_window.h"
@@ -41,6 +42,7 @@ std::vector<std::string> editorValuedOptions() {
 std::vector<std::string> editorFlagOptions() {
   std::vector<std::string> flags = kFlagOptions;
   flags.push_back("--no-interop");
+  flags.push_back("--no-pinning");
   flags.push_back("--ortho");
   flags.push_back("--ghosts");
   flags.push_back("--drag");
@@ -218,6 +220,8 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName, b
       editor.splatNanoseconds(ui::SplatPrimitive::Points),
       editor.splatNanoseconds(ui::SplatPrimitive::Quads),
       editor.splatNanoseconds(ui::SplatPrimitive::Compute));
+  std::printf("splats reach GL by %s; %zu results were copied straight into mapped GL buffers\n",
+              editor.state().splatTransfer.c_str(), editor.resultsInMappedBuffers());
   return 0;
 }
 #endif
@@ -318,6 +322,9 @@ void chooseEditorBackend(const CliArgs& args, ui::EditorOptions* options) {
     return chooseBackend(name).backend;
   };
   if (first.cuda && !args.has("--no-interop")) options->makeSplatCopier = makeCudaGlSplatCopier;
+  // The host path's mapped buffers page-locked for the worker's copies (--no-pinning: not, for
+  // comparison).
+  if (first.cuda && !args.has("--no-pinning")) options->pinHostMemory = makeCudaHostPinning();
 }
 
 // --section AXIS[:AT][:flip], e.g. "y:0.4": the section plane across AXIS at the fraction AT

@@ -78,6 +78,7 @@ const char* kUsageOptions =
     "  --section AXIS[:AT][:flip] cut across x, y or z at the fraction AT of the bounds, capped\n"
     "  --screenshot F.png         edit: write the whole window once the preview settled, exit\n"
     "  --no-interop               edit: splats through the host instead of CUDA-GL interop\n"
+    "  --no-pinning               edit: the host path's splat buffers left pageable\n"
     "  --select \"A[,B...]\"        edit: select the nodes with these names (with --screenshot)\n"
     "  --ghosts                   edit: show the ghosts of every part that cuts or intersects\n"
     "  --splats auto|points|quads|compute  how the view draws splats (auto: the kind the GPU\n"

@@ -115,7 +115,10 @@ struct Editor::Gl {
   ImGuiContext* imgui = nullptr;
   std::unique_ptr<ViewportRenderer> renderer;
   std::unique_ptr<DeviceSplatCopier> copier;  // null: host upload
-  std::unique_ptr<PanelRenderer> panels;      // Dear ImGui's draw data in GL
+  // The host path's mapped buffers (null: none); the worker holds their lender.
+  std::unique_ptr<MappedSplatSlots> mapped;
+  bool mappedShown = false;               // the status bar says they are used
+  std::unique_ptr<PanelRenderer> panels;  // Dear ImGui's draw data in GL
   Viewport viewport;
   WindowRedraw redraw;  // what each frame redraws (window_redraw.h)
   Stopwatch frameClock;
@@ -153,6 +156,7 @@ struct Editor::Gl {
     g_imguiCharCallback = nullptr;
     g_keyEvents.clear();
     copier.reset();  // unregisters the buffer while it and the context exist
+    mapped.reset();  // unmaps while the context exists (the worker and the results are gone)
     renderer.reset();
     panels.reset();
     ImGui_ImplGlfw_Shutdown();
@@ -205,6 +209,7 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   worker_ = std::make_unique<PreviewWorker>(options_.makeBackend(), options_.coarseResolution,
                                             [] { glfwPostEmptyEvent(); });
   worker_->setHostSplats(gl_->copier == nullptr);
+  if (!gl_->copier) lendMappedBuffers();
   s.backendDescription = worker_->backendDescription();
   startTime_ = glfwGetTime();
   if (!options_.scenePath.empty()) {
@@ -247,6 +252,38 @@ void Editor::dropCopier(const std::string& why) {
   worker_->setHostSplats(true);
   s.splatTransfer = "host upload (" + why + ")";
   logWarning(s, "CUDA-GL interop failed, using the host upload path: " + why);
+  lendMappedBuffers();
+}
+
+void Editor::lendMappedBuffers() {
+  if (gl_->mapped || !MappedSplatSlots::supported()) return;
+  gl_->mapped = std::make_unique<MappedSplatSlots>(options_.pinHostMemory);
+  worker_->setHostSplatLender(gl_->mapped->lender());
+}
+
+void Editor::maintainMappedBuffers() {
+  if (!gl_->mapped) return;
+  EditorState& s = *state_;
+  try {
+    gl_->mapped->maintain();
+  } catch (const Error& e) {
+    worker_->setHostSplatLender(nullptr);  // the regions lent stay valid until given back
+    s.splatTransfer = std::string("host upload (") + e.what() + ")";
+    logWarning(s,
+               std::string("host splats go through the worker's arrays from now on: ") + e.what());
+    return;
+  }
+  if (gl_->mapped->made() && !gl_->mappedShown) {
+    gl_->mappedShown = true;
+    s.splatTransfer +=
+        gl_->mapped->pinned() ? ", by DMA into mapped GL buffers" : ", into mapped GL buffers";
+    if (!gl_->mapped->pinned())
+      logInfo(s, "the mapped splat buffers are not page-locked: " + gl_->mapped->whyNotPinned());
+  }
+}
+
+size_t Editor::resultsInMappedBuffers() const {
+  return gl_->mapped ? gl_->mapped->copiedCount() : 0;
 }
 
 void Editor::transferSplats(const PreviewResult& result) {
@@ -259,6 +296,7 @@ void Editor::transferSplats(const PreviewResult& result) {
   }
   const SplatResource& splats = *result.splats;
   const SplatShape shape = splatShapeOf(result.stats.grid, splats);
+  if (gl_->mapped && gl_->mapped->copyInto(renderer, splats, shape)) return;  // on the GPU
   if (const Splat* host = splats.hostData()) {
     renderer.uploadSplats(host, splats.count(), shape);
     return;
@@ -322,6 +360,7 @@ void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
   // A host upload larger than a frame's share, with a result on screen to keep meanwhile (and
   // no CUDA-GL copier registered to the buffer drawn): over several frames.
   const Splat* host = result->splats ? result->splats->hostData() : nullptr;
+  if (host && gl_->mapped && gl_->mapped->holds(*result->splats)) host = nullptr;  // a GPU copy
   if (host && s.preview && !gl_->copier &&
       result->splats->count() * sizeof(Splat) > uploadChunkBytes()) {
     staging_ = std::move(result);
@@ -405,6 +444,7 @@ bool Editor::requestPreviewIfNeeded() {
 
 void Editor::pumpPreview() {
   EditorState& s = *state_;
+  maintainMappedBuffers();
   stageMore();
   if (auto result = worker_->takeResult()) {
     // A result for an emptied scene arrives late: ignore it.

@@ -20,6 +20,7 @@
 #include "ui/camera.h"
 #include "ui/device_splat_copier.h"
 #include "ui/editor_state.h"
+#include "ui/mapped_splat_slots.h"
 #include "ui/panels.h"
 #include "ui/viewport_renderer.h"
 
@@ -33,6 +34,9 @@ struct EditorOptions {
   // Optional: copies the backend's device splats into GL (CUDA-GL interop). Without it, or when
   // it cannot attach to this GL context, splats take the host upload path.
   std::function<std::unique_ptr<DeviceSplatCopier>()> makeSplatCopier;
+  // Optional: page-locks the mapped GL buffers that the host path's copies of device splats go
+  // into (ui/mapped_splat_slots.h), making each copy one DMA.
+  PinHostMemory pinHostMemory;
   bool visible = true;  // false: an invisible window for off-screen rendering
   int width = 1600, height = 1000;
   std::string recentFilesPath;     // "" = none
@@ -95,6 +99,9 @@ class Editor {
   double splatNanoseconds(SplatPrimitive kind) const;
   // Whether a result is being uploaded over several frames (shown once all of it is there).
   bool uploading() const { return staging_ != nullptr; }
+  // Results whose device splats the worker copied straight into a mapped GL buffer and the
+  // frame copied from there on the GPU, so far (MappedSplatSlots::copiedCount).
+  size_t resultsInMappedBuffers() const;
   // The longest the last frame() waited for events before drawing, in seconds (0: it only
   // polled): frames keep coming at once while the view refines or a result uploads.
   double lastWaitSeconds() const { return lastWaitSeconds_; }
@@ -130,6 +137,11 @@ class Editor {
   // or a host upload. Falls back to the host path for good when the copier fails.
   void transferSplats(const PreviewResult& result);
   void dropCopier(const std::string& why);
+  // The host path: the worker copies device splats into mapped GL buffers where GL can map
+  // them for good (MappedSplatSlots), and the frame copies those on the GPU.
+  void lendMappedBuffers();
+  // Frees and grows the mapped buffers; stops lending them if one cannot be mapped.
+  void maintainMappedBuffers();
   void updateLeafStyles();
   // Gives the renderer the ghosts of the selection (or all) from the shown result.
   void updateGhosts();

@@ -235,6 +235,21 @@ void ViewportRenderer::uploadSplats(const Splat* splats, size_t count, const Spl
   uploadMsThisFrame_ += clock.seconds() * 1000.0;
 }
 
+void ViewportRenderer::copySplats(GLuint source, size_t count, const SplatShape& shape) {
+  Stopwatch clock;
+  reserveSplats(count);
+  if (count > 0) {
+    glBindBuffer(GL_COPY_READ_BUFFER, source);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, splatBuffer_);
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0,
+                        GLsizeiptr(count * sizeof(Splat)));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  }
+  setSplatCount(count, shape);
+  uploadMsThisFrame_ += clock.seconds() * 1000.0;
+}
+
 size_t ViewportRenderer::stageSplats(const Splat* splats, size_t count, size_t done,
                                      size_t maxBytes) {
   Stopwatch clock;

@@ -101,6 +101,9 @@ class ViewportRenderer {
   static constexpr size_t kMinSplatCapacity = 1024;
   // Host upload of `count` splats.
   void uploadSplats(const Splat* splats, size_t count, const SplatShape& shape);
+  // The first `count` splats of GL buffer `source` copied into the splat buffer by the GPU
+  // (glCopyBufferSubData: no host bytes touched in the frame; ui/mapped_splat_slots.h).
+  void copySplats(GLuint source, size_t count, const SplatShape& shape);
   // A host upload spread over frames: the splats go into a second buffer, at most `maxBytes`
   // a call of stageSplats, while the first keeps drawing the last result; commitStagedSplats
   // then makes the second the one drawn (and the first the next staging buffer). `splats` must

@@ -199,6 +199,11 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   return true;
 }
 
+void PreviewWorker::setHostSplatLender(std::shared_ptr<HostSplatLender> lender) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  lender_ = std::move(lender);
+}
+
 bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Progress& progress,
                                 PreviewResult& result, bool onlyIfCached) {
   EvalOptions options;
@@ -245,9 +250,21 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   if (!splats) {
     splats = backend->splats(result.stats.root, progress);
     if (hostSplats_ && !splats->hostData()) {
-      std::vector<Splat> host = splatArrays_->take(splats->count());
-      splats->copyToHost(host.data());
-      splats = std::make_shared<HostSplats>(std::move(host), splats->levels(), splatArrays_);
+      std::shared_ptr<HostSplatLender> lender;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        lender = lender_;
+      }
+      std::shared_ptr<LentHostSplats> lent =
+          lender ? lender->lend(splats->count(), splats->levels()) : nullptr;
+      if (lent) {
+        splats->copyToHost(lent->writableData());
+        splats = std::move(lent);
+      } else {
+        std::vector<Splat> host = splatArrays_->take(splats->count());
+        splats->copyToHost(host.data());
+        splats = std::make_shared<HostSplats>(std::move(host), splats->levels(), splatArrays_);
+      }
     }
   }
   result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats

@@ -22,14 +22,17 @@
 //     and the evaluation's statistics. A pass that finished before it was superseded still
 //     delivers its result; a cancelled pass delivers none. Where the caller cannot take device
 //     splats it says so (setHostSplats(true), the default) and the worker copies them to the
-//     host first.
+//     host first: into memory the caller lends (setHostSplatLender: the editor's mapped GL
+//     buffers, which the UI then copies from on the GPU) where it has a region free, else into
+//     arrays of its own.
 //   - Nothing here draws (no GL): ui/ uploads the splats or copies them through CUDA-GL
 //     interop. The worker catches everything and reports it in the result's `error`.
 //
-// Threads: request(), cancel(), takeResult(), status(), waitUntilIdle() and setHostSplats() from
-// any thread, never blocking for longer than a mutex hand-over (but waitUntilIdle). Construct
-// and destroy on the owning thread, never from inside onResult. Evaluation runs on the worker's
-// own thread, which owns the Evaluator and its cache and is the only user of the backend.
+// Threads: request(), cancel(), takeResult(), status(), waitUntilIdle(), setHostSplats() and
+// setHostSplatLender() from any thread, never blocking for longer than a mutex hand-over (but
+// waitUntilIdle). Construct and destroy on the owning thread, never from inside onResult.
+// Evaluation runs on the worker's own thread, which owns the Evaluator and its cache and is the
+// only user of the backend.
 #pragma once
 
 #include <atomic>
@@ -46,6 +49,7 @@
 
 #include "engine/document/scene.h"
 #include "engine/eval/evaluator.h"
+#include "engine/ldi/lent_splats.h"
 #include "engine/ldi/splats.h"
 #include "engine/util/progress.h"
 
@@ -134,6 +138,9 @@ class PreviewWorker {
   // Whether results must carry host splats (default) or may keep them where the backend made
   // them (the UI copies device splats through CUDA-GL interop).
   void setHostSplats(bool host) { hostSplats_ = host; }
+  // Where host copies of device splats go first (null: the worker's own arrays), from the next
+  // pass on. The worker holds it (and a pass in flight may still lend from the one replaced).
+  void setHostSplatLender(std::shared_ptr<HostSplatLender> lender);
   const std::string& backendDescription() const { return backendDescription_; }
 
  private:
@@ -164,6 +171,7 @@ class PreviewWorker {
   std::atomic<bool> hostSplats_{true};
   // The host copies' arrays, reused once their results are released (SplatArrayPool).
   std::shared_ptr<SplatArrayPool> splatArrays_ = std::make_shared<SplatArrayPool>();
+  std::shared_ptr<HostSplatLender> lender_;       // guarded by mutex_
   std::unique_ptr<Evaluator> modifierEvaluator_;  // worker thread only: see computePass
 
   mutable std::mutex mutex_;

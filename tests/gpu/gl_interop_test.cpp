@@ -8,9 +8,11 @@
 
 #include <epoxy/gl.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include "app/cuda_gl_splat_copier.h"
+#include "app/cuda_host_pinning.h"
 #include "engine/document/commands.h"
 #include "engine/eval/cpu_backend.h"
 #include "gpu/cuda_backend.h"
@@ -79,13 +81,17 @@ TEST(CudaGlInterop, CopiedBufferHoldsTheCpuSplatsBitForBit) {
   glDeleteBuffers(1, &buffer);
 }
 
-// The editor on `makeBackend` (with the interop copier when `interop`), a small difference
-// evaluated at 96, rendered from the front at 320 x 200.
+// The editor on `makeBackend` (with the interop copier when `interop`, else the host path with
+// its mapped buffers page-locked), a small difference evaluated at 95, then at 96 (on the host
+// path the second result goes into a mapped buffer grown for the first), rendered from the front
+// at 320 x 200; *mapped: the results that went through mapped buffers.
 std::vector<uint8_t> renderInEditor(std::function<std::shared_ptr<Backend>()> makeBackend,
-                                    bool interop, std::string* transfer, std::string* gl) {
+                                    bool interop, std::string* transfer, std::string* gl,
+                                    size_t* mapped) {
   ui::EditorOptions options;
   options.makeBackend = std::move(makeBackend);
   if (interop) options.makeSplatCopier = makeCudaGlSplatCopier;
+  if (!interop) options.pinHostMemory = makeCudaHostPinning();
   options.visible = false;
   options.width = 1280;  // room for the panels around the view
   options.height = 800;
@@ -105,22 +111,26 @@ std::vector<uint8_t> renderInEditor(std::function<std::shared_ptr<Backend>()> ma
   state.selection = {block, ball};
   ui::groupSelection(state, NodeKind::Difference);
   ui::clearSelection(state);
-  ui::setResolution(state, 96);
   state.showGrid = false;
+  ui::setResolution(state, 95);
+  EXPECT_TRUE(editor.waitForPreview(120.0)) << state.previewError;
+  ui::setResolution(state, 96);
   EXPECT_TRUE(editor.waitForPreview(120.0)) << state.previewError;
   editor.camera().setAxisView(ui::AxisView::Front);
   editor.viewAll();
   for (int i = 0; i < 2; ++i) editor.frame();
   *transfer = state.splatTransfer;
   *gl = state.glDescription;
+  *mapped = editor.resultsInMappedBuffers();
   return editor.renderViewport(320, 200);
 }
 
 TEST(CudaGlInterop, EditorDrawsTheSamePixelsThroughInteropAsThroughTheHost) {
   REQUIRE_CUDA_AND_DISPLAY();
   std::string transfer, gl;
+  size_t mapped = 0;
   std::vector<uint8_t> viaInterop =
-      renderInEditor([] { return makeCudaBackend(); }, true, &transfer, &gl);
+      renderInEditor([] { return makeCudaBackend(); }, true, &transfer, &gl, &mapped);
   if (transfer != "CUDA-GL interop") {
     ASSERT_EQ(transfer.rfind("host upload", 0), 0u) << transfer;  // the fallback, named
     if (onMesa(gl)) GTEST_SKIP() << "GL runs on " << gl << ": " << transfer;
@@ -128,10 +138,16 @@ TEST(CudaGlInterop, EditorDrawsTheSamePixelsThroughInteropAsThroughTheHost) {
   }
   std::string hostTransfer, cpuTransfer;
   std::vector<uint8_t> viaHost =
-      renderInEditor([] { return makeCudaBackend(); }, false, &hostTransfer, &gl);
-  EXPECT_EQ(hostTransfer, "host upload");
-  std::vector<uint8_t> onCpu =
-      renderInEditor([] { return std::make_shared<CpuBackend>(); }, false, &cpuTransfer, &gl);
+      renderInEditor([] { return makeCudaBackend(); }, false, &hostTransfer, &gl, &mapped);
+  // The worker's copy of the second result into a mapped GL buffer (by DMA where the driver
+  // let CUDA page-lock it: on the H200's driver it does), copied from there on the GPU.
+  EXPECT_NE(hostTransfer.find("into mapped GL buffers"), std::string::npos) << hostTransfer;
+  if (hostTransfer.find("by DMA") == std::string::npos)
+    std::printf("note: the mapped splat buffers were not page-locked on %s\n", gl.c_str());
+  EXPECT_GE(mapped, 1u);
+  std::vector<uint8_t> onCpu = renderInEditor([] { return std::make_shared<CpuBackend>(); }, false,
+                                              &cpuTransfer, &gl, &mapped);
+  EXPECT_EQ(mapped, 0u) << "host splats are uploaded as they are";
   ASSERT_EQ(viaInterop.size(), viaHost.size());
   EXPECT_TRUE(viaInterop == viaHost) << "interop and host upload draw different pixels";
   EXPECT_TRUE(viaInterop == onCpu) << "CUDA and CPU splats draw different pixels";

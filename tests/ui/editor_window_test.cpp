@@ -19,6 +19,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/user_files.h"
 #include "ui/editor.h"
@@ -269,6 +270,75 @@ TEST(EditorWindow, LargeResultsAreUploadedOverSeveralFramesWhileTheLastStaysShow
   undo(state);  // colour
   undo(state);  // add
   EXPECT_TRUE(state.document.root()->children.empty());
+}
+
+// Splats that are not in host memory, as a GPU backend's: the preview worker copies them to the
+// host for the editor (no CUDA-GL interop here).
+class OffHostSplats : public SplatResource {
+ public:
+  explicit OffHostSplats(SplatsHandle inner) : inner_(std::move(inner)) {}
+  size_t count() const override { return inner_->count(); }
+  SplatLevels levels() const override { return inner_->levels(); }
+  const Splat* hostData() const override { return nullptr; }
+  void copyToHost(Splat* out) const override { inner_->copyToHost(out); }
+
+ private:
+  SplatsHandle inner_;
+};
+class OffHostSplatsBackend : public CpuBackend {
+ public:
+  SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
+    return std::make_shared<OffHostSplats>(CpuBackend::splats(ldi, progress));
+  }
+};
+
+// A red sphere moved six times along x, then seen from the front at 64 cells; the moves' results
+// that went through mapped GL buffers (copied from one on the GPU) in *mapped.
+std::vector<uint8_t> movedSphereImage(EditorOptions options, size_t* mapped) {
+  Editor editor(std::move(options));
+  EditorState& state = editor.state();
+  const NodeId sphere = addRedSphere(state);
+  EXPECT_NE(sphere, 0u);
+  setResolution(state, 64);
+  clearSelection(state);
+  EXPECT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  const double step = 0.37 * Evaluator::gridFor(state.document.scene(), 0).h;
+  const size_t before = editor.resultsInMappedBuffers();
+  for (int k = 0; k < 6; ++k) {
+    Transform t = findNode(state.document.root(), sphere)->transform;
+    t.translate.x += step;  // each result unlike every earlier one
+    state.document.setTransform(sphere, t);
+    EXPECT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  }
+  editor.camera().setAxisView(AxisView::Front);
+  editor.viewAll();
+  std::vector<uint8_t> image = editor.renderViewport(240, 200);
+  *mapped = editor.resultsInMappedBuffers() - before;
+  for (int k = 0; k < 6 + 3; ++k) undo(state);  // the moves, the resolution, colour and add
+  EXPECT_TRUE(state.document.root()->children.empty());
+  return image;
+}
+
+TEST(EditorWindow, DeviceSplatsGoStraightIntoMappedBuffersAndLookAsUploaded) {
+  REQUIRE_DISPLAY();
+  size_t mapped = 0, uploaded = 0;
+  const std::vector<uint8_t> host = movedSphereImage(testOptions(), &uploaded);
+  EXPECT_EQ(uploaded, 0u) << "host splats are uploaded as they are";
+  EditorOptions options = testOptions();
+  options.makeBackend = [] { return std::make_shared<OffHostSplatsBackend>(); };
+  const std::vector<uint8_t> device = movedSphereImage(options, &mapped);
+  // The first result takes the worker's arrays; the buffers then grow for the next, and each
+  // of the six moves' results goes through one of the three (each lent twice, at least one
+  // after the GPU's copy from it).
+  EXPECT_EQ(mapped, 6u) << "results copied straight into mapped GL buffers";
+  ASSERT_EQ(device.size(), host.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < host.size(); ++i) differ += device[i] != host[i];
+  EXPECT_EQ(differ, 0u) << "the same pixels as the host upload";
+  int red = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 240; ++x) red += reddish(at(device, 240, x, y)) ? 1 : 0;
+  EXPECT_GT(red, 10000);
 }
 
 TEST(EditorWindow, DifferenceShowsTheHoleFromAbove) {
