@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <condition_variable>
+#include <cstring>
 #include <mutex>
 #include <vector>
 
+#include "engine/ldi/lent_splats.h"
 #include "tests/engine/jobs/job_test_support.h"
 #include "tests/support/gated_backend.h"
 
@@ -314,6 +316,128 @@ TEST(PreviewWorker, AnEditThatChangedNoPartKeepsTheSplatsShown) {
   expectShows(r[3], 3, 32, true);
   expectShows(r[4], 3, 64, false);
   EXPECT_NE(r[4]->splats, r[1]->splats);
+}
+
+// Splats that are not in host memory, as a GPU backend's: the worker copies them to the host.
+class OffHostSplats : public SplatResource {
+ public:
+  explicit OffHostSplats(SplatsHandle inner) : inner_(std::move(inner)) {}
+  size_t count() const override { return inner_->count(); }
+  SplatLevels levels() const override { return inner_->levels(); }
+  const Splat* hostData() const override { return nullptr; }
+  void copyToHost(Splat* out) const override { inner_->copyToHost(out); }
+
+ private:
+  SplatsHandle inner_;
+};
+class OffHostSplatsBackend : public CpuBackend {
+ public:
+  SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
+    return std::make_shared<OffHostSplats>(CpuBackend::splats(ldi, progress));
+  }
+};
+
+// Regions of host memory lent as the editor's mapped buffers are (ui/mapped_splat_slots.h),
+// given back on whatever thread drops the last result holding one.
+class TestLender : public HostSplatLender {
+ public:
+  TestLender(int regions, size_t capacity) : memory_(size_t(regions)), lent_(size_t(regions)) {
+    for (auto& m : memory_) m.resize(capacity);
+  }
+  std::shared_ptr<LentHostSplats> lend(size_t count, const SplatLevels& levels) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (size_t i = 0; i < memory_.size(); ++i) {
+      if (lent_[i] || memory_[i].size() < count) continue;
+      lent_[i] = true;
+      ++lends_;
+      return std::make_shared<LentHostSplats>(memory_[i].data(), count, levels, [this, i] {
+        std::lock_guard<std::mutex> giveBack(mutex_);
+        lent_[i] = false;
+        ++givenBack_;
+      });
+    }
+    return nullptr;
+  }
+  bool owns(const Splat* p) const {
+    for (const auto& m : memory_)
+      if (m.data() == p) return true;
+    return false;
+  }
+  size_t lends() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lends_;
+  }
+  size_t givenBack() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return givenBack_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::vector<Splat>> memory_;
+  std::vector<bool> lent_;
+  size_t lends_ = 0, givenBack_ = 0;
+};
+
+bool sameSplats(const SplatResource& a, const SplatResource& b) {
+  return a.count() == b.count() && a.hostData() && b.hostData() &&
+         std::memcmp(a.hostData(), b.hostData(), a.bytes()) == 0;
+}
+
+// Device splats copied to the host go into the regions lent while one is free (else into the
+// worker's own arrays), hold the splats the CPU backend makes, and every region comes back once
+// the results holding it are gone: those the worker dropped (superseded before they were taken)
+// on its thread, the rest on this one.
+TEST(PreviewWorker, HostCopiesOfDeviceSplatsGoIntoLentRegionsAndComeBack) {
+  auto lender = std::make_shared<TestLender>(1, 200000);
+  // Nothing taken while it works: each result replaces the one before it in the worker. Every
+  // pass counts as quick: after the first request's coarse and full passes, full passes only.
+  PreviewWorker worker(std::make_shared<OffHostSplatsBackend>(), 32, {}, 1e9);
+  worker.setHostSplatLender(lender);
+  PreviewWorker reference(std::make_shared<CpuBackend>(), 32, {}, 1e9);
+  const std::shared_ptr<const Scene> scenes[] = {boxMinusSphere(48, 0), boxMinusSphere(48, 1),
+                                                 boxMinusSphere(48, 2)};
+  const auto expectCpuSplats = [&](const ResultPtr& r, int variant) {
+    reference.request(scenes[variant], 48, false, 1);
+    ASSERT_TRUE(reference.waitUntilIdle(kJobTimeout));
+    ResultPtr expected = reference.takeResult();
+    ASSERT_TRUE(expected && expected->ok());
+    EXPECT_EQ(expected->resolution, r->resolution);
+    EXPECT_TRUE(sameSplats(*r->splats, *expected->splats))
+        << "variant " << variant << ": " << r->splats->count() << " splats against "
+        << expected->splats->count();
+  };
+
+  // Coarse, then full: the coarse result holds the one region while the full one is copied (into
+  // the worker's arrays), and gives it back on the worker's thread when the full one replaces it.
+  worker.request(scenes[0], 48, false, 1);
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ResultPtr full = worker.takeResult();
+  ASSERT_TRUE(full && full->ok()) << (full ? full->error : "no result");
+  EXPECT_FALSE(full->coarse);
+  EXPECT_FALSE(lender->owns(full->splats->hostData())) << "no region was free";
+  EXPECT_EQ(lender->lends(), 1u);
+  EXPECT_EQ(lender->givenBack(), 1u);
+  expectCpuSplats(full, 0);
+
+  // A full pass with the region free: copied into it.
+  worker.request(scenes[1], 48, false, 2);
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ResultPtr lent = worker.takeResult();
+  ASSERT_TRUE(lent && lent->ok()) << (lent ? lent->error : "no result");
+  EXPECT_TRUE(lender->owns(lent->splats->hostData()));
+  expectCpuSplats(lent, 1);
+  lent.reset();  // given back on this thread
+  EXPECT_EQ(lender->givenBack(), lender->lends());
+
+  // Requests in a burst: cancelled passes, results replaced before they were taken.
+  for (int k = 0; k < 8; ++k) worker.request(scenes[k % 3], 48, false, 10 + k);
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ResultPtr last = worker.takeResult();
+  ASSERT_TRUE(last && last->ok()) << (last ? last->error : "no result");
+  EXPECT_EQ(last->tag, 17u);
+  last.reset();
+  EXPECT_EQ(lender->givenBack(), lender->lends()) << "every region lent came back";
 }
 
 }  // namespace
