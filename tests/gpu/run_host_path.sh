@@ -7,14 +7,7 @@
 # tests (the editor's pixels through interop, the host path and the CPU backend). Carried in
 # .devrt: the X runtime of make-runtime.sh --x11 --pack, libs.tar.xz, bin/strata.xz,
 # bin/strata_base.xz, bin/strata_gpu_gl_tests.xz. Results go to $OUT/r as they come.
-source .devrt/on-device.sh
-mkdir -p /tmp/devlib && tar xJf .devrt/libs.tar.xz -C /tmp/devlib
-export LD_LIBRARY_PATH=/tmp/devlib:$LD_LIBRARY_PATH
-for f in .devrt/bin/*.xz; do xz -dkf "$f" && chmod +x "${f%.xz}"; done
-B=.devrt/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
-export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
-nvidia-smi --query-gpu=name,memory.total --format=csv,noheader > $R/gpu.txt 2>&1; nproc >> $R/gpu.txt
-[ -n "$DISPLAY" ] || { echo "no display" > $R/editor.txt; exit 1; }
+source tests/gpu/editor_lease_start.sh
 latency() {  # name binary scene leaf resolution [options]
   echo "== $1 $(basename $3) $5 ${*:6}"
   timeout 120 $B/$2 edit $3 --measure-latency 12 --move-leaf "$4" --resolution $5 --backend cuda "${@:6}" 2>&1 | grep -E "^(latency|splats reach|strata)"

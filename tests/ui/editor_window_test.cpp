@@ -22,6 +22,7 @@
 #include "engine/eval/evaluator.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/user_files.h"
+#include "tests/support/off_host_splats_backend.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
 #include "ui/png_file.h"
@@ -272,26 +273,6 @@ TEST(EditorWindow, LargeResultsAreUploadedOverSeveralFramesWhileTheLastStaysShow
   EXPECT_TRUE(state.document.root()->children.empty());
 }
 
-// Splats that are not in host memory, as a GPU backend's: the preview worker copies them to the
-// host for the editor (no CUDA-GL interop here).
-class OffHostSplats : public SplatResource {
- public:
-  explicit OffHostSplats(SplatsHandle inner) : inner_(std::move(inner)) {}
-  size_t count() const override { return inner_->count(); }
-  SplatLevels levels() const override { return inner_->levels(); }
-  const Splat* hostData() const override { return nullptr; }
-  void copyToHost(Splat* out) const override { inner_->copyToHost(out); }
-
- private:
-  SplatsHandle inner_;
-};
-class OffHostSplatsBackend : public CpuBackend {
- public:
-  SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
-    return std::make_shared<OffHostSplats>(CpuBackend::splats(ldi, progress));
-  }
-};
-
 // A red sphere moved six times along x, then seen from the front at 64 cells; the moves' results
 // that went through mapped GL buffers (copied from one on the GPU) in *mapped.
 std::vector<uint8_t> movedSphereImage(EditorOptions options, size_t* mapped) {
@@ -325,7 +306,7 @@ TEST(EditorWindow, DeviceSplatsGoStraightIntoMappedBuffersAndLookAsUploaded) {
   const std::vector<uint8_t> host = movedSphereImage(testOptions(), &uploaded);
   EXPECT_EQ(uploaded, 0u) << "host splats are uploaded as they are";
   EditorOptions options = testOptions();
-  options.makeBackend = [] { return std::make_shared<OffHostSplatsBackend>(); };
+  options.makeBackend = [] { return std::make_shared<test::OffHostSplatsBackend>(); };
   const std::vector<uint8_t> device = movedSphereImage(options, &mapped);
   // The first result takes the worker's arrays; the buffers then grow for the next, and each
   // of the six moves' results goes through one of the three (each lent twice, at least one

@@ -13,6 +13,7 @@
 #include "engine/ldi/lent_splats.h"
 #include "tests/engine/jobs/job_test_support.h"
 #include "tests/support/gated_backend.h"
+#include "tests/support/off_host_splats_backend.h"
 
 namespace strata::test {
 namespace {
@@ -317,25 +318,6 @@ TEST(PreviewWorker, AnEditThatChangedNoPartKeepsTheSplatsShown) {
   expectShows(r[4], 3, 64, false);
   EXPECT_NE(r[4]->splats, r[1]->splats);
 }
-
-// Splats that are not in host memory, as a GPU backend's: the worker copies them to the host.
-class OffHostSplats : public SplatResource {
- public:
-  explicit OffHostSplats(SplatsHandle inner) : inner_(std::move(inner)) {}
-  size_t count() const override { return inner_->count(); }
-  SplatLevels levels() const override { return inner_->levels(); }
-  const Splat* hostData() const override { return nullptr; }
-  void copyToHost(Splat* out) const override { inner_->copyToHost(out); }
-
- private:
-  SplatsHandle inner_;
-};
-class OffHostSplatsBackend : public CpuBackend {
- public:
-  SplatsHandle splats(const LdiHandle& ldi, Progress& progress) override {
-    return std::make_shared<OffHostSplats>(CpuBackend::splats(ldi, progress));
-  }
-};
 
 // Regions of host memory lent as the editor's mapped buffers are (ui/mapped_splat_slots.h),
 // given back on whatever thread drops the last result holding one.
