@@ -34,14 +34,17 @@ class StoredPositions {
   StoredRounding stored_;
 };
 
-// As checkMesh judges the triangle: corners welded by identical coordinates, the area from the
-// cross product of the edges from the first corner (exactly zero or not: a power-of-two frame,
-// as checkMesh's, changes neither).
-Flaw flawOf(const StoredPositions& at, const Triangle& t) {
-  const glm::dvec3 a = at(t[0]), b = at(t[1]), c = at(t[2]);
+// As checkMesh judges a triangle with these (stored) corners: corners welded by identical
+// coordinates, the area from the cross product of the edges from the first corner (exactly zero
+// or not: a power-of-two frame, as checkMesh's, changes neither).
+Flaw flawOfCorners(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   if (a == b || b == c || a == c) return Flaw::Coincident;
   const glm::dvec3 n = glm::cross(b - a, c - a);
   return n.x == 0.0 && n.y == 0.0 && n.z == 0.0 ? Flaw::Collinear : Flaw::None;
+}
+
+Flaw flawOf(const StoredPositions& at, const Triangle& t) {
+  return flawOfCorners(at(t[0]), at(t[1]), at(t[2]));
 }
 
 // The triangle's corners rotated (same orientation) so that checkMesh finds an area; false when
@@ -240,8 +243,11 @@ size_t repairRound(TriangleMesh& mesh, const StoredPositions& at,
 
 bool storedFlawed(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                   StoredRounding stored) {
-  const TriangleMesh corners{{a, b, c}, {{0, 1, 2}}};
-  return flawOf(StoredPositions(corners, stored), corners.triangles[0]) != Flaw::None;
+  // As StoredPositions rounds (no mesh made: the streamed export asks this of every triangle).
+  const auto at = [stored](const glm::dvec3& p) {
+    return stored ? glm::dvec3(stored(p.x), stored(p.y), stored(p.z)) : p;
+  };
+  return flawOfCorners(at(a), at(b), at(c)) != Flaw::None;
 }
 
 DegenerateRepair repairDegenerateTriangles(TriangleMesh* mesh, StoredRounding stored,

@@ -112,5 +112,32 @@ TEST(DegenerateRepair, CountsWhatItCannotRepair) {
   EXPECT_EQ(r.flipped + r.collapsed, 0u);
 }
 
+// storedFlawed (the streamed export's test of each triangle) says of every triangle of a mesh what
+// checkMesh counts of the mesh as stored: coincident corners after rounding, collinear ones, good
+// ones; with and without a rounding.
+TEST(DegenerateRepair, StoredFlawedAgreesWithTheStoredMeshsCheck) {
+  const StoredCoordinate stl = storedCoordinate("part.stl");
+  for (const double split : {1e-12, 0.5}) {
+    const TriangleMesh mesh = octahedronWithSplitEdge(split);
+    for (const StoredCoordinate stored : {stl, StoredCoordinate(nullptr)}) {
+      size_t flawed = 0;
+      for (const auto& t : mesh.triangles)
+        flawed +=
+            storedFlawed(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], stored);
+      const size_t expected = stored ? checkMesh(storedMesh("part.stl", mesh)).degenerateTriangles
+                                     : checkMesh(mesh).degenerateTriangles;
+      EXPECT_EQ(flawed, expected) << "split " << split << (stored ? ", float32" : ", double");
+    }
+  }
+  const TriangleMesh flat = tetrahedronWithFlatTriangle();
+  size_t flawed = 0;
+  for (const auto& t : flat.triangles)
+    flawed +=
+        storedFlawed(flat.positions[t[0]], flat.positions[t[1]], flat.positions[t[2]], nullptr);
+  EXPECT_EQ(flawed, checkMesh(flat).degenerateTriangles);
+  EXPECT_GT(flawed, 0u);
+  EXPECT_TRUE(storedFlawed(glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0), nullptr));
+}
+
 }  // namespace
 }  // namespace strata
