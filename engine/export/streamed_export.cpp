@@ -423,6 +423,13 @@ class StreamedExportWriter::Impl {
     r_.droppedSpecks = dropped;
     keptTriangles_ = triangles_ - dropped.triangles;
     boxes_.clear();
+    // From here on a byte per id says whether its component was dropped (a lookup a triangle in
+    // every later pass); the counts are read no more.
+    vertexCount_ = std::vector<uint32_t>();
+    if (dropped.components > 0) {
+      droppedRoot_.assign(sets_.parent.size(), 0);
+      for (const auto& [root, s] : shells_) droppedRoot_[root] = s.kept ? 0 : 1;
+    }
   }
 
   glm::dvec3 finalPosition(const Piece& p, uint32_t v) const {
@@ -431,15 +438,28 @@ class StreamedExportWriter::Impl {
     return found == moved_.end() ? p.positions[v] : found->second;
   }
 
+  // What the repair of flat triangles made of one it read: removed, or these corners.
+  struct Replacement {
+    bool alive = false;
+    std::array<glm::dvec3, 3> corners{};
+  };
+
   bool keptTriangle(const Piece& p, size_t t) const {
-    return r_.droppedSpecks.components == 0 || shells_.at(rootOf(p.ids[p.triangles[t][0]])).kept;
+    return droppedRoot_.empty() || droppedRoot_[rootOf(p.ids[p.triangles[t][0]])] == 0;
+  }
+
+  // The repair's replacement of the kept triangle at `place` or null, for places asked in
+  // increasing order from `*next` (an index into repaired_, sorted by place).
+  const Replacement* replacementAt(uint64_t place, size_t* next) const {
+    if (*next >= repaired_.size() || repaired_[*next].first != place) return nullptr;
+    return &repaired_[(*next)++].second;
   }
 
   // Pass 4: the triangles flawed as the file stores them (degenerate_repair.h), repaired on the
   // part of the mesh around them: the triangles around every vertex within `rings` of their
   // corners, grown until the repair found the ring of each corner it read there.
   void repairFlaws() {
-    std::unordered_set<uint32_t> region;  // ids
+    std::vector<uint32_t> region;  // ids of flawed triangles' corners (repeats allowed)
     const auto storedAt = [&](const glm::dvec3& x) {
       return glm::dvec3(stored_(x.x), stored_(x.y), stored_(x.z));
     };
@@ -451,23 +471,24 @@ class StreamedExportWriter::Impl {
                          c = finalPosition(p, tri[2]);
         for (const glm::dvec3& x : {a, b, c}) used_.include(storedAt(x));
         if (storedFlawed(a, b, c, stored_))
-          for (uint32_t v : tri) region.insert(p.ids[v]);
+          for (uint32_t v : tri) region.push_back(p.ids[v]);
       }
     });
     if (region.empty()) return;
-    // The vertices whose rings the part holds whole: the flawed corners and, a ring at a time
-    // (one more after each try that needed it), the vertices around them.
-    std::unordered_set<uint32_t> complete = region;
+    // The vertices whose rings the part holds whole (a flag per id: a lookup per corner of every
+    // triangle in each pass below): the flawed corners and, a ring at a time (one more after
+    // each try that needed it), the vertices around them.
+    std::vector<bool> complete(sets_.parent.size(), false);
+    for (uint32_t id : region) complete[id] = true;
     for (int rings = 1;; ++rings) {
       {
-        std::unordered_set<uint32_t> grown = complete;
+        std::vector<bool> grown = complete;
         eachPiece([&](const Piece& p) {
           for (size_t t = 0; t < p.triangles.size(); ++t) {
             if (!keptTriangle(p, t)) continue;
             const auto& tri = p.triangles[t];
-            if (complete.count(p.ids[tri[0]]) || complete.count(p.ids[tri[1]]) ||
-                complete.count(p.ids[tri[2]]))
-              for (uint32_t v : tri) grown.insert(p.ids[v]);
+            if (complete[p.ids[tri[0]]] || complete[p.ids[tri[1]]] || complete[p.ids[tri[2]]])
+              for (uint32_t v : tri) grown[p.ids[v]] = true;
           }
         });
         complete = std::move(grown);
@@ -486,8 +507,7 @@ class StreamedExportWriter::Impl {
         for (size_t t = 0; t < p.triangles.size(); ++t) {
           if (!keptTriangle(p, t)) continue;
           const auto& tri = p.triangles[t];
-          if (complete.count(p.ids[tri[0]]) || complete.count(p.ids[tri[1]]) ||
-              complete.count(p.ids[tri[2]])) {
+          if (complete[p.ids[tri[0]]] || complete[p.ids[tri[1]]] || complete[p.ids[tri[2]]]) {
             PartTriangle pt{place, {}, {}, {}};
             for (int k = 0; k < 3; ++k) {
               pt.keys[size_t(k)] = p.keys[tri[size_t(k)]];
@@ -510,7 +530,7 @@ class StreamedExportWriter::Impl {
       mesh.positions.resize(byKey.size());
       for (size_t i = 0; i < byKey.size(); ++i) {
         local[byKey[i].second] = uint32_t(i);
-        ringComplete[i] = complete.count(byKey[i].second) ? 1 : 0;
+        ringComplete[i] = complete[byKey[i].second] ? 1 : 0;
       }
       std::vector<uint32_t> partIndex(part.size());
       for (size_t t = 0; t < part.size(); ++t) {
@@ -529,26 +549,28 @@ class StreamedExportWriter::Impl {
         continue;
       }
       report_.degenerateRepair = repair;
-      // What the repair left of the part: the surviving triangles' corners; the rest removed.
-      for (const PartTriangle& pt : part) repaired_[pt.place] = {};  // removed unless listed
+      // What the repair left of the part, by place (the part's order: increasing): the
+      // surviving triangles' corners; the rest removed.
+      repaired_.assign(part.size(), {});
+      for (size_t t = 0; t < part.size(); ++t) repaired_[t].first = part[t].place;
       for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         std::array<glm::dvec3, 3> corners;
         for (int k = 0; k < 3; ++k)
           corners[size_t(k)] = mesh.positions[mesh.triangles[t][size_t(k)]];
-        repaired_[part[partIndex[t]].place] = Replacement{true, corners};
+        repaired_[partIndex[t]].second = Replacement{true, corners};
       }
       keptTriangles_ -= 2 * repair.collapsed;
       if (repair.collapsed > 0) {
         // A collapse lets a corner go: the box of the corners the facets still use.
         used_ = Bounds();
         uint64_t at = 0;
+        size_t next = 0;
         eachPiece([&](const Piece& p) {
           for (size_t t = 0; t < p.triangles.size(); ++t) {
             if (!keptTriangle(p, t)) continue;
-            const auto found = repaired_.find(at++);
-            if (found != repaired_.end()) {
-              if (found->second.alive)
-                for (const glm::dvec3& x : found->second.corners) used_.include(storedAt(x));
+            if (const Replacement* r = replacementAt(at++, &next)) {
+              if (r->alive)
+                for (const glm::dvec3& x : r->corners) used_.include(storedAt(x));
               continue;
             }
             for (uint32_t v : p.triangles[t]) used_.include(storedAt(finalPosition(p, v)));
@@ -568,6 +590,7 @@ class StreamedExportWriter::Impl {
       std::string block;
       std::vector<glm::vec3> corners;  // as stored (float32: exact), for the measures
       uint64_t place = 0, written = 0;
+      size_t next = 0;  // into repaired_
       const auto emit = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
         for (const glm::dvec3* x : {&a, &b, &c}) {
           if (!std::isfinite(x->x) || !std::isfinite(x->y) || !std::isfinite(x->z))
@@ -600,11 +623,8 @@ class StreamedExportWriter::Impl {
       eachPiece([&](const Piece& p) {
         for (size_t t = 0; t < p.triangles.size(); ++t) {
           if (!keptTriangle(p, t)) continue;
-          const auto found = repaired_.empty() ? repaired_.end() : repaired_.find(place);
-          ++place;
-          if (found != repaired_.end()) {
-            if (found->second.alive)
-              emit(found->second.corners[0], found->second.corners[1], found->second.corners[2]);
+          if (const Replacement* r = replacementAt(place++, &next)) {
+            if (r->alive) emit(r->corners[0], r->corners[1], r->corners[2]);
             continue;
           }
           const auto& tri = p.triangles[t];
@@ -633,18 +653,16 @@ class StreamedExportWriter::Impl {
   std::unordered_map<uint64_t, uint32_t> below_, faces_;  // keys -> ids
   std::string unit_ = "millimetre";
   UnionFind sets_{0};  // over global vertex ids; after pass 1 each id's parent is its root
-  std::vector<uint32_t> vertexCount_;  // per root
+  std::vector<uint32_t> vertexCount_;  // per root, until dropSpecks
+  std::vector<uint8_t> droppedRoot_;   // per root from dropSpecks on, where any was dropped
   std::vector<PieceRecord> pieces_;
   uint64_t triangles_ = 0, keptTriangles_ = 0;
   std::unordered_map<uint32_t, Shell> shells_;  // by root
   std::unordered_map<uint32_t, Bounds> boxes_;  // by root, the small components'
   bool anyInverted_ = false;
   std::unordered_map<uint32_t, glm::dvec3> moved_;  // ids of unfolded shells
-  struct Replacement {
-    bool alive = false;
-    std::array<glm::dvec3, 3> corners{};
-  };
-  std::unordered_map<uint64_t, Replacement> repaired_;  // by place among the kept triangles
+  // By place among the kept triangles, increasing (replacementAt).
+  std::vector<std::pair<uint64_t, Replacement>> repaired_;
   TriangleFingerprint fingerprint_;
   Bounds used_;  // around the corners the facets use, as stored
 };
