@@ -143,6 +143,12 @@ std::string formatExportJson(const ExportSummary& s) {
                                      {{"name", "merge"}, {"seconds", r.mergeSeconds}},
                                      {{"name", "write"}, {"seconds", s.result.writeSeconds}},
                                      {{"name", "check"}, {"seconds", s.result.checkSeconds}}});
+  if (!r.mergeSteps.empty()) {
+    nlohmann::ordered_json steps = nlohmann::ordered_json::array();
+    for (const auto& [name, seconds] : r.mergeSteps)
+      steps.push_back({{"name", name}, {"seconds", seconds}});
+    j["merge_steps"] = steps;
+  }
   j["peak_bytes"] = r.peakBytes;
   j["surfels"] = r.surfels;
   if (s.result.simplify.trianglesBefore || s.result.simplify.refused) {

@@ -479,7 +479,7 @@ size_t streamedCheckChunkFacets(const Grid& grid, size_t facets) {
 
 int streamedCheckThreads() {
   const int cores = workerCount();
-  return cores <= 2 ? 1 : std::min(cores - 1, 4);
+  return cores <= 2 ? 1 : std::max(std::min(cores - 1, 4), std::min(cores / 2, 8));
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -59,9 +60,12 @@ struct ContourReport {
   double evaluateSeconds = 0.0;  // sampling and Booleans, all tiles
   double contourSeconds = 0.0;   // signs, vertices, quads, all tiles
   double mergeSeconds = 0.0;     // stitching and indexing
-  uint64_t peakBytes = 0;        // process peak resident memory afterwards
-  uint64_t surfels = 0;          // root surfels over all tiles
-  uint64_t tileLdiBytes = 0;     // the most LDI memory one tile's evaluation held (its cache)
+  // Of mergeSeconds, its steps where they are timed apart (the streamed export's slabs and
+  // passes: streamed_export.h), in order.
+  std::vector<std::pair<std::string, double>> mergeSteps;
+  uint64_t peakBytes = 0;     // process peak resident memory afterwards
+  uint64_t surfels = 0;       // root surfels over all tiles
+  uint64_t tileLdiBytes = 0;  // the most LDI memory one tile's evaluation held (its cache)
   // Of evaluateSeconds, the modifiers' (EvalResult::modifySeconds), and the nodes of the grid
   // windows of the tiles they ran in: the estimate scales that time with nodes, not surface.
   double modifySeconds = 0.0;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstring>
+#include <future>
 #include <limits>
 #include <mutex>
 #include <unordered_map>
@@ -32,6 +33,7 @@
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
+#include "engine/util/parallel_for.h"
 #include "engine/util/timer.h"
 #include "engine/util/union_find.h"
 
@@ -40,11 +42,20 @@ namespace {
 
 constexpr uint64_t kFaceKeyBit = uint64_t(1) << 63;  // faceSegmentKey (contour_cells.h)
 constexpr uint8_t kHasTriangle = 4;                  // beside the resolved bits
-// unfold_shells.cpp sums each shell's six volumes over runs within chunks of this many
-// triangles (in the mesh's order): the same runs here give the same sums.
-constexpr uint64_t kShellChunk = 65536;
 constexpr uint32_t kNoId = std::numeric_limits<uint32_t>::max();
-constexpr uint64_t kWriteBlock = 1 << 16;  // facets encoded per write
+// The passes over a piece run in parallel over blocks of this many of its triangles (or
+// vertices), each block's results gathered and then taken in order where the order counts.
+constexpr size_t kBlock = 4096;
+size_t blocksOf(size_t n) {
+  return (n + kBlock - 1) / kBlock;
+}
+// Block b's range of [0, n).
+size_t blockBegin(size_t b) {
+  return b * kBlock;
+}
+size_t blockEnd(size_t b, size_t n) {
+  return std::min(n, (b + 1) * kBlock);
+}
 
 // The scratch file the pieces are spilled to: created beside the output (the same file system,
 // whose space the output needs anyway) and unlinked at once, so that it goes with the process
@@ -174,15 +185,25 @@ class StreamedExportWriter::Impl {
     if (nextSlab_ != tiling_.counts.z)
       throw Error(path_ + ": internal: the streamed export ended after " +
                   std::to_string(nextSlab_) + " of " + std::to_string(tiling_.counts.z) + " slabs");
+    r_.mergeSteps.push_back({"slabs", r_.mergeSeconds});
+    Stopwatch steps, step;
+    const auto timed = [&](const char* name) {
+      r_.mergeSteps.push_back({name, step.seconds()});
+      step.restart();
+    };
     finishPieces();
-    Stopwatch steps;
+    timed("roots");
     progress_.report("merge", 0.0);
     sumShells();
+    timed("shells");
     progress_.report("merge", 0.4);
     unfoldShells();
+    timed("unfold");
     dropSpecks();
+    timed("specks");
     progress_.report("merge", 0.7);
     repairFlaws();
+    timed("repair");
     progress_.report("merge", 1.0);
     r_.mergeSeconds += steps.seconds();
     r_.deviationBound = std::sqrt(3.0) * r_.grid.h;
@@ -275,74 +296,132 @@ class StreamedExportWriter::Impl {
 
   uint32_t rootOf(uint32_t id) const { return sets_.parent[id]; }
 
+  // The pieces in order, each read from the scratch file on a thread of its own while the one
+  // before it is visited (two pieces held at a time).
   template <typename Visit>
   void eachPiece(Visit visit) {
-    Piece piece;
-    for (const PieceRecord& record : pieces_) {
+    if (pieces_.empty()) return;
+    std::array<Piece, 2> loaded;
+    load(scratch_, pieces_[0], &loaded[0]);
+    for (size_t k = 0; k < pieces_.size(); ++k) {
       progress_.check();
-      load(scratch_, record, &piece);
-      visit(piece);
+      std::future<void> next;  // waited for by its destructor if visit throws
+      if (k + 1 < pieces_.size())
+        next = std::async(std::launch::async,
+                          [&, k] { load(scratch_, pieces_[k + 1], &loaded[(k + 1) % 2]); });
+      visit(static_cast<const Piece&>(loaded[k % 2]));
+      if (next.valid()) next.get();
     }
+  }
+
+  // body(b, begin, end) for each block of [0, n) (kBlock), on several threads at once.
+  template <typename Body>
+  static void eachBlock(size_t n, const Body& body) {
+    parallelFor(0, int64_t(blocksOf(n)), 1, [&](int64_t b, int64_t e) {
+      for (int64_t k = b; k < e; ++k)
+        body(size_t(k), blockBegin(size_t(k)), blockEnd(size_t(k), n));
+    });
   }
 
   static std::vector<glm::dvec3> anchorsOf(const Grid& grid, const Piece& p) {
     std::vector<glm::dvec3> anchors(p.keys.size());
-    for (size_t i = 0; i < p.keys.size(); ++i)
-      anchors[i] = shellAnchor(grid, p.keys[i], sharesCell(p.keys, i), p.positions[i]);
+    eachBlock(p.keys.size(), [&](size_t, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i)
+        anchors[i] = shellAnchor(grid, p.keys[i], sharesCell(p.keys, i), p.positions[i]);
+    });
     return anchors;
   }
 
+  // The place among the kept triangles of the mesh of each block's first triangle of `p`
+  // (blocks + 1 entries, the last past the piece), counted on from *place, which moves past
+  // the piece.
+  std::vector<uint64_t> keptPlaces(const Piece& p, uint64_t* place) const {
+    const size_t blocks = blocksOf(p.triangles.size());
+    std::vector<uint64_t> at(blocks + 1, 0);
+    eachBlock(p.triangles.size(), [&](size_t b, size_t begin, size_t end) {
+      uint64_t kept = 0;
+      for (size_t t = begin; t < end; ++t) kept += keptTriangle(p, t) ? 1 : 0;
+      at[b + 1] = kept;
+    });
+    at[0] = *place;
+    for (size_t b = 0; b < blocks; ++b) at[b + 1] += at[b];
+    *place = at[blocks];
+    return at;
+  }
+
+  // The index into repaired_ of the first replacement at or after `place` (replacementAt's
+  // cursor for a block beginning there).
+  size_t replacementCursor(uint64_t place) const {
+    return size_t(std::lower_bound(repaired_.begin(), repaired_.end(), place,
+                                   [](const std::pair<uint64_t, Replacement>& r, uint64_t x) {
+                                     return r.first < x;
+                                   }) -
+                  repaired_.begin());
+  }
+
   // Pass 2: each shell's six volumes, anchored and placed, summed as unfoldInvertedShells sums
-  // them (relative to its first triangle's first anchor, runs of one shell within fixed chunks
-  // of triangles, added in order); its resolved bits and triangle count; the boxes of the
-  // components small enough for the speck rule to measure.
+  // them (relative to its first triangle's first anchor, in the runs ShellRunSums fixes: the
+  // same sums bit for bit); its resolved bits and triangle count; the boxes of the components
+  // small enough for the speck rule to measure.
   void sumShells() {
-    struct Run {
-      uint32_t shell = kNoId;
-      uint64_t chunk = 0;
-      double anchored = 0.0, placed = 0.0;
-    } run;
-    const auto flush = [&] {
-      if (run.shell == kNoId) return;
+    ShellRunSums runs;
+    const auto flush = [&](const ShellRun& run) {
       Shell& s = shells_[run.shell];
       s.anchored += run.anchored;
       s.placed += run.placed;
     };
-    uint64_t g = 0;  // the triangle's place in the whole mesh
-    uint32_t lastShell = kNoId;
-    Shell* last = nullptr;
+    std::vector<uint32_t> roots;
+    std::vector<const Shell*> shellOf;
     eachPiece([&](const Piece& p) {
       const std::vector<glm::dvec3> anchors = anchorsOf(grid_, p);
-      for (size_t i = 0; i < p.ids.size(); ++i) {
-        const uint32_t root = rootOf(p.ids[i]);
-        if (vertexCount_[root] <= kMeasuredSpeckVertices) boxes_[root].include(p.positions[i]);
+      {
+        // The small components' vertices (few: found in parallel, their boxes grown here).
+        std::vector<std::vector<uint32_t>> small(blocksOf(p.ids.size()));
+        eachBlock(p.ids.size(), [&](size_t b, size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i)
+            if (vertexCount_[rootOf(p.ids[i])] <= kMeasuredSpeckVertices)
+              small[b].push_back(uint32_t(i));
+        });
+        for (const std::vector<uint32_t>& block : small)
+          for (uint32_t i : block) boxes_[rootOf(p.ids[i])].include(p.positions[i]);
       }
-      for (size_t t = 0; t < p.triangles.size(); ++t, ++g) {
-        const auto& tri = p.triangles[t];
-        const uint32_t shell = rootOf(p.ids[tri[0]]);
-        if (shell != lastShell) {
-          last = &shells_[shell];  // pointers into an unordered_map stay valid
-          lastShell = shell;
+      const size_t n = p.triangles.size();
+      roots.resize(n);
+      shellOf.resize(n);
+      eachBlock(n, [&](size_t, size_t begin, size_t end) {
+        for (size_t t = begin; t < end; ++t) roots[t] = rootOf(p.ids[p.triangles[t][0]]);
+      });
+      // In order on this thread (a comparison a triangle: a shell's triangles come in long
+      // runs): each shell's first triangle's first anchor, its bits and count.
+      uint32_t lastShell = kNoId;
+      Shell* last = nullptr;
+      for (size_t t = 0; t < n; ++t) {
+        if (roots[t] != lastShell) {
+          last = &shells_[roots[t]];  // pointers into an unordered_map stay valid
+          lastShell = roots[t];
         }
-        Shell& s = *last;
-        if (!s.hasRef) {
-          s.ref = anchors[tri[0]];
-          s.hasRef = true;
+        if (!last->hasRef) {
+          last->ref = anchors[p.triangles[t][0]];
+          last->hasRef = true;
         }
-        s.bits |= uint8_t(p.resolved[t] | kHasTriangle);
-        ++s.triangles;
-        if (shell != run.shell || g / kShellChunk != run.chunk) {
-          flush();
-          run = Run{shell, g / kShellChunk, 0.0, 0.0};
-        }
-        const glm::dvec3& ref = s.ref;
-        run.anchored +=
-            sixVolumeTerm(anchors[tri[0]] - ref, anchors[tri[1]] - ref, anchors[tri[2]] - ref);
-        run.placed += sixVolumeTerm(p.positions[tri[0]] - ref, p.positions[tri[1]] - ref,
+        last->bits |= uint8_t(p.resolved[t] | kHasTriangle);
+        ++last->triangles;
+        shellOf[t] = last;
+      }
+      runs.add(
+          n,
+          [&](uint64_t t, uint32_t* shell, double* anchored, double* placed) {
+            const auto& tri = p.triangles[t];
+            const glm::dvec3& ref = shellOf[t]->ref;
+            *shell = roots[t];
+            *anchored =
+                sixVolumeTerm(anchors[tri[0]] - ref, anchors[tri[1]] - ref, anchors[tri[2]] - ref);
+            *placed = sixVolumeTerm(p.positions[tri[0]] - ref, p.positions[tri[1]] - ref,
                                     p.positions[tri[2]] - ref);
-      }
+          },
+          flush);
     });
-    flush();
+    runs.finish(flush);
     for (auto& [root, s] : shells_) {
       const int want = volumeSign(s.anchored);
       s.inverted = want != 0 && volumeSign(s.placed) != want;
@@ -361,28 +440,37 @@ class StreamedExportWriter::Impl {
       std::vector<std::array<uint32_t, 3>> triangles;
     };
     std::unordered_map<uint32_t, Gathered> gathered;
+    std::vector<uint8_t> invertedRoot(sets_.parent.size(), 0);  // a byte per id
+    for (const auto& [root, s] : shells_) invertedRoot[root] = s.inverted ? 1 : 0;
     eachPiece([&](const Piece& p) {
+      // The inverted shells' triangles (few), found in parallel and gathered in order.
+      std::vector<std::vector<uint32_t>> found(blocksOf(p.triangles.size()));
+      eachBlock(p.triangles.size(), [&](size_t b, size_t begin, size_t end) {
+        for (size_t t = begin; t < end; ++t)
+          if (invertedRoot[rootOf(p.ids[p.triangles[t][0]])]) found[b].push_back(uint32_t(t));
+      });
       std::vector<glm::dvec3> anchors;
-      for (const auto& tri : p.triangles) {
-        const uint32_t shell = rootOf(p.ids[tri[0]]);
-        if (!shells_[shell].inverted) continue;
-        if (anchors.empty()) anchors = anchorsOf(grid_, p);
-        Gathered& g = gathered[shell];
-        std::array<uint32_t, 3> corners;
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t v = tri[size_t(k)], id = p.ids[v];
-          const auto found = g.local.find(id);
-          if (found != g.local.end()) {
-            corners[size_t(k)] = found->second;
-            continue;
+      for (const std::vector<uint32_t>& block : found)
+        for (uint32_t t : block) {
+          const auto& tri = p.triangles[t];
+          const uint32_t shell = rootOf(p.ids[tri[0]]);
+          if (anchors.empty()) anchors = anchorsOf(grid_, p);
+          Gathered& g = gathered[shell];
+          std::array<uint32_t, 3> corners;
+          for (int k = 0; k < 3; ++k) {
+            const uint32_t v = tri[size_t(k)], id = p.ids[v];
+            const auto found = g.local.find(id);
+            if (found != g.local.end()) {
+              corners[size_t(k)] = found->second;
+              continue;
+            }
+            corners[size_t(k)] = g.local[id] = uint32_t(g.ids.size());
+            g.ids.push_back(id);
+            g.anchors.push_back(anchors[v]);
+            g.positions.push_back(p.positions[v]);
           }
-          corners[size_t(k)] = g.local[id] = uint32_t(g.ids.size());
-          g.ids.push_back(id);
-          g.anchors.push_back(anchors[v]);
-          g.positions.push_back(p.positions[v]);
+          g.triangles.push_back(corners);
         }
-        g.triangles.push_back(corners);
-      }
     });
     for (auto& [shell, g] : gathered) {
       const Shell& s = shells_[shell];
@@ -464,14 +552,24 @@ class StreamedExportWriter::Impl {
       return glm::dvec3(stored_(x.x), stored_(x.y), stored_(x.z));
     };
     eachPiece([&](const Piece& p) {
-      for (size_t t = 0; t < p.triangles.size(); ++t) {
-        if (!keptTriangle(p, t)) continue;
-        const auto& tri = p.triangles[t];
-        const glm::dvec3 a = finalPosition(p, tri[0]), b = finalPosition(p, tri[1]),
-                         c = finalPosition(p, tri[2]);
-        for (const glm::dvec3& x : {a, b, c}) used_.include(storedAt(x));
-        if (storedFlawed(a, b, c, stored_))
-          for (uint32_t v : tri) region.push_back(p.ids[v]);
+      // In parallel: each block's box and flawed corners, then taken in order.
+      const size_t blocks = blocksOf(p.triangles.size());
+      std::vector<Bounds> boxes(blocks);
+      std::vector<std::vector<uint32_t>> flawed(blocks);
+      eachBlock(p.triangles.size(), [&](size_t blk, size_t begin, size_t end) {
+        for (size_t t = begin; t < end; ++t) {
+          if (!keptTriangle(p, t)) continue;
+          const auto& tri = p.triangles[t];
+          const glm::dvec3 a = finalPosition(p, tri[0]), b = finalPosition(p, tri[1]),
+                           c = finalPosition(p, tri[2]);
+          for (const glm::dvec3& x : {a, b, c}) boxes[blk].include(storedAt(x));
+          if (storedFlawed(a, b, c, stored_))
+            for (uint32_t v : tri) flawed[blk].push_back(p.ids[v]);
+        }
+      });
+      for (size_t blk = 0; blk < blocks; ++blk) {
+        if (!boxes[blk].empty()) used_.include(boxes[blk]);
+        region.insert(region.end(), flawed[blk].begin(), flawed[blk].end());
       }
     });
     if (region.empty()) return;
@@ -484,12 +582,18 @@ class StreamedExportWriter::Impl {
       {
         std::vector<bool> grown = complete;
         eachPiece([&](const Piece& p) {
-          for (size_t t = 0; t < p.triangles.size(); ++t) {
-            if (!keptTriangle(p, t)) continue;
-            const auto& tri = p.triangles[t];
-            if (complete[p.ids[tri[0]]] || complete[p.ids[tri[1]]] || complete[p.ids[tri[2]]])
-              for (uint32_t v : tri) grown[p.ids[v]] = true;
-          }
+          // The ids around the complete ones (few), found in parallel and marked here.
+          std::vector<std::vector<uint32_t>> around(blocksOf(p.triangles.size()));
+          eachBlock(p.triangles.size(), [&](size_t blk, size_t begin, size_t end) {
+            for (size_t t = begin; t < end; ++t) {
+              if (!keptTriangle(p, t)) continue;
+              const auto& tri = p.triangles[t];
+              if (complete[p.ids[tri[0]]] || complete[p.ids[tri[1]]] || complete[p.ids[tri[2]]])
+                for (uint32_t v : tri) around[blk].push_back(p.ids[v]);
+            }
+          });
+          for (const std::vector<uint32_t>& block : around)
+            for (uint32_t id : block) grown[id] = true;
         });
         complete = std::move(grown);
       }
@@ -504,20 +608,27 @@ class StreamedExportWriter::Impl {
       std::vector<PartTriangle> part;
       uint64_t place = 0;
       eachPiece([&](const Piece& p) {
-        for (size_t t = 0; t < p.triangles.size(); ++t) {
-          if (!keptTriangle(p, t)) continue;
-          const auto& tri = p.triangles[t];
-          if (complete[p.ids[tri[0]]] || complete[p.ids[tri[1]]] || complete[p.ids[tri[2]]]) {
-            PartTriangle pt{place, {}, {}, {}};
-            for (int k = 0; k < 3; ++k) {
-              pt.keys[size_t(k)] = p.keys[tri[size_t(k)]];
-              pt.corners[size_t(k)] = finalPosition(p, tri[size_t(k)]);
-              pt.ids[size_t(k)] = p.ids[tri[size_t(k)]];
+        const std::vector<uint64_t> at = keptPlaces(p, &place);
+        std::vector<std::vector<PartTriangle>> found(at.size() - 1);
+        eachBlock(p.triangles.size(), [&](size_t blk, size_t begin, size_t end) {
+          uint64_t here = at[blk];
+          for (size_t t = begin; t < end; ++t) {
+            if (!keptTriangle(p, t)) continue;
+            const auto& tri = p.triangles[t];
+            if (complete[p.ids[tri[0]]] || complete[p.ids[tri[1]]] || complete[p.ids[tri[2]]]) {
+              PartTriangle pt{here, {}, {}, {}};
+              for (int k = 0; k < 3; ++k) {
+                pt.keys[size_t(k)] = p.keys[tri[size_t(k)]];
+                pt.corners[size_t(k)] = finalPosition(p, tri[size_t(k)]);
+                pt.ids[size_t(k)] = p.ids[tri[size_t(k)]];
+              }
+              found[blk].push_back(pt);
             }
-            part.push_back(pt);
+            ++here;
           }
-          ++place;
-        }
+        });
+        for (const std::vector<PartTriangle>& block : found)
+          part.insert(part.end(), block.begin(), block.end());
       });
       std::vector<std::pair<uint64_t, uint32_t>> byKey;  // (key, id)
       for (const PartTriangle& pt : part)
@@ -563,76 +674,106 @@ class StreamedExportWriter::Impl {
       if (repair.collapsed > 0) {
         // A collapse lets a corner go: the box of the corners the facets still use.
         used_ = Bounds();
-        uint64_t at = 0;
-        size_t next = 0;
+        uint64_t kept = 0;
         eachPiece([&](const Piece& p) {
-          for (size_t t = 0; t < p.triangles.size(); ++t) {
-            if (!keptTriangle(p, t)) continue;
-            if (const Replacement* r = replacementAt(at++, &next)) {
-              if (r->alive)
-                for (const glm::dvec3& x : r->corners) used_.include(storedAt(x));
-              continue;
+          const std::vector<uint64_t> at = keptPlaces(p, &kept);
+          std::vector<Bounds> boxes(at.size() - 1);
+          eachBlock(p.triangles.size(), [&](size_t blk, size_t begin, size_t end) {
+            uint64_t here = at[blk];
+            size_t next = replacementCursor(here);
+            for (size_t t = begin; t < end; ++t) {
+              if (!keptTriangle(p, t)) continue;
+              if (const Replacement* r = replacementAt(here++, &next)) {
+                if (r->alive)
+                  for (const glm::dvec3& x : r->corners) boxes[blk].include(storedAt(x));
+                continue;
+              }
+              for (uint32_t v : p.triangles[t]) boxes[blk].include(storedAt(finalPosition(p, v)));
             }
-            for (uint32_t v : p.triangles[t]) used_.include(storedAt(finalPosition(p, v)));
-          }
+          });
+          for (const Bounds& box : boxes)
+            if (!box.empty()) used_.include(box);
         });
       }
       return;
     }
   }
 
-  // Pass 5: the facets in the mesh's order, a block at a time, fingerprinted as stored.
+  // A block of facets encoded as the file stores them (writeStl).
+  struct EncodedBlock {
+    std::string bytes;               // binary STL facets
+    std::vector<glm::vec3> corners;  // as stored (float32: exact), for the measures
+    TriangleFingerprint fingerprint;
+  };
+
+  void encodeFacet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                   EncodedBlock* out) const {
+    for (const glm::dvec3* x : {&a, &b, &c}) {
+      if (!std::isfinite(x->x) || !std::isfinite(x->y) || !std::isfinite(x->z))
+        throw Error(path_ + ": cannot write: a vertex is not finite");
+      checkStlCoordinates(path_, *x);
+    }
+    const size_t at = out->bytes.size();
+    out->bytes.resize(at + kStlFacetBytes);
+    encodeStlFacet(a, b, c, &out->bytes[at]);
+    const auto s = [&](const glm::dvec3& p) {
+      return glm::dvec3(stored_(p.x), stored_(p.y), stored_(p.z));
+    };
+    const glm::dvec3 sa = s(a), sb = s(b), sc = s(c);
+    addToFingerprint(sa, sb, sc, &out->fingerprint);
+    for (const glm::dvec3* x : {&sa, &sb, &sc}) {
+      out->corners.push_back(glm::vec3(*x));
+      if (glm::dvec3(out->corners.back()) != *x)
+        throw Error(path_ + ": internal: a stored coordinate is not a float32");
+    }
+  }
+
+  // Pass 5: the facets in the mesh's order, encoded and fingerprinted as stored in parallel
+  // blocks (a few per worker at a time), written and handed to the measures in order.
   void writeStl(StreamedMeshCheck* measures) {
     progress_.report("write STL", 0.0);
     writeFileAtomically(path_, [&](std::ostream& out) {
       const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
       out.write(header.data(), std::streamsize(header.size()));
-      std::string block;
-      std::vector<glm::vec3> corners;  // as stored (float32: exact), for the measures
-      uint64_t place = 0, written = 0;
-      size_t next = 0;  // into repaired_
-      const auto emit = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-        for (const glm::dvec3* x : {&a, &b, &c}) {
-          if (!std::isfinite(x->x) || !std::isfinite(x->y) || !std::isfinite(x->z))
-            throw Error(path_ + ": cannot write: a vertex is not finite");
-          checkStlCoordinates(path_, *x);
-        }
-        const size_t at = block.size();
-        block.resize(at + kStlFacetBytes);
-        encodeStlFacet(a, b, c, &block[at]);
-        const auto s = [&](const glm::dvec3& p) {
-          return glm::dvec3(stored_(p.x), stored_(p.y), stored_(p.z));
-        };
-        const glm::dvec3 sa = s(a), sb = s(b), sc = s(c);
-        addToFingerprint(sa, sb, sc, &fingerprint_);
-        for (const glm::dvec3* x : {&sa, &sb, &sc}) {
-          corners.push_back(glm::vec3(*x));
-          if (glm::dvec3(corners.back()) != *x)
-            throw Error(path_ + ": internal: a stored coordinate is not a float32");
-        }
-        ++written;
-        if (block.size() >= kWriteBlock * kStlFacetBytes) {
-          measures->add(std::move(corners));
-          corners = std::vector<glm::vec3>();
-          corners.reserve(3 * kWriteBlock);
-          out.write(block.data(), std::streamsize(block.size()));
-          block.clear();
+      uint64_t kept = 0, written = 0;
+      const size_t group = size_t(4 * workerCount());  // blocks encoded at a time
+      eachPiece([&](const Piece& p) {
+        const std::vector<uint64_t> at = keptPlaces(p, &kept);
+        const size_t blocks = at.size() - 1, n = p.triangles.size();
+        for (size_t first = 0; first < blocks; first += group) {
+          const size_t count = std::min(group, blocks - first);
+          std::vector<EncodedBlock> encoded(count);
+          parallelFor(0, int64_t(count), 1, [&](int64_t b, int64_t e) {
+            for (size_t k = size_t(b); k < size_t(e); ++k) {
+              const size_t blk = first + k;
+              EncodedBlock& block = encoded[k];
+              block.bytes.reserve(kBlock * kStlFacetBytes);
+              block.corners.reserve(3 * kBlock);
+              uint64_t here = at[blk];
+              size_t next = replacementCursor(here);
+              for (size_t t = blockBegin(blk); t < blockEnd(blk, n); ++t) {
+                if (!keptTriangle(p, t)) continue;
+                if (const Replacement* r = replacementAt(here++, &next)) {
+                  if (r->alive) encodeFacet(r->corners[0], r->corners[1], r->corners[2], &block);
+                  continue;
+                }
+                const auto& tri = p.triangles[t];
+                encodeFacet(finalPosition(p, tri[0]), finalPosition(p, tri[1]),
+                            finalPosition(p, tri[2]), &block);
+              }
+            }
+          });
+          for (EncodedBlock& block : encoded) {
+            out.write(block.bytes.data(), std::streamsize(block.bytes.size()));
+            fingerprint_.triangles += block.fingerprint.triangles;
+            fingerprint_.sum += block.fingerprint.sum;
+            fingerprint_.mixedSum += block.fingerprint.mixedSum;
+            written += block.fingerprint.triangles;
+            if (!block.corners.empty()) measures->add(std::move(block.corners));
+          }
           progress_.report("write STL", double(written) / double(keptTriangles_));
         }
-      };
-      eachPiece([&](const Piece& p) {
-        for (size_t t = 0; t < p.triangles.size(); ++t) {
-          if (!keptTriangle(p, t)) continue;
-          if (const Replacement* r = replacementAt(place++, &next)) {
-            if (r->alive) emit(r->corners[0], r->corners[1], r->corners[2]);
-            continue;
-          }
-          const auto& tri = p.triangles[t];
-          emit(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]));
-        }
       });
-      measures->add(std::move(corners));
-      out.write(block.data(), std::streamsize(block.size()));
       if (written != keptTriangles_)
         throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +
                     std::to_string(keptTriangles_));

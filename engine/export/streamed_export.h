@@ -14,11 +14,15 @@
 // drop_specks.h: the same rule per component; degenerate_repair.h on the neighbourhood of the
 // flawed triangles, grown until it holds every triangle around each corner the repair reads),
 // then write the file a piece at a time. The file is the single-process export's, byte for byte.
+// Each later pass reads the next piece on a thread of its own while it works on one, in parallel
+// over blocks of the piece's triangles (parallel_for.h), taking the blocks' results in order
+// where the order counts (the shells' sums: ShellRunSums, unfold_shells.h; the facets written):
+// the same file on any thread count.
 //
 // Memory: the tiles and piece of the slab being merged (streamedTiling below), the tiles of the
-// slabs the workers contour meanwhile (streamedSlabsAhead), plus about 8 bytes a vertex of the
-// whole mesh (sets and counts) and, for the check, 8 bytes a triangle; disk: the scratch file,
-// about 36 bytes a triangle, beside the output.
+// slabs the workers contour meanwhile (streamedSlabsAhead), two pieces in the later passes, plus
+// about 8 bytes a vertex of the whole mesh (sets and counts) and, for the check, 8 bytes a
+// triangle; disk: the scratch file, about 36 bytes a triangle, beside the output.
 //
 // Formats: binary STL (.stl) only, whose facets are written in order as they come; --simplify
 // needs the whole mesh and is refused. The check (check_streamed.h) measures the facets as

@@ -102,34 +102,23 @@ int unfoldInvertedShells(const Grid& grid, const std::vector<uint64_t>& keys,
   for (uint32_t s = 0; s < shells; ++s)
     if (firstTriangle[s].load() != UINT32_MAX) sums[s].ref = anchor[triangles[firstTriangle[s]][0]];
   firstTriangle = std::vector<std::atomic<uint32_t>>();
-  struct Run {
-    uint32_t shell;
-    double anchored, placed;
+  ShellRunSums runs;
+  const auto flush = [&](const ShellRun& run) {
+    sums[run.shell].anchored += run.anchored;
+    sums[run.shell].placed += run.placed;
   };
-  constexpr int64_t kChunk = 65536;
-  std::vector<std::vector<Run>> runs(size_t((triangleCount + kChunk - 1) / kChunk));
-  parallelFor(0, int64_t(runs.size()), 1, [&](int64_t b, int64_t e) {
-    for (int64_t c = b; c < e; ++c) {
-      std::vector<Run>& out = runs[size_t(c)];
-      for (int64_t t = c * kChunk; t < std::min(triangleCount, (c + 1) * kChunk); ++t) {
+  runs.add(
+      uint64_t(triangleCount),
+      [&](uint64_t t, uint32_t* shell, double* anchored, double* placed) {
         const auto& tri = triangles[size_t(t)];
-        const uint32_t shell = shellOf[tri[0]];
-        if (out.empty() || out.back().shell != shell) out.push_back({shell, 0.0, 0.0});
-        const glm::dvec3& ref = sums[shell].ref;
-        out.back().anchored +=
-            sixVolumeTerm(anchor[tri[0]] - ref, anchor[tri[1]] - ref, anchor[tri[2]] - ref);
-        out.back().placed +=
-            sixVolumeTerm(mesh->positions[tri[0]] - ref, mesh->positions[tri[1]] - ref,
-                          mesh->positions[tri[2]] - ref);
-      }
-    }
-  });
-  for (const std::vector<Run>& chunk : runs)
-    for (const Run& run : chunk) {
-      sums[run.shell].anchored += run.anchored;
-      sums[run.shell].placed += run.placed;
-    }
-  runs = {};
+        *shell = shellOf[tri[0]];
+        const glm::dvec3& ref = sums[*shell].ref;
+        *anchored = sixVolumeTerm(anchor[tri[0]] - ref, anchor[tri[1]] - ref, anchor[tri[2]] - ref);
+        *placed = sixVolumeTerm(mesh->positions[tri[0]] - ref, mesh->positions[tri[1]] - ref,
+                                mesh->positions[tri[2]] - ref);
+      },
+      flush);
+  runs.finish(flush);
   std::vector<uint8_t> inverted(shells, 0);
   bool any = false;
   for (uint32_t s = 0; s < shells; ++s) {

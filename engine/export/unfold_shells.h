@@ -19,6 +19,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/util/parallel_for.h"
+
 #include "engine/contour/contour_tile.h"
 #include "engine/geometry/mesh.h"
 #include "engine/ldi/grid.h"
@@ -53,5 +55,78 @@ int volumeSign(double x);
 double pullBackKeep(const std::vector<std::array<uint32_t, 3>>& triangles,
                     const std::vector<glm::dvec3>& anchors,
                     const std::vector<glm::dvec3>& positions, const glm::dvec3& ref, int want);
+
+// One run of a shell's six volumes (ShellRunSums): the terms of consecutive triangles of one
+// shell within one chunk, summed in order from zero.
+struct ShellRun {
+  static constexpr uint32_t kNone = UINT32_MAX;
+  uint32_t shell = kNone;
+  double anchored = 0.0, placed = 0.0;
+};
+
+// The order in which each shell's six volumes are summed, the one place that fixes it (the
+// in-memory unfoldInvertedShells and the streamed export read it): the mesh's triangles in
+// chunks of kChunk (by their place in the whole mesh), the terms of consecutive triangles of
+// one shell within a chunk summed in order from zero (a run), and the runs handed to `flush` in
+// the mesh's order, which adds each to its shell's sums. The triangles come in stretches of any
+// length (the streamed export's pieces), in order; each stretch's chunks are summed in parallel
+// (parallel_for.h): the same sums, bit for bit, whatever the stretches and the thread count.
+class ShellRunSums {
+ public:
+  static constexpr uint64_t kChunk = 65536;
+
+  // The next `count` triangles of the mesh. term(i, &shell, &anchored, &placed) gives the
+  // stretch's triangle i's shell and two terms (called on several threads at once, each i
+  // once); flush(const ShellRun&) is called on this thread, in order, for each run completed.
+  template <typename Term, typename Flush>
+  void add(uint64_t count, const Term& term, const Flush& flush) {
+    if (count == 0) return;
+    const uint64_t first = next_;
+    if (open_.shell != ShellRun::kNone && first % kChunk == 0) {  // a new chunk: the run ends
+      flush(open_);
+      open_ = ShellRun();
+    }
+    std::vector<uint64_t> cuts{0};  // the stretch cut where a chunk begins
+    for (uint64_t c = (first / kChunk + 1) * kChunk; c < first + count; c += kChunk)
+      cuts.push_back(c - first);
+    cuts.push_back(count);
+    std::vector<std::vector<ShellRun>> runs(cuts.size() - 1);
+    parallelFor(0, int64_t(runs.size()), 1, [&](int64_t b, int64_t e) {
+      for (int64_t s = b; s < e; ++s) {
+        std::vector<ShellRun>& out = runs[size_t(s)];
+        // The first segment lies in the chunk of the run left open: it goes on with it.
+        if (s == 0 && open_.shell != ShellRun::kNone) out.push_back(open_);
+        for (uint64_t i = cuts[size_t(s)]; i < cuts[size_t(s) + 1]; ++i) {
+          uint32_t shell = ShellRun::kNone;
+          double anchored = 0.0, placed = 0.0;
+          term(i, &shell, &anchored, &placed);
+          if (out.empty() || out.back().shell != shell) out.push_back({shell, 0.0, 0.0});
+          out.back().anchored += anchored;
+          out.back().placed += placed;
+        }
+      }
+    });
+    // Every run but the stretch's last is complete (a segment's last run ends with its chunk);
+    // the last may go on in the next stretch.
+    for (size_t s = 0; s < runs.size(); ++s)
+      for (size_t r = 0; r < runs[s].size(); ++r) {
+        if (s + 1 == runs.size() && r + 1 == runs[s].size()) break;
+        flush(runs[s][r]);
+      }
+    open_ = runs.back().back();
+    next_ = first + count;
+  }
+
+  // After the last stretch: the run left open.
+  template <typename Flush>
+  void finish(const Flush& flush) {
+    if (open_.shell != ShellRun::kNone) flush(open_);
+    open_ = ShellRun();
+  }
+
+ private:
+  uint64_t next_ = 0;  // the place of the next triangle in the mesh
+  ShellRun open_;      // the last stretch's last run
+};
 
 }  // namespace strata

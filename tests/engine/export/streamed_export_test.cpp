@@ -22,6 +22,7 @@
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
 #include "tests/support/export_cases.h"
 #include "tests/support/scene_builder.h"
 
@@ -178,6 +179,70 @@ TEST(StreamedExport, OnSeveralWorkersWritesTheFileOfOne) {
     EXPECT_EQ(a.check.triangles, b.check.triangles);
     EXPECT_EQ(bytesOf(one), bytesOf(three));
   }
+  EXPECT_EQ(entriesIn(folder), 2u);
+}
+
+// The passes over the pieces run on several threads, in blocks of a few thousand triangles of a
+// piece: on one, two and three threads the single-process file, byte for byte, where the pieces
+// hold many blocks, the shells' sums span several of their chunks (65,536 triangles) cut off the
+// pieces' boundaries, and specks are dropped, shells unfolded and flat triangles repaired.
+TEST(StreamedExport, OnAnyThreadCountWritesTheSingleProcessFile) {
+  const std::string folder = freshFolder("threads");
+  std::vector<Case> all = {
+      {"slabbed", slabbedScene(), 0},
+      {"far_sphere", makeScene(sphere(0.05, {1e4, 1e4, 1e4}), 128), 0},
+      {"folded_sliver", foldedSliverScene(), 8},
+      {"grazing_torus",
+       makeScene(
+           op(NodeKind::Difference, {sphere(0.42), meshLeaf(facetedTorus(0.33, 0.12, 96, 48))}),
+           128),
+       0},
+  };
+  size_t repaired = 0;
+  int unfolded = 0, dropped = 0;
+  for (const Case& c : all) {
+    SCOPED_TRACE(c.name);
+    const std::string whole = folder + "/whole.stl", streamed = folder + "/streamed.stl";
+    Progress progress;
+    const ExportReport a =
+        exportScene(c.scene, whole, ExportOptions(), std::make_shared<CpuBackend>(), progress);
+    const std::string expected = bytesOf(whole);
+    ExportOptions pieces;
+    pieces.tileCells = c.tile;
+    int tiles = 0;
+    for (int threads : {1, 2, 3}) {
+      SCOPED_TRACE("threads " + std::to_string(threads));
+      setWorkerCount(threads);
+      const ExportReport b =
+          exportSceneStreamed(c.scene, streamed, pieces, std::make_shared<CpuBackend>(), progress);
+      setWorkerCount(0);
+      tiles = b.contour.tiles;
+      EXPECT_EQ(bytesOf(streamed), expected);
+      EXPECT_TRUE(b.fileDifference.empty()) << b.fileDifference;
+      EXPECT_EQ(a.check.triangles, b.check.triangles);
+      EXPECT_EQ(a.check.volume, b.check.volume);
+      EXPECT_EQ(a.contour.unfoldedShells, b.contour.unfoldedShells);
+      EXPECT_EQ(a.contour.droppedSpecks.triangles, b.contour.droppedSpecks.triangles);
+      EXPECT_EQ(a.degenerateRepair.collapsed, b.degenerateRepair.collapsed);
+      EXPECT_EQ(a.degenerateRepair.flipped, b.degenerateRepair.flipped);
+      if (threads == 1) {
+        unfolded += b.contour.unfoldedShells;
+        dropped += b.contour.droppedSpecks.components;
+        repaired +=
+            b.degenerateRepair.flipped + b.degenerateRepair.rotated + b.degenerateRepair.collapsed;
+      }
+    }
+    if (c.name == "slabbed") {
+      // Several pieces (a tile each: slabs of the whole cross-section) of many blocks, the mesh
+      // of more than three chunks.
+      EXPECT_GE(tiles, 8);
+      EXPECT_GT(a.check.triangles, size_t(3 * 65536));
+      EXPECT_GT(a.check.triangles / size_t(tiles), size_t(3 * 4096));
+    }
+  }
+  EXPECT_GT(unfolded, 0);
+  EXPECT_GT(dropped, 0);
+  EXPECT_GT(repaired, 0u);
   EXPECT_EQ(entriesIn(folder), 2u);
 }
 
