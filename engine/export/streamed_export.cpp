@@ -754,7 +754,8 @@ class StreamedExportWriter::Impl {
   }
 
   // Pass 5: the facets in the mesh's order, encoded and fingerprinted as stored in parallel
-  // blocks (a few per worker at a time), written and handed to the measures in order.
+  // blocks (a few per worker at a time), written and handed to the measures in order on a
+  // thread of their own while the next group of blocks is encoded.
   void writeStl(StreamedMeshCheck* measures) {
     progress_.report("write STL", 0.0);
     writeFileAtomically(path_, [&](std::ostream& out) {
@@ -762,6 +763,14 @@ class StreamedExportWriter::Impl {
       out.write(header.data(), std::streamsize(header.size()));
       uint64_t kept = 0, written = 0;
       const size_t group = size_t(4 * workerCount());  // blocks encoded at a time
+      std::vector<EncodedBlock> handing;               // the group being written and measured
+      std::future<void> writing;  // declared after it: waited for first if a throw
+      const auto hand = [&] {
+        for (EncodedBlock& block : handing) {
+          out.write(block.bytes.data(), std::streamsize(block.bytes.size()));
+          if (!block.corners.empty()) measures->add(std::move(block.corners));
+        }
+      };
       eachPiece([&](const Piece& p) {
         const std::vector<uint64_t> at = keptPlaces(p, &kept);
         const size_t blocks = at.size() - 1, n = p.triangles.size();
@@ -788,17 +797,20 @@ class StreamedExportWriter::Impl {
               }
             }
           });
-          for (EncodedBlock& block : encoded) {
-            out.write(block.bytes.data(), std::streamsize(block.bytes.size()));
+          for (const EncodedBlock& block : encoded) {
             fingerprint_.triangles += block.fingerprint.triangles;
             fingerprint_.sum += block.fingerprint.sum;
             fingerprint_.mixedSum += block.fingerprint.mixedSum;
-            written += block.fingerprint.triangles;
-            if (!block.corners.empty()) measures->add(std::move(block.corners));
           }
+          if (writing.valid()) writing.get();
+          for (const EncodedBlock& block : handing) written += block.fingerprint.triangles;
+          handing = std::move(encoded);
+          writing = std::async(std::launch::async, hand);
           progress_.report("write STL", double(written) / double(keptTriangles_));
         }
       });
+      if (writing.valid()) writing.get();
+      for (const EncodedBlock& block : handing) written += block.fingerprint.triangles;
       if (written != keptTriangles_)
         throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +
                     std::to_string(keptTriangles_));

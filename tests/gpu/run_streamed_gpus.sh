@@ -21,7 +21,7 @@ export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
 nvidia-smi -L > $R/host.txt 2>&1; nproc >> $R/host.txt; free -g >> $R/host.txt
 timeout 200 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
 tail -3 $R/gpu_tests.txt
-stages() { python3 -c "import json;d=json.load(open('$1'));print(d['tiles'], 'tiles', ' '.join('%s %.3f'%(s['name'],s['seconds']) for s in d['stages']), 'triangles', d['check']['triangles'], 'passed', d['check']['passed'])"; }
+stages() { python3 -c "import json;d=json.load(open('$1'));print(d['tiles'], 'tiles', ' '.join('%s %.3f'%(s['name'],s['seconds']) for s in d['stages']), 'triangles', d['check']['triangles'], 'passed', d['check']['passed'], '| merge steps', ' '.join('%s %.2f'%(s['name'],s['seconds']) for s in d.get('merge_steps', [])))"; }
 source tests/gpu/gpu_memory.sh
 for job in ${JOBS:-armadillo_bunny:4096 bone_scaffold:4096}; do
   scene=${job%%:*} res=${job##*:}
