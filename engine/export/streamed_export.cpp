@@ -776,13 +776,17 @@ class StreamedExportWriter::Impl {
         const size_t blocks = at.size() - 1, n = p.triangles.size();
         for (size_t first = 0; first < blocks; first += group) {
           const size_t count = std::min(group, blocks - first);
+          // Allocated here, not on the workers: the blocks are freed on other threads (the
+          // corners by the measures'), which would leave memory in each worker's arena.
           std::vector<EncodedBlock> encoded(count);
+          for (EncodedBlock& block : encoded) {
+            block.bytes.reserve(kBlock * kStlFacetBytes);
+            block.corners.reserve(3 * kBlock);
+          }
           parallelFor(0, int64_t(count), 1, [&](int64_t b, int64_t e) {
             for (size_t k = size_t(b); k < size_t(e); ++k) {
               const size_t blk = first + k;
               EncodedBlock& block = encoded[k];
-              block.bytes.reserve(kBlock * kStlFacetBytes);
-              block.corners.reserve(3 * kBlock);
               uint64_t here = at[blk];
               size_t next = replacementCursor(here);
               for (size_t t = blockBegin(blk); t < blockEnd(blk, n); ++t) {
