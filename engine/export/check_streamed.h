@@ -42,8 +42,9 @@ constexpr int kWindowLayers = 4;
 // layers' worth (facets / layers x 128, so that its open vertices, within a few layers of its
 // two ends, are a small share), from 8 to 32 measure blocks (9 to 38 MB of corners).
 size_t streamedCheckChunkFacets(const Grid& grid, size_t facets);
-// The threads of the check: one fewer than workerCount() (the writer has one) up to 4, and up
-// to 8 where half the cores are more (each holds a window of vertices and a chunk of corners:
+// The threads of the check, sharing the cores with the writer's (which encodes on all of
+// them): one fewer than workerCount() up to 4, and up to 8 where half the cores are more (each
+// holds a window of vertices and a chunk of corners:
 // about 0.1 GB at 4096 cells; on the 16-core H200 host 8 threads wrote armadillo - bunny's 72 M
 // facets in 5.6-5.8 s against 6.7-7.5 with 4, 12 no faster, the peak 2.1 -> 2.5 GB); one where
 // there are two cores or fewer.

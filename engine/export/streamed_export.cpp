@@ -13,6 +13,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstring>
+#include <exception>
 #include <future>
 #include <limits>
 #include <mutex>
@@ -303,7 +304,10 @@ class StreamedExportWriter::Impl {
     // Spilled on a thread of its own while the next slab is merged (one piece at a time).
     if (spilling_.valid()) spilling_.get();
     spilled_ = std::move(piece);
-    spilling_ = std::async(std::launch::async, [this] { spill(scratch_, spilled_, &pieces_); });
+    spilling_ = std::async(std::launch::async, [this] {
+      spill(scratch_, spilled_, &pieces_);
+      spilled_ = Piece();  // let go as soon as written, not when the next slab comes
+    });
     below_ = std::move(top);
     r_.mergeSeconds += merge.seconds();
   }
@@ -469,13 +473,13 @@ class StreamedExportWriter::Impl {
     for (const auto& [root, s] : shells_) invertedRoot[root] = s.inverted ? 1 : 0;
     eachPiece([&](const Piece& p) {
       // The inverted shells' triangles (few), found in parallel and gathered in order.
-      std::vector<std::vector<uint32_t>> found(blocksOf(p.triangles.size()));
+      std::vector<std::vector<uint32_t>> inverted(blocksOf(p.triangles.size()));
       eachBlock(p.triangles.size(), [&](size_t b, size_t begin, size_t end) {
         for (size_t t = begin; t < end; ++t)
-          if (invertedRoot[rootOf(p.ids[p.triangles[t][0]])]) found[b].push_back(uint32_t(t));
+          if (invertedRoot[rootOf(p.ids[p.triangles[t][0]])]) inverted[b].push_back(uint32_t(t));
       });
       std::vector<glm::dvec3> anchors;
-      for (const std::vector<uint32_t>& block : found)
+      for (const std::vector<uint32_t>& block : inverted)
         for (uint32_t t : block) {
           const auto& tri = p.triangles[t];
           const uint32_t shell = rootOf(p.ids[tri[0]]);
@@ -753,6 +757,23 @@ class StreamedExportWriter::Impl {
     }
   }
 
+  // The facets of block `blk` of piece `p` (keptPlaces `at`) encoded into *block.
+  void encodeBlock(const Piece& p, const std::vector<uint64_t>& at, size_t blk,
+                   EncodedBlock* block) const {
+    uint64_t here = at[blk];
+    size_t next = replacementCursor(here);
+    for (size_t t = blockBegin(blk); t < blockEnd(blk, p.triangles.size()); ++t) {
+      if (!keptTriangle(p, t)) continue;
+      if (const Replacement* r = replacementAt(here++, &next)) {
+        if (r->alive) encodeFacet(r->corners[0], r->corners[1], r->corners[2], block);
+        continue;
+      }
+      const auto& tri = p.triangles[t];
+      encodeFacet(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]),
+                  block);
+    }
+  }
+
   // Pass 5: the facets in the mesh's order, encoded and fingerprinted as stored in parallel
   // blocks (a few per worker at a time), written and handed to the measures in order on a
   // thread of their own while the next group of blocks is encoded.
@@ -762,9 +783,10 @@ class StreamedExportWriter::Impl {
       const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
       out.write(header.data(), std::streamsize(header.size()));
       uint64_t kept = 0, written = 0;
-      const size_t group = size_t(4 * workerCount());  // blocks encoded at a time
-      std::vector<EncodedBlock> handing;               // the group being written and measured
-      std::future<void> writing;  // declared after it: waited for first if a throw
+      // Blocks encoded at a time: a few a worker, at most 64 (two groups are held: 45 MB).
+      const size_t group = size_t(std::min(4 * workerCount(), 64));
+      std::vector<EncodedBlock> handing;  // the group being written and measured
+      std::future<void> writing;          // declared after it: waited for first if a throw
       const auto hand = [&] {
         for (EncodedBlock& block : handing) {
           out.write(block.bytes.data(), std::streamsize(block.bytes.size()));
@@ -773,34 +795,33 @@ class StreamedExportWriter::Impl {
       };
       eachPiece([&](const Piece& p) {
         const std::vector<uint64_t> at = keptPlaces(p, &kept);
-        const size_t blocks = at.size() - 1, n = p.triangles.size();
+        const size_t blocks = at.size() - 1;
         for (size_t first = 0; first < blocks; first += group) {
           const size_t count = std::min(group, blocks - first);
-          // Allocated here, not on the workers: the blocks are freed on other threads (the
-          // corners by the measures'), which would leave memory in each worker's arena.
+          // Allocated here, not on the workers (the blocks are freed on other threads, the
+          // corners by the measures', which would leave memory in each worker's arena), and
+          // sized by the block's kept triangles, at least its facets (the measures' bound on
+          // what they hold counts facets).
           std::vector<EncodedBlock> encoded(count);
-          for (EncodedBlock& block : encoded) {
-            block.bytes.reserve(kBlock * kStlFacetBytes);
-            block.corners.reserve(3 * kBlock);
+          for (size_t k = 0; k < count; ++k) {
+            const size_t facets = size_t(at[first + k + 1] - at[first + k]);
+            encoded[k].bytes.reserve(facets * kStlFacetBytes);
+            encoded[k].corners.reserve(3 * facets);
           }
+          // A block's failure (a coordinate the format cannot hold) kept, and the first block's
+          // rethrown: the same message on any thread count.
+          std::vector<std::exception_ptr> failed(count);
           parallelFor(0, int64_t(count), 1, [&](int64_t b, int64_t e) {
             for (size_t k = size_t(b); k < size_t(e); ++k) {
-              const size_t blk = first + k;
-              EncodedBlock& block = encoded[k];
-              uint64_t here = at[blk];
-              size_t next = replacementCursor(here);
-              for (size_t t = blockBegin(blk); t < blockEnd(blk, n); ++t) {
-                if (!keptTriangle(p, t)) continue;
-                if (const Replacement* r = replacementAt(here++, &next)) {
-                  if (r->alive) encodeFacet(r->corners[0], r->corners[1], r->corners[2], &block);
-                  continue;
-                }
-                const auto& tri = p.triangles[t];
-                encodeFacet(finalPosition(p, tri[0]), finalPosition(p, tri[1]),
-                            finalPosition(p, tri[2]), &block);
+              try {
+                encodeBlock(p, at, first + k, &encoded[k]);
+              } catch (...) {
+                failed[k] = std::current_exception();
               }
             }
           });
+          for (const std::exception_ptr& failure : failed)
+            if (failure) std::rethrow_exception(failure);
           for (const EncodedBlock& block : encoded) {
             fingerprint_.triangles += block.fingerprint.triangles;
             fingerprint_.sum += block.fingerprint.sum;

@@ -20,9 +20,10 @@
 // the same file on any thread count.
 //
 // Memory: the tiles and piece of the slab being merged (streamedTiling below), the tiles of the
-// slabs the workers contour meanwhile (streamedSlabsAhead), two pieces in the later passes, plus
-// about 8 bytes a vertex of the whole mesh (sets and counts) and, for the check, 8 bytes a
-// triangle; disk: the scratch file, about 36 bytes a triangle, beside the output.
+// slabs the workers contour meanwhile (streamedSlabsAhead), the piece before while it is
+// spilled and two pieces in the later passes, plus about 8 bytes a vertex of the whole mesh
+// (sets and counts) and, for the check, 8 bytes a triangle; disk: the scratch file, about 36
+// bytes a triangle, beside the output.
 //
 // Formats: binary STL (.stl) only, whose facets are written in order as they come; --simplify
 // needs the whole mesh and is refused. The check (check_streamed.h) measures the facets as
