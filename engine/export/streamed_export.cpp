@@ -782,7 +782,7 @@ class StreamedExportWriter::Impl {
     writeFileAtomically(path_, [&](std::ostream& out) {
       const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
       out.write(header.data(), std::streamsize(header.size()));
-      uint64_t kept = 0, written = 0;
+      uint64_t kept = 0;
       // Blocks encoded at a time: a few a worker, at most 64 (two groups are held: 45 MB).
       const size_t group = size_t(std::min(4 * workerCount(), 64));
       std::vector<EncodedBlock> handing;  // the group being written and measured
@@ -828,17 +828,15 @@ class StreamedExportWriter::Impl {
             fingerprint_.mixedSum += block.fingerprint.mixedSum;
           }
           if (writing.valid()) writing.get();
-          for (const EncodedBlock& block : handing) written += block.fingerprint.triangles;
           handing = std::move(encoded);
           writing = std::async(std::launch::async, hand);
-          progress_.report("write STL", double(written) / double(keptTriangles_));
+          progress_.report("write STL", double(fingerprint_.triangles) / double(keptTriangles_));
         }
       });
       if (writing.valid()) writing.get();
-      for (const EncodedBlock& block : handing) written += block.fingerprint.triangles;
-      if (written != keptTriangles_)
-        throw Error(path_ + ": internal: " + std::to_string(written) + " facets written, not " +
-                    std::to_string(keptTriangles_));
+      if (fingerprint_.triangles != keptTriangles_)
+        throw Error(path_ + ": internal: " + std::to_string(fingerprint_.triangles) +
+                    " facets written, not " + std::to_string(keptTriangles_));
       progress_.check();  // a cancel during the write replaces nothing
     });
   }

@@ -19,11 +19,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/util/parallel_for.h"
-
 #include "engine/contour/contour_tile.h"
 #include "engine/geometry/mesh.h"
 #include "engine/ldi/grid.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 

@@ -19,6 +19,7 @@
 #include "engine/eval/evaluator.h"
 #include "engine/export/check_streamed.h"
 #include "engine/export/job_estimate.h"
+#include "engine/export/unfold_shells.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_io.h"
 #include "engine/util/error.h"
@@ -236,7 +237,7 @@ TEST(StreamedExport, OnAnyThreadCountWritesTheSingleProcessFile) {
       // Several pieces (a tile each: slabs of the whole cross-section) of many blocks, the mesh
       // of more than three chunks.
       EXPECT_GE(tiles, 8);
-      EXPECT_GT(a.check.triangles, size_t(3 * 65536));
+      EXPECT_GT(a.check.triangles, size_t(3 * ShellRunSums::kChunk));
       EXPECT_GT(a.check.triangles / size_t(tiles), size_t(3 * 4096));
     }
   }
