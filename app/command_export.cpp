@@ -131,7 +131,9 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
 
   if (root) {
     Progress probe;
-    JobEstimate estimate = estimateExport(scene, options, output, choice.backend, probe);
+    // The tiling the export will pick: each worker's share of its device's memory.
+    JobEstimate estimate = estimateExport(scene, options, output, choice.backend,
+                                          workersMemory(workers, perDevice), probe);
     const uint64_t streamedPeak = streamedPeakOnWorkers(estimate, int(workers.size()));
     if (streamed) {
       estimate.peakBytes = streamedPeak;

@@ -179,10 +179,16 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
                            Progress& progress, int probeAbove) {
+  return estimateExport(scene, options, path, backend, workersMemory({backend}, 1), progress,
+                        probeAbove);
+}
+
+JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
+                           const std::string& path, const std::shared_ptr<Backend>& backend,
+                           const WorkersMemory& memory, Progress& progress, int probeAbove) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
-  const ExportTiling tiling =
-      exportTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+  const ExportTiling tiling = exportTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
   e.tiles = tiling.count();
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
@@ -231,8 +237,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   // merged and a worker's slab ahead of it (where it has no slabs, the whole export's figures).
   ExportTiling streamedTiles = tiling;
   try {
-    streamedTiles =
-        streamedTiling(scene, options, backend->memoryAvailable(), backend->offsetBytesPerNode());
+    streamedTiles = streamedTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
   } catch (const Error&) {
   }
   const double slabs = double(std::max(1, streamedTiles.counts.z));

@@ -20,6 +20,7 @@
 #include "engine/document/scene.h"
 #include "engine/eval/backend.h"
 #include "engine/export/contour_scene.h"
+#include "engine/export/contour_workers.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -57,7 +58,15 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
                                const std::shared_ptr<Backend>& backend, Progress& progress,
                                int probeAbove = kProbeAbove);
 
-// An export of `scene` to `path` (its extension picks the format's bytes per triangle).
+// An export of `scene` to `path` (its extension picks the format's bytes per triangle) whose
+// tiles may each use `memory` (contour_workers.h: workersMemory over the export's workers, which
+// divides a backend's memory among the workers sharing it, --gpus N on one device): its tilings,
+// in memory and streamed, are the ones the export will pick. The probes run on `backend`.
+JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
+                           const std::string& path, const std::shared_ptr<Backend>& backend,
+                           const WorkersMemory& memory, Progress& progress,
+                           int probeAbove = kProbeAbove);
+// The same on `backend` alone.
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
                            Progress& progress, int probeAbove = kProbeAbove);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/eval/cpu_backend.h"
+#include "engine/export/streamed_export.h"
 #include "engine/io/scene_file.h"
 #include "tests/support/scene_builder.h"
 
@@ -35,6 +36,35 @@ TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
   EXPECT_NE(text.find("cells"), std::string::npos) << text;
   EXPECT_NE(text.find("tiles"), std::string::npos) << text;
   EXPECT_NE(text.find("triangles"), std::string::npos) << text;
+}
+
+// With several workers sharing a device's memory (--gpus N on one device), the export tiles
+// for each worker's share (workersMemory): the estimate must reckon the same tilings, in memory
+// and streamed, not the ones the whole memory would give.
+TEST(JobEstimate, TilesAsTheExportDoesForItsWorkersShareOfMemory) {
+  const Scene scene =
+      loadScene(test::assetsDir() + "/scenes/bone_scaffold_scaled_copy.strata.json");
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  ContourOptions options;
+  options.resolution = 512;
+  const WorkersMemory whole{uint64_t(256) << 20, backend->offsetBytesPerNode()};
+  const WorkersMemory shared = workersMemory({backend, backend}, 2);  // the call the export makes
+  WorkersMemory half = whole;
+  half.bytes /= 2;
+  const ExportTiling wholeTiles =
+      exportTiling(scene, options, whole.bytes, whole.offsetBytesPerNode);
+  const ExportTiling halfTiles = exportTiling(scene, options, half.bytes, half.offsetBytesPerNode);
+  ASSERT_NE(wholeTiles.count(), halfTiles.count()) << "memories that tile alike prove nothing";
+  EXPECT_EQ(shared.bytes, backend->memoryAvailable() / 2);
+  for (const WorkersMemory& memory : {whole, half}) {
+    const JobEstimate e = estimateExport(scene, options, "/tmp/x.stl", backend, memory, progress,
+                                         /*probeAbove=*/0);
+    const uint64_t perNode = memory.offsetBytesPerNode;
+    EXPECT_EQ(e.tiles, exportTiling(scene, options, memory.bytes, perNode).count()) << memory.bytes;
+    EXPECT_EQ(e.streamedSlabs, streamedTiling(scene, options, memory.bytes, perNode).counts.z)
+        << memory.bytes;
+  }
 }
 
 // The export dialog's count for an artist's pen holder (3 mm walls and 6 mm slots in a 70 mm
