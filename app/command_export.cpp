@@ -134,7 +134,12 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     // The tiling the export will pick: each worker's share of its device's memory.
     JobEstimate estimate = estimateExport(scene, options, output, choice.backend,
                                           workersMemory(workers, perDevice), probe);
-    const uint64_t streamedPeak = streamedPeakOnWorkers(estimate, int(workers.size()));
+    uint64_t streamedPeak = streamedPeakOnWorkers(estimate, int(workers.size()));
+    // Distributed: process 0 holds the tiles of the slabs the processes work in.
+    if (group)
+      streamedPeak +=
+          uint64_t(distributedSlabsAhead(group->size(), estimate.streamedTilesPerSlab) - 1) *
+          estimate.streamedSlabTileBytes;
     if (streamed) {
       estimate.peakBytes = streamedPeak;
       estimate.fileBytes += estimate.scratchBytes;

@@ -1,11 +1,13 @@
 #include "engine/export/distributed_export.h"
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <map>
 #include <memory>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -23,6 +25,10 @@ constexpr int kTagDone = 3;           // r -> 0: the process's tiles are all sen
 constexpr int kTagFailed = 4;         // r -> 0: the error's text
 constexpr int kTagTileVertices = 5;   // r -> 0: a contour's vertices (postTiles)
 constexpr int kTagTileTriangles = 6;  // r -> 0: a contour's triangles
+// Streamed only (flow control: the slabs processes may work in, distributedSlabsAhead):
+constexpr int kTagMerged = 7;  // 0 -> r: int32, the slabs merged so far (each time it grows)
+constexpr int kTagFinish = 8;  // 0 -> r: r's kTagDone was read; nothing more comes to r
+constexpr int kTagStop = 9;    // 0 -> r: process 0 failed; stop
 
 class ByteWriter {
  public:
@@ -158,6 +164,64 @@ void receiveDone(const ProcessGroup::Message& m, ContourReport* r) {
   addWarnings(warnings, r);
 }
 
+std::vector<uint8_t> int32Message(int32_t value) {
+  std::vector<uint8_t> bytes(sizeof(value));
+  std::memcpy(bytes.data(), &value, sizeof(value));
+  return bytes;
+}
+
+// What process r (> 0) of a streamed export knows of process 0's merge: it reads process 0's
+// messages (kTagMerged, kTagFinish, kTagStop) as they come and waits where it must.
+class MergeWatch {
+ public:
+  MergeWatch(ProcessGroup& group, Progress& progress) : group_(group), progress_(progress) {}
+  // Returns once fewer than `ahead` slabs before `slab` are still to be merged.
+  void waitForRoom(int slab, int ahead) {
+    readArrived();
+    while (slab >= merged_ + ahead) waitForOne();
+  }
+  // Returns once process 0 read this process's last message (kTagFinish).
+  void waitForFinish() {
+    readArrived();
+    while (!finished_) waitForOne();
+  }
+
+ private:
+  void take(const ProcessGroup::Message& m) {
+    if (m.source != 0 || (m.tag != kTagMerged && m.tag != kTagFinish && m.tag != kTagStop))
+      throw Error("distributed export: unexpected message " + std::to_string(m.tag) +
+                  " from process " + std::to_string(m.source));
+    if (m.tag == kTagStop) throw Error("process 0 stopped the export");
+    if (m.tag == kTagFinish) {
+      finished_ = true;
+      return;
+    }
+    if (m.bytes.size() != sizeof(int32_t))
+      throw Error("distributed export: process 0 sent a merge count of the wrong size");
+    int32_t merged = 0;
+    std::memcpy(&merged, m.bytes.data(), sizeof(merged));
+    merged_ = std::max(merged_, int(merged));
+  }
+  void readArrived() {
+    ProcessGroup::Message m;
+    while (group_.receive(&m, false)) take(m);
+  }
+  // Takes the next message; checks for a cancel (Ctrl-C) every millisecond meanwhile.
+  void waitForOne() {
+    ProcessGroup::Message m;
+    while (!group_.receive(&m, false)) {
+      progress_.check();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    take(m);
+  }
+
+  ProcessGroup& group_;
+  Progress& progress_;
+  int merged_ = 0;
+  bool finished_ = false;
+};
+
 // Test hook (tests/app/cli_distributed_test.cpp): STRATA_TEST_KILL_PROCESS=R makes process R
 // kill itself once its first tile is done, as a crashed or killed rank would.
 void maybeKillForTest(int rank) {
@@ -189,6 +253,9 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
       const ExportTiling tiling =
           exportTilingOfSize(scene, options, glm::ivec3(cells[0], cells[1], cells[2]));
       const auto mine = [&](int t) { return t % size == rank; };
+      const int perSlab = tiling.counts.x * tiling.counts.y;
+      const int ahead = distributedSlabsAhead(size, perSlab);
+      MergeWatch merge(group, progress);
       size_t posted = 0;  // tiles[0, posted) were posted, their arrays released
       contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice,
                                [&](int t) {
@@ -198,9 +265,13 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
                                    finished.push_back(std::move(tiles[posted]));
                                  postTiles(group, t, std::move(finished));
                                  maybeKillForTest(rank);
+                                 const int next = t + size;
+                                 if (options.streamed && next < tiling.count())
+                                   merge.waitForRoom(next / perSlab, ahead);
                                });
       group.post(0, kTagDone, doneMessage(r));
       group.flush();
+      if (options.streamed) merge.waitForFinish();
     } catch (const std::exception& e) {
       const std::string text = e.what();
       group.send(0, kTagFailed, text.data(), text.size());
@@ -223,85 +294,119 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
     writer =
         std::make_unique<StreamedExportWriter>(scene, path, options, tiling, progress, &report);
   const int perSlab = tiling.counts.x * tiling.counts.y;
+  const int ahead = distributedSlabsAhead(size, perSlab);
   std::map<int, std::vector<TileContour>> waiting;  // by slab
   std::vector<int> slabTilesIn(size_t(tiling.counts.z), 0);
-  int nextSlab = 0;
+  int nextSlab = 0, mostSlabsHeld = 0;
+  // Streamed: the processes whose kTagDone was read (nothing more is sent to them but kTagFinish).
+  std::vector<bool> done(size_t(size), false);
   const auto tileIn = [&](int tile, std::vector<TileContour>* contours) {
     const int z = tile / perSlab;
     std::vector<TileContour>& slab = waiting[z];
     for (TileContour& t : *contours) slab.push_back(std::move(t));
     contours->clear();
     ++slabTilesIn[size_t(z)];
+    mostSlabsHeld = std::max(mostSlabsHeld, int(waiting.size()));
+    const int merged = nextSlab;
     while (nextSlab < tiling.counts.z && slabTilesIn[size_t(nextSlab)] == perSlab) {
       std::vector<TileContour> complete = std::move(waiting[nextSlab]);
       waiting.erase(nextSlab);
       writer->addSlab(nextSlab++, std::move(complete));
     }
+    if (nextSlab > merged)
+      for (int p = 1; p < size; ++p)
+        if (!done[size_t(p)]) group.post(p, kTagMerged, int32Message(nextSlab));
   };
   for (int p = 1; p < size; ++p) group.send(p, kTagTiling, tileSize, sizeof(tileSize));
-  int finished = 0, reported = 1;  // tiles finished anywhere; processes whose tiles are in
-  std::vector<TileContour> others;
-  ContourReport fromOthers;
-  const auto handle = [&](const ProcessGroup::Message& m) {
-    if (m.tag == kTagTile) {
+  try {
+    int finished = 0, reported = 1;  // tiles finished anywhere; processes whose tiles are in
+    std::vector<TileContour> others;
+    ContourReport fromOthers;
+    const auto handle = [&](const ProcessGroup::Message& m) {
+      if (m.tag == kTagTile) {
+        if (writer) {
+          std::vector<TileContour> contours;
+          tileIn(receiveTiles(group, m, &contours), &contours);
+        } else {
+          receiveTiles(group, m, &others);
+        }
+        ++finished;
+      } else if (m.tag == kTagDone) {
+        receiveDone(m, &fromOthers);
+        ++reported;
+        if (writer && m.source > 0 && m.source < size && !done[size_t(m.source)]) {
+          done[size_t(m.source)] = true;
+          group.post(m.source, kTagFinish, std::vector<uint8_t>());
+        }
+      } else if (m.tag == kTagFailed) {
+        throw Error("process " + std::to_string(m.source) + " of " + std::to_string(size) +
+                    " failed: " + std::string(m.bytes.begin(), m.bytes.end()));
+      } else {
+        throw Error("distributed export: unexpected message " + std::to_string(m.tag) +
+                    " from process " + std::to_string(m.source));
+      }
+      progress.report("export", double(finished) / tiling.count());
+    };
+    const auto drain = [&](bool wait) {
+      ProcessGroup::Message m;
+      while (group.receive(&m, wait)) {
+        handle(m);
+        if (wait) return;
+      }
+    };
+    const auto mine = [&](int t) { return t % size == 0; };
+    size_t taken = 0;  // tiles[0, taken) went to the writer
+    contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int t) {
+      ++given;
+      ++finished;
       if (writer) {
         std::vector<TileContour> contours;
-        tileIn(receiveTiles(group, m, &contours), &contours);
-      } else {
-        receiveTiles(group, m, &others);
+        for (; taken < tiles.size(); ++taken) contours.push_back(std::move(tiles[taken]));
+        tileIn(t, &contours);
       }
-      ++finished;
-    } else if (m.tag == kTagDone) {
-      receiveDone(m, &fromOthers);
-      ++reported;
-    } else if (m.tag == kTagFailed) {
-      throw Error("process " + std::to_string(m.source) + " of " + std::to_string(size) +
-                  " failed: " + std::string(m.bytes.begin(), m.bytes.end()));
-    } else {
-      throw Error("distributed export: unexpected message " + std::to_string(m.tag) +
-                  " from process " + std::to_string(m.source));
+      drain(false);
+      progress.report("export", double(finished) / tiling.count());
+      // Streamed: this process too starts its next tile only in the slabs the others may work in.
+      const int next = t + size;
+      while (writer && next < tiling.count() && next / perSlab >= nextSlab + ahead) {
+        progress.check();
+        drain(true);
+      }
+    });
+    const double ownSeconds = own.seconds();
+    while (reported < size) {
+      progress.check();
+      drain(true);
     }
-    progress.report("export", double(finished) / tiling.count());
-  };
-  const auto drain = [&](bool wait) {
-    ProcessGroup::Message m;
-    while (group.receive(&m, wait)) {
-      handle(m);
-      if (wait) return;
-    }
-  };
-  const auto mine = [&](int t) { return t % size == 0; };
-  size_t taken = 0;  // tiles[0, taken) went to the writer
-  contourTilesWithFallback(scene, backend, tiling, mine, progress, r, &tiles, notice, [&](int t) {
-    ++given;
-    ++finished;
+    const double allTilesSeconds = own.seconds();
+    group.flush();
+    addTileCounts(fromOthers, &r);  // tileLdiBytes, surfels, crossings, disagreements, warnings
+    r.evaluateSeconds += fromOthers.evaluateSeconds;
+    r.contourSeconds += fromOthers.contourSeconds;
     if (writer) {
-      std::vector<TileContour> contours;
-      for (; taken < tiles.size(); ++taken) contours.push_back(std::move(tiles[taken]));
-      tileIn(t, &contours);
+      writer->finish();
+    } else {
+      for (TileContour& t : others) tiles.push_back(std::move(t));
+      others.clear();
+      ExportMesh mesh = meshFromTiles(scene, std::move(tiles), progress, r);
+      writeAndCheckExport(std::move(mesh), path, options, progress, &report);
     }
-    drain(false);
-    progress.report("export", double(finished) / tiling.count());
-  });
-  const double ownSeconds = own.seconds();
-  while (reported < size) {
-    progress.check();
-    drain(true);
+    if (share)
+      *share =
+          DistributedShare{size, tiling.count(), given, ownSeconds, allTilesSeconds, mostSlabsHeld};
+    return report;
+  } catch (...) {
+    // The others may be waiting for room or for their kTagFinish: tell them to stop.
+    if (writer)
+      for (int p = 1; p < size; ++p)
+        if (!done[size_t(p)]) group.post(p, kTagStop, std::vector<uint8_t>());
+    throw;
   }
-  const double allTilesSeconds = own.seconds();
-  addTileCounts(fromOthers, &r);  // tileLdiBytes, surfels, crossings, disagreements, warnings
-  r.evaluateSeconds += fromOthers.evaluateSeconds;
-  r.contourSeconds += fromOthers.contourSeconds;
-  if (writer) {
-    writer->finish();
-  } else {
-    for (TileContour& t : others) tiles.push_back(std::move(t));
-    others.clear();
-    ExportMesh mesh = meshFromTiles(scene, std::move(tiles), progress, r);
-    writeAndCheckExport(std::move(mesh), path, options, progress, &report);
-  }
-  if (share) *share = DistributedShare{size, tiling.count(), given, ownSeconds, allTilesSeconds};
-  return report;
+}
+
+int distributedSlabsAhead(int processes, int tilesPerSlab) {
+  tilesPerSlab = std::max(1, tilesPerSlab);
+  return 2 * std::max(1, (processes + tilesPerSlab - 1) / tilesPerSlab);
 }
 
 }  // namespace strata

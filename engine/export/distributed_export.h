@@ -16,8 +16,13 @@
 //
 // Process 0 holds every tile's vertices and triangles at once, as a single-process export does;
 // with options.streamed it writes the file in pieces instead (streamed_export.h), a slab as soon
-// as all its tiles are in, and holds the tiles of the slabs not complete yet (a process that
-// falls behind keeps the slabs after its tiles waiting: their tiles are held meanwhile).
+// as all its tiles are in, and holds the tiles of the slabs not complete yet: at most
+// distributedSlabsAhead of them, however far one process falls behind the others. Each process
+// starts a tile only in the first distributedSlabsAhead slabs not merged yet (process 0 says
+// how many it merged each time the count grows, and answers each process's last tiles with a
+// word that it has them, so that no process leaves before reading what was sent to it; a
+// failure on process 0 tells the others to stop). The process that holds back the oldest
+// slab never waits, so the export takes no longer than its slowest process's share.
 #pragma once
 
 #include <memory>
@@ -37,7 +42,14 @@ struct DistributedShare {
   int ownTiles = 0;            // given to this process (t % processes == rank)
   double seconds = 0;          // this process's evaluate + contour of its tiles
   double allTilesSeconds = 0;  // process 0: until every process's tiles were in
+  int mostSlabsHeld = 0;       // process 0, streamed: the most slabs whose tiles waited at once
 };
+
+// How many slabs, from the oldest not merged yet, the processes of a streamed distributed export
+// may work in (and process 0 hold tiles of): two rounds of `processes` tiles, in slabs of
+// `tilesPerSlab`. Two rounds, so that a process that finished its tile goes on with its next one
+// while the round before is still coming in.
+int distributedSlabsAhead(int processes, int tilesPerSlab);
 
 // Runs this process's part of the export. On process 0 returns the export's report (contour
 // counters summed over all processes) and writes `path`; on the others returns their own

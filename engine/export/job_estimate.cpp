@@ -245,6 +245,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   // One worker: the tile it evaluates, and the tiles of the slab it contours ahead of the one
   // being merged (streamedSlabsAhead).
   e.streamedSlabs = int(slabs);
+  e.streamedTilesPerSlab = std::max(1, streamedTiles.counts.x * streamedTiles.counts.y);
   e.streamedWorkerBytes = uint64_t(ldiBytes / tiles * streamedScale + offsetBytes);
   e.streamedSlabTileBytes = uint64_t(double(e.triangles) * kTileBytesPerTriangle / slabs);
   e.streamedPeakBytes =

@@ -44,9 +44,11 @@ struct JobEstimate {
   // its scratch file (streamedPeakOnWorkers below: on several).
   uint64_t streamedPeakBytes = 0;
   uint64_t scratchBytes = 0;
-  // Export only, streamed: its slabs (or layers of cubes), the bytes of one slab's tiles, and
-  // what one worker holds of the tile it evaluates (its share of the LDIs and offsets).
+  // Export only, streamed: its slabs (or layers of cubes) and their tiles each, the bytes of one
+  // slab's tiles, and what one worker holds of the tile it evaluates (its share of the LDIs and
+  // offsets).
   int streamedSlabs = 1;
+  int streamedTilesPerSlab = 1;
   uint64_t streamedSlabTileBytes = 0;
   uint64_t streamedWorkerBytes = 0;
   double seconds = 0.0;  // wall time of the job on this backend

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 
 #include "engine/eval/cpu_backend.h"
 #include "engine/util/error.h"
+#include "tests/support/gated_backend.h"
 #include "tests/support/scene_builder.h"
 #include "tests/support/thread_process_group.h"
 
@@ -49,7 +51,7 @@ struct Outcome {
 // Runs the export on `processes` threads, each with its own CPU backend; `failing` (>= 0): that
 // process's progress is cancelled before it starts.
 Outcome runGroup(const Scene& scene, const std::string& path, int processes, int tileCells,
-                 int failing = -1) {
+                 int failing = -1, bool streamed = false) {
   auto groups = makeThreadGroup(processes);
   Outcome out;
   out.reports.resize(size_t(processes));
@@ -61,6 +63,7 @@ Outcome runGroup(const Scene& scene, const std::string& path, int processes, int
       if (p == failing) progress.cancel();
       ExportOptions options;
       options.tileCells = tileCells;
+      options.streamed = streamed;
       try {
         out.reports[size_t(p)] = exportSceneDistributed(
             scene, path, options, std::make_shared<CpuBackend>(), *groups[size_t(p)], progress);
@@ -101,6 +104,78 @@ TEST(DistributedExport, AFailedProcessFailsTheExportAndLeavesNoFile) {
   EXPECT_EQ(o.errors[2], "cancelled");
   EXPECT_FALSE(fs::exists(path));
   EXPECT_TRUE(fs::is_empty(folder));
+}
+
+// Streamed, the processes wait for process 0 (for room in the slabs, and for its word that it
+// read their last tiles): when process 0 fails, it tells them to stop instead of leaving them
+// waiting.
+TEST(DistributedExport, AFailedProcessStopsEveryStreamedProcess) {
+  const std::string folder = folderFor("failed_streamed");
+  const std::string path = folder + "/part.stl";
+  const Outcome o = runGroup(partScene(), path, 3, 8, 2, /*streamed=*/true);
+  EXPECT_NE(o.errors[0].find("process 2 of 3 failed: cancelled"), std::string::npos) << o.errors[0];
+  EXPECT_EQ(o.errors[2], "cancelled");
+  EXPECT_TRUE(o.errors[1] == "" || o.errors[1] == "process 0 stopped the export") << o.errors[1];
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_TRUE(fs::is_empty(folder));
+}
+
+// Streamed: while one process is held at its first tile, the others go on only within the
+// slabs that may be held (distributedSlabsAhead), so process 0 holds no more than those however
+// long the process falls behind; once it goes on, the file is the single process's.
+TEST(DistributedExport, StreamedProcessZeroHoldsOnlyTheSlabsAheadOfOneFallenBehind) {
+  const std::string folder = folderFor("held");
+  const Scene scene = partScene();
+  const int tileCells = 8;
+  Progress single;
+  exportScene(scene, folder + "/one.stl", ContourOptions{0, tileCells},
+              std::make_shared<CpuBackend>(), single);
+  const int processes = 3;
+  auto groups = makeThreadGroup(processes);
+  std::vector<std::shared_ptr<GatedBackend>> backends;
+  for (int p = 0; p < processes; ++p) backends.push_back(std::make_shared<GatedBackend>());
+  backends[1]->close();
+  std::vector<DistributedShare> shares(processes);
+  std::vector<std::string> errors(processes);
+  std::vector<std::thread> threads;
+  for (int p = 0; p < processes; ++p)
+    threads.emplace_back([&, p] {
+      Progress progress;
+      ExportOptions options;
+      options.tileCells = tileCells;
+      options.streamed = true;
+      try {
+        exportSceneDistributed(scene, folder + "/group.stl", options, backends[size_t(p)],
+                               *groups[size_t(p)], progress, &shares[size_t(p)]);
+      } catch (const std::exception& e) {
+        errors[size_t(p)] = e.what();
+      }
+    });
+  ASSERT_TRUE(backends[1]->waitUntilHeld());
+  // Long enough for the others to contour every tile of theirs (216 tiles of 8 cells, a few
+  // milliseconds each) if nothing held them.
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  const int sampledWhileHeld = backends[0]->sampled() + backends[2]->sampled();
+  backends[1]->open();
+  for (auto& t : threads) t.join();
+  for (const std::string& e : errors) EXPECT_EQ(e, "");
+  const int tiles = shares[0].tiles, perSlab = 36;
+  ASSERT_EQ(tiles, 216);
+  const int ahead = distributedSlabsAhead(processes, perSlab);
+  EXPECT_EQ(ahead, 2);
+  EXPECT_GE(shares[0].mostSlabsHeld, 1);
+  EXPECT_LE(shares[0].mostSlabsHeld, ahead);
+  EXPECT_LT(sampledWhileHeld, backends[0]->sampled() + backends[2]->sampled())
+      << "the others went on with every tile of theirs while one process was held";
+  EXPECT_EQ(fileBytes(folder + "/group.stl"), fileBytes(folder + "/one.stl"));
+}
+
+TEST(DistributedExport, SlabsAheadAreTwoRoundsOfTiles) {
+  EXPECT_EQ(distributedSlabsAhead(1, 1), 2);
+  EXPECT_EQ(distributedSlabsAhead(3, 1), 6);
+  EXPECT_EQ(distributedSlabsAhead(3, 36), 2);
+  EXPECT_EQ(distributedSlabsAhead(40, 36), 4);
+  EXPECT_EQ(distributedSlabsAhead(4, 0), 8);
 }
 
 }  // namespace
