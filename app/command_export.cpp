@@ -78,6 +78,9 @@ int exportDistributed(const Scene& scene, const CliArgs& args, const std::string
                           " s (evaluate and contour above: summed over the processes); process 0 " +
                           std::to_string(share.ownTiles) + " of " + std::to_string(share.tiles) +
                           " tiles in " + seconds + " s";
+    if (options.streamed)
+      summary.distributed += "; process 0 held the tiles of at most " +
+                             std::to_string(share.mostSlabsHeld) + " slabs at once";
     summary.processes = group.size();
     summary.distributedTilesSeconds = share.allTilesSeconds;
   } catch (const Cancelled&) {
