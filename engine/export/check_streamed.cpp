@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <deque>
 #include <exception>
+#include <future>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -647,14 +648,24 @@ MeshCheck StreamedMeshCheck::finish() {
   return c;
 }
 
-WrittenCheck compareStreamedFile(const std::string& path, const MeshCheck& measured,
+WrittenCheck compareStreamedFile(const std::string& path, StreamedMeshCheck& measures,
                                  const TriangleFingerprint& expected, Progress& progress) {
   WrittenCheck result;
   progress.report("check", 0.0);
-  const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-  result.fileDifference = fingerprintDifference(path, fingerprintFile(path, progress), expected);
-  result.check =
-      result.fileDifference.empty() ? measured : checkMesh(readMeshFileRaw(path), &progress);
+  // Declared before the measures' result: a throw below waits for the read-back (which a
+  // cancel stops) before anything it reads goes.
+  std::future<TriangleFingerprint> readBack = std::async(std::launch::async, [&] {
+    const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
+    return fingerprintFile(path, progress);
+  });
+  const MeshCheck measured = measures.finish();
+  result.fileDifference = fingerprintDifference(path, readBack.get(), expected);
+  if (result.fileDifference.empty()) {
+    result.check = measured;
+  } else {
+    const InputLimitLifted ownFile;
+    result.check = checkMesh(readMeshFileRaw(path), &progress);
+  }
   progress.report("check", 1.0);
   return result;
 }

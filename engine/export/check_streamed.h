@@ -81,11 +81,12 @@ class StreamedMeshCheck {
   std::unique_ptr<State> state_;
 };
 
-// The check of the file written from the facets a StreamedMeshCheck measured (`measured`, its
-// finish()): the file read back in pieces and fingerprinted against `expected` (the facets as
-// stored, addToFingerprint); where they differ, the file read back raw and checked whole, as
-// checkWrittenFile does.
-WrittenCheck compareStreamedFile(const std::string& path, const MeshCheck& measured,
+// The check of the file written from the facets `measures` measured: the file read back in
+// pieces and fingerprinted against `expected` (the facets as stored, addToFingerprint) on a
+// thread of its own while the measures finish (measures.finish(), on this one); where they
+// differ, the file read back raw and checked whole, as checkWrittenFile does. Rethrows what
+// stopped either (the measures' first).
+WrittenCheck compareStreamedFile(const std::string& path, StreamedMeshCheck& measures,
                                  const TriangleFingerprint& expected, Progress& progress);
 
 }  // namespace strata

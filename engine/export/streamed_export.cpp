@@ -224,9 +224,8 @@ class StreamedExportWriter::Impl {
     writeStl(&measures);
     report_.writeSeconds = write.seconds();
     Stopwatch check;
-    const MeshCheck measured = measures.finish();
+    const WrittenCheck written = compareStreamedFile(path_, measures, fingerprint_, progress_);
     r_.peakBytes = peakResidentBytes();
-    const WrittenCheck written = compareStreamedFile(path_, measured, fingerprint_, progress_);
     report_.check = written.check;
     report_.fileDifference = written.fileDifference;
     report_.checkSeconds = check.seconds();

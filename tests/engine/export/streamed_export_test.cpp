@@ -542,6 +542,59 @@ TEST(StreamedExport, TheStreamedCheckCountsWhatTheWholeCheckCounts) {
   }
 }
 
+// The file read back beside the measures' last chunks (compareStreamedFile): a file that says
+// what was measured passes with the measures' numbers; one whose bytes changed after its facets
+// were measured is caught by its fingerprint and checked whole as read back; a cancel stops both.
+TEST(StreamedExport, TheReadBackCatchesAFileThatIsNotWhatWasMeasured) {
+  const std::string folder = freshFolder("read_back");
+  const std::string good = folder + "/good.stl";
+  const ExportReport r = exportSlabbedScene(good);
+  ASSERT_TRUE(r.passed());
+  const TriangleMesh verbatim = readMeshFileVerbatim(good);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  TriangleFingerprint meant;
+  for (const auto& t : verbatim.triangles) {
+    addToFingerprint(verbatim.positions[t[0]], verbatim.positions[t[1]], verbatim.positions[t[2]],
+                     &meant);
+    for (uint32_t v : t) {
+      lo = glm::min(lo, verbatim.positions[v]);
+      hi = glm::max(hi, verbatim.positions[v]);
+    }
+  }
+  // `path` checked as the file whose facets are verbatim's, with `progress` (cancelled once the
+  // facets are in where `cancel`).
+  const auto compare = [&](const std::string& path, Progress& progress, bool cancel = false) {
+    StreamedMeshCheck measures(r.contour.grid, verbatim.triangles.size(), lo, hi, progress,
+                               kMeasureBlock, 2);
+    std::vector<glm::vec3> corners;
+    for (const auto& t : verbatim.triangles)
+      for (uint32_t v : t) corners.push_back(glm::vec3(verbatim.positions[v]));
+    measures.add(std::move(corners));
+    if (cancel) progress.cancel();
+    return compareStreamedFile(path, measures, meant, progress);
+  };
+  Progress progress;
+  const WrittenCheck same = compare(good, progress);
+  EXPECT_EQ(same.fileDifference, "");
+  EXPECT_TRUE(same.check.watertight());
+  EXPECT_EQ(same.check.triangles, verbatim.triangles.size());
+  // One corner of a facet in the middle moved along x by its float's last bit.
+  rewriteStl(good, folder + "/moved.stl", verbatim.triangles.size() / 2, [](std::string& record) {
+    float x;
+    std::memcpy(&x, &record[12], 4);
+    x = std::nextafter(x, std::numeric_limits<float>::infinity());
+    std::memcpy(&record[12], &x, 4);
+    return true;
+  });
+  const WrittenCheck moved = compare(folder + "/moved.stl", progress);
+  EXPECT_NE(moved.fileDifference.find("moved.stl"), std::string::npos) << moved.fileDifference;
+  EXPECT_FALSE(moved.check.watertight()) << "a corner apart from its neighbours' is a hole";
+  const MeshCheck whole = checkMesh(readMeshFileRaw(folder + "/moved.stl"));
+  EXPECT_EQ(moved.check.boundaryEdges, whole.boundaryEdges);
+  Progress cancelled;
+  EXPECT_THROW(compare(good, cancelled, true), Cancelled);
+}
+
 // Chunks a few layers thick (a grid of three z layers over the whole part, its facets in a
 // shuffled order, which is then still "in layer order"): every vertex is open at both ends of
 // every chunk but the first's start, and the joining window counts them all.
