@@ -144,6 +144,7 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
           uint64_t(distributedSlabsAhead(group->size(), estimate.streamedTilesPerSlab) - 1) *
           estimate.streamedSlabTileBytes;
     if (streamed) {
+      if (estimate.probed) estimate.tiles = estimate.streamedSlabs * estimate.streamedTilesPerSlab;
       estimate.peakBytes = streamedPeak;
       estimate.fileBytes += estimate.scratchBytes;
     }

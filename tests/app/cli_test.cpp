@@ -401,6 +401,26 @@ TEST(CliExport, AStreamedExportWritesTheSameFile) {
       << gpus.output;
 }
 
+// The tiles a streamed export's estimate names are the ones it then runs (its slabs, not the
+// in-memory export's cubes: one tile here, eight slabs).
+TEST(CliExport, AStreamedEstimateNamesTheTilesItRuns) {
+  const std::string scene = std::string(STRATA_ASSETS) + "/scenes/two_spheres.strata.json";
+  const std::string out = temp("estimated_streamed.stl"), report = temp("estimated.json");
+  const std::string job = "export " + scene + " --resolution 600 --backend cpu --stream -o " + out;
+  CliRun refused = strata(job + " --max-memory 1M");
+  EXPECT_EQ(refused.code, 1) << refused.output;
+  const size_t at = refused.output.find(" tiles, about");
+  ASSERT_NE(at, std::string::npos) << refused.output;
+  const size_t from = refused.output.rfind(", ", at) + 2;
+  const int estimated = std::stoi(refused.output.substr(from, at - from));
+  CliRun ran = strata(job + " -q --report " + report);
+  ASSERT_EQ(ran.code, 0) << ran.output;
+  std::ifstream in(report);
+  const int tiles = nlohmann::json::parse(in)["tiles"].get<int>();
+  EXPECT_GT(tiles, 1);
+  EXPECT_EQ(estimated, tiles) << refused.output;
+}
+
 // A job whose mesh would not fit, but whose pieces would, names --stream.
 TEST(CliExport, ARefusedExportNamesTheStreamedOneWhereItWouldFit) {
   const std::string scene = std::string(STRATA_ASSETS) + "/scenes/bone_scaffold.strata.json";
