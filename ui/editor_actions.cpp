@@ -688,6 +688,30 @@ void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode)
   });
 }
 
+const Node* parentOf(const EditorState& state, NodeId id) {
+  std::vector<const Node*> path;
+  if (!pathToNode(state.document.root(), id, &path) || path.size() < 2) return nullptr;
+  return path[path.size() - 2];
+}
+
+void setRole(EditorState& state, NodeId id, PlaceMode mode) {
+  const NodePtr node = findNode(state.document.root(), id);
+  const Node* parent = parentOf(state, id);
+  if (!node || !parent) {
+    logError(state, "the root has no role: it is the result");
+    return;
+  }
+  const ChildRole role = roleOf(state.document.root(), id);
+  if (role == ChildRole::Base) {
+    logError(state, displayName(*node) + " is the base of " + displayName(*parent) +
+                        ": what the parts beside it cut. Drag it elsewhere, or another part "
+                        "onto it, to change what it does");
+    return;
+  }
+  if (modeKeepingRole(role) == mode) return;
+  dropNode(state, id, parent->id, mode);
+}
+
 void setResolution(EditorState& state, int resolution) {
   guarded(state, [&] { state.document.setResolution(resolution); });
 }

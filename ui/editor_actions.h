@@ -88,6 +88,13 @@ void renameNode(EditorState& state, NodeId id, const std::string& name);
 // with `mode` (movePart in roles.h: every other part keeps its role); the log says what it does
 // now. One undo step.
 void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode);
+// Node `id` made to do what `mode` says (add, cut, intersect) where it is: moved onto its own
+// parent with that mode (dropNode), so that every other part keeps its role; the log says what
+// it does now. Refused, with the reason in the log, for the root and a difference's base (whose
+// role is its place). Nothing happens where it already does that. One undo step.
+void setRole(EditorState& state, NodeId id, PlaceMode mode);
+// The operation node `id` lies in (nullptr for the root or a node not in the tree).
+const Node* parentOf(const EditorState& state, NodeId id);
 void setResolution(EditorState& state, int resolution);
 
 void undo(EditorState& state);

@@ -238,6 +238,23 @@ void FileDialog::draw() {
     ImGui::TextWrapped("%s", listError_.c_str());
     ImGui::PopStyleColor();
   }
+  // A file saved into a folder that does not exist: the folder made on request, then shown;
+  // Save (or Enter) then writes there.
+  if (!missingFolder_.empty() && !listError_.empty()) {
+    const std::string folder = missingFolder_;
+    if (ImGui::Button("Create folder")) {
+      std::error_code made;
+      std::filesystem::create_directories(folder, made);
+      missingFolder_.clear();
+      if (made) {
+        listError_ = "cannot create " + folder + ": " + made.message();
+      } else {
+        listFolder(folder);
+        focusField_ = true;
+      }
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Create %s", folder.c_str());
+  }
   ImGui::SetNextItemWidth(-1);
   // Focused with its text selected when the dialog opens (and on each click into it): what is
   // typed replaces the suggested name instead of joining it.
@@ -274,7 +291,10 @@ void FileDialog::draw() {
     const ResolvedPath resolved = resolveDialogPath(field_, folder_, saving(purpose_),
                                                     suggestedExtension_, acceptedExtensions());
     listError_ = resolved.error;
+    missingFolder_ = resolved.missingFolder;
     ok = resolved.error.empty();
+    // Refused: the field keeps the keyboard, so that the path can be typed again at once.
+    if (!ok) focusField_ = true;
     // Saving over a file asks first (as the desktop's dialogs do): once for each path.
     if (ok && saving(purpose_) && replacing_ != resolved.path &&
         std::filesystem::exists(resolved.path, ec)) {
@@ -324,9 +344,10 @@ ResolvedPath resolveDialogPath(const std::string& field, const std::string& fold
     path.replace_filename(name);
   }
   const fs::path parent = path.parent_path();
-  if (saving && !fs::is_directory(parent, ec))
-    r.error = "the folder " + parent.string() + " does not exist: choose another";
-  else if (saving && fs::is_directory(path, ec))
+  if (saving && !fs::is_directory(parent, ec)) {
+    r.error = "the folder " + parent.string() + " does not exist: choose another, or create it";
+    if (!fs::exists(parent, ec)) r.missingFolder = parent.string();
+  } else if (saving && fs::is_directory(path, ec))
     r.error = path.string() + " is a folder: type a file name";
   else if (!saving && !fs::is_regular_file(path, ec))
     r.error = (fs::is_directory(path, ec) ? path.string() + " is a folder, not a file"

@@ -21,10 +21,12 @@ enum class DialogPurpose { Open, SaveAs, Export, ImportMesh };
 // whose name does not end in one of `accepted` (extensions without the dot: "stl") gets
 // `extension` (the suggested name's, as ".stl"; none when empty); a file saved must go into a
 // folder that exists and not be a folder, a file opened must be an existing file. `error` says
-// why not (and `path` is then empty).
+// why not (and `path` is then empty); `missingFolder`, where a file saved names a folder that
+// does not exist, is that folder (the dialog offers to create it).
 struct ResolvedPath {
   std::string path;
   std::string error;
+  std::string missingFolder;
 };
 ResolvedPath resolveDialogPath(const std::string& field, const std::string& folder, bool saving,
                                const std::string& extension,
@@ -83,6 +85,7 @@ class FileDialog {
   std::string folder_;
   std::vector<Entry> entries_;
   std::string listError_;
+  std::string missingFolder_;  // named by the last path refused for it (ResolvedPath)
 };
 
 // "Open scene", "Save scene as", ... for titles and labels.

@@ -18,6 +18,7 @@
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
+#include "engine/util/error.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
@@ -190,6 +191,45 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
 using NodeList = std::vector<NodePtr>;
 
 // The kind, id, name, visibility and colour of `node`; visibility and colour for all `nodes`.
+// What the (one) selected part does in its parent, and the other roles on offer: each says what
+// the part would do before it is picked (setRole: moved onto its parent with that mode).
+void nodeRole(EditorState& state, const Node& node, size_t selected) {
+  const Node* parent = parentOf(state, node.id);
+  if (!parent || selected != 1) return;
+  const ChildRole role = roleOf(state.document.root(), node.id);
+  ImGui::TextUnformatted("role");
+  ImGui::SameLine(90.0f);
+  if (role == ChildRole::Base) {
+    ImGui::TextDisabled("base of %s", parent->name.c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "What the parts beside it cut. Drag it elsewhere, or another part onto it,\n"
+          "to change what it does.");
+    return;
+  }
+  const PlaceMode current = modeKeepingRole(role);
+  ImGui::SetNextItemWidth(-1);
+  if (!ImGui::BeginCombo("##role", roleWord(role))) {
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "What it does in %s; pick another role here (or drag the row with\n"
+          "Ctrl: cut, Shift: intersect, Alt: add)",
+          parent->name.empty() ? "its parent" : parent->name.c_str());
+    return;
+  }
+  for (PlaceMode mode : {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect}) {
+    const char* word = mode == PlaceMode::Add   ? "adds"
+                       : mode == PlaceMode::Cut ? "cuts"
+                                                : "intersects";
+    const bool chosen = ImGui::Selectable(word, mode == current);
+    if (mode != current && ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s",
+                        ("it " + placementSentence(state, parent->id, mode, node.id)).c_str());
+    if (chosen && mode != current) setRole(state, node.id, mode);
+  }
+  ImGui::EndCombo();
+}
+
 void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes) {
   ImGui::Text("%s  %s", kindGlyph(node->kind), kindLabel(node->kind));
   ImGui::SameLine();
@@ -229,6 +269,7 @@ void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes
     for (const NodePtr& n : nodes)
       state.document.setColor(n->id, glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f)));
   });
+  nodeRole(state, *node, nodes.size());
 }
 
 // Which components of `field` differ from the primary node's across `nodes`.
@@ -302,6 +343,11 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
     dragVec3(
         state, "scale", &t.scale, 0.005,
         [&](const glm::dvec3& v) {
+          for (int i = 0; i < 3; ++i)
+            if (v[i] == 0.0 && node->transform.scale[i] != 0.0)
+              throw Error(std::string("scale ") + "xyz"[i] +
+                          " cannot be 0: a part scaled to nothing has no volume (a negative "
+                          "scale mirrors it)");
           glm::dvec3 factor(1.0);
           for (int i = 0; i < 3; ++i)
             if (v[i] != 0.0 && node->transform.scale[i] != 0.0)

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
@@ -67,7 +69,8 @@ void unsavedQuestion(EditorState& state) {
   ImGui::SameLine();
   if (ImGui::Button("Discard", ImVec2(110, 0))) proceed = true;
   ImGui::SameLine();
-  if (ImGui::Button("Cancel", ImVec2(110, 0))) close = true;
+  if (ImGui::Button("Cancel", ImVec2(110, 0)) || keyPressed(state, GLFW_KEY_ESCAPE)) close = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keep working on it (Esc)");
   if (proceed && state.pendingReplace) {
     const PendingReplace action = *state.pendingReplace;  // performReplace may open another
     performReplace(state, action);
@@ -187,8 +190,33 @@ void exportOptionsDialog(EditorState& state) {
   if (resolution <= 0) resolution = scene.settings.resolution;
   ImGui::TextUnformatted(state.pendingExportPath->c_str());
   ImGui::SetNextItemWidth(160);
+  // Out of range: set to the nearest end and said, once the number is entered (not while it is
+  // typed: "5" on the way to "512"), until another value is.
+  static std::string clampNote;
+  static std::optional<int> outOfRange;
+  if (ImGui::IsWindowAppearing()) {
+    clampNote.clear();
+    outOfRange.reset();
+  }
+  const int before = resolution;
   ImGui::InputInt("cells along the longest side", &resolution, 64, 256);
-  resolution = std::clamp(resolution, kMinResolution, kMaxResolution);
+  const bool typing = ImGui::IsItemActive();
+  if (resolution != before) {
+    clampNote.clear();
+    outOfRange.reset();
+  }
+  if (resolution < kMinResolution || resolution > kMaxResolution) {
+    outOfRange = resolution;
+    resolution = std::clamp(resolution, kMinResolution, kMaxResolution);
+  }
+  if (outOfRange && !typing) {
+    clampNote = std::to_string(*outOfRange) + " cells: an export takes " +
+                std::to_string(kMinResolution) + " to " + std::to_string(kMaxResolution) +
+                "; set to " + std::to_string(resolution);
+    outOfRange.reset();
+  }
+  if (!clampNote.empty())
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", clampNote.c_str());
   for (int preset : {256, 512, 1024, 2048}) {
     char label[16];
     std::snprintf(label, sizeof(label), "%d", preset);
@@ -297,7 +325,7 @@ void importDialog(EditorState& state) {
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel", ImVec2(120, 0))) {
+  if (ImGui::Button("Cancel", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ESCAPE)) {
     state.pendingImport.reset();
     ImGui::CloseCurrentPopup();
   }

@@ -153,6 +153,23 @@ void contextMenu(EditorState& state, const NodePtr& node) {
     }
     ImGui::EndMenu();
   }
+  // The part's role where it is (setRole), each with what it would do; not for the root or a
+  // difference's base, whose role is their place.
+  const Node* parent = parentOf(state, node->id);
+  const ChildRole role = parent ? roleOf(state.document.root(), node->id) : ChildRole::Root;
+  if (parent && role != ChildRole::Base && ImGui::BeginMenu("Role")) {
+    for (PlaceMode mode : {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect}) {
+      const bool current = modeKeepingRole(role) == mode;
+      const char* word = mode == PlaceMode::Add   ? "adds"
+                         : mode == PlaceMode::Cut ? "cuts"
+                                                  : "intersects";
+      if (ImGui::MenuItem(word, nullptr, current) && !current) setRole(state, node->id, mode);
+      if (!current && ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s",
+                          ("it " + placementSentence(state, parent->id, mode, node->id)).c_str());
+    }
+    ImGui::EndMenu();
+  }
   if (isOperation(node->kind) && ImGui::BeginMenu("Operation")) {
     for (NodeKind k : operationKinds())
       if (ImGui::MenuItem(kindLabel(k), nullptr, node->kind == k)) setSelectionOperation(state, k);

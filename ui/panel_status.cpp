@@ -154,7 +154,9 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   // pixel or two (an artist's 40-pixel drag went from 256 to 117 cells).
   if (changed && ImGui::IsItemActive()) resolution = resolutionStepNearest(resolution);
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
-  if (changed) setResolution(state, std::clamp(resolution, kMinResolution, kMaxResolution));
+  // A typed value out of range is refused with the range, not clamped (16384 cells clamped from
+  // an artist's 100000 was saved into the scene).
+  if (changed) setResolution(state, resolution);
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
   // A double-click types a number, as on the inspector's fields, from the resolution its first
   // press jumped from.

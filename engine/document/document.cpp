@@ -60,6 +60,7 @@ void Document::apply(const std::string& label, const NodePtr& newRoot) {
   if (!next.measurements.empty())
     next.measurements = pinPointsOfRemovedParts(root(), newRoot, next.measurements);
   history_.record(state_, label);
+  resolutionStepOpen_ = false;
   state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }
 
@@ -81,6 +82,7 @@ void Document::applyMeasurements(const std::string& label, std::vector<Measureme
   Scene next = scene();
   next.measurements = std::move(measurements);
   history_.record(state_, label);
+  resolutionStepOpen_ = false;
   state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
 }
 
@@ -237,8 +239,13 @@ void Document::setResolution(int resolution) {
     throw Error("resolution must be from " + std::to_string(kMinResolution) + " to " +
                 std::to_string(kMaxResolution));
   if (scene().settings.resolution == resolution) return;
-  // A setting of the preview, not an edit of the part: saved with the document (it becomes
-  // unsaved), but no undo step, and undo and redo keep it (withCurrentResolution).
+  // Saved with the document, so an undo step of its own (changes in a row, with no other step,
+  // undo or redo between them, one step: a slider's drag, the - and + buttons, a double-click
+  // that types a value); the other steps' undo and redo keep it
+  // (withCurrentResolution), as a setting of the view.
+  if (!resolutionStepOpen_ || history_.undoLabel() != kResolutionStep)
+    history_.record(state_, kResolutionStep);
+  resolutionStepOpen_ = true;
   Scene next = scene();
   next.settings.resolution = resolution;
   state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};
@@ -272,17 +279,24 @@ void Document::setOperation(NodeId id, NodeKind kind) {
 
 void Document::cancelInteraction() {
   if (std::optional<DocumentState> before = history_.cancelInteraction()) state_ = *before;
+  resolutionStepOpen_ = false;
 }
 
 bool Document::undo() {
   if (!history_.canUndo()) return false;
-  state_ = withCurrentResolution(history_.undo(state_));
+  const bool resolution = history_.undoLabel() == kResolutionStep;
+  resolutionStepOpen_ = false;
+  DocumentState restored = history_.undo(state_);
+  state_ = resolution ? std::move(restored) : withCurrentResolution(std::move(restored));
   return true;
 }
 
 bool Document::redo() {
   if (!history_.canRedo()) return false;
-  state_ = withCurrentResolution(history_.redo(state_));
+  const bool resolution = history_.redoLabel() == kResolutionStep;
+  resolutionStepOpen_ = false;
+  DocumentState restored = history_.redo(state_);
+  state_ = resolution ? std::move(restored) : withCurrentResolution(std::move(restored));
   return true;
 }
 

@@ -92,8 +92,10 @@ class Document {
   // scene would exceed its leaf limit (engine/document/expansion.h).
   void setPattern(NodeId id, const PatternParams& pattern);
   void setVisible(NodeId id, bool visible);
-  // The preview's resolution: saved with the document, but not an undo step (undo and redo
-  // keep the resolution set last), as a view setting.
+  // The preview's resolution: saved with the document, so an undo step (kResolutionStep) of its
+  // own, changes in a row one step; the other steps' undo and redo keep the resolution set last,
+  // as a view setting. Throws strata::Error outside kMinResolution .. kMaxResolution.
+  static constexpr const char* kResolutionStep = "resolution";
   void setResolution(int resolution);
   // Drag and drop: under `parent` before child `index`; never into the node's own subtree.
   void move(NodeId id, NodeId parent, int index = -1);
@@ -136,6 +138,8 @@ class Document {
 
   DocumentState state_;
   History history_;
+  // The last change was the resolution's (setResolution): the next one extends its step.
+  bool resolutionStepOpen_ = false;
   std::string path_;
   uint64_t savedRevision_ = 0;
 };

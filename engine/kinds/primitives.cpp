@@ -389,8 +389,8 @@ void validatePrimitiveParams(NodeKind kind, const PrimitiveParams& p) {
   if (!info) throw Error("internal: this node kind is not a primitive");
   const char* const axes[3] = {"x", "y", "z"};
   for (const PrimitiveParam& param : info->params) {
-    const char* rule =
-        param.minimum == ParamMinimum::Positive ? "a positive number" : "a number >= 0";
+    const char* rule = param.minimum == ParamMinimum::Positive ? "a finite number greater than 0"
+                                                               : "a finite number >= 0";
     if (param.scalar && !inRange(p.*param.scalar, param.minimum))
       throw Error(std::string(param.label) + " must be " + rule);
     if (param.vector)

@@ -60,6 +60,8 @@ TEST_F(DialogPath, MissingFoldersAndFilesAreRefusedByName) {
       resolveDialogPath("missing/part", folder_.string(), true, ".stl", kMeshes);
   EXPECT_EQ(save.path, "");
   EXPECT_NE(save.error.find((folder_ / "missing").string()), std::string::npos) << save.error;
+  EXPECT_EQ(save.missingFolder, (folder_ / "missing").string());  // offered to be created
+  EXPECT_EQ(resolveDialogPath("part", folder_.string(), true, ".stl", kMeshes).missingFolder, "");
   const ResolvedPath open = resolveDialogPath("nothing.stl", folder_.string(), false, "", kMeshes);
   EXPECT_EQ(open.path, "");
   EXPECT_NE(open.error.find("nothing.stl"), std::string::npos) << open.error;

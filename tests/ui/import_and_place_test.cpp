@@ -322,6 +322,50 @@ TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
       << state.log.back().text;
 }
 
+// An artist found no way to change an existing part's role but a drag with a modifier: the
+// inspector's role and the outliner's Role menu (setRole) move the part onto its own parent with
+// the mode picked; one undo step; the others keep theirs; refused, with a reason, for the root
+// and a base.
+TEST(Roles, ARolePickedWhereThePartIsChangesOnlyItsOwn) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {plate};
+  state.placeMode = PlaceMode::Add;
+  const NodeId rib = addPrimitive(state, NodeKind::Box);
+  ASSERT_EQ(roleOf(state.document.root(), rib), ChildRole::Add);
+  const NodePtr before = state.document.root();
+  setRole(state, rib, PlaceMode::Add);  // what it does already: nothing
+  EXPECT_EQ(state.document.root(), before);
+  setRole(state, rib, PlaceMode::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), rib), ChildRole::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  EXPECT_NE(state.log.back().text.find("cuts"), std::string::npos) << state.log.back().text;
+  setRole(state, rib, PlaceMode::Intersect);
+  EXPECT_EQ(roleOf(state.document.root(), rib), ChildRole::Intersect);
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  setRole(state, hole, PlaceMode::Add);
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Add);
+  EXPECT_FALSE(removesMaterial(state.document.root(), hole));
+  undo(state);
+  undo(state);
+  undo(state);
+  EXPECT_EQ(state.document.root(), before);  // three steps, one each
+  // The difference's base (the union of the plate and the rib): refused, and said why.
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId base = where.parent->children[0]->id;
+  ASSERT_EQ(roleOf(state.document.root(), base), ChildRole::Base);
+  setRole(state, base, PlaceMode::Cut);
+  EXPECT_EQ(state.document.root(), before);
+  EXPECT_NE(state.log.back().text.find("is the base of"), std::string::npos)
+      << state.log.back().text;
+  setRole(state, state.document.root()->id, PlaceMode::Cut);
+  EXPECT_EQ(state.document.root(), before);
+  EXPECT_NE(state.log.back().text.find("the root has no role"), std::string::npos);
+}
+
 // Ctrl+D: the copy does what its original does and sits one move-snap step along world +x
 // from it (under a turned, scaled parent too), so that it is seen; one undo step for all copies.
 TEST(Roles, DuplicatesKeepTheirRoleAndSitOneGridStepAlongX) {

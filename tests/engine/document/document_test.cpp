@@ -10,6 +10,7 @@
 #include "engine/io/document_files.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/error.h"
+#include "engine/util/limits.h"
 
 namespace strata {
 namespace {
@@ -72,32 +73,54 @@ TEST(Document, EveryCommandIsOneUndoStep) {
 
   int steps = 0;
   while (doc.undo()) ++steps;
-  EXPECT_EQ(steps, 12);  // the resolution is a preview setting: no step of its own
-  EXPECT_EQ(doc.scene().settings.resolution, 64);  // and undo keeps it
+  EXPECT_EQ(steps, 13);  // the resolution's step among them
+  EXPECT_EQ(doc.scene().settings.resolution, Document().scene().settings.resolution);
   EXPECT_TRUE(doc.root()->children.empty());
-  EXPECT_TRUE(doc.dirty());  // the tree it started from, at another resolution
+  EXPECT_FALSE(doc.dirty());  // the document it started as
   while (doc.redo()) {
   }
   EXPECT_EQ(doc.root(), final);  // redo restores the very same snapshot
   EXPECT_EQ(doc.scene().settings.resolution, 64);
 }
 
-// Undoing edits made before a resolution change leaves the resolution as set; an untouched
-// document at its own resolution is not dirty after undo.
-TEST(Document, UndoKeepsThePreviewResolution) {
+// The resolution, saved with the document, is an undo step of its own (an artist's typed 100000
+// cells was saved into the scene with no way back but typing the old value): changes in a row
+// one step. Undoing the other steps, before it or after, leaves the resolution as set.
+TEST(Document, TheResolutionIsAStepOfItsOwnThatOtherStepsKeep) {
   Document doc;
   const int start = doc.scene().settings.resolution;
   NodeId box = doc.addNode(NodeKind::Box);
   doc.rename(box, "block");
   doc.setResolution(start * 2);
+  doc.setResolution(start * 4);  // the same step: a drag, or + clicked twice
+  EXPECT_EQ(doc.undoLabel(), Document::kResolutionStep);
+  doc.rename(box, "brick");
   EXPECT_TRUE(doc.dirty());
-  ASSERT_TRUE(doc.undo());  // the rename
-  EXPECT_NE(findNode(doc.root(), box)->name, "block");
-  EXPECT_EQ(doc.scene().settings.resolution, start * 2);
-  ASSERT_TRUE(doc.redo());
+  ASSERT_TRUE(doc.undo());  // "brick"
   EXPECT_EQ(findNode(doc.root(), box)->name, "block");
-  EXPECT_EQ(doc.scene().settings.resolution, start * 2);
-  EXPECT_EQ(doc.undoLabel(), "rename");
+  EXPECT_EQ(doc.scene().settings.resolution, start * 4);
+  ASSERT_TRUE(doc.undo());  // both resolution changes
+  EXPECT_EQ(doc.scene().settings.resolution, start);
+  EXPECT_EQ(findNode(doc.root(), box)->name, "block");
+  ASSERT_TRUE(doc.undo());  // "block"
+  EXPECT_NE(findNode(doc.root(), box)->name, "block");
+  EXPECT_EQ(doc.scene().settings.resolution, start);
+  ASSERT_TRUE(doc.redo());
+  ASSERT_TRUE(doc.redo());
+  EXPECT_EQ(doc.scene().settings.resolution, start * 4);
+  ASSERT_TRUE(doc.redo());
+  EXPECT_EQ(findNode(doc.root(), box)->name, "brick");
+  EXPECT_EQ(doc.scene().settings.resolution, start * 4);
+  // Undo a step made before the resolution changed: the resolution stays.
+  ASSERT_TRUE(doc.undo());       // "brick"
+  ASSERT_TRUE(doc.undo());       // the resolution
+  ASSERT_TRUE(doc.redo());       // the resolution again
+  doc.setResolution(start / 2);  // a new step (the redo of "brick" goes, as after any change)
+  EXPECT_FALSE(doc.canRedo());
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(doc.scene().settings.resolution, start * 4);
+  EXPECT_THROW(doc.setResolution(kMaxResolution + 1), Error);
+  EXPECT_EQ(doc.scene().settings.resolution, start * 4);
 }
 
 TEST(Document, RefusedCommandsChangeNothing) {
