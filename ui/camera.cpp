@@ -67,6 +67,10 @@ void Camera::zoom(double wheelSteps) {
 void Camera::frame(const Bounds& bounds, double aspect) {
   if (bounds.empty()) return;
   target = bounds.center();
+  distance = distanceToShow(bounds, aspect);
+}
+
+double Camera::distanceToShow(const Bounds& bounds, double aspect) const {
   const double margin = 1.12;
   const double tanV = std::tan(radians(fovYDegrees) * 0.5);
   const double tanH = tanV * std::max(aspect, 1e-3);
@@ -83,8 +87,33 @@ void Camera::frame(const Bounds& bounds, double aspect) {
     halfHeight = std::max({halfHeight, y, x / std::max(aspect, 1e-3)});
   }
   // Orthographic: the view's half height is distance * tanV.
-  distance = ortho ? halfHeight / tanV : needed;
-  distance = std::max(distance, glm::length(bounds.size()) * 0.05 + 1e-6);
+  const double d = ortho ? halfHeight / tanV : needed;
+  return std::max(d, glm::length(bounds.size()) * 0.05 + 1e-6);
+}
+
+bool Camera::shows(const Bounds& bounds, double aspect) const {
+  if (bounds.empty()) return false;
+  const double tanV = std::tan(radians(fovYDegrees) * 0.5);
+  const double tanH = tanV * std::max(aspect, 1e-3);
+  const glm::dvec3 r = right(), u = up(), f = forward();
+  for (int i = 0; i < 8; ++i) {
+    glm::dvec3 c(i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                 i & 4 ? bounds.max.z : bounds.min.z);
+    const glm::dvec3 d = c - target;
+    // Half the view's height and width at the corner's depth.
+    const double at = ortho ? distance : distance + glm::dot(d, f);
+    if (at <= 0.0) return false;
+    if (std::fabs(glm::dot(d, r)) > at * tanH || std::fabs(glm::dot(d, u)) > at * tanV)
+      return false;
+  }
+  return true;
+}
+
+void Camera::setOrtho(bool on, const Bounds& scene, double aspect) {
+  if (on == ortho) return;
+  const bool whole = shows(scene, aspect);
+  ortho = on;
+  if (whole) distance = std::max(distance, distanceToShow(scene, aspect));
 }
 
 void Camera::setAxisView(AxisView view) {

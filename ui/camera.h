@@ -45,6 +45,15 @@ class Camera {
   // Looks at `bounds` from the current direction, as close as the box's corners allow with a
   // small margin, in a view of width / height `aspect`.
   void frame(const Bounds& bounds, double aspect);
+  // The distance from `target` (unchanged) at which `bounds` is in view with frame()'s margin, in
+  // this projection and a view of width / height `aspect`.
+  double distanceToShow(const Bounds& bounds, double aspect) const;
+  // Whether every corner of `bounds` is in view.
+  bool shows(const Bounds& bounds, double aspect) const;
+  // Orthographic (true) or perspective. Where the whole of `scene` was in view it stays in view:
+  // the distance grows as the new projection needs (an orthographic view framed close shows the
+  // parts in front of the target larger once in perspective), never shrinks.
+  void setOrtho(bool on, const Bounds& scene, double aspect);
   void setAxisView(AxisView view);
   // "front", "top", ... while the camera looks exactly along an axis (setAxisView, or orbited
   // there), else "".

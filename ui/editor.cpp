@@ -687,7 +687,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   gl_->viewport.handleInput(s, rect);
   gl_->viewport.keepCameraOutside(s);
   if (s.requestAxisView >= 0) gl_->viewport.camera.setAxisView(AxisView(s.requestAxisView));
-  if (s.requestToggleOrtho) gl_->viewport.camera.ortho = !gl_->viewport.camera.ortho;
+  if (s.requestToggleOrtho) gl_->viewport.toggleOrtho(s);
   s.requestAxisView = -1;
   s.requestToggleOrtho = false;
   if (s.requestViewAll) gl_->viewport.viewAll(s);

@@ -207,9 +207,16 @@ void Viewport::frameSelected(const EditorState& state) {
     pendingFrame_ = b;
 }
 
+void Viewport::toggleOrtho(const EditorState& state) {
+  pendingOrthoToggle_ = sceneBounds(state.document.root());
+}
+
 void Viewport::framePending(const ViewRect& rect) {
+  const double aspect = rect.width / std::max(rect.height, 1.0);
+  if (pendingOrthoToggle_) camera.setOrtho(!camera.ortho, *pendingOrthoToggle_, aspect);
+  pendingOrthoToggle_.reset();
   if (!pendingFrame_) return;
-  camera.frame(*pendingFrame_, rect.width / std::max(rect.height, 1.0));
+  camera.frame(*pendingFrame_, aspect);
   pendingFrame_.reset();
 }
 
@@ -227,7 +234,7 @@ void Viewport::handleKeys(EditorState& state) {
   if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3, ctrl)) camera.setAxisView(AxisView::Left);
   if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, 0)) camera.setAxisView(AxisView::Top);
   if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, ctrl)) camera.setAxisView(AxisView::Bottom);
-  if (pressed(GLFW_KEY_5, GLFW_KEY_KP_5, 0)) camera.ortho = !camera.ortho;
+  if (pressed(GLFW_KEY_5, GLFW_KEY_KP_5, 0)) toggleOrtho(state);
   if (keyPressed(state, GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
   if (keyPressed(state, GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
   if (keyPressed(state, GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;

@@ -70,6 +70,9 @@ class Viewport {
   // nothing but the inside of a part. Call once a frame, after handleInput.
   void keepCameraOutside(EditorState& state);
   void frameSelected(const EditorState& state);
+  // Orthographic <-> perspective (at the next handleInput or draw): Camera::setOrtho, keeping the
+  // whole scene in view where it was.
+  void toggleOrtho(const EditorState& state);
   bool gizmoDragging() const { return gizmo_.dragging(); }
 
  private:
@@ -123,6 +126,7 @@ class Viewport {
 
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;
+  std::optional<Bounds> pendingOrthoToggle_;  // the scene's bounds when it was asked for
   // What prepare made for drawPrepared.
   struct Prepared {
     ViewportFrame frame;

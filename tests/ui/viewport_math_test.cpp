@@ -86,6 +86,56 @@ TEST(EditorMath, FramingKeepsEveryCornerInView) {
   }
 }
 
+// An artist framed a side view in orthographic (Home), pressed 5 for perspective and saw the
+// part cropped: the parts in front of the target grow in perspective. A switch keeps a scene that
+// was wholly in view in view, in both directions, and back and forth does not drift away.
+TEST(EditorMath, SwitchingProjectionKeepsAWholeSceneInView) {
+  Bounds b;
+  b.include(glm::dvec3(-30, -10, 0));
+  b.include(glm::dvec3(50, 40, 25));
+  const glm::dvec2 size(160, 90);
+  const double aspect = size.x / size.y;
+  const auto inView = [&](const Camera& c) {
+    ScreenMapping m = mappingOf(c, size);
+    for (int i = 0; i < 8; ++i) {
+      glm::dvec3 corner(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
+                        i & 4 ? b.max.z : b.min.z);
+      glm::dvec2 p;
+      if (!m.toScreen(corner, &p) || p.x < 0.0 || p.x > size.x || p.y < 0.0 || p.y > size.y)
+        return false;
+    }
+    return true;
+  };
+  bool cropped = false;  // by a plain switch, in some view: the case is not empty
+  for (AxisView view : {AxisView::Left, AxisView::Top, AxisView::Front}) {
+    Camera c;
+    c.setAxisView(view);
+    c.yawDegrees += 20.0;  // and a turned view
+    c.ortho = true;
+    c.frame(b, aspect);
+    ASSERT_TRUE(inView(c));
+    ASSERT_TRUE(c.shows(b, aspect));
+    Camera unchanged = c;
+    unchanged.ortho = false;  // what a plain switch did
+    cropped = cropped || !inView(unchanged);
+    c.setOrtho(false, b, aspect);
+    EXPECT_FALSE(c.ortho);
+    EXPECT_TRUE(inView(c));
+    const double perspective = c.distance;
+    c.setOrtho(true, b, aspect);
+    EXPECT_TRUE(inView(c));
+    c.setOrtho(false, b, aspect);
+    EXPECT_DOUBLE_EQ(c.distance, perspective);  // no drift
+    // Zoomed in on a detail (the scene not wholly in view): the zoom stays as it is.
+    c.distance *= 0.2;
+    ASSERT_FALSE(c.shows(b, aspect));
+    const double close = c.distance;
+    c.setOrtho(true, b, aspect);
+    EXPECT_DOUBLE_EQ(c.distance, close);
+  }
+  EXPECT_TRUE(cropped);
+}
+
 TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
   Camera c;
   c.setAxisView(AxisView::Front);
