@@ -317,14 +317,15 @@ namespace {
 // The message the status bar shows: the latest one for 6 s (an error until clicked away or
 // settled by a save or another document), then the latest error not yet clicked away (a scene
 // that failed to open must not pass unseen); null for none.
+// The latest message while it is new (an error until clicked away, the others for 6 s). An
+// error older than a later message is not shown again in its place (an artist read a refusal
+// coming back after a successful undo as the undo's failure): it is counted beside it, and on
+// its own once that message has gone (drawStatusBar).
 LogLine* statusLine(EditorState& state) {
-  if (!state.log.empty()) {
-    LogLine& last = state.log.back();
-    if ((last.level == LogLevel::Error && !last.dismissed) || state.now - last.time < 6.0)
-      return &last;
-  }
-  for (auto it = state.log.rbegin(); it != state.log.rend(); ++it)
-    if (it->level == LogLevel::Error && !it->dismissed) return &*it;
+  if (state.log.empty()) return nullptr;
+  LogLine& last = state.log.back();
+  if ((last.level == LogLevel::Error && !last.dismissed) || state.now - last.time < 6.0)
+    return &last;
   return nullptr;
 }
 
@@ -378,6 +379,15 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
       open = open || ImGui::IsItemClicked();
     }
     if (open) {  // the messages show every error: none is left unseen
+      state.showDiagnostics = true;
+      for (LogLine& line : state.log) line.dismissed = true;
+    }
+  } else if (const int unread = otherOpenErrors(state, nullptr)) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "|  %d earlier error%s not read", unread,
+                       unread == 1 ? "" : "s");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("click: all messages, to read or copy");
+    if (ImGui::IsItemClicked()) {
       state.showDiagnostics = true;
       for (LogLine& line : state.log) line.dismissed = true;
     }
