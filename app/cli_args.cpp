@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 #include "engine/util/error.h"
 
@@ -34,6 +35,43 @@ CliArgs::CliArgs(const std::vector<std::string>& args, const std::vector<std::st
       throw Error("unknown option " + args[i] + " (see strata --help)");
     } else {
       positional_.push_back(args[i]);
+    }
+  }
+  refuseSideFilesOverOthers();
+}
+
+namespace {
+
+// Whether paths `a` and `b` name one file (the same file through links or another spelling, or
+// the same place where neither exists yet).
+bool sameFile(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  const fs::path pa = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  const fs::path pb = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return pa == pb;
+}
+
+}  // namespace
+
+void CliArgs::refuseSideFilesOverOthers() const {
+  // The output itself may replace its input (it is read first); a report or the surfels written
+  // over the input, the output or each other would lose one of them.
+  for (const char* side : {"--report", "--surfels"}) {
+    auto it = values_.find(side);
+    if (it == values_.end() || it->second.empty()) continue;
+    const std::string& path = it->second;
+    for (const std::string& input : positional_)
+      if (sameFile(path, input))
+        throw Error(std::string(side) + " " + path + ": the same file as the input " + input +
+                    ", which it would replace: give it a file of its own");
+    for (const char* other : {"-o", "--output", "--report", "--surfels"}) {
+      auto o = values_.find(other);
+      if (other == std::string(side) || o == values_.end() || o->second.empty()) continue;
+      if (sameFile(path, o->second))
+        throw Error(std::string(side) + " " + path + ": the same file as " + other +
+                    ": each output needs a file of its own");
     }
   }
 }

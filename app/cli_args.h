@@ -10,7 +10,8 @@ namespace strata {
 class CliArgs {
  public:
   // `valued`: options that take a value (e.g. "--resolution", "-o"); `flags`: options without.
-  // Throws strata::Error naming the offending argument.
+  // Throws strata::Error naming the offending argument, and where --report or --surfels would
+  // write over an input, the output (-o) or each other.
   CliArgs(const std::vector<std::string>& args, const std::vector<std::string>& valued,
           const std::vector<std::string>& flags);
 
@@ -22,6 +23,8 @@ class CliArgs {
   double number(const std::string& option, double fallback, double lo, double hi) const;
 
  private:
+  // Refuses --report or --surfels naming an input, the output or each other (Error).
+  void refuseSideFilesOverOthers() const;
   std::vector<std::string> positional_;
   std::map<std::string, std::string> values_;
 };

@@ -105,6 +105,8 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   if (!meshFormatFor(output, MeshAccess::Write))
     throw Error(output + ": unknown export format '" + lowerExtension(output) + "' (expected " +
                 meshExtensionList(MeshAccess::Write) + ")");
+  if (const std::string why = notAFileToReadBack(output); !why.empty())
+    throw Error(output + ": " + why);
   // MPI starts first: each process then says only what is its to say.
   if (args.has("--distributed") && args.has("--gpus"))
     throw Error(

@@ -6,6 +6,7 @@
 #include "engine/export/contour_workers.h"
 #include "engine/geometry/degenerate_repair.h"
 #include "engine/io/mesh_writers.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
 
@@ -45,6 +46,8 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Expo
 void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportOptions& options,
                          Progress& progress, ExportReport* out) {
   ExportReport& report = *out;
+  if (const std::string why = notAFileToReadBack(path); !why.empty())
+    throw Error(path + ": " + why);
   if (options.simplifyCells > 0.0)
     report.simplify = simplifyMesh(&mesh, options.simplifyCells * report.contour.grid.h, progress);
   // Triangles without area as the format stores the positions (degenerate_repair.h), repaired

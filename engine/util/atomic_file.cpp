@@ -277,9 +277,45 @@ std::unique_ptr<OwnedFile> keepPreviousVersion(const Target& target) {
   throw Error(target.path + ": cannot keep the previous version: " + errorText(error));
 }
 
+// Whether `path` names (through links too) something other than a regular file or a folder: a
+// device, a pipe or a socket.
+bool namesSpecialFile(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
+// `file` written in place into the device, pipe or socket its path names.
+void writeThrough(const AtomicFileWrite& file) {
+  Descriptor out;
+  out.fd = ::open(file.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+  if (out.fd < 0) throw Error(file.path + ": cannot write: " + errorText(errno));
+  DescriptorBuffer buffer(out.fd);
+  std::ostream stream(&buffer);
+  file.write(stream);
+  stream.flush();
+  if (buffer.error()) throw Error(file.path + ": cannot write: " + errorText(buffer.error()));
+  if (!stream) throw Error(file.path + ": write failed");
+  if (const int error = out.close()) throw Error(file.path + ": cannot write: " + errorText(error));
+}
+
 }  // namespace
 
+std::string notAFileToReadBack(const std::string& path) {
+  if (!namesSpecialFile(path)) return "";
+  return "not a regular file (a device, a pipe or a socket): an export is read back to check "
+         "it; write it to a file";
+}
+
 void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
+  if (files.size() == 1 && namesSpecialFile(files[0].path)) {
+    writeThrough(files[0]);
+    return;
+  }
+  for (const AtomicFileWrite& file : files)
+    if (namesSpecialFile(file.path))
+      throw Error(file.path +
+                  ": not a regular file (a device, a pipe or a socket): files "
+                  "written together go to regular files");
   std::vector<Target> targets;
   for (const AtomicFileWrite& file : files) {
     for (const Target& t : targets)

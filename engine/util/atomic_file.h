@@ -57,7 +57,15 @@ namespace strata {
 
 // Calls write(stream) and commits the result atomically. Throws strata::Error naming the path
 // when the file cannot be written or replaced; rethrows whatever `write` throws.
+// A path that names a device, a pipe or a socket (itself or through links: /dev/stdout,
+// /dev/null, a FIFO) is written through, in place, never replaced by a file (as root, a
+// rename over /dev/stdout replaced it for the whole system); a failed write (/dev/full) throws.
+// A set of several files refuses such paths.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+// Why `path` cannot take a file that is read back after it is written (an export's check): it
+// names a device, a pipe or a socket ("" where it names a regular file, a link to one, or
+// nothing yet).
+std::string notAFileToReadBack(const std::string& path);
 
 // One file of a set that is committed together.
 struct AtomicFileWrite {

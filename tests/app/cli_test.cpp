@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -399,6 +401,40 @@ TEST(CliExport, AStreamedExportWritesTheSameFile) {
   EXPECT_NE(gpus.output.find("--gpus: exports on several GPUs need the CUDA backend"),
             std::string::npos)
       << gpus.output;
+}
+
+// A report or the surfels written over the input, the output or each other would lose one of
+// them (a hostile-input test replaced its scene with the report): refused before any work. The
+// output may still replace its input (it is read first).
+TEST(Cli, SideFilesNeverReplaceTheInputOrTheOutput) {
+  const std::string scene = temp("side_files.strata.json");
+  {
+    std::ifstream in(std::string(STRATA_ASSETS) + "/scenes/two_spheres.strata.json");
+    std::ofstream out(scene);
+    out << in.rdbuf();
+  }
+  const std::string out = temp("side_files.stl");
+  CliRun overScene = strata("eval " + scene + " --resolution 32 --report " + scene);
+  EXPECT_EQ(overScene.code, 1) << overScene.output;
+  EXPECT_NE(overScene.output.find("the same file as the input"), std::string::npos)
+      << overScene.output;
+  std::string sameOut = out;  // another spelling of the same path
+  sameOut.insert(sameOut.rfind('/') + 1, "./");
+  CliRun overOutput =
+      strata("export " + scene + " --resolution 32 -q -o " + out + " --report " + sameOut);
+  EXPECT_EQ(overOutput.code, 1) << overOutput.output;
+  EXPECT_NE(overOutput.output.find("the same file as -o"), std::string::npos) << overOutput.output;
+  std::ifstream kept(scene);
+  std::string first;
+  std::getline(kept, first);
+  EXPECT_EQ(first, "{") << "the scene is still the scene";
+  const std::string device = temp("side_files_null.stl");
+  std::remove(device.c_str());
+  ASSERT_EQ(::symlink("/dev/null", device.c_str()), 0);
+  CliRun toDevice = strata("export " + scene + " --resolution 32 -q -o " + device);
+  EXPECT_EQ(toDevice.code, 1) << toDevice.output;
+  EXPECT_NE(toDevice.output.find("not a regular file"), std::string::npos) << toDevice.output;
+  std::remove(device.c_str());
 }
 
 // The tiles a streamed export's estimate names are the ones it then runs (its slabs, not the

@@ -564,6 +564,56 @@ namespace {
 
 // Input files are checked before they are read: devices and folders are refused at once, and a
 // file over the limit is refused naming its size and the option that raises the limit.
+// A report written to /dev/stdout or a FIFO, as root, renamed a file over the device or the pipe
+// (over /dev/stdout for the whole system): a device, a pipe or a link to one is written through,
+// in place; /dev/full's refusal is an error; files written together refuse them; an export, read
+// back to check it, is told why it cannot go there.
+TEST_F(AtomicFileDir, DevicesAndPipesAreWrittenThroughNeverReplaced) {
+  const std::string fifo = path("pipe.json");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string read;
+  std::thread reader([&] {
+    std::FILE* f = std::fopen(fifo.c_str(), "rb");
+    ASSERT_NE(f, nullptr);
+    char buffer[256];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof(buffer), f)) > 0) read.append(buffer, n);
+    std::fclose(f);
+  });
+  writeText(fifo, "through the pipe");
+  reader.join();
+  EXPECT_EQ(read, "through the pipe");
+  struct stat st;
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the pipe was replaced";
+  const std::string link = path("null.json");
+  ASSERT_EQ(::symlink("/dev/null", link.c_str()), 0);
+  writeText(link, "nothing");
+  EXPECT_TRUE(isLink(link));
+  ASSERT_EQ(::stat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+  if (::stat("/dev/full", &st) == 0 && S_ISCHR(st.st_mode)) {
+    try {
+      writeText("/dev/full", "no room");
+      ADD_FAILURE() << "/dev/full took it";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("/dev/full: cannot write"), std::string::npos)
+          << e.what();
+    }
+    ASSERT_EQ(::stat("/dev/full", &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode));
+  }
+  EXPECT_THROW(writeFilesAtomically({{path("a.obj"), [](std::ostream& o) { o << "a"; }},
+                                     {link, [](std::ostream& o) { o << "b"; }}}),
+               Error);
+  EXPECT_FALSE(fs::exists(path("a.obj")));
+  EXPECT_NE(notAFileToReadBack(link).find("not a regular file"), std::string::npos);
+  EXPECT_NE(notAFileToReadBack(fifo).find("not a regular file"), std::string::npos);
+  EXPECT_EQ(notAFileToReadBack(path("new.stl")), "");
+  plant(path("old.stl"), "old");
+  EXPECT_EQ(notAFileToReadBack(path("old.stl")), "");
+}
+
 TEST(ReadWholeFile, RefusesDevicesFoldersAndFilesOverTheLimit) {
   auto message = [](const std::string& path) {
     try {
