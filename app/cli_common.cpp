@@ -25,7 +25,13 @@ int runGuarded(const std::function<int()>& body) {
   try {
     return body();
   } catch (const Cancelled&) {
-    std::fprintf(stderr, "\nstrata: cancelled; nothing was written\n");
+    // A cancel once the file was in place (during its check) leaves it: said, not denied.
+    const std::vector<std::string> written = committedFiles();
+    if (written.empty())
+      std::fprintf(stderr, "\nstrata: cancelled; nothing was written\n");
+    else
+      std::fprintf(stderr, "\nstrata: cancelled after %s was written; its check did not finish\n",
+                   written.back().c_str());
     return 130;
   } catch (const Error& e) {
     std::fprintf(stderr, "strata: error: %s\n", e.what());

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <utility>
 
@@ -306,9 +307,20 @@ std::string notAFileToReadBack(const std::string& path) {
          "it; write it to a file";
 }
 
+namespace {
+std::mutex g_committedMutex;
+std::vector<std::string> g_committed;  // guarded by g_committedMutex
+
+void noteCommitted(const std::string& path) {
+  std::lock_guard<std::mutex> lock(g_committedMutex);
+  g_committed.push_back(path);
+}
+}  // namespace
+
 void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
   if (files.size() == 1 && namesSpecialFile(files[0].path)) {
     writeThrough(files[0]);
+    noteCommitted(files[0].path);
     return;
   }
   for (const AtomicFileWrite& file : files)
@@ -335,6 +347,7 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
         throw Error(targets[0].path + ": cannot replace the file: " + errorText(errno));
       temporaries[0]->release();
     }
+    noteCommitted(targets[0].path);
     syncFolder(targets[0].folderToOpen());
     return;
   }
@@ -377,6 +390,7 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
       throw Error(message + (notRestored.empty() ? "; no file was replaced" : notRestored));
     }
   }
+  for (const Target& target : targets) noteCommitted(target.path);
   std::vector<std::string> synced;
   for (const Target& target : targets) {
     if (std::find(synced.begin(), synced.end(), target.folderToOpen()) != synced.end()) continue;
@@ -387,6 +401,11 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   writeFilesAtomically({AtomicFileWrite{path, write}});
+}
+
+std::vector<std::string> committedFiles() {
+  std::lock_guard<std::mutex> lock(g_committedMutex);
+  return g_committed;
 }
 
 std::vector<std::string> temporaryFilesOf(const std::string& path) {

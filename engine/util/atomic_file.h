@@ -80,6 +80,10 @@ struct AtomicFileWrite {
 // throws. Nothing is replaced unless every `write` succeeded.
 void writeFilesAtomically(const std::vector<AtomicFileWrite>& files);
 
+// Every path this process has written so far (committed, in order): what a command cancelled
+// after its file was in place (during its check) says it wrote.
+std::vector<std::string> committedFiles();
+
 // The temporary and backup files in `path`'s folder that belong to `path` by their name, of any
 // process, live or dead (full paths, sorted). For tests and diagnostics.
 std::vector<std::string> temporaryFilesOf(const std::string& path);
