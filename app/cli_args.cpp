@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -97,9 +98,13 @@ double CliArgs::number(const std::string& option, double fallback, double lo, do
   if (it == values_.end()) return fallback;
   char* end = nullptr;
   double v = std::strtod(it->second.c_str(), &end);
-  if (it->second.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
-    throw Error("option " + option + ": expected a number in [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + "], got '" + it->second + "'");
+  if (it->second.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi) {
+    // The range as people write numbers ("1e-09", "1e+09"; not 300 digits, nor 0.000000 for a
+    // least value above zero).
+    char range[96];
+    std::snprintf(range, sizeof(range), "from %.6g to %.6g", lo, hi);
+    throw Error("option " + option + ": expected a number " + range + ", got '" + it->second + "'");
+  }
   return v;
 }
 

@@ -79,7 +79,8 @@ uint64_t sizeOption(const CliArgs& args, const std::string& option) {
   size_t used = 0;
   unsigned long long value = 0;
   try {
-    value = std::stoull(text, &used);
+    // stoull takes "-5" as 2^64 - 5: only digits are a size.
+    if (!text.empty() && text[0] >= '0' && text[0] <= '9') value = std::stoull(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }

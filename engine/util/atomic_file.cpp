@@ -419,8 +419,10 @@ std::string sizeText(uint64_t bytes) {
   char text[32];
   if (bytes >= (uint64_t(1) << 30))
     std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
-  else
+  else if (bytes >= (uint64_t(1) << 20))
     std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1 << 20));
+  else
+    std::snprintf(text, sizeof(text), "%llu bytes", static_cast<unsigned long long>(bytes));
   return text;
 }
 
