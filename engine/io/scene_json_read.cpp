@@ -423,7 +423,8 @@ class SceneReader {
       } else if (key == "maxLeaves") {
         settings->maxLeaves = static_cast<uint64_t>(
             integer(*it, p, 1, kMaxLeavesSetting,
-                    "an integer from 1 to " + std::to_string(kMaxLeavesSetting)));
+                    "an integer from 1 to " + std::to_string(kMaxLeavesSetting) +
+                        " (more only with the command line's --max-leaves)"));
       } else {
         fail(p, "unknown field \"" + key + "\"");
       }
