@@ -29,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 void addLog(EditorState& state, LogLevel level, const std::string& text) {
-  state.log.push_back(LogLine{level, text, state.now});
+  state.log.push_back(LogLine{level, text, state.now, false, ""});
   while (state.log.size() > 200) state.log.pop_front();
 }
 
@@ -165,15 +165,19 @@ bool keyPressed(const EditorState& state, int key, int mods) {
   return false;
 }
 
-bool guarded(EditorState& state, const std::function<void()>& body) {
+bool guarded(EditorState& state, const std::function<void()>& body, const std::string& topic) {
   try {
     body();
+    if (!topic.empty())
+      for (LogLine& line : state.log)
+        if (line.topic == topic) line.dismissed = true;
     return true;
   } catch (const Error& e) {
     logError(state, e.what());
   } catch (const std::bad_alloc&) {
     logError(state, "out of memory");
   }
+  if (!topic.empty()) state.log.back().topic = topic;
   return false;
 }
 
@@ -694,26 +698,43 @@ const Node* parentOf(const EditorState& state, NodeId id) {
   return path[path.size() - 2];
 }
 
-void setRole(EditorState& state, NodeId id, PlaceMode mode) {
-  const NodePtr node = findNode(state.document.root(), id);
+std::string roleChangeRefusal(const EditorState& state, NodeId id, PlaceMode mode) {
+  const NodePtr& root = state.document.root();
+  const NodePtr node = findNode(root, id);
   const Node* parent = parentOf(state, id);
-  if (!node || !parent) {
-    logError(state, "the root has no role: it is the result");
+  if (!node || !parent) return "the root has no role: it is the result";
+  const ChildRole role = roleOf(root, id);
+  if (role == ChildRole::Base)
+    return displayName(*node) + " is the base of " + displayName(*parent) +
+           ": what the parts beside it cut. Drag it elsewhere, or another part onto it, to "
+           "change what it does";
+  if (modeKeepingRole(role) == mode) return "";
+  // Where it would land (an only child goes back where it was, doing what it did).
+  try {
+    const NodePtr after = movePart(root, id, parent->id, mode, state.document.nextId());
+    if (modeKeepingRole(roleOf(after, id)) == mode) return "";
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return displayName(*node) + " would still " + roleWord(role) + ": " + displayName(*parent) +
+         (parent->children.size() == 1 ? " holds nothing else" : " leaves it no other place") +
+         ". Drag it onto the part it should act on";
+}
+
+void setRole(EditorState& state, NodeId id, PlaceMode mode) {
+  const std::string refusal = roleChangeRefusal(state, id, mode);
+  if (!refusal.empty()) {
+    logError(state, refusal);
     return;
   }
   const ChildRole role = roleOf(state.document.root(), id);
-  if (role == ChildRole::Base) {
-    logError(state, displayName(*node) + " is the base of " + displayName(*parent) +
-                        ": what the parts beside it cut. Drag it elsewhere, or another part "
-                        "onto it, to change what it does");
-    return;
-  }
   if (modeKeepingRole(role) == mode) return;
-  dropNode(state, id, parent->id, mode);
+  dropNode(state, id, parentOf(state, id)->id, mode);
 }
 
 void setResolution(EditorState& state, int resolution) {
-  guarded(state, [&] { state.document.setResolution(resolution); });
+  guarded(
+      state, [&] { state.document.setResolution(resolution); }, "resolution");
 }
 
 // Undo and redo say in the status line what they reverted or repeated: a step that changes

@@ -93,6 +93,10 @@ void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode)
 // it does now. Refused, with the reason in the log, for the root and a difference's base (whose
 // role is its place). Nothing happens where it already does that. One undo step.
 void setRole(EditorState& state, NodeId id, PlaceMode mode);
+// Why setRole(id, mode) would be refused ("" where it would take, or where the part already does
+// that): the root, a base, or a part that would land doing what it did (the only child of its
+// operation goes back there).
+std::string roleChangeRefusal(const EditorState& state, NodeId id, PlaceMode mode);
 // The operation node `id` lies in (nullptr for the root or a node not in the tree).
 const Node* parentOf(const EditorState& state, NodeId id);
 void setResolution(EditorState& state, int resolution);
@@ -118,6 +122,8 @@ void startExport(EditorState& state, const std::string& path, int resolution,
                  double simplifyCells = 0.0, bool insist = false);
 
 // Runs `body`, turning strata::Error into an error message; returns whether it succeeded.
-bool guarded(EditorState& state, const std::function<void()>& body);
+// `topic` (may be empty): what the body sets ("resolution", "scale"); its error carries it, and
+// a later success on the same topic settles earlier errors of it (LogLine::topic).
+bool guarded(EditorState& state, const std::function<void()>& body, const std::string& topic = "");
 
 }  // namespace strata::ui

@@ -32,6 +32,9 @@ struct LogLine {
   std::string text;
   double time = 0.0;       // seconds since the editor started
   bool dismissed = false;  // an error stays in the status bar until clicked
+  // What an error was about (guarded's topic: "resolution", "scale"): a later success on the
+  // same topic settles it (a refused 100000 cells no longer shows once 512 is applied).
+  std::string topic;
 };
 
 // Something that replaces the document, held back while the user decides about unsaved changes.

@@ -262,9 +262,13 @@ void FileDialog::draw() {
     ImGui::SetKeyboardFocusHere();
     focusField_ = false;
   }
-  const bool typed =
-      ImGui::InputText("##path", field_, sizeof(field_),
-                       ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  // After a refusal the field takes the keyboard with the path as typed, not selected: it is
+  // corrected, not typed again (selectAll_ comes back once the field is left).
+  const bool typed = ImGui::InputText(
+      "##path", field_, sizeof(field_),
+      ImGuiInputTextFlags_EnterReturnsTrue | (selectAll_ ? ImGuiInputTextFlags_AutoSelectAll : 0));
+  if (ImGui::IsItemEdited()) missingFolder_.clear();  // the button named the path refused
+  if (ImGui::IsItemDeactivated()) selectAll_ = true;
   if (!replacing_.empty()) {  // asked once: the same path again replaces it
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
     ImGui::TextWrapped("%s exists: Replace (or Enter) writes over it", replacing_.c_str());
@@ -293,8 +297,11 @@ void FileDialog::draw() {
     listError_ = resolved.error;
     missingFolder_ = resolved.missingFolder;
     ok = resolved.error.empty();
-    // Refused: the field keeps the keyboard, so that the path can be typed again at once.
-    if (!ok) focusField_ = true;
+    // Refused: the field keeps the keyboard, so that the path can be corrected at once.
+    if (!ok) {
+      focusField_ = true;
+      selectAll_ = false;
+    }
     // Saving over a file asks first (as the desktop's dialogs do): once for each path.
     if (ok && saving(purpose_) && replacing_ != resolved.path &&
         std::filesystem::exists(resolved.path, ec)) {

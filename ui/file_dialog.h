@@ -68,6 +68,7 @@ class FileDialog {
   char field_[1024] = {};
   bool justOpened_ = false;
   bool focusField_ = false;         // the path field takes the keyboard on the next frame
+  bool selectAll_ = true;           // ... with its text selected (not after a refusal)
   std::string suggestedExtension_;  // ".stl": given to a name saved without one
   std::string replacing_;           // an existing file the user was asked about replacing
   std::string chosen_;

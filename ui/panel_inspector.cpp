@@ -32,9 +32,10 @@ namespace {
 std::string gLengthFormat = "%.4g";
 
 // Brackets an edit made by the last ImGui item in begin/end interaction and applies it.
-void edited(EditorState& state, bool changed, const std::function<void()>& apply) {
+void edited(EditorState& state, bool changed, const std::function<void()>& apply,
+            const std::string& topic = "") {
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
-  if (changed) guarded(state, apply);
+  if (changed) guarded(state, apply, topic);
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
 }
 
@@ -99,7 +100,8 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     if (mixed[i] && ImGui::IsItemHovered())
       ImGui::SetTooltip("differs across the selection; dragging shifts every one by as much");
     ImGui::PopStyleColor();
-    edited(state, changed, [&] { apply(next); });
+    edited(
+        state, changed, [&] { apply(next); }, label);
     if (changed) *value = next;
     any = any || changed;
     ImGui::PopID();
@@ -221,10 +223,14 @@ void nodeRole(EditorState& state, const Node& node, size_t selected) {
     const char* word = mode == PlaceMode::Add   ? "adds"
                        : mode == PlaceMode::Cut ? "cuts"
                                                 : "intersects";
-    const bool chosen = ImGui::Selectable(word, mode == current);
-    if (mode != current && ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s",
-                        ("it " + placementSentence(state, parent->id, mode, node.id)).c_str());
+    const std::string refusal = roleChangeRefusal(state, node.id, mode);
+    const bool chosen = ImGui::Selectable(word, mode == current,
+                                          refusal.empty() ? 0 : ImGuiSelectableFlags_Disabled);
+    if (mode != current && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+      const std::string says =
+          refusal.empty() ? "it " + placementSentence(state, parent->id, mode, node.id) : refusal;
+      ImGui::SetTooltip("%s", says.c_str());
+    }
     if (chosen && mode != current) setRole(state, node.id, mode);
   }
   ImGui::EndCombo();

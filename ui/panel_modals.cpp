@@ -209,6 +209,9 @@ void exportOptionsDialog(EditorState& state) {
     outOfRange = resolution;
     resolution = std::clamp(resolution, kMinResolution, kMaxResolution);
   }
+  // A number set to the nearest end this frame is shown before anything is exported with it:
+  // the Enter that entered it does not export.
+  const bool justClamped = outOfRange && !typing;
   if (outOfRange && !typing) {
     clampNote = std::to_string(*outOfRange) + " cells: an export takes " +
                 std::to_string(kMinResolution) + " to " + std::to_string(kMaxResolution) +
@@ -267,7 +270,8 @@ void exportOptionsDialog(EditorState& state) {
     ImGui::TextDisabled("estimating the triangles...");
   }
   ImGui::Separator();
-  if (ImGui::Button("Export", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ENTER)) {
+  if (ImGui::Button("Export", ImVec2(120, 0)) ||
+      (keyPressed(state, GLFW_KEY_ENTER) && !justClamped)) {
     const std::string path = *state.pendingExportPath;
     state.pendingExportPath.reset();
     ImGui::CloseCurrentPopup();

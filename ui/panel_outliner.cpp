@@ -163,10 +163,15 @@ void contextMenu(EditorState& state, const NodePtr& node) {
       const char* word = mode == PlaceMode::Add   ? "adds"
                          : mode == PlaceMode::Cut ? "cuts"
                                                   : "intersects";
-      if (ImGui::MenuItem(word, nullptr, current) && !current) setRole(state, node->id, mode);
-      if (!current && ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s",
-                          ("it " + placementSentence(state, parent->id, mode, node->id)).c_str());
+      const std::string refusal = current ? "" : roleChangeRefusal(state, node->id, mode);
+      if (ImGui::MenuItem(word, nullptr, current, refusal.empty()) && !current)
+        setRole(state, node->id, mode);
+      if (!current && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+        const std::string says = refusal.empty()
+                                     ? "it " + placementSentence(state, parent->id, mode, node->id)
+                                     : refusal;
+        ImGui::SetTooltip("%s", says.c_str());
+      }
     }
     ImGui::EndMenu();
   }

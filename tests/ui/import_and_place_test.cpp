@@ -7,6 +7,7 @@
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
+#include "engine/util/error.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/scene_queries.h"
@@ -364,6 +365,43 @@ TEST(Roles, ARolePickedWhereThePartIsChangesOnlyItsOwn) {
   setRole(state, state.document.root()->id, PlaceMode::Cut);
   EXPECT_EQ(state.document.root(), before);
   EXPECT_NE(state.log.back().text.find("the root has no role"), std::string::npos);
+  // The only child of an operation would land back where it was, doing what it did: refused
+  // (an artist's "cuts" on the only bore of a union marked the scene changed and did nothing).
+  state.selection = {rib};
+  const NodeId group = addOperation(state, NodeKind::Union);
+  NodeLocation inGroup;
+  ASSERT_TRUE(locateNode(state.document.root(), group, &inGroup));
+  const NodeId alone = addPrimitive(state, NodeKind::Sphere);
+  if (NodeLocation at; locateNode(state.document.root(), alone, &at) && at.parent->id == group &&
+                       at.parent->children.size() == 1) {
+    const NodePtr withAlone = state.document.root();
+    const uint64_t revision = state.document.revision();
+    EXPECT_NE(roleChangeRefusal(state, alone, PlaceMode::Cut).find("holds nothing else"),
+              std::string::npos)
+        << roleChangeRefusal(state, alone, PlaceMode::Cut);
+    setRole(state, alone, PlaceMode::Cut);
+    EXPECT_EQ(state.document.root(), withAlone);
+    EXPECT_EQ(state.document.revision(), revision) << "nothing changed, nothing to save";
+  } else {
+    ADD_FAILURE() << "the sphere did not land alone in the new union";
+  }
+}
+
+// An error is settled by a later success on its topic: a refused 100000 cells does not stay red
+// once 512 is applied (an artist read it as the 512's failure).
+TEST(EditorLog, ALaterSuccessOnTheSameTopicSettlesItsError) {
+  EditorState state;
+  addPrimitive(state, NodeKind::Box);
+  setResolution(state, 100000);
+  ASSERT_EQ(state.log.back().level, LogLevel::Error);
+  EXPECT_FALSE(state.log.back().dismissed);
+  EXPECT_EQ(state.log.back().topic, "resolution");
+  guarded(state, [] { throw Error("another refusal"); });
+  setResolution(state, 512);
+  EXPECT_EQ(state.document.scene().settings.resolution, 512);
+  size_t open = 0;
+  for (const LogLine& line : state.log) open += line.level == LogLevel::Error && !line.dismissed;
+  EXPECT_EQ(open, 1u) << "the other error stays until read";
 }
 
 // Ctrl+D: the copy does what its original does and sits one move-snap step along world +x
