@@ -226,6 +226,12 @@ SortedHalfEdges sortedHalfEdges(const TriangleMesh& mesh, const std::vector<uint
     for (int64_t v = b; v < e; ++v) {
       HalfEdge* first = sorted.edges.data() + sorted.bucketBegin(size_t(v));
       HalfEdge* last = sorted.edges.data() + sorted.bucketEnd[size_t(v)];
+      // `before` is a total order, so both sorts give the same: a vertex of many triangles (a
+      // cone's apex of 640,000, or one triangle repeated) sorted in n log n, not n^2.
+      if (last - first > 32) {
+        std::sort(first, last, [](const HalfEdge& a, const HalfEdge& b) { return a.before(b); });
+        continue;
+      }
       for (HalfEdge* i = first + 1; i < last; ++i) {  // insertion sort: a handful of edges
         const HalfEdge h = *i;
         HalfEdge* j = i;
