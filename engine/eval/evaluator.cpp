@@ -342,12 +342,47 @@ Bounds nodeBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& pa
   return boundsOf(node, root, parentWorld, false, 0);
 }
 
+namespace {
+
+// Scenes whose volume and area doubles can measure: extents and distances from the origin up to
+// 1e100 units, extents down to 1e-100 (a box of 1e308 measured an infinite volume, one of
+// 1e-300 a volume of 0, and both evaluated "successfully").
+constexpr double kMaxSceneUnits = 1e100;
+constexpr double kMinSceneExtent = 1e-100;
+
+void checkSceneSize(const Bounds& b) {
+  if (b.empty()) return;
+  const glm::dvec3 size = b.size();
+  const double extent = std::max({size.x, size.y, size.z});
+  const double far = std::max({std::fabs(b.min.x), std::fabs(b.min.y), std::fabs(b.min.z),
+                               std::fabs(b.max.x), std::fabs(b.max.y), std::fabs(b.max.z)});
+  char text[160];
+  if (!std::isfinite(extent) || !std::isfinite(far) || extent > kMaxSceneUnits ||
+      far > kMaxSceneUnits) {
+    std::snprintf(text, sizeof(text),
+                  "the scene spans %.3g units at up to %.3g from the origin: more than 1e100, "
+                  "where its volume and area cannot be measured; scale it down",
+                  extent, far);
+    throw Error(text);
+  }
+  if (extent < kMinSceneExtent) {
+    std::snprintf(text, sizeof(text),
+                  "the scene spans %.3g units: less than 1e-100, where its volume and area "
+                  "cannot be measured; scale it up",
+                  extent);
+    throw Error(text);
+  }
+}
+
+}  // namespace
+
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;
   checkExpansion(scene.root, scene.settings.maxLeaves);  // before any walk through instances
   if (scene.settings.hasBounds) return makeGridExact(scene.settings.bounds, n);
   Bounds b = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
   if (b.empty()) allLeafBounds(scene.root, scene.root, glm::dmat4(1.0), true, 0, &b);
+  checkSceneSize(b);
   return makeGrid(b, n, scene.settings.margin);
 }
 

@@ -35,6 +35,22 @@ TEST(LeafPlacement, NestedScalesThatUnderflowNameTheLeaf) {
   EXPECT_NE(m.find("underflows"), std::string::npos) << m;
 }
 
+// A scene whose volume and area doubles cannot measure (a box of 1e308 measured an infinite
+// volume, one of 1e-300 a volume of 0, both "successfully"; a box 1e300 from the origin): refused
+// before any work, with its size.
+TEST(LeafPlacement, ScenesTooLargeOrTooSmallToMeasureAreRefused) {
+  EXPECT_NE(evaluationError(test::makeScene(test::box(glm::dvec3(1e308)), 16)).find("1e+308 units"),
+            std::string::npos);
+  EXPECT_NE(
+      evaluationError(test::makeScene(test::box(glm::dvec3(1e-300)), 16)).find("1e-300 units"),
+      std::string::npos);
+  EXPECT_NE(evaluationError(test::makeScene(test::box(glm::dvec3(1.0), glm::dvec3(1e300)), 16))
+                .find("from the origin"),
+            std::string::npos);
+  EXPECT_EQ(evaluationError(test::makeScene(test::box(glm::dvec3(1e90)), 16)), "");
+  EXPECT_EQ(evaluationError(test::makeScene(test::box(glm::dvec3(1e-90)), 16)), "");
+}
+
 TEST(LeafPlacement, APartTooFarOutForItsSizeIsRefused) {
   auto cube = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
   cube->name = "far cube";
