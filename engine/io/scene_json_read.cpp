@@ -277,9 +277,10 @@ class SceneReader {
       const std::string& key = it.key();
       std::string at = "/" + pointerToken(key);
       if (key == "format" || key == "version") continue;
-      if (key == "unit")
-        scene.settings.unit = nonEmptyString(*it, at);
-      else if (key == "settings")
+      if (key == "unit") {
+        nonEmptyString(*it, at);
+        scene.settings.unit = readableString(*it, at);
+      } else if (key == "settings")
         readSettings(*it, at, &scene.settings);
       else if (key != "root" && key != "measurements")
         fail(at, "unknown field \"" + key + "\"");
@@ -328,6 +329,22 @@ class SceneReader {
   const std::string& string(const json& v, const std::string& at) const {
     if (!v.is_string()) fail(at, "expected a string, got " + describe(v));
     return v.get_ref<const std::string&>();
+  }
+  // A name or unit shown to people (messages on a terminal, the editor): control characters
+  // (an escape sequence in a name recoloured the terminal and retitled its window) replaced by
+  // '?', with a warning.
+  std::string readableString(const json& v, const std::string& at) const {
+    std::string s = string(v, at);
+    size_t replaced = 0;
+    for (char& c : s)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+        c = '?';
+        ++replaced;
+      }
+    if (replaced > 0)
+      warn(at, std::to_string(replaced) + " control character" + (replaced == 1 ? "" : "s") +
+                   " replaced by '?'");
+    return s;
   }
   const std::string& nonEmptyString(const json& v, const std::string& at) const {
     const std::string& s = string(v, at);
@@ -482,7 +499,7 @@ class SceneReader {
     size_t self = entries_.size();
     entries_.push_back(Entry{node, {}, parent, indexInParent});
 
-    if (auto f = v.find("name"); f != v.end()) node->name = string(*f, at + "/name");
+    if (auto f = v.find("name"); f != v.end()) node->name = readableString(*f, at + "/name");
     if (auto f = v.find("transform"); f != v.end())
       node->transform = readTransform(*f, at + "/transform");
     if (auto f = v.find("color"); f != v.end()) {
