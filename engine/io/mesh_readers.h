@@ -38,6 +38,12 @@ void addWarning(MeshReadReport* report, const std::string& name, const std::stri
 
 // A token quoted for a message, shortened to a readable length: 'abc'.
 std::string quoted(std::string_view token);
+// Whether `bytes` start with a UTF-8 byte order mark (EF BB BF), which the text formats skip.
+inline bool hasUtf8Bom(std::string_view bytes) {
+  return bytes.size() >= 3 && static_cast<unsigned char>(bytes[0]) == 0xEF &&
+         static_cast<unsigned char>(bytes[1]) == 0xBB &&
+         static_cast<unsigned char>(bytes[2]) == 0xBF;
+}
 
 // Walks text line by line ('\n' or "\r\n"); numbers are 1-based. `startByte` lets a reader
 // continue after a header it parsed itself, numbering from `startLine`.

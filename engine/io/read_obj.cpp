@@ -191,6 +191,8 @@ class ObjParser {
 }  // namespace
 
 TriangleMesh parseObj(const std::string& name, const std::string& bytes, MeshReadReport* report) {
+  // A UTF-8 byte order mark before the first line (Windows editors write one): skipped.
+  if (hasUtf8Bom(bytes)) return parseObj(name, bytes.substr(3), report);
   const std::optional<std::string> lf = lfCopyIfCrOnlyLineEnds(bytes);
   TriangleMesh mesh = ObjParser(name, report).parse(lf ? *lf : bytes);
   requireMeasurableExtent(name, mesh);

@@ -187,6 +187,8 @@ class OffParser {
 }  // namespace
 
 TriangleMesh parseOff(const std::string& name, const std::string& bytes, MeshReadReport* report) {
+  // A UTF-8 byte order mark before the first line (Windows editors write one): skipped.
+  if (hasUtf8Bom(bytes)) return parseOff(name, bytes.substr(3), report);
   const std::optional<std::string> lf = lfCopyIfCrOnlyLineEnds(bytes);
   TriangleMesh mesh = OffParser(name, lf ? *lf : bytes, report).parse();
   requireMeasurableExtent(name, mesh);

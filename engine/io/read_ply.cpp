@@ -552,6 +552,8 @@ class AsciiBodyParser {
 }  // namespace
 
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report) {
+  // A UTF-8 byte order mark before the first line (Windows editors write one): skipped.
+  if (hasUtf8Bom(bytes)) return parsePly(name, bytes.substr(3), report);
   // Text with classic Mac OS line ends is read from an LF copy of the same length: the header's
   // byte offsets hold in the file too, from which a binary body is read as it is.
   const std::optional<std::string> lf = lfCopyIfCrOnlyLineEnds(bytes);

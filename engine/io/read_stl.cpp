@@ -285,6 +285,16 @@ bool visitStlBlocks(const std::string& path, const TriangleBlockVisitor& visit,
 }
 
 TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshReadReport* report) {
+  // An ASCII STL after a UTF-8 byte order mark (Windows editors write one); a binary STL whose
+  // header happens to start with those bytes keeps them (its count matches its size).
+  if (hasUtf8Bom(bytes)) {
+    const bool sizeMatches =
+        bytes.size() >= kHeaderBytes + 4 &&
+        kHeaderBytes + 4 + kFacetBytes * uint64_t(readU32(bytes, kHeaderBytes)) == bytes.size();
+    const std::string text = bytes.substr(3);
+    if (!sizeMatches && startsWithSolid(text) && looksLikeText(text))
+      return parseStl(name, text, report);
+  }
   bool binary = true;
   if (bytes.size() >= kHeaderBytes + 4) {
     const uint64_t count = readU32(bytes, kHeaderBytes);

@@ -233,6 +233,18 @@ TEST(MeshIoRoundTrip, ObjWithQuadsSlashesNegativeIndicesAndIgnoredStatements) {
   EXPECT_TRUE(anyWarningContains(report, "line/point"));
 }
 
+// Text files written by Windows editors start with a UTF-8 byte order mark: OBJ, ASCII STL, OFF
+// and ASCII PLY read the same with it (an OBJ was refused with "vertex index 8 is out of range",
+// an ASCII STL read as binary); a binary STL whose header starts with those bytes stays binary.
+TEST(MeshIoRoundTrip, AByteOrderMarkBeforeATextFormatIsSkipped) {
+  const std::string bom = "\xEF\xBB\xBF";
+  expectUnitCube(readMeshBytes("bom.obj", bom + cubeObj()));
+  expectUnitCube(readMeshBytes("bom.stl", bom + cubeAsciiStl()));
+  expectUnitCube(readMeshBytes("bom.off", bom + cubeOff()));
+  expectUnitCube(readMeshBytes("bom.ply", bom + cubeAsciiPly()));
+  expectUnitCube(readMeshBytes("bom_binary.stl", cubeBinaryStl(bom + "solid binary")));
+}
+
 TEST(MeshIoRoundTrip, ObjUnknownStatementIsAWarning) {
   MeshReadReport report;
   readMeshBytes("odd.obj", "frobnicate 1 2\n" + cubeObj() + "frobnicate 3\n", {}, &report);
