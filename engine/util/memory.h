@@ -9,7 +9,8 @@ namespace strata {
 // Peak resident set size of this process so far, in bytes (0 where unknown).
 uint64_t peakResidentBytes();
 
-// Memory the system can still give without swapping (MemAvailable), in bytes; 0 where unknown.
+// Memory the system can still give this process without swapping, in bytes: MemAvailable, or
+// less where `ulimit -v` or the process's control group allows less; 0 where unknown.
 uint64_t availableMemoryBytes();
 
 // Free space for an unprivileged writer in the file system holding `folder`, in bytes; 0 where
