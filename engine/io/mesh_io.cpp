@@ -225,7 +225,12 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
   }
 
   const size_t fileTriangles = mesh.triangles.size();
-  const PrepareReport prep = prepareMesh(mesh);
+  PrepareReport prep;
+  try {
+    prep = prepareMesh(mesh);
+  } catch (const Error& e) {
+    throw Error(name + ": " + e.what());
+  }
   if (mesh.triangles.empty()) {
     throw Error(name + ": contains no triangles (all " +
                 plural(fileTriangles, "triangle was", "triangles were") + " degenerate)");
