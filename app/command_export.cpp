@@ -32,6 +32,14 @@ int printExportSummary(const CliArgs& args, ExportSummary& summary) {
   return summary.result.passed() ? 0 : 3;
 }
 
+// What a stopped process says of its file: process 0 stopped during its check (streamed, the file
+// is in place before the check) wrote it.
+std::string writtenOrNot() {
+  const std::vector<std::string> written = committedFiles();
+  return written.empty() ? "nothing was written"
+                         : written.back() + " was written; its check did not finish";
+}
+
 // The export's part on this process of an MPI job (mpirun ... --distributed): process 0 reports
 // as a single-process export does, the others say what they did (unless quiet). A failure on any
 // process ends them all (ProcessGroup::abort), after this one says why.
@@ -84,13 +92,13 @@ int exportDistributed(const Scene& scene, const CliArgs& args, const std::string
     summary.processes = group.size();
     summary.distributedTilesSeconds = share.allTilesSeconds;
   } catch (const Cancelled&) {
-    std::fprintf(stderr, "\nstrata: %s cancelled; ending every process, nothing was written\n",
-                 who.c_str());
+    std::fprintf(stderr, "\nstrata: %s cancelled; ending every process, %s\n", who.c_str(),
+                 writtenOrNot().c_str());
     group.abort(130);
     return 130;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "strata: error (%s): %s; ending every process, nothing was written\n",
-                 who.c_str(), e.what());
+    std::fprintf(stderr, "strata: error (%s): %s; ending every process, %s\n", who.c_str(),
+                 e.what(), writtenOrNot().c_str());
     group.abort(1);
     return 1;
   }

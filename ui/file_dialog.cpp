@@ -112,6 +112,8 @@ void FileDialog::open(DialogPurpose purpose, const std::string& suggestion) {
   open_ = true;
   purpose_ = purpose;
   hasChosen_ = false;
+  selectAll_ = true;  // a refusal in an earlier dialog does not carry over
+  missingFolder_.clear();
   if (tool_ == "built-in") {
     std::snprintf(field_, sizeof(field_), "%s", suggestion.c_str());
     const bool scene = suggestion.size() >= 12 &&
@@ -383,6 +385,7 @@ void FileDialog::listFolder(const std::string& folder) {
   namespace fs = std::filesystem;
   entries_.clear();
   listError_.clear();
+  missingFolder_.clear();
   std::error_code ec;
   const fs::path dir = fs::absolute(folder.empty() ? "." : folder, ec).lexically_normal();
   folder_ = dir.string();

@@ -192,7 +192,6 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
 // The selected nodes, the primary (inspected) one last.
 using NodeList = std::vector<NodePtr>;
 
-// The kind, id, name, visibility and colour of `node`; visibility and colour for all `nodes`.
 // What the (one) selected part does in its parent, and the other roles on offer: each says what
 // the part would do before it is picked (setRole: moved onto its parent with that mode).
 void nodeRole(EditorState& state, const Node& node, size_t selected) {
@@ -236,6 +235,8 @@ void nodeRole(EditorState& state, const Node& node, size_t selected) {
   ImGui::EndCombo();
 }
 
+// The kind, id, name, visibility, colour and role of `node`; visibility and colour for all
+// `nodes`.
 void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes) {
   ImGui::Text("%s  %s", kindGlyph(node->kind), kindLabel(node->kind));
   ImGui::SameLine();

@@ -12,6 +12,7 @@
 
 #include "engine/eval/evaluator.h"
 #include "engine/io/user_files.h"
+#include "engine/util/error.h"
 #include "engine/util/limits.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
@@ -211,7 +212,10 @@ void exportOptionsDialog(EditorState& state) {
   }
   // A number set to the nearest end this frame is shown before anything is exported with it:
   // the Enter that entered it does not export.
-  const bool justClamped = outOfRange && !typing;
+  static int clampedAtFrame = -1000;
+  if (outOfRange && !typing) clampedAtFrame = ImGui::GetFrameCount();
+  // Half a second or so: the click that left the field does not export what it was set to.
+  const bool justClamped = ImGui::GetFrameCount() - clampedAtFrame < 30;
   if (outOfRange && !typing) {
     clampNote = std::to_string(*outOfRange) + " cells: an export takes " +
                 std::to_string(kMinResolution) + " to " + std::to_string(kMaxResolution) +
@@ -223,13 +227,27 @@ void exportOptionsDialog(EditorState& state) {
   for (int preset : {256, 512, 1024, 2048}) {
     char label[16];
     std::snprintf(label, sizeof(label), "%d", preset);
-    if (ImGui::Button(label, ImVec2(56, 0))) resolution = preset;
+    if (ImGui::Button(label, ImVec2(56, 0))) {
+      resolution = preset;
+      clampNote.clear();
+    }
     ImGui::SameLine();
   }
   ImGui::NewLine();
-  const Grid grid = Evaluator::gridFor(scene, resolution);
-  ImGui::TextDisabled("cell %.4g %s; the preview is at %d cells", grid.h,
-                      scene.settings.unit.c_str(), scene.settings.resolution);
+  // A scene no grid can hold (too large or too small to measure: Evaluator::gridFor) is said
+  // here and not exported, instead of its error ending the editor.
+  Grid grid;
+  std::string noGrid;
+  try {
+    grid = Evaluator::gridFor(scene, resolution);
+  } catch (const Error& e) {
+    noGrid = e.what();
+  }
+  if (noGrid.empty())
+    ImGui::TextDisabled("cell %.4g %s; the preview is at %d cells", grid.h,
+                        scene.settings.unit.c_str(), scene.settings.resolution);
+  else
+    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s", noGrid.c_str());
   ImGui::Checkbox("simplify", &state.exportSimplify);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -270,8 +288,13 @@ void exportOptionsDialog(EditorState& state) {
     ImGui::TextDisabled("estimating the triangles...");
   }
   ImGui::Separator();
-  if (ImGui::Button("Export", ImVec2(120, 0)) ||
-      (keyPressed(state, GLFW_KEY_ENTER) && !justClamped)) {
+  // Not on the frame a typed value was set to the range's end (its note shows first), nor for a
+  // scene no grid holds.
+  ImGui::BeginDisabled(justClamped || !noGrid.empty());
+  const bool exportNow = ImGui::Button("Export", ImVec2(120, 0)) ||
+                         (keyPressed(state, GLFW_KEY_ENTER) && !justClamped && noGrid.empty());
+  ImGui::EndDisabled();
+  if (exportNow) {
     const std::string path = *state.pendingExportPath;
     state.pendingExportPath.reset();
     ImGui::CloseCurrentPopup();

@@ -314,10 +314,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
 
 namespace {
 
-// The message the status bar shows: the latest one for 6 s (an error until clicked away or
-// settled by a save or another document), then the latest error not yet clicked away (a scene
-// that failed to open must not pass unseen); null for none.
-// The latest message while it is new (an error until clicked away, the others for 6 s). An
+// The message the status bar shows: the latest message while it is new (an error until clicked
+// away or settled, the others for 6 s); null for none. An
 // error older than a later message is not shown again in its place (an artist read a refusal
 // coming back after a successful undo as the undo's failure): it is counted beside it, and on
 // its own once that message has gone (drawStatusBar).

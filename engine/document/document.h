@@ -125,6 +125,7 @@ class Document {
   void markSaved(const std::string& path) {
     path_ = path;
     savedRevision_ = state_.revision;
+    resolutionStepOpen_ = false;  // a change after a save is a step of its own
   }
   // Makes the document belong to `path` without writing (e.g. after recovering it).
   void setPath(const std::string& path) { path_ = path; }

@@ -379,7 +379,10 @@ void checkSceneSize(const Bounds& b) {
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;
   checkExpansion(scene.root, scene.settings.maxLeaves);  // before any walk through instances
-  if (scene.settings.hasBounds) return makeGridExact(scene.settings.bounds, n);
+  if (scene.settings.hasBounds) {
+    checkSceneSize(scene.settings.bounds);
+    return makeGridExact(scene.settings.bounds, n);
+  }
   Bounds b = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
   if (b.empty()) allLeafBounds(scene.root, scene.root, glm::dmat4(1.0), true, 0, &b);
   checkSceneSize(b);

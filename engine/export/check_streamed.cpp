@@ -652,13 +652,22 @@ WrittenCheck compareStreamedFile(const std::string& path, StreamedMeshCheck& mea
                                  const TriangleFingerprint& expected, Progress& progress) {
   WrittenCheck result;
   progress.report("check", 0.0);
-  // Declared before the measures' result: a throw below waits for the read-back (which a
-  // cancel stops) before anything it reads goes.
+  // The read-back has a progress of its own, a child of `progress`: cancelled with it, and on
+  // its own where the measures fail (the future's destructor then waits for a read-back that
+  // stops at once, not for the whole file).
+  Progress reading(&progress);
   std::future<TriangleFingerprint> readBack = std::async(std::launch::async, [&] {
     const InputLimitLifted ownFile;  // the file just written: no input limit refuses it
-    return fingerprintFile(path, progress);
+    return fingerprintFile(path, reading);
   });
-  const MeshCheck measured = measures.finish();
+  MeshCheck measured;
+  try {
+    measured = measures.finish();
+  } catch (...) {
+    reading.cancel();
+    readBack.wait();
+    throw;
+  }
   result.fileDifference = fingerprintDifference(path, readBack.get(), expected);
   if (result.fileDifference.empty()) {
     result.check = measured;

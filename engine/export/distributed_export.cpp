@@ -399,7 +399,12 @@ ExportReport exportSceneDistributed(const Scene& scene, const std::string& path,
     // The others may be waiting for room or for their kTagFinish: tell them to stop.
     if (writer)
       for (int p = 1; p < size; ++p)
-        if (!done[size_t(p)]) group.post(p, kTagStop, std::vector<uint8_t>());
+        if (!done[size_t(p)]) {
+          try {
+            group.post(p, kTagStop, std::vector<uint8_t>());
+          } catch (...) {  // a transport that failed: the error being thrown says why
+          }
+        }
     throw;
   }
 }

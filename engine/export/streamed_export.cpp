@@ -215,7 +215,8 @@ class StreamedExportWriter::Impl {
     r_.mergeSeconds += steps.seconds();
     r_.deviationBound = std::sqrt(3.0) * r_.grid.h;
     // The facets measured as checkMesh would (check_streamed.h) on a thread of their own as they
-    // are written; the file read back afterwards and compared by fingerprint.
+    // are written; the file read back while the last chunks are measured, and compared by
+    // fingerprint.
     if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
     if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
       throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");

@@ -165,10 +165,12 @@ struct HalfEdge {
 // half-edges of one undirected edge are adjacent, in increasing triangle order within an edge;
 // bucketEnd[v] is the end of the half-edges whose lo is v (bucket v starts at bucketEnd[v - 1],
 // or 0). Edges whose ends coincide are left out. A counting sort on lo (in parallel: counts
-// and the scatter by atomic increments) and a sort of each bucket (a vertex's few edges) on
-// (hi, triangle, corner): O(n), where a comparison sort of the 3n half-edges took most of a
-// check's time. The result does not depend on the thread count. Throws strata::Error for a mesh
-// whose indices do not fit (2^31 vertices, 1.4 billion triangles).
+// and the scatter by atomic increments) and a sort of each bucket on (hi, triangle, corner): an
+// insertion sort of a vertex's few edges, O(n) in all, where a comparison sort of the 3n
+// half-edges took most of a check's time; a comparison sort of a bucket of more than 32 (a
+// cone's apex, a triangle repeated), n log n where the insertion sort took n^2. The result does not
+// depend on the thread count. Throws strata::Error for a mesh whose indices do not fit (2^31
+// vertices, 1.4 billion triangles).
 struct SortedHalfEdges {
   std::vector<HalfEdge> edges;
   std::vector<uint32_t> bucketEnd;  // one per vertex

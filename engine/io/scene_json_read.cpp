@@ -438,10 +438,14 @@ class SceneReader {
         readBounds(*it, p, &settings->bounds);
         settings->hasBounds = true;
       } else if (key == "maxLeaves") {
-        settings->maxLeaves = static_cast<uint64_t>(
-            integer(*it, p, 1, kMaxLeavesSetting,
-                    "an integer from 1 to " + std::to_string(kMaxLeavesSetting) +
-                        " (more only with the command line's --max-leaves)"));
+        // Files written before the ceiling (up to 2^40) still open, held to it, with a word.
+        const int64_t asked = integer(*it, p, 1, int64_t(1) << 40,
+                                      "an integer from 1 to " + std::to_string(kMaxLeavesSetting));
+        settings->maxLeaves = static_cast<uint64_t>(std::min(asked, kMaxLeavesSetting));
+        if (asked > kMaxLeavesSetting)
+          warn(p, std::to_string(asked) + " leaves held to " + std::to_string(kMaxLeavesSetting) +
+                      ", the most a scene file may allow; more with the command line's "
+                      "--max-leaves");
       } else {
         fail(p, "unknown field \"" + key + "\"");
       }

@@ -390,7 +390,7 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
       throw Error(message + (notRestored.empty() ? "; no file was replaced" : notRestored));
     }
   }
-  for (const Target& target : targets) noteCommitted(target.path);
+  noteCommitted(targets[0].path);  // the set's main file (an OBJ, not its MTL)
   std::vector<std::string> synced;
   for (const Target& target : targets) {
     if (std::find(synced.begin(), synced.end(), target.folderToOpen()) != synced.end()) continue;

@@ -80,8 +80,8 @@ struct AtomicFileWrite {
 // throws. Nothing is replaced unless every `write` succeeded.
 void writeFilesAtomically(const std::vector<AtomicFileWrite>& files);
 
-// Every path this process has written so far (committed, in order): what a command cancelled
-// after its file was in place (during its check) says it wrote.
+// Every path this process has written so far (committed, in order; of a set, its main file):
+// what a command cancelled after its file was in place (during its check) says it wrote.
 std::vector<std::string> committedFiles();
 
 // The temporary and backup files in `path`'s folder that belong to `path` by their name, of any

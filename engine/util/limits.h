@@ -19,8 +19,8 @@ constexpr int kMaxTreeDepth = 512;
 constexpr uint64_t kDefaultMaxLeaves = 100000;
 // The most a scene file may set it to (2^24, about 16.8 million: a file read from anywhere must
 // not lift its own guard into hours of work; the 2^40 it took before let an 8 KB scene of
-// doubled instances run for hours). The command line (`--max-leaves`, the user's own choice)
-// may go to 2^31 - 1.
+// doubled instances run for hours; a file asking more is held to it, with a warning). The
+// command line (`--max-leaves`, the user's own choice) may go to 2^31 - 1.
 constexpr int64_t kMaxLeavesSetting = int64_t(1) << 24;
 
 // Measurements a scene may hold (engine/document/measurement.h).

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <string>
 
 namespace strata {
 
@@ -28,6 +29,54 @@ bool readValue(const char* path, const char* format, unsigned long long* value) 
   return found;
 }
 
+// The room the memory controller leaves this process's control group and each group above it
+// (found through /proc/self/cgroup: cgroup v2, or v1's memory controller), the least of them:
+// its limit less its use, where the use counts page cache that reclaim would give back
+// (inactive_file) as free. False where no group limits memory.
+bool cgroupRoom(uint64_t* room) {
+  FILE* f = std::fopen("/proc/self/cgroup", "r");
+  if (!f) return false;
+  char line[4096];
+  std::string v2, v1;  // the group's path in each hierarchy ("" where not in one)
+  while (std::fgets(line, sizeof(line), f)) {
+    std::string text = line;
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    if (text.rfind("0::", 0) == 0) v2 = text.substr(3);
+    const size_t memory = text.find(":memory:");
+    if (memory != std::string::npos) v1 = text.substr(memory + 8);
+  }
+  std::fclose(f);
+  struct Hierarchy {
+    std::string root, path;
+    const char *limit, *usage, *inactive;
+  };
+  const Hierarchy hierarchies[] = {
+      {"/sys/fs/cgroup/memory", v1, "/memory.limit_in_bytes", "/memory.usage_in_bytes",
+       "total_inactive_file %llu"},
+      {"/sys/fs/cgroup", v2, "/memory.max", "/memory.current", "inactive_file %llu"}};
+  bool limited = false;
+  for (const Hierarchy& h : hierarchies) {
+    if (h.path.empty()) continue;
+    std::string path = h.path;
+    for (;;) {
+      const std::string dir = h.root + (path == "/" ? std::string() : path);
+      unsigned long long max = 0, used = 0, inactive = 0;
+      if (readValue((dir + h.limit).c_str(), "%llu", &max) &&
+          readValue((dir + h.usage).c_str(), "%llu", &used)) {
+        readValue((dir + "/memory.stat").c_str(), h.inactive, &inactive);
+        const uint64_t held = used > inactive ? used - inactive : 0;
+        const uint64_t left = max > held ? max - held : 0;
+        *room = limited ? std::min<uint64_t>(*room, left) : left;
+        limited = true;
+      }
+      if (path == "/") break;
+      const size_t slash = path.find_last_of('/');
+      path = slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
+    }
+  }
+  return limited;
+}
+
 }  // namespace
 
 uint64_t availableMemoryBytes() {
@@ -35,10 +84,11 @@ uint64_t availableMemoryBytes() {
   if (!readValue("/proc/meminfo", "MemAvailable: %llu kB", &kib)) return 0;
   uint64_t available = uint64_t(kib) * 1024u;
   // What this process may still map where a limit says less: `ulimit -v` (its address space
-  // less what it maps now) and its control group's memory (cgroup v2, else v1) less its use (an
-  // estimate against the host's memory accepted a job that a 8 GB limit then killed).
+  // less what it maps now, reserved ranges included: on the safe side) and its control groups'
+  // memory (an estimate against the host's memory accepted a job that an 8 GB limit then
+  // killed).
   struct rlimit limit {};
-  unsigned long long mapped = 0, max = 0, used = 0;
+  unsigned long long mapped = 0;
   if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
       readValue("/proc/self/status", "VmSize: %llu kB", &mapped)) {
     const uint64_t room = uint64_t(limit.rlim_cur) > mapped * 1024u
@@ -46,12 +96,10 @@ uint64_t availableMemoryBytes() {
                               : 0;
     available = std::min(available, room);
   }
-  if ((readValue("/sys/fs/cgroup/memory.max", "%llu", &max) &&
-       readValue("/sys/fs/cgroup/memory.current", "%llu", &used)) ||
-      (readValue("/sys/fs/cgroup/memory/memory.limit_in_bytes", "%llu", &max) &&
-       readValue("/sys/fs/cgroup/memory/memory.usage_in_bytes", "%llu", &used)))
-    available = std::min<uint64_t>(available, max > used ? max - used : 0);
-  return available;
+  uint64_t room = 0;
+  if (cgroupRoom(&room)) available = std::min(available, room);
+  // 0 means "unknown" to the callers: a limit reached is one byte, which refuses any job.
+  return std::max<uint64_t>(available, 1);
 }
 
 uint64_t freeDiskBytesForFile(const std::string& path) {

@@ -111,7 +111,7 @@ TEST(Document, TheResolutionIsAStepOfItsOwnThatOtherStepsKeep) {
   ASSERT_TRUE(doc.redo());
   EXPECT_EQ(findNode(doc.root(), box)->name, "brick");
   EXPECT_EQ(doc.scene().settings.resolution, start * 4);
-  // Undo a step made before the resolution changed: the resolution stays.
+  // Redone, the resolution's step is closed: a new change is a step of its own.
   ASSERT_TRUE(doc.undo());       // "brick"
   ASSERT_TRUE(doc.undo());       // the resolution
   ASSERT_TRUE(doc.redo());       // the resolution again

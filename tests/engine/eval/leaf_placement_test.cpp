@@ -47,6 +47,11 @@ TEST(LeafPlacement, ScenesTooLargeOrTooSmallToMeasureAreRefused) {
   EXPECT_NE(evaluationError(test::makeScene(test::box(glm::dvec3(1.0), glm::dvec3(1e300)), 16))
                 .find("from the origin"),
             std::string::npos);
+  // Bounds given by the scene itself are held to the same.
+  EXPECT_NE(evaluationError(test::makeSceneInBox(test::box(glm::dvec3(1.0)), 16, glm::dvec3(-1e308),
+                                                 glm::dvec3(1e308)))
+                .find("units"),
+            std::string::npos);
   EXPECT_EQ(evaluationError(test::makeScene(test::box(glm::dvec3(1e90)), 16)), "");
   EXPECT_EQ(evaluationError(test::makeScene(test::box(glm::dvec3(1e-90)), 16)), "");
 }

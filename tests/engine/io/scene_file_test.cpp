@@ -15,6 +15,7 @@
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
+#include "engine/util/limits.h"
 
 namespace strata {
 namespace {
@@ -584,6 +585,19 @@ TEST_F(SceneFileDir, ControlCharactersInNamesAndTheUnitAreReplaced) {
   EXPECT_NE(report.warnings[1].find("/root/children/0/name: 3 control characters replaced"),
             std::string::npos)
       << report.warnings[1];
+}
+
+// A file may allow at most 2^24 leaves; one that asks more (older files could ask 2^40) opens,
+// held to 2^24, with a warning naming --max-leaves.
+TEST_F(SceneFileDir, ALeafLimitAboveTheCeilingIsHeldToIt) {
+  writeText(dir_ / "s.strata.json",
+            "{\"format\": \"strata-scene\", \"version\": 1, \"settings\": {\"maxLeaves\": "
+            "1099511627776}, \"root\": {\"id\": 1, \"type\": \"box\"}}");
+  SceneLoadReport report;
+  const Scene scene = loadScene((dir_ / "s.strata.json").string(), &report);
+  EXPECT_EQ(scene.settings.maxLeaves, uint64_t(kMaxLeavesSetting));
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("--max-leaves"), std::string::npos) << report.warnings[0];
 }
 
 TEST_F(SceneFileDir, SceneFileMeshWithoutHashWarns) {
