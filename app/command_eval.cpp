@@ -105,8 +105,10 @@ Scene loadSceneFromArgs(const CliArgs& args, const std::string& path,
   meshOptions.allowOpen = args.has("--allow-open");
   Scene scene = loadScene(path, &load, meshOptions);
   applySceneLimits(args, &scene);
+  // A scene too large to expand, or too large or small to measure, refused here, naming the
+  // file (gridFor checks both).
   try {
-    checkExpansion(scene.root, scene.settings.maxLeaves);  // refused here, naming the file
+    Evaluator::gridFor(scene, 0);
   } catch (const Error& e) {
     throw Error(path + ": " + e.what());
   }

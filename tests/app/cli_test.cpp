@@ -437,6 +437,16 @@ TEST(Cli, SideFilesNeverReplaceTheInputOrTheOutput) {
   std::remove(device.c_str());
 }
 
+// A scene that no grid can measure (a box of 1e308) is refused before any work, naming the file.
+TEST(Cli, ASceneTooLargeToMeasureIsRefusedNamingTheFile) {
+  const std::string scene = temp("huge_box.strata.json");
+  std::ofstream(scene) << "{\"format\": \"strata-scene\", \"version\": 1, \"root\": {\"id\": 1, "
+                          "\"type\": \"box\", \"size\": [1e308, 1e308, 1e308]}}";
+  CliRun r = strata("eval " + scene + " --resolution 32");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find(scene + ": the scene spans 1e+308 units"), std::string::npos) << r.output;
+}
+
 // The tiles a streamed export's estimate names are the ones it then runs (its slabs, not the
 // in-memory export's cubes: one tile here, eight slabs).
 TEST(CliExport, AStreamedEstimateNamesTheTilesItRuns) {
