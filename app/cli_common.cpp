@@ -3,6 +3,7 @@
 #include "engine/io/mesh_io.h"
 #include "engine/util/memory.h"
 
+#include <atomic>
 #include <cstdint>
 #include <new>
 
@@ -40,6 +41,27 @@ int runGuarded(const std::function<int()>& body) {
     std::fprintf(stderr, "strata: error: out of memory; try a lower --resolution or --tile\n");
     return 1;
   }
+}
+
+void printWarning(const std::string& line) {
+  static std::atomic<size_t> printed{0};
+  const size_t n = printed++;
+  if (n < kWarningsShown)
+    std::fprintf(stderr, "strata: warning: %s\n", line.c_str());
+  else if (n == kWarningsShown)
+    std::fprintf(stderr,
+                 "strata: more warnings follow: not shown here (the summary counts them, "
+                 "--report's JSON holds them all)\n");
+}
+
+std::string warningLines(const std::vector<std::string>& warnings) {
+  std::string out;
+  for (size_t i = 0; i < warnings.size() && i < kWarningsShown; ++i)
+    out += "warning   " + warnings[i] + "\n";
+  if (warnings.size() > kWarningsShown)
+    out += "warning   and " + std::to_string(warnings.size() - kWarningsShown) +
+           " more (all in --report's JSON)\n";
+  return out;
 }
 
 bool quietRequested(const CliArgs& args) {

@@ -31,6 +31,15 @@ BackendChoice setUpBackend(const CliArgs& args, bool quiet, int processOnHost = 
 
 bool quietRequested(const CliArgs& args);
 
+// Warnings a command prints in full; past them, one line says more follow (a scene of 2,000
+// copies printed 2,001 lines of one warning). The report's JSON keeps every one.
+constexpr size_t kWarningsShown = 20;
+// Prints `line` as "strata: warning: ..." on stderr while fewer than kWarningsShown were printed
+// by this process, then one line that says the rest are not shown. Any thread.
+void printWarning(const std::string& line);
+// The summary's warning lines ("warning   ..."), the first kWarningsShown and a count of the rest.
+std::string warningLines(const std::vector<std::string>& warnings);
+
 // Applies --max-file-size (bytes, or with K, M, G, T) and --max-triangles to every file read
 // from now on. Call it before reading any input.
 void applyInputLimits(const CliArgs& args);

@@ -71,7 +71,7 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
       &used);
   for (const auto& w : result.warnings) {
     terminal.finish();
-    std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
+    printWarning(w);
     context.warnings.push_back(w);
   }
   Backend& backend = used ? *used : *choice.backend;
@@ -113,7 +113,7 @@ Scene loadSceneFromArgs(const CliArgs& args, const std::string& path,
     throw Error(path + ": " + e.what());
   }
   for (const auto& w : load.warnings) {
-    std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
+    printWarning(w);
     warnings->push_back(w);
   }
   return scene;
@@ -150,7 +150,7 @@ namespace {
 int runMeshScene(Scene& scene, const CliArgs& args, const std::string& what,
                  const std::vector<std::string>& files, const std::vector<std::string>& warnings) {
   applySceneLimits(args, &scene);
-  for (const auto& w : warnings) std::fprintf(stderr, "strata: warning: %s\n", w.c_str());
+  for (const auto& w : warnings) printWarning(w);
   std::string input = what + " of";
   for (const auto& f : files) input += " " + f;
   if (args.has("-o") || args.has("--output")) return exportAndReport(scene, args, input, warnings);

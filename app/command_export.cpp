@@ -21,7 +21,7 @@ namespace {
 int printExportSummary(const CliArgs& args, ExportSummary& summary) {
   for (const auto& line : summary.result.notices) summary.warnings.push_back(line);
   for (const auto& line : summary.result.contour.warnings) {
-    std::fprintf(stderr, "strata: warning: %s\n", line.c_str());
+    printWarning(line);
     summary.warnings.push_back(line);
   }
   std::fputs(formatExportText(summary).c_str(), stdout);

@@ -63,7 +63,7 @@ std::string formatReportText(const EvalResult& r, const ReportContext& c, bool l
     out << line;
   }
   if (!c.output.empty()) out << "wrote     " << c.output << " (" << c.outputPoints << " points)\n";
-  for (const auto& w : c.warnings) out << "warning   " << w << "\n";
+  out << warningLines(c.warnings);
   return out.str();
 }
 

@@ -117,7 +117,7 @@ std::string formatExportText(const ExportSummary& summary) {
   if (!s.result.fileDifference.empty())
     out << "          the file differs from the mesh written: " << s.result.fileDifference << "\n";
   out << "result    " << (s.result.passed() ? "passed" : "FAILED") << " the watertight check\n";
-  for (const auto& w : s.warnings) out << "warning   " << w << "\n";
+  out << warningLines(s.warnings);
   return out.str();
 }
 

@@ -447,6 +447,32 @@ TEST(Cli, ASceneTooLargeToMeasureIsRefusedNamingTheFile) {
   EXPECT_NE(r.output.find(scene + ": the scene spans 1e+308 units"), std::string::npos) << r.output;
 }
 
+// Warnings past the first 20 are counted, not printed (a scene of 2,000 copies printed 2,001
+// lines of one warning); the report's JSON keeps them all.
+TEST(Cli, ManyWarningsAreCountedPastTheFirstTwenty) {
+  const std::string scene = temp("specks.strata.json"), report = temp("specks.json");
+  std::string children;
+  for (int i = 0; i < 30; ++i)
+    children += "{\"id\": " + std::to_string(i + 2) + ", \"type\": \"box\", \"name\": \"speck " +
+                std::to_string(i) +
+                "\", \"size\": [1e-4, 1e-4, 1e-4], \"transform\": " + "{\"translate\": [" +
+                std::to_string(i) + ", 0, 0]}}, ";
+  std::ofstream(scene) << "{\"format\": \"strata-scene\", \"version\": 1, \"root\": {\"id\": 1, "
+                          "\"type\": \"union\", \"children\": ["
+                       << children << "{\"id\": 100, \"type\": \"box\", \"size\": [40, 5, 5]}]}}";
+  CliRun r = strata("eval " + scene + " --resolution 32 --report " + report);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("and 10 more"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("more warnings follow"), std::string::npos) << r.output;
+  size_t printed = 0;  // on stderr and in the summary, 20 each
+  for (size_t at = r.output.find("smaller than a cell"); at != std::string::npos;
+       at = r.output.find("smaller than a cell", at + 1))
+    ++printed;
+  EXPECT_EQ(printed, 40u) << r.output;
+  std::ifstream in(report);
+  EXPECT_EQ(nlohmann::json::parse(in)["warnings"].size(), 30u);
+}
+
 // The tiles a streamed export's estimate names are the ones it then runs (its slabs, not the
 // in-memory export's cubes: one tile here, eight slabs).
 TEST(CliExport, AStreamedEstimateNamesTheTilesItRuns) {
