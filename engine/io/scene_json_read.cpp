@@ -334,13 +334,25 @@ class SceneReader {
   // (an escape sequence in a name recoloured the terminal and retitled its window) replaced by
   // '?', with a warning.
   std::string readableString(const json& v, const std::string& at) const {
-    std::string s = string(v, at);
+    const std::string& in = string(v, at);
+    std::string s;
+    s.reserve(in.size());
     size_t replaced = 0;
-    for (char& c : s)
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-        c = '?';
+    for (size_t i = 0; i < in.size(); ++i) {
+      const auto c = static_cast<unsigned char>(in[i]);
+      // C0 controls and DEL, and C1 controls (U+0080 .. U+009F: 0xC2 0x80 .. 0xC2 0x9F, CSI
+      // among them), each one '?'.
+      const bool c1 = c == 0xC2 && i + 1 < in.size() &&
+                      static_cast<unsigned char>(in[i + 1]) >= 0x80 &&
+                      static_cast<unsigned char>(in[i + 1]) <= 0x9F;
+      if (c < 0x20 || c == 0x7f || c1) {
+        s += '?';
         ++replaced;
+        if (c1) ++i;
+      } else {
+        s += in[i];
       }
+    }
     if (replaced > 0)
       warn(at, std::to_string(replaced) + " control character" + (replaced == 1 ? "" : "s") +
                    " replaced by '?'");

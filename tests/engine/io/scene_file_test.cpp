@@ -576,13 +576,13 @@ TEST_F(SceneFileDir, ControlCharactersInNamesAndTheUnitAreReplaced) {
   writeText(dir_ / "s.strata.json",
             "{\"format\": \"strata-scene\", \"version\": 1, \"unit\": \"mm\\u0007\", "
             "\"root\": {\"id\": 1, \"type\": \"union\", \"children\": [{\"id\": 2, "
-            "\"type\": \"box\", \"name\": \"\\u001b[31mred\\u001b]0;title\\u0007\"}]}}");
+            "\"type\": \"box\", \"name\": \"\\u001b[31mred\\u001b]0;title\\u0007\\u009b1m\"}]}}");
   SceneLoadReport report;
   const Scene scene = loadScene((dir_ / "s.strata.json").string(), &report);
-  EXPECT_EQ(findNode(scene.root, 2)->name, "?[31mred?]0;title?");
+  EXPECT_EQ(findNode(scene.root, 2)->name, "?[31mred?]0;title??1m");
   EXPECT_EQ(scene.settings.unit, "mm?");
   ASSERT_EQ(report.warnings.size(), 2u);
-  EXPECT_NE(report.warnings[1].find("/root/children/0/name: 3 control characters replaced"),
+  EXPECT_NE(report.warnings[1].find("/root/children/0/name: 4 control characters replaced"),
             std::string::npos)
       << report.warnings[1];
 }
