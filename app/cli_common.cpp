@@ -3,6 +3,7 @@
 #include "engine/io/mesh_io.h"
 #include "engine/util/memory.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <new>
@@ -40,6 +41,20 @@ int runGuarded(const std::function<int()>& body) {
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "strata: error: out of memory; try a lower --resolution or --tile\n");
     return 1;
+  }
+}
+
+void namingInput(const std::string& input, const std::vector<std::string>& named,
+                 const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    const auto begins = [&](const std::string& file) {
+      return !file.empty() && message.compare(0, file.size() + 1, file + ":") == 0;
+    };
+    if (begins(input) || std::any_of(named.begin(), named.end(), begins)) throw;
+    throw Error(input + ": " + message);
   }
 }
 

@@ -20,6 +20,13 @@ extern const std::vector<std::string> kFlagOptions;
 // bad_alloc give 1, Cancelled gives 130.
 int runGuarded(const std::function<int()>& body);
 
+// Runs `body`; a strata::Error whose message does not begin with one of `named` (the files the
+// command reads and writes, as "FILE: ...") is rethrown as "INPUT: message", so that every
+// error of a command names a file (an error deep in the engine names none: "the tree is too
+// deep", a device out of memory).
+void namingInput(const std::string& input, const std::vector<std::string>& named,
+                 const std::function<void()>& body);
+
 // Starts choosing the backend of --backend (and applies --threads) while the command goes on
 // to read its inputs (startChoosingBackend): at the top of a command that later calls
 // setUpBackend. Not with --distributed (the process's GPU is known only once MPI has started).

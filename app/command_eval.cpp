@@ -48,8 +48,10 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
 
   {
     Progress probe;
-    const JobEstimate estimate =
-        estimateEvaluation(scene, options.resolution, choice.backend, probe);
+    JobEstimate estimate;
+    namingInput(context.input, {}, [&] {
+      estimate = estimateEvaluation(scene, options.resolution, choice.backend, probe);
+    });
     tellOrRefuseEstimate(
         estimate, args,
         "evaluation of " + context.input + " at " +
@@ -61,14 +63,17 @@ int evaluateAndReport(const Scene& scene, const CliArgs& args, ReportContext con
   Evaluator evaluator(choice.backend);
   TerminalProgress terminal(quietRequested(args));
   std::shared_ptr<Backend> used;
-  EvalResult result = evaluateWithFallback(
-      evaluator, scene, options, terminal.progress(),
-      [&](const std::string& line) {
-        terminal.finish();
-        std::fprintf(stderr, "strata: %s\n", line.c_str());
-        context.warnings.push_back(line);
-      },
-      &used);
+  EvalResult result;
+  namingInput(context.input, {}, [&] {
+    result = evaluateWithFallback(
+        evaluator, scene, options, terminal.progress(),
+        [&](const std::string& line) {
+          terminal.finish();
+          std::fprintf(stderr, "strata: %s\n", line.c_str());
+          context.warnings.push_back(line);
+        },
+        &used);
+  });
   for (const auto& w : result.warnings) {
     terminal.finish();
     printWarning(w);

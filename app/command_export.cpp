@@ -145,8 +145,11 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   if (root) {
     Progress probe;
     // The tiling the export will pick: each worker's share of its device's memory.
-    JobEstimate estimate = estimateExport(scene, options, output, choice.backend,
-                                          workersMemory(workers, perDevice), probe);
+    JobEstimate estimate;
+    namingInput(input, {output}, [&] {
+      estimate = estimateExport(scene, options, output, choice.backend,
+                                workersMemory(workers, perDevice), probe);
+    });
     uint64_t streamedPeak = streamedPeakOnWorkers(estimate, int(workers.size()));
     // Distributed: process 0 holds the tiles of the slabs the processes work in.
     if (group)
@@ -188,10 +191,12 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
       terminal.finish();
       std::fprintf(stderr, "strata: %s\n", line.c_str());
     };
-    summary.result = streamed ? exportSceneStreamed(scene, output, options, workers, perDevice,
-                                                    terminal.progress(), notice)
-                              : exportScene(scene, output, options, workers, perDevice,
-                                            terminal.progress(), notice);
+    namingInput(input, {output}, [&] {
+      summary.result = streamed ? exportSceneStreamed(scene, output, options, workers, perDevice,
+                                                      terminal.progress(), notice)
+                                : exportScene(scene, output, options, workers, perDevice,
+                                              terminal.progress(), notice);
+    });
   }
   return printExportSummary(args, summary);
 }

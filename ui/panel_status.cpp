@@ -42,23 +42,28 @@ std::string countText(uint64_t n) {
   return out;
 }
 
-// The grid an evaluation at `resolution` would use, remembered per document revision.
-bool gridAt(const EditorState& state, int resolution, Grid* grid) {
+// The grid an evaluation at `resolution` would use, remembered per document revision; false
+// with *why (the reason none does: an empty scene, one too large to measure) otherwise.
+bool gridAt(const EditorState& state, int resolution, Grid* grid, std::string* why) {
   static uint64_t revision = ~uint64_t(0);
   static int cachedResolution = 0;
   static bool ok = false;
   static Grid cached;
+  static std::string reason;
   if (revision != state.document.revision() || cachedResolution != resolution) {
     revision = state.document.revision();
     cachedResolution = resolution;
     try {
       cached = Evaluator::gridFor(state.document.scene(), resolution);
       ok = true;
-    } catch (const Error&) {
+      reason.clear();
+    } catch (const Error& e) {
       ok = false;
+      reason = e.what();
     }
   }
   *grid = cached;
+  *why = reason;
   return ok;
 }
 
@@ -199,7 +204,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
                          glm::all(glm::greaterThanEqual(parts.min, held.min)) &&
                          glm::all(glm::lessThanEqual(parts.max, held.max));
   if (shownGrid) grid = lastFullGrid;
-  if (shownGrid || gridAt(state, scene.settings.resolution, &grid)) {
+  std::string noGrid;
+  if (shownGrid || gridAt(state, scene.settings.resolution, &grid, &noGrid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
     const int longest = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));
@@ -230,7 +236,10 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
       ImGui::PopStyleColor();
     }
   } else {
-    ImGui::TextDisabled("(empty scene: no grid)");
+    // Why no grid holds the scene (empty, or too large or small to measure), wrapped.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("no grid: %s", noGrid.c_str());
+    ImGui::PopStyleColor();
   }
   ImGui::Separator();
   // The section plane: a view setting, cut and capped on the GPU as the splats are drawn.

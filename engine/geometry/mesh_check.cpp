@@ -849,9 +849,9 @@ int nestingDepth(const TriangleMesh& mesh, const LocalFrame& frame,
 }
 
 // Outward: a shell nested in an even number of closed shells gets a positive volume, in an odd
-// number (a cavity) a negative one. Returns whether any shell was flipped.
-bool orientShellsOutward(TriangleMesh& mesh, const LocalFrame& frame,
-                         const std::vector<Shell>& shells) {
+// number (a cavity) a negative one. Counts the shells flipped into *report.
+void orientShellsOutward(TriangleMesh& mesh, const LocalFrame& frame,
+                         const std::vector<Shell>& shells, PrepareReport* report) {
   std::vector<ShellPlacement> placements;
   placements.reserve(shells.size());
   for (const Shell& shell : shells) placements.push_back(placeShell(mesh, frame, shell));
@@ -860,15 +860,13 @@ bool orientShellsOutward(TriangleMesh& mesh, const LocalFrame& frame,
   for (size_t s = 0; s < shells.size(); ++s)
     if (shells[s].closed) closedBounds[s] = placements[s].bounds;
   const BoxTree containers(closedBounds);
-  bool flippedAny = false;
   for (size_t s = 0; s < shells.size(); ++s) {
     if (!shells[s].orientable || placements[s].sixVolume == 0.0) continue;
     const bool wantPositive = nestingDepth(mesh, frame, shells, placements, containers, s) % 2 == 0;
     if ((placements[s].sixVolume > 0.0) == wantPositive) continue;
-    flippedAny = true;
+    ++(wantPositive ? report->shellsTurnedOutward : report->cavitiesTurnedInward);
     for (uint32_t t : shells[s].triangles) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
   }
-  return flippedAny;
 }
 
 }  // namespace
@@ -881,7 +879,7 @@ PrepareReport prepareMesh(TriangleMesh& mesh) {
   std::vector<uint8_t> flip;
   const std::vector<Shell> shells = findShells(manifoldAdjacency(mesh), flip);
   report.reorientedTriangles = orientShellsConsistently(mesh, shells, flip);
-  report.flippedInsideOut = orientShellsOutward(mesh, frame, shells);
+  orientShellsOutward(mesh, frame, shells, &report);
   report.removedUnreferenced = dropUnreferenced(mesh);
   // Welded and without unreferenced vertices: no two vertices share a position, so the welding
   // map is the identity (no second hash of every position).

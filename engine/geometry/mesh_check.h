@@ -98,7 +98,12 @@ struct PrepareReport {
   size_t weldedVertices = 0;       // vertices merged into an identical one
   size_t removedDegenerate = 0;    // triangles removed (repeated index or zero area)
   size_t reorientedTriangles = 0;  // triangles flipped to agree with their neighbours
-  bool flippedInsideOut = false;   // the whole mesh (or a shell) was inside out and was flipped
+  // Closed shells flipped whole: one inside none (or inside an even number of others) that
+  // pointed in, turned outward; one inside an odd number of others (a cavity, by the even-odd
+  // nesting rule) that pointed out, turned inward.
+  size_t shellsTurnedOutward = 0;
+  size_t cavitiesTurnedInward = 0;
+  bool flippedInsideOut() const { return shellsTurnedOutward + cavitiesTurnedInward > 0; }
   size_t removedUnreferenced = 0;  // vertices no remaining triangle used, dropped
   MeshCheck check;                 // of the prepared mesh
 };

@@ -256,8 +256,23 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
                        "flipped " + plural(prep.reorientedTriangles, "triangle", "triangles") +
                            " to agree with their neighbours (inconsistent orientation)");
   }
-  if (prep.flippedInsideOut) {
-    meshio::addWarning(rep, name, "mesh was inside out (normals pointing in); flipped it");
+  if (prep.shellsTurnedOutward > 0) {
+    if (prep.shellsTurnedOutward == size_t(prep.check.components))
+      meshio::addWarning(rep, name, "mesh was inside out (normals pointing in); flipped it");
+    else
+      meshio::addWarning(rep, name,
+                         "flipped " + plural(prep.shellsTurnedOutward, "shell", "shells") + " of " +
+                             std::to_string(prep.check.components) +
+                             " that pointed inward (inside out)");
+  }
+  if (prep.cavitiesTurnedInward > 0) {
+    meshio::addWarning(
+        rep, name,
+        plural(prep.cavitiesTurnedInward, "closed shell lies", "closed shells lie") +
+            " inside another and pointed outward: taken as " +
+            (prep.cavitiesTurnedInward == 1 ? "a cavity" : "cavities") +
+            " (hollow, by the even-odd nesting rule) and turned inward; a part meant to fill "
+            "the other belongs in a node of its own");
   }
 
   const MeshCheck& check = prep.check;

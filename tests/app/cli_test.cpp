@@ -447,6 +447,20 @@ TEST(Cli, ASceneTooLargeToMeasureIsRefusedNamingTheFile) {
   EXPECT_NE(r.output.find(scene + ": the scene spans 1e+308 units"), std::string::npos) << r.output;
 }
 
+// An error found past reading (here the leaf limit, met when the scene is expanded) names what
+// the command reads, for eval and export alike.
+TEST(Cli, AnErrorPastReadingNamesTheInput) {
+  for (const std::string& out : {std::string(), " -o " + temp("limit.stl")}) {
+    CliRun r = strata("boolean union " + data("bunny.obj") + " " + data("eight.obj") +
+                      " --resolution 32 --max-leaves 1" + out);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("error: union of " + data("bunny.obj") + " " + data("eight.obj") +
+                            ": the scene expands to 2 visible leaves"),
+              std::string::npos)
+        << r.output;
+  }
+}
+
 // Warnings past the first 20 are counted, not printed (a scene of 2,000 copies printed 2,001
 // lines of one warning); the report's JSON keeps them all.
 TEST(Cli, ManyWarningsAreCountedPastTheFirstTwenty) {

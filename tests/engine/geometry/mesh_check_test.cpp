@@ -180,7 +180,7 @@ TEST(MeshCheckPrepare, WeldsIdenticalPositions) {
   EXPECT_EQ(r.weldedVertices, 28u);
   EXPECT_EQ(m.positions.size(), 8u);
   EXPECT_TRUE(r.check.watertight());
-  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_FALSE(r.flippedInsideOut());
   EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
 }
 
@@ -209,7 +209,7 @@ TEST(MeshCheckPrepare, FlipsInvertedMesh) {
   TriangleMesh m = inverted(cube());
   ASSERT_LT(signedVolume(m), 0.0);
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_EQ(r.reorientedTriangles, 0u);
   EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
   EXPECT_TRUE(r.check.watertight());
@@ -221,7 +221,7 @@ TEST(MeshCheckPrepare, RepairsInconsistentOrientation) {
   flip(m.triangles[7]);
   const PrepareReport r = prepareMesh(m);
   EXPECT_EQ(r.reorientedTriangles, 2u);
-  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_FALSE(r.flippedInsideOut());
   EXPECT_TRUE(r.check.watertight());
   EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
 }
@@ -231,7 +231,7 @@ TEST(MeshCheckPrepare, MostlyInvertedMeshIsRepairedOutward) {
   flip(m.triangles[5]);  // now 11 inward, 1 outward
   const PrepareReport r = prepareMesh(m);
   EXPECT_EQ(r.reorientedTriangles, 1u);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_DOUBLE_EQ(r.check.volume, 1.0);
 }
 
@@ -239,7 +239,8 @@ TEST(MeshCheckPrepare, CavityKeepsPointingInward) {
   TriangleMesh m = cube(glm::dvec3(0.0), 4.0);
   append(m, inverted(cube(glm::dvec3(1.0), 2.0)));
   const PrepareReport r = prepareMesh(m);
-  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_FALSE(r.flippedInsideOut());
+  EXPECT_EQ(r.cavitiesTurnedInward, 0u);
   EXPECT_TRUE(r.check.watertight());
   EXPECT_EQ(r.check.components, 2);
   EXPECT_DOUBLE_EQ(r.check.volume, 64.0 - 8.0);
@@ -249,7 +250,8 @@ TEST(MeshCheckPrepare, WronglyOrientedCavityAndShellAreFixed) {
   TriangleMesh m = inverted(cube(glm::dvec3(0.0), 4.0));  // outer shell inside out
   append(m, cube(glm::dvec3(1.0), 2.0));                  // cavity pointing outward
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_EQ(r.shellsTurnedOutward, 1u);
+  EXPECT_EQ(r.cavitiesTurnedInward, 1u);
   EXPECT_DOUBLE_EQ(r.check.volume, 64.0 - 8.0);
 }
 
@@ -258,7 +260,8 @@ TEST(MeshCheckPrepare, ShellInsideCavityIsSolidAgain) {
   append(m, cube(glm::dvec3(1.0), 4.0));  // cavity, given outward: must be flipped
   append(m, cube(glm::dvec3(2.0), 2.0));  // island inside the cavity: stays outward
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_EQ(r.shellsTurnedOutward, 0u);
+  EXPECT_EQ(r.cavitiesTurnedInward, 1u);
   EXPECT_DOUBLE_EQ(r.check.volume, 216.0 - 64.0 + 8.0);
 }
 
@@ -269,7 +272,7 @@ TEST(MeshCheckPrepare, CrossingShellsAreNotCavities) {
   TriangleMesh m = box(glm::dvec3(0.0, 0.0, 2.0), glm::dvec3(10.0, 10.0, 8.0));  // slab
   append(m, box(glm::dvec3(4.0, 4.0, 0.0), glm::dvec3(6.0, 6.0, 10.0)));         // pin through it
   const PrepareReport r = prepareMesh(m);
-  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_FALSE(r.flippedInsideOut());
   EXPECT_EQ(r.check.components, 2);
   EXPECT_DOUBLE_EQ(r.check.volume, 600.0 + 40.0);
 }
@@ -278,7 +281,7 @@ TEST(MeshCheckPrepare, SeparateInvertedShellsAreEachFlipped) {
   TriangleMesh m = inverted(cube());
   append(m, inverted(cube(glm::dvec3(3.0), 1.0)));
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_DOUBLE_EQ(r.check.volume, 2.0);
 }
 
@@ -337,7 +340,7 @@ TEST(MeshCheckRange, StrayVertexFarAwayDoesNotSpoilOrientation) {
   TriangleMesh m = inverted(cube());
   m.positions.push_back({1e20, -1e20, 0});  // used by no triangle
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_EQ(r.removedUnreferenced, 1u);
   EXPECT_EQ(r.check.volume, 1.0);
 }
@@ -347,7 +350,7 @@ TEST(MeshCheckRange, HugeCubeIsNeitherFlippedNorDegenerate) {
   // the degeneracy tests are right.
   TriangleMesh m = cube(glm::dvec3(0.0), 1e200);
   PrepareReport r = prepareMesh(m);
-  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_FALSE(r.flippedInsideOut());
   EXPECT_EQ(r.removedDegenerate, 0u);
   EXPECT_TRUE(r.check.watertight());
   EXPECT_EQ(r.check.degenerateTriangles, 0u);
@@ -356,7 +359,7 @@ TEST(MeshCheckRange, HugeCubeIsNeitherFlippedNorDegenerate) {
 
   m = inverted(cube(glm::dvec3(0.0), 1e200));
   r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_NEAR(checkMesh(scaled(m, 1e-200)).volume, 1.0, 1e-12);
 }
 
@@ -364,7 +367,7 @@ TEST(MeshCheckRange, TinyCubeIsNeitherFlippedNorDegenerate) {
   // Its volume (1e-600) underflows to 0, but the orientation and degeneracy tests are right.
   TriangleMesh m = cube(glm::dvec3(0.0), 1e-200);
   PrepareReport r = prepareMesh(m);
-  EXPECT_FALSE(r.flippedInsideOut);
+  EXPECT_FALSE(r.flippedInsideOut());
   EXPECT_EQ(r.removedDegenerate, 0u);
   EXPECT_EQ(m.triangles.size(), 12u);
   EXPECT_TRUE(r.check.watertight());
@@ -372,7 +375,7 @@ TEST(MeshCheckRange, TinyCubeIsNeitherFlippedNorDegenerate) {
 
   m = inverted(cube(glm::dvec3(0.0), 1e-200));
   r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_NEAR(checkMesh(scaled(m, 1e200)).volume, 1.0, 1e-12);
 
   m = cube(glm::dvec3(0.0), 1e-200);
@@ -386,7 +389,7 @@ TEST(MeshCheckRange, NestedShellsAtHugeScale) {
   TriangleMesh m = inverted(cube(glm::dvec3(0.0), 4e200));  // outer shell inside out
   append(m, cube(glm::dvec3(1e200), 2e200));                // cavity pointing outward
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_NEAR(checkMesh(scaled(m, 1e-200)).volume, 64.0 - 8.0, 1e-9);
 }
 
@@ -396,10 +399,10 @@ TEST(MeshCheckRange, CubeFarFromTheOrigin) {
   EXPECT_EQ(checkMesh(cube(far)).volume, 1.0);
   EXPECT_EQ(checkMesh(cube(far)).area, 6.0);
   TriangleMesh m = cube(far);
-  EXPECT_FALSE(prepareMesh(m).flippedInsideOut);
+  EXPECT_FALSE(prepareMesh(m).flippedInsideOut());
   m = inverted(cube(far));
   const PrepareReport r = prepareMesh(m);
-  EXPECT_TRUE(r.flippedInsideOut);
+  EXPECT_TRUE(r.flippedInsideOut());
   EXPECT_EQ(r.check.volume, 1.0);
 }
 

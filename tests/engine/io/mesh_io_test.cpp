@@ -670,6 +670,31 @@ TEST(MeshIoPrepare, CavityStaysInward) {
   EXPECT_EQ(checkMesh(m).components, 2);
 }
 
+// A shell inside another, both pointing outward: taken as a cavity (the even-odd rule) and said
+// so, not called "inside out" (it was not).
+TEST(MeshIoPrepare, AnOutwardShellInsideAnotherIsACavityAndSaysSo) {
+  const std::string text = cubeObj({}, -1, 0.0, 3.0) + cubeObj({}, -1, 1.0, 1.0, /*firstIndex=*/9);
+  MeshReadReport report;
+  const TriangleMesh m = readMeshBytes("nested.obj", text, {}, &report);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_TRUE(anyWarningContains(
+      report,
+      "nested.obj: 1 closed shell lies inside another and pointed outward: taken as a "
+      "cavity"));
+  EXPECT_FALSE(anyWarningContains(report, "inside out"));
+  EXPECT_NEAR(signedVolume(m), 27.0 - 1.0, 1e-12);
+}
+
+// One of two separate shells inside out: the warning counts it, not "the mesh".
+TEST(MeshIoPrepare, OneInvertedShellOfTwoIsCounted) {
+  const std::string text =
+      cubeObj({}, -1, 0.0, 1.0) + cubeObj(allTriangles(), -1, 3.0, 1.0, /*firstIndex=*/9);
+  MeshReadReport report;
+  const TriangleMesh m = readMeshBytes("two.obj", text, {}, &report);
+  EXPECT_TRUE(anyWarningContains(report, "two.obj: flipped 1 shell of 2 that pointed inward"));
+  EXPECT_NEAR(signedVolume(m), 2.0, 1e-12);
+}
+
 TEST(MeshIoPrepare, DuplicateVerticesAreWeldedWithWarning) {
   const std::string text = cubeObj() + "v 0 0 0\n";  // unused duplicate of vertex 1
   MeshReadReport report;
