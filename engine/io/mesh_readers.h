@@ -26,6 +26,14 @@ TriangleMesh parseStl(const std::string& name, const std::string& bytes, MeshRea
 bool visitStlBlocks(const std::string& path, const TriangleBlockVisitor& visit,
                     const Progress* progress);
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report);
+// A binary PLY's triangles in blocks (the format's MeshBlockReader): the faces read in pieces,
+// the vertices they use read on demand a page at a time (few at once for a file whose faces
+// use nearby vertices, as the streamed export writes them). False, with nothing visited, for
+// an ascii PLY or one with elements or face properties besides the vertices and their index
+// lists, or whose vertices do not fit the file (parsePly then reads or refuses it); errors
+// name the byte as parsePly does.
+bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
+                    const Progress* progress);
 TriangleMesh parseOff(const std::string& name, const std::string& bytes, MeshReadReport* report);
 // 3MF: a zip package; the geometry its build places, in the model's unit (read_3mf.cpp).
 TriangleMesh parse3mf(const std::string& name, const std::string& bytes, MeshReadReport* report);

@@ -4,13 +4,21 @@
 // included, is read past by its declared type. The header's counts must match the data
 // exactly: a short body, extra data after the last element, or an ascii line with the wrong
 // number of values is an error. Ascii bodies hold one element per line.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "engine/io/mesh_readers.h"
 #include "engine/io/reader_checks.h"
+#include "engine/util/atomic_file.h"
+#include "engine/util/error.h"
+#include "engine/util/parallel_for.h"
 
 namespace strata {
 namespace meshio {
@@ -549,7 +557,308 @@ class AsciiBodyParser {
   std::vector<uint32_t> polygon_;         // of the current face
 };
 
+// ---- In pieces ----
+
+// One value of `type` at `raw` (stored little- or big-endian), as double.
+double decode(const char* raw, Type type, bool bigEndian) {
+  unsigned char b[8];
+  const size_t n = sizeOf(type);
+  std::memcpy(b, raw, n);
+  uint16_t probe = 1;
+  unsigned char first;
+  std::memcpy(&first, &probe, 1);
+  if (bigEndian == (first == 1))
+    for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+  const auto get = [&](auto v) {
+    std::memcpy(&v, b, sizeof(v));
+    return double(v);
+  };
+  switch (type) {
+    case Type::Int8:
+      return get(int8_t());
+    case Type::UInt8:
+      return get(uint8_t());
+    case Type::Int16:
+      return get(int16_t());
+    case Type::UInt16:
+      return get(uint16_t());
+    case Type::Int32:
+      return get(int32_t());
+    case Type::UInt32:
+      return get(uint32_t());
+    case Type::Float32:
+      return get(float());
+    case Type::Float64:
+      return get(double());
+  }
+  return 0.0;
+}
+
+// n bytes of the file open as `fd` from byte `at`. Throws naming the file when it cannot.
+void readFileAt(const std::string& name, int fd, uint64_t at, char* into, size_t n) {
+  size_t done = 0;
+  while (done < n) {
+    const ssize_t got = ::pread(fd, into + done, n - done, off_t(at + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0)
+      throw Error(name + ": cannot read" +
+                  (got < 0 ? std::string(": ") + std::strerror(errno)
+                           : std::string(": the file ended early (it shrank while read)")));
+    done += size_t(got);
+  }
+}
+
+// A binary PLY's vertices read on demand, a page at a time (pages of kPageVertices decoded to
+// doubles, up to kPagesHeld of them, the least recently used let go), each coordinate checked
+// finite when its page is first read.
+class VertexPages {
+ public:
+  static constexpr uint64_t kPageVertices = uint64_t(1) << 16;  // 1.5 MB decoded
+  static constexpr size_t kPagesHeld = 32;
+
+  VertexPages(const std::string& name, int fd, const Header& header, const Layout& layout)
+      : name_(name), fd_(fd), header_(header), layout_(layout) {
+    for (const Property& p : layout.vertex->properties) {
+      offsets_.push_back(record_);
+      record_ += sizeOf(p.type);
+    }
+    const uint64_t pages = (layout.vertex->count + kPageVertices - 1) / kPageVertices;
+    slotOf_.assign(size_t(pages), -1);
+    checked_.assign(size_t(pages), false);
+  }
+
+  uint64_t count() const { return layout_.vertex->count; }
+  size_t recordBytes() const { return record_; }
+  uint64_t pages() const { return slotOf_.size(); }
+
+  // The positions of page `page`, read (and held) where not held. Before a page's first read
+  // throws for a coordinate that is not finite, every earlier page is read and checked: the
+  // error names the first such coordinate in the file, as the whole read does.
+  const glm::dvec3* page(uint64_t page) {
+    int slot = slotOf_[size_t(page)];
+    if (slot < 0) slot = load(page);
+    used_[size_t(slot)] = ++clock_;
+    return slots_[size_t(slot)].data();
+  }
+
+  // Every page not yet read, read and checked (in file order; the rest of the file's
+  // coordinates, as the whole read checks them all).
+  void checkAll() {
+    for (uint64_t p = 0; p < pages(); ++p)
+      if (!checked_[size_t(p)]) page(p);
+  }
+
+ private:
+  int load(uint64_t page) {
+    // A slot: a new one while fewer than kPagesHeld, else the least recently used.
+    int slot;
+    if (slots_.size() < kPagesHeld) {
+      slot = int(slots_.size());
+      slots_.emplace_back();
+      pageOf_.push_back(0);
+      used_.push_back(0);
+    } else {
+      slot = int(std::min_element(used_.begin(), used_.end()) - used_.begin());
+      slotOf_[size_t(pageOf_[size_t(slot)])] = -1;
+    }
+    const uint64_t first = page * kPageVertices;
+    const uint64_t n = std::min(kPageVertices, count() - first);
+    std::string raw(size_t(n * record_), '\0');
+    const uint64_t at = header_.bodyStart + first * record_;
+    readAt(at, &raw);
+    std::vector<glm::dvec3>& out = slots_[size_t(slot)];
+    out.resize(size_t(n));
+    const bool big = header_.format == Format::BigEndian;
+    const int axes[3] = {layout_.x, layout_.y, layout_.z};
+    bool finite = true;
+    for (uint64_t v = 0; v < n; ++v)
+      for (int k = 0; k < 3; ++k) {
+        const size_t property = size_t(axes[k]);
+        out[size_t(v)][k] = decode(raw.data() + v * record_ + offsets_[property],
+                                   layout_.vertex->properties[property].type, big);
+        finite = finite && std::isfinite(out[size_t(v)][k]);
+      }
+    if (!finite && !checked_[size_t(page)]) {
+      for (uint64_t earlier = 0; earlier < page; ++earlier)
+        if (!checked_[size_t(earlier)]) this->page(earlier);
+      for (uint64_t v = 0; v < n; ++v)
+        for (int k = 0; k < 3; ++k) {
+          const size_t property = size_t(axes[k]);
+          requireFiniteAtByte(name_, size_t(at + v * record_ + offsets_[property]),
+                              out[size_t(v)][k]);
+        }
+    }
+    checked_[size_t(page)] = true;
+    slotOf_[size_t(page)] = slot;
+    pageOf_[size_t(slot)] = page;
+    return slot;
+  }
+
+  void readAt(uint64_t at, std::string* into) const {
+    readFileAt(name_, fd_, at, into->data(), into->size());
+  }
+
+  const std::string& name_;
+  const int fd_;
+  const Header& header_;
+  const Layout& layout_;
+  std::vector<size_t> offsets_;  // of each vertex property in a record
+  size_t record_ = 0;
+  std::vector<int> slotOf_;  // per page: its slot, or -1
+  std::vector<bool> checked_;
+  std::vector<std::vector<glm::dvec3>> slots_;
+  std::vector<uint64_t> pageOf_, used_;  // per slot
+  uint64_t clock_ = 0;
+};
+
 }  // namespace
+
+bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
+                    const Progress* progress) {
+  InputFile file(path);
+  // The header, from the first 64 KB (a longer one: read whole).
+  std::string head(size_t(std::min<uint64_t>(file.size(), 65536)), '\0');
+  file.readExactly(head.data(), head.size());
+  if (hasUtf8Bom(head) || head.compare(0, 4, "ply\n") != 0) return false;
+  Header header;
+  Layout layout;
+  try {
+    header = HeaderParser(path, head).parse();
+    layout = findLayout(path, header);
+  } catch (const Error&) {
+    return false;  // the whole read names what is wrong
+  }
+  // The form read here: binary, the vertices (scalars only) and then the faces (the index list
+  // only), nothing else.
+  if (header.format == Format::Ascii || header.elements.size() != 2 ||
+      layout.vertex != &header.elements[0] || layout.face != &header.elements[1] ||
+      layout.face->properties.size() != 1)
+    return false;
+  for (const Property& p : layout.vertex->properties)
+    if (p.isList) return false;
+  VertexPages vertices(path, file.descriptor(), header, layout);
+  const uint64_t faceStart = header.bodyStart + vertices.count() * vertices.recordBytes();
+  const uint64_t faces = layout.face->count;
+  if (faceStart > file.size() || faces > file.size() - faceStart) return false;
+  const Property& list = layout.face->properties[0];
+  const bool big = header.format == Format::BigEndian;
+  const size_t countBytes = sizeOf(list.countType), indexBytes = sizeOf(list.type);
+
+  // The faces read in pieces of about 4 MB, each piece's triangles (fans of its polygons) listed
+  // by index first, then visited in blocks on several threads where their pages are few enough
+  // to hold at once (a file written in pieces by the streamed export refers to a few).
+  constexpr size_t kPieceBytes = size_t(4) << 20;
+  constexpr int64_t kBlockTriangles = 4096;
+  std::string buffer;
+  size_t bufferAt = 0;              // the next unread byte of the buffer
+  uint64_t bufferFile = faceStart;  // the file offset of buffer[0]
+  uint64_t fileAt = faceStart;      // the next byte to read from the file
+  const auto need = [&](size_t n, uint64_t face) {
+    if (buffer.size() - bufferAt >= n) return;
+    buffer.erase(0, bufferAt);
+    bufferFile += bufferAt;
+    bufferAt = 0;
+    const uint64_t left = file.size() - fileAt;
+    const size_t more = size_t(std::min<uint64_t>(left, std::max(kPieceBytes, n)));
+    const size_t had = buffer.size();
+    buffer.resize(had + more);
+    if (more > 0) readFileAt(path, file.descriptor(), fileAt, &buffer[had], more);
+    fileAt += more;
+    if (buffer.size() < n) {
+      vertices.checkAll();  // a coordinate not finite comes first, as in the whole read
+      failAtByte(path, size_t(file.size()),
+                 "unexpected end of file in element 'face' " + std::to_string(face) + " of " +
+                     std::to_string(faces) + " (truncated, or the header's counts are wrong)");
+    }
+  };
+  std::vector<std::array<uint32_t, 3>> triangles;
+  uint64_t visited = 0;  // triangles visited
+  std::vector<uint32_t> polygon;
+  for (uint64_t face = 0; face < faces;) {
+    // One piece's triangles, by index.
+    triangles.clear();
+    const uint64_t pieceEnd = bufferFile + bufferAt + kPieceBytes;
+    while (face < faces && bufferFile + bufferAt < pieceEnd) {
+      need(countBytes, face);
+      const size_t countAt = size_t(bufferFile + bufferAt);
+      const double count = decode(&buffer[bufferAt], list.countType, big);
+      bufferAt += countBytes;
+      if (count < 0) {
+        vertices.checkAll();
+        failAtByte(path, countAt, "negative list length in element 'face'");
+      }
+      const size_t n = size_t(count);
+      need(n * indexBytes, face);
+      if (n < 3) {
+        vertices.checkAll();
+        failAtByte(path, countAt,
+                   "face " + std::to_string(face) + " has " + std::to_string(n) +
+                       " vertices, needs at least 3");
+      }
+      polygon.clear();
+      for (size_t k = 0; k < n; ++k) {
+        const double index = decode(&buffer[bufferAt], list.type, big);
+        if (index < 0 || index >= double(vertices.count())) {
+          vertices.checkAll();
+          failAtByte(path, size_t(bufferFile + bufferAt),
+                     "vertex index " + std::to_string(static_cast<long long>(index)) +
+                         " is out of range: the file has " + std::to_string(vertices.count()) +
+                         " vertices");
+        }
+        bufferAt += indexBytes;
+        polygon.push_back(uint32_t(index));
+      }
+      for (size_t k = 1; k + 1 < polygon.size(); ++k)
+        triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+      ++face;
+    }
+    if (progress) progress->check();
+    // The pages this piece refers to, held at once where they fit.
+    std::vector<uint64_t> pages;
+    for (const auto& t : triangles)
+      for (uint32_t v : t) pages.push_back(v / VertexPages::kPageVertices);
+    std::sort(pages.begin(), pages.end());
+    pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
+    if (pages.size() <= VertexPages::kPagesHeld) {
+      std::vector<const glm::dvec3*> held(size_t(vertices.pages()), nullptr);
+      for (uint64_t p : pages) held[size_t(p)] = vertices.page(p);
+      parallelFor(0, int64_t(triangles.size()), kBlockTriangles, [&](int64_t first, int64_t last) {
+        std::vector<glm::dvec3> corners(size_t(3 * kBlockTriangles));
+        for (int64_t b = first; b < last; b += kBlockTriangles) {
+          const int64_t e = std::min(last, b + kBlockTriangles);
+          for (int64_t t = b; t < e; ++t)
+            for (int k = 0; k < 3; ++k) {
+              const uint32_t v = triangles[size_t(t)][size_t(k)];
+              corners[3 * size_t(t - b) + size_t(k)] =
+                  held[v / VertexPages::kPageVertices][v % VertexPages::kPageVertices];
+            }
+          visit(visited + uint64_t(b), corners.data(), size_t(e - b));
+        }
+      });
+    } else {
+      // Scattered (not a file of ours): a block at a time on this thread.
+      std::vector<glm::dvec3> corners;
+      for (size_t b = 0; b < triangles.size(); b += size_t(kBlockTriangles)) {
+        const size_t e = std::min(triangles.size(), b + size_t(kBlockTriangles));
+        corners.clear();
+        for (size_t t = b; t < e; ++t)
+          for (uint32_t v : triangles[t])
+            corners.push_back(
+                vertices.page(v / VertexPages::kPageVertices)[v % VertexPages::kPageVertices]);
+        visit(visited + b, corners.data(), e - b);
+      }
+    }
+    visited += triangles.size();
+  }
+  vertices.checkAll();
+  const uint64_t end = bufferFile + bufferAt;
+  if (end < file.size())
+    failAtByte(path, size_t(end),
+               std::to_string(file.size() - end) +
+                   " bytes of data after the last element (the header's counts disagree with "
+                   "the data)");
+  return true;
+}
 
 TriangleMesh parsePly(const std::string& name, const std::string& bytes, MeshReadReport* report) {
   // A UTF-8 byte order mark before the first line (Windows editors write one): skipped.

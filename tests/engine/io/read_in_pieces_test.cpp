@@ -9,10 +9,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/io/mesh_formats.h"
@@ -91,7 +93,98 @@ TEST(ReadInPieces, ListsWhatTheVerbatimReadListsAcrossPieces) {
             << t << " " << c;
     }
   }
-  EXPECT_GE(formats, 1);  // binary STL at least
+  EXPECT_GE(formats, 2);  // binary STL and PLY at least
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// What the whole read and the read in pieces say of `path` ("" where it reads); `inPieces`:
+// whether the pieces took it.
+std::pair<std::string, std::string> bothMessages(const std::string& path, bool* inPieces) {
+  std::string whole, pieces;
+  try {
+    readMeshFileVerbatim(path);
+  } catch (const Error& e) {
+    whole = e.what();
+  }
+  try {
+    visitAll(path, inPieces);
+  } catch (const Error& e) {
+    pieces = e.what();
+  }
+  return {whole, pieces};
+}
+
+// A binary PLY whose faces use vertices far apart (not the streamed export's order: pages read
+// and let go as they come) is read as the whole read lists it, and what is wrong with one is
+// named as the whole read names it: a coordinate not finite (the first in the file, even one no
+// face uses), an index out of range, a file cut short, data after the faces.
+TEST(ReadInPieces, BinaryPlyScatteredAndBrokenAsTheWholeRead) {
+  ExportMesh em;
+  const size_t n = 300000;  // vertices: five pages of 2^16
+  for (size_t i = 0; i < n; ++i)
+    em.mesh.positions.push_back({double(i), double(i % 13) * 0.5, double(i % 101) * 0.25});
+  for (uint32_t t = 0; t < 200000; ++t) {
+    const uint32_t a = uint32_t((uint64_t(t) * 7919) % n),
+                   b = uint32_t((uint64_t(t) * 104729 + 1) % n),
+                   c = uint32_t((uint64_t(t) * 15485863 + 2) % n);
+    if (a == b || b == c || a == c) continue;
+    em.mesh.triangles.push_back({a, b, c});
+    em.triangleLeaf.push_back(1);
+  }
+  em.leaves[1] = {"scattered", {1.0f, 1.0f, 1.0f}};
+  const std::string path = freshPath("scattered.ply");
+  writeMeshFile(path, em);
+  bool inPieces = false;
+  const Visited v = visitAll(path, &inPieces);
+  ASSERT_TRUE(inPieces);
+  ASSERT_EQ(v.times.size(), em.mesh.triangles.size());
+  for (size_t t = 0; t < em.mesh.triangles.size(); ++t) {
+    ASSERT_EQ(v.times[t], 1) << t;
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(v.corners[3 * t + size_t(c)], em.mesh.positions[em.mesh.triangles[t][size_t(c)]]);
+  }
+  const std::string good = fileBytes(path);
+  const size_t body = good.find("end_header\n") + 11;
+  const size_t record = 3 * 8 + 3;
+  const size_t faces = body + n * record;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto broken = [&](const std::string& name, const std::function<void(std::string&)>& edit,
+                          const std::string& expected) {
+    SCOPED_TRACE(name);
+    std::string bytes = good;
+    edit(bytes);
+    const std::string file = freshPath(name + ".ply");
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    bool taken = false;
+    const auto [whole, pieces] = bothMessages(file, &taken);
+    EXPECT_NE(whole.find(expected), std::string::npos) << whole;
+    EXPECT_EQ(pieces, whole);
+  };
+  // Vertices 250,000 (page 3) and 70,000 (page 1): the earlier one is named.
+  broken(
+      "nan",
+      [&](std::string& b) {
+        for (size_t vertex : {250000u, 70000u})
+          std::memcpy(&b[body + record * vertex + 8], &nan, 8);
+      },
+      std::to_string(body + record * 70000 + 8));
+  broken(
+      "index",
+      [&](std::string& b) {
+        const int32_t far = int32_t(n);
+        std::memcpy(&b[faces + 13 * 150000 + 1 + 4], &far, 4);
+      },
+      "vertex index " + std::to_string(n) + " is out of range");
+  broken(
+      "cut", [&](std::string& b) { b.resize(b.size() - 20); }, "unexpected end of file");
+  broken(
+      "extra", [&](std::string& b) { b += "more"; }, "4 bytes of data after the last element");
 }
 
 TEST(ReadInPieces, LeavesOtherFilesToTheWholeRead) {
@@ -102,6 +195,15 @@ TEST(ReadInPieces, LeavesOtherFilesToTheWholeRead) {
   writeMeshFile(obj, em);
   visitAll(obj, &inPieces);
   EXPECT_FALSE(inPieces);
+  // An ascii PLY.
+  const std::string asciiPly = freshPath("ascii.ply");
+  std::ofstream(asciiPly) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n"
+                             "0 1 0\n3 0 1 2\n";
+  visitAll(asciiPly, &inPieces);
+  EXPECT_FALSE(inPieces);
+  inPieces = true;
   // An ASCII STL.
   const std::string ascii = freshPath("ascii.stl");
   std::ofstream(ascii) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
