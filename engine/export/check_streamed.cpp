@@ -267,6 +267,20 @@ class Window {
   std::vector<uint32_t> reps_, roots_;  // evict's
 };
 
+// Facets added, three corners each, in one of the two precisions a file stores (float32: STL;
+// double: PLY).
+struct CornerBlock {
+  std::vector<glm::vec3> floats;
+  std::vector<glm::dvec3> doubles;
+  size_t facets() const { return (floats.size() + doubles.size()) / 3; }
+};
+std::vector<glm::vec3>& cornersOf(CornerBlock& b, const glm::vec3*) {
+  return b.floats;
+}
+std::vector<glm::dvec3>& cornersOf(CornerBlock& b, const glm::dvec3*) {
+  return b.doubles;
+}
+
 // What one chunk measured.
 struct ChunkResult {
   ChunkResult(const glm::dvec3& lo, const glm::dvec3& hi) : measures(lo, hi) {}
@@ -287,7 +301,9 @@ class ChunkCheck {
              std::vector<int32_t>* chi, const glm::dvec3& lo, const glm::dvec3& hi)
       : grid_(grid), r_(lo, hi), window_(sets, chi), next_(first), openUpTo_(openUpTo) {}
 
-  void add(const glm::vec3* corners, size_t facets) {
+  // Corners as the file stores them: float32 (STL) or double (PLY).
+  template <typename Corner>
+  void add(const Corner* corners, size_t facets) {
     for (size_t t = 0; t < facets; ++t) {
       const uint32_t facet = uint32_t(next_++);
       glm::dvec3 c[3];
@@ -355,7 +371,7 @@ struct StreamedMeshCheck::State {
   struct Chunk {
     size_t first;  // its first facet
     int openUpTo;  // ChunkCheck's
-    std::deque<std::vector<glm::vec3>> blocks;
+    std::deque<CornerBlock> blocks;
     size_t facets = 0;  // added so far
     bool complete = false;
   };
@@ -414,7 +430,7 @@ struct StreamedMeshCheck::State {
         }
         ChunkCheck check(grid, chunk->first, chunk->openUpTo, &sets, &chi, lo, hi);
         for (;;) {
-          std::vector<glm::vec3> block;
+          CornerBlock block;
           {
             std::unique_lock<std::mutex> lock(mutex);
             changed.wait(lock,
@@ -425,9 +441,10 @@ struct StreamedMeshCheck::State {
             chunk->blocks.pop_front();
           }
           progress.check();
-          check.add(block.data(), block.size() / 3);
+          check.add(block.floats.data(), block.floats.size() / 3);
+          check.add(block.doubles.data(), block.doubles.size() / 3);
           std::lock_guard<std::mutex> lock(mutex);
-          held -= block.size() / 3;
+          held -= block.facets();
           changed.notify_all();
         }
         ChunkResult r = check.finish();
@@ -491,9 +508,9 @@ size_t heldFacetsFor(int threads, size_t chunkFacets) {
 }
 }  // namespace
 
-uint64_t streamedCheckBytes(const Grid& grid, size_t facets) {
+uint64_t streamedCheckBytes(const Grid& grid, size_t facets, bool doubles) {
   const size_t held = heldFacetsFor(streamedCheckThreads(), streamedCheckChunkFacets(grid, facets));
-  return uint64_t(std::min(facets, held)) * 3 * sizeof(glm::vec3);
+  return uint64_t(std::min(facets, held)) * 3 * (doubles ? sizeof(glm::dvec3) : sizeof(glm::vec3));
 }
 
 StreamedMeshCheck::StreamedMeshCheck(const Grid& grid, size_t facets, const glm::dvec3& usedLo,
@@ -529,6 +546,15 @@ StreamedMeshCheck::~StreamedMeshCheck() {
 }
 
 void StreamedMeshCheck::add(std::vector<glm::vec3> corners) {
+  addCorners(std::move(corners));
+}
+
+void StreamedMeshCheck::add(std::vector<glm::dvec3> corners) {
+  addCorners(std::move(corners));
+}
+
+template <typename Corner>
+void StreamedMeshCheck::addCorners(std::vector<Corner> corners) {
   State& s = *state_;
   const size_t facets = corners.size() / 3;
   for (size_t at = 0; at < facets;) {
@@ -557,13 +583,14 @@ void StreamedMeshCheck::add(std::vector<glm::vec3> corners) {
     }
     // The whole block kept as it came where it lies in one chunk (the usual case), else a copy
     // of its part in this chunk.
-    std::vector<glm::vec3> block =
-        at == 0 && take == facets
-            ? std::move(corners)
-            : std::vector<glm::vec3>(corners.begin() + ptrdiff_t(3 * at),
+    CornerBlock block;
+    std::vector<Corner>& kept = cornersOf(block, static_cast<const Corner*>(nullptr));
+    kept = at == 0 && take == facets
+               ? std::move(corners)
+               : std::vector<Corner>(corners.begin() + ptrdiff_t(3 * at),
                                      corners.begin() + ptrdiff_t(3 * (at + take)));
     int highest = s.highestLayer;
-    for (const glm::vec3& c : block) highest = std::max(highest, layerOf(s.grid, double(c.z)));
+    for (const Corner& c : kept) highest = std::max(highest, layerOf(s.grid, double(c.z)));
     {
       std::lock_guard<std::mutex> lock(s.mutex);
       s.filling->blocks.push_back(std::move(block));

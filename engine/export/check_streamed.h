@@ -1,5 +1,5 @@
-// The check of a binary STL written in pieces (streamed_export.h), in memory that does not grow
-// with the mesh's vertices and edges: the facets measured in the file's order as they are
+// The check of a binary STL or PLY written in pieces (streamed_export.h), in memory that does not
+// grow with the mesh's vertices and edges: the facets measured in the file's order as they are
 // written, in runs ("chunks") on several threads.
 //
 // The streamed export writes its facets in the contour's edge order, the z index of each facet's
@@ -18,7 +18,9 @@
 // mesh), genus from each component's V - E + F, and the area and volume summed as checkMesh
 // sums them (TriangleMeasures); the vertices counted are the distinct positions (checkMesh on the
 // file read back; on an indexed mesh it counts the mesh's vertices, unused ones and ones at one
-// position included). A vertex that came back after its window had passed (a file not written in
+// position included; the streamed PLY's report gives the file's vertex count). A PLY's facets
+// are matched by position too, as an STL's: by index but where two of its vertices share a
+// position. A vertex that came back after its window had passed (a file not written in
 // that order) counts as new: its edges then show as boundary edges and the check fails; it never
 // passes a file it could not check.
 #pragma once
@@ -49,8 +51,9 @@ size_t streamedCheckChunkFacets(const Grid& grid, size_t facets);
 // facets in 5.6-5.8 s against 6.7-7.5 with 4, 12 no faster, the peak 2.1 -> 2.5 GB); one where
 // there are two cores or fewer.
 int streamedCheckThreads();
-// The bytes of corners the check holds at most (streamedCheckThreads' threads).
-uint64_t streamedCheckBytes(const Grid& grid, size_t facets);
+// The bytes of corners the check holds at most (streamedCheckThreads' threads), float32 or
+// `doubles`.
+uint64_t streamedCheckBytes(const Grid& grid, size_t facets, bool doubles = false);
 
 // The measures above on facets fed in the file's order as they are written (the streamed
 // export's write: check_written.h's split, where the mesh meant is measured beside the write and
@@ -70,13 +73,16 @@ class StreamedMeshCheck {
   ~StreamedMeshCheck();
   StreamedMeshCheck(const StreamedMeshCheck&) = delete;
   StreamedMeshCheck& operator=(const StreamedMeshCheck&) = delete;
-  // A block of facets, three corners each as the file stores them (binary STL: float32). Waits
-  // while as many chunks as allowed are held.
+  // A block of facets, three corners each as the file stores them (binary STL: float32; PLY:
+  // double). Waits while as many chunks as allowed are held.
   void add(std::vector<glm::vec3> corners);
+  void add(std::vector<glm::dvec3> corners);
   // Waits for the measures; rethrows what stopped them (Cancelled included).
   MeshCheck finish();
 
  private:
+  template <typename Corner>
+  void addCorners(std::vector<Corner> corners);
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -32,6 +32,11 @@ constexpr double kTileBytesPerTriangle = 80.0;
 // slabs' shared layers twice).
 constexpr double kStreamedBytesPerTriangle = 14.0;
 constexpr double kScratchBytesPerTriangle = 36.0;
+// A streamed PLY (indexed, coloured by leaf) holds besides, per vertex of the whole mesh, its
+// index in the file, its colour and a byte of state (8 bytes: 4 a triangle), and spills each
+// triangle's leaf (4 bytes); its check holds corners as doubles.
+constexpr double kStreamedIndexedBytesPerTriangle = 4.0;
+constexpr double kScratchLeafBytesPerTriangle = 4.0;
 // Writing and checking, per triangle (they are not in the probes' times): measured 0.12 to
 // 0.18 microseconds on this 2-core machine in the same six exports.
 constexpr double kWriteCheckSecondsPerTriangle = 2e-7;
@@ -234,7 +239,10 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   e.peakBytes =
       present + uint64_t(tileBytes + offsetBytes + double(e.triangles) * kExportBytesPerTriangle);
   // Streamed: its own tiling (streamedTiling), the tiles' arrays and piece of the slab being
-  // merged and a worker's slab ahead of it (where it has no slabs, the whole export's figures).
+  // merged and a worker's slab ahead of it (where it has no slabs, the whole export's figures);
+  // a PLY (`indexed`) numbers and colours its vertices before it writes them.
+  const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
+  const bool indexed = lowerExtension(path) == "ply";
   ExportTiling streamedTiles = tiling;
   try {
     streamedTiles = streamedTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
@@ -253,9 +261,12 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
       uint64_t(streamedSlabsAhead(1, e.streamedSlabs)) * e.streamedSlabTileBytes +
       uint64_t(double(e.triangles) * ((kTileBytesPerTriangle + kExportBytesPerTriangle) / slabs +
                                       kStreamedBytesPerTriangle)) +
-      streamedCheckBytes(e.grid, e.triangles);
+      streamedCheckBytes(e.grid, e.triangles, indexed);
   e.scratchBytes = uint64_t(double(e.triangles) * kScratchBytesPerTriangle);
-  const MeshFormat* format = meshFormatFor(path, MeshAccess::Write);
+  if (indexed) {
+    e.streamedPeakBytes += uint64_t(double(e.triangles) * kStreamedIndexedBytesPerTriangle);
+    e.scratchBytes += uint64_t(double(e.triangles) * kScratchLeafBytesPerTriangle);
+  }
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
   e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);
   return e;

@@ -16,6 +16,7 @@
 #include <exception>
 #include <future>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <unordered_map>
 #include <unordered_set>
@@ -125,6 +126,7 @@ struct Piece {
   std::vector<uint32_t> ids;
   std::vector<std::array<uint32_t, 3>> triangles;  // piece vertices, in edge order
   std::vector<uint8_t> resolved;
+  std::vector<uint32_t> leaves;  // per triangle, where the file colours its vertices (PLY)
 };
 
 struct PieceRecord {
@@ -132,6 +134,7 @@ struct PieceRecord {
   size_t vertices = 0, triangles = 0;
 };
 
+// The piece's leaves go with it where it has them (`leaves`: every piece of the export has).
 void spill(ScratchFile& file, const Piece& p, std::vector<PieceRecord>* records) {
   records->push_back({file.size(), p.keys.size(), p.triangles.size()});
   file.append(p.keys);
@@ -139,15 +142,17 @@ void spill(ScratchFile& file, const Piece& p, std::vector<PieceRecord>* records)
   file.append(p.ids);
   file.append(p.triangles);
   file.append(p.resolved);
+  file.append(p.leaves);
 }
 
-void load(const ScratchFile& file, const PieceRecord& r, Piece* p) {
+void load(const ScratchFile& file, const PieceRecord& r, bool leaves, Piece* p) {
   uint64_t at = r.offset;
   file.read(&at, r.vertices, &p->keys);
   file.read(&at, r.vertices, &p->positions);
   file.read(&at, r.vertices, &p->ids);
   file.read(&at, r.triangles, &p->triangles);
   file.read(&at, r.triangles, &p->resolved);
+  file.read(&at, leaves ? r.triangles : 0, &p->leaves);
 }
 
 // What the component steps know of a shell (a component with triangles), by its root id.
@@ -176,7 +181,8 @@ class StreamedExportWriter::Impl {
         r_(report.contour),
         stored_(storedCoordinate(path)),
         scratch_(path),
-        grid_(tiling.grid) {
+        grid_(tiling.grid),
+        indexed_(lowerExtension(path) == "ply") {
     r_.grid = tiling.grid;
     r_.tileCells = tiling.tileCells;
     r_.tiles = tiling.count();
@@ -218,16 +224,20 @@ class StreamedExportWriter::Impl {
     // are written; the file read back while the last chunks are measured, and compared by
     // fingerprint.
     if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
-    if (keptTriangles_ > std::numeric_limits<uint32_t>::max())
+    if (!indexed_ && keptTriangles_ > std::numeric_limits<uint32_t>::max())
       throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
     Stopwatch write;
+    if (indexed_) numberVertices();
     StreamedMeshCheck measures(grid_, keptTriangles_, used_.min, used_.max, progress_);
-    writeStl(&measures);
+    writeFile(&measures);
     report_.writeSeconds = write.seconds();
     Stopwatch check;
     const WrittenCheck written = compareStreamedFile(path_, measures, fingerprint_, progress_);
     r_.peakBytes = peakResidentBytes();
     report_.check = written.check;
+    // An indexed file's vertices are what checkMesh counts of it (the measures count the distinct
+    // positions the facets use: the same, but for a vertex a collapse left unused).
+    if (indexed_ && written.fileDifference.empty()) report_.check.vertices = plyVertices_;
     report_.fileDifference = written.fileDifference;
     report_.checkSeconds = check.seconds();
   }
@@ -259,6 +269,10 @@ class StreamedExportWriter::Impl {
       piece.positions = std::move(merged.mesh.mesh.positions);
       piece.triangles = std::move(merged.mesh.mesh.triangles);
       piece.resolved = std::move(merged.resolved);
+      if (indexed_) {
+        piece.leaves = std::move(merged.mesh.triangleLeaf);
+        for (const auto& [leaf, style] : merged.mesh.leaves) leafStyles_.emplace(leaf, style);
+      }
     }
     piece.ids.resize(piece.keys.size());
     std::unordered_map<uint64_t, uint32_t> top;
@@ -316,6 +330,11 @@ class StreamedExportWriter::Impl {
   // After the last slab: each id's root, and how many ids each root has.
   void finishPieces() {
     below_.clear();
+    // The face vertices' ids by key (the file lists them after the others, in key order).
+    if (indexed_) {
+      faceIds_.assign(faces_.begin(), faces_.end());
+      std::sort(faceIds_.begin(), faceIds_.end());
+    }
     faces_.clear();
     const size_t n = sets_.parent.size();
     for (size_t i = 0; i < n; ++i) sets_.parent[i] = sets_.find(uint32_t(i));
@@ -331,13 +350,14 @@ class StreamedExportWriter::Impl {
   void eachPiece(Visit visit) {
     if (pieces_.empty()) return;
     std::array<Piece, 2> loaded;
-    load(scratch_, pieces_[0], &loaded[0]);
+    load(scratch_, pieces_[0], indexed_, &loaded[0]);
     for (size_t k = 0; k < pieces_.size(); ++k) {
       progress_.check();
       std::future<void> next;  // waited for by its destructor if visit throws
       if (k + 1 < pieces_.size())
-        next = std::async(std::launch::async,
-                          [&, k] { load(scratch_, pieces_[k + 1], &loaded[(k + 1) % 2]); });
+        next = std::async(std::launch::async, [&, k] {
+          load(scratch_, pieces_[k + 1], indexed_, &loaded[(k + 1) % 2]);
+        });
       visit(static_cast<const Piece&>(loaded[k % 2]));
       if (next.valid()) next.get();
     }
@@ -559,6 +579,7 @@ class StreamedExportWriter::Impl {
   struct Replacement {
     bool alive = false;
     std::array<glm::dvec3, 3> corners{};
+    std::array<uint32_t, 3> ids{};  // the corners' global ids
   };
 
   bool keptTriangle(const Piece& p, size_t t) const {
@@ -695,9 +716,12 @@ class StreamedExportWriter::Impl {
       for (size_t t = 0; t < part.size(); ++t) repaired_[t].first = part[t].place;
       for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         std::array<glm::dvec3, 3> corners;
-        for (int k = 0; k < 3; ++k)
+        std::array<uint32_t, 3> ids;
+        for (int k = 0; k < 3; ++k) {
           corners[size_t(k)] = mesh.positions[mesh.triangles[t][size_t(k)]];
-        repaired_[partIndex[t]].second = Replacement{true, corners};
+          ids[size_t(k)] = byKey[mesh.triangles[t][size_t(k)]].second;
+        }
+        repaired_[partIndex[t]].second = Replacement{true, corners, ids};
       }
       keptTriangles_ -= 2 * repair.collapsed;
       if (repair.collapsed > 0) {
@@ -728,18 +752,23 @@ class StreamedExportWriter::Impl {
     }
   }
 
-  // A block of facets encoded as the file stores them (writeStl).
+  // A block of facets encoded as the file stores them (writeFile).
   struct EncodedBlock {
-    std::string bytes;               // binary STL facets
-    std::vector<glm::vec3> corners;  // as stored (float32: exact), for the measures
+    std::string bytes;                     // binary STL facets or PLY faces
+    std::vector<glm::vec3> corners;        // as stored, STL (float32: exact), for the measures
+    std::vector<glm::dvec3> exactCorners;  // as stored, PLY (doubles), for the measures
     TriangleFingerprint fingerprint;
   };
+
+  void requireFinite(const glm::dvec3& x) const {
+    if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+      throw Error(path_ + ": cannot write: a vertex is not finite");
+  }
 
   void encodeFacet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                    EncodedBlock* out) const {
     for (const glm::dvec3* x : {&a, &b, &c}) {
-      if (!std::isfinite(x->x) || !std::isfinite(x->y) || !std::isfinite(x->z))
-        throw Error(path_ + ": cannot write: a vertex is not finite");
+      requireFinite(*x);
       checkStlCoordinates(path_, *x);
     }
     const size_t at = out->bytes.size();
@@ -757,81 +786,252 @@ class StreamedExportWriter::Impl {
     }
   }
 
+  // A PLY face: its corners' indices in the file (numberVertices), its corners as stored
+  // (doubles: exactly) for the fingerprint and the measures.
+  void encodeFace(const std::array<uint32_t, 3>& ids, const glm::dvec3& a, const glm::dvec3& b,
+                  const glm::dvec3& c, EncodedBlock* out) const {
+    std::array<uint32_t, 3> corners;
+    for (int k = 0; k < 3; ++k) {
+      corners[size_t(k)] = index_[ids[size_t(k)]];
+      if (corners[size_t(k)] == kNoId)
+        throw Error(path_ + ": internal: a face uses a vertex the file does not list");
+    }
+    const size_t at = out->bytes.size();
+    out->bytes.resize(at + kPlyFaceBytes);
+    encodePlyFace(corners, &out->bytes[at]);
+    addToFingerprint(a, b, c, &out->fingerprint);
+    out->exactCorners.push_back(a);
+    out->exactCorners.push_back(b);
+    out->exactCorners.push_back(c);
+  }
+
   // The facets of block `blk` of piece `p` (keptPlaces `at`) encoded into *block.
   void encodeBlock(const Piece& p, const std::vector<uint64_t>& at, size_t blk,
                    EncodedBlock* block) const {
     uint64_t here = at[blk];
     size_t next = replacementCursor(here);
+    const auto emit = [&](const std::array<uint32_t, 3>& ids, const glm::dvec3& a,
+                          const glm::dvec3& b, const glm::dvec3& c) {
+      if (indexed_)
+        encodeFace(ids, a, b, c, block);
+      else
+        encodeFacet(a, b, c, block);
+    };
     for (size_t t = blockBegin(blk); t < blockEnd(blk, p.triangles.size()); ++t) {
       if (!keptTriangle(p, t)) continue;
       if (const Replacement* r = replacementAt(here++, &next)) {
-        if (r->alive) encodeFacet(r->corners[0], r->corners[1], r->corners[2], block);
+        if (r->alive) emit(r->ids, r->corners[0], r->corners[1], r->corners[2]);
         continue;
       }
       const auto& tri = p.triangles[t];
-      encodeFacet(finalPosition(p, tri[0]), finalPosition(p, tri[1]), finalPosition(p, tri[2]),
-                  block);
+      emit({p.ids[tri[0]], p.ids[tri[1]], p.ids[tri[2]]}, finalPosition(p, tri[0]),
+           finalPosition(p, tri[1]), finalPosition(p, tri[2]));
     }
   }
 
-  // Pass 5: the facets in the mesh's order, encoded and fingerprinted as stored in parallel
-  // blocks (a few per worker at a time), written and handed to the measures in order on a
-  // thread of their own while the next group of blocks is encoded.
-  void writeStl(StreamedMeshCheck* measures) {
-    progress_.report("write STL", 0.0);
+  // PLY: which vertices the file lists, in what order, in which colour (as writePly lists and
+  // colours the in-memory export's mesh): those a kept triangle uses (before the repair of flat
+  // triangles, as dropUnresolvedSpecks keeps them), in key order (the ids of the vertices that
+  // are not face vertices grow with their keys, slab after slab; the face vertices' keys sort
+  // after every other), each coloured by the leaf of the first triangle of the file (after the
+  // repair) that uses it. In order on this thread, a triangle at a time.
+  void numberVertices() {
+    progress_.report("write PLY", 0.0);
+    const size_t n = sets_.parent.size();
+    constexpr uint8_t kUsed = 1, kColoured = 2;
+    std::vector<uint8_t> state(n, 0);
+    colours_.assign(n, plyUnusedColour());
+    std::unordered_map<uint32_t, std::array<uint8_t, 3>> palette;
+    for (const auto& [leaf, style] : leafStyles_) palette[leaf] = plyColour(style);
+    uint64_t kept = 0;
+    eachPiece([&](const Piece& p) {
+      const std::vector<uint64_t> at = keptPlaces(p, &kept);
+      uint64_t here = at[0];
+      size_t next = replacementCursor(here);
+      uint32_t lastLeaf = kNoId;
+      std::array<uint8_t, 3> colour{};
+      for (size_t t = 0; t < p.triangles.size(); ++t) {
+        if (!keptTriangle(p, t)) continue;
+        const auto& tri = p.triangles[t];
+        for (uint32_t v : tri) state[p.ids[v]] |= kUsed;
+        const Replacement* r = replacementAt(here++, &next);
+        if (r && !r->alive) continue;
+        if (p.leaves[t] != lastLeaf) {
+          const auto found = palette.find(p.leaves[t]);
+          if (found == palette.end())
+            throw Error(path_ + ": internal: a triangle's leaf has no style");
+          colour = found->second;
+          lastLeaf = p.leaves[t];
+        }
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t id = r ? r->ids[size_t(k)] : p.ids[tri[size_t(k)]];
+          if (state[id] & kColoured) continue;
+          state[id] |= kColoured;
+          colours_[id] = colour;
+        }
+      }
+    });
+    constexpr uint32_t kFaceVertex = kNoId - 1;
+    index_.assign(n, kNoId);
+    for (const auto& [key, id] : faceIds_) index_[id] = kFaceVertex;
+    uint64_t listed = 0;
+    for (size_t id = 0; id < n; ++id)
+      if (index_[id] != kFaceVertex && (state[id] & kUsed)) index_[id] = uint32_t(listed++);
+    faceVertexStart_ = listed;
+    for (const auto& [key, id] : faceIds_)
+      index_[id] = (state[id] & kUsed) ? uint32_t(listed++) : kNoId;
+    if (listed > uint64_t(std::numeric_limits<int32_t>::max()))
+      throw Error(path_ + ": too many vertices for PLY's int indices (" + std::to_string(listed) +
+                  ")");
+    plyVertices_ = listed;
+  }
+
+  // Encodes blocks [0, blocks) with encode(b, &bytes) a group at a time on several threads
+  // (a block's failure kept, the first block's rethrown: the same message on any thread count),
+  // and writes each group in order on a thread of its own while the next is encoded; then(b,
+  // block) sees each block, in order, on this thread before its group is handed on.
+  template <typename Block, typename Encode, typename Hand>
+  void writeBlocks(size_t blocks, const Encode& encode, const Hand& hand,
+                   std::vector<Block>* handing, std::future<void>* writing) {
+    const size_t group = size_t(std::min(4 * workerCount(), 64));
+    for (size_t first = 0; first < blocks; first += group) {
+      const size_t count = std::min(group, blocks - first);
+      std::vector<Block> encoded(count);
+      std::vector<std::exception_ptr> failed(count);
+      parallelFor(0, int64_t(count), 1, [&](int64_t b, int64_t e) {
+        for (size_t k = size_t(b); k < size_t(e); ++k) {
+          try {
+            encode(first + k, &encoded[k]);
+          } catch (...) {
+            failed[k] = std::current_exception();
+          }
+        }
+      });
+      for (const std::exception_ptr& failure : failed)
+        if (failure) std::rethrow_exception(failure);
+      if (writing->valid()) writing->get();
+      *handing = std::move(encoded);
+      *writing = std::async(std::launch::async, hand);
+    }
+  }
+
+  // PLY's vertex section: each piece's vertices the file lists there (not a face vertex, not
+  // listed by the piece before: a vertex of the slab below has a smaller index), checked to come
+  // in the order numberVertices gave them; then the face vertices, in key order.
+  void writeVertices(std::ostream& out) {
+    uint64_t listed = 0;
+    std::vector<uint32_t> faceVertices;  // ids, in the file's order
+    for (const auto& [key, id] : faceIds_)
+      if (index_[id] != kNoId) faceVertices.push_back(id);
+    std::vector<glm::dvec3> facePositions(faceVertices.size());
+    std::vector<std::string> handing;
+    std::future<void> writing;  // declared after it: waited for first if a throw
+    const auto hand = [&] {
+      for (const std::string& bytes : handing)
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+    };
+    eachPiece([&](const Piece& p) {
+      const size_t blocks = blocksOf(p.keys.size());
+      const uint64_t pieceStart = listed;
+      const auto listedHere = [&](size_t i) {
+        const uint32_t index = index_[p.ids[i]];
+        return index != kNoId && !(p.keys[i] & kFaceKeyBit) && index >= pieceStart;
+      };
+      std::vector<uint64_t> first(blocks + 1, 0);  // the index of each block's first listed
+      std::vector<std::vector<uint32_t>> faceHere(blocks);
+      eachBlock(p.keys.size(), [&](size_t b, size_t begin, size_t end) {
+        uint64_t count = 0;
+        for (size_t i = begin; i < end; ++i) {
+          if ((p.keys[i] & kFaceKeyBit) && index_[p.ids[i]] != kNoId)
+            faceHere[b].push_back(uint32_t(i));
+          if (listedHere(i)) ++count;
+        }
+        first[b + 1] = count;
+      });
+      first[0] = pieceStart;
+      for (size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+      for (const std::vector<uint32_t>& block : faceHere)
+        for (uint32_t i : block)
+          facePositions[index_[p.ids[i]] - faceVertexStart_] = finalPosition(p, i);
+      writeBlocks<std::string>(
+          blocks,
+          [&](size_t b, std::string* bytes) {
+            bytes->resize(size_t(first[b + 1] - first[b]) * kPlyVertexBytes);
+            uint64_t expected = first[b];
+            for (size_t i = blockBegin(b); i < blockEnd(b, p.keys.size()); ++i) {
+              if (!listedHere(i)) continue;
+              if (index_[p.ids[i]] != expected)
+                throw Error(path_ + ": internal: the vertices come out of their key order");
+              const glm::dvec3 x = finalPosition(p, uint32_t(i));
+              requireFinite(x);
+              encodePlyVertex(x, colours_[p.ids[i]],
+                              &(*bytes)[size_t(expected - first[b]) * kPlyVertexBytes]);
+              ++expected;
+            }
+          },
+          hand, &handing, &writing);
+      listed = first[blocks];
+      progress_.report("write PLY", double(listed) / double(plyVertices_ + keptTriangles_));
+    });
+    if (writing.valid()) writing.get();
+    if (listed != faceVertexStart_)
+      throw Error(path_ + ": internal: " + std::to_string(listed) + " vertices listed, not " +
+                  std::to_string(faceVertexStart_));
+    std::string bytes(facePositions.size() * kPlyVertexBytes, '\0');
+    for (size_t k = 0; k < facePositions.size(); ++k) {
+      requireFinite(facePositions[k]);
+      encodePlyVertex(facePositions[k], colours_[faceVertices[k]], &bytes[k * kPlyVertexBytes]);
+    }
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    colours_ = std::vector<std::array<uint8_t, 3>>();  // read no more
+  }
+
+  // The file: its header, PLY's vertices, then the facets in the mesh's order, encoded and
+  // fingerprinted as stored in parallel blocks (a few per worker at a time), written and handed
+  // to the measures in order on a thread of their own while the next group of blocks is
+  // encoded.
+  void writeFile(StreamedMeshCheck* measures) {
+    const char* stage = indexed_ ? "write PLY" : "write STL";
+    progress_.report(stage, 0.0);
     writeFileAtomically(path_, [&](std::ostream& out) {
-      const std::string header = binaryStlHeader(unit_, uint32_t(keptTriangles_));
+      const std::string header = indexed_ ? binaryPlyHeader(unit_, plyVertices_, keptTriangles_)
+                                          : binaryStlHeader(unit_, uint32_t(keptTriangles_));
       out.write(header.data(), std::streamsize(header.size()));
+      if (indexed_) writeVertices(out);
+      const double before = indexed_ ? double(plyVertices_) : 0.0;
       uint64_t kept = 0;
-      // Blocks encoded at a time: a few a worker, at most 64 (two groups are held: 45 MB).
-      const size_t group = size_t(std::min(4 * workerCount(), 64));
       std::vector<EncodedBlock> handing;  // the group being written and measured
       std::future<void> writing;          // declared after it: waited for first if a throw
       const auto hand = [&] {
         for (EncodedBlock& block : handing) {
           out.write(block.bytes.data(), std::streamsize(block.bytes.size()));
           if (!block.corners.empty()) measures->add(std::move(block.corners));
+          if (!block.exactCorners.empty()) measures->add(std::move(block.exactCorners));
         }
       };
       eachPiece([&](const Piece& p) {
         const std::vector<uint64_t> at = keptPlaces(p, &kept);
-        const size_t blocks = at.size() - 1;
-        for (size_t first = 0; first < blocks; first += group) {
-          const size_t count = std::min(group, blocks - first);
-          // Allocated here, not on the workers (the blocks are freed on other threads, the
-          // corners by the measures', which would leave memory in each worker's arena), and
-          // sized by the block's kept triangles, at least its facets (the measures' bound on
-          // what they hold counts facets).
-          std::vector<EncodedBlock> encoded(count);
-          for (size_t k = 0; k < count; ++k) {
-            const size_t facets = size_t(at[first + k + 1] - at[first + k]);
-            encoded[k].bytes.reserve(facets * kStlFacetBytes);
-            encoded[k].corners.reserve(3 * facets);
-          }
-          // A block's failure (a coordinate the format cannot hold) kept, and the first block's
-          // rethrown: the same message on any thread count.
-          std::vector<std::exception_ptr> failed(count);
-          parallelFor(0, int64_t(count), 1, [&](int64_t b, int64_t e) {
-            for (size_t k = size_t(b); k < size_t(e); ++k) {
-              try {
-                encodeBlock(p, at, first + k, &encoded[k]);
-              } catch (...) {
-                failed[k] = std::current_exception();
+        // Sized by the block's kept triangles on the worker, at least its facets (the measures'
+        // bound on what they hold counts facets).
+        writeBlocks<EncodedBlock>(
+            at.size() - 1,
+            [&](size_t b, EncodedBlock* block) {
+              const size_t facets = size_t(at[b + 1] - at[b]);
+              block->bytes.reserve(facets * (indexed_ ? kPlyFaceBytes : kStlFacetBytes));
+              (indexed_ ? block->exactCorners.reserve(3 * facets)
+                        : block->corners.reserve(3 * facets));
+              encodeBlock(p, at, b, block);
+            },
+            [&] {
+              for (const EncodedBlock& block : handing) {
+                fingerprint_.triangles += block.fingerprint.triangles;
+                fingerprint_.sum += block.fingerprint.sum;
+                fingerprint_.mixedSum += block.fingerprint.mixedSum;
               }
-            }
-          });
-          for (const std::exception_ptr& failure : failed)
-            if (failure) std::rethrow_exception(failure);
-          for (const EncodedBlock& block : encoded) {
-            fingerprint_.triangles += block.fingerprint.triangles;
-            fingerprint_.sum += block.fingerprint.sum;
-            fingerprint_.mixedSum += block.fingerprint.mixedSum;
-          }
-          if (writing.valid()) writing.get();
-          handing = std::move(encoded);
-          writing = std::async(std::launch::async, hand);
-          progress_.report("write STL", double(fingerprint_.triangles) / double(keptTriangles_));
-        }
+              hand();
+            },
+            &handing, &writing);
+        progress_.report(stage, (before + double(kept)) / (before + double(keptTriangles_)));
       });
       if (writing.valid()) writing.get();
       if (fingerprint_.triangles != keptTriangles_)
@@ -866,6 +1066,15 @@ class StreamedExportWriter::Impl {
   std::vector<std::pair<uint64_t, Replacement>> repaired_;
   TriangleFingerprint fingerprint_;
   Bounds used_;  // around the corners the facets use, as stored
+  // PLY (indexed_): the leaves' styles; the face vertices' (key, id), in key order; per id its
+  // index in the file (kNoId: not listed) and colour; how many the file lists, and the index of
+  // the first face vertex.
+  const bool indexed_;
+  std::map<uint32_t, LeafStyle> leafStyles_;
+  std::vector<std::pair<uint64_t, uint32_t>> faceIds_;
+  std::vector<uint32_t> index_;
+  std::vector<std::array<uint8_t, 3>> colours_;
+  uint64_t plyVertices_ = 0, faceVertexStart_ = 0;
   // The last piece merged, being spilled to the scratch file (into pieces_) by spilling_;
   // declared last: destroyed (waited for) first.
   Piece spilled_;
@@ -922,9 +1131,10 @@ ExportTiling streamedTiling(const Scene& scene, const ContourOptions& options, u
 }
 
 std::string streamedExportRefusal(const std::string& path, const ExportOptions& options) {
-  if (lowerExtension(path) != "stl")
-    return "--stream writes binary STL (.stl) only: the other formats list every vertex before "
-           "the triangles, which a mesh written in pieces does not have yet";
+  const std::string extension = lowerExtension(path);
+  if (extension != "stl" && extension != "ply")
+    return "--stream writes binary STL (.stl) or PLY (.ply) only: OBJ and 3MF are written from "
+           "the whole mesh";
   if (options.simplifyCells > 0.0)
     return "--stream and --simplify do not go together: simplifying needs the whole mesh";
   return "";

@@ -22,17 +22,26 @@
 // Memory: the tiles and piece of the slab being merged (streamedTiling below), the tiles of the
 // slabs the workers contour meanwhile (streamedSlabsAhead), the piece before while it is
 // spilled and two pieces in the later passes, plus about 8 bytes a vertex of the whole mesh
-// (sets and counts) and, for the check, 8 bytes a triangle; disk: the scratch file, about 36
-// bytes a triangle, beside the output.
+// (sets and counts; a PLY 8 more: its index, colour and state) and, for the check, 8 bytes a
+// triangle; disk: the scratch file, about 36 bytes a triangle (a PLY 40: each triangle's leaf),
+// beside the output.
 //
-// Formats: binary STL (.stl) only, whose facets are written in order as they come; --simplify
+// Formats: binary STL (.stl), whose facets are written in order as they come, and binary PLY
+// (.ply), whose vertices come first: a pass over the pieces numbers the vertices the kept
+// triangles use (before the repair, as dropUnresolvedSpecks keeps them) in key order, the ids
+// of the vertices shared by neighbouring slabs being those of their global keys, and colours
+// each by the leaf of the first triangle (after the repair) that uses it; then the vertices are
+// written a piece at a time, each where its key first came, and the faces as STL's facets.
+// That file is the in-memory export's too, byte for byte. OBJ and 3MF are refused; --simplify
 // needs the whole mesh and is refused. The check (check_streamed.h) measures the facets as
 // checkMesh would, on a thread of its own as they are written, and then reads the file back in
-// pieces to compare its fingerprint with the one accumulated while writing.
+// pieces (a PLY's faces a piece at a time, the vertices they use a page at a time) to compare
+// its fingerprint with the one accumulated while writing.
 //
 // Synchronous (the tiles contoured on worker threads, a slab or so ahead of the merge on the
 // calling thread: exportSceneStreamed below); progress stages "export" (a step per tile), "merge"
-// (the passes over the pieces), "write STL" and "check", checked between and within them. Throws
+// (the passes over the pieces), "write STL" (or "write PLY") and "check", checked between and
+// within them. Throws
 // strata::Error naming `path`, or Cancelled; the file is written atomically (nothing is replaced
 // unless the write completes).
 #pragma once

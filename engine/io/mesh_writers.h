@@ -31,6 +31,7 @@
 // readMeshFileRaw (engine/io/mesh_io.h), which repairs nothing, and run checkMesh on it.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -68,5 +69,18 @@ constexpr size_t kStlFacetBytes = 50;
 std::string binaryStlHeader(const std::string& unit, uint32_t facets);
 void checkStlCoordinates(const std::string& path, const glm::dvec3& p);
 void encodeStlFacet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, char* out);
+
+// Binary PLY in pieces (the streamed export; writeMeshFile writes with the same): the header
+// naming the unit and the counts, one vertex's kPlyVertexBytes (x, y, z as little-endian
+// doubles, then red, green, blue) and one triangle's kPlyFaceBytes (the count 3, then three
+// little-endian int32 indices). A vertex's colour is that of the leaf of the first triangle
+// that uses it (plyColour of its style), kPlyUnusedColour for one no triangle uses.
+constexpr size_t kPlyVertexBytes = 27;
+constexpr size_t kPlyFaceBytes = 13;
+std::string binaryPlyHeader(const std::string& unit, uint64_t vertices, uint64_t faces);
+std::array<uint8_t, 3> plyColour(const LeafStyle& style);
+std::array<uint8_t, 3> plyUnusedColour();
+void encodePlyVertex(const glm::dvec3& p, const std::array<uint8_t, 3>& colour, char* out);
+void encodePlyFace(const std::array<uint32_t, 3>& corners, char* out);
 
 }  // namespace strata

@@ -90,6 +90,14 @@ TEST_F(DistributedCli, ThreeProcessesWriteTheFileOfOne) {
   ASSERT_EQ(pieces.code, 0) << pieces.output;
   EXPECT_NE(pieces.output.find("passed the watertight check"), std::string::npos) << pieces.output;
   EXPECT_TRUE(a == bytesOf(streamed)) << "the streamed file differs from the one process's";
+  // And as PLY (its vertices numbered on process 0 before the faces are written).
+  const std::string onePly = temp("one.ply"), threePly = temp("three_streamed.ply");
+  std::remove(threePly.c_str());
+  ASSERT_EQ(shell(std::string(STRATA_BINARY) + args + "-q -o " + onePly).code, 0);
+  const ShellRun ply = shell(std::string(kMpiEnvironment) + "mpirun -np 3 --oversubscribe " +
+                             STRATA_BINARY + args + "--distributed --stream -o " + threePly);
+  ASSERT_EQ(ply.code, 0) << ply.output;
+  EXPECT_TRUE(bytesOf(onePly) == bytesOf(threePly)) << "the streamed PLY differs";
 }
 
 TEST_F(DistributedCli, AProcessKilledHalfwayEndsTheJobAndLeavesTheOldFile) {

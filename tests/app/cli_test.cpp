@@ -392,9 +392,23 @@ TEST(CliExport, AStreamedExportWritesTheSameFile) {
   by << y.rdbuf();
   EXPECT_GT(bx.str().size(), 84u);
   EXPECT_EQ(bx.str(), by.str());
+  // PLY: its vertices listed before the faces, the same file as in memory.
+  CliRun wholePly = strata(job + temp("whole.ply"));
+  ASSERT_EQ(wholePly.code, 0) << wholePly.output;
   CliRun ply = strata(job + temp("streamed.ply") + " --stream");
-  EXPECT_EQ(ply.code, 1);
-  EXPECT_NE(ply.output.find("--stream writes binary STL"), std::string::npos) << ply.output;
+  ASSERT_EQ(ply.code, 0) << ply.output;
+  EXPECT_NE(ply.output.find("passed the watertight check"), std::string::npos) << ply.output;
+  std::ifstream px(temp("whole.ply"), std::ios::binary), py(temp("streamed.ply"), std::ios::binary);
+  std::stringstream bpx, bpy;
+  bpx << px.rdbuf();
+  bpy << py.rdbuf();
+  EXPECT_GT(bpx.str().size(), 300u);
+  EXPECT_TRUE(bpx.str() == bpy.str()) << "the streamed PLY differs";
+  CliRun obj = strata(job + temp("streamed.obj") + " --stream");
+  EXPECT_EQ(obj.code, 1);
+  EXPECT_NE(obj.output.find("--stream writes binary STL (.stl) or PLY (.ply) only"),
+            std::string::npos)
+      << obj.output;
   // --gpus goes with --stream (exportSceneStreamed on workers); without CUDA it says why.
   CliRun gpus = strata(job + streamed + " --stream --gpus 2 --backend cpu");
   EXPECT_EQ(gpus.code, 1);

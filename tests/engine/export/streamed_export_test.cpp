@@ -92,58 +92,86 @@ std::vector<Case> cases() {
   };
 }
 
+// `node` with each leaf a colour of its own (a PLY colours each vertex by the leaf of the first
+// triangle that uses it).
+NodePtr colourLeaves(const NodePtr& node, int* next) {
+  auto copy = std::make_shared<Node>(*node);
+  if (copy->children.empty()) {
+    const int k = (*next)++;
+    copy->color =
+        glm::vec3(0.2f + 0.3f * float(k % 3), 0.9f - 0.2f * float(k % 4), 0.1f * float(k));
+  }
+  for (NodePtr& c : copy->children) c = colourLeaves(c, next);
+  return copy;
+}
+
 // The single-process export and the streamed one, with its slabs a few cells deep: the same
-// bytes, the same component steps and repairs, the same verdict.
+// bytes, the same component steps and repairs, the same verdict; as binary STL and as PLY (its
+// vertices listed before the faces, welded by their global keys, coloured by leaf).
 TEST(StreamedExport, WritesTheSingleProcessFileByteForByte) {
   const std::string folder = freshFolder("identical");
-  int unfolded = 0, dropped = 0;
-  size_t repaired = 0;
-  for (const Case& c : cases()) {
-    SCOPED_TRACE(c.name);
-    const std::string whole = folder + "/" + c.name + "_whole.stl";
-    const std::string streamed = folder + "/" + c.name + "_streamed.stl";
-    Progress progress;
-    const ExportReport a =
-        exportScene(c.scene, whole, ExportOptions(), std::make_shared<CpuBackend>(), progress);
-    ExportOptions pieces;
-    pieces.tileCells = c.tile;
-    const ExportReport b =
-        exportSceneStreamed(c.scene, streamed, pieces, std::make_shared<CpuBackend>(), progress);
-    EXPECT_GT(b.contour.grid.cells.z / c.tile, 1);  // several slabs
-    EXPECT_EQ(bytesOf(whole), bytesOf(streamed));
-    EXPECT_EQ(a.contour.unfoldedShells, b.contour.unfoldedShells);
-    EXPECT_EQ(a.contour.droppedSpecks.components, b.contour.droppedSpecks.components);
-    EXPECT_EQ(a.contour.droppedSpecks.triangles, b.contour.droppedSpecks.triangles);
-    EXPECT_EQ(a.degenerateRepair.flipped, b.degenerateRepair.flipped);
-    EXPECT_EQ(a.degenerateRepair.rotated, b.degenerateRepair.rotated);
-    EXPECT_EQ(a.degenerateRepair.collapsed, b.degenerateRepair.collapsed);
-    EXPECT_EQ(a.degenerateRepair.left, b.degenerateRepair.left);
-    EXPECT_TRUE(b.fileDifference.empty()) << b.fileDifference;
-    EXPECT_EQ(a.passed(), b.passed());
-    // The streamed check measures what checkMesh measures, the same numbers (but the vertex
-    // count: checkMesh counts the mesh's vertices, the streamed check the file's positions).
-    EXPECT_EQ(a.check.triangles, b.check.triangles);
-    EXPECT_EQ(a.check.boundaryEdges, b.check.boundaryEdges);
-    EXPECT_EQ(a.check.nonManifoldEdges, b.check.nonManifoldEdges);
-    EXPECT_EQ(a.check.misorientedEdges, b.check.misorientedEdges);
-    EXPECT_EQ(a.check.degenerateTriangles, b.check.degenerateTriangles);
-    EXPECT_EQ(a.check.components, b.check.components);
-    EXPECT_EQ(a.check.genus, b.check.genus);
-    EXPECT_EQ(a.check.volume, b.check.volume);
-    EXPECT_EQ(a.check.area, b.check.area);
-    EXPECT_EQ(a.check.smallestTriangleArea, b.check.smallestTriangleArea);
-    const MeshCheck file = checkMesh(readMeshFileRaw(streamed));
-    EXPECT_EQ(file.vertices, b.check.vertices);
-    unfolded += b.contour.unfoldedShells;
-    dropped += b.contour.droppedSpecks.components;
-    repaired +=
-        b.degenerateRepair.flipped + b.degenerateRepair.rotated + b.degenerateRepair.collapsed;
+  for (const std::string extension : {"stl", "ply"}) {
+    SCOPED_TRACE(extension);
+    int unfolded = 0, dropped = 0;
+    size_t repaired = 0, coloured = 0;
+    for (Case& c : cases()) {
+      SCOPED_TRACE(c.name);
+      int leaves = 0;
+      c.scene.root = colourLeaves(c.scene.root, &leaves);
+      coloured += size_t(leaves);
+      const std::string whole = folder + "/" + c.name + "_whole." + extension;
+      const std::string streamed = folder + "/" + c.name + "_streamed." + extension;
+      Progress progress;
+      const ExportReport a =
+          exportScene(c.scene, whole, ExportOptions(), std::make_shared<CpuBackend>(), progress);
+      ExportOptions pieces;
+      pieces.tileCells = c.tile;
+      const ExportReport b =
+          exportSceneStreamed(c.scene, streamed, pieces, std::make_shared<CpuBackend>(), progress);
+      EXPECT_GT(b.contour.grid.cells.z / c.tile, 1);  // several slabs
+      EXPECT_TRUE(bytesOf(whole) == bytesOf(streamed)) << "the files differ";
+      EXPECT_EQ(a.contour.unfoldedShells, b.contour.unfoldedShells);
+      EXPECT_EQ(a.contour.droppedSpecks.components, b.contour.droppedSpecks.components);
+      EXPECT_EQ(a.contour.droppedSpecks.triangles, b.contour.droppedSpecks.triangles);
+      EXPECT_EQ(a.degenerateRepair.flipped, b.degenerateRepair.flipped);
+      EXPECT_EQ(a.degenerateRepair.rotated, b.degenerateRepair.rotated);
+      EXPECT_EQ(a.degenerateRepair.collapsed, b.degenerateRepair.collapsed);
+      EXPECT_EQ(a.degenerateRepair.left, b.degenerateRepair.left);
+      EXPECT_TRUE(b.fileDifference.empty()) << b.fileDifference;
+      EXPECT_EQ(a.passed(), b.passed());
+      // The streamed check measures what checkMesh measures, the same numbers (but the vertex
+      // count of an STL: checkMesh counts the mesh's vertices, the streamed check the file's
+      // positions; of a PLY both count the file's vertices).
+      EXPECT_EQ(a.check.triangles, b.check.triangles);
+      EXPECT_EQ(a.check.boundaryEdges, b.check.boundaryEdges);
+      EXPECT_EQ(a.check.nonManifoldEdges, b.check.nonManifoldEdges);
+      EXPECT_EQ(a.check.misorientedEdges, b.check.misorientedEdges);
+      EXPECT_EQ(a.check.degenerateTriangles, b.check.degenerateTriangles);
+      EXPECT_EQ(a.check.components, b.check.components);
+      EXPECT_EQ(a.check.genus, b.check.genus);
+      EXPECT_EQ(a.check.volume, b.check.volume);
+      EXPECT_EQ(a.check.area, b.check.area);
+      EXPECT_EQ(a.check.smallestTriangleArea, b.check.smallestTriangleArea);
+      const MeshCheck file = checkMesh(readMeshFileRaw(streamed));
+      EXPECT_EQ(file.vertices, b.check.vertices);
+      if (extension == "ply") {
+        EXPECT_EQ(a.check.vertices, b.check.vertices);
+      }
+      unfolded += b.contour.unfoldedShells;
+      dropped += b.contour.droppedSpecks.components;
+      repaired +=
+          b.degenerateRepair.flipped + b.degenerateRepair.rotated + b.degenerateRepair.collapsed;
+    }
+    // The list exercises both component steps, the repair (of the float32 STL stores: a PLY's
+    // doubles flatten nothing), leaves of several colours.
+    EXPECT_GT(unfolded, 0);
+    EXPECT_GT(dropped, 0);
+    if (extension == "stl") {
+      EXPECT_GT(repaired, 0u);
+    }
+    EXPECT_GT(coloured, cases().size());
   }
-  // The list exercises both component steps and the repair.
-  EXPECT_GT(unfolded, 0);
-  EXPECT_GT(dropped, 0);
-  EXPECT_GT(repaired, 0u);
-  EXPECT_EQ(entriesIn(folder), 2 * cases().size());  // no scratch file left behind
+  EXPECT_EQ(entriesIn(folder), 4 * cases().size());  // no scratch file left behind
 }
 
 // A box less a sphere and a ring, its eight slabs.
@@ -201,50 +229,52 @@ TEST(StreamedExport, OnAnyThreadCountWritesTheSingleProcessFile) {
   };
   size_t repaired = 0;
   int unfolded = 0, dropped = 0;
-  for (const Case& c : all) {
-    SCOPED_TRACE(c.name);
-    const std::string whole = folder + "/whole.stl", streamed = folder + "/streamed.stl";
-    Progress progress;
-    const ExportReport a =
-        exportScene(c.scene, whole, ExportOptions(), std::make_shared<CpuBackend>(), progress);
-    const std::string expected = bytesOf(whole);
-    ExportOptions pieces;
-    pieces.tileCells = c.tile;
-    int tiles = 0;
-    for (int threads : {1, 2, 3}) {
-      SCOPED_TRACE("threads " + std::to_string(threads));
-      setWorkerCount(threads);
-      const ExportReport b =
-          exportSceneStreamed(c.scene, streamed, pieces, std::make_shared<CpuBackend>(), progress);
-      setWorkerCount(0);
-      tiles = b.contour.tiles;
-      EXPECT_EQ(bytesOf(streamed), expected);
-      EXPECT_TRUE(b.fileDifference.empty()) << b.fileDifference;
-      EXPECT_EQ(a.check.triangles, b.check.triangles);
-      EXPECT_EQ(a.check.volume, b.check.volume);
-      EXPECT_EQ(a.contour.unfoldedShells, b.contour.unfoldedShells);
-      EXPECT_EQ(a.contour.droppedSpecks.triangles, b.contour.droppedSpecks.triangles);
-      EXPECT_EQ(a.degenerateRepair.collapsed, b.degenerateRepair.collapsed);
-      EXPECT_EQ(a.degenerateRepair.flipped, b.degenerateRepair.flipped);
-      if (threads == 1) {
-        unfolded += b.contour.unfoldedShells;
-        dropped += b.contour.droppedSpecks.components;
-        repaired +=
-            b.degenerateRepair.flipped + b.degenerateRepair.rotated + b.degenerateRepair.collapsed;
+  for (const std::string extension : {"stl", "ply"})
+    for (const Case& c : all) {
+      SCOPED_TRACE(c.name + "." + extension);
+      const std::string whole = folder + "/whole." + extension,
+                        streamed = folder + "/streamed." + extension;
+      Progress progress;
+      const ExportReport a =
+          exportScene(c.scene, whole, ExportOptions(), std::make_shared<CpuBackend>(), progress);
+      const std::string expected = bytesOf(whole);
+      ExportOptions pieces;
+      pieces.tileCells = c.tile;
+      int tiles = 0;
+      for (int threads : {1, 2, 3}) {
+        SCOPED_TRACE("threads " + std::to_string(threads));
+        setWorkerCount(threads);
+        const ExportReport b = exportSceneStreamed(c.scene, streamed, pieces,
+                                                   std::make_shared<CpuBackend>(), progress);
+        setWorkerCount(0);
+        tiles = b.contour.tiles;
+        EXPECT_TRUE(bytesOf(streamed) == expected) << "the files differ";
+        EXPECT_TRUE(b.fileDifference.empty()) << b.fileDifference;
+        EXPECT_EQ(a.check.triangles, b.check.triangles);
+        EXPECT_EQ(a.check.volume, b.check.volume);
+        EXPECT_EQ(a.contour.unfoldedShells, b.contour.unfoldedShells);
+        EXPECT_EQ(a.contour.droppedSpecks.triangles, b.contour.droppedSpecks.triangles);
+        EXPECT_EQ(a.degenerateRepair.collapsed, b.degenerateRepair.collapsed);
+        EXPECT_EQ(a.degenerateRepair.flipped, b.degenerateRepair.flipped);
+        if (threads == 1) {
+          unfolded += b.contour.unfoldedShells;
+          dropped += b.contour.droppedSpecks.components;
+          repaired += b.degenerateRepair.flipped + b.degenerateRepair.rotated +
+                      b.degenerateRepair.collapsed;
+        }
+      }
+      if (c.name == "slabbed") {
+        // Several pieces (a tile each: slabs of the whole cross-section) of many blocks, the mesh
+        // of more than three chunks.
+        EXPECT_GE(tiles, 8);
+        EXPECT_GT(a.check.triangles, size_t(3 * ShellRunSums::kChunk));
+        EXPECT_GT(a.check.triangles / size_t(tiles), size_t(3 * 4096));
       }
     }
-    if (c.name == "slabbed") {
-      // Several pieces (a tile each: slabs of the whole cross-section) of many blocks, the mesh
-      // of more than three chunks.
-      EXPECT_GE(tiles, 8);
-      EXPECT_GT(a.check.triangles, size_t(3 * ShellRunSums::kChunk));
-      EXPECT_GT(a.check.triangles / size_t(tiles), size_t(3 * 4096));
-    }
-  }
   EXPECT_GT(unfolded, 0);
   EXPECT_GT(dropped, 0);
   EXPECT_GT(repaired, 0u);
-  EXPECT_EQ(entriesIn(folder), 2u);
+  EXPECT_EQ(entriesIn(folder), 4u);
 }
 
 // A CPU backend that runs out of memory on every window: its worker's tiles go on on the CPU
@@ -654,7 +684,7 @@ TEST(StreamedExport, RefusesWhatCannotBeWrittenInPieces) {
   const std::string folder = freshFolder("refused");
   const Scene scene = cases()[0].scene;
   Progress progress;
-  EXPECT_THROW(exportSceneStreamed(scene, folder + "/part.ply", ExportOptions(),
+  EXPECT_THROW(exportSceneStreamed(scene, folder + "/part.obj", ExportOptions(),
                                    std::make_shared<CpuBackend>(), progress),
                Error);
   ExportOptions simplified;
