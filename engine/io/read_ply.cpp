@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -594,6 +595,13 @@ double decode(const char* raw, Type type, bool bigEndian) {
   return 0.0;
 }
 
+bool hostIsLittleEndian() {
+  const uint16_t probe = 1;
+  unsigned char first;
+  std::memcpy(&first, &probe, 1);
+  return first == 1;
+}
+
 // n bytes of the file open as `fd` from byte `at`. Throws naming the file when it cannot.
 void readFileAt(const std::string& name, int fd, uint64_t at, char* into, size_t n) {
   size_t done = 0;
@@ -670,14 +678,19 @@ class VertexPages {
     out.resize(size_t(n));
     const bool big = header_.format == Format::BigEndian;
     const int axes[3] = {layout_.x, layout_.y, layout_.z};
-    bool finite = true;
-    for (uint64_t v = 0; v < n; ++v)
-      for (int k = 0; k < 3; ++k) {
-        const size_t property = size_t(axes[k]);
-        out[size_t(v)][k] = decode(raw.data() + v * record_ + offsets_[property],
-                                   layout_.vertex->properties[property].type, big);
-        finite = finite && std::isfinite(out[size_t(v)][k]);
-      }
+    std::atomic<bool> finite{true};
+    parallelFor(0, int64_t(n), 4096, [&](int64_t first, int64_t last) {
+      bool all = true;
+      for (int64_t v = first; v < last; ++v)
+        for (int k = 0; k < 3; ++k) {
+          const size_t property = size_t(axes[k]);
+          const double x = decode(raw.data() + size_t(v) * record_ + offsets_[property],
+                                  layout_.vertex->properties[property].type, big);
+          out[size_t(v)][k] = x;
+          all = all && std::isfinite(x);
+        }
+      if (!all) finite = false;
+    });
     if (!finite && !checked_[size_t(page)]) {
       for (uint64_t earlier = 0; earlier < page; ++earlier)
         if (!checked_[size_t(earlier)]) this->page(earlier);
@@ -774,11 +787,57 @@ bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
   std::vector<std::array<uint32_t, 3>> triangles;
   uint64_t visited = 0;  // triangles visited
   std::vector<uint32_t> polygon;
+  // The usual form (a byte's count of 3, 32-bit little-endian indices; what Strata writes) read
+  // at once; anything else (or an index out of range: the message) as the whole read reads it.
+  const bool usual = !big && countBytes == 1 &&
+                     (list.type == Type::Int32 || list.type == Type::UInt32) &&
+                     hostIsLittleEndian();
+  const uint64_t usualLimit = list.type == Type::Int32
+                                  ? std::min<uint64_t>(vertices.count(), uint64_t(1) << 31)
+                                  : vertices.count();
+  std::vector<uint8_t> needed(size_t(vertices.pages()), 0);  // per page, for one piece
   for (uint64_t face = 0; face < faces;) {
-    // One piece's triangles, by index.
+    // One piece's triangles, by index: in the usual form, a piece of triangles decoded on
+    // several threads where every record is one; else (or where one is not) a face at a time.
     triangles.clear();
     const uint64_t pieceEnd = bufferFile + bufferAt + kPieceBytes;
-    while (face < faces && bufferFile + bufferAt < pieceEnd) {
+    const uint64_t whole = std::min<uint64_t>(faces - face, kPieceBytes / 13);
+    bool byFace = true;
+    if (usual && whole * 13 <= file.size() - (bufferFile + bufferAt)) {
+      need(size_t(whole * 13), face);
+      triangles.resize(size_t(whole));
+      std::atomic<bool> unusual{false};
+      const char* records = &buffer[bufferAt];
+      parallelFor(0, int64_t(whole), kBlockTriangles, [&](int64_t first, int64_t last) {
+        for (int64_t t = first; t < last; ++t) {
+          const char* record = records + 13 * size_t(t);
+          uint32_t corners[3];
+          std::memcpy(corners, record + 1, 12);
+          if (uint8_t(record[0]) != 3 || corners[0] >= usualLimit || corners[1] >= usualLimit ||
+              corners[2] >= usualLimit)
+            unusual = true;
+          triangles[size_t(t)] = {corners[0], corners[1], corners[2]};
+        }
+      });
+      if (unusual) {
+        triangles.clear();
+      } else {
+        bufferAt += size_t(whole * 13);
+        face += whole;
+        byFace = false;
+      }
+    }
+    while (byFace && face < faces && bufferFile + bufferAt < pieceEnd) {
+      if (usual && buffer.size() - bufferAt >= 13 && uint8_t(buffer[bufferAt]) == 3) {
+        uint32_t corners[3];
+        std::memcpy(corners, &buffer[bufferAt + 1], 12);
+        if (corners[0] < usualLimit && corners[1] < usualLimit && corners[2] < usualLimit) {
+          triangles.push_back({corners[0], corners[1], corners[2]});
+          bufferAt += 13;
+          ++face;
+          continue;
+        }
+      }
       need(countBytes, face);
       const size_t countAt = size_t(bufferFile + bufferAt);
       const double count = decode(&buffer[bufferAt], list.countType, big);
@@ -816,9 +875,14 @@ bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
     // The pages this piece refers to, held at once where they fit.
     std::vector<uint64_t> pages;
     for (const auto& t : triangles)
-      for (uint32_t v : t) pages.push_back(v / VertexPages::kPageVertices);
+      for (uint32_t v : t) {
+        const uint64_t page = v / VertexPages::kPageVertices;
+        if (needed[size_t(page)]) continue;
+        needed[size_t(page)] = 1;
+        pages.push_back(page);
+      }
+    for (uint64_t page : pages) needed[size_t(page)] = 0;
     std::sort(pages.begin(), pages.end());
-    pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
     if (pages.size() <= VertexPages::kPagesHeld) {
       std::vector<const glm::dvec3*> held(size_t(vertices.pages()), nullptr);
       for (uint64_t p : pages) held[size_t(p)] = vertices.page(p);
