@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -834,52 +835,81 @@ class StreamedExportWriter::Impl {
   // triangles, as dropUnresolvedSpecks keeps them), in key order (the ids of the vertices that
   // are not face vertices grow with their keys, slab after slab; the face vertices' keys sort
   // after every other), each coloured by the leaf of the first triangle of the file (after the
-  // repair) that uses it. In order on this thread, a triangle at a time.
+  // repair) that uses it. In parallel blocks of each piece: each block marks the vertices it
+  // uses and lists the first use of each vertex not coloured before the piece (and a few
+  // repeats), then the lists are taken in block order: the first use in the file wins.
   void numberVertices() {
     progress_.report("write PLY", 0.0);
     const size_t n = sets_.parent.size();
     constexpr uint8_t kUsed = 1, kColoured = 2;
-    std::vector<uint8_t> state(n, 0);
+    std::vector<std::atomic<uint8_t>> state(n);
+    for (auto& s : state) s.store(0, std::memory_order_relaxed);
     colours_.assign(n, plyUnusedColour());
     std::unordered_map<uint32_t, std::array<uint8_t, 3>> palette;
     for (const auto& [leaf, style] : leafStyles_) palette[leaf] = plyColour(style);
+    struct FirstUse {
+      uint32_t id;
+      std::array<uint8_t, 3> colour;
+    };
     uint64_t kept = 0;
     eachPiece([&](const Piece& p) {
       const std::vector<uint64_t> at = keptPlaces(p, &kept);
-      uint64_t here = at[0];
-      size_t next = replacementCursor(here);
-      uint32_t lastLeaf = kNoId;
-      std::array<uint8_t, 3> colour{};
-      for (size_t t = 0; t < p.triangles.size(); ++t) {
-        if (!keptTriangle(p, t)) continue;
-        const auto& tri = p.triangles[t];
-        for (uint32_t v : tri) state[p.ids[v]] |= kUsed;
-        const Replacement* r = replacementAt(here++, &next);
-        if (r && !r->alive) continue;
-        if (p.leaves[t] != lastLeaf) {
-          const auto found = palette.find(p.leaves[t]);
-          if (found == palette.end())
-            throw Error(path_ + ": internal: a triangle's leaf has no style");
-          colour = found->second;
-          lastLeaf = p.leaves[t];
+      std::vector<std::vector<FirstUse>> uses(at.size() - 1);
+      std::vector<std::exception_ptr> failed(at.size() - 1);
+      eachBlock(p.triangles.size(), [&](size_t blk, size_t begin, size_t end) {
+        try {
+          uint64_t here = at[blk];
+          size_t next = replacementCursor(here);
+          uint32_t lastLeaf = kNoId;
+          std::array<uint8_t, 3> colour{};
+          std::array<uint32_t, 1024> recent;  // ids listed lately (a repeat skipped)
+          recent.fill(kNoId);
+          for (size_t t = begin; t < end; ++t) {
+            if (!keptTriangle(p, t)) continue;
+            const auto& tri = p.triangles[t];
+            for (uint32_t v : tri) state[p.ids[v]].fetch_or(kUsed, std::memory_order_relaxed);
+            const Replacement* r = replacementAt(here++, &next);
+            if (r && !r->alive) continue;
+            if (p.leaves[t] != lastLeaf) {
+              const auto found = palette.find(p.leaves[t]);
+              if (found == palette.end())
+                throw Error(path_ + ": internal: a triangle's leaf has no style");
+              colour = found->second;
+              lastLeaf = p.leaves[t];
+            }
+            for (int k = 0; k < 3; ++k) {
+              const uint32_t id = r ? r->ids[size_t(k)] : p.ids[tri[size_t(k)]];
+              if (state[id].load(std::memory_order_relaxed) & kColoured) continue;
+              uint32_t& slot = recent[id % recent.size()];
+              if (slot == id) continue;
+              slot = id;
+              uses[blk].push_back({id, colour});
+            }
+          }
+        } catch (...) {
+          failed[blk] = std::current_exception();
         }
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t id = r ? r->ids[size_t(k)] : p.ids[tri[size_t(k)]];
-          if (state[id] & kColoured) continue;
-          state[id] |= kColoured;
-          colours_[id] = colour;
+      });
+      for (const std::exception_ptr& failure : failed)
+        if (failure) std::rethrow_exception(failure);
+      for (const std::vector<FirstUse>& block : uses)
+        for (const FirstUse& use : block) {
+          if (state[use.id].load(std::memory_order_relaxed) & kColoured) continue;
+          state[use.id].fetch_or(kColoured, std::memory_order_relaxed);
+          colours_[use.id] = use.colour;
         }
-      }
     });
     constexpr uint32_t kFaceVertex = kNoId - 1;
     index_.assign(n, kNoId);
     for (const auto& [key, id] : faceIds_) index_[id] = kFaceVertex;
+    const auto used = [&](size_t id) {
+      return (state[id].load(std::memory_order_relaxed) & kUsed) != 0;
+    };
     uint64_t listed = 0;
     for (size_t id = 0; id < n; ++id)
-      if (index_[id] != kFaceVertex && (state[id] & kUsed)) index_[id] = uint32_t(listed++);
+      if (index_[id] != kFaceVertex && used(id)) index_[id] = uint32_t(listed++);
     faceVertexStart_ = listed;
-    for (const auto& [key, id] : faceIds_)
-      index_[id] = (state[id] & kUsed) ? uint32_t(listed++) : kNoId;
+    for (const auto& [key, id] : faceIds_) index_[id] = used(id) ? uint32_t(listed++) : kNoId;
     if (listed > uint64_t(std::numeric_limits<int32_t>::max()))
       throw Error(path_ + ": too many vertices for PLY's int indices (" + std::to_string(listed) +
                   ")");
