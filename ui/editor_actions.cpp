@@ -205,13 +205,17 @@ void clearSelection(EditorState& state) {
   state.selection.clear();
 }
 
-void selectRange(EditorState& state, NodeId id) {
+void selectRange(EditorState& state, NodeId id, const std::vector<NodeId>& rows) {
   const NodeId anchor = primarySelection(state);
   if (!anchor || !findNode(state.document.root(), anchor)) {
     selectNode(state, id);
     return;
   }
-  const std::vector<NodeId> order = treeOrder(state.document.root());
+  // The rows shown where both ends are among them (a collapsed operation's parts are not),
+  // else the whole tree's order.
+  const bool shown = std::find(rows.begin(), rows.end(), anchor) != rows.end() &&
+                     std::find(rows.begin(), rows.end(), id) != rows.end();
+  const std::vector<NodeId> order = shown ? rows : treeOrder(state.document.root());
   const auto a = std::find(order.begin(), order.end(), anchor);
   const auto b = std::find(order.begin(), order.end(), id);
   if (a == order.end() || b == order.end()) return;
@@ -477,7 +481,8 @@ void duplicateSelection(EditorState& state) {
   const double step = state.snap.step;
   std::vector<NodeId> copies;
   state.document.beginInteraction();
-  for (NodeId id : state.selection)
+  // A part inside another selected part is copied with it, once.
+  for (NodeId id : outermostSelected(state.document.root(), state.selection))
     guarded(state, [&] {
       const NodeId copy = state.document.duplicate(id);
       copies.push_back(copy);
@@ -599,18 +604,6 @@ void groupSelection(EditorState& state, NodeKind kind) {
 }
 
 namespace {
-// The selected nodes that no other selected node holds (those move; the rest follow them).
-std::vector<NodeId> outermostSelected(const EditorState& state) {
-  std::vector<NodeId> out;
-  for (NodeId id : state.selection) {
-    std::vector<const Node*> path;
-    if (!pathToNode(state.document.root(), id, &path)) continue;
-    bool inside = false;
-    for (size_t i = 0; i + 1 < path.size(); ++i) inside = inside || isSelected(state, path[i]->id);
-    if (!inside) out.push_back(id);
-  }
-  return out;
-}
 
 // Moves node `id` by `delta` in the world (its translation changed in its parent's frame).
 void moveInWorld(EditorState& state, NodeId id, const glm::dvec3& delta) {
@@ -635,7 +628,7 @@ void alignSelection(EditorState& state, int axis, AlignEdge edge) {
   if (!active || target.empty()) return;
   state.document.beginInteraction();
   guarded(state, [&] {
-    for (NodeId id : outermostSelected(state)) {
+    for (NodeId id : outermostSelected(state.document.root(), state.selection)) {
       // Not the active part, nor a group holding it (moving that would move the target too).
       NodePtr node = findNode(state.document.root(), id);
       if (id == active || (node && findNode(node, active))) continue;
@@ -652,7 +645,7 @@ void alignSelection(EditorState& state, int axis, AlignEdge edge) {
 void dropSelectionToGround(EditorState& state) {
   state.document.beginInteraction();
   guarded(state, [&] {
-    for (NodeId id : outermostSelected(state)) {
+    for (NodeId id : outermostSelected(state.document.root(), state.selection)) {
       const Bounds b = selectionBounds(state.document.root(), {id});
       if (!b.empty()) moveInWorld(state, id, glm::dvec3(0.0, 0.0, -b.min.z));
     }
@@ -686,7 +679,9 @@ void renameNode(EditorState& state, NodeId id, const std::string& name) {
 void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode) {
   guarded(state, [&] {
     const std::string sentence = placementSentence(state, target, mode, dragged);
+    const NodePtr before = state.document.root();
     state.document.moveOnto(dragged, target, mode);
+    if (state.document.root() == before) return;  // dropped where it was
     if (NodePtr node = findNode(state.document.root(), dragged))
       logInfo(state, displayName(*node) + " " + sentence);
   });
@@ -819,6 +814,28 @@ void discardRecovery(EditorState& state) {
   removeRecoveryFile(state.recoveryPath);
 }
 
+std::string documentFolder(const EditorState& state) {
+  if (state.document.path().empty()) return "";
+  // Absolute: the file dialog resolves a relative name in the folder it shows, which for a
+  // document opened by a relative path would double that path.
+  std::error_code error;
+  const std::filesystem::path path =
+      std::filesystem::absolute(std::filesystem::path(state.document.path()), error);
+  return (error ? std::filesystem::path(state.document.path()) : path).parent_path().string() + "/";
+}
+
+std::string exportSuggestion(const EditorState& state) {
+  if (!state.lastExportPath.empty() && state.lastExportDocument == state.document.path())
+    return state.lastExportPath;
+  if (state.document.path().empty()) return "part.stl";
+  std::string name = std::filesystem::path(state.document.path()).filename().string();
+  const std::string suffix = ".strata.json";
+  if (name.size() > suffix.size() &&
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    name = name.substr(0, name.size() - suffix.size());
+  return documentFolder(state) + name + ".stl";
+}
+
 void startExport(EditorState& state, const std::string& path, int resolution, double simplifyCells,
                  bool insist) {
   if (state.exportJob && state.exportJob->status().running) {
@@ -835,6 +852,10 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
                                     nullptr, ExportGuard{insist, 0});
     logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
                        (simplifyCells > 0.0 ? ", simplified" : ""));
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+    state.lastExportPath = error ? path : absolute.lexically_normal().string();
+    state.lastExportDocument = state.document.path();
   });
   if (!state.exportSettingsPath.empty()) {  // the dialog opens with these choices next time
     try {

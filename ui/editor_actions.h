@@ -15,9 +15,11 @@ bool isSelected(const EditorState& state, NodeId id);
 // Selects `id` alone, or toggles it in the selection when `extend`.
 void selectNode(EditorState& state, NodeId id, bool extend = false);
 void clearSelection(EditorState& state);
-// Shift+click in the outliner: adds every node from the primary selection to `id` in tree order
-// (`id` becomes the primary); selects `id` alone when nothing is selected.
-void selectRange(EditorState& state, NodeId id);
+// Shift+click in the outliner: adds every node from the primary selection to `id` in the order
+// of `rows`, the rows the outliner shows (a collapsed operation's parts are not among them),
+// where both are among them, else in tree order (`id` becomes the primary); selects `id` alone
+// when nothing is selected.
+void selectRange(EditorState& state, NodeId id, const std::vector<NodeId>& rows = {});
 // Drops ids that are no longer in the document (after undo, delete, open).
 void pruneSelection(EditorState& state);
 // Remembers the selection at the document's current revision (the editor calls it once a frame,
@@ -115,6 +117,11 @@ bool saveDocument(EditorState& state);
 bool saveDocumentAs(EditorState& state, const std::string& path);
 bool recoverDocument(EditorState& state);
 void discardRecovery(EditorState& state);
+// The document's folder, absolute, with a trailing '/' ("" for an untitled document).
+std::string documentFolder(const EditorState& state);
+// The file an export of the document is offered: the last export's of the same document, else
+// the document's name beside it with .stl ("part.stl" for an untitled one).
+std::string exportSuggestion(const EditorState& state);
 // Starts the background export of the current document to `path` at `resolution`.
 // Exports the document in the background (ExportJob); `insist` exports a job whose estimate
 // does not fit anyway.

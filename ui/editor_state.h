@@ -152,6 +152,9 @@ struct EditorState {
   // The export dialog (panel_modals.cpp): open while a path waits for its options. The choices
   // are the export's own (not the preview's resolution) and stay for the next export.
   std::optional<std::string> pendingExportPath;
+  // The last export's file (absolute) and the document it was of: the next export of that
+  // document is offered the same place, not the document's folder again.
+  std::string lastExportPath, lastExportDocument;
   int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;

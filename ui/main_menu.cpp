@@ -13,26 +13,6 @@
 namespace strata::ui {
 namespace {
 
-std::string documentFolder(const EditorState& state) {
-  if (state.document.path().empty()) return "";
-  // Absolute: the file dialog resolves a relative name in the folder it shows, which for a
-  // document opened by a relative path would double that path.
-  std::error_code error;
-  const std::filesystem::path path =
-      std::filesystem::absolute(std::filesystem::path(state.document.path()), error);
-  return (error ? std::filesystem::path(state.document.path()) : path).parent_path().string() + "/";
-}
-
-std::string exportSuggestion(const EditorState& state) {
-  if (state.document.path().empty()) return "part.stl";
-  std::string name = std::filesystem::path(state.document.path()).filename().string();
-  const std::string suffix = ".strata.json";
-  if (name.size() > suffix.size() &&
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
-    name = name.substr(0, name.size() - suffix.size());
-  return documentFolder(state) + name + ".stl";
-}
-
 // New and Open replace the document: ask first when it has unsaved changes.
 void replaceOrAsk(EditorState& state, PendingReplace action) {
   if (state.document.dirty())

@@ -317,14 +317,15 @@ glm::bvec3 mixedComponents(const NodeList& nodes, glm::dvec3 Transform::*field) 
 void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& nodes, double speed) {
   if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) {
     Transform t = node->transform;
-    // Each node from its own current transform, changed as the primary's field changed.
-    // A node inside another selected node moves with it, not on its own as well.
+    // Each node from its own current transform, changed as the shown node's field changed.
+    // A node inside another selected node moves with it, not on its own as well (`node`, the
+    // one shown, is the active part or the selected group holding it: never inside another).
     auto applyAll = [&](const std::function<Transform(const Transform&)>& change) {
       for (const NodePtr& n : nodes) {
         bool nested = false;
         for (const NodePtr& other : nodes)
           if (other != n && isInSubtree(state.document.root(), other->id, n->id)) nested = true;
-        if (!nested || n == node) state.document.setTransform(n->id, change(n->transform));
+        if (!nested) state.document.setTransform(n->id, change(n->transform));
       }
     };
     dragVec3(
@@ -669,7 +670,28 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
   double extent = b.empty() ? 1.0 : std::max({b.size().x, b.size().y, b.size().z});
   double speed = std::max(extent * 0.002, 1e-6);
 
-  nodeTransform(state, node, nodes, speed);
+  // The transform of the active part, or of the selected group that holds it (the part moves
+  // with the group: editing both would move it twice).
+  const NodeId holderId = selectedHolder(state.document.root(), state.selection, id);
+  const NodePtr holder = holderId == id ? node : findNode(state.document.root(), holderId);
+  const auto nameOf = [](const Node& n) {
+    return n.name.empty() ? std::string(kindName(n.kind)) : n.name;
+  };
+  if (holder && holder != node) {
+    ImGui::TextDisabled("transform of %s, which holds %s", nameOf(*holder).c_str(),
+                        nameOf(*node).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "Both are selected: the fields move, turn and scale the group, and the part with it");
+  }
+  NodeList outer;  // the selected nodes no other selected node holds, the shown one last
+  for (const NodePtr& n : nodes)
+    if (n->id != holderId &&
+        std::find(state.selection.begin(), state.selection.end(), n->id) != state.selection.end() &&
+        selectedHolder(state.document.root(), state.selection, n->id) == n->id)
+      outer.push_back(n);
+  outer.push_back(holder ? holder : node);
+  nodeTransform(state, outer.back(), outer, speed);
   nodeKindSections(state, node, nodes, speed);
   ImGui::PopID();
   ImGui::End();

@@ -38,6 +38,10 @@ struct PendingDrop {
 std::string gShownHint;
 bool gShownHintRefused = false;
 
+// The rows the outliner shows, in order (a collapsed operation's parts are not among them):
+// those drawn this frame, and last frame's, which a Shift+click selects a range of.
+std::vector<NodeId> gRowsDrawn, gRowsShown;
+
 }  // namespace
 
 int heldDropModifiers() {
@@ -229,6 +233,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
              PendingDrop* drop, bool chained = false) {
   const bool isRoot = role == ChildRole::Root;
   ImGui::PushID(static_cast<int>(node->id));
+  gRowsDrawn.push_back(node->id);
   const bool leaf = node->children.empty();
   ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth |
                              ImGuiTreeNodeFlags_DefaultOpen | ImGuiTreeNodeFlags_FramePadding;
@@ -283,7 +288,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
     ImGui::PopClipRect();
     if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen()) {
       if (ImGui::GetIO().KeyShift)
-        selectRange(state, node->id);
+        selectRange(state, node->id, gRowsShown);
       else
         selectNode(state, node->id, ImGui::GetIO().KeyCtrl);
     }
@@ -394,6 +399,8 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
   PendingDrop drop;
   const NodePtr root = state.document.root();  // this frame's snapshot
+  gRowsShown.swap(gRowsDrawn);
+  gRowsDrawn.clear();
   if (root) nodeRow(state, root, ChildRole::Root, false, &drop);
   // Empty space below the tree: a drop here places the node onto the root.
   ImVec2 avail = ImGui::GetContentRegionAvail();

@@ -126,6 +126,29 @@ size_t independentSelectionCount(const NodePtr& root, const std::vector<NodeId>&
   return count;
 }
 
+std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<NodeId>& selection) {
+  std::vector<NodeId> out;
+  for (NodeId id : selection)
+    if (findNode(root, id) && !insideAnotherSelected(root, selection, id)) out.push_back(id);
+  return out;
+}
+
+NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id) {
+  NodeId holder = id;
+  for (NodeId other : selection)
+    if (other != holder && isInSubtree(root, other, holder)) holder = other;
+  // A holder found later may hold an earlier one: settle on the outermost.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (NodeId other : selection)
+      if (other != holder && isInSubtree(root, other, holder)) {
+        holder = other;
+        changed = true;
+      }
+  }
+  return holder;
+}
+
 double groundGridStep(const Bounds& scene) {
   const glm::dvec3 size = scene.empty() ? glm::dvec3(10.0) : scene.size();
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);

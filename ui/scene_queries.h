@@ -47,6 +47,12 @@ std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
                                                          const glm::dmat4& motion);
 // The selected nodes not inside another selected node.
 size_t independentSelectionCount(const NodePtr& root, const std::vector<NodeId>& selection);
+// Those nodes, in the selection's order: what a move, a duplicate or an inspector edit of the
+// selection changes (the rest follow the node that holds them).
+std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<NodeId>& selection);
+// The outermost selected node holding `id` (tree edges), or `id` itself where none does: what
+// the gizmo and the inspector's transform act on for the active part `id`.
+NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id);
 
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);

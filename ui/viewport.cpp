@@ -139,7 +139,9 @@ bool Viewport::gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld,
     *pivot = true;
     return true;
   }
-  const NodeId id = primarySelection(state);
+  // The active part, or the selected group holding it (the part moves with it).
+  const NodeId active = primarySelection(state);
+  const NodeId id = active ? selectedHolder(state.document.root(), state.selection, active) : 0;
   const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
   if (!node) return false;
   *pivot = !gizmo_.dragging() && state.pivotAtSelectionCentre &&
@@ -271,7 +273,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
             state.document.setTransform(id, transform);
         });
       } else {
-        NodeId id = primarySelection(state);
+        const NodeId id =
+            selectedHolder(state.document.root(), state.selection, primarySelection(state));
         guarded(state, [&] {
           state.document.setTransform(id, t);
           for (const auto& [follower, transform] :

@@ -438,11 +438,20 @@ NodePtr absoluteMeshPaths(const NodePtr& root, const std::string& fromDir) {
 NodePtr relativeMeshPaths(const NodePtr& root, const std::string& toDir) {
   if (!root) return root;
   fs::path to = absoluteFolder(toDir);
+  size_t toDepth = 0;  // the folder's components below the root
+  for (const fs::path& part : to.relative_path()) toDepth += part.empty() ? 0 : 1;
   return rewriteMeshPaths(root, [&](const fs::path& path) {
     if (path.is_relative()) return path.generic_string();
-    fs::path relative = path.lexically_normal().lexically_relative(to);
-    bool inside = !relative.empty() && *relative.begin() != "..";
-    return inside ? relative.generic_string() : path.generic_string();
+    const fs::path relative = path.lexically_normal().lexically_relative(to);
+    if (relative.empty()) return path.generic_string();
+    size_t up = 0;  // leading ".."
+    for (const fs::path& part : relative) {
+      if (part != "..") break;
+      ++up;
+    }
+    // Relative within the folder, or beside it below a common folder that is not the root (a
+    // project's scenes/ and meshes/): such a project moves or is shared whole.
+    return up == 0 || up < toDepth ? relative.generic_string() : path.generic_string();
   });
 }
 

@@ -104,7 +104,9 @@ NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind);
 // Rewrites relative mesh paths written against `fromDir` (empty: the current directory) as
 // absolute, lexically normal paths.
 NodePtr absoluteMeshPaths(const NodePtr& root, const std::string& fromDir);
-// Rewrites absolute mesh paths of files under `toDir` as paths relative to it.
+// Rewrites absolute mesh paths as paths relative to `toDir` where the file is under it or under
+// a folder above it other than the root (a project's sibling folders: "../meshes/part.obj");
+// others stay absolute.
 NodePtr relativeMeshPaths(const NodePtr& root, const std::string& toDir);
 
 }  // namespace strata

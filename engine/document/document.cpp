@@ -22,6 +22,19 @@ uint64_t freshRevision() {
 std::string folderOf(const std::string& path) {
   return path.empty() ? std::string() : fs::path(path).parent_path().string();
 }
+
+// Whether two trees have the same nodes in the same places with the same kinds and transforms:
+// all a move (movePart) can change. A move that lands a part where it was gives a new tree of
+// the same shape: no edit.
+bool sameShape(const NodePtr& a, const NodePtr& b) {
+  if (a == b) return true;
+  if (!a || !b || a->id != b->id || a->kind != b->kind || !(a->transform == b->transform) ||
+      a->children.size() != b->children.size())
+    return false;
+  for (size_t i = 0; i < a->children.size(); ++i)
+    if (!sameShape(a->children[i], b->children[i])) return false;
+  return true;
+}
 }  // namespace
 
 Document::Document() {
@@ -145,7 +158,9 @@ NodeId Document::place(const NodePtr& node, NodeId target, PlaceMode mode, std::
 
 void Document::moveOnto(NodeId id, NodeId target, PlaceMode mode) {
   if (target == 0) target = root()->id;
-  apply("move", movePart(root(), id, target, mode, nextId()));
+  const NodePtr moved = movePart(root(), id, target, mode, nextId());
+  if (sameShape(root(), moved)) return;  // dropped where it was: no undo step
+  apply("move", moved);
 }
 
 void Document::remove(NodeId id) {

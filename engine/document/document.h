@@ -75,7 +75,7 @@ class Document {
   // what it does.
   NodeId place(const NodePtr& node, NodeId target, PlaceMode mode, std::string* sentence = nullptr);
   // Drag and drop with roles: moves node `id` onto `target` (0 = the root) with `mode`
-  // (movePart in roles.h).
+  // (movePart in roles.h); no undo step where that leaves every node where it was.
   void moveOnto(NodeId id, NodeId target, PlaceMode mode);
 
   void remove(NodeId id);

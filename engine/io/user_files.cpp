@@ -88,10 +88,14 @@ void writeRecoveryFile(const Scene& scene, const std::string& documentPath,
   } catch (const Error& e) {
     throw Error(recoveryPath + ": " + e.what());
   }
+  // The document's path from the root: the editor that recovers it may start in another
+  // folder (a relative one would name, or overwrite, another file there).
+  const std::string origin =
+      documentPath.empty() ? "" : fs::absolute(documentPath).lexically_normal().string();
   // One set: a recovery file never sits beside the origin of another document.
   writeFilesAtomically(
       {{recoveryPath, [&](std::ostream& out) { out << json; }},
-       {originPath(recoveryPath), [&](std::ostream& out) { out << documentPath << "\n"; }}});
+       {originPath(recoveryPath), [&](std::ostream& out) { out << origin << "\n"; }}});
 }
 
 bool recoveryFileExists(const std::string& recoveryPath) {

@@ -53,5 +53,29 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
   std::filesystem::remove_all(folder);
 }
 
+// The next export of the same document is offered the last one's file, not the document's
+// folder again (an artist's test: Enter would have written a second file in the wrong place);
+// another document is offered its own.
+TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
+  const std::string folder =
+      std::filesystem::absolute(::testing::TempDir() + "/strata_export_place")
+          .lexically_normal()
+          .string();
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder + "/out");
+  EditorState state;
+  state.makeBackend = [] { return std::make_shared<CpuBackend>(); };
+  addPrimitive(state, NodeKind::Sphere);
+  ASSERT_TRUE(saveDocumentAs(state, folder + "/ball.strata.json"));
+  EXPECT_EQ(exportSuggestion(state), folder + "/ball.stl");
+  startExport(state, folder + "/out/ball.ply", 32, 0.0, false);
+  ASSERT_TRUE(state.exportJob);
+  state.exportJob.reset();  // waits for it
+  EXPECT_EQ(exportSuggestion(state), folder + "/out/ball.ply");
+  ASSERT_TRUE(saveDocumentAs(state, folder + "/other.strata.json"));
+  EXPECT_EQ(exportSuggestion(state), folder + "/other.stl");
+  std::filesystem::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace strata::ui

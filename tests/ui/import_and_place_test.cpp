@@ -446,6 +446,58 @@ TEST(Roles, DuplicatesKeepTheirRoleAndSitOneGridStepAlongX) {
   EXPECT_FALSE(findNode(state.document.root(), holeCopy));
 }
 
+// A group and a part inside it selected together: what acts on the selection acts on the
+// group once, the part moving with it (an artist's test: Ctrl+D copied the part twice, the
+// inspector moved it twice, the gizmo turned only the part).
+TEST(Roles, AGroupAndAPartInsideItActAsTheGroup) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId group = where.parent->id;
+  ASSERT_NE(group, hole);
+  state.selection = {group, hole};
+  const NodePtr& before = state.document.root();
+  EXPECT_EQ(selectedHolder(before, state.selection, hole), group);
+  EXPECT_EQ(selectedHolder(before, {plate, hole}, hole), hole);
+  EXPECT_EQ(outermostSelected(before, state.selection), std::vector<NodeId>{group});
+  const size_t nodes = treeOrder(before).size();
+  const size_t inside = treeOrder(findNode(before, group)).size();
+  duplicateSelection(state);
+  ASSERT_EQ(state.selection.size(), 1u);  // one copy: the group's, with the part in it
+  EXPECT_EQ(treeOrder(state.document.root()).size(), nodes + inside);
+  undo(state);
+  EXPECT_EQ(treeOrder(state.document.root()).size(), nodes);
+}
+
+// Shift+click selects the rows shown between the two ends: not the parts of an operation
+// collapsed between them (an artist's test: "59 selected" with 7 rows lit).
+TEST(Roles, ARangeSelectsTheRowsShownNotACollapsedGroupsParts) {
+  EditorState state;
+  const NodeId first = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  state.placeMode = PlaceMode::Add;
+  clearSelection(state);
+  const NodeId last = addPrimitive(state, NodeKind::Sphere);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId group = where.parent->id;
+  // Shown: the root, the group (collapsed: its parts hidden), the last part.
+  const std::vector<NodeId> rows = {state.document.root()->id, group, last};
+  selectNode(state, group);
+  selectRange(state, last, rows);
+  EXPECT_EQ(state.selection, (std::vector<NodeId>{group, last}));
+  EXPECT_FALSE(isSelected(state, first));
+  EXPECT_FALSE(isSelected(state, hole));
+  // Without the rows (or an end not among them): the tree's order, the parts between included.
+  selectNode(state, group);
+  selectRange(state, last);
+  EXPECT_TRUE(isSelected(state, hole));
+}
+
 TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {
   EditorState state;
   NodeId box = addPrimitive(state, NodeKind::Box);

@@ -207,6 +207,26 @@ TEST(Roles, APlacementOrMoveIsOneUndoStep) {
   EXPECT_EQ(findNode(doc.root(), hole), nullptr);
 }
 
+// A part dropped onto a sibling of its own group with the role it has lands where it was: no undo
+// step, the document not marked changed (an artist's test: an empty "adds to" step and a "*").
+TEST(Roles, ADropThatLeavesEveryPartWhereItWasIsNoStep) {
+  Document doc;
+  const NodeId a = doc.addNode(NodeKind::Box);
+  const NodeId b = doc.addNode(NodeKind::Sphere);
+  doc.markSaved(doc.path());
+  ASSERT_EQ(roleOf(doc.root(), b), ChildRole::Add);
+  const NodePtr before = doc.root();
+  const std::string lastStep = doc.undoLabel();
+  doc.moveOnto(b, a, PlaceMode::Add);
+  EXPECT_EQ(doc.root(), before);
+  EXPECT_EQ(doc.undoLabel(), lastStep);
+  EXPECT_FALSE(doc.dirty());
+  // A drop that does change something is still a step.
+  doc.moveOnto(b, a, PlaceMode::Cut);
+  EXPECT_EQ(roleOf(doc.root(), b), ChildRole::Cut);
+  EXPECT_TRUE(doc.dirty());
+}
+
 // Every node of `before` outside the subtree of `except` (the moved part) does what it did:
 // its role is unchanged, or it is now the first child of a new operation that took its place and
 // its role.

@@ -77,6 +77,22 @@ TEST(DocumentRecovery, RoundTripKeepsContentOriginAndMeshes) {
   EXPECT_FALSE(fs::exists(recovery + ".origin"));
 }
 
+// A document opened by a relative path (the editor started in its folder) is recovered by its
+// absolute one: an editor started elsewhere saves it where it came from.
+TEST(DocumentRecovery, TheOriginIsAbsoluteWhereverTheEditorStarted) {
+  const std::string dir = fs::absolute(tempDir("relative_origin")).lexically_normal().string();
+  const std::string recovery = dir + "/data/recovery.strata.json";
+  Document doc;
+  const fs::path before = fs::current_path();
+  fs::current_path(dir);
+  saveDocumentAs(doc, "part.strata.json");
+  doc.addNode(NodeKind::Box);
+  writeRecoveryFile(doc, recovery);
+  fs::current_path(before);
+  EXPECT_EQ(describeRecoveryFile(recovery).origin, dir + "/part.strata.json");
+  EXPECT_EQ(readRecoveryFile(recovery).path(), dir + "/part.strata.json");
+}
+
 TEST(DocumentRecovery, UntitledDocument) {
   std::string recovery = tempDir("untitled") + "/recovery.strata.json";
   Document doc;
