@@ -99,7 +99,13 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Select none", "Esc", false, any)) clearSelection(state);
     ImGui::Separator();
     const bool several = state.selection.size() > 1;
-    if (ImGui::BeginMenu("Align to the active part", several)) {
+    const bool aligning = ImGui::BeginMenu("Align to the active part", several);
+    // Said only while its entries are not shown (the tip would cover them).
+    if (!aligning && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(
+          "Moves the other selected parts so that their bounds line up with the "
+          "active (last clicked) part's");
+    if (aligning) {
       const char* edges[3] = {"min", "centre", "max"};
       for (int axis = 0; axis < 3; ++axis)
         for (int e = 0; e < 3; ++e) {
@@ -108,10 +114,6 @@ void drawMainMenu(EditorState& state) {
         }
       ImGui::EndMenu();
     }
-    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-      ImGui::SetTooltip(
-          "Moves the other selected parts so that their bounds line up with the "
-          "active (last clicked) part's");
     if (ImGui::MenuItem("Drop to ground", nullptr, false, any)) dropSelectionToGround(state);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Moves the selected parts to rest on z = 0");
     if (ImGui::MenuItem("Clear measurements", nullptr, false,

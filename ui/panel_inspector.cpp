@@ -251,6 +251,9 @@ void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes
     std::snprintf(name, sizeof(name), "%s", node->name.c_str()), nameOf = node->id;
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##name", "name", name, sizeof(name));
+  if (nodes.size() > 1 && ImGui::IsItemHovered())
+    ImGui::SetTooltip("Renames the active part only (the one last clicked), not the %zu selected",
+                      nodes.size());
   if (ImGui::IsItemDeactivatedAfterEdit() && node->name != name) renameNode(state, node->id, name);
 
   bool visible = node->visible;

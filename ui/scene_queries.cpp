@@ -107,14 +107,17 @@ bool insideAnotherSelected(const NodePtr& root, const std::vector<NodeId>& selec
 
 std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
                                                          const std::vector<NodeId>& selection,
-                                                         const glm::dmat4& motion) {
+                                                         const glm::dmat4& motion,
+                                                         std::vector<NodeId>* sheared) {
   std::vector<std::pair<NodeId, Transform>> out;
   for (NodeId id : selection) {
     const NodePtr node = findNode(start, id);
     if (!node || insideAnotherSelected(start, selection, id)) continue;
     const glm::dmat4 parent = parentWorldMatrix(start, id);
     const glm::dmat4 world = motion * parent * node->transform.matrix();
-    out.emplace_back(id, transformFromMatrix(glm::inverse(parent) * world));
+    bool exact = true;
+    out.emplace_back(id, transformNear(glm::inverse(parent) * world, node->transform, &exact));
+    if (!exact && sheared) sheared->push_back(id);
   }
   return out;
 }

@@ -40,11 +40,14 @@ std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& sta
 
 // What every selected node's transform becomes when the world motion `motion` (a matrix applied
 // to world points) moves the whole selection of the tree `start`: motion * (its world matrix in
-// `start`), turned back into a Transform as followingTransforms does. Nodes inside another
-// selected node (they move with it) are left out.
+// `start`), turned back into a Transform keeping the node's rotation where it can
+// (transformNear). Nodes inside another selected node (they move with it) are left out.
+// `sheared` (when not null) gets the nodes the motion would shear (a turned part stretched along
+// another axis): their Transform is the nearest one, not the motion's.
 std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
                                                          const std::vector<NodeId>& selection,
-                                                         const glm::dmat4& motion);
+                                                         const glm::dmat4& motion,
+                                                         std::vector<NodeId>* sheared = nullptr);
 // The selected nodes not inside another selected node.
 size_t independentSelectionCount(const NodePtr& root, const std::vector<NodeId>& selection);
 // Those nodes, in the selection's order: what a move, a duplicate or an inspector edit of the

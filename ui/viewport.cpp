@@ -186,6 +186,11 @@ void Viewport::viewAll(const EditorState& state) {
 void Viewport::keepCameraOutside(EditorState& state) {
   if (state.document.interacting() || gizmo_.dragging()) return;  // judged when it ends
   const uint64_t revision = state.document.revision();
+  if (state.requestViewAll) {  // a new or opened document: framed this frame anyway
+    cameraCheckedRevision_ = revision;
+    cameraWasInside_ = false;
+    return;
+  }
   const Bounds b = sceneBounds(state.document.root());
   const glm::dvec3 eye = camera.eye();
   const bool inside = !b.empty() && eye.x > b.min.x && eye.y > b.min.y && eye.z > b.min.z &&
@@ -268,10 +273,23 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
         // The pivot's motion, applied to every selected part from where the drag began.
         pivotNow_ = t;
         const glm::dmat4 motion = t.matrix() * glm::inverse(gizmo_.startTransform().matrix());
+        std::vector<NodeId> sheared;
         guarded(state, [&] {
-          for (const auto& [id, transform] : movedSelection(dragStart_, state.selection, motion))
+          for (const auto& [id, transform] :
+               movedSelection(dragStart_, state.selection, motion, &sheared))
             state.document.setTransform(id, transform);
         });
+        // Said once a drag: a turned part cannot follow a stretch along another axis.
+        if (!sheared.empty() && !shearSaid_) {
+          shearSaid_ = true;
+          const NodePtr part = findNode(dragStart_, sheared.front());
+          logWarning(state,
+                     "\"" + (part ? part->name : std::string("a part")) +
+                         "\" is turned: a stretch along the view's axes would shear it, which a "
+                         "part's move, turn and scale cannot hold; it is scaled along its own "
+                         "axes as near as they allow (scale it alone, or turn it first, for an "
+                         "exact stretch)");
+        }
       } else {
         const NodeId id =
             selectedHolder(state.document.root(), state.selection, primarySelection(state));
@@ -349,6 +367,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       pivotNow_ = transform;
       gizmo_.begin(hot_, view, mouse);
       dragStart_ = state.document.root();
+      shearSaid_ = false;
       return;
     }
     clickPending_ = true;

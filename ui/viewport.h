@@ -116,6 +116,7 @@ class Viewport {
   // motion from dragStart_; pivotNow_ is the pivot's transform as dragged so far.
   bool pivotGroup_ = false;
   Transform pivotNow_;
+  bool shearSaid_ = false;  // this drag has said a part could not follow it exactly
 
   // The selection box drawn each frame, worked out again only when the document or the
   // selection changes: a mesh leaf's bounds walk all its vertices (sceneBounds remembers its own).

@@ -45,6 +45,37 @@ Transform transformFromMatrix(const glm::dmat4& m) {
   return t;
 }
 
+namespace {
+// Whether a and b agree to `tolerance` of `size` in every entry of their linear parts and
+// translations.
+bool near(const glm::dmat4& a, const glm::dmat4& b, double size) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (std::fabs(a[c][r] - b[c][r]) > 1e-9 * size) return false;
+  return true;
+}
+}  // namespace
+
+Transform transformNear(const glm::dmat4& m, const Transform& like, bool* exact) {
+  double size = 1e-300;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) size = std::max(size, std::fabs(m[c][r]));
+  Transform kept = like;
+  kept.translate = glm::dvec3(m[3]);
+  kept.scale = glm::dvec3(1.0);
+  // S = R^T L: diagonal where `m` is `like`'s rotation times a per-axis scale.
+  const glm::dmat3 s = glm::transpose(glm::dmat3(kept.matrix())) * glm::dmat3(m);
+  kept.scale = glm::dvec3(s[0][0], s[1][1], s[2][2]);
+  if (kept.scale.x != 0.0 && kept.scale.y != 0.0 && kept.scale.z != 0.0 &&
+      near(kept.matrix(), m, size)) {
+    if (exact) *exact = true;
+    return kept;
+  }
+  const Transform t = transformFromMatrix(m);
+  if (exact) *exact = near(t.matrix(), m, size);
+  return t;
+}
+
 bool mirrors(const glm::dmat4& m) {
   return glm::determinant(glm::dmat3(m)) < 0.0;
 }

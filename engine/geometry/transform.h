@@ -27,6 +27,13 @@ struct Transform {
 // unsheared matrix keep. Angles under a nanodegree come back as 0.
 Transform transformFromMatrix(const glm::dmat4& m);
 
+// The Transform whose matrix() is `m`, keeping `like`'s rotation where `m`'s linear part is
+// that rotation times a per-axis scale (a part scaled along its own axes, mirrored included:
+// transformFromMatrix would turn a mirror into a half turn); else transformFromMatrix(m).
+// *exact (when not null): whether the result's matrix() is `m` (to 1e-9 of its size): false
+// where `m` shears, which no Transform holds (a turned part stretched along another axis).
+Transform transformNear(const glm::dmat4& m, const Transform& like, bool* exact = nullptr);
+
 // True when the matrix mirrors (negative determinant of its linear part): sampling must then
 // reverse triangle winding to keep normals pointing outward.
 bool mirrors(const glm::dmat4& m);

@@ -56,7 +56,9 @@ TEST(JobEstimate, TilesAsTheExportDoesForItsWorkersShareOfMemory) {
       exportTiling(scene, options, whole.bytes, whole.offsetBytesPerNode);
   const ExportTiling halfTiles = exportTiling(scene, options, half.bytes, half.offsetBytesPerNode);
   ASSERT_NE(wholeTiles.count(), halfTiles.count()) << "memories that tile alike prove nothing";
-  EXPECT_EQ(shared.bytes, backend->memoryAvailable() / 2);
+  // (The host's available memory moves between two readings while other work runs.)
+  EXPECT_NEAR(double(shared.bytes), double(backend->memoryAvailable() / 2),
+              0.05 * double(shared.bytes));
   for (const WorkersMemory& memory : {whole, half}) {
     const JobEstimate e = estimateExport(scene, options, "/tmp/x.stl", backend, memory, progress,
                                          /*probeAbove=*/0);

@@ -6,6 +6,8 @@
 
 #include <random>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "engine/geometry/transform.h"
 
 namespace strata {
@@ -60,6 +62,49 @@ TEST(Transform, AnglesOfRoundingNoiseAreZero) {
   EXPECT_EQ(t.rotateDegrees.y, 0.0);
   EXPECT_FALSE(std::signbit(t.rotateDegrees.y));
   EXPECT_NEAR(t.rotateDegrees.z, 30.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace strata
+
+namespace strata {
+namespace {
+
+glm::dmat4 scaleMatrix(const glm::dvec3& s) {
+  glm::dmat4 m(1.0);
+  for (int i = 0; i < 3; ++i) m[i][i] = s[i];
+  return m;
+}
+
+// A part scaled along its own axes keeps its turn (a mirror stays a negative scale, not a half
+// turn with another axis negated); a turned part stretched along another axis is sheared, which
+// no Transform holds: the nearest one, and said.
+TEST(Transform, NearKeepsTheTurnWhereItCanAndSaysWhereItCannot) {
+  Transform like;
+  like.translate = glm::dvec3(1.0, 2.0, 3.0);
+  like.rotateDegrees = glm::dvec3(0.0, 0.0, 30.0);
+  bool exact = false;
+  // Mirrored along its own z about a point: rotation kept, z scale negative.
+  const glm::dmat4 mirrored = like.matrix() * scaleMatrix(glm::dvec3(1.0, 1.0, -1.75));
+  const Transform a = transformNear(mirrored, like, &exact);
+  EXPECT_TRUE(exact);
+  EXPECT_EQ(a.rotateDegrees, like.rotateDegrees);
+  EXPECT_NEAR(a.scale.z, -1.75, 1e-12);
+  EXPECT_NEAR(a.scale.x, 1.0, 1e-12);
+  // Unturned, mirrored along world z: transformFromMatrix would give a half turn and -x.
+  const Transform b = transformNear(scaleMatrix(glm::dvec3(1.0, 1.0, -1.788)), Transform(), &exact);
+  EXPECT_TRUE(exact);
+  EXPECT_EQ(b.rotateDegrees, glm::dvec3(0.0));
+  EXPECT_EQ(b.scale, glm::dvec3(1.0, 1.0, -1.788));
+  // Turned 30 degrees about z, stretched along world x: a shear.
+  transformNear(scaleMatrix(glm::dvec3(2.0, 1.0, 1.0)) * like.matrix(), like, &exact);
+  EXPECT_FALSE(exact);
+  // Turned, then turned more (a rigid motion): exact, by the matrix's own angles.
+  glm::dmat4 turn(1.0);
+  turn = glm::rotate(turn, glm::radians(20.0), glm::dvec3(0.0, 0.0, 1.0));
+  const Transform d = transformNear(turn * like.matrix(), like, &exact);
+  EXPECT_TRUE(exact);
+  EXPECT_NEAR(d.rotateDegrees.z, 50.0, 1e-9);
 }
 
 }  // namespace
