@@ -687,6 +687,42 @@ void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode)
   });
 }
 
+void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods) {
+  const NodePtr& root = state.document.root();
+  std::vector<NodeId> moving = {dragged};
+  if (isSelected(state, dragged)) moving = outermostSelected(root, state.selection);
+  if (moving.size() <= 1) {
+    dropNode(state, dragged, target, dropMode(state, mods, dragged));
+    return;
+  }
+  // Several rows dragged at once: each moved onto the target keeping what it does (or taking
+  // the modifier's role), in the tree's order, as one undo step; refused whole where one is.
+  const std::vector<NodeId> order = treeOrder(root);
+  std::sort(moving.begin(), moving.end(), [&](NodeId a, NodeId b) {
+    return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
+  });
+  std::vector<std::pair<NodeId, PlaceMode>> moves;
+  for (NodeId id : moving) moves.push_back({id, dropMode(state, mods, id)});
+  state.document.beginInteraction();
+  const bool moved = guarded(state, [&] {
+    for (const auto& [id, mode] : moves) {
+      if (target != 0 && isInSubtree(state.document.root(), id, target))
+        throw Error(displayName(*findNode(state.document.root(), id)) +
+                    " holds the part it was dropped on: nothing was moved");
+      state.document.moveOnto(id, target, mode);
+    }
+  });
+  if (!moved) {
+    state.document.cancelInteraction();
+    return;
+  }
+  state.document.endInteraction();
+  const NodePtr onto = findNode(state.document.root(), target ? target : root->id);
+  logInfo(state, std::to_string(moves.size()) + " parts moved onto " +
+                     (onto ? displayName(*onto) : std::string("the scene")) +
+                     ", each keeping what it does" + (mods ? " (or as the key held says)" : ""));
+}
+
 const Node* parentOf(const EditorState& state, NodeId id) {
   std::vector<const Node*> path;
   if (!pathToNode(state.document.root(), id, &path) || path.size() < 2) return nullptr;

@@ -90,6 +90,11 @@ void renameNode(EditorState& state, NodeId id, const std::string& name);
 // with `mode` (movePart in roles.h: every other part keeps its role); the log says what it does
 // now. One undo step.
 void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode);
+// An outliner drop of `dragged` onto `target` with the drop modifiers `mods` held (dropMode):
+// where `dragged` is one of several selected rows, every selected part no other selected part
+// holds moves, each with its own dropMode, in tree order, as one undo step (refused whole,
+// nothing moved, where one move is refused); else dropNode.
+void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods);
 // Node `id` made to do what `mode` says (add, cut, intersect) where it is: moved onto its own
 // parent with that mode (dropNode), so that every other part keeps its role; the log says what
 // it does now. Refused, with the reason in the log, for the root and a difference's base (whose

@@ -12,6 +12,7 @@
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
+#include "ui/scene_queries.h"
 #include "ui/text_fit.h"
 #include "ui/theme.h"
 
@@ -27,6 +28,7 @@ struct PendingDrop {
   int paletteItem = 0;  // with paletteDrop: what was dropped from the palette onto `target`
   bool paletteDrop = false;
   PlaceMode mode = PlaceMode::Add;
+  int mods = 0;  // the drop modifiers held (heldDropModifiers)
   // What the part being dragged would do where it hovers now (shown by the drag source's
   // tooltip the next frame); empty when it hovers no target.
   std::string hint;
@@ -41,6 +43,8 @@ bool gShownHintRefused = false;
 // The rows the outliner shows, in order (a collapsed operation's parts are not among them):
 // those drawn this frame, and last frame's, which a Shift+click selects a range of.
 std::vector<NodeId> gRowsDrawn, gRowsShown;
+// A selected row pressed among several selected: selected alone when released without a drag.
+NodeId gPressedRow = 0;
 
 }  // namespace
 
@@ -71,6 +75,7 @@ void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
     drop->target = target;
     drop->valid = true;
     drop->mode = mode;
+    drop->mods = heldDropModifiers();
   }
   if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload(kPalettePayload)) {
     std::memcpy(&drop->paletteItem, p->Data, sizeof(int));
@@ -287,16 +292,30 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
     if (!node->visible) ImGui::PopStyleColor();
     ImGui::PopClipRect();
     if (ImGui::IsItemClicked(0) && !ImGui::IsItemToggledOpen()) {
-      if (ImGui::GetIO().KeyShift)
+      const ImGuiIO& io = ImGui::GetIO();
+      if (io.KeyShift)
         selectRange(state, node->id, gRowsShown);
+      else if (!io.KeyCtrl && state.selection.size() > 1 && isSelected(state, node->id))
+        gPressedRow = node->id;  // a drag takes the whole selection; a click, this row alone
       else
-        selectNode(state, node->id, ImGui::GetIO().KeyCtrl);
+        selectNode(state, node->id, io.KeyCtrl);
+    }
+    if (gPressedRow == node->id && ImGui::IsMouseReleased(0)) {
+      if (ImGui::IsItemHovered() && !ImGui::GetDragDropPayload()) selectNode(state, node->id);
+      gPressedRow = 0;
     }
     if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(0)) state.renaming = node->id;
     if (!isRoot && ImGui::BeginDragDropSource()) {
       NodeId id = node->id;
       ImGui::SetDragDropPayload(kPayload, &id, sizeof(id));
-      ImGui::Text("%s %s", kindGlyph(node->kind), node->name.c_str());
+      const size_t moving = isSelected(state, id)
+                                ? outermostSelected(state.document.root(), state.selection).size()
+                                : 1;
+      if (moving > 1)
+        ImGui::Text("%s %s and %zu more selected", kindGlyph(node->kind), node->name.c_str(),
+                    moving - 1);
+      else
+        ImGui::Text("%s %s", kindGlyph(node->kind), node->name.c_str());
       dragHint();
       ImGui::EndDragDropSource();
     }
@@ -413,7 +432,7 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
   ImGui::End();
   gShownHint = drop.hint;
   gShownHintRefused = drop.hintRefused;
-  if (drop.valid) dropNode(state, drop.dragged, drop.target, drop.mode);
+  if (drop.valid) dropNodes(state, drop.dragged, drop.target, drop.mods);
   if (drop.paletteDrop) dropPaletteItem(state, drop.paletteItem, drop.target, drop.mode);
 }
 

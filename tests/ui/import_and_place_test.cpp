@@ -498,6 +498,39 @@ TEST(Roles, ARangeSelectsTheRowsShownNotACollapsedGroupsParts) {
   EXPECT_TRUE(isSelected(state, hole));
 }
 
+// Several selected rows dragged onto a part move together, each keeping what it does, as one
+// undo step (an artist's test: the press on one row dropped the others from the selection and
+// only it moved); a drop refused for one moves none.
+TEST(Roles, SeveralSelectedRowsDroppedMoveTogetherAsOneStep) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  state.placeMode = PlaceMode::Add;
+  clearSelection(state);
+  const NodeId a = addPrimitive(state, NodeKind::Sphere);
+  clearSelection(state);
+  const NodeId b = addPrimitive(state, NodeKind::Torus);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId group = where.parent->id;
+  const NodePtr before = state.document.root();
+  state.selection = {a, b};
+  dropNodes(state, b, plate, 0);
+  const NodePtr& root = state.document.root();
+  EXPECT_TRUE(isInSubtree(root, group, a));
+  EXPECT_TRUE(isInSubtree(root, group, b));
+  EXPECT_FALSE(removesMaterial(root, a));
+  EXPECT_FALSE(removesMaterial(root, b));
+  undo(state);
+  EXPECT_EQ(state.document.root(), before);
+  // The group and a part beside it dropped onto the group's own part: refused whole.
+  state.selection = {group, a};
+  dropNodes(state, a, hole, 0);
+  EXPECT_EQ(state.document.root(), before);
+  EXPECT_EQ(state.log.back().level, LogLevel::Error);
+}
+
 TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {
   EditorState state;
   NodeId box = addPrimitive(state, NodeKind::Box);
