@@ -97,12 +97,17 @@ void exportWindow(EditorState& state) {
                         s.simplifyCells);
   else
     ImGui::TextDisabled("resolution %d", s.resolution);
-  if (!s.estimate.empty()) ImGui::TextWrapped("estimate: %s", s.estimate.c_str());
   if (s.running) {
+    // The bar and Cancel right under the lines every export has, the estimate (of varying
+    // length) below them: Cancel stays where it was from one export to the next.
     char overlay[96];
     std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", s.stage.c_str(), s.fraction * 100.0);
     ImGui::ProgressBar(float(s.fraction), ImVec2(-1, 0), overlay);
     if (ImGui::Button("Cancel", ImVec2(120, 0))) state.exportJob->cancel();
+  }
+  if (!s.estimate.empty()) ImGui::TextWrapped("estimate: %s", s.estimate.c_str());
+  if (s.running) {
+    // (The bar and Cancel above.)
   } else if (s.succeeded) {
     const MeshCheck& c = s.check;
     const bool passed = s.checkPassed();
