@@ -400,6 +400,8 @@ int runEdit(const std::vector<std::string>& argv) {
     CliArgs args(argv, editorValuedOptions(), editorFlagOptions());
     if (args.positional().size() > 1)
       throw Error("usage: strata edit [SCENE.strata.json] [--backend B] [--screenshot FILE]");
+    if (!args.positional().empty() && args.positional()[0].empty())
+      throw Error("edit: the scene's file name is empty (strata edit [SCENE.strata.json])");
     const std::string scene = args.positional().empty() ? demoScenePath() : args.positional()[0];
 #if !defined(STRATA_HAS_EDITOR)
     return fallBackToEval(scene, args,

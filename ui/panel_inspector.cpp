@@ -681,8 +681,10 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
     return n.name.empty() ? std::string(kindName(n.kind)) : n.name;
   };
   if (holder && holder != node) {
-    ImGui::TextDisabled("transform of %s, which holds %s", nameOf(*holder).c_str(),
-                        nameOf(*node).c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("transform of %s, which holds %s", nameOf(*holder).c_str(),
+                       nameOf(*node).c_str());
+    ImGui::PopStyleColor();
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "Both are selected: the fields move, turn and scale the group, and the part with it");

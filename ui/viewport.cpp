@@ -286,9 +286,9 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
           logWarning(state,
                      "\"" + (part ? part->name : std::string("a part")) +
                          "\" is turned: a stretch along the view's axes would shear it, which a "
-                         "part's move, turn and scale cannot hold; it is scaled along its own "
-                         "axes as near as they allow (scale it alone, or turn it first, for an "
-                         "exact stretch)");
+                         "part's move, turn and scale cannot hold; it gets the nearest move, "
+                         "turn and scale (its turn may change too). Scale it alone, along its "
+                         "own axes, for an exact stretch");
         }
       } else {
         const NodeId id =

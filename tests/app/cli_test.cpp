@@ -475,6 +475,13 @@ TEST(Cli, AnErrorPastReadingNamesTheInput) {
   }
 }
 
+// An empty scene name (a script's empty variable) is refused, not opened as a new scene.
+TEST(Cli, AnEmptySceneNameIsRefused) {
+  CliRun r = strata("edit ''", /*withoutDisplay=*/true);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("the scene's file name is empty"), std::string::npos) << r.output;
+}
+
 // Warnings past the first 20 are counted, not printed (a scene of 2,000 copies printed 2,001
 // lines of one warning); the report's JSON keeps them all.
 TEST(Cli, ManyWarningsAreCountedPastTheFirstTwenty) {
