@@ -692,7 +692,9 @@ void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods) {
   std::vector<NodeId> moving = {dragged};
   if (isSelected(state, dragged)) moving = outermostSelected(root, state.selection);
   if (moving.size() <= 1) {
-    dropNode(state, dragged, target, dropMode(state, mods, dragged));
+    // One moves: the dragged row, or the selected group holding it (as the gizmo moves it).
+    const NodeId part = moving.empty() ? dragged : moving.front();
+    dropNode(state, part, target, dropMode(state, mods, part));
     return;
   }
   // Several rows dragged at once: each moved onto the target keeping what it does (or taking
@@ -703,6 +705,7 @@ void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods) {
   });
   std::vector<std::pair<NodeId, PlaceMode>> moves;
   for (NodeId id : moving) moves.push_back({id, dropMode(state, mods, id)});
+  const NodePtr before = root;
   state.document.beginInteraction();
   const bool moved = guarded(state, [&] {
     for (const auto& [id, mode] : moves) {
@@ -717,7 +720,8 @@ void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods) {
     return;
   }
   state.document.endInteraction();
-  const NodePtr onto = findNode(state.document.root(), target ? target : root->id);
+  if (state.document.root() == before) return;  // each dropped where it was
+  const NodePtr onto = findNode(state.document.root(), target ? target : before->id);
   logInfo(state, std::to_string(moves.size()) + " parts moved onto " +
                      (onto ? displayName(*onto) : std::string("the scene")) +
                      ", each keeping what it does" + (mods ? " (or as the key held says)" : ""));
@@ -861,9 +865,14 @@ std::string documentFolder(const EditorState& state) {
 }
 
 std::string exportSuggestion(const EditorState& state) {
-  if (!state.lastExportPath.empty() && state.lastExportDocument == state.document.path())
+  if (!state.lastExportPath.empty() && !state.document.path().empty() &&
+      state.lastExportDocument == state.document.path())
     return state.lastExportPath;
-  if (state.document.path().empty()) return "part.stl";
+  if (state.document.path().empty()) {
+    // Untitled: the last export's folder (which may be another untitled document's), a new name.
+    if (state.lastExportPath.empty()) return "part.stl";
+    return (std::filesystem::path(state.lastExportPath).parent_path() / "part.stl").string();
+  }
   std::string name = std::filesystem::path(state.document.path()).filename().string();
   const std::string suffix = ".strata.json";
   if (name.size() > suffix.size() &&

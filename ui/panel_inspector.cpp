@@ -690,11 +690,9 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
           "Both are selected: the fields move, turn and scale the group, and the part with it");
   }
   NodeList outer;  // the selected nodes no other selected node holds, the shown one last
-  for (const NodePtr& n : nodes)
-    if (n->id != holderId &&
-        std::find(state.selection.begin(), state.selection.end(), n->id) != state.selection.end() &&
-        selectedHolder(state.document.root(), state.selection, n->id) == n->id)
-      outer.push_back(n);
+  for (NodeId other : outermostSelected(state.document.root(), state.selection))
+    if (other != holderId)
+      if (NodePtr n = findNode(state.document.root(), other)) outer.push_back(n);
   outer.push_back(holder ? holder : node);
   nodeTransform(state, outer.back(), outer, speed);
   nodeKindSections(state, node, nodes, speed);

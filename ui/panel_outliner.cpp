@@ -432,6 +432,7 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
   ImGui::End();
   gShownHint = drop.hint;
   gShownHintRefused = drop.hintRefused;
+  if (ImGui::IsMouseReleased(0)) gPressedRow = 0;  // its row handled the release, or is gone
   if (drop.valid) dropNodes(state, drop.dragged, drop.target, drop.mods);
   if (drop.paletteDrop) dropPaletteItem(state, drop.paletteItem, drop.target, drop.mode);
 }

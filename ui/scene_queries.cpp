@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <unordered_set>
 
 #include "engine/document/commands.h"
 #include "engine/eval/evaluator.h"
@@ -80,39 +81,55 @@ LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& select
 std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& start,
                                                               const std::vector<NodeId>& selection,
                                                               NodeId primary,
-                                                              const Transform& primaryNow) {
+                                                              const Transform& primaryNow,
+                                                              std::vector<NodeId>* sheared) {
   const NodePtr node = findNode(start, primary);
   if (!node) return {};
   const glm::dmat4 primaryParent = parentWorldMatrix(start, primary);
   const glm::dmat4 motion =
       primaryParent * primaryNow.matrix() * glm::inverse(primaryParent * node->transform.matrix());
-  std::vector<std::pair<NodeId, Transform>> out = movedSelection(start, selection, motion);
-  out.erase(std::remove_if(out.begin(), out.end(),
-                           [&](const std::pair<NodeId, Transform>& moved) {
-                             const NodeId id = moved.first;
-                             return id == primary || isInSubtree(start, id, primary) ||
-                                    isInSubtree(start, primary, id);
-                           }),
+  std::vector<NodeId> bent;
+  std::vector<std::pair<NodeId, Transform>> out = movedSelection(start, selection, motion, &bent);
+  const auto leftOut = [&](NodeId id) {
+    return id == primary || isInSubtree(start, id, primary) || isInSubtree(start, primary, id);
+  };
+  out.erase(std::remove_if(
+                out.begin(), out.end(),
+                [&](const std::pair<NodeId, Transform>& moved) { return leftOut(moved.first); }),
             out.end());
+  if (sheared)
+    for (NodeId id : bent)
+      if (!leftOut(id)) sheared->push_back(id);
   return out;
 }
 
-namespace {
-bool insideAnotherSelected(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id) {
-  for (NodeId other : selection)
-    if (other != id && isInSubtree(root, other, id)) return true;
-  return false;
+std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<NodeId>& selection) {
+  // One walk of the tree (tree edges), whatever the selection's size: it runs every frame.
+  const std::unordered_set<NodeId> selected(selection.begin(), selection.end());
+  std::unordered_set<NodeId> outer;
+  std::vector<std::pair<const Node*, bool>> stack;  // node, whether a selected node holds it
+  if (root) stack.push_back({root.get(), false});
+  while (!stack.empty()) {
+    const auto [node, held] = stack.back();
+    stack.pop_back();
+    const bool here = selected.count(node->id) > 0;
+    if (here && !held) outer.insert(node->id);
+    for (const NodePtr& c : node->children) stack.push_back({c.get(), held || here});
+  }
+  std::vector<NodeId> out;
+  for (NodeId id : selection)
+    if (outer.erase(id)) out.push_back(id);  // in the selection's order, each once
+  return out;
 }
-}  // namespace
 
 std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
                                                          const std::vector<NodeId>& selection,
                                                          const glm::dmat4& motion,
                                                          std::vector<NodeId>* sheared) {
   std::vector<std::pair<NodeId, Transform>> out;
-  for (NodeId id : selection) {
+  for (NodeId id : outermostSelected(start, selection)) {
     const NodePtr node = findNode(start, id);
-    if (!node || insideAnotherSelected(start, selection, id)) continue;
+    if (!node) continue;
     const glm::dmat4 parent = parentWorldMatrix(start, id);
     const glm::dmat4 world = motion * parent * node->transform.matrix();
     bool exact = true;
@@ -123,33 +140,15 @@ std::vector<std::pair<NodeId, Transform>> movedSelection(const NodePtr& start,
 }
 
 size_t independentSelectionCount(const NodePtr& root, const std::vector<NodeId>& selection) {
-  size_t count = 0;
-  for (NodeId id : selection)
-    if (findNode(root, id) && !insideAnotherSelected(root, selection, id)) ++count;
-  return count;
-}
-
-std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<NodeId>& selection) {
-  std::vector<NodeId> out;
-  for (NodeId id : selection)
-    if (findNode(root, id) && !insideAnotherSelected(root, selection, id)) out.push_back(id);
-  return out;
+  return outermostSelected(root, selection).size();
 }
 
 NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id) {
-  NodeId holder = id;
-  for (NodeId other : selection)
-    if (other != holder && isInSubtree(root, other, holder)) holder = other;
-  // A holder found later may hold an earlier one: settle on the outermost.
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (NodeId other : selection)
-      if (other != holder && isInSubtree(root, other, holder)) {
-        holder = other;
-        changed = true;
-      }
-  }
-  return holder;
+  std::vector<const Node*> path;  // from the root to `id`
+  if (!pathToNode(root, id, &path)) return id;
+  for (const Node* n : path)
+    if (std::find(selection.begin(), selection.end(), n->id) != selection.end()) return n->id;
+  return id;
 }
 
 double groundGridStep(const Bounds& scene) {

@@ -30,13 +30,13 @@ LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& select
 // when the primary node `primary` gets `primaryNow` in the tree `start` (the tree when the drag
 // began). They follow the primary's world motion about its origin: each gets D * (its world
 // matrix in `start`), D taking the primary's world matrix in `start` to its new one, turned back
-// into a Transform (transformFromMatrix: exact for moves and turns; a scale along the primary's
-// axes of a node turned against them is its nearest scale and turn). Left out: nodes inside
-// another selected node (they move with it) and nodes holding or held by the primary.
-std::vector<std::pair<NodeId, Transform>> followingTransforms(const NodePtr& start,
-                                                              const std::vector<NodeId>& selection,
-                                                              NodeId primary,
-                                                              const Transform& primaryNow);
+// into a Transform (transformNear: exact for moves and turns; a scale along the primary's
+// axes of a node turned against them is its nearest scale and turn, and the node is added to
+// `sheared` when not null). Left out: nodes inside another selected node (they move with it)
+// and nodes holding or held by the primary.
+std::vector<std::pair<NodeId, Transform>> followingTransforms(
+    const NodePtr& start, const std::vector<NodeId>& selection, NodeId primary,
+    const Transform& primaryNow, std::vector<NodeId>* sheared = nullptr);
 
 // What every selected node's transform becomes when the world motion `motion` (a matrix applied
 // to world points) moves the whole selection of the tree `start`: motion * (its world matrix in

@@ -269,36 +269,36 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     }
     if (io.MouseDown[0] && placeGizmo(state)) {
       Transform t = gizmo_.drag(view, mouse, state.snap);
+      std::vector<NodeId> sheared;  // parts the drag's motion would shear
       if (pivotGroup_) {
         // The pivot's motion, applied to every selected part from where the drag began.
         pivotNow_ = t;
         const glm::dmat4 motion = t.matrix() * glm::inverse(gizmo_.startTransform().matrix());
-        std::vector<NodeId> sheared;
         guarded(state, [&] {
           for (const auto& [id, transform] :
                movedSelection(dragStart_, state.selection, motion, &sheared))
             state.document.setTransform(id, transform);
         });
-        // Said once a drag: a turned part cannot follow a stretch along another axis.
-        if (!sheared.empty() && !shearSaid_) {
-          shearSaid_ = true;
-          const NodePtr part = findNode(dragStart_, sheared.front());
-          logWarning(state,
-                     "\"" + (part ? part->name : std::string("a part")) +
-                         "\" is turned: a stretch along the view's axes would shear it, which a "
-                         "part's move, turn and scale cannot hold; it gets the nearest move, "
-                         "turn and scale (its turn may change too). Scale it alone, along its "
-                         "own axes, for an exact stretch");
-        }
       } else {
         const NodeId id =
             selectedHolder(state.document.root(), state.selection, primarySelection(state));
         guarded(state, [&] {
           state.document.setTransform(id, t);
           for (const auto& [follower, transform] :
-               followingTransforms(dragStart_, state.selection, id, t))
+               followingTransforms(dragStart_, state.selection, id, t, &sheared))
             state.document.setTransform(follower, transform);
         });
+      }
+      // Said once a drag: a turned part cannot follow a stretch along another axis.
+      if (!sheared.empty() && !shearSaid_) {
+        shearSaid_ = true;
+        const NodePtr part = findNode(dragStart_, sheared.front());
+        logWarning(state,
+                   "\"" + (part ? part->name : std::string("a part")) +
+                       "\" is turned: a stretch along the view's axes would shear it, which a "
+                       "part's move, turn and scale cannot hold; it gets the nearest move, turn "
+                       "and scale (its turn may change too). Scale it alone, along its own axes, "
+                       "for an exact stretch");
       }
       drawDragReadout(state, gizmo_, t, glm::dvec2(io.MousePos.x, io.MousePos.y));
     } else {

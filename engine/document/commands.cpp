@@ -449,9 +449,11 @@ NodePtr relativeMeshPaths(const NodePtr& root, const std::string& toDir) {
       if (part != "..") break;
       ++up;
     }
-    // Relative within the folder, or beside it below a common folder that is not the root (a
-    // project's scenes/ and meshes/): such a project moves or is shared whole.
-    return up == 0 || up < toDepth ? relative.generic_string() : path.generic_string();
+    // Relative within the folder, or in a folder beside it (a project's scenes/ and meshes/,
+    // below a common folder that is not the root): such a project moves or is shared whole.
+    // Farther (a home folder's Downloads from its Desktop) stays absolute: a scene moved on its
+    // own still finds it.
+    return up == 0 || (up == 1 && up < toDepth) ? relative.generic_string() : path.generic_string();
   });
 }
 

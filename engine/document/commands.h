@@ -105,8 +105,8 @@ NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind);
 // absolute, lexically normal paths.
 NodePtr absoluteMeshPaths(const NodePtr& root, const std::string& fromDir);
 // Rewrites absolute mesh paths as paths relative to `toDir` where the file is under it or under
-// a folder above it other than the root (a project's sibling folders: "../meshes/part.obj");
-// others stay absolute.
+// a folder beside it (a project's sibling folders: "../meshes/part.obj", the common folder not
+// the root); others stay absolute.
 NodePtr relativeMeshPaths(const NodePtr& root, const std::string& toDir);
 
 }  // namespace strata

@@ -227,6 +227,9 @@ class StreamedExportWriter::Impl {
     if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
     if (!indexed_ && keptTriangles_ > std::numeric_limits<uint32_t>::max())
       throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
+    if (keptTriangles_ >= std::numeric_limits<uint32_t>::max())  // the check numbers facets so
+      throw Error(path_ + ": too many triangles for one streamed export (" +
+                  std::to_string(keptTriangles_) + ")");
     Stopwatch write;
     if (indexed_) numberVertices();
     StreamedMeshCheck measures(grid_, keptTriangles_, used_.min, used_.max, progress_);
@@ -237,7 +240,8 @@ class StreamedExportWriter::Impl {
     r_.peakBytes = peakResidentBytes();
     report_.check = written.check;
     // An indexed file's vertices are what checkMesh counts of it (the measures count the distinct
-    // positions the facets use: the same, but for a vertex a collapse left unused).
+    // positions the facets use: the same, but for a vertex a collapse left unused or two
+    // vertices at one position).
     if (indexed_ && written.fileDifference.empty()) report_.check.vertices = plyVertices_;
     report_.fileDifference = written.fileDifference;
     report_.checkSeconds = check.seconds();
@@ -916,10 +920,10 @@ class StreamedExportWriter::Impl {
     plyVertices_ = listed;
   }
 
-  // Encodes blocks [0, blocks) with encode(b, &bytes) a group at a time on several threads
+  // Encodes blocks [0, blocks) with encode(b, &block) a group at a time on several threads
   // (a block's failure kept, the first block's rethrown: the same message on any thread count),
-  // and writes each group in order on a thread of its own while the next is encoded; then(b,
-  // block) sees each block, in order, on this thread before its group is handed on.
+  // then hands each group, in order, to hand() on a thread of its own (*writing; *handing holds
+  // the group) while the next is encoded.
   template <typename Block, typename Encode, typename Hand>
   void writeBlocks(size_t blocks, const Encode& encode, const Hand& hand,
                    std::vector<Block>* handing, std::future<void>* writing) {

@@ -880,6 +880,7 @@ PrepareReport prepareMesh(TriangleMesh& mesh) {
   const std::vector<Shell> shells = findShells(manifoldAdjacency(mesh), flip);
   report.reorientedTriangles = orientShellsConsistently(mesh, shells, flip);
   orientShellsOutward(mesh, frame, shells, &report);
+  report.shells = shells.size();
   report.removedUnreferenced = dropUnreferenced(mesh);
   // Welded and without unreferenced vertices: no two vertices share a position, so the welding
   // map is the identity (no second hash of every position).

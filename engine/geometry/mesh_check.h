@@ -103,6 +103,7 @@ struct PrepareReport {
   // nesting rule) that pointed out, turned inward.
   size_t shellsTurnedOutward = 0;
   size_t cavitiesTurnedInward = 0;
+  size_t shells = 0;  // edge-connected shells (triangles joined across manifold edges)
   bool flippedInsideOut() const { return shellsTurnedOutward + cavitiesTurnedInward > 0; }
   size_t removedUnreferenced = 0;  // vertices no remaining triangle used, dropped
   MeshCheck check;                 // of the prepared mesh

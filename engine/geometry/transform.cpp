@@ -46,19 +46,23 @@ Transform transformFromMatrix(const glm::dmat4& m) {
 }
 
 namespace {
-// Whether a and b agree to `tolerance` of `size` in every entry of their linear parts and
-// translations.
+// Whether a and b agree to 1e-9 of `size` in every entry of their linear parts, and of the
+// larger of `size` and the translation's in their translations (a part far from the origin
+// keeps the linear part's own tolerance: a shear there is not hidden by its distance).
 bool near(const glm::dmat4& a, const glm::dmat4& b, double size) {
-  for (int c = 0; c < 4; ++c)
+  for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r)
       if (std::fabs(a[c][r] - b[c][r]) > 1e-9 * size) return false;
+  const double far = std::max({size, std::fabs(b[3][0]), std::fabs(b[3][1]), std::fabs(b[3][2])});
+  for (int r = 0; r < 3; ++r)
+    if (std::fabs(a[3][r] - b[3][r]) > 1e-9 * far) return false;
   return true;
 }
 }  // namespace
 
 Transform transformNear(const glm::dmat4& m, const Transform& like, bool* exact) {
-  double size = 1e-300;
-  for (int c = 0; c < 4; ++c)
+  double size = 1e-300;  // of the linear part
+  for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) size = std::max(size, std::fabs(m[c][r]));
   Transform kept = like;
   kept.translate = glm::dvec3(m[3]);

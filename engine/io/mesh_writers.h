@@ -74,7 +74,7 @@ void encodeStlFacet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
 // naming the unit and the counts, one vertex's kPlyVertexBytes (x, y, z as little-endian
 // doubles, then red, green, blue) and one triangle's kPlyFaceBytes (the count 3, then three
 // little-endian int32 indices). A vertex's colour is that of the leaf of the first triangle
-// that uses it (plyColour of its style), kPlyUnusedColour for one no triangle uses.
+// that uses it (plyColour of its style), plyUnusedColour() for one no triangle uses.
 constexpr size_t kPlyVertexBytes = 27;
 constexpr size_t kPlyFaceBytes = 13;
 std::string binaryPlyHeader(const std::string& unit, uint64_t vertices, uint64_t faces);

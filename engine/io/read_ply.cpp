@@ -658,6 +658,39 @@ class VertexPages {
 
  private:
   int load(uint64_t page) {
+    // Decoded first, into a vector of its own: a coordinate not finite is named (after every
+    // earlier page is checked, which loads pages itself) before the page takes a slot.
+    const uint64_t first = page * kPageVertices;
+    const uint64_t n = std::min(kPageVertices, count() - first);
+    std::string raw(size_t(n * record_), '\0');
+    const uint64_t at = header_.bodyStart + first * record_;
+    readAt(at, &raw);
+    std::vector<glm::dvec3> out(static_cast<size_t>(n));
+    const bool big = header_.format == Format::BigEndian;
+    const int axes[3] = {layout_.x, layout_.y, layout_.z};
+    std::atomic<bool> finite{true};
+    parallelFor(0, int64_t(n), 4096, [&](int64_t begin, int64_t end) {
+      bool all = true;
+      for (int64_t v = begin; v < end; ++v)
+        for (int k = 0; k < 3; ++k) {
+          const size_t property = size_t(axes[k]);
+          const double x = decode(raw.data() + size_t(v) * record_ + offsets_[property],
+                                  layout_.vertex->properties[property].type, big);
+          out[size_t(v)][k] = x;
+          all = all && std::isfinite(x);
+        }
+      if (!all) finite = false;
+    });
+    if (!finite) {
+      for (uint64_t earlier = 0; earlier < page; ++earlier)
+        if (!checked_[size_t(earlier)]) this->page(earlier);
+      for (uint64_t v = 0; v < n; ++v)
+        for (int k = 0; k < 3; ++k) {
+          const size_t property = size_t(axes[k]);
+          requireFiniteAtByte(name_, size_t(at + v * record_ + offsets_[property]),
+                              out[size_t(v)][k]);
+        }
+    }
     // A slot: a new one while fewer than kPagesHeld, else the least recently used.
     int slot;
     if (slots_.size() < kPagesHeld) {
@@ -669,38 +702,7 @@ class VertexPages {
       slot = int(std::min_element(used_.begin(), used_.end()) - used_.begin());
       slotOf_[size_t(pageOf_[size_t(slot)])] = -1;
     }
-    const uint64_t first = page * kPageVertices;
-    const uint64_t n = std::min(kPageVertices, count() - first);
-    std::string raw(size_t(n * record_), '\0');
-    const uint64_t at = header_.bodyStart + first * record_;
-    readAt(at, &raw);
-    std::vector<glm::dvec3>& out = slots_[size_t(slot)];
-    out.resize(size_t(n));
-    const bool big = header_.format == Format::BigEndian;
-    const int axes[3] = {layout_.x, layout_.y, layout_.z};
-    std::atomic<bool> finite{true};
-    parallelFor(0, int64_t(n), 4096, [&](int64_t first, int64_t last) {
-      bool all = true;
-      for (int64_t v = first; v < last; ++v)
-        for (int k = 0; k < 3; ++k) {
-          const size_t property = size_t(axes[k]);
-          const double x = decode(raw.data() + size_t(v) * record_ + offsets_[property],
-                                  layout_.vertex->properties[property].type, big);
-          out[size_t(v)][k] = x;
-          all = all && std::isfinite(x);
-        }
-      if (!all) finite = false;
-    });
-    if (!finite && !checked_[size_t(page)]) {
-      for (uint64_t earlier = 0; earlier < page; ++earlier)
-        if (!checked_[size_t(earlier)]) this->page(earlier);
-      for (uint64_t v = 0; v < n; ++v)
-        for (int k = 0; k < 3; ++k) {
-          const size_t property = size_t(axes[k]);
-          requireFiniteAtByte(name_, size_t(at + v * record_ + offsets_[property]),
-                              out[size_t(v)][k]);
-        }
-    }
+    slots_[size_t(slot)] = std::move(out);
     checked_[size_t(page)] = true;
     slotOf_[size_t(page)] = slot;
     pageOf_[size_t(slot)] = page;
@@ -729,7 +731,7 @@ class VertexPages {
 bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
                     const Progress* progress) {
   InputFile file(path);
-  // The header, from the first 64 KB (a longer one: read whole).
+  // The header, from the first 64 KB (a longer one: false, the whole read takes the file).
   std::string head(size_t(std::min<uint64_t>(file.size(), 65536)), '\0');
   file.readExactly(head.data(), head.size());
   if (hasUtf8Bom(head) || head.compare(0, 4, "ply\n") != 0) return false;
@@ -756,6 +758,8 @@ bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
   const Property& list = layout.face->properties[0];
   const bool big = header.format == Format::BigEndian;
   const size_t countBytes = sizeOf(list.countType), indexBytes = sizeOf(list.type);
+  // Fewer bytes than the faces' counts need: the whole read names it as it does.
+  if (faces > (file.size() - faceStart) / countBytes) return false;
 
   // The faces read in pieces of about 4 MB, each piece's triangles (fans of its polygons) listed
   // by index first, then visited in blocks on several threads where their pages are few enough
@@ -847,6 +851,12 @@ bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
         failAtByte(path, countAt, "negative list length in element 'face'");
       }
       const size_t n = size_t(count);
+      if (double(n) * double(indexBytes) > double(file.size() - (bufferFile + bufferAt))) {
+        vertices.checkAll();  // a list longer than the file: truncated, as the whole read says
+        failAtByte(path, size_t(file.size()),
+                   "unexpected end of file in element 'face' " + std::to_string(face) + " of " +
+                       std::to_string(faces) + " (truncated, or the header's counts are wrong)");
+      }
       need(n * indexBytes, face);
       if (n < 3) {
         vertices.checkAll();
@@ -903,6 +913,7 @@ bool visitPlyBlocks(const std::string& path, const TriangleBlockVisitor& visit,
       // Scattered (not a file of ours): a block at a time on this thread.
       std::vector<glm::dvec3> corners;
       for (size_t b = 0; b < triangles.size(); b += size_t(kBlockTriangles)) {
+        if (progress) progress->check();
         const size_t e = std::min(triangles.size(), b + size_t(kBlockTriangles));
         corners.clear();
         for (size_t t = b; t < e; ++t)

@@ -90,8 +90,11 @@ void writeRecoveryFile(const Scene& scene, const std::string& documentPath,
   }
   // The document's path from the root: the editor that recovers it may start in another
   // folder (a relative one would name, or overwrite, another file there).
-  const std::string origin =
-      documentPath.empty() ? "" : fs::absolute(documentPath).lexically_normal().string();
+  std::error_code error;
+  const fs::path absolute = documentPath.empty() ? fs::path() : fs::absolute(documentPath, error);
+  const std::string origin = documentPath.empty() ? ""
+                             : error              ? documentPath
+                                                  : absolute.lexically_normal().string();
   // One set: a recovery file never sits beside the origin of another document.
   writeFilesAtomically(
       {{recoveryPath, [&](std::ostream& out) { out << json; }},

@@ -74,6 +74,11 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
   EXPECT_EQ(exportSuggestion(state), folder + "/out/ball.ply");
   ASSERT_TRUE(saveDocumentAs(state, folder + "/other.strata.json"));
   EXPECT_EQ(exportSuggestion(state), folder + "/other.stl");
+  // An untitled document: the last export's folder, a name of its own (not another untitled
+  // document's file, which Enter would replace).
+  EditorState untitled;
+  untitled.lastExportPath = folder + "/out/ball.ply";
+  EXPECT_EQ(exportSuggestion(untitled), folder + "/out/part.stl");
   std::filesystem::remove_all(folder);
 }
 

@@ -529,6 +529,13 @@ TEST(Roles, SeveralSelectedRowsDroppedMoveTogetherAsOneStep) {
   dropNodes(state, a, hole, 0);
   EXPECT_EQ(state.document.root(), before);
   EXPECT_EQ(state.log.back().level, LogLevel::Error);
+  // The group and a part inside it, the part's row dragged: the group moves (as the gizmo
+  // moves it), the part stays in it.
+  state.selection = {group, hole};
+  dropNodes(state, hole, b, 0);
+  EXPECT_TRUE(isInSubtree(state.document.root(), group, hole));
+  undo(state);
+  EXPECT_EQ(state.document.root(), before);
 }
 
 TEST(Instances, InstanceFollowsItsOriginalAndIsOneUndoStep) {

@@ -217,10 +217,10 @@ TEST(DocumentCommands, MeshPathsBetweenAbsoluteAndRelative) {
   EXPECT_EQ(findNode(full, 3)->meshPath, "/data/x.stl");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/"), 2)->meshPath, "meshes/part.obj");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/"), 3)->meshPath, "/data/x.stl");
-  // Beside the folder, under a common one that is not the root: relative (a project's scenes/
-  // and meshes/); sharing only the root: absolute.
+  // In a folder beside it, under a common one that is not the root: relative (a project's
+  // scenes/ and meshes/); farther, or sharing only the root: absolute.
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/other"), 2)->meshPath, "../meshes/part.obj");
-  EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/a/b"), 2)->meshPath, "../../meshes/part.obj");
+  EXPECT_EQ(findNode(relativeMeshPaths(full, "/w/a/b"), 2)->meshPath, "/w/meshes/part.obj");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/v/other"), 2)->meshPath, "/w/meshes/part.obj");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/v"), 2)->meshPath, "/w/meshes/part.obj");
   EXPECT_EQ(findNode(relativeMeshPaths(full, "/"), 2)->meshPath, "w/meshes/part.obj");

@@ -99,6 +99,11 @@ TEST(Transform, NearKeepsTheTurnWhereItCanAndSaysWhereItCannot) {
   // Turned 30 degrees about z, stretched along world x: a shear.
   transformNear(scaleMatrix(glm::dvec3(2.0, 1.0, 1.0)) * like.matrix(), like, &exact);
   EXPECT_FALSE(exact);
+  // Far from the origin a slight shear is still one (the tolerance is the linear part's).
+  Transform far = like;
+  far.translate = glm::dvec3(1e6, 0.0, 0.0);
+  transformNear(scaleMatrix(glm::dvec3(1.001, 1.0, 1.0)) * far.matrix(), far, &exact);
+  EXPECT_FALSE(exact);
   // Turned, then turned more (a rigid motion): exact, by the matrix's own angles.
   glm::dmat4 turn(1.0);
   turn = glm::rotate(turn, glm::radians(20.0), glm::dvec3(0.0, 0.0, 1.0));

@@ -187,6 +187,32 @@ TEST(ReadInPieces, BinaryPlyScatteredAndBrokenAsTheWholeRead) {
       "extra", [&](std::string& b) { b += "more"; }, "4 bytes of data after the last element");
 }
 
+// The first page read is not the first in the file and holds a coordinate not finite: the pages
+// before it are read and checked first (one no face uses among them), and the error names the
+// first in the file, as the whole read does.
+TEST(ReadInPieces, ANonFiniteCoordinateInALaterPageIsNamedAfterTheEarlierOnes) {
+  ExportMesh em;
+  const size_t n = 200000;  // pages of 2^16: the faces use only the third
+  for (size_t i = 0; i < n; ++i)
+    em.mesh.positions.push_back({double(i), double(i % 7), double(i % 11) * 0.5});
+  for (uint32_t v = 140000; v + 2 < 190000; v += 3) {
+    em.mesh.triangles.push_back({v, v + 1, v + 2});
+    em.triangleLeaf.push_back(1);
+  }
+  em.leaves[1] = {"late", {1.0f, 1.0f, 1.0f}};
+  const std::string path = freshPath("late_nan.ply");
+  writeMeshFile(path, em);
+  std::string bytes = fileBytes(path);
+  const size_t body = bytes.find("end_header\n") + 11, record = 3 * 8 + 3;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (size_t vertex : {150000u, 10000u}) std::memcpy(&bytes[body + record * vertex + 16], &nan, 8);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  bool inPieces = false;
+  const auto [whole, pieces] = bothMessages(path, &inPieces);
+  EXPECT_NE(whole.find(std::to_string(body + record * 10000 + 16)), std::string::npos) << whole;
+  EXPECT_EQ(pieces, whole);
+}
+
 TEST(ReadInPieces, LeavesOtherFilesToTheWholeRead) {
   const ExportMesh em = strip(10);
   bool inPieces = true;
