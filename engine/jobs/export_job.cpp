@@ -6,6 +6,7 @@
 
 #include "engine/export/export_scene.h"
 #include "engine/export/job_estimate.h"
+#include "engine/export/streamed_export.h"
 #include "engine/jobs/background_job.h"
 #include "engine/util/error.h"
 #include "engine/util/memory.h"
@@ -19,11 +20,9 @@ double overallExportFraction(const std::string& stage, double fraction, bool sim
     const char* prefix;
     double from, to;
   };
-  static const Part kPlain[] = {{"estimate", 0.0, 0.05},
-                                {"evaluate", 0.05, 0.1},
-                                {"export", 0.1, 0.7},
-                                {"write", 0.7, 0.8},
-                                {"check", 0.8, 1.0}};
+  static const Part kPlain[] = {{"estimate", 0.0, 0.05}, {"evaluate", 0.05, 0.1},
+                                {"export", 0.1, 0.65},   {"merge", 0.65, 0.7},
+                                {"write", 0.7, 0.8},     {"check", 0.8, 1.0}};
   static const Part kSimplifying[] = {{"estimate", 0.0, 0.03}, {"evaluate", 0.03, 0.05},
                                       {"export", 0.05, 0.3},   {"simplify", 0.3, 0.9},
                                       {"write", 0.9, 0.93},    {"check", 0.93, 1.0}};
@@ -93,11 +92,29 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
       progress_->report("estimate", fraction);  // throws Cancelled once the job is cancelled
     });
     const JobEstimate estimate = estimateExport(*scene, options, path, backend, probe);
-    const std::string refusal =
-        estimateRefusal(estimate, guard.memoryBytes ? guard.memoryBytes : availableMemoryBytes(),
-                        freeDiskBytesForFile(path));
+    const uint64_t memory = guard.memoryBytes ? guard.memoryBytes : availableMemoryBytes();
+    const uint64_t disk = freeDiskBytesForFile(path);
+    std::string refusal = estimateRefusal(estimate, memory, disk);
+    // Where the whole mesh would not fit the memory but its pieces would: written in pieces.
+    JobEstimate shown = estimate;
+    bool inPieces = false;
+    if (!refusal.empty() && estimate.probed && streamedExportRefusal(path, options).empty()) {
+      JobEstimate pieces = estimate;
+      pieces.tiles = std::max(1, pieces.streamedSlabs * pieces.streamedTilesPerSlab);
+      pieces.peakBytes = streamedPeakOnWorkers(estimate, 1);
+      pieces.fileBytes += pieces.scratchBytes;  // the scratch file beside it, meanwhile
+      if (estimateRefusal(pieces, memory, disk).empty()) {
+        refusal.clear();
+        shown = pieces;
+        inPieces = true;
+      }
+    }
     update([&](ExportStatus& s) {
-      if (estimate.probed) s.estimate = describeEstimate(estimate);
+      if (estimate.probed)
+        s.estimate =
+            describeEstimate(shown) +
+            (inPieces ? "; written in pieces: the whole mesh would not fit in memory" : "");
+      s.inPieces = inPieces;
     });
     if (!refusal.empty() && !guard.insist) {
       const glm::ivec3 c = estimate.grid.cells;
@@ -105,9 +122,13 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
       throw Error("the export at " + std::to_string(std::max(c.x, std::max(c.y, c.z))) + " cells " +
                   refusal + ". Lower the resolution, or export anyway");
     }
-    ExportReport report = exportScene(
-        *scene, path, options, std::move(backend), *progress_,
-        [&](const std::string& line) { update([&](ExportStatus& s) { s.notice = line; }); });
+    const FallbackNotice notice = [&](const std::string& line) {
+      update([&](ExportStatus& s) { s.notice = line; });
+    };
+    ExportReport report =
+        inPieces
+            ? exportSceneStreamed(*scene, path, options, std::move(backend), *progress_, notice)
+            : exportScene(*scene, path, options, std::move(backend), *progress_, notice);
     result.succeeded = true;
     result.simplify = report.simplify;
     result.check = report.check;

@@ -29,7 +29,8 @@ struct ExportStatus {
   bool finished = false;   // ended (succeeded, failed or cancelled)
   bool succeeded = false;  // written, re-read and checked
   bool cancelled = false;
-  // "start", "estimate", "evaluate", "export", "simplify", "write <format>", "check"
+  // "start", "estimate", "evaluate", "export", "merge" (written in pieces), "simplify",
+  // "write <format>", "check"
   std::string stage;
   // The whole job done, in [0, 1]: the stages as parts of one bar (overallExportFraction);
   // never goes back while the job runs.
@@ -42,6 +43,9 @@ struct ExportStatus {
   // The estimate did not fit (memory or disk; error says which) and the job was not insisted
   // on: nothing was done. Start it again with insist to export anyway.
   bool refused = false;
+  // Written in pieces (streamed_export.h, as `strata export --stream`: the same file): the whole
+  // mesh would not fit the memory, its pieces do (STL or PLY, not simplified).
+  bool inPieces = false;
   std::string path;
   MeshCheck check;             // of the file as written (valid when succeeded)
   std::string fileDifference;  // "" when the file holds the mesh meant (check_written.h)

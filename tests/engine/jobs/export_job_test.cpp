@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/eval/cpu_backend.h"
+#include "engine/export/job_estimate.h"
 #include "engine/io/mesh_io.h"
 #include "tests/engine/jobs/job_test_support.h"
 #include "tests/support/gated_backend.h"
@@ -176,12 +177,49 @@ TEST(ExportJob, SimplifiedExportAndAProgressBarThatNeverGoesBack) {
   EXPECT_TRUE(simplified);
 }
 
+// An export whose whole mesh would not fit the memory but whose pieces would is written in
+// pieces (as `strata export --stream`): the same file as in memory, said in its estimate, its
+// progress bar never going back.
+TEST(ExportJob, AMeshTooLargeForMemoryIsWrittenInPieces) {
+  const std::string folder = freshFolder("pieces");
+  const auto scene = boxMinusSphere(600);  // above kProbeAbove: estimated from probes
+  ExportOptions options;
+  options.resolution = 600;
+  auto backend = std::make_shared<CpuBackend>();
+  Progress probe;
+  const JobEstimate e = estimateExport(*scene, options, folder + "/x.stl", backend, probe);
+  ASSERT_TRUE(e.probed);
+  const uint64_t pieces = streamedPeakOnWorkers(e, 1);
+  ASSERT_LT(pieces, e.peakBytes) << "a job whose pieces are no smaller proves nothing";
+  ExportGuard guard;
+  guard.memoryBytes = (pieces + e.peakBytes) / 2;  // the pieces fit, the whole does not
+  ExportWatch watch;
+  ExportJob job(scene, folder + "/part.stl", options, backend, watch.listener(), guard);
+  ASSERT_TRUE(watch.waitUntilFinished());
+  const ExportStatus s = job.status();
+  ASSERT_TRUE(s.succeeded) << s.error;
+  EXPECT_TRUE(s.inPieces);
+  EXPECT_NE(s.estimate.find("written in pieces"), std::string::npos) << s.estimate;
+  const std::vector<double> fractions = watch.fractions();
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  // The file the export in memory writes (insisted on with that memory).
+  guard.insist = true;
+  guard.memoryBytes = 0;
+  ExportWatch whole;
+  ExportJob again(scene, folder + "/whole.stl", options, backend, whole.listener(), guard);
+  ASSERT_TRUE(whole.waitUntilFinished());
+  ASSERT_TRUE(again.status().succeeded) << again.status().error;
+  EXPECT_FALSE(again.status().inPieces);
+  EXPECT_TRUE(contentOf(folder + "/part.stl") == contentOf(folder + "/whole.stl"));
+}
+
 TEST(ExportJob, TheStagesFillOneBarInOrder) {
   for (bool simplifying : {false, true}) {
     double last = 0.0;
     for (const std::string stage :
-         {"estimate", "evaluate", "export", "simplify", "write STL", "check"}) {
+         {"estimate", "evaluate", "export", "merge", "simplify", "write STL", "check"}) {
       if (!simplifying && stage == "simplify") continue;
+      if (simplifying && stage == "merge") continue;  // (only written in pieces)
       for (double f : {0.0, 0.5, 1.0}) {
         const double overall = overallExportFraction(stage, f, simplifying);
         EXPECT_GE(overall, last) << stage << " " << f;
