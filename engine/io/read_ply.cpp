@@ -263,6 +263,46 @@ Layout findLayout(const std::string& name, const Header& header) {
   return layout;
 }
 
+bool hostIsLittleEndian() {
+  const uint16_t probe = 1;
+  unsigned char first;
+  std::memcpy(&first, &probe, 1);
+  return first == 1;
+}
+
+// One value of `type` at `raw` (stored little- or big-endian), as double: exactly for every
+// integer type. The one decoding of the whole read and the read in pieces.
+double decode(const char* raw, Type type, bool bigEndian) {
+  unsigned char b[8];
+  const size_t n = sizeOf(type);
+  std::memcpy(b, raw, n);
+  if (bigEndian == hostIsLittleEndian())
+    for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+  const auto get = [&](auto v) {
+    std::memcpy(&v, b, sizeof(v));
+    return double(v);
+  };
+  switch (type) {
+    case Type::Int8:
+      return get(int8_t());
+    case Type::UInt8:
+      return get(uint8_t());
+    case Type::Int16:
+      return get(int16_t());
+    case Type::UInt16:
+      return get(uint16_t());
+    case Type::Int32:
+      return get(int32_t());
+    case Type::UInt32:
+      return get(uint32_t());
+    case Type::Float32:
+      return get(float());
+    case Type::Float64:
+      return get(double());
+  }
+  return 0.0;
+}
+
 // ---- Binary ----
 
 class BinaryCursor {
@@ -284,51 +324,14 @@ class BinaryCursor {
 
   // Reads one value of `type` (bounds already checked) as double, exactly for all integers.
   double read(Type type) {
-    unsigned char raw[8];
-    const size_t n = sizeOf(type);
-    std::memcpy(raw, bytes_.data() + pos_, n);
-    pos_ += n;
-    const bool hostLittle = isHostLittleEndian();
-    if (bigEndian_ == hostLittle) {
-      for (size_t i = 0; i < n / 2; ++i) std::swap(raw[i], raw[n - 1 - i]);
-    }
-    switch (type) {
-      case Type::Int8:
-        return static_cast<int8_t>(raw[0]);
-      case Type::UInt8:
-        return raw[0];
-      case Type::Int16:
-        return get<int16_t>(raw);
-      case Type::UInt16:
-        return get<uint16_t>(raw);
-      case Type::Int32:
-        return get<int32_t>(raw);
-      case Type::UInt32:
-        return get<uint32_t>(raw);
-      case Type::Float32:
-        return get<float>(raw);
-      case Type::Float64:
-        return get<double>(raw);
-    }
-    return 0.0;
+    const double value = decode(bytes_.data() + pos_, type, bigEndian_);
+    pos_ += sizeOf(type);
+    return value;
   }
 
   void skip(size_t n) { pos_ += n; }
 
  private:
-  template <typename T>
-  static T get(const unsigned char* raw) {
-    T v;
-    std::memcpy(&v, raw, sizeof(T));
-    return v;
-  }
-  static bool isHostLittleEndian() {
-    const uint16_t probe = 1;
-    unsigned char first;
-    std::memcpy(&first, &probe, 1);
-    return first == 1;
-  }
-
   const std::string& name_;
   const std::string& bytes_;
   size_t pos_;
@@ -559,48 +562,6 @@ class AsciiBodyParser {
 };
 
 // ---- In pieces ----
-
-// One value of `type` at `raw` (stored little- or big-endian), as double.
-double decode(const char* raw, Type type, bool bigEndian) {
-  unsigned char b[8];
-  const size_t n = sizeOf(type);
-  std::memcpy(b, raw, n);
-  uint16_t probe = 1;
-  unsigned char first;
-  std::memcpy(&first, &probe, 1);
-  if (bigEndian == (first == 1))
-    for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
-  const auto get = [&](auto v) {
-    std::memcpy(&v, b, sizeof(v));
-    return double(v);
-  };
-  switch (type) {
-    case Type::Int8:
-      return get(int8_t());
-    case Type::UInt8:
-      return get(uint8_t());
-    case Type::Int16:
-      return get(int16_t());
-    case Type::UInt16:
-      return get(uint16_t());
-    case Type::Int32:
-      return get(int32_t());
-    case Type::UInt32:
-      return get(uint32_t());
-    case Type::Float32:
-      return get(float());
-    case Type::Float64:
-      return get(double());
-  }
-  return 0.0;
-}
-
-bool hostIsLittleEndian() {
-  const uint16_t probe = 1;
-  unsigned char first;
-  std::memcpy(&first, &probe, 1);
-  return first == 1;
-}
 
 // n bytes of the file open as `fd` from byte `at`. Throws naming the file when it cannot.
 void readFileAt(const std::string& name, int fd, uint64_t at, char* into, size_t n) {

@@ -446,17 +446,29 @@ TEST(Roles, DuplicatesKeepTheirRoleAndSitOneGridStepAlongX) {
   EXPECT_FALSE(findNode(state.document.root(), holeCopy));
 }
 
+// A plate with a hole cut from it: the plate, the hole, and the difference holding both.
+struct PlateWithHole {
+  NodeId plate = 0, hole = 0, group = 0;
+};
+PlateWithHole addPlateWithHole(EditorState& state) {
+  PlateWithHole p;
+  p.plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  p.hole = addPrimitive(state, NodeKind::Cylinder);
+  state.placeMode = PlaceMode::Add;
+  NodeLocation where;
+  if (locateNode(state.document.root(), p.hole, &where)) p.group = where.parent->id;
+  clearSelection(state);
+  return p;
+}
+
 // A group and a part inside it selected together: what acts on the selection acts on the
 // group once, the part moving with it (an artist's test: Ctrl+D copied the part twice, the
 // inspector moved it twice, the gizmo turned only the part).
 TEST(Roles, AGroupAndAPartInsideItActAsTheGroup) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
-  NodeLocation where;
-  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
-  const NodeId group = where.parent->id;
+  const auto [plate, hole, group] = addPlateWithHole(state);
+  ASSERT_NE(group, 0u);
   ASSERT_NE(group, hole);
   state.selection = {group, hole};
   const NodePtr& before = state.document.root();
@@ -476,15 +488,8 @@ TEST(Roles, AGroupAndAPartInsideItActAsTheGroup) {
 // collapsed between them (an artist's test: "59 selected" with 7 rows lit).
 TEST(Roles, ARangeSelectsTheRowsShownNotACollapsedGroupsParts) {
   EditorState state;
-  const NodeId first = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
-  state.placeMode = PlaceMode::Add;
-  clearSelection(state);
+  const auto [first, hole, group] = addPlateWithHole(state);
   const NodeId last = addPrimitive(state, NodeKind::Sphere);
-  NodeLocation where;
-  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
-  const NodeId group = where.parent->id;
   // Shown: the root, the group (collapsed: its parts hidden), the last part.
   const std::vector<NodeId> rows = {state.document.root()->id, group, last};
   selectNode(state, group);
@@ -503,17 +508,10 @@ TEST(Roles, ARangeSelectsTheRowsShownNotACollapsedGroupsParts) {
 // only it moved); a drop refused for one moves none.
 TEST(Roles, SeveralSelectedRowsDroppedMoveTogetherAsOneStep) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
-  state.placeMode = PlaceMode::Add;
-  clearSelection(state);
+  const auto [plate, hole, group] = addPlateWithHole(state);
   const NodeId a = addPrimitive(state, NodeKind::Sphere);
   clearSelection(state);
   const NodeId b = addPrimitive(state, NodeKind::Torus);
-  NodeLocation where;
-  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
-  const NodeId group = where.parent->id;
   const NodePtr before = state.document.root();
   state.selection = {a, b};
   dropNodes(state, b, plate, 0);
