@@ -6,12 +6,7 @@
 # - ply.txt: the rebuilt scaffold and armadillo - bunny at 4096 cells on one GPU, written in
 #   pieces as binary STL and as PLY, and in memory as PLY: stages, wall, host peak, file size;
 #   the streamed PLY compared byte for byte with the in-memory one.
-source .devrt/on-device.sh
-mkdir -p /tmp/devlib && tar xJf .devrt/libs.tar.xz -C /tmp/devlib
-export LD_LIBRARY_PATH=/tmp/devlib:$LD_LIBRARY_PATH
-for f in .devrt/bin/*.xz; do xz -dkf "$f" && chmod +x "${f%.xz}"; done
-B=.devrt/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
-export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
+source tests/gpu/devrt_start.sh
 nvidia-smi -L > $R/host.txt 2>&1; nproc >> $R/host.txt; free -g >> $R/host.txt; df -h /tmp >> $R/host.txt
 timeout 200 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
 tail -3 $R/gpu_tests.txt
