@@ -657,7 +657,7 @@ TEST(StreamedExport, TheCheckOfChunksAFewLayersThickCountsWhatTheWholeCheckCount
 // The check's chunks measured on several threads at once and joined as they finish (CI runs this
 // one under ThreadSanitizer): the numbers of one chunk on one thread.
 TEST(StreamedExport, TheCheckOnThreadsCountsWhatOneThreadCounts) {
-  const std::string folder = freshFolder("threads");
+  const std::string folder = freshFolder("check_threads");
   const std::string path = folder + "/part.stl";
   const ExportReport r = exportSlabbedScene(path);
   ASSERT_TRUE(r.passed());
