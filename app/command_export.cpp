@@ -150,17 +150,14 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
       estimate = estimateExport(scene, options, output, choice.backend,
                                 workersMemory(workers, perDevice), probe);
     });
-    uint64_t streamedPeak = streamedPeakOnWorkers(estimate, int(workers.size()));
     // Distributed: process 0 holds the tiles of the slabs the processes work in.
-    if (group)
-      streamedPeak +=
-          uint64_t(distributedSlabsAhead(group->size(), estimate.streamedTilesPerSlab) - 1) *
-          estimate.streamedSlabTileBytes;
-    if (streamed) {
-      if (estimate.probed) estimate.tiles = estimate.streamedSlabs * estimate.streamedTilesPerSlab;
-      estimate.peakBytes = streamedPeak;
-      estimate.fileBytes += estimate.scratchBytes;
-    }
+    const uint64_t held =
+        group ? uint64_t(distributedSlabsAhead(group->size(), estimate.streamedTilesPerSlab) - 1) *
+                    estimate.streamedSlabTileBytes
+              : 0;
+    const JobEstimate pieces = streamedEstimate(estimate, int(workers.size()), held);
+    const uint64_t streamedPeak = pieces.peakBytes;
+    if (streamed) estimate = pieces;
     const glm::ivec3 c = estimate.grid.cells;
     // Where the mesh would not fit but its pieces would: say so.
     std::string otherWay;

@@ -282,6 +282,14 @@ uint64_t streamedPeakOnWorkers(const JobEstimate& e, int workers) {
          uint64_t(more) * e.streamedSlabTileBytes;
 }
 
+JobEstimate streamedEstimate(const JobEstimate& estimate, int workers, uint64_t heldBytes) {
+  JobEstimate pieces = estimate;
+  if (pieces.probed) pieces.tiles = std::max(1, pieces.streamedSlabs * pieces.streamedTilesPerSlab);
+  pieces.peakBytes = streamedPeakOnWorkers(estimate, workers) + heldBytes;
+  pieces.fileBytes += pieces.scratchBytes;
+  return pieces;
+}
+
 TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, double simplifyCells,
                                          const std::shared_ptr<Backend>& backend,
                                          Progress& progress) {

@@ -76,6 +76,10 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
 // The streamed export's peak on `workers` backends (--gpus): each evaluates a tile of its own,
 // and they hold the tiles of up to streamedSlabsAhead slabs ahead of the merge.
 uint64_t streamedPeakOnWorkers(const JobEstimate& estimate, int workers);
+// The estimate of the same export written in pieces on `workers` workers: its own tiles (where
+// probed), streamedPeakOnWorkers plus `heldBytes` (a distributed process 0's tiles held) as the
+// peak, and the scratch file counted with the file.
+JobEstimate streamedEstimate(const JobEstimate& estimate, int workers, uint64_t heldBytes = 0);
 
 // The triangles an export at `resolution` (0 = the scene's) will write, unsimplified and
 // simplified within `simplifyCells` cells (0: not simplified), for the export dialog: one probe

@@ -99,10 +99,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     JobEstimate shown = estimate;
     bool inPieces = false;
     if (!refusal.empty() && estimate.probed && streamedExportRefusal(path, options).empty()) {
-      JobEstimate pieces = estimate;
-      pieces.tiles = std::max(1, pieces.streamedSlabs * pieces.streamedTilesPerSlab);
-      pieces.peakBytes = streamedPeakOnWorkers(estimate, 1);
-      pieces.fileBytes += pieces.scratchBytes;  // the scratch file beside it, meanwhile
+      const JobEstimate pieces = streamedEstimate(estimate, 1);
       if (estimateRefusal(pieces, memory, disk).empty()) {
         refusal.clear();
         shown = pieces;
