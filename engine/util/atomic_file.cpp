@@ -299,6 +299,36 @@ void writeThrough(const AtomicFileWrite& file) {
   if (const int error = out.close()) throw Error(file.path + ": cannot write: " + errorText(error));
 }
 
+// The file that the links at `path` itself lead to (a chain of links followed one by one; links
+// among the folders above are the system's to follow). A link that leads nowhere yet gives the
+// path it names, where the file is then created (as the shell's `>` would). A link in a sticky
+// folder that everyone may write (/tmp) and owned by neither this user nor the folder's owner is
+// refused, as the kernel's fs.protected_symlinks refuses to follow it: someone else planted it.
+std::string followTargetLinks(const std::string& path) {
+  std::string current = path;
+  for (int hop = 0; hop < 40; ++hop) {
+    struct stat link;
+    if (::lstat(current.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) return current;
+    const size_t slash = current.rfind('/');
+    const std::string folder = slash == std::string::npos ? "" : current.substr(0, slash + 1);
+    struct stat shared;
+    if (::stat(folder.empty() ? "." : folder.c_str(), &shared) == 0 &&
+        (shared.st_mode & S_ISVTX) != 0 && (shared.st_mode & S_IWOTH) != 0 &&
+        link.st_uid != ::geteuid() && link.st_uid != shared.st_uid)
+      throw Error(current +
+                  ": a symbolic link of another user in a shared folder; not followed (write "
+                  "to another name)");
+    std::string destination(static_cast<size_t>(link.st_size) + 1, '\0');
+    const ssize_t n = ::readlink(current.c_str(), &destination[0], destination.size());
+    if (n <= 0 || static_cast<size_t>(n) >= destination.size())
+      throw Error(current +
+                  ": cannot read the symbolic link: " + errorText(n < 0 ? errno : EINVAL));
+    destination.resize(static_cast<size_t>(n));
+    current = destination[0] == '/' ? destination : folder + destination;
+  }
+  throw Error(path + ": " + errorText(ELOOP));
+}
+
 }  // namespace
 
 std::string notAFileToReadBack(const std::string& path) {
@@ -330,9 +360,11 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
                   "written together go to regular files");
   std::vector<Target> targets;
   for (const AtomicFileWrite& file : files) {
+    splitTarget(file.path);  // refuses a path that names no file, before any link is read
+    const std::string target = followTargetLinks(file.path);
     for (const Target& t : targets)
-      if (t.path == file.path) throw Error(file.path + ": listed twice in one atomic write");
-    targets.push_back(splitTarget(file.path));
+      if (t.path == target) throw Error(file.path + ": listed twice in one atomic write");
+    targets.push_back(splitTarget(target));
   }
   std::vector<std::unique_ptr<OwnedFile>> temporaries;
   for (size_t i = 0; i < files.size(); ++i) {
@@ -347,7 +379,7 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
         throw Error(targets[0].path + ": cannot replace the file: " + errorText(errno));
       temporaries[0]->release();
     }
-    noteCommitted(targets[0].path);
+    noteCommitted(files[0].path);
     syncFolder(targets[0].folderToOpen());
     return;
   }
@@ -390,7 +422,7 @@ void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
       throw Error(message + (notRestored.empty() ? "; no file was replaced" : notRestored));
     }
   }
-  noteCommitted(targets[0].path);  // the set's main file (an OBJ, not its MTL)
+  noteCommitted(files[0].path);  // the set's main file (an OBJ, not its MTL), as named
   std::vector<std::string> synced;
   for (const Target& target : targets) {
     if (std::find(synced.begin(), synced.end(), target.folderToOpen()) != synced.end()) continue;
@@ -409,7 +441,13 @@ std::vector<std::string> committedFiles() {
 }
 
 std::vector<std::string> temporaryFilesOf(const std::string& path) {
-  return leftoversOf(splitTarget(path));
+  std::string target = path;
+  try {
+    target = followTargetLinks(path);
+  } catch (const Error&) {
+    // a link that cannot be followed: the files named after the link itself
+  }
+  return leftoversOf(splitTarget(target));
 }
 
 namespace {

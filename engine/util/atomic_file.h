@@ -1,5 +1,6 @@
 // Writing files so that nothing is ever lost or half-seen: a reader finds the old file or the
-// whole new one, never a mixture, a truncated file or a file written through someone's link.
+// whole new one, never a mixture, a truncated file or a file written through a link planted by
+// someone else.
 //
 // How one file is written (POSIX; Linux is what is tested):
 //   1. Leftovers of killed writers of the same target are removed (see "Leftovers").
@@ -17,8 +18,11 @@
 // On any failure, or when `write` throws (Cancelled included), the temporary file is removed and
 // the target is untouched.
 //
-// A symbolic link at the target itself is replaced by the new file (rename replaces the link);
-// the file it pointed to is never written. Links among the folders above are followed.
+// A symbolic link at the target itself is kept: the file it leads to (through a chain of links;
+// a link to nothing yet: the path it names) is what is written and replaced, the same way, in
+// that file's folder. A link in a sticky folder that everyone may write (/tmp) owned by neither
+// this user nor the folder's owner is refused by name, as the kernel's fs.protected_symlinks
+// refuses to follow it. Links among the folders above are followed. Errors name the file written.
 //
 // Concurrent writers of one path (threads or processes) each write their own temporary file;
 // the last rename wins and leaves one writer's whole file.

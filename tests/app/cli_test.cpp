@@ -3,10 +3,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -449,6 +451,28 @@ TEST(Cli, SideFilesNeverReplaceTheInputOrTheOutput) {
   EXPECT_EQ(toDevice.code, 1) << toDevice.output;
   EXPECT_NE(toDevice.output.find("not a regular file"), std::string::npos) << toDevice.output;
   std::remove(device.c_str());
+}
+
+// An output that is the user's link (part.stl -> prints/part-v2.stl) stays a link: the export
+// replaces the file it leads to and checks that file.
+TEST(Cli, AnOutputThatIsALinkKeepsItAndWritesTheFileItLeadsTo) {
+  const std::string scene = std::string(STRATA_ASSETS) + "/scenes/two_spheres.strata.json";
+  const std::string real = temp("linked_output_real.stl");
+  const std::string link = temp("linked_output.stl");
+  std::remove(real.c_str());
+  std::remove(link.c_str());
+  std::ofstream(real) << "an older export";
+  ASSERT_EQ(::symlink(real.c_str(), link.c_str()), 0);
+  CliRun run = strata("export " + scene + " --resolution 32 -q -o " + link);
+  EXPECT_EQ(run.code, 0) << run.output;
+  struct stat st;
+  ASSERT_EQ(::lstat(link.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode)) << "the link was replaced by a file";
+  std::ifstream written(real, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(written)), {});
+  EXPECT_GT(bytes.size(), 84u) << "the file the link leads to was not written";
+  std::remove(link.c_str());
+  std::remove(real.c_str());
 }
 
 // A scene that no grid can measure (a box of 1e308) is refused before any work, naming the file.

@@ -123,15 +123,112 @@ TEST_F(AtomicFileDir, NewFilesFollowTheUmaskAndReplacedFilesKeepTheirPermissions
   ::umask(mask);
 }
 
-TEST_F(AtomicFileDir, ALinkAtTheTargetIsReplacedAndNeverWrittenThrough) {
+// A user's link at the output (out.stl -> prints/v3.stl) stays a link: the file it leads to is
+// replaced, atomically, with the permissions it had; a chain of links, relative links and a link
+// to a file not made yet lead to theirs.
+TEST_F(AtomicFileDir, ALinkAtTheTargetIsKeptAndTheFileItLeadsToIsReplaced) {
+  fs::create_directory(path("prints"));
+  const std::string real = path("prints/v3.txt");
+  plant(real, "old");
+  ASSERT_EQ(::chmod(real.c_str(), 0640), 0);
+  const std::string out = path("out.txt");
+  fs::create_symlink("prints/v3.txt", out);  // relative to the link's folder
+  writeText(out, "new");
+  EXPECT_TRUE(isLink(out));
+  EXPECT_EQ(fs::read_symlink(out).string(), "prints/v3.txt");
+  EXPECT_EQ(readWholeFile(real), "new");
+  struct stat st;
+  ASSERT_EQ(::stat(real.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0640u);
+  EXPECT_TRUE(temporaryFilesOf(out).empty());
+  EXPECT_EQ(committedFiles().back(), out);  // what the caller named
+
+  const std::string chain = path("chain.txt");  // chain -> out -> prints/v3.txt
+  fs::create_symlink(out, chain);
+  writeText(chain, "through two");
+  EXPECT_TRUE(isLink(chain));
+  EXPECT_TRUE(isLink(out));
+  EXPECT_EQ(readWholeFile(real), "through two");
+
+  const std::string pending = path("pending.txt");  // a link to a file not written yet
+  fs::create_symlink(path("prints/v4.txt"), pending);
+  writeText(pending, "made");
+  EXPECT_TRUE(isLink(pending));
+  EXPECT_EQ(readWholeFile(path("prints/v4.txt")), "made");
+
+  // A set (an OBJ and its MTL) through links; two names of one file in a set are refused.
+  const std::string mtl = path("out.mtl");
+  fs::create_symlink(path("prints/v3.mtl"), mtl);
+  writeFilesAtomically({{out, [](std::ostream& o) { o << "set"; }},
+                        {mtl, [](std::ostream& o) { o << "set companion"; }}});
+  EXPECT_TRUE(isLink(out));
+  EXPECT_TRUE(isLink(mtl));
+  EXPECT_EQ(readWholeFile(real), "set");
+  EXPECT_EQ(readWholeFile(path("prints/v3.mtl")), "set companion");
+  EXPECT_THROW(writeFilesAtomically({{out, [](std::ostream& o) { o << "a"; }},
+                                     {real, [](std::ostream& o) { o << "b"; }}}),
+               Error);
+  EXPECT_EQ(readWholeFile(real), "set");
+}
+
+// Links that lead nowhere a file can be: a loop, a folder, a missing folder. Each is an error
+// naming a path, and nothing is changed.
+TEST_F(AtomicFileDir, LinksThatLeadNowhereAreRefusedByName) {
+  const std::string a = path("a.txt"), b = path("b.txt");
+  fs::create_symlink(b, a);
+  fs::create_symlink(a, b);
+  try {
+    writeText(a, "x");
+    ADD_FAILURE() << "a loop of links was written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(a), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(isLink(a));
+  EXPECT_TRUE(isLink(b));
+
+  const std::string toFolder = path("folder.txt");
+  fs::create_directory(path("sub"));
+  fs::create_symlink(path("sub"), toFolder);
+  EXPECT_THROW(writeText(toFolder, "x"), Error);
+  EXPECT_TRUE(fs::is_directory(path("sub")));
+  EXPECT_TRUE(fs::is_empty(path("sub")));
+
+  const std::string toMissing = path("missing.txt");
+  fs::create_symlink(path("no/such/folder/file.txt"), toMissing);
+  try {
+    writeText(toMissing, "x");
+    ADD_FAILURE() << "written into a missing folder";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no/such/folder/file.txt"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(isLink(toMissing));
+}
+
+// In a sticky folder that everyone may write (as /tmp), a link that another user planted at the
+// output is not followed (fs.protected_symlinks' rule): the write is refused by name and the
+// file it leads to is untouched. Needs root (to give the link to another user); skipped otherwise.
+TEST_F(AtomicFileDir, ALinkPlantedByAnotherUserInASharedFolderIsNotFollowed) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to make a link owned by another user";
+  const std::string shared = path("shared");
+  fs::create_directory(shared);
+  ASSERT_EQ(::chmod(shared.c_str(), 01777), 0);
   const std::string victim = path("victim.txt");
   plant(victim, "precious");
-  const std::string out = path("out.txt");
+  const std::string out = shared + "/out.txt";
   fs::create_symlink(victim, out);
-  writeText(out, "new");
+  ASSERT_EQ(::lchown(out.c_str(), 12345, 12345), 0);
+  try {
+    writeText(out, "new");
+    ADD_FAILURE() << "written through another user's link";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("another user"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(readWholeFile(victim), "precious");
-  EXPECT_FALSE(isLink(out));
-  EXPECT_EQ(readWholeFile(out), "new");
+  EXPECT_TRUE(isLink(out));
+  // The folder's owner's own link is followed.
+  ASSERT_EQ(::lchown(out.c_str(), 0, 0), 0);
+  writeText(out, "new");
+  EXPECT_EQ(readWholeFile(victim), "new");
 }
 
 // Links (to a file, and dangling) at the old fixed name, at names without the random part, and
