@@ -267,8 +267,23 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
     if (target == 0) target = root->id;
     if (dragged == 0) return planPlacement(root, target, mode).sentence;
     const NodeId fresh = state.document.nextId();
-    movePart(root, dragged, target, mode, fresh);  // throws when refused
-    return planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence;
+    const NodePtr moved = movePart(root, dragged, target, mode, fresh);  // throws when refused
+    const std::string does =
+        planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence;
+    // Within its own parent, keeping its role, a drop only changes its place among its
+    // siblings (onto the sibling below: after it): say so, not only what it does.
+    NodeLocation was, now;
+    if (locateNode(root, dragged, &was) && locateNode(moved, dragged, &now) && was.parent &&
+        now.parent && was.parent->id == now.parent->id &&
+        childRole(*was.parent, was.index) == childRole(*now.parent, now.index)) {
+      if (was.index == now.index) return "stays where it is (it " + does + ")";
+      const std::string place =
+          now.index > 0 ? "after " + displayName(*now.parent->children[size_t(now.index - 1)])
+                        : "first";
+      return "moves " + place + " in " + displayName(*now.parent) + ", its role unchanged (it " +
+             does + ")";
+    }
+    return does;
   } catch (const Error& e) {
     if (refused) *refused = true;
     return e.what();

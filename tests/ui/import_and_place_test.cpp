@@ -323,6 +323,45 @@ TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
       << state.log.back().text;
 }
 
+// A re-test found that dropping a cutter onto the cutter below it moved it after that one and
+// said only "cuts from ...": a drop within its own parent that keeps its role changes only its
+// place, and says where it goes before and after the release.
+TEST(Roles, ADropOntoASiblingSaysItOnlyChangesItsPlace) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  state.selection = {plate};
+  const NodeId first = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {first};
+  const NodeId second = addPrimitive(state, NodeKind::Sphere);
+  state.document.rename(first, "first hole");
+  state.document.rename(second, "second hole");
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), first, &where));
+  const NodeId difference = where.parent->id;
+  ASSERT_EQ(where.index, 1);
+  ASSERT_EQ(roleOf(state.document.root(), second), ChildRole::Cut);
+
+  const std::string sentence = placementSentence(state, second, dropMode(state, 0, first), first);
+  EXPECT_NE(sentence.find("moves after \"second hole\""), std::string::npos) << sentence;
+  EXPECT_NE(sentence.find("role unchanged"), std::string::npos) << sentence;
+  EXPECT_NE(sentence.find("cuts"), std::string::npos) << sentence;
+  dropNode(state, first, second, dropMode(state, 0, first));
+  ASSERT_TRUE(locateNode(state.document.root(), first, &where));
+  EXPECT_EQ(where.parent->id, difference);
+  EXPECT_EQ(where.index, 2);
+  EXPECT_EQ(roleOf(state.document.root(), first), ChildRole::Cut);
+  EXPECT_NE(state.log.back().text.find("moves after \"second hole\""), std::string::npos)
+      << state.log.back().text;
+
+  // Onto its own parent, where it already is the last child: it stays, and is said to.
+  const std::string stays = placementSentence(state, difference, PlaceMode::Cut, first);
+  EXPECT_NE(stays.find("stays where it is"), std::string::npos) << stays;
+  // Onto the plate with "add": a new role, said as before (no "moves after").
+  const std::string adds = placementSentence(state, plate, PlaceMode::Add, first);
+  EXPECT_EQ(adds.find("role unchanged"), std::string::npos) << adds;
+}
+
 // An artist found no way to change an existing part's role but a drag with a modifier: the
 // inspector's role and the outliner's Role menu (setRole) move the part onto its own parent with
 // the mode picked; one undo step; the others keep theirs; refused, with a reason, for the root
