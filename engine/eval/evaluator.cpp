@@ -376,8 +376,20 @@ void checkSceneSize(const Bounds& b) {
 
 }  // namespace
 
+namespace {
+// A hidden root hides everything (the format: hidden nodes take no part), as a hidden child
+// does; it was evaluated as shown.
+void refuseHiddenRoot(const Scene& scene) {
+  if (scene.root && !scene.root->visible)
+    throw Error("the scene is empty: its root" +
+                (scene.root->name.empty() ? std::string() : " \"" + scene.root->name + "\"") +
+                " is hidden, so nothing is visible to evaluate");
+}
+}  // namespace
+
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;
+  refuseHiddenRoot(scene);
   checkExpansion(scene.root, scene.settings.maxLeaves);  // before any walk through instances
   if (scene.settings.hasBounds) {
     checkSceneSize(scene.settings.bounds);
@@ -848,6 +860,7 @@ std::optional<EvalResult> Evaluator::evaluateCached(const Scene& scene, const Gr
 EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress& progress,
                                  const EvalOptions& options) {
   if (!scene.root) throw Error("the scene has no root node");
+  refuseHiddenRoot(scene);
   Stopwatch total;
   EvalResult result;
   result.backend = backend_->description();

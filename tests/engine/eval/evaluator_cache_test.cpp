@@ -176,6 +176,27 @@ TEST(EvaluatorCache, ResolutionChangeRecomputesAndHiddenNodesAreSkipped) {
   EXPECT_LT(hidden.measure.volume, a.measure.volume);
 }
 
+// A hidden root hides the whole scene, as a hidden child hides its part (a numbers check found
+// a scene whose root was hidden exported whole): refused as empty, with or without bounds.
+TEST(EvaluatorCache, AHiddenRootHidesTheWholeScene) {
+  Tree t;
+  auto root = std::make_shared<Node>(*t.root);
+  root->visible = false;
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  for (const Scene& scene : {fixedGrid(root), makeScene(root, 64)}) {
+    try {
+      evaluator.evaluate(scene, {}, progress);
+      ADD_FAILURE() << "a hidden root was evaluated";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("root"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("hidden"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(evaluator.evaluateOn(scene, Evaluator::gridFor(fixedGrid(t.root), 64), progress),
+                 Error);
+  }
+}
+
 TEST(EvaluatorCache, InstancesShowTheirTargetEvenWhenItIsHidden) {
   NodePtr part = sphere(0.5);
   auto hidden = std::make_shared<Node>(*part);
