@@ -452,6 +452,16 @@ void contourTiles(const Scene& scene, Evaluator& evaluator, const ExportTiling& 
   }
 }
 
+Error emptyResultError(const std::string& path, const ContourReport& r) {
+  std::string why;
+  for (const std::string& w : r.warnings) why += (why.empty() ? "" : "; ") + w;
+  if (why.empty())
+    why =
+        "its parts are hidden, cut away, do not overlap where they intersect, or are "
+        "thinner than a cell at this resolution";
+  return Error("the result is empty, so nothing was written to " + path + ": " + why);
+}
+
 MergedTiles mergeTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
                        ContourReport& r) {
   TiledContour contour;

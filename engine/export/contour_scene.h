@@ -20,6 +20,7 @@
 #include "engine/export/drop_specks.h"
 #include "engine/geometry/export_mesh.h"
 #include "engine/ldi/offset_math.h"
+#include "engine/util/error.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -87,6 +88,10 @@ struct ContourReport {
   std::vector<std::string> warnings;
 };
 
+// The error of an export whose result has no triangles, for the file it would have written:
+// "the result is empty, so nothing was written to PATH", and why where the evaluation said
+// (r.warnings: a part shrunk away, parts smaller than a cell), else the usual causes.
+Error emptyResultError(const std::string& path, const ContourReport& r);
 // Adds the warnings of `from` not yet in into->warnings (each said once over all tiles).
 void addWarnings(const std::vector<std::string>& from, ContourReport* into);
 // Adds the surfel, crossing and sign counts and the warnings of tiles contoured apart (by

@@ -46,6 +46,7 @@ ExportReport exportScene(const Scene& scene, const std::string& path, const Expo
 void writeAndCheckExport(ExportMesh mesh, const std::string& path, const ExportOptions& options,
                          Progress& progress, ExportReport* out) {
   ExportReport& report = *out;
+  if (mesh.mesh.triangles.empty()) throw emptyResultError(path, report.contour);
   if (const std::string why = notAFileToReadBack(path); !why.empty())
     throw Error(path + ": " + why);
   if (options.simplifyCells > 0.0)

@@ -224,7 +224,7 @@ class StreamedExportWriter::Impl {
     // The facets measured as checkMesh would (check_streamed.h) on a thread of their own as they
     // are written; the file read back while the last chunks are measured, and compared by
     // fingerprint.
-    if (keptTriangles_ == 0) throw Error(path_ + ": nothing to write (the mesh has no triangles)");
+    if (keptTriangles_ == 0) throw emptyResultError(path_, r_);
     if (!indexed_ && keptTriangles_ > std::numeric_limits<uint32_t>::max())
       throw Error(path_ + ": too many triangles for STL (" + std::to_string(keptTriangles_) + ")");
     if (keptTriangles_ >= std::numeric_limits<uint32_t>::max())  // the check numbers facets so

@@ -475,6 +475,27 @@ TEST(Cli, AnOutputThatIsALinkKeepsItAndWritesTheFileItLeadsTo) {
   std::remove(real.c_str());
 }
 
+// An export whose result is empty names the scene and says why (a numbers check met
+// "out.stl: nothing to write (the mesh has no triangles)": the output, not the input, and no
+// cause), in memory and streamed.
+TEST(Cli, AnEmptyResultNamesTheSceneAndSaysWhy) {
+  const std::string scene = temp("empty_result.strata.json");
+  std::ofstream(scene) << "{\"format\": \"strata-scene\", \"version\": 4, \"root\": {\"id\": 1, "
+                          "\"type\": \"offset\", \"distance\": -1.01, \"children\": [{\"id\": 2, "
+                          "\"type\": \"box\", \"size\": [2, 3, 4]}]}}";
+  const std::string out = temp("empty_result.stl");
+  std::remove(out.c_str());
+  for (const std::string extra : {"", " --stream"}) {
+    CliRun r = strata("export " + scene + " --resolution 32 --backend cpu -q -o " + out + extra);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find(scene + ": the result is empty, so nothing was written to " + out),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("left nothing"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::ifstream(out).good()) << extra;
+  }
+}
+
 // A scene that no grid can measure (a box of 1e308) is refused before any work, naming the file.
 TEST(Cli, ASceneTooLargeToMeasureIsRefusedNamingTheFile) {
   const std::string scene = temp("huge_box.strata.json");
