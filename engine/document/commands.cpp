@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string nodeLabel(const Node& node) {
+std::string nameWithId(const Node& node) {
   std::string name = node.name.empty() ? std::string(kindName(node.kind)) : "\"" + node.name + "\"";
   return name + " (id " + std::to_string(node.id) + ")";
 }
@@ -58,7 +58,7 @@ NodePtr rewriteOrThrow(const NodePtr& root, NodeId id,
 
 // Removes a non-root node without checking instances (the node is being moved, not deleted).
 NodePtr detach(const NodePtr& root, NodeId id) {
-  if (root->id == id) throw Error("the root node " + nodeLabel(*root) + " cannot be moved");
+  if (root->id == id) throw Error("the root node " + nameWithId(*root) + " cannot be moved");
   return rewriteOrThrow(root, id, [](const NodePtr&) { return NodePtr(); });
 }
 
@@ -209,14 +209,14 @@ void checkInstances(const NodePtr& root) {
     if (node->kind == NodeKind::Instance) {
       auto it = byId.find(node->instanceOf);
       if (it == byId.end())
-        throw Error("instance " + nodeLabel(*node) + " refers to node " +
+        throw Error("instance " + nameWithId(*node) + " refers to node " +
                     std::to_string(node->instanceOf) + ", which does not exist");
       next.push_back(it->second);
     }
     for (const Node* n : next) {
       Mark m = marks.count(n) ? marks[n] : Unseen;
       if (m == OnPath)
-        throw Error("instance cycle through " + nodeLabel(*n) +
+        throw Error("instance cycle through " + nameWithId(*n) +
                     " (an instance may not refer to a node that contains it)");
       if (m == Unseen) visit(n);
     }
@@ -237,7 +237,7 @@ NodePtr editNode(const NodePtr& root, NodeId id, const std::function<void(Node&)
 NodePtr insertChild(const NodePtr& root, NodeId parentId, int index, const NodePtr& child) {
   const Node& parent = requireNode(root, parentId);
   if (!isOperation(parent.kind))
-    throw Error(nodeLabel(parent) + " is a " + kindName(parent.kind) +
+    throw Error(nameWithId(parent) + " is a " + kindName(parent.kind) +
                 " and cannot have children; add to an operation");
   std::vector<NodeId> childIds;
   collectIds(child, &childIds);
@@ -256,12 +256,12 @@ NodePtr insertChild(const NodePtr& root, NodeId parentId, int index, const NodeP
 
 NodePtr removeNode(const NodePtr& root, NodeId id) {
   const Node& node = requireNode(root, id);
-  if (root->id == id) throw Error("the root node " + nodeLabel(node) + " cannot be deleted");
+  if (root->id == id) throw Error("the root node " + nameWithId(node) + " cannot be deleted");
   std::vector<NodeId> ids;
   collectIds(findNode(root, id), &ids);
   std::unordered_set<NodeId> inside(ids.begin(), ids.end());
   if (const Node* user = outsideReference(root, inside))
-    throw Error("cannot delete " + nodeLabel(node) + ": instance " + nodeLabel(*user) +
+    throw Error("cannot delete " + nameWithId(node) + ": instance " + nameWithId(*user) +
                 " refers to it; delete or re-point the instance first");
   return removeKeepingRoles(root, id, maxNodeId(root) + 1);
 }
@@ -288,13 +288,13 @@ NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* co
 NodePtr moveNode(const NodePtr& root, NodeId id, NodeId parentId, int index) {
   const Node& node = requireNode(root, id);
   const Node& parent = requireNode(root, parentId);
-  if (root->id == id) throw Error("the root node " + nodeLabel(node) + " cannot be moved");
+  if (root->id == id) throw Error("the root node " + nameWithId(node) + " cannot be moved");
   if (isInSubtree(root, id, parentId))
     throw Error(
-        "cannot move " + nodeLabel(node) + " into " +
-        (parentId == id ? std::string("itself") : nodeLabel(parent) + ", which lies inside it"));
+        "cannot move " + nameWithId(node) + " into " +
+        (parentId == id ? std::string("itself") : nameWithId(parent) + ", which lies inside it"));
   if (!isOperation(parent.kind))
-    throw Error(nodeLabel(parent) + " is a " + kindName(parent.kind) + " and cannot have children");
+    throw Error(nameWithId(parent) + " is a " + kindName(parent.kind) + " and cannot have children");
   NodeId before = 0;
   if (index >= 0 && index < static_cast<int>(parent.children.size()))
     before = parent.children[static_cast<size_t>(index)]->id;
@@ -319,7 +319,7 @@ NodePtr moveNode(const NodePtr& root, NodeId id, NodeId parentId, int index) {
 
 NodePtr moveNodeToTop(const NodePtr& root, NodeId id, NodeId unionId) {
   const Node& node = requireNode(root, id);
-  if (root->id == id) throw Error(nodeLabel(node) + " is already the root");
+  if (root->id == id) throw Error(nameWithId(node) + " is already the root");
   if (root->kind == NodeKind::Union) return moveNode(root, id, root->id, -1);
   if (findNode(root, unionId)) throw Error("moveNodeToTop: the new union's id is in use");
   NodePtr moved = findNode(root, id);
@@ -360,8 +360,8 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
   const ChildRole role = roleOf(root, order[0]);
   for (NodeId id : order)
     if (roleOf(root, id) != role)
-      throw Error(nodeLabel(requireNode(root, order[0])) + " " + rolePhrase(role) + " and " +
-                  nodeLabel(requireNode(root, id)) + " " + rolePhrase(roleOf(root, id)) +
+      throw Error(nameWithId(requireNode(root, order[0])) + " " + rolePhrase(role) + " and " +
+                  nameWithId(requireNode(root, id)) + " " + rolePhrase(roleOf(root, id)) +
                   ": a group plays one role, so group parts that do the same (or move them "
                   "first)");
   std::vector<NodePtr> members;
@@ -377,7 +377,7 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
 NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind) {
   const Node& node = requireNode(root, id);
   if (!isOperation(node.kind))
-    throw Error(nodeLabel(node) + " is a " + kindName(node.kind) + ", not an operation");
+    throw Error(nameWithId(node) + " is a " + kindName(node.kind) + ", not an operation");
   if (!isOperation(kind))
     throw Error(std::string("\"") + kindName(kind) + "\" is not an operation");
   if (node.kind == kind) return root;

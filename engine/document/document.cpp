@@ -211,8 +211,7 @@ void Document::setAmount(NodeId id, double amount) {
   if (!node) throw Error("there is no node with id " + std::to_string(id));
   if (modifierOf(node->kind) == Modifier::None)
     throw Error(std::string("a ") + kindName(node->kind) + " node has no distance");
-  checkModifierAmount(node->kind, amount,
-                      std::string(kindName(node->kind)) + " '" + node->name + "'");
+  checkModifierAmount(node->kind, amount, nodeLabel(*node));
   if (node->amount == amount) return;
   apply(nodeKindInfo(node->kind).amountKey,
         editNode(root(), id, [&](Node& n) { n.amount = amount; }));
@@ -234,7 +233,7 @@ void Document::setPattern(NodeId id, const PatternParams& pattern) {
   NodePtr node = findNode(root(), id);
   if (!node) throw Error("there is no node with id " + std::to_string(id));
   const Pattern kind = patternOf(node->kind);
-  const std::string who = std::string(kindName(node->kind)) + " '" + node->name + "'";
+  const std::string who = nodeLabel(*node);
   if (kind == Pattern::None) throw Error(who + " makes no copies (only arrays and mirrors do)");
   checkPattern(kind, pattern, who);
   if (node->pattern == pattern) return;

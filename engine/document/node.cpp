@@ -6,6 +6,12 @@
 
 namespace strata {
 
+std::string nodeLabel(const Node& node) {
+  const std::string kind = kindName(node.kind);
+  if (node.name.empty()) return kind + " #" + std::to_string(node.id);
+  return kind + " '" + node.name + "'";
+}
+
 int treeDepth(const NodePtr& root) {
   return measureExpansion(root).depth;
 }

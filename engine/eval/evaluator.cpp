@@ -84,7 +84,7 @@ std::vector<glm::dmat4> placementsOf(const Node& node) {
   if (std::none_of(node.children.begin(), node.children.end(),
                    [](const NodePtr& c) { return c->visible; }))
     return {};
-  checkPattern(pattern, node.pattern, std::string(kindName(node.kind)) + " '" + node.name + "'");
+  checkPattern(pattern, node.pattern, nodeLabel(node));
   return patternPlacements(pattern, node.pattern);
 }
 
@@ -141,7 +141,7 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
 // underflow nor overflow, and a size that the coordinates' precision can still represent.
 // Throws strata::Error naming the leaf.
 void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds& bounds) {
-  const std::string who = std::string(kindName(node.kind)) + " '" + node.name + "'";
+  const std::string who = nodeLabel(node);
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       if (!std::isfinite(world[c][r]))
@@ -188,7 +188,7 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
                   " is only %.2g cells thick (%.3g; a cell is %.3g): its shape is lost at this "
                   "resolution; about %.2gx the resolution makes it 4 cells thick",
                   thickness / h, thickness, h, 4.0 * h / std::max(thickness, 1e-300));
-    return std::string(kindName(node.kind)) + " '" + node.name + "'" + text;
+    return nodeLabel(node) + text;
   }
   if (extent >= h) return "";
   char text[160];
@@ -196,7 +196,7 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
                 " (%.3g across) is smaller than a cell (%.3g): it may vanish at this resolution; "
                 "raise the resolution to see it",
                 extent, h);
-  return std::string(kindName(node.kind)) + " '" + node.name + "'" + text;
+  return nodeLabel(node) + text;
 }
 
 // Bounds of everything visible, whatever the operations: the fallback grid of a scene whose
@@ -272,7 +272,7 @@ std::string emptiedByModifier(const Node& node) {
   std::snprintf(amount, sizeof(amount), "%.4g", std::fabs(node.amount));
   char twice[32];
   std::snprintf(twice, sizeof(twice), "%.4g", 2.0 * std::fabs(node.amount));
-  const std::string who = std::string(kindName(node.kind)) + " '" + node.name + "' ";
+  const std::string who = nodeLabel(node) + " ";
   switch (modifierOf(node.kind)) {
     case Modifier::Round:
       return who + "left nothing of its parts: a round of radius " + amount +
@@ -775,15 +775,14 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   const bool skipped = modifier != Modifier::None &&
                        std::abs(node->amount) < ctx.skipModifiersUnderCells * ctx.grid.h;
   if (skipped) {
-    const std::string name = std::string(kindName(node->kind)) + " '" + node->name + "'";
+    const std::string name = nodeLabel(*node);
     auto& list = ctx.result->skippedModifiers;
     if (std::find(list.begin(), list.end(), name) == list.end()) list.push_back(name);
   }
   if (modifier != Modifier::None && !skipped && v.ldi->surfelCount() > 0 &&
       !(modifier == Modifier::Offset && node->amount == 0.0)) {
     // The children's union, changed by the modifier: keyed on it, the kind and the amount.
-    checkModifierAmount(node->kind, node->amount,
-                        std::string(kindName(node->kind)) + " '" + node->name + "'");
+    checkModifierAmount(node->kind, node->amount, nodeLabel(*node));
     Hasher key;
     key.add(uint8_t(0xA0)).add(uint8_t(node->kind)).add(node->amount).add(v.key);
     // A shell's opening: the wall follows the children without the opening part.

@@ -37,7 +37,7 @@ namespace {
 using ojson = nlohmann::ordered_json;
 
 // What is being written, for messages ("node 3 (\"hole\")").
-std::string nodeLabel(const Node& node) {
+std::string savedNodeLabel(const Node& node) {
   return "node " + std::to_string(node.id) + (node.name.empty() ? "" : " (\"" + node.name + "\")");
 }
 
@@ -100,7 +100,7 @@ void writePretty(const ojson& v, int indent, std::string* out) {
 }
 
 ojson nodeToJson(const Node& node, int depth) {
-  std::string label = nodeLabel(node);
+  std::string label = savedNodeLabel(node);
   if (depth > kMaxTreeDepth)
     throw Error("cannot save the scene: the tree is more than " + std::to_string(kMaxTreeDepth) +
                 " levels deep");
