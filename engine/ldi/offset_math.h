@@ -257,7 +257,14 @@ STRATA_HD void offsetWriteRay(const OffsetLattice& lat, const float* sd, const u
     const double fa = double(sd[a]) - offsetCells, fb = double(sd[b]) - offsetCells;
     double t = fa / (fa - fb);
     t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    // In (node a, node b]: a surfel counts as before every node at or below its depth (the
+    // LDI's rule, contour_cells.h), so one at a's own depth (t about 0: a surface through a node,
+    // as a flat face on a grid plane puts it) would give a the new state on this ray alone while
+    // offsetInside, and so the other axes' rays, keep the old one. That disagreement was
+    // contoured as a crossing at the edge's middle: a whole flat face moved by half a cell.
+    const float nodeA = float(lat.first[axis] + k - 1);
     x.depth = float(double(lat.first[axis] + k - 1) + t);
+    if (!(x.depth > nodeA)) x.depth = nextafterf(nodeA, __builtin_huge_valf());
     int64_t pa[3], pb[3];
     pa[axis] = k - 1;
     pb[axis] = k;

@@ -275,5 +275,34 @@ TEST(ModifierNodes, ExportsPassTheWatertightCheck) {
   EXPECT_GT(check.volume, 2 * 4.0 / 3.0 * kPi * 0.216 * 0.9);
 }
 
+// A flat face on a grid plane: an offset's surfel through a node sat at the node's own depth,
+// which gave that node the new state on its ray alone; the contour met the rays' disagreement
+// with a crossing at the edge's middle, and the face of a filleted or rounded L came out half a
+// cell out (a numbers check: at 128 and 192 cells, not at 96 or 256). Every face on a plane of
+// nodes here; the faces must stay where they are, with no disagreement.
+TEST(ModifierNodes, AFaceOnAGridPlaneStaysWhereItIs) {
+  const NodePtr shape = op(NodeKind::Union, {box({2.0, 1.0, 1.0}, {1.0, 0.5, 0.5}),
+                                             box({1.0, 2.0, 1.0}, {0.5, 1.0, 0.5})});
+  for (NodeKind kind : {NodeKind::Fillet, NodeKind::Round}) {
+    // h = 1/32: the L's faces (0, 1 and 2) and the fillet's reach all lie on planes of nodes.
+    Scene scene =
+        makeSceneInBox(modifier(kind, 0.3, {shape}), 96, {-0.5, -0.5, -0.5}, {2.5, 2.5, 2.5});
+    Evaluator evaluator(std::make_shared<CpuBackend>());
+    Progress progress;
+    ContourReport report;
+    ExportMesh mesh = contourScene(scene, evaluator, ContourOptions{}, progress, &report);
+    const double h = report.grid.h;
+    ASSERT_NEAR(h, 1.0 / 32.0, 1e-12);
+    EXPECT_EQ(report.signDisagreements, 0u) << kindName(kind);
+    EXPECT_EQ(report.synthesizedCrossings, 0u) << kindName(kind);
+    double worst = 0.0;  // beyond the faces y = 1 (for x > 1.4) and x = 1 (for y > 1.4)
+    for (const glm::dvec3& p : mesh.mesh.positions) {
+      if (p.x > 1.4 && p.x < 1.9) worst = std::max(worst, p.y - 1.0);
+      if (p.y > 1.4 && p.y < 1.9) worst = std::max(worst, p.x - 1.0);
+    }
+    EXPECT_LT(worst, 0.02 * h) << kindName(kind) << ": a face moved by " << worst / h << " h";
+  }
+}
+
 }  // namespace
 }  // namespace strata::test
