@@ -28,6 +28,7 @@
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/theme.h"
+#include "ui/typed_value.h"
 #include "ui/viewport.h"
 #include "ui/viewport_renderer.h"
 #include "ui/window_redraw.h"
@@ -78,6 +79,11 @@ void onCursor(GLFWwindow*, double x, double y) {
   g_input.cursor(x, y, glfwGetTime());
 }
 
+// What was typed into a number field that it does not take (letters, a unit): said once the
+// frame has the state (Dear ImGui's number fields drop them without a word, so "5 mm" became 5
+// and "0.5 in" 0.5 mm).
+std::string g_notTyped;
+
 // At the start of a frame, before it takes the mouse: this frame's share of the key events. A
 // key that typed a character needs no frame of its own (the character is the text; Ctrl+A and
 // Enter type none), so typing goes on at full speed in slow frames.
@@ -90,7 +96,8 @@ void deliverKeyEvents() {
     if (k.time >= before) break;
     if (k.isChar) {
       if (lastPressed >= 0) typed.push_back(lastPressed);
-      if (g_imguiCharCallback) g_imguiCharCallback(k.window, k.codepoint);
+      if (g_imguiCharCallback)
+        g_imguiCharCallback(k.window, numberFieldCharacter(k.codepoint, &g_notTyped));
     } else {
       const auto in = [&](const std::vector<int>& keys) {
         return std::find(keys.begin(), keys.end(), k.key) != keys.end();
@@ -629,6 +636,15 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
 
   rememberSelection(s);  // before this frame's input changes it (undo brings it back)
   deliverKeyEvents();
+  if (!g_notTyped.empty()) {
+    if (!typingIntoNumberField()) {  // the field was left: said once
+      logWarning(s, "number fields take digits only: \"" + g_notTyped +
+                        "\" was not typed (lengths are in " +
+                        unitSymbol(s.document.scene().settings.unit) +
+                        ", the scene's unit; a unit typed is not converted)");
+      g_notTyped.clear();
+    }
+  }
   s.keyPresses.swap(g_keyPresses);
   g_keyPresses.clear();
   pumpPreview();

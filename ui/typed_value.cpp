@@ -49,6 +49,21 @@ bool doubleClickOpensTyping(double before, double* beforePress) {
   return true;
 }
 
+bool typingIntoNumberField() {
+  const ImGuiContext* g = ImGui::GetCurrentContext();
+  return g && g->ActiveId != 0 && g->TempInputId == g->ActiveId;
+}
+
+unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
+  if (!typingIntoNumberField()) return codepoint;
+  if (codepoint == ',') return '.';
+  const bool kept = (codepoint >= '0' && codepoint <= '9') || codepoint == '.' ||
+                    codepoint == '+' || codepoint == '-' || codepoint == '*' || codepoint == '/' ||
+                    codepoint == 'e' || codepoint == 'E';
+  if (!kept && codepoint != ' ' && codepoint < 128) dropped->push_back(char(codepoint));
+  return codepoint;
+}
+
 bool commitTypedValue(bool changed, double* value) {
   return commit(changed, value);
 }

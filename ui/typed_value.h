@@ -5,6 +5,8 @@
 // the widget, on the UI thread, with what it returned and the variable it edits.
 #pragma once
 
+#include <string>
+
 namespace strata::ui {
 
 // Returns whether the caller should apply `*value` now. While the last item's text input is
@@ -20,5 +22,15 @@ bool commitTypedValue(bool changed, int* value);
 // first press jumped from (a slider's press sets the value under the pointer), which the caller
 // puts back, so that the field opens at it and Escape keeps it.
 bool doubleClickOpensTyping(double before, double* beforePress);
+
+// A character typed while a number field's text is being edited (a drag or slider field opened
+// for typing: Dear ImGui's temporary input, which keeps digits, signs, '.', 'e', '*' and '/' and
+// drops the rest without a word): a decimal comma becomes the decimal point (it was dropped, so
+// "9,5" became 95), and what the field will drop is added to *dropped (letters of a unit: "5 mm"
+// became 5, "0.5 in" 0.5 mm), for the editor to say. Other fields' characters pass as typed.
+// Call with the current ImGui context, before the character reaches it.
+unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped);
+// Whether a number field's text is being edited now (the active item is a temporary input).
+bool typingIntoNumberField();
 
 }  // namespace strata::ui

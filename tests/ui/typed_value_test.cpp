@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <string>
 #include <vector>
 
 #include "ui/typed_value.h"
@@ -101,6 +102,30 @@ TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
   EXPECT_EQ(stored, 25.0);
   frame();
   EXPECT_EQ(writes.size(), 1u);
+}
+
+// An artist typed "9,5" and got 95: Dear ImGui's number fields drop the comma. Typed through
+// numberFieldCharacter (as the editor feeds characters), the comma is the decimal point, and a
+// unit's letters, which the field drops, are reported instead of vanishing; a name field (no
+// number field typing) gets every character as typed.
+TEST_F(TypedField, ADecimalCommaIsThePointAndDroppedLettersAreReported) {
+  std::string dropped;
+  EXPECT_FALSE(typingIntoNumberField());
+  EXPECT_EQ(numberFieldCharacter(',', &dropped), unsigned(','));
+  EXPECT_EQ(numberFieldCharacter('m', &dropped), unsigned('m'));
+  EXPECT_TRUE(dropped.empty());
+  frame(/*focus=*/true);
+  frame();
+  EXPECT_TRUE(typingIntoNumberField());
+  for (const char* c = "9,5 mm"; *c; ++c) {
+    ImGui::GetIO().AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+    frame();
+  }
+  press(kEnter);
+  ASSERT_EQ(writes.size(), 1u);
+  EXPECT_EQ(stored, 9.5);
+  EXPECT_EQ(dropped, "mm");
+  EXPECT_FALSE(typingIntoNumberField());
 }
 
 TEST_F(TypedField, EscapeKeepsTheValue) {
