@@ -805,10 +805,7 @@ bool Editor::frame() {
     glfwPollEvents();
   if (glfwWindowShouldClose(gl_->window.handle())) {
     glfwSetWindowShouldClose(gl_->window.handle(), GLFW_FALSE);
-    if (state_->document.dirty())
-      state_->pendingReplace = PendingReplace{PendingReplace::Quit, ""};
-    else
-      state_->quitNow = true;
+    requestQuit(*state_);
   }
   drawFrame(nullptr, nullptr, nullptr);
   return !state_->quitNow;

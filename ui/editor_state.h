@@ -165,6 +165,7 @@ struct EditorState {
   std::vector<std::unique_ptr<TriangleEstimateJob>> retiredEstimates;
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
+  bool askingQuitDuringExport = false;           // asking whether to cancel a running export
   std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds
   NodeId renaming = 0;                           // outliner row being renamed
   std::optional<PendingImport> pendingImport;    // the import dialog is open for it

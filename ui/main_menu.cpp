@@ -23,6 +23,17 @@ void replaceOrAsk(EditorState& state, PendingReplace action) {
 
 }  // namespace
 
+void requestQuit(EditorState& state) {
+  if (state.exportJob && state.exportJob->status().running)
+    state.askingQuitDuringExport = true;  // then quitOrAskAboutChanges (panel_modals.cpp)
+  else
+    quitOrAskAboutChanges(state);
+}
+
+void quitOrAskAboutChanges(EditorState& state) {
+  replaceOrAsk(state, {PendingReplace::Quit, ""});
+}
+
 void performReplace(EditorState& state, const PendingReplace& action) {
   if (action.kind == PendingReplace::New) newDocument(state);
   if (action.kind == PendingReplace::Quit) state.quitNow = true;
@@ -65,7 +76,7 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Export...", "Ctrl+E"))
       state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) replaceOrAsk(state, {PendingReplace::Quit, ""});
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) requestQuit(state);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
@@ -176,7 +187,7 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_O, ctrl)) replaceOrAsk(state, {PendingReplace::Open, ""});
   if (keyPressed(state, GLFW_KEY_E, ctrl))
     state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
-  if (keyPressed(state, GLFW_KEY_Q, ctrl)) replaceOrAsk(state, {PendingReplace::Quit, ""});
+  if (keyPressed(state, GLFW_KEY_Q, ctrl)) requestQuit(state);
   if (io.WantCaptureKeyboard) return;
   if (keyPressed(state, GLFW_KEY_Z, ctrl)) undo(state);
   if (keyPressed(state, GLFW_KEY_Z, ctrl | shift) || keyPressed(state, GLFW_KEY_Y, ctrl))

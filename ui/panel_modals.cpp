@@ -84,6 +84,43 @@ void unsavedQuestion(EditorState& state) {
   ImGui::EndPopup();
 }
 
+// Quitting while an export runs would end it unfinished (an artist's Ctrl+Q closed the editor
+// at "evaluate 10%" without a word): asked first; cancelling the export then quits as usual
+// (asking about unsaved changes next).
+void quitDuringExportQuestion(EditorState& state) {
+  const char* title = "Export running";
+  if (state.askingQuitDuringExport && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  if (!state.askingQuitDuringExport) return;
+  centreNext();
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  const bool running = state.exportJob && state.exportJob->status().running;
+  if (running) {
+    const ExportStatus s = state.exportJob->status();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);
+    ImGui::TextWrapped(
+        "An export to %s is running (%s %.0f%%). Quitting cancels it: the file is "
+        "not written.",
+        s.path.c_str(), s.stage.c_str(), s.fraction * 100.0);
+    ImGui::PopTextWrapPos();
+  }
+  bool close = !running;  // it ended meanwhile: nothing to ask
+  bool quit = !running;
+  if (ImGui::Button("Keep exporting", ImVec2(160, 0)) || keyPressed(state, GLFW_KEY_ESCAPE))
+    close = true, quit = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Go on working while it exports (Esc)");
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel export and quit", ImVec2(200, 0))) {
+    if (state.exportJob) state.exportJob->cancel();
+    close = quit = true;
+  }
+  if (close) {
+    state.askingQuitDuringExport = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+  if (quit) quitOrAskAboutChanges(state);
+}
+
 void exportWindow(EditorState& state) {
   if (!state.exportJob) return;
   ExportStatus s = state.exportJob->status();
@@ -379,6 +416,7 @@ void drawModals(EditorState& state) {
       measures.end());
   recoveryQuestion(state);
   unsavedQuestion(state);
+  quitDuringExportQuestion(state);
   importDialog(state);
   exportOptionsDialog(state);
   exportWindow(state);

@@ -43,6 +43,11 @@ void drawMainMenu(EditorState& state);
 void handleShortcuts(EditorState& state);
 // Reacts to a chosen file (open, save as, export, import).
 void handleDialogResult(EditorState& state);
+// Quit (the menu, Ctrl+Q, the window's close button): asks first when an export is running
+// (quitting cancels it) and when the document has unsaved changes.
+void requestQuit(EditorState& state);
+// Quit now, or ask about unsaved changes first (whatever an export is doing).
+void quitOrAskAboutChanges(EditorState& state);
 // Does what a PendingReplace asks (new, open, quit, recover), without asking.
 void performReplace(EditorState& state, const PendingReplace& action);
 // Saves; an untitled document opens Save As instead, and `then` runs after that save succeeds.

@@ -10,6 +10,7 @@
 #include "engine/eval/cpu_backend.h"
 #include "ui/editor_actions.h"
 #include "ui/editor_state.h"
+#include "ui/panels.h"
 
 namespace strata::ui {
 namespace {
@@ -50,6 +51,34 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
   EXPECT_TRUE(kept.simplify);
   EXPECT_FLOAT_EQ(kept.simplifyCells, 0.25f);
   state.exportJob.reset();  // waits for it
+  std::filesystem::remove_all(folder);
+}
+
+// An artist's Ctrl+Q at "evaluate 10%" closed the editor and the export with it, without a word:
+// quitting while an export runs asks first; once it has ended, quitting goes on as before (here
+// to the unsaved-changes question, the document being new).
+TEST(ExportSettings, QuittingWhileAnExportRunsAsksFirst) {
+  const std::string folder = ::testing::TempDir() + "/strata_export_quit";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  EditorState state;
+  state.makeBackend = [] { return std::make_shared<CpuBackend>(); };
+  addPrimitive(state, NodeKind::Sphere);
+  startExport(state, folder + "/ball.stl", 1024, 0.0, true);
+  ASSERT_TRUE(state.exportJob);
+  ASSERT_TRUE(state.exportJob->status().running);
+  requestQuit(state);
+  EXPECT_TRUE(state.askingQuitDuringExport);
+  EXPECT_FALSE(state.quitNow);
+  EXPECT_FALSE(state.pendingReplace);
+  state.exportJob->cancel();
+  state.exportJob.reset();  // waits for it
+  state.askingQuitDuringExport = false;
+  requestQuit(state);
+  EXPECT_FALSE(state.askingQuitDuringExport);
+  ASSERT_TRUE(state.pendingReplace);
+  EXPECT_EQ(state.pendingReplace->kind, PendingReplace::Quit);
+  EXPECT_FALSE(std::filesystem::exists(folder + "/ball.stl"));
   std::filesystem::remove_all(folder);
 }
 
