@@ -15,6 +15,7 @@
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
 #include "engine/io/document_files.h"
+#include "engine/io/mesh_formats.h"
 #include "engine/io/user_files.h"
 #include "engine/jobs/part_measure_job.h"
 #include "engine/kinds/primitives.h"
@@ -818,6 +819,8 @@ void newDocument(EditorState& state) {
 
 bool openDocument(EditorState& state, const std::string& path) {
   return guarded(state, [&] {
+    if (meshFormatFor(path, MeshAccess::Read))
+      throw Error(path + ": a mesh, not a scene: File > Import mesh adds it to this scene");
     std::vector<std::string> warnings;
     Document doc = strata::openDocument(path, &warnings);
     replaceDocument(state, std::move(doc));

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "engine/document/commands.h"
+#include "engine/io/mesh_formats.h"
 #include "ui/editor_actions.h"
 #include "ui/panels.h"
 
@@ -227,6 +228,17 @@ void handleDialogResult(EditorState& state) {
   }
   switch (state.dialog.purpose()) {
     case DialogPurpose::Open:
+      if (meshFormatFor(path, MeshAccess::Read)) {
+        // A mesh chosen to open (an artist met a JSON parser's error on an STL): imported into
+        // this scene, through the import dialog, which says so and can be cancelled.
+        logInfo(state, path + " is a mesh, not a scene: importing it into this scene");
+        PendingImport import;
+        import.path = path;
+        import.unit = state.lastImportUnit;
+        import.upAxis = state.lastImportUpAxis;
+        state.pendingImport = import;
+        break;
+      }
       openDocument(state, path);
       break;
     case DialogPurpose::SaveAs: {

@@ -45,6 +45,20 @@ TEST(ImportOptions, YUpTurnsPlusYOntoPlusZ) {
   EXPECT_EQ(importTransform(3.0, 0).rotateDegrees, glm::dvec3(0.0));
 }
 
+// File > Open on an STL said "line 17, column 991775: JSON nested more than 1040 levels deep":
+// a mesh opened as a scene is refused by what it is, and the document is kept.
+TEST(ImportAndPlace, AMeshOpenedAsASceneIsRefusedByWhatItIs) {
+  EditorState state;
+  const NodeId kept = addPrimitive(state, NodeKind::Box);
+  const std::string mesh = std::string(STRATA_ASSETS) + "/meshes/bunny.obj";
+  EXPECT_FALSE(openDocument(state, mesh));
+  ASSERT_FALSE(state.log.empty());
+  EXPECT_NE(state.log.back().text.find("a mesh, not a scene"), std::string::npos)
+      << state.log.back().text;
+  EXPECT_NE(state.log.back().text.find("Import mesh"), std::string::npos);
+  EXPECT_TRUE(findNode(state.document.root(), kept));
+}
+
 TEST(ImportAndPlace, ImportWithOptionsIsOneUndoStep) {
   EditorState state;
   PendingImport import;
