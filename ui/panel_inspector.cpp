@@ -28,6 +28,10 @@
 namespace strata::ui {
 namespace {
 
+// The topic of a primitive's parameters' errors: they are often relations between two of them
+// (a rounded box's radius against its size), so that a later good value of either settles one.
+constexpr const char* kParamsTopic = "parameters";
+
 // The format of length fields: the number and the scene's unit ("%.4g mm"), set per frame.
 std::string gLengthFormat = "%.4g";
 
@@ -44,7 +48,7 @@ void edited(EditorState& state, bool changed, const std::function<void()>& apply
 // with a "~" in front.
 bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double speed,
               const std::function<void(const glm::dvec3&)>& apply, const char* format,
-              const glm::bvec3& mixed = glm::bvec3(false)) {
+              const glm::bvec3& mixed = glm::bvec3(false), const char* topic = nullptr) {
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
@@ -101,7 +105,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
       ImGui::SetTooltip("differs across the selection; dragging shifts every one by as much");
     ImGui::PopStyleColor();
     edited(
-        state, changed, [&] { apply(next); }, label);
+        state, changed, [&] { apply(next); }, topic ? topic : label);
     if (changed) *value = next;
     any = any || changed;
     ImGui::PopID();
@@ -134,14 +138,17 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   changed = commitTypedValue(changed, &value);
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
-  edited(state, changed, [&] {
-    if (value < minimum) return refuseBelowMinimum(state, label, minimum);
-    for (const NodePtr& n : nodes) {
-      PrimitiveParams q = n->params;
-      q.*field = value;
-      state.document.setParams(n->id, q);
-    }
-  });
+  edited(
+      state, changed,
+      [&] {
+        if (value < minimum) return refuseBelowMinimum(state, label, minimum);
+        for (const NodePtr& n : nodes) {
+          PrimitiveParams q = n->params;
+          q.*field = value;
+          state.document.setParams(n->id, q);
+        }
+      },
+      kParamsTopic);
 }
 
 // The primitive's parameters, as its table entry lists them.
@@ -168,7 +175,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
               state.document.setParams(n->id, q);
             }
           },
-          gLengthFormat.c_str());
+          gLengthFormat.c_str(), glm::bvec3(false), kParamsTopic);
     }
   }
   if (info->usesSegments) {

@@ -237,8 +237,9 @@ TriangleMesh roundedBoxMesh(const PrimitiveParams& p, int segments) {
 ParamProblem roundedBoxRelations(const PrimitiveParams& p) {
   const double smallest = std::min({p.size.x, p.size.y, p.size.z});
   if (2.0 * p.radius < smallest) return {};
-  return {"radius (" + shortNumber(p.radius) + ") must be less than half the smallest size (" +
-              shortNumber(smallest) + ")",
+  return {"radius (" + shortNumber(p.radius) + ") must be less than " +
+              shortNumber(0.5 * smallest) + ", half the smallest size (" + shortNumber(smallest) +
+              "): it rounds every edge",
           {"radius", "size"}};
 }
 
