@@ -131,8 +131,10 @@ TriangleMesh cylinderMesh(const PrimitiveParams& p, int segments) {
                  segments);
 }
 
+// Either end may be pointed (a countersink is a cone standing on its tip), not both.
 TriangleMesh coneMesh(const PrimitiveParams& p, int segments) {
-  std::vector<glm::dvec2> profile = {{0.0, -p.height / 2}, {p.radius, -p.height / 2}};
+  std::vector<glm::dvec2> profile = {{0.0, -p.height / 2}};
+  if (p.radius > 0.0) profile.push_back({p.radius, -p.height / 2});
   if (p.topRadius > 0.0) profile.push_back({p.topRadius, p.height / 2});
   profile.push_back({0.0, p.height / 2});
   return revolve(profile, segments);
@@ -234,6 +236,12 @@ TriangleMesh roundedBoxMesh(const PrimitiveParams& p, int segments) {
   return mesh.take();
 }
 
+ParamProblem coneRelations(const PrimitiveParams& p) {
+  if (p.radius > 0.0 || p.topRadius > 0.0) return {};
+  return {"radius and top radius are both 0: one end of a cone needs a size",
+          {"radius", "topRadius"}};
+}
+
 ParamProblem roundedBoxRelations(const PrimitiveParams& p) {
   const double smallest = std::min({p.size.x, p.size.y, p.size.z});
   if (2.0 * p.radius < smallest) return {};
@@ -300,8 +308,8 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      "cone",
      "\u25B2",
      "A",
-     "A cone or frustum along z: radius at the bottom, top radius (0: pointed)",
-     {kRadius,
+     "A cone or frustum along z: radius at the bottom, top radius (either 0: pointed there)",
+     {{"radius", "radius", &PrimitiveParams::radius, nullptr, ParamMinimum::NonNegative},
       {"topRadius", "top radius", &PrimitiveParams::topRadius, nullptr, ParamMinimum::NonNegative},
       kHeight},
      true,
@@ -311,7 +319,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
        double r = std::max(p.radius, p.topRadius);
        return glm::dvec3(r, r, p.height / 2);
      },
-     nullptr,
+     coneRelations,
      coneMesh},
     {NodeKind::Torus,
      "torus",

@@ -107,9 +107,35 @@ TEST(RoundedBox, EvaluatesToItsVolumeAndRefusesATooLargeRadius) {
     parseScene(file, "r.strata.json", ".");
     ADD_FAILURE() << "accepted a radius of half the size";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("/root/radius: radius (0.5) must be less than half"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "/root/radius: radius (0.5) must be less than 0.5, half the smallest size (1)"),
               std::string::npos)
         << e.what();
+  }
+}
+
+// An artist's countersink is a cone standing on its tip: either end may be pointed (the bottom
+// was refused: "radius must be greater than 0"), not both.
+TEST(Cone, EitherEndMayBePointedNotBoth) {
+  PrimitiveParams p;
+  p.radius = 0.0;
+  p.topRadius = 0.5;
+  p.height = 1.0;
+  validatePrimitiveParams(NodeKind::Cone, p);
+  const TriangleMesh mesh = tessellatePrimitive(NodeKind::Cone, p, 256);
+  EXPECT_TRUE(test::isWatertight(mesh));
+  const MeshCheck c = checkMesh(mesh);
+  EXPECT_NEAR(c.volume, kPi * 0.25 / 3.0, 1e-3);
+  double bottomWidth = 0.0;  // the pointed end at the bottom, the wide one on top
+  for (const glm::dvec3& v : mesh.positions)
+    if (v.z < -0.4) bottomWidth = std::max(bottomWidth, std::hypot(v.x, v.y));
+  EXPECT_LT(bottomWidth, 0.11);
+  p.topRadius = 0.0;
+  try {
+    validatePrimitiveParams(NodeKind::Cone, p);
+    ADD_FAILURE() << "a cone with no size at either end";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("both 0"), std::string::npos) << e.what();
   }
 }
 
