@@ -586,10 +586,19 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera&
     // where they intersect): the hint says which, so that nothing looks lost.
     const NodePtr& root = s.document.root();
     const bool noParts = !root || (isOperation(root->kind) && root->children.empty());
-    const char* hint =
+    // Where the evaluation said why (a part smaller than a cell, a modifier that left nothing),
+    // that is the hint: an artist's part of height 1e9 made every cell larger than the others,
+    // and the generic causes misled.
+    const std::vector<std::string>& warnings = s.preview->stats.warnings;
+    const std::string text =
         noParts ? "Empty scene: add a primitive from the palette on the left."
-                : "The result is empty: its parts are hidden, cut away or do not overlap where "
-                  "they intersect (Ctrl+Z undoes the last edit).";
+        : !warnings.empty()
+            ? "The result is empty: " + warnings.front() +
+                  (warnings.size() > 1 ? " (and more: View > Diagnostics)" : "") +
+                  " (Ctrl+Z undoes the last edit)."
+            : "The result is empty: its parts are hidden, cut away or do not overlap where "
+              "they intersect (Ctrl+Z undoes the last edit).";
+    const char* hint = text.c_str();
     const float wrap = std::max(120.0f, float(rect.width) * 0.8f);
     const ImVec2 size = ImGui::CalcTextSize(hint, nullptr, false, wrap);
     draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(),
