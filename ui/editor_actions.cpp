@@ -531,9 +531,12 @@ void copySelection(EditorState& state) {
     bool nested = false;
     for (NodeId other : state.selection)
       if (other != id && isInSubtree(root, other, id)) nested = true;
-    if (!nested) copied.push_back({findNode(root, id), modeKeepingRole(roleOf(root, id))});
+    if (!nested)
+      copied.push_back({findNode(root, id), modeKeepingRole(roleOf(root, id)),
+                        glm::dvec3(nodeWorldMatrix(root, id) * glm::dvec4(0, 0, 0, 1))});
   }
   state.clipboard = copied;
+  state.pastes = 0;
   logInfo(state,
           "copied " + std::to_string(copied.size()) + (copied.size() == 1 ? " part" : " parts"));
 }
@@ -549,16 +552,43 @@ void pasteClipboard(EditorState& state) {
     return;
   }
   std::vector<NodeId> pasted;
+  // A copy whose original is still in the scene lands one move-snap step further along world +x
+  // with each paste (as Ctrl+D's copies): on top of its original it changed nothing to see (an
+  // artist's test). A cut part (its original gone) lands where it was: a cut and paste moves it.
+  const double step = state.snap.step * double(state.pastes + 1);
+  bool stepped = false;
   state.document.beginInteraction();
   guarded(state, [&] {
     for (const EditorState::CopiedPart& copy : state.clipboard) {
-      pasted.push_back(placeNew(state, copy.part, copy.mode));
+      const bool originalThere = findNode(state.document.root(), copy.part->id) != nullptr;
+      const NodeId id = placeNew(state, copy.part, copy.mode);
+      pasted.push_back(id);
+      const NodePtr& root = state.document.root();
+      // Its origin moved to the original's, plus the step: a world move d is the local move
+      // P^-1 d, P the parent's object-to-world matrix.
+      const glm::dvec3 now = glm::dvec3(nodeWorldMatrix(root, id) * glm::dvec4(0, 0, 0, 1));
+      const glm::dvec3 wanted = copy.worldOrigin + glm::dvec3(originalThere ? step : 0.0, 0, 0);
+      if (wanted != now) {
+        Transform t = findNode(root, id)->transform;
+        t.translate +=
+            glm::dvec3(glm::inverse(parentWorldMatrix(root, id)) * glm::dvec4(wanted - now, 0));
+        state.document.setTransform(id, t);
+      }
+      stepped = stepped || originalThere;
       // The next copy lands beside the first, not inside it.
       if (pasted.size() == 1) state.selection.assign(1, pasted[0]);
     }
   });
   state.document.endInteraction();
-  if (!pasted.empty()) state.selection = pasted;
+  if (pasted.empty()) return;
+  state.selection = pasted;
+  ++state.pastes;
+  if (stepped) {
+    char text[112];
+    std::snprintf(text, sizeof(text), "pasted %.4g %s along +x from the copied part%s", step,
+                  unitSymbol(state.document.scene().settings.unit), pasted.size() == 1 ? "" : "s");
+    logInfo(state, text);
+  }
 }
 
 void instanceSelection(EditorState& state) {

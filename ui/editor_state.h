@@ -94,8 +94,10 @@ struct EditorState {
   struct CopiedPart {
     NodePtr part;
     PlaceMode mode = PlaceMode::Add;
+    glm::dvec3 worldOrigin{0.0};  // where its origin was in the world when copied
   };
   std::vector<CopiedPart> clipboard;
+  int pastes = 0;  // pasted since the clipboard was filled: each paste lands a step further
   std::function<std::shared_ptr<Backend>()> makeBackend;  // a fresh backend per thread
 
   // Files outside the document.

@@ -16,6 +16,7 @@
 namespace strata::ui {
 
 // Object-to-world matrix of the node's parent (engine/document/measurement.h).
+using strata::nodeWorldMatrix;
 using strata::parentWorldMatrix;
 
 // World bounds of the visible result of each selected node (empty when nothing is visible).

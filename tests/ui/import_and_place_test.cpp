@@ -333,8 +333,39 @@ TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
   const NodeId ribCopy = state.selection[0];
   EXPECT_EQ(roleOf(state.document.root(), ribCopy), ChildRole::Add);
   EXPECT_TRUE(removesMaterial(state.document.root(), ribCopy));
-  EXPECT_NE(state.log.back().text.find("inside a cutter"), std::string::npos)
-      << state.log.back().text;
+  ASSERT_GE(state.log.size(), 2u);  // what it does, then where it landed
+  const std::string& does = state.log[state.log.size() - 2].text;
+  EXPECT_NE(does.find("inside a cutter"), std::string::npos) << does;
+  EXPECT_NE(state.log.back().text.find("pasted"), std::string::npos) << state.log.back().text;
+}
+
+// Ctrl+V put the copy exactly on its original (the same name, nothing to see): a paste whose
+// original is still there lands one grid step along +x, the next paste a step further; a cut
+// part pasted lands where it was.
+TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  const auto origin = [&](NodeId id) {
+    return glm::dvec3(nodeWorldMatrix(state.document.root(), id) * glm::dvec4(0, 0, 0, 1));
+  };
+  const glm::dvec3 at = origin(plate);
+  state.selection = {plate};
+  copySelection(state);
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId first = state.selection[0];
+  EXPECT_NEAR(glm::distance(origin(first), at + glm::dvec3(state.snap.step, 0, 0)), 0.0, 1e-9);
+  pasteClipboard(state);
+  const NodeId second = state.selection[0];
+  EXPECT_NEAR(glm::distance(origin(second), at + glm::dvec3(2 * state.snap.step, 0, 0)), 0.0, 1e-9);
+  // Cut and pasted: moved, not shifted.
+  state.selection = {second};
+  const glm::dvec3 secondAt = origin(second);
+  cutSelection(state);
+  EXPECT_FALSE(findNode(state.document.root(), second));
+  state.selection = {plate};
+  pasteClipboard(state);
+  EXPECT_NEAR(glm::distance(origin(state.selection[0]), secondAt), 0.0, 1e-9);
 }
 
 // A re-test found that dropping a cutter onto the cutter below it moved it after that one and
