@@ -492,7 +492,8 @@ void selectionMeasure(EditorState& state) {
                      m.measure.volume, unit, m.measure.area, unit);
   const Bounds b = selectionBounds(state.document.root(), {id});
   if (!b.empty())
-    ImGui::Text("  bounding box %.4g x %.4g x %.4g %s", b.size().x, b.size().y, b.size().z, unit);
+    ImGui::Text("  box of its parts %.4g x %.4g x %.4g %s", b.size().x, b.size().y, b.size().z,
+                unit);
   if (std::isfinite(m.measure.thinnestWall))
     ImGui::Text("  thinnest wall about %.4g %s (%.2g cells of %.3g) at (%.4g, %.4g, %.4g)",
                 m.measure.thinnestWall, unit, m.measure.thinnestWall / m.h, m.h,
@@ -517,7 +518,15 @@ void measurementList(EditorState& state) {
                              ? "; thinner than two cells: raise the resolution to judge it"
                              : "");
     }
-    const Bounds b = sceneBounds(state.document.root());
+    // The result's own extent, from its splats (the tree's bounds are its parts' boxes: a turned
+    // rib's box or a cutter's made it larger than the part an artist measured); once a result.
+    static std::weak_ptr<const SplatResource> boundsOf;
+    static Bounds resultBounds;
+    if (boundsOf.lock() != shown->splats) {
+      resultBounds = splatBounds(*shown->splats);
+      boundsOf = shown->splats;
+    }
+    const Bounds& b = resultBounds;
     if (!b.empty())
       ImGui::Text("bounding box %.4g x %.4g x %.4g %s (from %.4g, %.4g, %.4g)", b.size().x,
                   b.size().y, b.size().z, unit, b.min.x, b.min.y, b.min.z);

@@ -144,8 +144,13 @@ bool Viewport::gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld,
   const NodeId id = active ? selectedHolder(state.document.root(), state.selection, active) : 0;
   const NodePtr node = id ? findNode(state.document.root(), id) : nullptr;
   if (!node) return false;
-  *pivot = !gizmo_.dragging() && state.pivotAtSelectionCentre &&
-           independentSelectionCount(state.document.root(), state.selection) >= 2;
+  // An instance shows its target where the target's own transform puts it, its own origin
+  // elsewhere (the parent's, for a new one: an artist found its gizmo at the world's origin):
+  // its gizmo sits on what it shows, moving it as a group's pivot does.
+  *pivot = !gizmo_.dragging() &&
+           ((state.pivotAtSelectionCentre &&
+             independentSelectionCount(state.document.root(), state.selection) >= 2) ||
+            node->kind == NodeKind::Instance);
   if (*pivot) {
     const Bounds& b = cachedSelectionBounds(state);
     if (b.empty()) {

@@ -79,4 +79,20 @@ void HostSplats::copyToHost(Splat* out) const {
   if (!splats_.empty()) std::memcpy(out, splats_.data(), splats_.size() * sizeof(Splat));
 }
 
+Bounds splatBounds(const SplatResource& splats) {
+  Bounds b;
+  const size_t n = splats.count();
+  if (n == 0) return b;
+  std::vector<Splat> copy;
+  const Splat* data = splats.hostData();
+  if (!data) {
+    copy.resize(n);
+    splats.copyToHost(copy.data());
+    data = copy.data();
+  }
+  for (size_t i = 0; i < n; ++i)
+    b.include(glm::dvec3(data[i].position[0], data[i].position[1], data[i].position[2]));
+  return b;
+}
+
 }  // namespace strata

@@ -107,6 +107,11 @@ class SplatResource {
 };
 using SplatsHandle = std::shared_ptr<const SplatResource>;
 
+// The box of the splats' positions (empty for none): a result's extent as its surfels sample it,
+// within a small part of a cell (a flat face exactly; a curved extreme to the nearest ray).
+// Copies device splats to the host first. Any thread.
+Bounds splatBounds(const SplatResource& splats);
+
 // Host arrays of splats kept for reuse: a new array of millions of splats taken from fresh memory
 // costs more in the kernel's zeroing of its pages than the copy that fills it (the preview
 // worker's host copies of device splats, 40 MB a result at 1024 cells). Keeps at most

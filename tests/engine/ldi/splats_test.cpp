@@ -94,6 +94,28 @@ TEST(Splats, OneSplatPerSurfelOnItsDominantAxis) {
   }
 }
 
+// The editor's Diagnostics said "60 x 41 x 32" for a bracket exported at 60 x 40 x 30: it gave
+// the tree's bounds (a turned part's box). The result's box from its splats: a turned cube's is
+// the turned cube's (its corners), not the box of the unturned one around it, within a cell.
+TEST(Splats, TheirBoxIsTheResultsExtent) {
+  Transform turned;
+  turned.rotateDegrees = {0.0, 0.0, 45.0};
+  NodePtr cube = withTransform(box(glm::dvec3(1.0)), turned);
+  Scene scene = makeScene(op(NodeKind::Difference, {cube, box({2.0, 2.0, 1.0}, {0, 0, 0.75})}), 64);
+  EvalResult result = evaluateCpu(scene);
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  SplatsHandle handle = backend->splats(result.root, progress);
+  const Bounds b = splatBounds(*handle);
+  const double h = result.grid.h;
+  const double half = std::sqrt(0.5);  // the turned cube's corner, from its centre
+  EXPECT_NEAR(b.max.x, half, h);
+  EXPECT_NEAR(b.min.y, -half, h);
+  EXPECT_NEAR(b.max.z, 0.25, 1e-6);  // the cut's flat face, on a ray: exact
+  EXPECT_NEAR(b.min.z, -0.5, 1e-6);
+  EXPECT_TRUE(splatBounds(HostSplats({})).empty());
+}
+
 TEST(Splats, EmptyLdiHasNone) {
   Grid grid;
   grid.cells = glm::ivec3(8);
