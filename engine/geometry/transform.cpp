@@ -27,6 +27,14 @@ Transform transformFromMatrix(const glm::dmat4& m) {
   glm::dmat3 r(1.0);
   for (int i = 0; i < 3; ++i)
     if (t.scale[i] != 0.0) r[i] = columns[i] / t.scale[i];
+  // The lengths of turned columns come out a rounding away from whole scales (0.9999999999999999
+  // for 1, saved so by a part turned onto a surface): a scale within 1e-12 of a whole number is
+  // that number (the matrix it makes differs by a rounding).
+  for (int i = 0; i < 3; ++i) {
+    const double whole = std::round(t.scale[i]);
+    if (whole != 0.0 && std::fabs(t.scale[i] - whole) < 1e-12 * std::fabs(whole))
+      t.scale[i] = whole;
+  }
   // r = Rz(c) * Ry(b) * Rx(a): r[col][row]; r[0][2] = -sin(b).
   const double sinB = -std::clamp(r[0][2], -1.0, 1.0);
   double a, b = std::asin(sinB), c;

@@ -64,6 +64,23 @@ TEST(Transform, AnglesOfRoundingNoiseAreZero) {
   EXPECT_NEAR(t.rotateDegrees.z, 30.0, 1e-9);
 }
 
+// A part turned onto a surface was saved with scale 0.9999999999999999 and 1.0000000000000002
+// (an artist's test): the columns' lengths of a turned matrix. Whole scales come back whole,
+// others as they were.
+TEST(Transform, ScalesOfRoundingNoiseAreWhole) {
+  Transform node;
+  node.rotateDegrees = {0.0, 0.0, 30.0};
+  node.scale = {1.0, 2.0, 0.7};
+  for (double degrees : {65.79774, 12.3, 91.0, 137.0}) {
+    const glm::dmat4 turn =
+        glm::rotate(glm::dmat4(1.0), glm::radians(degrees), glm::normalize(glm::dvec3(1, 2, 3)));
+    const Transform t = transformFromMatrix(turn * node.matrix());
+    EXPECT_EQ(t.scale.x, 1.0) << degrees;
+    EXPECT_EQ(t.scale.y, 2.0) << degrees;
+    EXPECT_NEAR(t.scale.z, 0.7, 1e-12) << degrees;
+  }
+}
+
 }  // namespace
 }  // namespace strata
 
