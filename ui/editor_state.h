@@ -16,6 +16,7 @@
 
 #include "engine/document/document.h"
 #include "engine/eval/backend.h"
+#include "engine/jobs/background_job.h"
 #include "engine/jobs/export_job.h"
 #include "engine/jobs/part_measure_job.h"
 #include "engine/jobs/preview_worker.h"
@@ -172,7 +173,10 @@ struct EditorState {
   NodeId renaming = 0;                           // outliner row being renamed
   std::optional<PendingImport> pendingImport;    // the import dialog is open for it
   std::optional<Placement> importPlacement;      // for the mesh being chosen (palette drag)
-  int lastImportUnit = 0;                        // the import dialog's last choices
+  // The extent of the file the import dialog is open for, read off the UI thread (its path).
+  std::unique_ptr<BackgroundJob<Bounds>> importSizeJob;
+  std::string importSizePath;
+  int lastImportUnit = 0;  // the import dialog's last choices
   int lastImportUpAxis = 0;
 
   // Requests to the frame loop.

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -11,6 +12,9 @@
 #include <GLFW/glfw3.h>
 
 #include "engine/eval/evaluator.h"
+#include "engine/export/job_estimate.h"
+#include "engine/io/mesh_formats.h"
+#include "engine/io/mesh_io.h"
 #include "engine/io/user_files.h"
 #include "engine/util/error.h"
 #include "engine/util/limits.h"
@@ -222,6 +226,10 @@ void exportOptionsDialog(EditorState& state) {
   const char* title = "Export: options###export options";
   if (state.pendingExportPath && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   centreNext();
+  // One width whatever is shown (the simplify row, a note): the preset buttons stay where they
+  // were from one opening to the next (an artist's click landed on 2048 where 1024 had been).
+  const float width = ImGui::GetFontSize() * 40.0f;
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, FLT_MAX));
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
   if (!state.pendingExportPath) {
     ImGui::CloseCurrentPopup();
@@ -319,13 +327,18 @@ void exportOptionsDialog(EditorState& state) {
   estimate = state.exportEstimate.get();
   if (estimate && estimate->done() && current) {
     const TriangleEstimate e = estimate->result();
+    // The file's size with the triangles, before Export (it was told only once it ran).
+    const MeshFormat* format = meshFormatFor(*state.pendingExportPath, MeshAccess::Write);
+    const uint64_t written = cells > 0.0 ? e.simplified : e.triangles;
+    const std::string file =
+        format ? ", a " + bytesText(double(written) * format->bytesPerTriangle) + " file" : "";
     if (!estimate->error().empty())
       ImGui::TextDisabled("no estimate: %s", estimate->error().c_str());
     else if (cells > 0.0)
-      ImGui::Text("about %s triangles, simplified from about %s", countText(e.simplified).c_str(),
-                  countText(e.triangles).c_str());
+      ImGui::Text("about %s triangles, simplified from about %s%s", countText(e.simplified).c_str(),
+                  countText(e.triangles).c_str(), file.c_str());
     else
-      ImGui::Text("about %s triangles", countText(e.triangles).c_str());
+      ImGui::Text("about %s triangles%s", countText(e.triangles).c_str(), file.c_str());
   } else {
     ImGui::TextDisabled("estimating the triangles...");
   }
@@ -379,6 +392,31 @@ void importDialog(EditorState& state) {
   const char* upAxes[] = {"+Z up (as written)", "+Y up (turn +Y to +Z)"};
   ImGui::SetNextItemWidth(220);
   ImGui::Combo("up axis", &import.upAxis, upAxes, 2);
+  // Its size as the file has it and as it will stand in the scene (an artist's bunny came in
+  // 8 mm long and on its side with nothing said): the file read off the UI thread, once.
+  if (state.importSizePath != import.path) {
+    state.importSizePath = import.path;
+    state.importSizeJob =
+        std::make_unique<BackgroundJob<Bounds>>([path = import.path](Progress& progress) {
+          return meshBounds(readMeshFileVerbatim(path, nullptr, &progress));
+        });
+  }
+  const BackgroundJob<Bounds>* size = state.importSizeJob.get();
+  if (size && size->done() && size->error().empty() && !size->result().empty()) {
+    const glm::dvec3 file = size->result().size();
+    // +Y up turns the file's y onto z and its z onto -y.
+    const glm::dvec3 scene =
+        scale * (import.upAxis == 1 ? glm::dvec3(file.x, file.z, file.y) : file);
+    const char* unit = unitSymbol(state.document.scene().settings.unit);
+    ImGui::TextDisabled("in the file: %.4g x %.4g x %.4g", file.x, file.y, file.z);
+    ImGui::Text("in the scene: %.4g x %.4g x %.4g %s (x, y, z; z up)", scene.x, scene.y, scene.z,
+                unit);
+  } else if (size && size->done()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s",
+                       size->error().empty() ? "no triangles" : size->error().c_str());
+  } else {
+    ImGui::TextDisabled("reading its size...");
+  }
   if (import.placement)
     ImGui::TextDisabled("placed where it was dropped (%.4g, %.4g, %.4g)%s",
                         import.placement->point.x, import.placement->point.y,
@@ -397,6 +435,10 @@ void importDialog(EditorState& state) {
   if (ImGui::Button("Cancel", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ESCAPE)) {
     state.pendingImport.reset();
     ImGui::CloseCurrentPopup();
+  }
+  if (!state.pendingImport) {  // imported or cancelled: the size is not needed any more
+    state.importSizeJob.reset();
+    state.importSizePath.clear();
   }
   ImGui::EndPopup();
 }
