@@ -171,8 +171,9 @@ struct EditorState {
   bool askingQuitDuringExport = false;           // asking whether to cancel a running export
   std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds
   NodeId renaming = 0;                           // outliner row being renamed
-  std::optional<PendingImport> pendingImport;    // the import dialog is open for it
-  std::optional<Placement> importPlacement;      // for the mesh being chosen (palette drag)
+  NodeId viewContextMenu = 0;  // a part right-clicked in the view: its menu is to open
+  std::optional<PendingImport> pendingImport;  // the import dialog is open for it
+  std::optional<Placement> importPlacement;    // for the mesh being chosen (palette drag)
   // The extent of the file the import dialog is open for, read off the UI thread (its path).
   std::unique_ptr<BackgroundJob<Bounds>> importSizeJob;
   std::string importSizePath;

@@ -125,6 +125,24 @@ void quitDuringExportQuestion(EditorState& state) {
   if (quit) quitOrAskAboutChanges(state);
 }
 
+// The menu of a part right-clicked in the view (Viewport: the part selected first).
+void viewContextMenu(EditorState& state) {
+  const char* id = "##view context menu";
+  static NodeId shown = 0;
+  if (state.viewContextMenu) {
+    shown = state.viewContextMenu;
+    state.viewContextMenu = 0;
+    ImGui::OpenPopup(id);
+  }
+  if (!ImGui::BeginPopup(id)) return;
+  const NodePtr node = findNode(state.document.root(), shown);
+  if (node)
+    contextMenuItems(state, node);
+  else
+    ImGui::CloseCurrentPopup();  // the part went meanwhile (an undo)
+  ImGui::EndPopup();
+}
+
 void exportWindow(EditorState& state) {
   if (!state.exportJob) return;
   ExportStatus s = state.exportJob->status();
@@ -456,6 +474,7 @@ void drawModals(EditorState& state) {
       std::remove_if(measures.begin(), measures.end(),
                      [](const std::unique_ptr<PartMeasureJob>& job) { return job->done(); }),
       measures.end());
+  viewContextMenu(state);
   recoveryQuestion(state);
   unsavedQuestion(state);
   quitDuringExportQuestion(state);

@@ -147,6 +147,13 @@ ImVec4 kindColor(NodeKind kind) {
 void contextMenu(EditorState& state, const NodePtr& node) {
   if (!ImGui::BeginPopupContextItem()) return;
   if (!isSelected(state, node->id)) selectNode(state, node->id);
+  contextMenuItems(state, node);
+  ImGui::EndPopup();
+}
+
+}  // namespace
+
+void contextMenuItems(EditorState& state, const NodePtr& node) {
   ImGui::TextDisabled("%s %s", kindGlyph(node->kind), node->name.c_str());
   ImGui::Separator();
   if (ImGui::MenuItem("Rename", "F2")) state.renaming = node->id;
@@ -191,8 +198,9 @@ void contextMenu(EditorState& state, const NodePtr& node) {
   }
   ImGui::Separator();
   if (ImGui::MenuItem("Frame", "F")) state.requestFrameSelected = true;
-  ImGui::EndPopup();
 }
+
+namespace {
 
 void renameField(EditorState& state, const NodePtr& node) {
   static char buffer[256];

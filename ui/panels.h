@@ -54,6 +54,10 @@ void performReplace(EditorState& state, const PendingReplace& action);
 // Returns whether the document was saved now.
 bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then);
 
+// The items of a part's menu (rename, hide, duplicate, group, role, ...), inside an open popup:
+// the outliner's row menu and the view's right-click menu.
+void contextMenuItems(EditorState& state, const NodePtr& node);
+
 // Left column: the scene tree and the palette of things to add.
 void drawOutliner(EditorState& state, const PanelLayout& layout);
 void drawPalette(EditorState& state, const PanelLayout& layout);

@@ -386,6 +386,9 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     clickPending_ = false;
     click_ = PendingClick{mouse, io.KeyCtrl || io.KeyShift};
   }
+  // A right click: the part's menu (it did nothing; only the outliner's rows had one).
+  if (ImGui::IsMouseClicked(1) && inside && !state.measure.active)
+    contextClick_ = PendingClick{mouse, false};
 }
 
 void viewPixels(const ViewRect& rect, int framebufferHeight, double pixelScale, int* x, int* y,
@@ -495,6 +498,16 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
     else if (!click_->extend)
       clearSelection(state);
     click_.reset();
+  }
+  if (contextClick_) {
+    // The part under the pointer, selected unless it already is (a selection of several keeps
+    // them, as the outliner's menu does), its menu opened by drawModals.
+    std::optional<PickHit> hit = pickAt(renderer, state, rect, contextClick_->mouse, pixelScale);
+    if (hit && findNode(state.document.root(), hit->leaf)) {
+      if (!isSelected(state, hit->leaf)) selectNode(state, hit->leaf);
+      state.viewContextMenu = hit->leaf;
+    }
+    contextClick_.reset();
   }
   if (box_) {
     const ViewportFrame frame = makeFrame(state, rect, 0, pixelScale);

@@ -137,6 +137,9 @@ class Viewport {
   bool navigating_ = false;
   bool clickPending_ = false;
   std::optional<PendingClick> click_;
+  // A right click on the view: the part under it selected and its menu opened
+  // (EditorState::viewContextMenu).
+  std::optional<PendingClick> contextClick_;
   std::optional<PendingDrop> drop_;
   std::optional<glm::dvec2> boxFrom_;  // where a box selection being dragged began
   std::optional<PendingBox> box_;
