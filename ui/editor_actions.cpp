@@ -94,7 +94,16 @@ void placeNode(EditorState& state, NodeId id, const Placement& placement) {
   if (placement.normal) {
     // Its own +z along the surface's normal (in its parent's frame), the turn about it kept.
     const glm::dmat3 parent(parentWorldMatrix(state.document.root(), id));
-    const glm::dvec3 z = glm::normalize(glm::inverse(parent) * *placement.normal);
+    // A picked normal carries its surfel's encoding (about 0.005 degrees): one that close to an
+    // axis is that axis, or a part dropped on a flat top got turns of -0.003 degrees ("-0.00").
+    glm::dvec3 normal = glm::normalize(*placement.normal);
+    for (int a = 0; a < 3; ++a)
+      if (std::fabs(normal[a]) > std::cos(glm::radians(0.05))) {
+        const double sign = normal[a] > 0.0 ? 1.0 : -1.0;
+        normal = glm::dvec3(0.0);
+        normal[a] = sign;
+      }
+    const glm::dvec3 z = glm::normalize(glm::inverse(parent) * normal);
     const glm::dvec3 from(0.0, 0.0, 1.0);
     const double c = glm::dot(from, z);
     glm::dmat4 turn(1.0);
@@ -326,12 +335,15 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
     id = placeNew(state, node, state.placeMode, note);
     placeNode(state, id, placement);
     if (placement.normal) {
+      // Components that print as zero are zero: "-0.00" read as a sign where none is.
+      const auto shown = [](double v) { return std::fabs(v) < 0.005 ? 0.0 : v; };
       char text[160];
       std::snprintf(text, sizeof(text),
                     "placed at (%.4g, %.4g, %.4g), its z turned to the surface's normal "
                     "(%.2f, %.2f, %.2f)",
-                    placement.point.x, placement.point.y, placement.point.z, placement.normal->x,
-                    placement.normal->y, placement.normal->z);
+                    placement.point.x, placement.point.y, placement.point.z,
+                    shown(placement.normal->x), shown(placement.normal->y),
+                    shown(placement.normal->z));
       logInfo(state, text);
     }
     selectNode(state, id);

@@ -392,14 +392,21 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
 }
 
 // The last palette button as a drag source of `item`.
-void paletteDragSource(int item, const char* label) {
+void paletteDragSource(EditorState& state, int item, const char* label) {
   if (ImGui::BeginDragDropSource()) {
     ImGui::SetDragDropPayload(kPalettePayload, &item, sizeof(item));
     ImGui::Text("%s", label);
-    if (gShownHint.empty())
-      ImGui::TextDisabled("drop on a surface, the ground, or a tree row");
-    else
+    if (gShownHint.empty()) {
+      // Over the view (or anywhere but a tree row): what a drop on a surface or the ground does
+      // (placed onto the selection with the palette's mode or the key held), said before the
+      // release as a row's drop says it (it said only where to drop).
+      const std::string does =
+          placementSentence(state, primarySelection(state), dropMode(state, heldDropModifiers()));
+      ImGui::TextDisabled("on a surface or the ground: it %s", does.c_str());
+      ImGui::TextDisabled("on a tree row: onto that part");
+    } else {
       dragHint();
+    }
     ImGui::EndDragDropSource();
   }
 }
@@ -487,7 +494,7 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     if (ImGui::Button(label, ImVec2(lastRow ? lastWidth : w, 0)))
       addPrimitive(state, primitive.kind);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", primitive.summary);
-    paletteDragSource(int(primitive.kind), label);
+    paletteDragSource(state, int(primitive.kind), label);
   }
   const std::string importLabel = std::string(kindGlyph(NodeKind::Mesh)) + " Import mesh...";
   if (ImGui::Button(importLabel.c_str(), ImVec2(-1, 0))) {
@@ -501,7 +508,7 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
         formats += (formats.empty() ? "" : ", ") + std::string(format.label);
     ImGui::SetTooltip("A closed mesh file (%s); asks its unit and up axis", formats.c_str());
   }
-  paletteDragSource(kImportMeshItem, importLabel.c_str());
+  paletteDragSource(state, kImportMeshItem, importLabel.c_str());
   ImGui::Separator();
   // One set of operation buttons: with a selection they apply to it (the selection is put in the
   // new operation in its place, each part keeping what it does), as an artist expects of

@@ -59,6 +59,23 @@ TEST(ImportAndPlace, AMeshOpenedAsASceneIsRefusedByWhatItIs) {
   EXPECT_TRUE(findNode(state.document.root(), kept));
 }
 
+// A part dropped on a flat top got turns of a few thousandths of a degree ("-0.00" in the
+// inspector) from the picked normal's encoding: a normal that close to an axis is the axis; a
+// surface truly at a slant still turns the part.
+TEST(ImportAndPlace, ADropOnAFlatFaceLeavesThePartUnturned) {
+  EditorState state;
+  const glm::dvec3 nearlyUp = glm::normalize(glm::dvec3(3e-5, -2e-5, 1.0));
+  const NodeId flat =
+      addPrimitiveAt(state, NodeKind::Box, Placement{glm::dvec3(1, 2, 3), false, nearlyUp});
+  const Transform t = findNode(state.document.root(), flat)->transform;
+  EXPECT_EQ(t.rotateDegrees, glm::dvec3(0.0));
+  EXPECT_EQ(t.scale, glm::dvec3(1.0));
+  const glm::dvec3 slant = glm::normalize(glm::dvec3(0.0, 0.1, 1.0));
+  const NodeId turned =
+      addPrimitiveAt(state, NodeKind::Box, Placement{glm::dvec3(1, 2, 3), false, slant});
+  EXPECT_GT(glm::length(findNode(state.document.root(), turned)->transform.rotateDegrees), 5.0);
+}
+
 TEST(ImportAndPlace, ImportWithOptionsIsOneUndoStep) {
   EditorState state;
   PendingImport import;
