@@ -294,7 +294,8 @@ NodePtr moveNode(const NodePtr& root, NodeId id, NodeId parentId, int index) {
         "cannot move " + nameWithId(node) + " into " +
         (parentId == id ? std::string("itself") : nameWithId(parent) + ", which lies inside it"));
   if (!isOperation(parent.kind))
-    throw Error(nameWithId(parent) + " is a " + kindName(parent.kind) + " and cannot have children");
+    throw Error(nameWithId(parent) + " is a " + kindName(parent.kind) +
+                " and cannot have children");
   NodeId before = 0;
   if (index >= 0 && index < static_cast<int>(parent.children.size()))
     before = parent.children[static_cast<size_t>(index)]->id;
