@@ -147,8 +147,9 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     // The tiling the export will pick: each worker's share of its device's memory.
     JobEstimate estimate;
     namingInput(input, {output}, [&] {
-      estimate = estimateExport(scene, options, output, choice.backend,
-                                workersMemory(workers, perDevice), probe);
+      estimate =
+          estimateExport(scene, options, output, choice.backend, workersMemory(workers, perDevice),
+                         probe, kProbeAbove, options.simplifyCells);
     });
     // Distributed: process 0 holds the tiles of the slabs the processes work in.
     const uint64_t held =

@@ -37,6 +37,12 @@ constexpr double kScratchBytesPerTriangle = 36.0;
 // triangle's leaf (4 bytes); its check holds corners as doubles.
 constexpr double kStreamedIndexedBytesPerTriangle = 4.0;
 constexpr double kScratchLeafBytesPerTriangle = 4.0;
+// Simplifying (simplify_mesh.h), per triangle of the unsimplified mesh, beside the export's own:
+// OpenMesh's halfedge mesh of each chunk, the quadrics, the heap and the grid of the unsimplified
+// surface. Measured 2026-11-30 on this 2-core machine: the demo at 1024 cells (5.1 M triangles)
+// peaked at 3.08 GB simplified against 0.67 GB not (470 bytes a triangle), armadillo - bunny at
+// 768 (2.5 M) at 2.01 GB against 0.32 GB (670 bytes).
+constexpr double kSimplifyBytesPerTriangle = 560.0;
 // Writing and checking, per triangle (they are not in the probes' times): measured 0.12 to
 // 0.18 microseconds on this 2-core machine in the same six exports.
 constexpr double kWriteCheckSecondsPerTriangle = 2e-7;
@@ -185,14 +191,15 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
 
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
-                           Progress& progress, int probeAbove) {
+                           Progress& progress, int probeAbove, double simplifyCells) {
   return estimateExport(scene, options, path, backend, workersMemory({backend}, 1), progress,
-                        probeAbove);
+                        probeAbove, simplifyCells);
 }
 
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
-                           const WorkersMemory& memory, Progress& progress, int probeAbove) {
+                           const WorkersMemory& memory, Progress& progress, int probeAbove,
+                           double simplifyCells) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
   const ExportTiling tiling = exportTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
@@ -202,6 +209,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   const uint64_t present = peakResidentBytes();  // before the probes, which add their own
   ContourReport report;
   size_t probeTriangles = 0;
+  ExportMesh probeMesh;  // kept to be simplified, where the export is
   double seconds = 0.0;
   // The job's modifiers run on each tile's grown window (once where that is the whole grid).
   const glm::dvec3 window = grownTileCells(e.grid, tiling.tileCells, tiling.halo);
@@ -214,8 +222,9 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
       ContourOptions probeOptions;
       probeOptions.resolution = resolution;  // tiles sized to the backend's memory, as the job's
       report = ContourReport();
-      probeTriangles =
-          contourScene(scene, probe, probeOptions, progress, &report).mesh.triangles.size();
+      ExportMesh mesh = contourScene(scene, probe, probeOptions, progress, &report);
+      probeTriangles = mesh.mesh.triangles.size();
+      if (simplifyCells > 0.0) probeMesh = std::move(mesh);  // the last probe's, the finest
       return ProbeRun{report.grid, report.modifySeconds, report.modifiedNodes};
     });
   } catch (const BackendOutOfMemory&) {
@@ -271,6 +280,17 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
   e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);
+  if (simplifyCells > 0.0 && !probeMesh.mesh.triangles.empty()) {
+    Stopwatch clock;
+    const SimplifyReport simplified =
+        simplifyMesh(&probeMesh, simplifyCells * report.grid.h, progress);
+    e.seconds += clock.seconds() / double(probeTriangles) * double(e.triangles);
+    e.peakBytes += uint64_t(double(e.triangles) * kSimplifyBytesPerTriangle);
+    e.simplifiedTriangles =
+        std::min(e.triangles, uint64_t(double(simplified.trianglesAfter) * std::sqrt(scale)));
+    e.fileBytes =
+        uint64_t(double(e.simplifiedTriangles) * (format ? format->bytesPerTriangle : 50.0));
+  }
   return e;
 }
 
@@ -328,7 +348,10 @@ std::string describeEstimate(const JobEstimate& e) {
                   std::to_string(e.grid.cells.z) + " cells";
   if (e.tiles > 1) s += ", " + countText(e.tiles) + " tiles";
   if (!e.probed) return s;
-  if (e.triangles > 0)
+  if (e.triangles > 0 && e.simplifiedTriangles > 0)
+    s += ", about " + countText(double(e.triangles)) + " triangles simplified to about " +
+         countText(double(e.simplifiedTriangles));
+  else if (e.triangles > 0)
     s += ", about " + countText(double(e.triangles)) + " triangles";
   else
     s += ", about " + countText(double(e.surfels)) + " surfels";

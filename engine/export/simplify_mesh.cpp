@@ -772,7 +772,7 @@ SimplifyReport simplifyMesh(ExportMesh* mesh, double tolerance, Progress& progre
   omerr().disable();
   // The unsimplified surface, for the rules' back-check and the measurement.
   const TriangleGrid surface(mesh->mesh.positions, mesh->mesh.triangles,
-                             kMeasureReachPerTolerance * tolerance);
+                             kMeasureReachPerTolerance * tolerance, &progress);
   CollapseCount collapses;
   double within = firstAttemptTolerance * tolerance;
   ExportMesh simplified;

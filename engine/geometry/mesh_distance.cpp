@@ -220,14 +220,14 @@ SurfaceDeviation measureDeviation(const TriangleMesh& a, const TriangleMesh& b, 
   if (a.empty() || b.empty() || !(accuracy > 0.0) || !(cap > 0.0)) return deviation;
   OneWay ab, ba;
   {
-    const TriangleGrid bGrid(b.positions, b.triangles, cap);
+    const TriangleGrid bGrid(b.positions, b.triangles, cap, &progress);
     ab =
         measureOneWay(a, bGrid, closed, accuracy, enough, progress, stage, from, 0.5 * (from + to));
   }
   if (aGrid) {
     ba = measureOneWay(b, *aGrid, closed, accuracy, enough, progress, stage, 0.5 * (from + to), to);
   } else {
-    const TriangleGrid grid(a.positions, a.triangles, cap);
+    const TriangleGrid grid(a.positions, a.triangles, cap, &progress);
     ba = measureOneWay(b, grid, closed, accuracy, enough, progress, stage, 0.5 * (from + to), to);
   }
   deviation.aToB = ab.largest;

@@ -12,6 +12,7 @@
 #include "engine/geometry/triangle_distance.h"
 #include "engine/util/error.h"
 #include "engine/util/hash.h"
+#include "engine/util/large_array.h"
 #include "engine/util/parallel_for.h"
 
 namespace strata {
@@ -25,13 +26,20 @@ uint64_t cellKey(const glm::ivec3& c) {
 }  // namespace
 
 TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
-                           const std::vector<std::array<uint32_t, 3>>& triangles, double reach)
+                           const std::vector<std::array<uint32_t, 3>>& triangles, double reach,
+                           const Progress* progress)
     : positions_(positions), triangles_(triangles), reach_(reach) {
+  const auto check = [progress](size_t k) {
+    if (progress && (k & ((size_t(1) << 20) - 1)) == 0) progress->check();
+  };
   Bounds bounds;
-  for (const auto& t : triangles)
+  double edges = 0.0;  // summed in order: the cell size is the same on any thread count
+  for (size_t k = 0; k < triangles.size(); ++k) {
+    check(k);
+    const auto& t = triangles[k];
     for (uint32_t v : t) bounds.include(positions[v]);
-  double edges = 0.0;
-  for (const auto& t : triangles) edges += glm::length(positions[t[1]] - positions[t[0]]);
+    edges += glm::length(positions[t[1]] - positions[t[0]]);
+  }
   cell_ = std::max(edges / double(std::max<size_t>(triangles.size(), 1)), 2.0 * reach);
   if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = 1.0;
   origin_ = bounds.empty() ? glm::dvec3(0.0) : bounds.min - glm::dvec3(reach + cell_);
@@ -48,6 +56,7 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
   std::vector<std::vector<std::pair<uint64_t, uint32_t>>> perBlock(static_cast<size_t>(blocks));
   parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
     for (int64_t block = first; block < last; ++block) {
+      if (progress) progress->check();
       auto& pairs = perBlock[size_t(block)];
       const int64_t end = std::min(count, (block + 1) * kBlock);
       for (int64_t i = block * kBlock; i < end; ++i) {
@@ -88,35 +97,55 @@ TriangleGrid::TriangleGrid(const std::vector<glm::dvec3>& positions,
   if (total >= size_t(UINT32_MAX))
     throw Error("a triangle grid of " + std::to_string(total) +
                 " cell entries is beyond its 32-bit index");
-  std::vector<std::pair<uint64_t, uint32_t>> pairs(total);
+  // Uninitialised, filled by the scatter on every thread (a std::vector's zeroing of hundreds of
+  // MB on one thread took 2 s of a 4 M-triangle export's simplification, and no cancel could
+  // reach it).
+  struct CellEntry {
+    uint64_t key;
+    uint32_t triangle;
+    bool operator<(const CellEntry& o) const {
+      return key != o.key ? key < o.key : triangle < o.triangle;
+    }
+  };
+  LargeArray<CellEntry> pairs(total);
   parallelFor(0, blocks, 1, [&](int64_t first, int64_t last) {
     for (int64_t block = first; block < last; ++block) {
       std::vector<size_t> at(kBuckets);
+      if (progress) progress->check();
       for (size_t b = 0; b < kBuckets; ++b) at[b] = start[b * size_t(blocks) + size_t(block)];
-      for (const auto& pair : perBlock[size_t(block)]) pairs[at[bucketOf(pair.first)]++] = pair;
+      for (const auto& pair : perBlock[size_t(block)])
+        pairs[at[bucketOf(pair.first)]++] = CellEntry{pair.first, pair.second};
       perBlock[size_t(block)] = {};
     }
   });
   parallelFor(0, int64_t(kBuckets), 1, [&](int64_t first, int64_t last) {
-    for (int64_t b = first; b < last; ++b)
-      std::sort(pairs.begin() + std::ptrdiff_t(start[size_t(b) * size_t(blocks)]),
-                pairs.begin() + std::ptrdiff_t(start[size_t(b + 1) * size_t(blocks)]));
+    for (int64_t b = first; b < last; ++b) {
+      if (progress) progress->check();
+      std::sort(pairs.get() + start[size_t(b) * size_t(blocks)],
+                pairs.get() + start[size_t(b + 1) * size_t(blocks)]);
+    }
   });
   items_.resize(pairs.size());
   size_t cells = 0;
+  if (progress) progress->check();
   for (size_t k = 0; k < pairs.size(); ++k) {
-    items_[k] = pairs[k].second;
-    if (k == 0 || pairs[k].first != pairs[k - 1].first) ++cells;
+    check(k);
+    items_[k] = pairs[k].triangle;
+    if (k == 0 || pairs[k].key != pairs[k - 1].key) ++cells;
   }
   size_t slots = 16;
   while (slots < 2 * cells) slots *= 2;
   table_.assign(slots, Slot{});
-  for (size_t k = 0; k < pairs.size();) {
+  for (size_t k = 0, checked = 0; k < pairs.size();) {
+    if (progress && k - checked >= (size_t(1) << 20)) {
+      progress->check();
+      checked = k;
+    }
     size_t end = k;
-    while (end < pairs.size() && pairs[end].first == pairs[k].first) ++end;
-    size_t slot = avalanche64(pairs[k].first) & (slots - 1);
+    while (end < pairs.size() && pairs[end].key == pairs[k].key) ++end;
+    size_t slot = avalanche64(pairs[k].key) & (slots - 1);
     while (table_[slot].end != 0) slot = (slot + 1) & (slots - 1);
-    table_[slot] = {pairs[k].first, uint32_t(k), uint32_t(end)};
+    table_[slot] = {pairs[k].key, uint32_t(k), uint32_t(end)};
     k = end;
   }
 }

@@ -18,12 +18,18 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/util/progress.h"
+
 namespace strata {
 
 class TriangleGrid {
  public:
+  // `progress` (may be null) is checked as it is built, every million or so entries: a grid of
+  // tens of millions of triangles takes seconds, and a cancel must not wait for it (throws
+  // Cancelled).
   TriangleGrid(const std::vector<glm::dvec3>& positions,
-               const std::vector<std::array<uint32_t, 3>>& triangles, double reach);
+               const std::vector<std::array<uint32_t, 3>>& triangles, double reach,
+               const Progress* progress = nullptr);
 
   // True when some triangle lies within `distance` (<= reach) of p. `hint` (may be null): a
   // triangle to try first (any value; UINT32_MAX for none), set to the one found within: a run

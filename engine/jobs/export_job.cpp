@@ -91,7 +91,8 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     Progress probe([this](const std::string&, double fraction) {
       progress_->report("estimate", fraction);  // throws Cancelled once the job is cancelled
     });
-    const JobEstimate estimate = estimateExport(*scene, options, path, backend, probe);
+    const JobEstimate estimate =
+        estimateExport(*scene, options, path, backend, probe, kProbeAbove, options.simplifyCells);
     const uint64_t memory = guard.memoryBytes ? guard.memoryBytes : availableMemoryBytes();
     const uint64_t disk = freeDiskBytesForFile(path);
     std::string refusal = estimateRefusal(estimate, memory, disk);
