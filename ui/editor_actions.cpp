@@ -555,7 +555,12 @@ void copySelection(EditorState& state) {
 
 void cutSelection(EditorState& state) {
   copySelection(state);
+  if (state.log.empty()) return;
+  const std::string copied = state.log.back().text;  // "copied N part(s)"
   deleteSelection(state);
+  const size_t space = copied.find(' ');
+  logInfo(state, "cut" + (space == std::string::npos ? std::string() : copied.substr(space)) +
+                     " (Ctrl+V puts it back where it was)");
 }
 
 void pasteClipboard(EditorState& state) {

@@ -113,10 +113,9 @@ void quitDuringExportQuestion(EditorState& state) {
     close = true, quit = false;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Go on working while it exports (Esc)");
   ImGui::SameLine();
-  if (ImGui::Button("Cancel export and quit", ImVec2(200, 0))) {
-    if (state.exportJob) state.exportJob->cancel();
-    close = quit = true;
-  }
+  // Not cancelled here: quitting ends it (the editor's end cancels and joins the job), and
+  // backing out of the unsaved-changes question that may follow leaves it running.
+  if (ImGui::Button("Cancel export and quit", ImVec2(200, 0))) close = quit = true;
   if (close) {
     state.askingQuitDuringExport = false;
     ImGui::CloseCurrentPopup();

@@ -7,7 +7,7 @@
 namespace strata {
 
 std::string nodeLabel(const Node& node) {
-  const std::string kind = kindName(node.kind);
+  const std::string kind = kindLabel(node.kind);
   if (node.name.empty()) return kind + " #" + std::to_string(node.id);
   return kind + " '" + node.name + "'";
 }

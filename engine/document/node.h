@@ -66,8 +66,8 @@ inline bool meshMissing(const Node& node) {
   return node.kind == NodeKind::Mesh && node.mesh && node.mesh->triangles.empty();
 }
 
-// A node as messages name it: its kind and name ("offset 'rim'"), or its kind and id where it
-// has no name ("offset #1"), never an empty "offset ''".
+// A node as messages name it: its kind as people read it and its name ("rounded box 'rim'"), or its
+// kind and id where it has no name ("offset #1"), never an empty "offset ''".
 std::string nodeLabel(const Node& node);
 
 // Depth of the tree (a leaf alone has depth 1), following instances.
