@@ -70,9 +70,12 @@ std::string mtlText(const ExportMesh& em, const std::map<uint32_t, std::string>&
 
 }  // namespace
 
-void writeObj(const std::string& path, const ExportMesh& em, Progress* progress) {
+void writeObj(const std::string& given, const ExportMesh& em, Progress* progress) {
   const TriangleMesh& mesh = em.mesh;
   const std::map<uint32_t, std::string> names = materialNames(em.leaves);
+  // The MTL beside the OBJ the file is (a link's destination: out.obj -> /data/real.obj writes
+  // /data/real.mtl, which /data/real.obj names), not beside the link.
+  const std::string path = resolvedOutputPath(given);
   const size_t slash = path.find_last_of("/\\");
   const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
   // `mtllib` takes names separated by white space: a space in the material file's name would
@@ -138,7 +141,7 @@ void writeObj(const std::string& path, const ExportMesh& em, Progress* progress)
     }
     if (progress) progress->check();
   };
-  writeFilesAtomically({{path, writeObjText}, {mtlPath, writeMtl}});
+  writeFilesAtomically({{given, writeObjText}, {mtlPath, writeMtl}});
 }
 
 }  // namespace meshio

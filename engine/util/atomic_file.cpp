@@ -285,10 +285,11 @@ bool namesSpecialFile(const std::string& path) {
   return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
 }
 
-// `file` written in place into the device, pipe or socket its path names.
-void writeThrough(const AtomicFileWrite& file) {
+// `file` written in place into the device, pipe or socket its path names, or (`append`) at the
+// end of what a process's descriptor has open (/dev/stdout redirected to a file).
+void writeThrough(const AtomicFileWrite& file, bool append = false) {
   Descriptor out;
-  out.fd = ::open(file.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+  out.fd = ::open(file.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | (append ? O_APPEND : 0));
   if (out.fd < 0) throw Error(file.path + ": cannot write: " + errorText(errno));
   DescriptorBuffer buffer(out.fd);
   std::ostream stream(&buffer);
@@ -299,16 +300,26 @@ void writeThrough(const AtomicFileWrite& file) {
   if (const int error = out.close()) throw Error(file.path + ": cannot write: " + errorText(error));
 }
 
-// The file that the links at `path` itself lead to (a chain of links followed one by one; links
-// among the folders above are the system's to follow). A link that leads nowhere yet gives the
-// path it names, where the file is then created (as the shell's `>` would). A link in a sticky
-// folder that everyone may write (/tmp) and owned by neither this user nor the folder's owner is
-// refused, as the kernel's fs.protected_symlinks refuses to follow it: someone else planted it.
-std::string followTargetLinks(const std::string& path) {
+// The end of the chain of links at `path` itself, and whether the chain reaches into /proc.
+struct LinkChain {
+  std::string target;
+  // A link into /proc (/dev/stdout, /dev/fd/1: a process's descriptors): it names what a
+  // descriptor has open, not a place for a file (a temporary renamed over the file a shell's
+  // `>` opened would leave the process writing to an unlinked file). `target` is then `path`.
+  bool throughProcess = false;
+};
+
+// See resolvedOutputPath in atomic_file.h. Links are read into a buffer grown until it holds
+// them (/proc's links report a size of 64, whatever their length).
+LinkChain followTargetLinks(const std::string& path) {
+  LinkChain chain;
   std::string current = path;
   for (int hop = 0; hop < 40; ++hop) {
     struct stat link;
-    if (::lstat(current.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) return current;
+    if (::lstat(current.c_str(), &link) != 0 || !S_ISLNK(link.st_mode)) {
+      chain.target = current;
+      return chain;
+    }
     const size_t slash = current.rfind('/');
     const std::string folder = slash == std::string::npos ? "" : current.substr(0, slash + 1);
     struct stat shared;
@@ -318,13 +329,22 @@ std::string followTargetLinks(const std::string& path) {
       throw Error(current +
                   ": a symbolic link of another user in a shared folder; not followed (write "
                   "to another name)");
-    std::string destination(static_cast<size_t>(link.st_size) + 1, '\0');
-    const ssize_t n = ::readlink(current.c_str(), &destination[0], destination.size());
-    if (n <= 0 || static_cast<size_t>(n) >= destination.size())
-      throw Error(current +
-                  ": cannot read the symbolic link: " + errorText(n < 0 ? errno : EINVAL));
+    std::string destination(std::max<size_t>(size_t(link.st_size), 64) + 1, '\0');
+    ssize_t n = 0;
+    for (;;) {
+      n = ::readlink(current.c_str(), &destination[0], destination.size());
+      if (n < 0) throw Error(current + ": cannot read the symbolic link: " + errorText(errno));
+      if (size_t(n) < destination.size()) break;
+      destination.resize(destination.size() * 2);
+    }
+    if (n == 0) throw Error(current + ": an empty symbolic link");
     destination.resize(static_cast<size_t>(n));
     current = destination[0] == '/' ? destination : folder + destination;
+    if (current.compare(0, 6, "/proc/") == 0) {
+      chain.target = path;
+      chain.throughProcess = true;
+      return chain;
+    }
   }
   throw Error(path + ": " + errorText(ELOOP));
 }
@@ -332,9 +352,22 @@ std::string followTargetLinks(const std::string& path) {
 }  // namespace
 
 std::string notAFileToReadBack(const std::string& path) {
+  bool throughProcess = false;
+  try {
+    throughProcess = followTargetLinks(path).throughProcess;
+  } catch (const Error&) {
+    // the write says why
+  }
+  if (throughProcess)
+    return "a process's descriptor (such as /dev/stdout), not a file: an export is read back "
+           "to check it; write it to a file";
   if (!namesSpecialFile(path)) return "";
   return "not a regular file (a device, a pipe or a socket): an export is read back to check "
          "it; write it to a file";
+}
+
+std::string resolvedOutputPath(const std::string& path) {
+  return followTargetLinks(path).target;
 }
 
 namespace {
@@ -348,20 +381,30 @@ void noteCommitted(const std::string& path) {
 }  // namespace
 
 void writeFilesAtomically(const std::vector<AtomicFileWrite>& files) {
-  if (files.size() == 1 && namesSpecialFile(files[0].path)) {
-    writeThrough(files[0]);
+  // The links first (a planted one is refused before anything is opened through it), then what
+  // they lead to: a device, a pipe, a socket or a process's descriptor is written through.
+  std::vector<LinkChain> chains;
+  for (const AtomicFileWrite& file : files) {
+    splitTarget(file.path);  // refuses a path that names no file, before any link is read
+    chains.push_back(followTargetLinks(file.path));
+  }
+  const auto special = [&](size_t i) {
+    return chains[i].throughProcess || namesSpecialFile(files[i].path);
+  };
+  if (files.size() == 1 && special(0)) {
+    writeThrough(files[0], chains[0].throughProcess && !namesSpecialFile(files[0].path));
     noteCommitted(files[0].path);
     return;
   }
-  for (const AtomicFileWrite& file : files)
-    if (namesSpecialFile(file.path))
-      throw Error(file.path +
-                  ": not a regular file (a device, a pipe or a socket): files "
-                  "written together go to regular files");
+  for (size_t i = 0; i < files.size(); ++i)
+    if (special(i))
+      throw Error(files[i].path +
+                  ": not a regular file (a device, a pipe, a socket or a process's descriptor): "
+                  "files written together go to regular files");
   std::vector<Target> targets;
-  for (const AtomicFileWrite& file : files) {
-    splitTarget(file.path);  // refuses a path that names no file, before any link is read
-    const std::string target = followTargetLinks(file.path);
+  for (size_t i = 0; i < files.size(); ++i) {
+    const AtomicFileWrite& file = files[i];
+    const std::string& target = chains[i].target;
     for (const Target& t : targets)
       if (t.path == target) throw Error(file.path + ": listed twice in one atomic write");
     targets.push_back(splitTarget(target));
@@ -443,7 +486,7 @@ std::vector<std::string> committedFiles() {
 std::vector<std::string> temporaryFilesOf(const std::string& path) {
   std::string target = path;
   try {
-    target = followTargetLinks(path);
+    target = followTargetLinks(path).target;
   } catch (const Error&) {
     // a link that cannot be followed: the files named after the link itself
   }

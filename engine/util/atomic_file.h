@@ -1,6 +1,5 @@
 // Writing files so that nothing is ever lost or half-seen: a reader finds the old file or the
-// whole new one, never a mixture, a truncated file or a file written through a link planted by
-// someone else.
+// whole new one, never a mixture or a truncated file.
 //
 // How one file is written (POSIX; Linux is what is tested):
 //   1. Leftovers of killed writers of the same target are removed (see "Leftovers").
@@ -20,9 +19,12 @@
 //
 // A symbolic link at the target itself is kept: the file it leads to (through a chain of links;
 // a link to nothing yet: the path it names) is what is written and replaced, the same way, in
-// that file's folder. A link in a sticky folder that everyone may write (/tmp) owned by neither
-// this user nor the folder's owner is refused by name, as the kernel's fs.protected_symlinks
-// refuses to follow it. Links among the folders above are followed. Errors name the file written.
+// that file's folder (resolvedOutputPath). In a sticky folder that everyone may write (/tmp), a
+// link owned by neither this user nor the folder's owner is refused by name, as the kernel's
+// fs.protected_symlinks refuses to follow it; elsewhere links are followed whoever made them (a
+// folder others may write is theirs to plant links in, as for any program that writes through a
+// link). A link into /proc (/dev/stdout, /dev/fd/N) is written through, appended to what the
+// descriptor has open. Links among the folders above are followed. Errors name the file written.
 //
 // Concurrent writers of one path (threads or processes) each write their own temporary file;
 // the last rename wins and leaves one writer's whole file.
@@ -67,9 +69,13 @@ namespace strata {
 // A set of several files refuses such paths.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 // Why `path` cannot take a file that is read back after it is written (an export's check): it
-// names a device, a pipe or a socket ("" where it names a regular file, a link to one, or
-// nothing yet).
+// names a device, a pipe, a socket or a process's descriptor ("" where it names a regular file,
+// a link to one, or nothing yet).
 std::string notAFileToReadBack(const std::string& path);
+// The file a write of `path` replaces: the end of the chain of links at `path` itself (`path`
+// where it is no link, or leads into /proc). Throws strata::Error as a write would (a loop, a
+// link another user planted in a shared folder). For files named after it (an OBJ's MTL).
+std::string resolvedOutputPath(const std::string& path);
 
 // One file of a set that is committed together.
 struct AtomicFileWrite {

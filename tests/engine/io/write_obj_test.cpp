@@ -72,6 +72,18 @@ TEST_F(WriteObjSet, ReplacesBothFiles) {
   expectNoTemporaryFiles();
 }
 
+// An OBJ written through a link (out.obj -> part.obj) is the link's destination, and its MTL
+// goes beside that file, named after it (part.mtl, which part.obj names), not beside the link.
+TEST_F(WriteObjSet, ThroughALinkTheMtlGoesBesideTheFile) {
+  const std::string link = (dir_ / "out.obj").string();
+  fs::create_symlink(obj_, link);
+  writeMeshFile(link, tetrahedra());
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_NE(readWholeFile(obj_).find("mtllib part.mtl\n"), std::string::npos);
+  EXPECT_NE(readWholeFile(mtl_).find("newmtl part\n"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "out.mtl"));
+}
+
 // The MTL is replaced first; then the OBJ cannot be (a folder stands at its path): the previous
 // MTL is put back.
 TEST_F(WriteObjSet, AnObjThatCannotBeReplacedLeavesThePreviousMtl) {

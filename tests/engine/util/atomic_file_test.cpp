@@ -225,10 +225,33 @@ TEST_F(AtomicFileDir, ALinkPlantedByAnotherUserInASharedFolderIsNotFollowed) {
   }
   EXPECT_EQ(readWholeFile(victim), "precious");
   EXPECT_TRUE(isLink(out));
-  // The folder's owner's own link is followed.
-  ASSERT_EQ(::lchown(out.c_str(), 0, 0), 0);
+  // A link of the folder's owner (another user) is followed, as the kernel follows it.
+  ASSERT_EQ(::chown(shared.c_str(), 12345, 12345), 0);
   writeText(out, "new");
   EXPECT_EQ(readWholeFile(victim), "new");
+}
+
+// /dev/stdout is a link into /proc: what the descriptor has open (a shell's `>` file) is written
+// through, appended, never replaced by a renamed temporary (which would leave the process writing
+// to an unlinked file); an export, read back to check it, refuses such a path by name.
+TEST_F(AtomicFileDir, ALinkIntoProcIsWrittenThroughNotReplaced) {
+  const std::string file = path("stdout.txt");
+  plant(file, "before\n");
+  const int fd = ::open(file.c_str(), O_WRONLY | O_APPEND);
+  ASSERT_GE(fd, 0);
+  const std::string link = path("out.txt");  // as /dev/stdout -> /proc/self/fd/1
+  fs::create_symlink("/proc/self/fd/" + std::to_string(fd), link);
+  struct stat before;
+  ASSERT_EQ(::stat(file.c_str(), &before), 0);
+  writeText(link, "report\n");
+  struct stat after;
+  ASSERT_EQ(::stat(file.c_str(), &after), 0);
+  EXPECT_EQ(after.st_ino, before.st_ino) << "the file was replaced";
+  EXPECT_EQ(readWholeFile(file), "before\nreport\n");
+  EXPECT_TRUE(isLink(link));
+  EXPECT_NE(notAFileToReadBack(link).find("descriptor"), std::string::npos);
+  EXPECT_EQ(resolvedOutputPath(link), link);
+  ::close(fd);
 }
 
 // Links (to a file, and dangling) at the old fixed name, at names without the random part, and
