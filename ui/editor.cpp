@@ -83,6 +83,7 @@ void onCursor(GLFWwindow*, double x, double y) {
 // frame has the state (Dear ImGui's number fields drop them without a word, so "5 mm" became 5
 // and "0.5 in" 0.5 mm).
 std::string g_notTyped;
+unsigned g_notTypedIn = 0;  // the ImGui id of the field it was typed in
 
 // At the start of a frame, before it takes the mouse: this frame's share of the key events. A
 // key that typed a character needs no frame of its own (the character is the text; Ctrl+A and
@@ -96,8 +97,11 @@ void deliverKeyEvents() {
     if (k.time >= before) break;
     if (k.isChar) {
       if (lastPressed >= 0) typed.push_back(lastPressed);
-      if (g_imguiCharCallback)
+      if (g_imguiCharCallback) {
+        const size_t dropped = g_notTyped.size();
         g_imguiCharCallback(k.window, numberFieldCharacter(k.codepoint, &g_notTyped));
+        if (g_notTyped.size() != dropped) g_notTypedIn = numberFieldBeingTyped();
+      }
     } else {
       const auto in = [&](const std::vector<int>& keys) {
         return std::find(keys.begin(), keys.end(), k.key) != keys.end();
@@ -645,12 +649,13 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
 
   rememberSelection(s);  // before this frame's input changes it (undo brings it back)
   deliverKeyEvents();
+  // Said once the field is left (or another is typed into: Tab), for the field it was typed in.
   if (!g_notTyped.empty()) {
-    if (!typingIntoNumberField()) {  // the field was left: said once
+    if (numberFieldBeingTyped() != g_notTypedIn) {
       logWarning(s, "number fields take digits only: \"" + g_notTyped +
-                        "\" was not typed (lengths are in " +
+                        "\" was not typed (a unit typed is not converted: lengths are in " +
                         unitSymbol(s.document.scene().settings.unit) +
-                        ", the scene's unit; a unit typed is not converted)");
+                        ", the scene's unit, angles in degrees)");
       g_notTyped.clear();
     }
   }

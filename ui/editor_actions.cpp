@@ -549,18 +549,25 @@ void copySelection(EditorState& state) {
   }
   state.clipboard = copied;
   state.pastes = 0;
+  state.clipboardFromCut = false;
   logInfo(state,
           "copied " + std::to_string(copied.size()) + (copied.size() == 1 ? " part" : " parts"));
 }
 
 void cutSelection(EditorState& state) {
+  if (state.selection.empty()) return;
   copySelection(state);
-  if (state.log.empty()) return;
-  const std::string copied = state.log.back().text;  // "copied N part(s)"
+  std::vector<NodeId> copied;
+  for (const EditorState::CopiedPart& part : state.clipboard) copied.push_back(part.part->id);
   deleteSelection(state);
-  const size_t space = copied.find(' ');
-  logInfo(state, "cut" + (space == std::string::npos ? std::string() : copied.substr(space)) +
-                     " (Ctrl+V puts it back where it was)");
+  // What was removed (a root or a part an instance uses stays, with the delete's error).
+  size_t removed = 0;
+  for (NodeId id : copied) removed += findNode(state.document.root(), id) ? 0 : 1;
+  if (removed == 0) return;
+  state.clipboardFromCut = true;
+  logInfo(state, "cut " + std::to_string(removed) + (removed == 1 ? " part" : " parts") +
+                     " (Ctrl+V puts " + (removed == 1 ? "it" : "them") + " back where " +
+                     (removed == 1 ? "it was" : "they were") + ")");
 }
 
 void pasteClipboard(EditorState& state) {
@@ -577,7 +584,8 @@ void pasteClipboard(EditorState& state) {
   state.document.beginInteraction();
   guarded(state, [&] {
     for (const EditorState::CopiedPart& copy : state.clipboard) {
-      const bool originalThere = findNode(state.document.root(), copy.part->id) != nullptr;
+      // Ids are reused (a new part may take a cut one's): what the clipboard came from says.
+      const bool originalThere = !state.clipboardFromCut;
       const NodeId id = placeNew(state, copy.part, copy.mode);
       pasted.push_back(id);
       const NodePtr& root = state.document.root();
@@ -599,7 +607,11 @@ void pasteClipboard(EditorState& state) {
   state.document.endInteraction();
   if (pasted.empty()) return;
   state.selection = pasted;
-  ++state.pastes;
+  // After a cut's first paste, its part is back in place: later pastes are copies of it.
+  if (state.clipboardFromCut)
+    state.clipboardFromCut = false;
+  else
+    ++state.pastes;
   if (stepped) {
     char text[112];
     std::snprintf(text, sizeof(text), "pasted %.4g %s along +x from the copied part%s", step,

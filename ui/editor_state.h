@@ -99,6 +99,7 @@ struct EditorState {
   };
   std::vector<CopiedPart> clipboard;
   int pastes = 0;  // pasted since the clipboard was filled: each paste lands a step further
+  bool clipboardFromCut = false;  // its parts were cut (not in the scene): pasted where they were
   std::function<std::shared_ptr<Backend>()> makeBackend;  // a fresh backend per thread
 
   // Files outside the document.

@@ -22,6 +22,7 @@
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
+#include "ui/typed_value.h"
 
 namespace strata::ui {
 namespace {
@@ -101,14 +102,23 @@ void quitDuringExportQuestion(EditorState& state) {
   if (running) {
     const ExportStatus s = state.exportJob->status();
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);
-    ImGui::TextWrapped(
-        "An export to %s is running (%s %.0f%%). Quitting cancels it: the file is "
-        "not written.",
-        s.path.c_str(), s.stage.c_str(), s.fraction * 100.0);
+    // In its check the file is already in place (export_scene.h): only the check is cut short.
+    if (s.stage == "check")
+      ImGui::TextWrapped(
+          "An export to %s is being checked (%.0f%%): the file is written. Quitting stops the "
+          "check; the file stays, unchecked.",
+          s.path.c_str(), s.fraction * 100.0);
+    else
+      ImGui::TextWrapped(
+          "An export to %s is running (%s %.0f%%). Quitting cancels it: the file is "
+          "not written.",
+          s.path.c_str(), s.stage.c_str(), s.fraction * 100.0);
     ImGui::PopTextWrapPos();
   }
-  bool close = !running;  // it ended meanwhile: nothing to ask
-  bool quit = !running;
+  // It ended meanwhile: the question closes and the export window shows how it ended (a failure
+  // is read, not quit past); Ctrl+Q again quits.
+  bool close = !running;
+  bool quit = false;
   if (ImGui::Button("Keep exporting", ImVec2(160, 0)) || keyPressed(state, GLFW_KEY_ESCAPE))
     close = true, quit = false;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Go on working while it exports (Esc)");
@@ -267,6 +277,7 @@ void exportOptionsDialog(EditorState& state) {
     outOfRange.reset();
   }
   const int before = resolution;
+  numberFieldNext("cells along the longest side");
   ImGui::InputInt("cells along the longest side", &resolution, 64, 256);
   const bool typing = ImGui::IsItemActive();
   if (resolution != before) {

@@ -296,6 +296,7 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   // The move step follows the ground grid shown unless a step is typed.
   const std::string stepFormat = std::string("%.3g ") + unitSymbol(scene.settings.unit);
   ImGui::SetNextItemWidth(100.0f);
+  numberFieldNext("move step");
   if (ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str()))
     state.snapFollowsGrid = false;
   state.snap.step = std::max(state.snap.step, 1e-9);

@@ -1,6 +1,9 @@
 // See typed_value.h.
 #include "ui/typed_value.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <imgui.h>
 #include <imgui_internal.h>  // TempInputIsActive: is the last item a drag field typing text?
 
@@ -49,9 +52,32 @@ bool doubleClickOpensTyping(double before, double* beforePress) {
   return true;
 }
 
-bool typingIntoNumberField() {
+// The text fields of InputInt / InputDouble widgets announced by numberFieldNext (Dear ImGui
+// 1.86 keeps no trace of a text field's filter that could tell them from a name field). UI
+// thread only; a handful of ids.
+std::vector<ImGuiID> gNumberFields;
+
+unsigned numberFieldBeingTyped() {
   const ImGuiContext* g = ImGui::GetCurrentContext();
-  return g && g->ActiveId != 0 && g->TempInputId == g->ActiveId;
+  if (!g || g->ActiveId == 0) return 0;
+  // A drag or slider opened for typing (its temporary input), or a number field of its own.
+  const bool number =
+      g->TempInputId == g->ActiveId ||
+      std::find(gNumberFields.begin(), gNumberFields.end(), g->ActiveId) != gNumberFields.end();
+  return number ? g->ActiveId : 0;
+}
+
+void numberFieldNext(const char* label) {
+  // InputScalar draws its text field as InputText("") inside PushID(label): that field's id.
+  ImGui::PushID(label);
+  const ImGuiID id = ImGui::GetID("");
+  ImGui::PopID();
+  if (std::find(gNumberFields.begin(), gNumberFields.end(), id) == gNumberFields.end())
+    gNumberFields.push_back(id);
+}
+
+bool typingIntoNumberField() {
+  return numberFieldBeingTyped() != 0;
 }
 
 unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
@@ -60,7 +86,18 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
   const bool kept = (codepoint >= '0' && codepoint <= '9') || codepoint == '.' ||
                     codepoint == '+' || codepoint == '-' || codepoint == '*' || codepoint == '/' ||
                     codepoint == 'e' || codepoint == 'E';
-  if (!kept && codepoint != ' ' && codepoint < 128) dropped->push_back(char(codepoint));
+  if (kept || codepoint == ' ') return codepoint;
+  // As UTF-8, so that a micro sign or a degree sign is said too.
+  if (codepoint < 0x80) {
+    dropped->push_back(char(codepoint));
+  } else if (codepoint < 0x800) {
+    dropped->push_back(char(0xC0 | (codepoint >> 6)));
+    dropped->push_back(char(0x80 | (codepoint & 0x3F)));
+  } else if (codepoint < 0x10000) {
+    dropped->push_back(char(0xE0 | (codepoint >> 12)));
+    dropped->push_back(char(0x80 | ((codepoint >> 6) & 0x3F)));
+    dropped->push_back(char(0x80 | (codepoint & 0x3F)));
+  }
   return codepoint;
 }
 

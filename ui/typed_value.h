@@ -30,7 +30,12 @@ bool doubleClickOpensTyping(double before, double* beforePress);
 // became 5, "0.5 in" 0.5 mm), for the editor to say. Other fields' characters pass as typed.
 // Call with the current ImGui context, before the character reaches it.
 unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped);
-// Whether a number field's text is being edited now (the active item is a temporary input).
+// Whether a number field's text is being edited now: a drag or slider opened for typing, or an
+// InputInt / InputDouble field; numberFieldBeingTyped gives its ImGui id (0: none).
 bool typingIntoNumberField();
+unsigned numberFieldBeingTyped();
+// Call right before an ImGui::InputInt / InputDouble (same ID stack) with its label: its text
+// field is then a number field for numberFieldCharacter.
+void numberFieldNext(const char* label);
 
 }  // namespace strata::ui

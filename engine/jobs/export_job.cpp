@@ -87,9 +87,14 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
   ExportStatus result;
   try {
     progress_->report("estimate", 0.0);
-    // The probes report as the one stage "estimate" and stop when the job is cancelled.
-    Progress probe([this](const std::string&, double fraction) {
-      progress_->report("estimate", fraction);  // throws Cancelled once the job is cancelled
+    // The probes report as the one stage "estimate", never going back (each probe and a
+    // simplification's probe report from 0 again), and stop as soon as the job is cancelled:
+    // the job's progress is their parent, which every check() reads (the simplification's
+    // probe checks far more often than it reports).
+    double estimated = 0.0;
+    Progress probe(progress_.get(), [this, &estimated](const std::string&, double fraction) {
+      estimated = std::max(estimated, std::min(fraction, 0.99));
+      progress_->report("estimate", estimated);  // throws Cancelled once the job is cancelled
     });
     const JobEstimate estimate =
         estimateExport(*scene, options, path, backend, probe, kProbeAbove, options.simplifyCells);

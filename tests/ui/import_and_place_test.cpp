@@ -375,14 +375,29 @@ TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
   pasteClipboard(state);
   const NodeId second = state.selection[0];
   EXPECT_NEAR(glm::distance(origin(second), at + glm::dvec3(2 * state.snap.step, 0, 0)), 0.0, 1e-9);
-  // Cut and pasted: moved, not shifted.
+  // Cut and pasted: moved, not shifted, even after a new part took the cut one's id (ids are
+  // reused: the review's case); pasted again, a copy a step beside it.
   state.selection = {second};
   const glm::dvec3 secondAt = origin(second);
   cutSelection(state);
   EXPECT_FALSE(findNode(state.document.root(), second));
+  EXPECT_NE(state.log.back().text.find("cut 1 part"), std::string::npos) << state.log.back().text;
+  state.selection = {plate};
+  const NodeId newcomer = addPrimitive(state, NodeKind::Sphere);
+  EXPECT_EQ(newcomer, second) << "the test means a new part with the cut one's id";
   state.selection = {plate};
   pasteClipboard(state);
-  EXPECT_NEAR(glm::distance(origin(state.selection[0]), secondAt), 0.0, 1e-9);
+  const NodeId back = state.selection[0];
+  EXPECT_NEAR(glm::distance(origin(back), secondAt), 0.0, 1e-9);
+  pasteClipboard(state);
+  EXPECT_NEAR(
+      glm::distance(origin(state.selection[0]), secondAt + glm::dvec3(state.snap.step, 0, 0)), 0.0,
+      1e-9);
+  // Nothing selected: Ctrl+X does nothing and says nothing.
+  state.selection.clear();
+  const size_t lines = state.log.size();
+  cutSelection(state);
+  EXPECT_EQ(state.log.size(), lines);
 }
 
 // A re-test found that dropping a cutter onto the cutter below it moved it after that one and

@@ -128,6 +128,47 @@ TEST_F(TypedField, ADecimalCommaIsThePointAndDroppedLettersAreReported) {
   EXPECT_FALSE(typingIntoNumberField());
 }
 
+// The same in a number field of its own (the status bar's move step is an InputDouble): the
+// comma is the point there too (a review found "9,5" still became 95 in such fields).
+TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(400, 300);
+  io.DeltaTime = 1.0f / 60.0f;
+  io.IniFilename = nullptr;
+  io.KeyMap[ImGuiKey_Enter] = kEnter;
+  unsigned char* pixels = nullptr;
+  int w = 0, h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  double value = 1.0;
+  bool focus = true;
+  const auto frame = [&] {
+    ImGui::NewFrame();
+    ImGui::Begin("w");
+    if (focus) ImGui::SetKeyboardFocusHere();
+    focus = false;
+    numberFieldNext("step");
+    ImGui::InputDouble("step", &value, 0.0, 0.0, "%.4g");
+    ImGui::End();
+    ImGui::Render();
+  };
+  frame();
+  frame();
+  EXPECT_TRUE(typingIntoNumberField());
+  std::string dropped;
+  for (const char* c = "9,5"; *c; ++c) {
+    io.AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+    frame();
+  }
+  io.KeysDown[kEnter] = true;
+  frame();
+  io.KeysDown[kEnter] = false;
+  frame();
+  EXPECT_EQ(value, 9.5);
+  EXPECT_TRUE(dropped.empty()) << dropped;
+  ImGui::DestroyContext();
+}
+
 TEST_F(TypedField, EscapeKeepsTheValue) {
   frame(/*focus=*/true);
   frame();
