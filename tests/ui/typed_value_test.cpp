@@ -15,22 +15,28 @@ namespace {
 
 constexpr int kEnter = 1, kEscape = 2, kTab = 3;
 
+// A Dear ImGui context without a window, as the editor's backend sets one up: its display, the
+// keys the tests press, a font atlas built.
+void startImGui() {
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(800, 600);
+  io.DeltaTime = 1.0f / 60.0f;
+  io.IniFilename = nullptr;
+  io.KeyMap[ImGuiKey_Enter] = kEnter;
+  io.KeyMap[ImGuiKey_Escape] = kEscape;
+  io.KeyMap[ImGuiKey_Tab] = kTab;
+  unsigned char* pixels = nullptr;
+  int w = 0, h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+}
+
 // A field whose value comes from `stored` each frame, as the inspector's come from the
 // document, and writes back to it (recording each write) when commitTypedValue says so.
 class TypedField : public ::testing::Test {
  protected:
   void SetUp() override {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.DisplaySize = ImVec2(800, 600);
-    io.DeltaTime = 1.0f / 60.0f;
-    io.IniFilename = nullptr;
-    io.KeyMap[ImGuiKey_Enter] = kEnter;
-    io.KeyMap[ImGuiKey_Escape] = kEscape;
-    io.KeyMap[ImGuiKey_Tab] = kTab;
-    unsigned char* pixels = nullptr;
-    int w = 0, h = 0;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    startImGui();
     frame();  // lays the window out
   }
   void TearDown() override { ImGui::DestroyContext(); }
@@ -131,15 +137,8 @@ TEST_F(TypedField, ADecimalCommaIsThePointAndDroppedLettersAreReported) {
 // The same in a number field of its own (the status bar's move step is an InputDouble): the
 // comma is the point there too (a review found "9,5" still became 95 in such fields).
 TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
-  ImGui::CreateContext();
+  startImGui();
   ImGuiIO& io = ImGui::GetIO();
-  io.DisplaySize = ImVec2(400, 300);
-  io.DeltaTime = 1.0f / 60.0f;
-  io.IniFilename = nullptr;
-  io.KeyMap[ImGuiKey_Enter] = kEnter;
-  unsigned char* pixels = nullptr;
-  int w = 0, h = 0;
-  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
   double value = 1.0;
   bool focus = true;
   const auto frame = [&] {
