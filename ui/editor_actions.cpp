@@ -580,12 +580,11 @@ void pasteClipboard(EditorState& state) {
   // with each paste (as Ctrl+D's copies): on top of its original it changed nothing to see (an
   // artist's test). A cut part (its original gone) lands where it was: a cut and paste moves it.
   const double step = state.snap.step * double(state.pastes + 1);
-  bool stepped = false;
+  // Ids are reused (a new part may take a cut one's): what the clipboard came from says.
+  const bool originalThere = !state.clipboardFromCut;
   state.document.beginInteraction();
   guarded(state, [&] {
     for (const EditorState::CopiedPart& copy : state.clipboard) {
-      // Ids are reused (a new part may take a cut one's): what the clipboard came from says.
-      const bool originalThere = !state.clipboardFromCut;
       const NodeId id = placeNew(state, copy.part, copy.mode);
       pasted.push_back(id);
       const NodePtr& root = state.document.root();
@@ -599,7 +598,6 @@ void pasteClipboard(EditorState& state) {
             glm::dvec3(glm::inverse(parentWorldMatrix(root, id)) * glm::dvec4(wanted - now, 0));
         state.document.setTransform(id, t);
       }
-      stepped = stepped || originalThere;
       // The next copy lands beside the first, not inside it.
       if (pasted.size() == 1) state.selection.assign(1, pasted[0]);
     }
@@ -612,7 +610,7 @@ void pasteClipboard(EditorState& state) {
     state.clipboardFromCut = false;
   else
     ++state.pastes;
-  if (stepped) {
+  if (originalThere) {
     char text[112];
     std::snprintf(text, sizeof(text), "pasted %.4g %s along +x from the copied part%s", step,
                   unitSymbol(state.document.scene().settings.unit), pasted.size() == 1 ? "" : "s");

@@ -178,7 +178,11 @@ struct EditorState {
   // The extent of the file the import dialog is open for, read off the UI thread (its path).
   std::unique_ptr<BackgroundJob<Bounds>> importSizeJob;
   std::string importSizePath;
-  int lastImportUnit = 0;  // the import dialog's last choices
+  // The shown result's extent (Diagnostics), from its splats off the UI thread (a device copy
+  // waits on the splats' stream); a new one starts once the last is done, never joined running.
+  std::unique_ptr<BackgroundJob<Bounds>> resultBoundsJob;
+  std::weak_ptr<const SplatResource> resultBoundsOf;  // the splats resultBoundsJob measures
+  int lastImportUnit = 0;                             // the import dialog's last choices
   int lastImportUpAxis = 0;
 
   // Requests to the frame loop.

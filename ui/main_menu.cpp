@@ -220,6 +220,20 @@ void handleShortcuts(EditorState& state) {
   }
 }
 
+namespace {
+// Opens the import dialog (panel_modals.cpp) for the mesh at `path`, with the last unit and up
+// axis chosen; `placement`: where a palette drag dropped it (none: placed by the import).
+void askImportOptions(EditorState& state, const std::string& path,
+                      const std::optional<Placement>& placement) {
+  PendingImport import;
+  import.path = path;
+  import.unit = state.lastImportUnit;
+  import.upAxis = state.lastImportUpAxis;
+  import.placement = placement;
+  state.pendingImport = import;
+}
+}  // namespace
+
 void handleDialogResult(EditorState& state) {
   std::string path;
   if (!state.dialog.takeResult(&path)) {
@@ -232,11 +246,7 @@ void handleDialogResult(EditorState& state) {
         // A mesh chosen to open (an artist met a JSON parser's error on an STL): imported into
         // this scene, through the import dialog, which says so and can be cancelled.
         logInfo(state, path + " is a mesh, not a scene: importing it into this scene");
-        PendingImport import;
-        import.path = path;
-        import.unit = state.lastImportUnit;
-        import.upAxis = state.lastImportUpAxis;
-        state.pendingImport = import;
+        askImportOptions(state, path, std::nullopt);
         break;
       }
       openDocument(state, path);
@@ -256,14 +266,8 @@ void handleDialogResult(EditorState& state) {
       state.exportEstimate.reset();
       break;
     case DialogPurpose::ImportMesh: {
-      // The import dialog (panel_modals.cpp) asks for the unit and up axis.
-      PendingImport import;
-      import.path = path;
-      import.unit = state.lastImportUnit;
-      import.upAxis = state.lastImportUpAxis;
-      import.placement = state.importPlacement;
+      askImportOptions(state, path, state.importPlacement);
       state.importPlacement.reset();
-      state.pendingImport = import;
       break;
     }
   }

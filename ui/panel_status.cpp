@@ -520,17 +520,23 @@ void measurementList(EditorState& state) {
                              : "");
     }
     // The result's own extent, from its splats (the tree's bounds are its parts' boxes: a turned
-    // rib's box or a cutter's made it larger than the part an artist measured); once a result.
-    static std::weak_ptr<const SplatResource> boundsOf;
-    static Bounds resultBounds;
-    if (boundsOf.lock() != shown->splats) {
-      resultBounds = splatBounds(*shown->splats);
-      boundsOf = shown->splats;
+    // rib's box or a cutter's made it larger than the part an artist measured); once a result,
+    // off the UI thread.
+    auto& job = state.resultBoundsJob;
+    const bool measured = state.resultBoundsOf.lock() == shown->splats;
+    if (!measured && (!job || job->done())) {
+      state.resultBoundsOf = shown->splats;
+      job = std::make_unique<BackgroundJob<Bounds>>(
+          [splats = shown->splats](Progress&) { return splatBounds(*splats); });
     }
-    const Bounds& b = resultBounds;
-    if (!b.empty())
+    if (!measured || !job->done()) {
+      ImGui::TextDisabled("bounding box: measuring...");
+    } else if (!job->error().empty()) {
+      ImGui::TextWrapped("bounding box: not measured (%s)", job->error().c_str());
+    } else if (const Bounds b = job->result(); !b.empty()) {
       ImGui::Text("bounding box %.4g x %.4g x %.4g %s (from %.4g, %.4g, %.4g)", b.size().x,
                   b.size().y, b.size().z, unit, b.min.x, b.min.y, b.min.z);
+    }
   }
   selectionMeasure(state);
   // A copy: removing one replaces the document's scene.

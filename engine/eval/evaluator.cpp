@@ -11,7 +11,9 @@
 #include <string>
 #include <unordered_set>
 
+#include "engine/document/commands.h"
 #include "engine/document/expansion.h"
+#include "engine/document/measurement.h"
 #include "engine/kinds/primitives.h"
 #include "engine/ldi/offset_math.h"
 #include "engine/util/error.h"
@@ -381,9 +383,8 @@ namespace {
 // does; it was evaluated as shown.
 void refuseHiddenRoot(const Scene& scene) {
   if (scene.root && !scene.root->visible)
-    throw Error("the scene is empty: its root" +
-                (scene.root->name.empty() ? std::string() : " \"" + scene.root->name + "\"") +
-                " is hidden, so nothing is visible to evaluate");
+    throw Error("the scene is empty: its root, " + nodeLabel(*scene.root) +
+                ", is hidden, so nothing is visible to evaluate");
 }
 }  // namespace
 
@@ -876,12 +877,24 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];
   result.grid = ctx.grid;
 
+  // The node evaluated: the root, or the one asked for alone, placed as the tree places it.
+  NodePtr start = scene.root;
+  glm::dmat4 startWorld(1.0);
+  int startDepth = 0;
+  if (options.alone != 0) {
+    std::vector<const Node*> path;
+    start = findNode(scene.root, options.alone);
+    if (!start || !pathToNode(scene.root, options.alone, &path))
+      throw Error("node #" + std::to_string(options.alone) + " is not in the scene");
+    startWorld = parentWorldMatrix(scene.root, options.alone);
+    startDepth = int(path.size()) - 1;
+  }
   // First every leaf to sample, in one call to the backend; then the tree.
   ctx.collecting = true;
-  visit(scene.root, glm::dmat4(1.0), 0, ctx);
+  visit(start, startWorld, startDepth, ctx);
   ctx.collecting = false;
   sampleCollected(ctx);
-  Visit root = visit(scene.root, glm::dmat4(1.0), 0, ctx);
+  Visit root = visit(start, startWorld, startDepth, ctx);
   result.root = root.ldi;
   result.rootKey = root.key;
   Stopwatch measure;

@@ -45,6 +45,12 @@ struct EvalOptions {
   // Whether EvalResult::measure holds the root's volume, area and thinnest wall (a pass over its
   // surfels); without, only its surfel count (an export's tiles, which read nothing else).
   bool measureRoot = true;
+  // When not 0: only this node is evaluated, alone (not combined with its siblings or parents),
+  // placed as the tree shows it (parentWorldMatrix: its parents' transforms and the patterns'
+  // first placements), instances resolved in the whole scene; EvalResult::root is its LDI. For
+  // the editor's ghosts of cutters that reach beyond the result's grid. Throws strata::Error
+  // where the scene holds no such node (reached without instances).
+  NodeId alone = 0;
 };
 
 // A node's own LDI, before its parent combined it (world space, on the evaluation's grid).

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <new>
+#include <optional>
 #include <vector>
 
+#include "engine/document/measurement.h"
 #include "engine/eval/cpu_backend.h"
 #include "engine/jobs/background_job.h"
 #include "engine/util/error.h"
@@ -204,6 +206,34 @@ void PreviewWorker::setHostSplatLender(std::shared_ptr<HostSplatLender> lender) 
   lender_ = std::move(lender);
 }
 
+Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid) {
+  const NodePtr node = findNode(scene.root, id);
+  if (!node) return grid;
+  const Bounds content = nodeBounds(node, scene.root, parentWorldMatrix(scene.root, id));
+  if (content.empty()) return grid;
+  const Bounds window = grid.bounds();
+  const glm::dvec3 room(kGuardCells * grid.h);
+  if (glm::all(glm::greaterThanEqual(content.min - room, window.min)) &&
+      glm::all(glm::lessThanEqual(content.max + room, window.max)))
+    return grid;
+  // The lattice's origin moved `reach` nodes back (the grid's first node may be 0): node i of
+  // `grid` is node i + reach of the ghost's lattice, at the same place.
+  const int reach = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));
+  Grid shifted = grid;
+  shifted.origin -= glm::dvec3(reach) * grid.h;
+  glm::ivec3 start, cells;
+  for (int a = 0; a < 3; ++a) {
+    double lo = std::floor((content.min[a] - shifted.origin[a]) / grid.h) - kGuardCells;
+    double hi = std::ceil((content.max[a] - shifted.origin[a]) / grid.h) + kGuardCells;
+    lo = std::max(lo, double(grid.first[a]));
+    hi = std::min(hi, double(grid.first[a] + grid.cells[a] + 2 * reach));
+    if (!(hi - lo >= 1.0)) return grid;  // none of it within reach (or not finite)
+    start[a] = int(lo);
+    cells[a] = int(hi - lo);
+  }
+  return shifted.window(start, cells);
+}
+
 bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Progress& progress,
                                 PreviewResult& result, bool onlyIfCached) {
   EvalOptions options;
@@ -270,7 +300,34 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
   if (!result.coarse) lastRoot_ = ShownRoot{result.stats.rootKey, grid, backend, splats};
   result.splats = std::move(splats);
+  // A ghost that reaches beyond the result's grid (a cutter sticking out of its part: the grid
+  // covers the part, not its cutters) is evaluated alone on a window of the same lattice that
+  // covers it, by an evaluator of its own (sharing the main one's cache would evaluate its
+  // leaves on one window and then the other, on every pass).
+  bool ghostsAlone = false;
   for (KeptLdi& kept : result.stats.kept) {
+    const Grid own = ghostWindow(*request.scene, kept.id, grid);
+    if (!(own == grid)) {
+      ghostsAlone = true;
+      std::unique_ptr<Evaluator>& alone =
+          used == &evaluator ? ghostEvaluator_ : ghostModifierEvaluator_;
+      if (!alone)
+        alone = std::make_unique<Evaluator>(
+            used == &evaluator ? backend_
+                               : std::shared_ptr<Backend>(std::make_shared<CpuBackend>()));
+      EvalOptions ghostOptions;
+      ghostOptions.alone = kept.id;
+      ghostOptions.measureRoot = false;
+      ghostOptions.skipModifiersUnderCells = options.skipModifiersUnderCells;
+      if (onlyIfCached) {
+        std::optional<EvalResult> cached =
+            alone->evaluateCached(*request.scene, own, progress, ghostOptions);
+        if (!cached) return false;
+        kept.ldi = cached->root;
+      } else {
+        kept.ldi = alone->evaluateOn(*request.scene, own, progress, ghostOptions).root;
+      }
+    }
     SplatsHandle ghost = backend->splats(kept.ldi, progress);
     std::vector<Splat> host(ghost->count());
     if (!host.empty()) ghost->copyToHost(host.data());
@@ -278,6 +335,10 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
     kept.ldi.reset();
   }
   result.stats.kept.clear();
+  if (!ghostsAlone) {  // nothing of theirs to keep
+    if (ghostEvaluator_) ghostEvaluator_->clearCache();
+    if (ghostModifierEvaluator_) ghostModifierEvaluator_->clearCache();
+  }
   result.splatSeconds = splatClock.seconds();
   return true;
 }

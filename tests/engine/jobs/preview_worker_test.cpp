@@ -7,6 +7,7 @@
 
 #include <condition_variable>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <vector>
 
@@ -317,6 +318,52 @@ TEST(PreviewWorker, AnEditThatChangedNoPartKeepsTheSplatsShown) {
   expectShows(r[3], 3, 32, true);
   expectShows(r[4], 3, 64, false);
   EXPECT_NE(r[4]->splats, r[1]->splats);
+}
+
+// A cutter that sticks out of its part (a rod through a plate) is drawn whole as a ghost: it was
+// clipped at the result's grid, which covers the plate (an artist saw a stub). One far longer is
+// drawn up to the grid's longest side beyond it; one inside the grid comes from the
+// result's own evaluation.
+TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 0.0);
+  log.attach(&worker);
+  NodePtr rod = cylinder(0.3, 6.0);
+  NodePtr longRod = cylinder(0.2, 600.0, {0.5, 0.5, 0.0});
+  NodePtr inside = sphere(0.4, {-0.5, -0.5, 0.5});
+  auto scene = std::make_shared<const Scene>(
+      makeScene(op(NodeKind::Difference, {box({2, 2, 2}), rod, longRod, inside}), 64));
+  worker.request(scene, 64, false, 1, {rod->id, longRod->id, inside->id});
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const ResultPtr r = log.results().back();
+  expectShows(r, 1, 64, false);
+  const Grid& grid = r->stats.grid;
+  const Bounds window = grid.bounds();
+  const double h = grid.h;
+  std::map<NodeId, Bounds> drawn;
+  for (const GhostSplats& g : r->ghosts) drawn[g.id] = splatBounds(*g.splats);
+  ASSERT_EQ(drawn.size(), 3u);
+
+  const Bounds rodBox = nodeBounds(rod, scene->root, glm::dmat4(1.0));
+  ASSERT_LT(rodBox.min.z, window.min.z - 1.0);  // it does reach beyond the result's grid
+  ASSERT_GT(rodBox.max.z, window.max.z + 1.0);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(drawn[rod->id].min[a], rodBox.min[a], 1.01 * h) << a;
+    EXPECT_NEAR(drawn[rod->id].max[a], rodBox.max[a], 1.01 * h) << a;
+  }
+  EXPECT_EQ(ghostWindow(*scene, rod->id, grid).h, h);  // the result's lattice
+
+  const int reach = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));
+  const Grid longWindow = ghostWindow(*scene, longRod->id, grid);
+  EXPECT_NEAR(longWindow.bounds().max.z, window.max.z + reach * h, 1e-9);
+  EXPECT_NEAR(longWindow.bounds().min.z, window.min.z - reach * h, 1e-9);
+  EXPECT_NEAR(drawn[longRod->id].max.z, window.max.z + reach * h, 1.01 * h);
+  EXPECT_NEAR(drawn[longRod->id].min.z, window.min.z - reach * h, 1.01 * h);
+
+  EXPECT_EQ(ghostWindow(*scene, inside->id, grid), grid);
+  const Bounds insideBox = nodeBounds(inside, scene->root, glm::dmat4(1.0));
+  EXPECT_NEAR(drawn[inside->id].max.x, insideBox.max.x, 1.01 * h);
 }
 
 // Regions of host memory lent as the editor's mapped buffers are (ui/mapped_splat_slots.h),
