@@ -84,6 +84,10 @@ void applyTheme(float scale) {
   c[ImGuiCol_PlotHistogram] = accent;
   c[ImGuiCol_DragDropTarget] = ImVec4(1.0f, 0.75f, 0.2f, 0.9f);
   c[ImGuiCol_Separator] = ImVec4(0.22f, 0.23f, 0.26f, 1.0f);
+  // Behind a modal dialog the editor darkens (the dark style's light grey turned the view near
+  // white behind the export's file dialog, a modal over a modal: an artist's test).
+  c[ImGuiCol_ModalWindowDimBg] = ImVec4(0.0f, 0.0f, 0.0f, 0.30f);
+  c[ImGuiCol_NavWindowingDimBg] = ImVec4(0.0f, 0.0f, 0.0f, 0.30f);
   s.ScaleAllSizes(scale);
 }
 
