@@ -3,11 +3,13 @@
 // `gpu`; without a CUDA device every test skips and says why.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 
 #include "engine/export/contour_scene.h"
 #include "engine/export/contour_workers.h"
 #include "engine/io/scene_file.h"
+#include "engine/jobs/preview_worker.h"
 #include "gpu/cuda_backend.h"
 #include "tests/support/mesh_invariants.h"
 #include "tests/support/scene_builder.h"
@@ -318,6 +320,38 @@ TEST_F(CudaVsCpu, CroppedTilesOfModifierScenesMatch) {
   EXPECT_GT(r.tiles, 4);
   EXPECT_TRUE(whole.mesh.positions == tiled.mesh.positions);
   EXPECT_TRUE(whole.mesh.triangles == tiled.mesh.triangles);
+}
+
+// The editor's ghost of a cutter that sticks out of its part is evaluated alone on a window of
+// its own (ghostWindow): the device draws the CPU's splats, bit for bit, beyond the result's grid.
+TEST_F(CudaVsCpu, AGhostBeyondTheResultsGridMatchesTheCpu) {
+  NodePtr pin = cylinder(0.3, 6.0, {0.4, 0.4, 0.0});
+  NodePtr rod = cylinder(0.2, 7.0, {0.0, -0.5, 0.0}, {0.0, 90.0, 0.0});
+  auto scene = std::make_shared<const Scene>(
+      makeScene(op(NodeKind::Difference, {box({4, 4, 0.5}), pin, rod}), 128));
+  std::vector<std::shared_ptr<const PreviewResult>> results;
+  for (std::shared_ptr<Backend> backend :
+       {std::shared_ptr<Backend>(std::make_shared<CpuBackend>()), cuda_}) {
+    PreviewWorker worker(backend, 32);
+    worker.request(scene, 128, false, 1, {pin->id, rod->id});
+    ASSERT_TRUE(worker.waitUntilIdle(std::chrono::seconds(120)));
+    results.push_back(worker.takeResult());
+    ASSERT_TRUE(results.back() && results.back()->ok()) << results.back()->error;
+    ASSERT_EQ(results.back()->resolution, 128);
+  }
+  const Bounds window = results[0]->stats.grid.bounds();
+  ASSERT_EQ(results[0]->ghosts.size(), 2u);
+  ASSERT_EQ(results[1]->ghosts.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    const HostSplats& a = *results[0]->ghosts[k].splats;
+    const HostSplats& b = *results[1]->ghosts[k].splats;
+    EXPECT_EQ(results[0]->ghosts[k].id, results[1]->ghosts[k].id);
+    ASSERT_EQ(a.count(), b.count()) << "ghost " << k;
+    EXPECT_EQ(std::memcmp(a.hostData(), b.hostData(), a.bytes()), 0) << "ghost " << k;
+    const Bounds drawn = splatBounds(a);
+    EXPECT_TRUE(drawn.min.x < window.min.x - 1.0 || drawn.max.z > window.max.z + 1.0)
+        << "ghost " << k << " reaches beyond the result's grid";
+  }
 }
 
 TEST_F(CudaVsCpu, AutoChoosesCudaAndCancelWorks) {
