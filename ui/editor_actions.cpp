@@ -543,9 +543,16 @@ void copySelection(EditorState& state) {
     bool nested = false;
     for (NodeId other : state.selection)
       if (other != id && isInSubtree(root, other, id)) nested = true;
-    if (!nested)
-      copied.push_back({findNode(root, id), modeKeepingRole(roleOf(root, id)),
-                        glm::dvec3(nodeWorldMatrix(root, id) * glm::dvec4(0, 0, 0, 1))});
+    if (nested) continue;
+    EditorState::CopiedPart part{findNode(root, id), modeKeepingRole(roleOf(root, id)),
+                                 glm::dvec3(nodeWorldMatrix(root, id) * glm::dvec4(0, 0, 0, 1))};
+    NodeLocation at;
+    if (locateNode(root, id, &at) && at.parent) {
+      part.parent = at.parent->id;
+      part.parentKind = at.parent->kind;
+      part.index = at.index;
+    }
+    copied.push_back(part);
   }
   state.clipboard = copied;
   state.pastes = 0;
@@ -585,7 +592,21 @@ void pasteClipboard(EditorState& state) {
   state.document.beginInteraction();
   guarded(state, [&] {
     for (const EditorState::CopiedPart& copy : state.clipboard) {
-      const NodeId id = placeNew(state, copy.part, copy.mode);
+      // A cut part goes back under its parent, in its place there (and so its role), where that
+      // parent is still in the scene: placed onto the selection, with nothing selected it cut the
+      // whole scene (an artist's test).
+      const NodePtr parent = originalThere || copy.parent == 0
+                                 ? nullptr
+                                 : findNode(state.document.root(), copy.parent);
+      NodeId id = 0;
+      if (parent && parent->kind == copy.parentKind && isOperation(parent->kind)) {
+        const int index = std::min(copy.index, int(parent->children.size()));
+        id = state.document.addSubtree(copy.part, parent->id, index);
+        logInfo(state, displayName(*findNode(state.document.root(), id)) + " is back in " +
+                           displayName(*parent) + ", in its place");
+      } else {
+        id = placeNew(state, copy.part, copy.mode);
+      }
       pasted.push_back(id);
       const NodePtr& root = state.document.root();
       // Its origin moved to the original's, plus the step: a world move d is the local move
@@ -956,6 +977,26 @@ std::string exportSuggestion(const EditorState& state) {
   return documentFolder(state) + name + ".stl";
 }
 
+void logExportEnd(EditorState& state) {
+  if (!state.exportJob) return;
+  const ExportStatus s = state.exportJob->status();
+  if (s.running || !s.finished || state.exportEndLogged) return;
+  state.exportEndLogged = true;
+  if (s.succeeded && s.checkPassed()) {
+    char text[96];
+    std::snprintf(text, sizeof(text), ": written and checked, watertight, %zu triangles (%.1f s)",
+                  s.check.triangles, s.seconds);
+    logInfo(state, "exported " + s.path + text);
+  } else if (s.succeeded) {
+    logWarning(state, "exported " + s.path + ", but its check FAILED (see the Export window)");
+  } else if (s.cancelled) {
+    logInfo(state, "export of " + s.path + " cancelled; nothing was written");
+  } else {
+    logWarning(state,
+               "export of " + s.path + (s.refused ? " not started: " : " failed: ") + s.error);
+  }
+}
+
 void startExport(EditorState& state, const std::string& path, int resolution, double simplifyCells,
                  bool insist) {
   if (state.exportJob && state.exportJob->status().running) {
@@ -970,6 +1011,7 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
     state.exportJob =
         std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),
                                     nullptr, ExportGuard{insist, 0});
+    state.exportEndLogged = false;
     logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
                        (simplifyCells > 0.0 ? ", simplified" : ""));
     std::error_code error;

@@ -132,6 +132,9 @@ std::string exportSuggestion(const EditorState& state);
 // does not fit anyway.
 void startExport(EditorState& state, const std::string& path, int resolution,
                  double simplifyCells = 0.0, bool insist = false);
+// Once the export has ended, says how in the log, once (written and checked, failed, cancelled):
+// the status bar showed "exporting ..." long after. Called every frame (the Export window).
+void logExportEnd(EditorState& state);
 
 // Runs `body`, turning strata::Error into an error message; returns whether it succeeded.
 // `topic` (may be empty): what the body sets ("resolution", "scale"); its error carries it, and

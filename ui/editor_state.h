@@ -96,6 +96,11 @@ struct EditorState {
     NodePtr part;
     PlaceMode mode = PlaceMode::Add;
     glm::dvec3 worldOrigin{0.0};  // where its origin was in the world when copied
+    // Where it was in the tree when copied: its parent (id and kind; 0 for the root) and its
+    // place among the parent's children. A cut part pastes back there, in the role it had.
+    NodeId parent = 0;
+    NodeKind parentKind = NodeKind::Union;
+    int index = -1;
   };
   std::vector<CopiedPart> clipboard;
   int pastes = 0;  // pasted since the clipboard was filled: each paste lands a step further
@@ -153,6 +158,7 @@ struct EditorState {
 
   // Jobs and dialogs.
   std::unique_ptr<ExportJob> exportJob;
+  bool exportEndLogged = false;  // its end said in the log (the status bar showed "exporting")
   // The export dialog (panel_modals.cpp): open while a path waits for its options. The choices
   // are the export's own (not the preview's resolution) and stay for the next export.
   std::optional<std::string> pendingExportPath;

@@ -154,6 +154,7 @@ void viewContextMenu(EditorState& state) {
 
 void exportWindow(EditorState& state) {
   if (!state.exportJob) return;
+  logExportEnd(state);
   ExportStatus s = state.exportJob->status();
   bool open = true;
   centreNext();

@@ -58,17 +58,6 @@ bool withinWithRoom(const Bounds& content, const Grid& grid) {
          glm::all(glm::lessThanEqual(content.max + room, window.max));
 }
 
-Bounds transformedBox(const Bounds& local, const glm::dmat4& world) {
-  Bounds b;
-  if (local.empty()) return b;
-  for (int i = 0; i < 8; ++i) {
-    glm::dvec3 p(i & 1 ? local.max.x : local.min.x, i & 2 ? local.max.y : local.min.y,
-                 i & 4 ? local.max.z : local.min.z);
-    b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
-  }
-  return b;
-}
-
 // The primitive's parameters in the cache key, as its table entry lists them.
 void hashPrimitiveParams(Hasher& h, NodeKind kind, const PrimitiveParams& p) {
   for (const PrimitiveParam& param : primitiveInfo(kind)->params) {
@@ -98,8 +87,7 @@ Bounds leafBounds(const Node& node, const glm::dmat4& world) {
       for (const auto& p : node.mesh->positions) b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
     return b;
   }
-  if (isPrimitive(node.kind))
-    return transformedBox(primitiveLocalBounds(node.kind, node.params), world);
+  if (isPrimitive(node.kind)) return primitiveWorldBounds(node.kind, node.params, world);
   return b;
 }
 

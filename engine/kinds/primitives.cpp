@@ -1,6 +1,8 @@
 // The primitive table and each primitive's tessellation.
 #include "engine/kinds/primitives.h"
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
 #include <algorithm>
@@ -263,6 +265,32 @@ const PrimitiveParam kSize{"size", "size", nullptr, &PrimitiveParams::size};
 const PrimitiveParam kRadius{"radius", "radius", &PrimitiveParams::radius};
 const PrimitiveParam kHeight{"height", "height", &PrimitiveParams::height};
 
+PrimitiveHull hullOf(const HullPiece& a) {
+  PrimitiveHull h;
+  h.pieces[0] = a;
+  return h;
+}
+PrimitiveHull hullOf(const HullPiece& a, const HullPiece& b) {
+  PrimitiveHull h;
+  h.pieces[0] = a;
+  h.pieces[1] = b;
+  h.count = 2;
+  return h;
+}
+
+// How far the hull reaches along direction w (object coordinates, any length): its support
+// function, the largest w . x over its points.
+double hullReach(const PrimitiveHull& hull, const glm::dvec3& w) {
+  double reach = -INFINITY;
+  for (int k = 0; k < hull.count; ++k) {
+    const HullPiece& p = hull.pieces[k];
+    reach =
+        std::max(reach, glm::dot(p.centre, w) + glm::dot(p.box, glm::abs(w)) +
+                            p.disc * std::sqrt(w.x * w.x + w.y * w.y) + p.ball * glm::length(w));
+  }
+  return reach;
+}
+
 const std::vector<PrimitiveInfo> kPrimitives = {
     {NodeKind::Box,
      "box",
@@ -274,7 +302,9 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      false,
      PrimitiveParams{},
      [](const PrimitiveParams&) { return 0.0; },
-     [](const PrimitiveParams& p) { return p.size * 0.5; },
+     [](const PrimitiveParams& p) {
+       return hullOf({{}, p.size * 0.5});
+     },
      nullptr,
      boxMesh},
     {NodeKind::Sphere,
@@ -287,7 +317,9 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      true,
      PrimitiveParams{},
      [](const PrimitiveParams& p) { return p.radius; },
-     [](const PrimitiveParams& p) { return glm::dvec3(p.radius); },
+     [](const PrimitiveParams& p) {
+       return hullOf({{}, {}, 0.0, p.radius});
+     },
      nullptr,
      sphereMesh},
     {NodeKind::Cylinder,
@@ -300,7 +332,9 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      true,
      PrimitiveParams{},
      [](const PrimitiveParams& p) { return p.radius; },
-     [](const PrimitiveParams& p) { return glm::dvec3(p.radius, p.radius, p.height / 2); },
+     [](const PrimitiveParams& p) {
+       return hullOf({{}, {0, 0, p.height / 2}, p.radius});
+     },
      nullptr,
      cylinderMesh},
     {NodeKind::Cone,
@@ -316,8 +350,8 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      PrimitiveParams{},
      [](const PrimitiveParams& p) { return std::max(p.radius, p.topRadius); },
      [](const PrimitiveParams& p) {
-       double r = std::max(p.radius, p.topRadius);
-       return glm::dvec3(r, r, p.height / 2);
+       return hullOf({{0, 0, -p.height / 2}, {}, p.radius},
+                     {{0, 0, p.height / 2}, {}, p.topRadius});
      },
      coneRelations,
      coneMesh},
@@ -333,8 +367,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      PrimitiveParams{},
      [](const PrimitiveParams& p) { return p.majorRadius + p.minorRadius; },
      [](const PrimitiveParams& p) {
-       double r = p.majorRadius + p.minorRadius;
-       return glm::dvec3(r, r, p.minorRadius);
+       return hullOf({{}, {}, p.majorRadius, p.minorRadius});
      },
      torusRelations,
      torusMesh},
@@ -349,7 +382,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      PrimitiveParams{},
      [](const PrimitiveParams& p) { return p.radius; },
      [](const PrimitiveParams& p) {
-       return glm::dvec3(p.radius, p.radius, p.height / 2 + p.radius);
+       return hullOf({{}, {0, 0, p.height / 2}, 0.0, p.radius});
      },
      nullptr,
      capsuleMesh},
@@ -363,7 +396,9 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      true,
      defaultsWith([](PrimitiveParams& p) { p.radius = 0.1; }),
      [](const PrimitiveParams& p) { return p.radius; },
-     [](const PrimitiveParams& p) { return p.size * 0.5; },
+     [](const PrimitiveParams& p) {
+       return hullOf({{}, glm::max(p.size * 0.5 - p.radius, glm::dvec3(0.0)), 0.0, p.radius});
+     },
      roundedBoxRelations,
      roundedBoxMesh},
 };
@@ -426,11 +461,21 @@ double primitiveRadius(NodeKind kind, const PrimitiveParams& p) {
 }
 
 Bounds primitiveLocalBounds(NodeKind kind, const PrimitiveParams& p) {
+  return primitiveWorldBounds(kind, p, glm::dmat4(1.0));
+}
+
+Bounds primitiveWorldBounds(NodeKind kind, const PrimitiveParams& p,
+                            const glm::dmat4& objectToWorld) {
   Bounds b;
-  if (const PrimitiveInfo* info = primitiveInfo(kind)) {
-    glm::dvec3 half = info->halfExtent(p);
-    b.min = -half;
-    b.max = half;
+  const PrimitiveInfo* info = primitiveInfo(kind);
+  if (!info) return b;
+  const PrimitiveHull hull = info->hull(p);
+  for (int axis = 0; axis < 3; ++axis) {
+    // World coordinate `axis` of object point x is w . x + t: w is the matrix's row.
+    const glm::dvec3 w(objectToWorld[0][axis], objectToWorld[1][axis], objectToWorld[2][axis]);
+    const double t = objectToWorld[3][axis];
+    b.min[axis] = t - hullReach(hull, -w);
+    b.max[axis] = t + hullReach(hull, w);
   }
   return b;
 }

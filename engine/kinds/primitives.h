@@ -8,6 +8,9 @@
 // Meshes are closed, consistently oriented outward, without degenerate triangles.
 #pragma once
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
 #include <string>
 #include <vector>
 
@@ -48,6 +51,24 @@ struct ParamProblem {
   std::vector<const char*> keys;
 };
 
+// A primitive's solid as the convex hull of at most two pieces, each a centre plus the Minkowski
+// sum of an axis-aligned box, a disc in the plane z = centre.z and a ball (object units): a box,
+// a ball, a cylinder (a segment plus a disc), a cone (the hull of its two end discs), a torus (a
+// disc plus a ball), a capsule, a rounded box (a smaller box plus a ball). Exact enough to give
+// the solid's extent in every direction, so its bounds under any transform (primitiveWorldBounds)
+// are those of the solid, not of its local box turned (a sphere turned 45 degrees kept a box 41%
+// too wide).
+struct HullPiece {
+  glm::dvec3 centre{0.0};
+  glm::dvec3 box{0.0};  // half sizes
+  double disc = 0.0;    // radius
+  double ball = 0.0;    // radius
+};
+struct PrimitiveHull {
+  HullPiece pieces[2];
+  int count = 1;
+};
+
 struct PrimitiveInfo {
   NodeKind kind;
   const char* name;        // in files and on the command line: "box", "roundedBox"
@@ -61,8 +82,8 @@ struct PrimitiveInfo {
   PrimitiveParams defaults;  // a new primitive of size about 1
   // Largest radius in object units, for automatic segments (0: not curved).
   double (*radius)(const PrimitiveParams&);
-  // Local bounds are [-halfExtent, +halfExtent].
-  glm::dvec3 (*halfExtent)(const PrimitiveParams&);
+  // The solid's hull (its bounds in any frame: primitiveWorldBounds).
+  PrimitiveHull (*hull)(const PrimitiveParams&);
   // Constraints between parameters (each alone in range); nullptr or "" message: none failed.
   ParamProblem (*relations)(const PrimitiveParams&);
   // The mesh, for parameters that passed validation, with `segments` >= 3 around.
@@ -87,6 +108,11 @@ TriangleMesh tessellatePrimitive(NodeKind kind, const PrimitiveParams& params, i
 double primitiveRadius(NodeKind kind, const PrimitiveParams& params);
 // The primitive's local bounds; empty for a non-primitive kind.
 Bounds primitiveLocalBounds(NodeKind kind, const PrimitiveParams& params);
+// The bounds of the primitive's solid placed by the affine `objectToWorld` (its hull's extent
+// along each world axis: exact for the solid, and so containing its tessellation, whose
+// vertices lie on it); empty for a non-primitive kind.
+Bounds primitiveWorldBounds(NodeKind kind, const PrimitiveParams& params,
+                            const glm::dmat4& objectToWorld);
 
 // Every length parameter of `kind` multiplied by `factor` (> 0); segments kept.
 PrimitiveParams scaledPrimitiveParams(NodeKind kind, const PrimitiveParams& params, double factor);

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "engine/eval/cpu_backend.h"
 #include "ui/editor_actions.h"
@@ -50,7 +52,17 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
   EXPECT_EQ(kept.resolution, 48);
   EXPECT_TRUE(kept.simplify);
   EXPECT_FLOAT_EQ(kept.simplifyCells, 0.25f);
-  state.exportJob.reset();  // waits for it
+  // Its end said in the log, once (the status bar kept "exporting ..." after it: an artist).
+  while (!state.exportJob->status().finished)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  logExportEnd(state);
+  EXPECT_NE(state.log.back().text.find("exported " + folder + "/ball.stl: written and checked"),
+            std::string::npos)
+      << state.log.back().text;
+  const size_t lines = state.log.size();
+  logExportEnd(state);
+  EXPECT_EQ(state.log.size(), lines);
+  state.exportJob.reset();
   std::filesystem::remove_all(folder);
 }
 
@@ -72,7 +84,12 @@ TEST(ExportSettings, QuittingWhileAnExportRunsAsksFirst) {
   EXPECT_FALSE(state.quitNow);
   EXPECT_FALSE(state.pendingReplace);
   state.exportJob->cancel();
-  state.exportJob.reset();  // waits for it
+  while (!state.exportJob->status().finished)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  logExportEnd(state);
+  EXPECT_NE(state.log.back().text.find("cancelled; nothing was written"), std::string::npos)
+      << state.log.back().text;
+  state.exportJob.reset();
   state.askingQuitDuringExport = false;
   requestQuit(state);
   EXPECT_FALSE(state.askingQuitDuringExport);

@@ -400,6 +400,50 @@ TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
   EXPECT_EQ(state.log.size(), lines);
 }
 
+// An artist cut a hole (a cutter in a difference beside other parts) and pasted with nothing
+// selected: it came back cutting the whole scene (a new difference around the root), so it also
+// drilled the ribs. A cut part goes back under its parent, in its place and role.
+TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  state.selection = {plate};
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {hole};
+  const NodeId second = addPrimitive(state, NodeKind::Sphere);
+  state.placeMode = PlaceMode::Add;
+  state.selection.clear();
+  addPrimitive(state, NodeKind::Torus);  // beside the drilled plate, under the root
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId difference = where.parent->id;
+  ASSERT_EQ(where.index, 1);
+  const NodePtr before = state.document.root();
+  state.selection = {hole};
+  cutSelection(state);
+  ASSERT_FALSE(findNode(state.document.root(), hole));
+  state.selection.clear();
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId back = state.selection[0];
+  ASSERT_TRUE(locateNode(state.document.root(), back, &where));
+  EXPECT_EQ(where.parent->id, difference);
+  EXPECT_EQ(where.index, 1);
+  EXPECT_EQ(roleOf(state.document.root(), back), ChildRole::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), second), ChildRole::Cut);
+  EXPECT_EQ(state.document.root()->kind, before->kind);
+  EXPECT_EQ(state.document.root()->children.size(), before->children.size());
+  EXPECT_NE(state.log.back().text.find("back in"), std::string::npos) << state.log.back().text;
+  // Its parent gone meanwhile: placed as a new part is (onto the selection, in its role).
+  state.selection = {back};
+  cutSelection(state);
+  state.document.remove(difference);
+  state.selection.clear();
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  EXPECT_TRUE(findNode(state.document.root(), state.selection[0]));
+}
+
 // A re-test found that dropping a cutter onto the cutter below it moved it after that one and
 // said only "cuts from ...": a drop within its own parent that keeps its role changes only its
 // place, and says where it goes before and after the release.
