@@ -91,18 +91,21 @@ Bounds sceneBoundsWithout(const EditorState& state, NodeId id) {
 void placeNode(EditorState& state, NodeId id, const Placement& placement) {
   NodePtr node = findNode(state.document.root(), id);
   if (!node) return;
+  // A picked normal carries its surfel's encoding (about 0.005 degrees): one that close to an
+  // axis is that axis, or a part dropped on a flat top got turns of -0.003 degrees ("-0.00").
+  glm::dvec3 normal(0.0, 0.0, 1.0);
   if (placement.normal) {
-    // Its own +z along the surface's normal (in its parent's frame), the turn about it kept.
-    const glm::dmat3 parent(parentWorldMatrix(state.document.root(), id));
-    // A picked normal carries its surfel's encoding (about 0.005 degrees): one that close to an
-    // axis is that axis, or a part dropped on a flat top got turns of -0.003 degrees ("-0.00").
-    glm::dvec3 normal = glm::normalize(*placement.normal);
+    normal = glm::normalize(*placement.normal);
     for (int a = 0; a < 3; ++a)
       if (std::fabs(normal[a]) > std::cos(glm::radians(0.05))) {
         const double sign = normal[a] > 0.0 ? 1.0 : -1.0;
         normal = glm::dvec3(0.0);
         normal[a] = sign;
       }
+  }
+  if (placement.normal) {
+    // Its own +z along the surface's normal (in its parent's frame), the turn about it kept.
+    const glm::dmat3 parent(parentWorldMatrix(state.document.root(), id));
     const glm::dvec3 z = glm::normalize(glm::inverse(parent) * normal);
     const glm::dvec3 from(0.0, 0.0, 1.0);
     const double c = glm::dot(from, z);
@@ -117,10 +120,30 @@ void placeNode(EditorState& state, NodeId id, const Placement& placement) {
     state.document.setTransform(id, t);
     node = findNode(state.document.root(), id);
   }
-  const Bounds b = selectionBounds(state.document.root(), {id});
+  const NodePtr& root = state.document.root();
+  const Bounds b = selectionBounds(root, {id});
   if (b.empty()) return;
   glm::dvec3 delta = placement.point - b.center();
   if (placement.onGround) delta.z = placement.point.z - b.min.z;
+  const ChildRole role = roleOf(root, id);
+  if (placement.normal && role != ChildRole::Cut && role != ChildRole::Intersect) {
+    // A part that adds material rests on the surface (centred on it, it sat half buried: an
+    // artist's test): its own box's lowest corner along the normal on the surface, its centre
+    // over the point. A cutter or an intersector stays centred on the point, half in.
+    const Bounds own = nodeBounds(node, root, glm::inverse(node->transform.matrix()));
+    if (!own.empty()) {
+      const glm::dmat4 world = nodeWorldMatrix(root, id);
+      double low = INFINITY;
+      for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner(k & 1 ? own.max.x : own.min.x, k & 2 ? own.max.y : own.min.y,
+                                k & 4 ? own.max.z : own.min.z);
+        low = std::min(low, glm::dot(normal, glm::dvec3(world * glm::dvec4(corner, 1.0))));
+      }
+      const glm::dvec3 across = placement.point - glm::dvec3(world * glm::dvec4(own.center(), 1.0));
+      delta = across - normal * glm::dot(across, normal) +
+              normal * (glm::dot(placement.point, normal) - low);
+    }
+  }
   const glm::dmat4 toParent = glm::inverse(parentWorldMatrix(state.document.root(), id));
   Transform t = node->transform;
   t.translate += glm::dvec3(toParent * glm::dvec4(delta, 0.0));
@@ -148,10 +171,12 @@ std::string displayName(const Node& node) {
 }
 
 // Places a new part onto the primary selection with the place mode and says what it does.
+// Places `node` onto `target` (0: the primary selection) with `mode`, saying what it does.
 NodeId placeNew(EditorState& state, const NodePtr& node, PlaceMode mode,
-                const std::string& note = "") {
+                const std::string& note = "", NodeId target = 0) {
   std::string sentence;
-  const NodeId id = state.document.place(node, primarySelection(state), mode, &sentence);
+  const NodeId id =
+      state.document.place(node, target ? target : primarySelection(state), mode, &sentence);
   logInfo(state, displayName(*findNode(state.document.root(), id)) + " " + sentence +
                      (note.empty() ? "" : " (" + note + ")"));
   return id;
@@ -332,7 +357,10 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
   guarded(state, [&] {
     std::string note;
     NodePtr node = newPrimitive(state, kind, &note);
-    id = placeNew(state, node, state.placeMode, note);
+    // Dropped on a part's surface: onto that part (dropped on the ground: onto the selection).
+    const NodeId onto =
+        placement.part && findNode(state.document.root(), placement.part) ? placement.part : 0;
+    id = placeNew(state, node, state.placeMode, note, onto);
     placeNode(state, id, placement);
     if (placement.normal) {
       // Components that print as zero are zero: "-0.00" read as a sign where none is.
@@ -453,7 +481,12 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
   state.document.beginInteraction();
   guarded(state, [&] {
     std::string sentence;
-    id = importMeshFile(state.document, import.path, primarySelection(state), state.placeMode,
+    // Dropped on a part's surface: onto that part (else onto the selection).
+    const NodeId onto = import.placement && import.placement->part &&
+                                findNode(state.document.root(), import.placement->part)
+                            ? import.placement->part
+                            : primarySelection(state);
+    id = importMeshFile(state.document, import.path, onto, state.placeMode,
                         importTransform(scale, import.upAxis), &sentence);
     // Where it was dropped; otherwise resting on the ground beside the scene (right of it, a
     // tenth of its size away; at the origin in an empty scene), never inside another part or

@@ -64,6 +64,9 @@ struct Placement {
   bool onGround = false;
   // The surface's normal at the point (world, unit): a part dropped there turns its own +z to it.
   std::optional<glm::dvec3> normal;
+  // The part whose surface the point is on (0: the ground): a part dropped there goes onto it,
+  // as a drop on its tree row does (dropped on the ground: onto the selection).
+  NodeId part = 0;
 };
 
 // A mesh file chosen for import, waiting for its options in the import dialog.
@@ -179,6 +182,9 @@ struct EditorState {
   std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds
   NodeId renaming = 0;                           // outliner row being renamed
   NodeId viewContextMenu = 0;  // a part right-clicked in the view: its menu is to open
+  // The part under the pointer while a palette item is dragged over the view (0: the ground, or
+  // not over the view): what a drop there goes onto, said before the release.
+  NodeId paletteDropPart = 0;
   std::optional<PendingImport> pendingImport;  // the import dialog is open for it
   std::optional<Placement> importPlacement;    // for the mesh being chosen (palette drag)
   // The extent of the file the import dialog is open for, read off the UI thread (its path).

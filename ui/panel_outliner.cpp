@@ -397,13 +397,18 @@ void paletteDragSource(EditorState& state, int item, const char* label) {
     ImGui::SetDragDropPayload(kPalettePayload, &item, sizeof(item));
     ImGui::Text("%s", label);
     if (gShownHint.empty()) {
-      // Over the view (or anywhere but a tree row): what a drop on a surface or the ground does
-      // (placed onto the selection with the palette's mode or the key held), said before the
-      // release as a row's drop says it (it said only where to drop).
-      const std::string does =
-          placementSentence(state, primarySelection(state), dropMode(state, heldDropModifiers()));
-      ImGui::TextDisabled("on a surface or the ground: it %s", does.c_str());
-      ImGui::TextDisabled("on a tree row: onto that part");
+      // Over the view (or anywhere but a tree row): what a drop there does (onto the part under
+      // the pointer, else onto the selection, with the palette's mode or the key held), said
+      // before the release as a row's drop says it (it said only where to drop).
+      const NodeId under = state.paletteDropPart;
+      const NodePtr part = under ? findNode(state.document.root(), under) : nullptr;
+      const std::string does = placementSentence(state, part ? under : primarySelection(state),
+                                                 dropMode(state, heldDropModifiers()));
+      if (part)
+        ImGui::TextDisabled("on \"%s\": it %s", part->name.c_str(), does.c_str());
+      else
+        ImGui::TextDisabled("on the ground: it %s", does.c_str());
+      ImGui::TextDisabled("on a part's surface or tree row: onto that part");
     } else {
       dragHint();
     }

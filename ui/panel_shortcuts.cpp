@@ -31,7 +31,7 @@ const ShortcutGroup kGroups[] = {
      {{"Ctrl+Z / Ctrl+Y", "undo / redo (Ctrl+Shift+Z too)"},
       {"Ctrl+C / Ctrl+X / Ctrl+V",
        "copy / cut / paste onto the selection (copies keep their role; a copy lands a grid step "
-       "along +x from its original, a cut part where it was)"},
+       "along +x from its original, a cut part back where it was, in its parent)"},
       {"Ctrl+D", "duplicate: the copy does what the original does, one grid step along +x"},
       {"Alt+D", "instance: a live copy"},
       {"Del", "delete"},
@@ -49,6 +49,10 @@ const ShortcutGroup kGroups[] = {
        "scene's unit)"}}},
     {"Placing parts: add, cut or intersect",
      {{"palette mode", "what a new part from the palette does"},
+      {"drag from the palette onto a part",
+       "onto that part (in the view: the part under the "
+       "pointer; on the ground: onto the selection)"},
+      {"dropped on a surface", "an added part rests on it; a cutter is centred on the point"},
       {"drag a row onto a row", "moves the part: it keeps what it does; the tooltip says it"},
       {"Ctrl while dropping", "cuts"},
       {"Shift while dropping", "intersects"},

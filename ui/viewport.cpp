@@ -315,13 +315,22 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   if (navigating_) {
     if (!io.MouseDown[2] && !io.MouseDown[0]) navigating_ = false;
   }
-  // A palette item released over the view (not over a panel): placed there.
+  // A palette item released over the view (not over a panel): placed there. While it is dragged
+  // there, the part under the pointer is looked up (at most every kDropHoverSeconds: a pick
+  // draws the splats) for the drag's tooltip.
   const ImGuiPayload* payload = ImGui::GetDragDropPayload();
-  if (payload && payload->IsDataType(kPalettePayload) && ImGui::IsMouseReleased(0) && inside &&
-      !ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) {
+  const bool paletteOverView = payload && payload->IsDataType(kPalettePayload) && inside &&
+                               !ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow);
+  if (paletteOverView && ImGui::IsMouseReleased(0)) {
     int item = 0;
     std::memcpy(&item, payload->Data, sizeof(item));
     drop_ = PendingDrop{mouse, item, dropMode(state, heldDropModifiers())};
+  }
+  if (paletteOverView && !drop_) {
+    if (dropHoverClock_.seconds() >= kDropHoverSeconds) dropHover_ = mouse;
+  } else {
+    dropHover_.reset();
+    state.paletteDropPart = 0;
   }
   // A box selection keeps the mouse until released, over panels too.
   if (boxFrom_) {
@@ -430,6 +439,7 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
   if (std::optional<PickHit> hit = pickAt(renderer, state, rect, mouse, pixelScale)) {
     placement.point = hit->position;
     placement.normal = hit->normal;
+    if (findNode(state.document.root(), hit->leaf)) placement.part = hit->leaf;
     return placement;
   }
   const Ray ray = camera.rayThrough(mouse, glm::dvec2(rect.width, rect.height));
@@ -523,7 +533,14 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
         state.selection.push_back(leaf);
     box_.reset();
   }
+  if (dropHover_) {
+    const std::optional<PickHit> hit = pickAt(renderer, state, rect, *dropHover_, pixelScale);
+    state.paletteDropPart = hit && findNode(state.document.root(), hit->leaf) ? hit->leaf : 0;
+    dropHover_.reset();
+    dropHoverClock_ = Stopwatch();
+  }
   if (drop_) {
+    state.paletteDropPart = 0;
     const Placement placement = placementAt(renderer, state, rect, drop_->mouse, pixelScale);
     if (drop_->item == kImportMeshItem) {
       state.importPlacement = placement;

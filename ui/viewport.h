@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "engine/util/timer.h"
 #include "ui/camera.h"
 #include "ui/editor_state.h"
 #include "ui/gizmo.h"
@@ -95,6 +96,10 @@ class Viewport {
     glm::dvec2 from, to;  // window pixels from the view's top-left corner
     bool extend = false;  // Shift or Ctrl: add to the selection
   };
+  // A palette item dragged over the view: where to look up the part under the pointer.
+  std::optional<glm::dvec2> dropHover_;
+  Stopwatch dropHoverClock_;
+  static constexpr double kDropHoverSeconds = 0.1;
   struct PendingDrop {
     glm::dvec2 mouse;
     int item = 0;                     // palette item: a NodeKind, or kImportMeshItem

@@ -154,13 +154,41 @@ TEST(ImportAndPlace, ADropOnASurfaceFacesItsNormal) {
     const glm::dmat4 world = nodeWorldMatrix(state.document.root(), id);
     const glm::dvec3 axis = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, 1.0, 0.0)));
     EXPECT_NEAR(glm::distance(axis, normal), 0.0, 1e-9) << normal.x << normal.y << normal.z;
+    // It adds material: it rests on the surface, its centre over the point (it sat half buried:
+    // an artist's test), half its world height (the group scales by 2) along the normal.
     const Bounds b = selectionBounds(state.document.root(), {id});
-    EXPECT_NEAR(glm::distance(b.center(), glm::dvec3(3.0, -1.0, 2.0)), 0.0, 1e-9);
+    const double halfHeight = findNode(state.document.root(), id)->params.height;
+    EXPECT_NEAR(glm::distance(b.center(), glm::dvec3(3.0, -1.0, 2.0) + halfHeight * normal), 0.0,
+                1e-9);
     const size_t before = state.document.root()->children.size();
     undo(state);
     EXPECT_FALSE(findNode(state.document.root(), id));
     EXPECT_EQ(state.document.root()->children.size(), before);
   }
+}
+
+// A cutter dropped on a surface is centred on the point (half in, half out: a drill's depth),
+// and a drop on a part's surface goes onto that part (a cut cuts it), not onto the selection:
+// with nothing selected it cut the whole scene (an artist's test).
+TEST(ImportAndPlace, ACutterDroppedOnAPartCutsThatPartCentredOnThePoint) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  const NodeId other = addPrimitive(state, NodeKind::Sphere);
+  NodeLocation was;
+  ASSERT_TRUE(locateNode(state.document.root(), other, &was));
+  clearSelection(state);
+  state.placeMode = PlaceMode::Cut;
+  Placement on{glm::dvec3(0.2, 0.1, 0.5), false, glm::dvec3(0.0, 0.0, 1.0)};
+  on.part = plate;
+  const NodeId hole = addPrimitiveAt(state, NodeKind::Cylinder, on);
+  EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
+  NodeLocation at;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &at));
+  EXPECT_TRUE(isInSubtree(state.document.root(), at.parent->id, plate)) << "it cuts the plate";
+  EXPECT_FALSE(isInSubtree(state.document.root(), at.parent->id, other)) << "not the sphere";
+  EXPECT_EQ(roleOf(state.document.root(), other), ChildRole::Add);
+  const Bounds b = selectionBounds(state.document.root(), {hole});
+  EXPECT_NEAR(glm::distance(b.center(), on.point), 0.0, 1e-9);
 }
 
 // Align to the active part (min, centre, max on each axis) and drop to ground: every other
