@@ -650,12 +650,17 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   rememberSelection(s);  // before this frame's input changes it (undo brings it back)
   deliverKeyEvents();
   // Said once the field is left (or another is typed into: Tab), for the field it was typed in.
+  if (const std::string converted = takeUnitConversion(); !converted.empty()) {
+    logInfo(s, "typed " + converted);
+    g_notTyped.clear();  // the letters were a unit, and converted
+  }
   if (!g_notTyped.empty()) {
     if (numberFieldBeingTyped() != g_notTypedIn) {
       logWarning(s, "number fields take digits only: \"" + g_notTyped +
-                        "\" was not typed (a unit typed is not converted: lengths are in " +
+                        "\" was not typed (lengths are in " +
                         unitSymbol(s.document.scene().settings.unit) +
-                        ", the scene's unit, angles in degrees)");
+                        ", the scene's unit, where mm, cm, m, in or ft typed after the number "
+                        "converts; angles are in degrees)");
       g_notTyped.clear();
     }
   }

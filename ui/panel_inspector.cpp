@@ -20,6 +20,7 @@
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 #include "ui/editor_actions.h"
+#include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/theme.h"
@@ -34,6 +35,7 @@ constexpr const char* kParamsTopic = "parameters";
 
 // The format of length fields: the number and the scene's unit ("%.4g mm"), set per frame.
 std::string gLengthFormat = "%.4g";
+std::string gLengthUnit;  // the scene's unit, for lengths typed with a unit (commitTypedValue)
 
 // Brackets an edit made by the last ImGui item in begin/end interaction and applies it.
 void edited(EditorState& state, bool changed, const std::function<void()>& apply,
@@ -100,7 +102,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     const std::string shown = mixed[i] ? std::string("~") + fieldFormat : fieldFormat;
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
                                      nullptr, shown.c_str());
-    changed = commitTypedValue(changed, &next[i]);
+    changed = commitTypedValue(changed, &next[i], sceneUnitMetres(unit) > 0.0 ? unit : "");
     if (mixed[i] && ImGui::IsItemHovered())
       ImGui::SetTooltip("differs across the selection; dragging shifts every one by as much");
     ImGui::PopStyleColor();
@@ -135,7 +137,7 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   bool changed = ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double,
                                    &value, float(speed), &minimum, nullptr,
                                    (mixed ? "~" + gLengthFormat : gLengthFormat).c_str());
-  changed = commitTypedValue(changed, &value);
+  changed = commitTypedValue(changed, &value, gLengthUnit);
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
   edited(
@@ -619,7 +621,7 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       const bool changed = commitTypedValue(
           ImGui::DragScalar("##amount", ImGuiDataType_Double, &amount, float(speed), &lo, &hi,
                             gLengthFormat.c_str(), ImGuiSliderFlags_AlwaysClamp),
-          &amount);
+          &amount, gLengthUnit);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", signedAmount ? "Grows the children (> 0) or shrinks them (< 0)"
                                              : nodeKindInfo(node->kind).summary);
@@ -673,6 +675,7 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
       nodes.push_back(n);
   nodes.push_back(node);
   gLengthFormat = std::string("%.4g ") + unitSymbol(state.document.scene().settings.unit);
+  gLengthUnit = unitSymbol(state.document.scene().settings.unit);
   ImGui::PushID(static_cast<int>(node->id));
   nodeIdentity(state, node, nodes);
   // Drag speeds follow the scene's size.

@@ -44,9 +44,8 @@ const ShortcutGroup kGroups[] = {
       {"double-click, Ctrl+click", "type a number"},
       {"Enter, Tab, a click elsewhere", "apply the typed number (Tab: to the next field)"},
       {"Esc while typing", "keep the old value"},
-      {"9,5 or 9.5",
-       "the same number (a unit typed is not converted: lengths are in the "
-       "scene's unit)"}}},
+      {"9,5 or 9.5", "the same number"},
+      {"1cm, 2 in, 0.5 m", "a length typed with a unit is converted into the scene's unit"}}},
     {"Placing parts: add, cut or intersect",
      {{"palette mode", "what a new part from the palette does"},
       {"drag from the palette onto a part",

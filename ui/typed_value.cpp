@@ -2,10 +2,15 @@
 #include "ui/typed_value.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include <imgui.h>
 #include <imgui_internal.h>  // TempInputIsActive: is the last item a drag field typing text?
+
+#include "ui/import_options.h"
 
 namespace strata::ui {
 namespace {
@@ -20,11 +25,43 @@ struct Typed {
 };
 Typed gTyped;
 
+// The letters numberFieldCharacter dropped from the field being typed (ImGui id), and what the
+// last commit converted (takeUnitConversion).
+struct Dropped {
+  ImGuiID id = 0;
+  std::string letters;
+};
+Dropped gDropped;
+std::string gConversion;
+
+// The typed value in `lengthUnit` where the letters typed into field `id` name a length unit
+// ("cm" typed into a mm field: times 10); `value` unchanged otherwise.
+double convertTypedUnit(ImGuiID id, double value, const std::string& lengthUnit) {
+  if (gDropped.id != id) return value;
+  std::string typed;
+  for (char c : gDropped.letters)
+    if (c != ' ') typed += c;
+  gDropped = {};
+  if (lengthUnit.empty()) return value;
+  const double from = sceneUnitMetres(typed), to = sceneUnitMetres(lengthUnit);
+  if (!(from > 0.0) || !(to > 0.0)) return value;
+  const double converted = value * (from / to);
+  char text[160];
+  std::snprintf(text, sizeof(text), "%.6g %s is %.6g %s", value, typed.c_str(), converted,
+                lengthUnit.c_str());
+  gConversion = text;
+  return converted;
+}
+
 template <class T>
-bool commit(bool changed, T* value) {
+bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
   const ImGuiID id = ImGui::GetItemID();
   if (id != 0 && ImGui::TempInputIsActive(id)) {
-    if (gTyped.id != id) gTyped = {id, double(*value), 0, false};
+    // Typing starts (it did not type on the last frame): no letters of an earlier typing count.
+    if (gTyped.id != id || gTyped.frame != ImGui::GetFrameCount() - 1) {
+      if (gDropped.id == id) gDropped = {};
+      if (gTyped.id != id) gTyped = {id, double(*value), 0, false};
+    }
     if (changed) gTyped.value = double(*value), gTyped.held = true;
     gTyped.frame = ImGui::GetFrameCount();
     return false;
@@ -36,6 +73,8 @@ bool commit(bool changed, T* value) {
   if (gTyped.frame != ImGui::GetFrameCount() - 1) return changed;
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) return false;
   if (!changed) *value = T(gTyped.value);
+  if constexpr (std::is_floating_point_v<T>)
+    *value = T(convertTypedUnit(id, double(*value), lengthUnit));
   return true;
 }
 
@@ -87,6 +126,10 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
                     codepoint == '+' || codepoint == '-' || codepoint == '*' || codepoint == '/' ||
                     codepoint == 'e' || codepoint == 'E';
   if (kept || codepoint == ' ') return codepoint;
+  // Kept for the field's commit, which converts a length unit (commitTypedValue).
+  const ImGuiID field = numberFieldBeingTyped();
+  if (gDropped.id != field) gDropped = {field, ""};
+  const size_t before = dropped->size();
   // As UTF-8, so that a micro sign or a degree sign is said too.
   if (codepoint < 0x80) {
     dropped->push_back(char(codepoint));
@@ -98,11 +141,18 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
     dropped->push_back(char(0x80 | ((codepoint >> 6) & 0x3F)));
     dropped->push_back(char(0x80 | (codepoint & 0x3F)));
   }
+  gDropped.letters += dropped->substr(before);
   return codepoint;
 }
 
-bool commitTypedValue(bool changed, double* value) {
-  return commit(changed, value);
+bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit) {
+  return commit(changed, value, lengthUnit);
+}
+
+std::string takeUnitConversion() {
+  std::string said;
+  said.swap(gConversion);
+  return said;
 }
 bool commitTypedValue(bool changed, int* value) {
   return commit(changed, value);

@@ -13,8 +13,15 @@ namespace strata::ui {
 // active, false, and the typed value is held (at most one field types at a time). On the frame
 // the field is left (Enter, Tab, a click elsewhere), true with `*value` the typed value; Escape
 // drops it (false, as Dear ImGui restores the text). A drag with the mouse: `changed` as given.
-bool commitTypedValue(bool changed, double* value);
+// `lengthUnit` (a length field's unit, "mm" or "millimetre"; "" for other fields): a length unit
+// typed after the number ("1cm", "0.5 in", "2 m"; import_options.h: sceneUnitMetres) converts
+// the typed value into the field's unit ("1cm" in a mm field: 10; it was dropped and gave 1),
+// said by takeUnitConversion.
+bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit = "");
 bool commitTypedValue(bool changed, int* value);
+// What the last commit converted ("1 cm is 10 mm"), once; "" for none. The editor says it in place
+// of "a unit typed is not converted" (the letters it was told of by numberFieldCharacter).
+std::string takeUnitConversion();
 
 // A double-click on a slider opens its text field, as it does on a drag field (Dear ImGui 1.86's
 // sliders take only Ctrl+click). Call right after the slider with its value before the call.

@@ -51,7 +51,8 @@ class TypedField : public ::testing::Test {
     double value = stored;
     // The field of the part selected (none once the tree's row was clicked).
     if (!rowClicked &&
-        commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value))
+        commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value,
+                         lengthUnit))
       stored = value, writes.push_back(value);
     // A second field after it, which Tab moves to.
     double other = storedOther;
@@ -91,6 +92,7 @@ class TypedField : public ::testing::Test {
   }
 
   bool rowClicked = false;
+  std::string lengthUnit;  // the first field's, when it is a length ("" otherwise)
   double storedSlider = 50.0;
   ImVec2 sliderMin{};
   double stored = 7.0, storedOther = 1.0;
@@ -132,6 +134,38 @@ TEST_F(TypedField, ADecimalCommaIsThePointAndDroppedLettersAreReported) {
   EXPECT_EQ(stored, 9.5);
   EXPECT_EQ(dropped, "mm");
   EXPECT_FALSE(typingIntoNumberField());
+}
+
+// An artist typed "1cm" into a radius in a millimetre scene and got 1 mm (the field drops the
+// letters): a length unit typed after the number converts it into the field's unit, and says
+// so; letters that name no unit are only reported; a field that is no length keeps the number.
+TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
+  lengthUnit = "mm";
+  const auto typeInto = [&](const char* text, std::string* dropped) {
+    frame(/*focus=*/true);
+    frame();
+    for (const char* c = text; *c; ++c) {
+      ImGui::GetIO().AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), dropped));
+      frame();
+    }
+    press(kEnter);
+  };
+  std::string dropped;
+  typeInto("1,5cm", &dropped);
+  EXPECT_EQ(stored, 15.0);
+  EXPECT_EQ(takeUnitConversion(), "1.5 cm is 15 mm");
+  EXPECT_EQ(takeUnitConversion(), "");
+  dropped.clear();
+  typeInto("2 in", &dropped);
+  EXPECT_NEAR(stored, 50.8, 1e-12);
+  typeInto("3 xyz", &dropped);
+  EXPECT_EQ(stored, 3.0);
+  takeUnitConversion();
+  EXPECT_EQ(takeUnitConversion(), "");
+  lengthUnit.clear();  // an angle, a count: the number as typed
+  typeInto("4 cm", &dropped);
+  EXPECT_EQ(stored, 4.0);
+  EXPECT_EQ(takeUnitConversion(), "");
 }
 
 // The same in a number field of its own (the status bar's move step is an InputDouble): the
