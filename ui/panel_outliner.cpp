@@ -405,9 +405,9 @@ void paletteDragSource(EditorState& state, int item, const char* label) {
       const std::string does = placementSentence(state, part ? under : primarySelection(state),
                                                  dropMode(state, heldDropModifiers()));
       if (part)
-        ImGui::TextDisabled("on \"%s\": it %s", part->name.c_str(), does.c_str());
+        ImGui::Text("on \"%s\": it %s", part->name.c_str(), does.c_str());
       else
-        ImGui::TextDisabled("on the ground: it %s", does.c_str());
+        ImGui::Text("on the ground: it %s", does.c_str());
       ImGui::TextDisabled("on a part's surface or tree row: onto that part");
     } else {
       dragHint();

@@ -63,7 +63,7 @@ void applyTheme(float scale) {
   ImVec4* c = s.Colors;
   c[ImGuiCol_WindowBg] = ImVec4(0.115f, 0.12f, 0.135f, 0.97f);
   c[ImGuiCol_ChildBg] = ImVec4(0.10f, 0.105f, 0.12f, 1.0f);
-  c[ImGuiCol_PopupBg] = ImVec4(0.13f, 0.135f, 0.15f, 0.98f);
+  c[ImGuiCol_PopupBg] = ImVec4(0.13f, 0.135f, 0.15f, 1.0f);  // tooltips and dialogs: opaque
   c[ImGuiCol_MenuBarBg] = ImVec4(0.09f, 0.095f, 0.105f, 1.0f);
   c[ImGuiCol_TitleBg] = ImVec4(0.09f, 0.095f, 0.105f, 1.0f);
   c[ImGuiCol_TitleBgActive] = ImVec4(0.11f, 0.12f, 0.14f, 1.0f);

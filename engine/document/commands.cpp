@@ -274,7 +274,19 @@ NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* co
   if (firstId <= maxNodeId(root)) throw Error("duplicate: new ids must be unused");
   NodePtr copy = withFreshIds(node, firstId);
   auto named = std::make_shared<Node>(*copy);
-  named->name = node->name.empty() ? "copy" : node->name + " copy";
+  // A name no node has yet: three Ctrl+D of one part made three rows named alike (an artist's
+  // test); the second copy is "... copy 2".
+  const std::string base = node->name.empty() ? "copy" : node->name + " copy";
+  std::unordered_set<std::string> taken;
+  std::vector<const Node*> stack{root.get()};
+  while (!stack.empty()) {
+    const Node* at = stack.back();
+    stack.pop_back();
+    taken.insert(at->name);
+    for (const NodePtr& c : at->children) stack.push_back(c.get());
+  }
+  named->name = base;
+  for (int k = 2; taken.count(named->name); ++k) named->name = base + " " + std::to_string(k);
   if (copyId) *copyId = named->id;
   // The copy plays the original's role: placed onto the original with that role's mode, it lands
   // beside it, or (the base of a difference) unites with it in a union in the base's place.

@@ -76,7 +76,8 @@ NodePtr removeNode(const NodePtr& root, NodeId id);
 // difference, beside the base in a new union that takes the base's place (a copy after the base
 // would cut it away). Fresh ids count up
 // from `firstId` (instances inside the copy that refer into the copied subtree follow the copy;
-// the group, when made, takes the next id). The copy's name gets " copy". Sets *copyId to the
+// the group, when made, takes the next id). The copy's name gets " copy" (" copy 2" and on where
+// a node has that name). Sets *copyId to the
 // copy's id. Refused for the root.
 NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* copyId);
 

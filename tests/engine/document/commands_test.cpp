@@ -78,6 +78,12 @@ TEST(DocumentCommands, DuplicateGivesFreshIdsAndFollowsInnerInstances) {
   EXPECT_EQ(group->children[2]->instanceOf, 9u);  // the copy's instance uses the copied sphere
   EXPECT_EQ(maxNodeId(dup), 11u);
   EXPECT_NO_THROW(checkInstances(dup));
+  // Duplicated again: a name of its own (three Ctrl+D made three rows named alike).
+  NodeId second = 0, third = 0;
+  NodePtr again = duplicateNode(dup, 3, 12, &second);
+  again = duplicateNode(again, 3, maxNodeId(again) + 1, &third);
+  EXPECT_EQ(findNode(again, second)->name, "difference 3 copy 2");
+  EXPECT_EQ(findNode(again, third)->name, "difference 3 copy 3");
   EXPECT_THROW(duplicateNode(root, 1, 8, &copy), Error);  // root
   EXPECT_THROW(duplicateNode(root, 2, 3, &copy), Error);  // ids in use
 }
