@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 
@@ -387,7 +388,7 @@ void dropPaletteItem(EditorState& state, int item, NodeId target, PlaceMode mode
     clearSelection(state);
   if (item == kImportMeshItem) {
     state.importPlacement.reset();
-    state.dialog.open(DialogPurpose::ImportMesh, "");
+    state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
     return;
   }
   const PlaceMode saved = state.placeMode;
@@ -993,13 +994,26 @@ std::string documentFolder(const EditorState& state) {
   return (error ? std::filesystem::path(state.document.path()) : path).parent_path().string() + "/";
 }
 
+std::string dialogFolder(const EditorState& state) {
+  const std::string own = documentFolder(state);
+  if (!own.empty()) return own;
+  if (!state.lastExportPath.empty())
+    return std::filesystem::path(state.lastExportPath).parent_path().string() + "/";
+  // An untitled document's files go to the user's home, not wherever the editor was started
+  // from (an artist's Save As opened in the program's own folder).
+  std::error_code error;
+  const char* home = std::getenv("HOME");
+  if (home && *home && std::filesystem::is_directory(home, error)) return std::string(home) + "/";
+  return "";
+}
+
 std::string exportSuggestion(const EditorState& state) {
   if (!state.lastExportPath.empty() && !state.document.path().empty() &&
       state.lastExportDocument == state.document.path())
     return state.lastExportPath;
   if (state.document.path().empty()) {
     // Untitled: the last export's folder (which may be another untitled document's), a new name.
-    if (state.lastExportPath.empty()) return "part.stl";
+    if (state.lastExportPath.empty()) return dialogFolder(state) + "part.stl";
     return (std::filesystem::path(state.lastExportPath).parent_path() / "part.stl").string();
   }
   std::string name = std::filesystem::path(state.document.path()).filename().string();

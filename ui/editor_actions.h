@@ -124,6 +124,10 @@ bool recoverDocument(EditorState& state);
 void discardRecovery(EditorState& state);
 // The document's folder, absolute, with a trailing '/' ("" for an untitled document).
 std::string documentFolder(const EditorState& state);
+// The folder the file dialogs start in: the document's, else the last export's, else the user's
+// home (never where the editor happened to be started), with a trailing '/'; "" where none is
+// known (the dialog then shows the working folder).
+std::string dialogFolder(const EditorState& state);
 // The file an export of the document is offered: the last export's of the same document, else
 // the document's name beside it with .stl ("part.stl" for an untitled one).
 std::string exportSuggestion(const EditorState& state);

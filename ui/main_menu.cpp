@@ -40,7 +40,7 @@ void performReplace(EditorState& state, const PendingReplace& action) {
   if (action.kind == PendingReplace::Quit) state.quitNow = true;
   if (action.kind == PendingReplace::Open) {
     if (action.path.empty())
-      state.dialog.open(DialogPurpose::Open, documentFolder(state));
+      state.dialog.open(DialogPurpose::Open, dialogFolder(state));
     else
       openDocument(state, action.path);
   }
@@ -50,7 +50,7 @@ bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then) {
   if (saveDocument(state)) return true;
   if (state.document.path().empty()) {
     state.afterSaveAs = then;
-    state.dialog.open(DialogPurpose::SaveAs, "untitled.strata.json");
+    state.dialog.open(DialogPurpose::SaveAs, dialogFolder(state) + "untitled.strata.json");
   }
   return false;
 }
@@ -68,11 +68,13 @@ void drawMainMenu(EditorState& state) {
     ImGui::Separator();
     if (ImGui::MenuItem("Save", "Ctrl+S")) saveOrAsk(state, std::nullopt);
     if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
-      state.dialog.open(DialogPurpose::SaveAs, state.document.path());
+      state.dialog.open(DialogPurpose::SaveAs, state.document.path().empty()
+                                                   ? dialogFolder(state) + "untitled.strata.json"
+                                                   : state.document.path());
     ImGui::Separator();
     if (ImGui::MenuItem("Import mesh...")) {
       state.importPlacement.reset();
-      state.dialog.open(DialogPurpose::ImportMesh, "");
+      state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
     }
     if (ImGui::MenuItem("Export...", "Ctrl+E"))
       state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
@@ -183,7 +185,9 @@ void handleShortcuts(EditorState& state) {
   const int ctrl = GLFW_MOD_CONTROL, shift = GLFW_MOD_SHIFT;
   if (keyPressed(state, GLFW_KEY_S, ctrl)) saveOrAsk(state, std::nullopt);
   if (keyPressed(state, GLFW_KEY_S, ctrl | shift))
-    state.dialog.open(DialogPurpose::SaveAs, state.document.path());
+    state.dialog.open(DialogPurpose::SaveAs, state.document.path().empty()
+                                                 ? dialogFolder(state) + "untitled.strata.json"
+                                                 : state.document.path());
   if (keyPressed(state, GLFW_KEY_N, ctrl)) replaceOrAsk(state, {PendingReplace::New, ""});
   if (keyPressed(state, GLFW_KEY_O, ctrl)) replaceOrAsk(state, {PendingReplace::Open, ""});
   if (keyPressed(state, GLFW_KEY_E, ctrl))

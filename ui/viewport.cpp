@@ -544,7 +544,7 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
     const Placement placement = placementAt(renderer, state, rect, drop_->mouse, pixelScale);
     if (drop_->item == kImportMeshItem) {
       state.importPlacement = placement;
-      state.dialog.open(DialogPurpose::ImportMesh, "");
+      state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
     } else {
       const PlaceMode saved = state.placeMode;
       state.placeMode = drop_->mode;

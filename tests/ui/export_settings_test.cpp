@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -125,6 +126,19 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
   EditorState untitled;
   untitled.lastExportPath = folder + "/out/ball.ply";
   EXPECT_EQ(exportSuggestion(untitled), folder + "/out/part.stl");
+  EXPECT_EQ(dialogFolder(untitled), folder + "/out/");
+  // Nothing written yet: the user's home, not the folder the editor was started in (an artist's
+  // Save As opened in the program's own folder).
+  const char* home = std::getenv("HOME");
+  const std::string keptHome = home ? home : "";
+  setenv("HOME", folder.c_str(), 1);
+  EditorState fresh;
+  EXPECT_EQ(dialogFolder(fresh), folder + "/");
+  EXPECT_EQ(exportSuggestion(fresh), folder + "/part.stl");
+  if (home)
+    setenv("HOME", keptHome.c_str(), 1);
+  else
+    unsetenv("HOME");
   std::filesystem::remove_all(folder);
 }
 
