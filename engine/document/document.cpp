@@ -181,8 +181,12 @@ void Document::rename(NodeId id, const std::string& name) {
   apply("rename", editNode(root(), id, [&](Node& n) { n.name = name; }));
 }
 
-void Document::setTransform(NodeId id, const Transform& transform) {
-  validateTransform(transform);
+void Document::setTransform(NodeId id, const Transform& given) {
+  validateTransform(given);
+  // A zero is +0 (a snapped move of -0.0 read "-0" in the inspector: an artist's test).
+  Transform transform = given;
+  transform.translate += glm::dvec3(0.0);
+  transform.rotateDegrees += glm::dvec3(0.0);
   NodePtr node = findNode(root(), id);
   if (node && node->transform == transform) return;
   apply("transform", editNode(root(), id, [&](Node& n) { n.transform = transform; }));

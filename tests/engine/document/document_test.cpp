@@ -2,6 +2,8 @@
 // dirty flag, saving and loading.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 
@@ -121,6 +123,21 @@ TEST(Document, TheResolutionIsAStepOfItsOwnThatOtherStepsKeep) {
   EXPECT_EQ(doc.scene().settings.resolution, start * 4);
   EXPECT_THROW(doc.setResolution(kMaxResolution + 1), Error);
   EXPECT_EQ(doc.scene().settings.resolution, start * 4);
+}
+
+// A snapped move that lands on -0.0 is stored as 0 (the inspector showed "-0").
+TEST(Document, AZeroInATransformIsPositive) {
+  Document doc;
+  const NodeId box = doc.addNode(NodeKind::Box);
+  Transform t;
+  t.translate = glm::dvec3(-0.0, 1.0, -0.0);
+  t.rotateDegrees = glm::dvec3(0.0, -0.0, 0.0);
+  doc.setTransform(box, t);
+  const Transform& kept = findNode(doc.root(), box)->transform;
+  EXPECT_FALSE(std::signbit(kept.translate.x));
+  EXPECT_FALSE(std::signbit(kept.translate.z));
+  EXPECT_FALSE(std::signbit(kept.rotateDegrees.y));
+  EXPECT_EQ(kept.translate.y, 1.0);
 }
 
 TEST(Document, RefusedCommandsChangeNothing) {
