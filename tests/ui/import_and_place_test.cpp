@@ -428,17 +428,28 @@ TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
   EXPECT_EQ(state.log.size(), lines);
 }
 
+// A box with two holes cut in it (the palette in cut mode; the mode left at cut): the box, the
+// cylinder and the sphere.
+struct PlateWithTwoHoles {
+  NodeId plate, first, second;
+};
+PlateWithTwoHoles plateWithTwoHoles(EditorState& state) {
+  PlateWithTwoHoles made;
+  made.plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  state.selection = {made.plate};
+  made.first = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {made.first};
+  made.second = addPrimitive(state, NodeKind::Sphere);
+  return made;
+}
+
 // An artist cut a hole (a cutter in a difference beside other parts) and pasted with nothing
 // selected: it came back cutting the whole scene (a new difference around the root), so it also
 // drilled the ribs. A cut part goes back under its parent, in its place and role.
 TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  state.selection = {plate};
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
-  state.selection = {hole};
-  const NodeId second = addPrimitive(state, NodeKind::Sphere);
+  const auto [plate, hole, second] = plateWithTwoHoles(state);
   state.placeMode = PlaceMode::Add;
   state.selection.clear();
   addPrimitive(state, NodeKind::Torus);  // beside the drilled plate, under the root
@@ -477,12 +488,7 @@ TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
 // place, and says where it goes before and after the release.
 TEST(Roles, ADropOntoASiblingSaysItOnlyChangesItsPlace) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  state.selection = {plate};
-  const NodeId first = addPrimitive(state, NodeKind::Cylinder);
-  state.selection = {first};
-  const NodeId second = addPrimitive(state, NodeKind::Sphere);
+  const auto [plate, first, second] = plateWithTwoHoles(state);
   state.document.rename(first, "first hole");
   state.document.rename(second, "second hole");
   NodeLocation where;
