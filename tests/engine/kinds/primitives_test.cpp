@@ -3,7 +3,10 @@
 // box is checked against its analytic volume and area.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
+#include <vector>
 
 #include "engine/document/commands.h"
 #include "engine/io/scene_file.h"
@@ -34,6 +37,48 @@ TEST(PrimitiveTable, EveryEntryTessellatesClosedInsideItsBounds) {
           EXPECT_GE(p[a], bounds.min[a] - 1e-12);
           EXPECT_LE(p[a], bounds.max[a] + 1e-12);
         }
+    }
+  }
+}
+
+// A part's world bounds come from its hull, not from its local box turned (a sphere turned 45
+// degrees had a box 41% too wide): every vertex of its tessellation lies within them under any
+// placement (turned, mirrored, stretched, sheared), and some vertex comes near each face of
+// them (tight: within the tessellation's chord error).
+TEST(PrimitiveTable, WorldBoundsHoldTheTessellationUnderAnyPlacement) {
+  std::vector<glm::dmat4> placements;
+  for (int k = 0; k < 12; ++k) {
+    const double a = 0.37 * k + 0.1, b = 0.91 * k + 0.2, c = 1.3 * k;
+    glm::dmat4 m(1.0);
+    m = glm::translate(m, glm::dvec3(k, -2.0 * k, 0.5));
+    m = glm::rotate(m, a, glm::normalize(glm::dvec3(1.0, b, c + 0.3)));
+    m = glm::scale(m, glm::dvec3(k % 3 == 0 ? -1.0 : 1.0 + 0.1 * k, 0.5 + 0.2 * k, 1.0));
+    if (k % 4 == 1) m[1][0] += 0.4;  // a shear
+    placements.push_back(m);
+  }
+  PrimitiveParams odd;  // unequal sizes and radii, each primitive's relations kept
+  odd.size = glm::dvec3(3.0, 1.5, 0.8);
+  odd.radius = 0.3;
+  odd.topRadius = 0.1;
+  odd.height = 2.5;
+  odd.majorRadius = 1.2;
+  odd.minorRadius = 0.35;
+  for (const PrimitiveInfo& info : primitiveTable()) {
+    SCOPED_TRACE(info.name);
+    for (const PrimitiveParams& params : {info.defaults, odd}) {
+      const TriangleMesh mesh = tessellatePrimitive(info.kind, params, 256);
+      for (const glm::dmat4& m : placements) {
+        const Bounds bounds = primitiveWorldBounds(info.kind, params, m);
+        Bounds seen;
+        for (const glm::dvec3& p : mesh.positions) seen.include(glm::dvec3(m * glm::dvec4(p, 1.0)));
+        const double size = glm::length(bounds.size());
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(seen.min[a], bounds.min[a] - 1e-12 * size);
+          EXPECT_LE(seen.max[a], bounds.max[a] + 1e-12 * size);
+          EXPECT_LE(seen.min[a] - bounds.min[a], 1e-3 * size) << "axis " << a;
+          EXPECT_LE(bounds.max[a] - seen.max[a], 1e-3 * size) << "axis " << a;
+        }
+      }
     }
   }
 }
