@@ -376,6 +376,34 @@ void refuseHiddenRoot(const Scene& scene) {
 }
 }  // namespace
 
+// "" where the scene has no bounds of its own or its parts lie within them; else what the bounds
+// cut off (a box of 1 x 1 x 1.2 in bounds 1 x 1 x 1 was cut flat without a word: a numbers
+// check), for EvalResult::warnings.
+std::string boundsCutWarning(const Scene& scene) {
+  if (!scene.settings.hasBounds || !scene.root) return "";
+  const Bounds parts = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
+  const Bounds& box = scene.settings.bounds;
+  if (parts.empty()) return "";
+  const double slack = 1e-9 * glm::length(box.size());
+  std::string sides;
+  for (int a = 0; a < 3; ++a) {
+    char text[96];
+    if (parts.min[a] < box.min[a] - slack) {
+      std::snprintf(text, sizeof(text), "%s%c down to %.4g (the bounds start at %.4g)",
+                    sides.empty() ? "" : ", ", "xyz"[a], parts.min[a], box.min[a]);
+      sides += text;
+    }
+    if (parts.max[a] > box.max[a] + slack) {
+      std::snprintf(text, sizeof(text), "%s%c up to %.4g (the bounds end at %.4g)",
+                    sides.empty() ? "" : ", ", "xyz"[a], parts.max[a], box.max[a]);
+      sides += text;
+    }
+  }
+  if (sides.empty()) return "";
+  return "the scene's own bounds (settings.bounds) cut its parts, which reach " + sides +
+         ": the result is cut flat there; widen the bounds or remove them";
+}
+
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;
   refuseHiddenRoot(scene);
@@ -885,6 +913,7 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   Visit root = visit(start, startWorld, startDepth, ctx);
   result.root = root.ldi;
   result.rootKey = root.key;
+  if (options.alone == 0) ctx.warn(boundsCutWarning(scene));
   Stopwatch measure;
   if (options.measureRoot)
     result.measure = backend_->measure(root.ldi, progress);

@@ -197,6 +197,29 @@ TEST(EvaluatorCache, AHiddenRootHidesTheWholeScene) {
   }
 }
 
+// Bounds of the scene's own smaller than its parts cut them flat: said (a numbers check found
+// it silent), naming the side and how far they reach; bounds around them say nothing.
+TEST(EvaluatorCache, BoundsThatCutThePartsAreSaid) {
+  const NodePtr ball = sphere(1.0);
+  const auto warned = [](const EvalResult& r) {
+    for (const std::string& w : r.warnings)
+      if (w.find("settings.bounds") != std::string::npos) return w;
+    return std::string();
+  };
+  const EvalResult cut = evaluateCpu(makeSceneInBox(ball, 64, glm::dvec3(-1.2), {1.2, 1.2, 0.5}));
+  const std::string said = warned(cut);
+  EXPECT_NE(said.find("z up to 1 (the bounds end at 0.5)"), std::string::npos) << said;
+  EXPECT_EQ(said.find("x "), std::string::npos) << said;
+  EXPECT_TRUE(
+      warned(evaluateCpu(makeSceneInBox(ball, 64, glm::dvec3(-1.2), glm::dvec3(1.2)))).empty());
+  // A turned sphere is still the sphere (its local box turned reached 1.41).
+  Transform turned;
+  turned.rotateDegrees = glm::dvec3(45.0, 30.0, 0.0);
+  EXPECT_TRUE(warned(evaluateCpu(makeSceneInBox(withTransform(ball, turned), 64, glm::dvec3(-1.05),
+                                                glm::dvec3(1.05))))
+                  .empty());
+}
+
 TEST(EvaluatorCache, InstancesShowTheirTargetEvenWhenItIsHidden) {
   NodePtr part = sphere(0.5);
   auto hidden = std::make_shared<Node>(*part);
