@@ -659,8 +659,8 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
       logWarning(s, "number fields take digits only: \"" + g_notTyped +
                         "\" was not typed (lengths are in " +
                         unitSymbol(s.document.scene().settings.unit) +
-                        ", the scene's unit, where mm, cm, m, in or ft typed after the number "
-                        "converts; angles are in degrees)");
+                        ", the scene's unit: the inspector's lengths convert mm, cm, m, in or ft "
+                        "typed after the number; angles are in degrees)");
       g_notTyped.clear();
     }
   }

@@ -352,6 +352,24 @@ NodeId addPrimitive(EditorState& state, NodeKind kind) {
   return id;
 }
 
+NodeId dropTargetFor(const NodePtr& root, NodeId picked) {
+  std::vector<const Node*> path;
+  if (!root || !pathToNode(root, picked, &path)) return 0;
+  // The surface of a hole is its cutter's, of an intersection its intersector's: the material
+  // around it is the operation's (a boss dropped on a hole's floor became a cutter).
+  size_t at = path.size() - 1;
+  while (at > 0) {
+    const ChildRole role = roleOf(root, path[at]->id);
+    if (role != ChildRole::Cut && role != ChildRole::Intersect) break;
+    --at;
+  }
+  // Inside a pattern, every copy shows the same parts: the pattern itself (a drop on one copy
+  // was repeated in all of them).
+  for (size_t k = 0; k < at; ++k)
+    if (patternOf(path[k]->kind) != Pattern::None) return path[k]->id;
+  return path[at]->id;
+}
+
 NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placement) {
   NodeId id = 0;
   state.document.beginInteraction();
@@ -632,12 +650,29 @@ void pasteClipboard(EditorState& state) {
       const NodePtr parent = originalThere || copy.parent == 0
                                  ? nullptr
                                  : findNode(state.document.root(), copy.parent);
+      // In a difference the place is the role: the base goes back first (in place of the empty
+      // base its cut left), a cutter after the base (never first: it would become the base).
+      const bool difference = parent && parent->kind == NodeKind::Difference;
+      const int count = parent ? int(parent->children.size()) : 0;
+      const bool wasBase = difference && copy.index == 0;
+      const int index = difference && !wasBase ? std::clamp(copy.index, 1, std::max(count, 1))
+                                               : std::min(copy.index, count);
       NodeId id = 0;
-      if (parent && parent->kind == copy.parentKind && isOperation(parent->kind)) {
-        const int index = std::min(copy.index, int(parent->children.size()));
+      if (parent && parent->kind == copy.parentKind && isOperation(parent->kind) &&
+          index <= count && (!difference || wasBase || count > 0)) {
+        const NodePtr emptyBase = wasBase && count > 0 && isOperation(parent->children[0]->kind) &&
+                                          parent->children[0]->children.empty()
+                                      ? parent->children[0]
+                                      : nullptr;
         id = state.document.addSubtree(copy.part, parent->id, index);
+        if (emptyBase) state.document.remove(emptyBase->id);
         logInfo(state, displayName(*findNode(state.document.root(), id)) + " is back in " +
                            displayName(*parent) + ", in its place");
+      } else if (originalThere) {
+        // A copy beside its original: a name of its own, as Ctrl+D's copies.
+        auto named = std::make_shared<Node>(*copy.part);
+        named->name = copyName(state.document.root(), copy.part->name);
+        id = placeNew(state, named, copy.mode);
       } else {
         id = placeNew(state, copy.part, copy.mode);
       }

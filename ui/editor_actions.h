@@ -131,6 +131,10 @@ std::string dialogFolder(const EditorState& state);
 // The file an export of the document is offered: the last export's of the same document, else
 // the document's name beside it with .stl ("part.stl" for an untitled one).
 std::string exportSuggestion(const EditorState& state);
+// The part a palette drop on the surface of leaf `picked` goes onto: the leaf, or where its
+// surface is a cutter's or an intersector's the operation whose material it bounds, or the
+// pattern it lies in (0 when `picked` is not in the tree).
+NodeId dropTargetFor(const NodePtr& root, NodeId picked);
 // Starts the background export of the current document to `path` at `resolution`.
 // Exports the document in the background (ExportJob); `insist` exports a job whose estimate
 // does not fit anyway.

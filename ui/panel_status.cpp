@@ -537,9 +537,9 @@ void measurementList(EditorState& state) {
       // A corner within a millionth of the box's size of 0 is at 0 (the splats' float
       // positions put a face on z = 0 at 9.8e-09).
       const double size = std::max({b.size().x, b.size().y, b.size().z});
-      const auto shown = [&](double v) { return std::fabs(v) <= 1e-6 * size ? 0.0 : v; };
+      const auto zeroed = [&](double v) { return std::fabs(v) <= 1e-6 * size ? 0.0 : v; };
       ImGui::Text("bounding box %.4g x %.4g x %.4g %s (from %.4g, %.4g, %.4g)", b.size().x,
-                  b.size().y, b.size().z, unit, shown(b.min.x), shown(b.min.y), shown(b.min.z));
+                  b.size().y, b.size().z, unit, zeroed(b.min.x), zeroed(b.min.y), zeroed(b.min.z));
     }
   }
   selectionMeasure(state);

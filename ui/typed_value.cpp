@@ -63,6 +63,15 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
       if (gTyped.id != id) gTyped = {id, double(*value), 0, false};
     }
     if (changed) gTyped.value = double(*value), gTyped.held = true;
+    // A deleted character may have been the number's or the unit's: the unit typed is what
+    // follows the last deletion (the letters never reach the field's text).
+    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace)) ||
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)))
+      if (gDropped.id == id) gDropped.letters.clear();
+    // Letters typed after a number equal to the value ("1cm" into 1 mm): due as a change, to be
+    // converted when the field is left.
+    if (!gTyped.held && gDropped.id == id && !gDropped.letters.empty())
+      gTyped.value = double(*value), gTyped.held = true;
     gTyped.frame = ImGui::GetFrameCount();
     return false;
   }

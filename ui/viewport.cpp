@@ -439,7 +439,7 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
   if (std::optional<PickHit> hit = pickAt(renderer, state, rect, mouse, pixelScale)) {
     placement.point = hit->position;
     placement.normal = hit->normal;
-    if (findNode(state.document.root(), hit->leaf)) placement.part = hit->leaf;
+    placement.part = dropTargetFor(state.document.root(), hit->leaf);
     return placement;
   }
   const Ray ray = camera.rayThrough(mouse, glm::dvec2(rect.width, rect.height));
@@ -535,7 +535,7 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
   }
   if (dropHover_) {
     const std::optional<PickHit> hit = pickAt(renderer, state, rect, *dropHover_, pixelScale);
-    state.paletteDropPart = hit && findNode(state.document.root(), hit->leaf) ? hit->leaf : 0;
+    state.paletteDropPart = hit ? dropTargetFor(state.document.root(), hit->leaf) : 0;
     dropHover_.reset();
     dropHoverClock_ = Stopwatch();
   }

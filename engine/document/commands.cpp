@@ -266,17 +266,8 @@ NodePtr removeNode(const NodePtr& root, NodeId id) {
   return removeKeepingRoles(root, id, maxNodeId(root) + 1);
 }
 
-NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* copyId) {
-  NodePtr node = findNode(root, id);
-  if (!node) throw Error("there is no node with id " + std::to_string(id));
-  if (root->id == id)
-    throw Error("the root node cannot be duplicated; group it first (it then has a parent)");
-  if (firstId <= maxNodeId(root)) throw Error("duplicate: new ids must be unused");
-  NodePtr copy = withFreshIds(node, firstId);
-  auto named = std::make_shared<Node>(*copy);
-  // A name no node has yet: three Ctrl+D of one part made three rows named alike (an artist's
-  // test); the second copy is "... copy 2".
-  const std::string base = node->name.empty() ? "copy" : node->name + " copy";
+std::string copyName(const NodePtr& root, const std::string& name) {
+  const std::string base = name.empty() ? "copy" : name + " copy";
   std::unordered_set<std::string> taken;
   std::vector<const Node*> stack{root.get()};
   while (!stack.empty()) {
@@ -285,8 +276,20 @@ NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* co
     taken.insert(at->name);
     for (const NodePtr& c : at->children) stack.push_back(c.get());
   }
-  named->name = base;
-  for (int k = 2; taken.count(named->name); ++k) named->name = base + " " + std::to_string(k);
+  std::string named = base;
+  for (int k = 2; taken.count(named); ++k) named = base + " " + std::to_string(k);
+  return named;
+}
+
+NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* copyId) {
+  NodePtr node = findNode(root, id);
+  if (!node) throw Error("there is no node with id " + std::to_string(id));
+  if (root->id == id)
+    throw Error("the root node cannot be duplicated; group it first (it then has a parent)");
+  if (firstId <= maxNodeId(root)) throw Error("duplicate: new ids must be unused");
+  NodePtr copy = withFreshIds(node, firstId);
+  auto named = std::make_shared<Node>(*copy);
+  named->name = copyName(root, node->name);
   if (copyId) *copyId = named->id;
   // The copy plays the original's role: placed onto the original with that role's mode, it lands
   // beside it, or (the base of a difference) unites with it in a union in the base's place.

@@ -70,6 +70,10 @@ NodePtr insertChild(const NodePtr& root, NodeId parentId, int index, const NodeP
 // (removeKeepingRoles in roles.h): no cutter becomes the base.
 NodePtr removeNode(const NodePtr& root, NodeId id);
 
+// The name of a copy of a node named `name`: "<name> copy", or "<name> copy 2" and on where a
+// node under `root` has that name already (three Ctrl+D of one part made three rows named alike).
+std::string copyName(const NodePtr& root, const std::string& name);
+
 // Adds a deep copy of node `id` that plays the original's role, leaving every other node's role
 // as it was (placed onto the original with its role, roles.h): right after the original (a
 // union's or intersection's child, a difference's cutter), or, for the base (first child) of a

@@ -131,7 +131,10 @@ NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
     apply(label, top);
     return id;
   }
-  apply(label, insertChild(root(), target, index, fresh));
+  // An instance in it must find its target here (a cut instance whose target went since).
+  NodePtr result = insertChild(root(), target, index, fresh);
+  checkInstances(result);
+  apply(label, result);
   return id;
 }
 

@@ -379,7 +379,7 @@ void refuseHiddenRoot(const Scene& scene) {
 // "" where the scene has no bounds of its own or its parts lie within them; else what the bounds
 // cut off (a box of 1 x 1 x 1.2 in bounds 1 x 1 x 1 was cut flat without a word: a numbers
 // check), for EvalResult::warnings.
-std::string boundsCutWarning(const Scene& scene) {
+static std::string boundsCutWarning(const Scene& scene) {
   if (!scene.settings.hasBounds || !scene.root) return "";
   const Bounds parts = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
   const Bounds& box = scene.settings.bounds;

@@ -216,17 +216,23 @@ Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid) {
   if (glm::all(glm::greaterThanEqual(content.min - room, window.min)) &&
       glm::all(glm::lessThanEqual(content.max + room, window.max)))
     return grid;
-  // The lattice's origin moved `reach` nodes back (the grid's first node may be 0): node i of
-  // `grid` is node i + reach of the ghost's lattice, at the same place.
+  // A modifier's work grows with its window's nodes (up to 27 times the grid's here): its ghost
+  // stays on the result's grid.
+  if (hasModifier(node)) return grid;
+  // The lattice's origin moved `shift` nodes back (the grid's first node may be 0), a power of
+  // two from the grid's size, so that it stays put while the scene's window changes a little
+  // (the ghost's cache is keyed on its lattice): node i of `grid` is node i + shift there.
   const int reach = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));
+  int shift = 1;
+  while (shift < reach) shift *= 2;
   Grid shifted = grid;
-  shifted.origin -= glm::dvec3(reach) * grid.h;
+  shifted.origin -= glm::dvec3(shift) * grid.h;
   glm::ivec3 start, cells;
   for (int a = 0; a < 3; ++a) {
     double lo = std::floor((content.min[a] - shifted.origin[a]) / grid.h) - kGuardCells;
     double hi = std::ceil((content.max[a] - shifted.origin[a]) / grid.h) + kGuardCells;
-    lo = std::max(lo, double(grid.first[a]));
-    hi = std::min(hi, double(grid.first[a] + grid.cells[a] + 2 * reach));
+    lo = std::max(lo, double(grid.first[a] + shift - reach));
+    hi = std::min(hi, double(grid.first[a] + shift + grid.cells[a] + reach));
     if (!(hi - lo >= 1.0)) return grid;  // none of it within reach (or not finite)
     start[a] = int(lo);
     cells[a] = int(hi - lo);
@@ -302,31 +308,39 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   result.splats = std::move(splats);
   // A ghost that reaches beyond the result's grid (a cutter sticking out of its part: the grid
   // covers the part, not its cutters) is evaluated alone on a window of the same lattice that
-  // covers it, by an evaluator of its own (sharing the main one's cache would evaluate its
-  // leaves on one window and then the other, on every pass).
-  bool ghostsAlone = false;
+  // covers it, by an evaluator of its own per ghost (sharing the main one's cache would evaluate
+  // its leaves on one window and then the other on every pass; one for all ghosts would drop one
+  // ghost's LDIs while evaluating the next: an evaluation keeps what it and the one before used).
+  std::map<NodeId, GhostEvaluator> ghostsKept;
   for (KeptLdi& kept : result.stats.kept) {
     const Grid own = ghostWindow(*request.scene, kept.id, grid);
     if (!(own == grid)) {
-      ghostsAlone = true;
-      std::unique_ptr<Evaluator>& alone =
-          used == &evaluator ? ghostEvaluator_ : ghostModifierEvaluator_;
-      if (!alone)
-        alone = std::make_unique<Evaluator>(
+      auto found = ghostEvaluators_.find(kept.id);
+      GhostEvaluator ghost;
+      if (found != ghostEvaluators_.end() && found->second.backend == backend)
+        ghost = std::move(found->second);
+      if (!ghost.evaluator) {
+        ghost.backend = backend;
+        ghost.evaluator = std::make_unique<Evaluator>(
             used == &evaluator ? backend_
                                : std::shared_ptr<Backend>(std::make_shared<CpuBackend>()));
+      }
       EvalOptions ghostOptions;
       ghostOptions.alone = kept.id;
       ghostOptions.measureRoot = false;
       ghostOptions.skipModifiersUnderCells = options.skipModifiersUnderCells;
       if (onlyIfCached) {
         std::optional<EvalResult> cached =
-            alone->evaluateCached(*request.scene, own, progress, ghostOptions);
-        if (!cached) return false;
+            ghost.evaluator->evaluateCached(*request.scene, own, progress, ghostOptions);
+        if (!cached) {
+          ghostEvaluators_[kept.id] = std::move(ghost);
+          return false;
+        }
         kept.ldi = cached->root;
       } else {
-        kept.ldi = alone->evaluateOn(*request.scene, own, progress, ghostOptions).root;
+        kept.ldi = ghost.evaluator->evaluateOn(*request.scene, own, progress, ghostOptions).root;
       }
+      ghostsKept[kept.id] = std::move(ghost);
     }
     SplatsHandle ghost = backend->splats(kept.ldi, progress);
     std::vector<Splat> host(ghost->count());
@@ -335,10 +349,7 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
     kept.ldi.reset();
   }
   result.stats.kept.clear();
-  if (!ghostsAlone) {  // nothing of theirs to keep
-    if (ghostEvaluator_) ghostEvaluator_->clearCache();
-    if (ghostModifierEvaluator_) ghostModifierEvaluator_->clearCache();
-  }
+  ghostEvaluators_ = std::move(ghostsKept);  // those of ghosts no longer alone go
   result.splatSeconds = splatClock.seconds();
   return true;
 }

@@ -113,11 +113,12 @@ int previewResolutionFor(int requested, int shownResolution, uint64_t shownCache
                          double shownSeconds, uint64_t availableBytes);
 
 // The grid the ghost of node `id` is drawn from: `grid` itself where the node lies within it
-// with kGuardCells to spare (or is not in `scene`), else a window covering the node with
-// kGuardCells of room, up to the grid's longest side beyond the grid on every side (a cutter far
-// longer than its part shows that much of it: a ghost's rays grow with its window's area), on
-// `grid`'s lattice with its origin moved that far back (nodes at the same places, so that the
-// window never starts below node 0).
+// with kGuardCells to spare (or is not in `scene`, or holds a modifier, whose work grows with a
+// window's nodes), else a window covering the node with kGuardCells of room, up to the grid's
+// longest side beyond the grid on every side (a cutter far longer than its part shows that much
+// of it: a ghost's rays grow with its window's area), on `grid`'s lattice with its origin moved
+// back by a power of two at least that long (nodes at the same places; the window never starts
+// below node 0, and the lattice stays while the grid's size changes within a factor of two).
 Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid);
 
 class PreviewWorker {
@@ -181,9 +182,14 @@ class PreviewWorker {
   std::shared_ptr<SplatArrayPool> splatArrays_ = std::make_shared<SplatArrayPool>();
   std::shared_ptr<HostSplatLender> lender_;       // guarded by mutex_
   std::unique_ptr<Evaluator> modifierEvaluator_;  // worker thread only: see computePass
-  // Worker thread only: ghosts evaluated alone on windows of their own (ghostWindow), on the
-  // worker's backend and, beside modifierEvaluator_, on the CPU.
-  std::unique_ptr<Evaluator> ghostEvaluator_, ghostModifierEvaluator_;
+  // Worker thread only: the ghosts evaluated alone on windows of their own (ghostWindow) in the
+  // last pass, an evaluator each (on the backend of the pass: the worker's, or the CPU's beside
+  // modifierEvaluator_).
+  struct GhostEvaluator {
+    const Backend* backend = nullptr;
+    std::unique_ptr<Evaluator> evaluator;
+  };
+  std::map<NodeId, GhostEvaluator> ghostEvaluators_;
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // the worker: a request arrived, or stop

@@ -54,8 +54,9 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
   EXPECT_TRUE(kept.simplify);
   EXPECT_FLOAT_EQ(kept.simplifyCells, 0.25f);
   // Its end said in the log, once (the status bar kept "exporting ..." after it: an artist).
-  while (!state.exportJob->status().finished)
+  for (int waited = 0; !state.exportJob->status().finished && waited < 120000; waited += 5)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(state.exportJob->status().finished);
   logExportEnd(state);
   EXPECT_NE(state.log.back().text.find("exported " + folder + "/ball.stl: written and checked"),
             std::string::npos)
@@ -85,8 +86,9 @@ TEST(ExportSettings, QuittingWhileAnExportRunsAsksFirst) {
   EXPECT_FALSE(state.quitNow);
   EXPECT_FALSE(state.pendingReplace);
   state.exportJob->cancel();
-  while (!state.exportJob->status().finished)
+  for (int waited = 0; !state.exportJob->status().finished && waited < 120000; waited += 5)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(state.exportJob->status().finished);
   logExportEnd(state);
   EXPECT_NE(state.log.back().text.find("cancelled; nothing was written"), std::string::npos)
       << state.log.back().text;

@@ -23,6 +23,22 @@ int unitIndex(const std::string& label) {
   return 0;
 }
 
+// A box with two holes cut in it (the palette in cut mode; the mode left at cut): the box, the
+// cylinder and the sphere.
+struct PlateWithTwoHoles {
+  NodeId plate, first, second;
+};
+PlateWithTwoHoles plateWithTwoHoles(EditorState& state) {
+  PlateWithTwoHoles made;
+  made.plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  state.selection = {made.plate};
+  made.first = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {made.first};
+  made.second = addPrimitive(state, NodeKind::Sphere);
+  return made;
+}
+
 TEST(ImportOptions, ScaleConvertsFileUnitsToSceneUnits) {
   std::string why;
   EXPECT_DOUBLE_EQ(importScale(unitIndex("scene units"), "millimetre", &why), 1.0);
@@ -189,6 +205,28 @@ TEST(ImportAndPlace, ACutterDroppedOnAPartCutsThatPartCentredOnThePoint) {
   EXPECT_EQ(roleOf(state.document.root(), other), ChildRole::Add);
   const Bounds b = selectionBounds(state.document.root(), {hole});
   EXPECT_NEAR(glm::distance(b.center(), on.point), 0.0, 1e-9);
+}
+
+// What a drop on a surface goes onto: the part whose material the surface bounds (a hole's wall
+// is its cutter's surface: a boss dropped there became a cutter, a review found), and a part in
+// a pattern its pattern (a drop on one copy was repeated in every copy).
+TEST(ImportAndPlace, ADropOnAHolesWallGoesOntoThePartAroundIt) {
+  EditorState state;
+  const auto [plate, hole, second] = plateWithTwoHoles(state);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodePtr& root = state.document.root();
+  EXPECT_EQ(dropTargetFor(root, plate), plate);
+  EXPECT_EQ(dropTargetFor(root, hole), where.parent->id);
+  EXPECT_EQ(dropTargetFor(root, second), where.parent->id);
+  EXPECT_EQ(dropTargetFor(root, 9999), 0u);
+  state.placeMode = PlaceMode::Add;
+  clearSelection(state);
+  const NodeId array = addOperation(state, NodeKind::Array);
+  state.selection = {array};
+  const NodeId peg = addPrimitive(state, NodeKind::Cylinder);
+  ASSERT_TRUE(isInSubtree(state.document.root(), array, peg));
+  EXPECT_EQ(dropTargetFor(state.document.root(), peg), array);
 }
 
 // Align to the active part (min, centre, max on each axis) and drop to ground: every other
@@ -400,8 +438,11 @@ TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
   ASSERT_EQ(state.selection.size(), 1u);
   const NodeId first = state.selection[0];
   EXPECT_NEAR(glm::distance(origin(first), at + glm::dvec3(state.snap.step, 0, 0)), 0.0, 1e-9);
+  const std::string name = findNode(state.document.root(), plate)->name;
+  EXPECT_EQ(findNode(state.document.root(), first)->name, name + " copy");
   pasteClipboard(state);
   const NodeId second = state.selection[0];
+  EXPECT_EQ(findNode(state.document.root(), second)->name, name + " copy 2");
   EXPECT_NEAR(glm::distance(origin(second), at + glm::dvec3(2 * state.snap.step, 0, 0)), 0.0, 1e-9);
   // Cut and pasted: moved, not shifted, even after a new part took the cut one's id (ids are
   // reused: the review's case); pasted again, a copy a step beside it.
@@ -426,22 +467,6 @@ TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
   const size_t lines = state.log.size();
   cutSelection(state);
   EXPECT_EQ(state.log.size(), lines);
-}
-
-// A box with two holes cut in it (the palette in cut mode; the mode left at cut): the box, the
-// cylinder and the sphere.
-struct PlateWithTwoHoles {
-  NodeId plate, first, second;
-};
-PlateWithTwoHoles plateWithTwoHoles(EditorState& state) {
-  PlateWithTwoHoles made;
-  made.plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  state.selection = {made.plate};
-  made.first = addPrimitive(state, NodeKind::Cylinder);
-  state.selection = {made.first};
-  made.second = addPrimitive(state, NodeKind::Sphere);
-  return made;
 }
 
 // An artist cut a hole (a cutter in a difference beside other parts) and pasted with nothing
@@ -473,6 +498,21 @@ TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
   EXPECT_EQ(state.document.root()->kind, before->kind);
   EXPECT_EQ(state.document.root()->children.size(), before->children.size());
   EXPECT_NE(state.log.back().text.find("back in"), std::string::npos) << state.log.back().text;
+  // The base cut (an empty base holds its place, so that the holes cut nothing) and pasted:
+  // back first, the empty base gone, the holes cutting it again.
+  state.selection = {plate};
+  cutSelection(state);
+  ASSERT_FALSE(findNode(state.document.root(), plate));
+  state.selection.clear();
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId plateBack = state.selection[0];
+  ASSERT_TRUE(locateNode(state.document.root(), plateBack, &where));
+  EXPECT_EQ(where.parent->id, difference);
+  EXPECT_EQ(where.index, 0);
+  EXPECT_EQ(roleOf(state.document.root(), plateBack), ChildRole::Base);
+  EXPECT_EQ(where.parent->children.size(), 3u) << "the empty base is gone";
+  EXPECT_EQ(roleOf(state.document.root(), back), ChildRole::Cut);
   // Its parent gone meanwhile: placed as a new part is (onto the selection, in its role).
   state.selection = {back};
   cutSelection(state);

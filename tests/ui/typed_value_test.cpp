@@ -13,7 +13,7 @@
 namespace strata::ui {
 namespace {
 
-constexpr int kEnter = 1, kEscape = 2, kTab = 3;
+constexpr int kEnter = 1, kEscape = 2, kTab = 3, kBackspace = 4;
 
 // A Dear ImGui context without a window, as the editor's backend sets one up: its display, the
 // keys the tests press, a font atlas built.
@@ -26,6 +26,7 @@ void startImGui() {
   io.KeyMap[ImGuiKey_Enter] = kEnter;
   io.KeyMap[ImGuiKey_Escape] = kEscape;
   io.KeyMap[ImGuiKey_Tab] = kTab;
+  io.KeyMap[ImGuiKey_Backspace] = kBackspace;
   unsigned char* pixels = nullptr;
   int w = 0, h = 0;
   io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
@@ -161,6 +162,24 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   typeInto("3 xyz", &dropped);
   EXPECT_EQ(stored, 3.0);
   takeUnitConversion();
+  EXPECT_EQ(takeUnitConversion(), "");
+  // The number already in the field: converted all the same (1 mm and "1cm" typed: 10 mm).
+  stored = 1.0;
+  typeInto("1cm", &dropped);
+  EXPECT_EQ(stored, 10.0);
+  EXPECT_EQ(takeUnitConversion(), "1 cm is 10 mm");
+  // A unit typed, then the number deleted and typed again: the deletion took the unit along.
+  frame(/*focus=*/true);
+  frame();
+  for (const char* c = "3in"; *c; ++c) {
+    ImGui::GetIO().AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+    frame();
+  }
+  press(kBackspace);
+  ImGui::GetIO().AddInputCharacter(numberFieldCharacter('3', &dropped));
+  frame();
+  press(kEnter);
+  EXPECT_EQ(stored, 3.0);
   EXPECT_EQ(takeUnitConversion(), "");
   lengthUnit.clear();  // an angle, a count: the number as typed
   typeInto("4 cm", &dropped);

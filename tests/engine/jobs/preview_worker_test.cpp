@@ -331,9 +331,11 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
   NodePtr rod = cylinder(0.3, 6.0);
   NodePtr longRod = cylinder(0.2, 600.0, {0.5, 0.5, 0.0});
   NodePtr inside = sphere(0.4, {-0.5, -0.5, 0.5});
+  NodePtr pin = cylinder(0.1, 5.0, {-0.5, 0.5, 0.0});  // a third that sticks out
   auto scene = std::make_shared<const Scene>(
-      makeScene(op(NodeKind::Difference, {box({2, 2, 2}), rod, longRod, inside}), 64));
-  worker.request(scene, 64, false, 1, {rod->id, longRod->id, inside->id});
+      makeScene(op(NodeKind::Difference, {box({2, 2, 2}), rod, longRod, inside, pin}), 64));
+  const std::vector<NodeId> ghosts{rod->id, longRod->id, inside->id, pin->id};
+  worker.request(scene, 64, false, 1, ghosts);
   ASSERT_TRUE(log.waitFor(2));
   ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
   const ResultPtr r = log.results().back();
@@ -343,7 +345,7 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
   const double h = grid.h;
   std::map<NodeId, Bounds> drawn;
   for (const GhostSplats& g : r->ghosts) drawn[g.id] = splatBounds(*g.splats);
-  ASSERT_EQ(drawn.size(), 3u);
+  ASSERT_EQ(drawn.size(), 4u);
 
   const Bounds rodBox = nodeBounds(rod, scene->root, glm::dmat4(1.0));
   ASSERT_LT(rodBox.min.z, window.min.z - 1.0);  // it does reach beyond the result's grid
@@ -364,6 +366,23 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
   EXPECT_EQ(ghostWindow(*scene, inside->id, grid), grid);
   const Bounds insideBox = nodeBounds(inside, scene->root, glm::dmat4(1.0));
   EXPECT_NEAR(drawn[inside->id].max.x, insideBox.max.x, 1.01 * h);
+
+  // An edit that changes no part (a rename) is shown from the cache at once, every ghost
+  // included (one evaluator for all ghosts dropped the first ghost's LDIs while it evaluated
+  // the next: the edit went coarse and computed them again).
+  auto renamed = std::make_shared<Scene>(*scene);
+  auto root = std::make_shared<Node>(*renamed->root);
+  root->name = "renamed";
+  renamed->root = root;
+  const size_t before = log.results().size();
+  worker.request(renamed, 64, false, 2, ghosts);
+  ASSERT_TRUE(log.waitFor(before + 1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const std::vector<ResultPtr> after = log.results();
+  ASSERT_EQ(after.size(), before + 1) << "no coarse pass first";
+  expectShows(after.back(), 2, 64, false);
+  EXPECT_EQ(after.back()->stats.computed, 0);
+  EXPECT_EQ(after.back()->ghosts.size(), 4u);
 }
 
 // Regions of host memory lent as the editor's mapped buffers are (ui/mapped_splat_slots.h),
