@@ -483,13 +483,16 @@ TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
   const NodeId difference = where.parent->id;
   ASSERT_EQ(where.index, 1);
   const NodePtr before = state.document.root();
-  state.selection = {hole};
-  cutSelection(state);
-  ASSERT_FALSE(findNode(state.document.root(), hole));
-  state.selection.clear();
-  pasteClipboard(state);
-  ASSERT_EQ(state.selection.size(), 1u);
-  const NodeId back = state.selection[0];
+  // Cuts `id` and pastes with nothing selected; returns the part pasted (0: none).
+  const auto cutAndPasteBack = [&](NodeId id) -> NodeId {
+    state.selection = {id};
+    cutSelection(state);
+    if (findNode(state.document.root(), id)) return 0;
+    state.selection.clear();
+    pasteClipboard(state);
+    return state.selection.size() == 1 ? state.selection[0] : 0;
+  };
+  const NodeId back = cutAndPasteBack(hole);
   ASSERT_TRUE(locateNode(state.document.root(), back, &where));
   EXPECT_EQ(where.parent->id, difference);
   EXPECT_EQ(where.index, 1);
@@ -500,13 +503,7 @@ TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
   EXPECT_NE(state.log.back().text.find("back in"), std::string::npos) << state.log.back().text;
   // The base cut (an empty base holds its place, so that the holes cut nothing) and pasted:
   // back first, the empty base gone, the holes cutting it again.
-  state.selection = {plate};
-  cutSelection(state);
-  ASSERT_FALSE(findNode(state.document.root(), plate));
-  state.selection.clear();
-  pasteClipboard(state);
-  ASSERT_EQ(state.selection.size(), 1u);
-  const NodeId plateBack = state.selection[0];
+  const NodeId plateBack = cutAndPasteBack(plate);
   ASSERT_TRUE(locateNode(state.document.root(), plateBack, &where));
   EXPECT_EQ(where.parent->id, difference);
   EXPECT_EQ(where.index, 0);
