@@ -669,10 +669,18 @@ void pasteClipboard(EditorState& state) {
         logInfo(state, displayName(*findNode(state.document.root(), id)) + " is back in " +
                            displayName(*parent) + ", in its place");
       } else if (originalThere) {
-        // A copy beside its original: a name of its own, as Ctrl+D's copies.
+        // A copy beside its original: a name of its own, as Ctrl+D's copies; with nothing
+        // selected onto the original (as Ctrl+D), not the whole scene (a hole's copy pasted with
+        // nothing selected cut everything: an artist's re-test).
         auto named = std::make_shared<Node>(*copy.part);
         named->name = copyName(state.document.root(), copy.part->name);
-        id = placeNew(state, named, copy.mode);
+        const NodePtr original = findNode(state.document.root(), copy.part->id);
+        const NodeId onto = state.selection.empty() && original &&
+                                    original->kind == copy.part->kind &&
+                                    original->id != state.document.root()->id
+                                ? original->id
+                                : 0;
+        id = placeNew(state, named, copy.mode, "", onto);
       } else {
         id = placeNew(state, copy.part, copy.mode);
       }

@@ -117,8 +117,11 @@ unsigned numberFieldBeingTyped() {
 
 void numberFieldNext(const char* label) {
   // InputScalar draws its text field as InputText("") inside PushID(label): that field's id.
+  // Without keeping it alive (GetID does in Dear ImGui 1.86): an InputInt with step buttons then
+  // no longer saw its text field as the group's active item and asserted on the first character
+  // typed (the export dialog's resolution ended the editor).
   ImGui::PushID(label);
-  const ImGuiID id = ImGui::GetID("");
+  const ImGuiID id = ImGui::GetCurrentWindow()->GetIDNoKeepAlive("");
   ImGui::PopID();
   if (std::find(gNumberFields.begin(), gNumberFields.end(), id) == gNumberFields.end())
     gNumberFields.push_back(id);

@@ -267,7 +267,17 @@ NodePtr removeNode(const NodePtr& root, NodeId id) {
 }
 
 std::string copyName(const NodePtr& root, const std::string& name) {
-  const std::string base = name.empty() ? "copy" : name + " copy";
+  // A copy of a copy is another copy of the same part ("x copy 2", not "x copy copy").
+  std::string stem = name;
+  const size_t at = stem.rfind(" copy");
+  if (at != std::string::npos) {
+    const std::string rest = stem.substr(at + 5);
+    const bool number = rest.size() > 1 && rest[0] == ' ' &&
+                        rest.find_first_not_of("0123456789", 1) == std::string::npos;
+    if (rest.empty() || number) stem.resize(at);
+  }
+  if (stem == "copy") stem.clear();
+  const std::string base = stem.empty() ? "copy" : stem + " copy";
   std::unordered_set<std::string> taken;
   std::vector<const Node*> stack{root.get()};
   while (!stack.empty()) {

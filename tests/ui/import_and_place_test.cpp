@@ -520,6 +520,29 @@ TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
   EXPECT_TRUE(findNode(state.document.root(), state.selection[0]));
 }
 
+// A hole copied and pasted with nothing selected cut the whole scene (an artist's re-test): the
+// copy goes onto its original, as Ctrl+D's, and cuts what the original cuts.
+TEST(Roles, ACopyPastedWithNothingSelectedGoesBesideItsOriginal) {
+  EditorState state;
+  const auto [plate, hole, second] = plateWithTwoHoles(state);
+  state.placeMode = PlaceMode::Add;
+  clearSelection(state);
+  addPrimitive(state, NodeKind::Torus);  // beside the drilled plate, under the root
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId difference = where.parent->id;
+  const NodeKind rootKind = state.document.root()->kind;
+  state.selection = {hole};
+  copySelection(state);
+  clearSelection(state);
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId copy = state.selection[0];
+  EXPECT_EQ(roleOf(state.document.root(), copy), ChildRole::Cut);
+  EXPECT_TRUE(isInSubtree(state.document.root(), difference, copy));
+  EXPECT_EQ(state.document.root()->kind, rootKind);
+}
+
 // A re-test found that dropping a cutter onto the cutter below it moved it after that one and
 // said only "cuts from ...": a drop within its own parent that keeps its role changes only its
 // place, and says where it goes before and after the release.

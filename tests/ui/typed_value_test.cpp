@@ -221,6 +221,36 @@ TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
   ImGui::DestroyContext();
 }
 
+// An InputInt with step buttons (the export dialog's resolution) announced as a number field:
+// a character typed into it ended the editor (numberFieldNext kept its text field alive, so the
+// InputInt's group did not take it as its active item and Dear ImGui asserted).
+TEST(NumberField, AnInputIntWithStepsTakesTyping) {
+  startImGui();
+  ImGuiIO& io = ImGui::GetIO();
+  int value = 192;
+  bool focus = true;
+  const auto frame = [&] {
+    ImGui::NewFrame();
+    ImGui::Begin("w");
+    if (focus) ImGui::SetKeyboardFocusHere();
+    focus = false;
+    numberFieldNext("cells");
+    ImGui::InputInt("cells", &value, 64, 256);
+    ImGui::End();
+    ImGui::Render();
+  };
+  frame();
+  frame();
+  EXPECT_TRUE(typingIntoNumberField());
+  std::string dropped;
+  for (const char* c = "1,5"; *c; ++c) {
+    io.AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+    frame();
+  }
+  EXPECT_EQ(value, 1);  // an integer field: "1.5" is 1
+  ImGui::DestroyContext();
+}
+
 TEST_F(TypedField, EscapeKeepsTheValue) {
   frame(/*focus=*/true);
   frame();

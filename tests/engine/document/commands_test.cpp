@@ -84,6 +84,12 @@ TEST(DocumentCommands, DuplicateGivesFreshIdsAndFollowsInnerInstances) {
   again = duplicateNode(again, 3, maxNodeId(again) + 1, &third);
   EXPECT_EQ(findNode(again, second)->name, "difference 3 copy 2");
   EXPECT_EQ(findNode(again, third)->name, "difference 3 copy 3");
+  // A copy of a copy (Ctrl+D keeps the copy selected): another copy of the part.
+  NodeId fourth = 0;
+  again = duplicateNode(again, third, maxNodeId(again) + 1, &fourth);
+  EXPECT_EQ(findNode(again, fourth)->name, "difference 3 copy 4");
+  EXPECT_EQ(copyName(again, "copy"), "copy");
+  EXPECT_EQ(copyName(again, "a copy machine"), "a copy machine copy");
   EXPECT_THROW(duplicateNode(root, 1, 8, &copy), Error);  // root
   EXPECT_THROW(duplicateNode(root, 2, 3, &copy), Error);  // ids in use
 }
