@@ -3,7 +3,9 @@
 // ImGui without a window: frames with characters and keys fed to its IO, as the editor's GLFW
 // backend feeds them.
 #include <gtest/gtest.h>
+
 #include <imgui.h>
+#include <functional>
 
 #include <string>
 #include <vector>
@@ -187,20 +189,19 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   EXPECT_EQ(takeUnitConversion(), "");
 }
 
-// The same in a number field of its own (the status bar's move step is an InputDouble): the
-// comma is the point there too (a review found "9,5" still became 95 in such fields).
-TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
+// Types `text` (through numberFieldCharacter, as the editor feeds characters) into the number
+// field that `widget` draws (announced by numberFieldNext), then Enter, in an ImGui context of
+// its own; returns the letters the field dropped.
+std::string typeIntoNumberField(const std::function<void()>& widget, const char* text) {
   startImGui();
   ImGuiIO& io = ImGui::GetIO();
-  double value = 1.0;
   bool focus = true;
   const auto frame = [&] {
     ImGui::NewFrame();
     ImGui::Begin("w");
     if (focus) ImGui::SetKeyboardFocusHere();
     focus = false;
-    numberFieldNext("step");
-    ImGui::InputDouble("step", &value, 0.0, 0.0, "%.4g");
+    widget();
     ImGui::End();
     ImGui::Render();
   };
@@ -208,7 +209,7 @@ TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
   frame();
   EXPECT_TRUE(typingIntoNumberField());
   std::string dropped;
-  for (const char* c = "9,5"; *c; ++c) {
+  for (const char* c = text; *c; ++c) {
     io.AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
     frame();
   }
@@ -216,39 +217,36 @@ TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
   frame();
   io.KeysDown[kEnter] = false;
   frame();
+  ImGui::DestroyContext();
+  return dropped;
+}
+
+// The same in a number field of its own (the status bar's move step is an InputDouble): the
+// comma is the point there too (a review found "9,5" still became 95 in such fields).
+TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
+  double value = 1.0;
+  const std::string dropped = typeIntoNumberField(
+      [&] {
+        numberFieldNext("step");
+        ImGui::InputDouble("step", &value, 0.0, 0.0, "%.4g");
+      },
+      "9,5");
   EXPECT_EQ(value, 9.5);
   EXPECT_TRUE(dropped.empty()) << dropped;
-  ImGui::DestroyContext();
 }
 
 // An InputInt with step buttons (the export dialog's resolution) announced as a number field:
 // a character typed into it ended the editor (numberFieldNext kept its text field alive, so the
 // InputInt's group did not take it as its active item and Dear ImGui asserted).
 TEST(NumberField, AnInputIntWithStepsTakesTyping) {
-  startImGui();
-  ImGuiIO& io = ImGui::GetIO();
   int value = 192;
-  bool focus = true;
-  const auto frame = [&] {
-    ImGui::NewFrame();
-    ImGui::Begin("w");
-    if (focus) ImGui::SetKeyboardFocusHere();
-    focus = false;
-    numberFieldNext("cells");
-    ImGui::InputInt("cells", &value, 64, 256);
-    ImGui::End();
-    ImGui::Render();
-  };
-  frame();
-  frame();
-  EXPECT_TRUE(typingIntoNumberField());
-  std::string dropped;
-  for (const char* c = "1,5"; *c; ++c) {
-    io.AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
-    frame();
-  }
+  typeIntoNumberField(
+      [&] {
+        numberFieldNext("cells");
+        ImGui::InputInt("cells", &value, 64, 256);
+      },
+      "1,5");
   EXPECT_EQ(value, 1);  // an integer field: "1.5" is 1
-  ImGui::DestroyContext();
 }
 
 TEST_F(TypedField, EscapeKeepsTheValue) {
