@@ -539,7 +539,26 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
 
 void deleteSelection(EditorState& state) {
   if (state.selection.empty()) return;
-  std::vector<NodeId> ids = state.selection;
+  // An empty base (left in a difference's first place where its base was cut or deleted, so
+  // that its cutters do not become the base) would come back at once as another: said, not
+  // removed (Delete seemed to do nothing: an artist's re-test).
+  std::vector<NodeId> ids;
+  for (NodeId id : state.selection) {
+    NodeLocation at;
+    const NodePtr node = findNode(state.document.root(), id);
+    if (node && isOperation(node->kind) && node->children.empty() &&
+        locateNode(state.document.root(), id, &at) && at.parent &&
+        childRole(*at.parent, at.index) == ChildRole::Base && at.parent->children.size() > 1) {
+      logWarning(state, displayName(*node) + " holds the base's place in " +
+                            displayName(*at.parent) +
+                            " (without a base its cutters would become one): put a part into it, "
+                            "or delete " +
+                            displayName(*at.parent));
+      continue;
+    }
+    ids.push_back(id);
+  }
+  if (ids.empty()) return;
   if (ids.size() == 1) {
     guarded(state, [&] { state.document.remove(ids[0]); });
   } else {

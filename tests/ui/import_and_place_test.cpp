@@ -543,6 +543,27 @@ TEST(Roles, ACopyPastedWithNothingSelectedGoesBesideItsOriginal) {
   EXPECT_EQ(state.document.root()->kind, rootKind);
 }
 
+// Deleting a difference's base leaves an empty base holding its place; Delete on that did
+// nothing visible and said nothing (an artist's re-test): it says why it stays.
+TEST(Roles, DeletingAnEmptyBaseSaysWhyItStays) {
+  EditorState state;
+  const auto [plate, hole, second] = plateWithTwoHoles(state);
+  NodeLocation where;
+  ASSERT_TRUE(locateNode(state.document.root(), hole, &where));
+  const NodeId difference = where.parent->id;
+  state.selection = {plate};
+  deleteSelection(state);
+  const NodeId emptyBase = findNode(state.document.root(), difference)->children[0]->id;
+  ASSERT_TRUE(findNode(state.document.root(), emptyBase)->children.empty());
+  const NodePtr before = state.document.root();
+  state.selection = {emptyBase};
+  deleteSelection(state);
+  EXPECT_TRUE(findNode(state.document.root(), emptyBase));
+  EXPECT_EQ(state.document.root(), before) << "no edit, no undo step";
+  EXPECT_NE(state.log.back().text.find("holds the base's place"), std::string::npos)
+      << state.log.back().text;
+}
+
 // A re-test found that dropping a cutter onto the cutter below it moved it after that one and
 // said only "cuts from ...": a drop within its own parent that keeps its role changes only its
 // place, and says where it goes before and after the release.
