@@ -49,15 +49,6 @@ void hashLattice(Hasher& h, const Grid& grid) {
   h.add(grid.origin.x).add(grid.origin.y).add(grid.origin.z).add(grid.h);
 }
 
-// Whether `content` lies within `grid`'s window with two cells to spare on every side (what an
-// offset reads beyond a surface: the node where its sign changes and the gradient's neighbour).
-bool withinWithRoom(const Bounds& content, const Grid& grid) {
-  const Bounds window = grid.bounds();
-  const glm::dvec3 room(2.0 * grid.h);
-  return glm::all(glm::greaterThanEqual(content.min - room, window.min)) &&
-         glm::all(glm::lessThanEqual(content.max + room, window.max));
-}
-
 // The primitive's parameters in the cache key, as its table entry lists them.
 void hashPrimitiveParams(Hasher& h, NodeKind kind, const PrimitiveParams& p) {
   for (const PrimitiveParam& param : primitiveInfo(kind)->params) {
@@ -320,6 +311,13 @@ int64_t haloCells(const NodePtr& node, const NodePtr& root, double h, int depth)
 
 }  // namespace
 
+bool withinWithRoom(const Bounds& content, const Grid& grid) {
+  const Bounds window = grid.bounds();
+  const glm::dvec3 room(2.0 * grid.h);
+  return glm::all(glm::greaterThanEqual(content.min - room, window.min)) &&
+         glm::all(glm::lessThanEqual(content.max + room, window.max));
+}
+
 bool hasModifier(const NodePtr& root) {
   return haloCells(root, root, 1.0, 0) > 0;  // every modifier's halo is at least one offset's
 }
@@ -374,12 +372,11 @@ void refuseHiddenRoot(const Scene& scene) {
     throw Error("the scene is empty: its root, " + nodeLabel(*scene.root) +
                 ", is hidden, so nothing is visible to evaluate");
 }
-}  // namespace
 
 // "" where the scene has no bounds of its own or its parts lie within them; else what the bounds
 // cut off (a box of 1 x 1 x 1.2 in bounds 1 x 1 x 1 was cut flat without a word: a numbers
 // check), for EvalResult::warnings.
-static std::string boundsCutWarning(const Scene& scene) {
+std::string boundsCutWarning(const Scene& scene) {
   if (!scene.settings.hasBounds || !scene.root) return "";
   const Bounds parts = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
   const Bounds& box = scene.settings.bounds;
@@ -403,6 +400,7 @@ static std::string boundsCutWarning(const Scene& scene) {
   return "the scene's own bounds (settings.bounds) cut its parts, which reach " + sides +
          ": the result is cut flat there; widen the bounds or remove them";
 }
+}  // namespace
 
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;

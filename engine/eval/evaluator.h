@@ -196,6 +196,11 @@ class Evaluator {
   std::unordered_map<const TriangleMesh*, MeshHashMemo> meshHashes_;
 };
 
+// Whether `content` lies within `grid`'s window with two cells (kGuardCells) to spare on every
+// side: what evaluating there does not clip (an offset reads beyond a surface: the node where its
+// sign changes and the gradient's neighbour).
+bool withinWithRoom(const Bounds& content, const Grid& grid);
+
 // Whether the tree under `root` holds a modifier (offset, shell, round, fillet) that takes part:
 // visible, or stood for by an instance (modifierHaloCells > 0).
 bool hasModifier(const NodePtr& root);

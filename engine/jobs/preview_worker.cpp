@@ -211,11 +211,7 @@ Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid) {
   if (!node) return grid;
   const Bounds content = nodeBounds(node, scene.root, parentWorldMatrix(scene.root, id));
   if (content.empty()) return grid;
-  const Bounds window = grid.bounds();
-  const glm::dvec3 room(kGuardCells * grid.h);
-  if (glm::all(glm::greaterThanEqual(content.min - room, window.min)) &&
-      glm::all(glm::lessThanEqual(content.max + room, window.max)))
-    return grid;
+  if (withinWithRoom(content, grid)) return grid;
   // A modifier's work grows with its window's nodes (up to 27 times the grid's here): its ghost
   // stays on the result's grid.
   if (hasModifier(node)) return grid;
@@ -332,8 +328,9 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
       if (onlyIfCached) {
         std::optional<EvalResult> cached =
             ghost.evaluator->evaluateCached(*request.scene, own, progress, ghostOptions);
-        if (!cached) {
-          ghostEvaluators_[kept.id] = std::move(ghost);
+        if (!cached) {  // every ghost's evaluator kept for the pass that computes
+          ghostsKept[kept.id] = std::move(ghost);
+          for (auto& [id, kept] : ghostsKept) ghostEvaluators_[id] = std::move(kept);
           return false;
         }
         kept.ldi = cached->root;
