@@ -33,8 +33,9 @@ namespace {
 
 std::vector<std::string> editorValuedOptions() {
   std::vector<std::string> valued = kValuedOptions;
-  for (const char* o : {"--width", "--height", "--screenshot", "--view", "--measure-latency",
-                        "--move-leaf", "--section", "--measure-frames", "--select", "--splats"})
+  for (const char* o :
+       {"--width", "--height", "--screenshot", "--view", "--measure-latency", "--move-leaf",
+        "--section", "--measure-frames", "--select", "--splats", "--edit-wait"})
     valued.push_back(o);
   return valued;
 }
@@ -424,6 +425,7 @@ int runEdit(const std::vector<std::string>& argv) {
     options.sceneAsTemplate = args.positional().empty();  // the demo: never saved over
     chooseEditorBackend(args, &options);
     options.splatPrimitive = parseSplats(args);
+    options.editResultWaitSeconds = args.number("--edit-wait", 8.0, 0.0, 1000.0) / 1000.0;
     options.width = args.integer("--width", 1600, 320, 8192);
     options.height = args.integer("--height", 1000, 240, 8192);
     const std::string screenshot = args.text("--screenshot", "");

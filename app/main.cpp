@@ -86,6 +86,9 @@ const char* kUsageOptions =
     "                             draws fastest)\n"
     "  --measure-latency N --move-leaf NAME   edit: edit-to-screen time of N moves of a leaf\n"
     "  --drag                     with --measure-latency: the N moves as one drag (drafts)\n"
+    "  --edit-wait MS             edit: how long a frame that sent an edit waits for its result\n"
+    "                             before drawing the view (default 8; 0: the result is drawn by\n"
+    "                             the frame after its arrival)\n"
     "  --measure-frames S         edit: UI time per frame while the engine evaluates, S seconds\n"
     "\n";
 const char* kUsageTail =

@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <deque>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 
 #include "engine/document/commands.h"
@@ -34,6 +36,30 @@
 #include "ui/window_redraw.h"
 
 namespace strata::ui {
+
+struct Editor::ResultSignal {
+  // Worker thread: a result was published.
+  void notify() {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      ++published;
+    }
+    changed.notify_all();
+  }
+  uint64_t count() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return published;
+  }
+  // UI thread: waits until more than `seen` results were published, for at most `seconds`.
+  bool waitPast(uint64_t seen, double seconds) {
+    std::unique_lock<std::mutex> lock(mutex);
+    return changed.wait_for(lock, std::chrono::duration<double>(seconds),
+                            [&] { return published > seen; });
+  }
+  std::mutex mutex;
+  std::condition_variable changed;
+  uint64_t published = 0;
+};
 
 namespace {
 // Keys and typed characters, between GLFW and ImGui. ImGui 1.86 samples key state once a frame:
@@ -217,8 +243,12 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
       s.splatTransfer = std::string("host upload (") + e.what() + ")";
     }
   }
+  resultSignal_ = std::make_shared<ResultSignal>();
   worker_ = std::make_unique<PreviewWorker>(options_.makeBackend(), options_.coarseResolution,
-                                            [] { glfwPostEmptyEvent(); });
+                                            [signal = resultSignal_] {
+                                              signal->notify();
+                                              glfwPostEmptyEvent();
+                                            });
   worker_->setHostSplats(gl_->copier == nullptr);
   if (!gl_->copier) lendMappedBuffers();
   s.backendDescription = worker_->backendDescription();
@@ -453,16 +483,41 @@ bool Editor::requestPreviewIfNeeded() {
   return true;
 }
 
+bool Editor::takeResult() {
+  EditorState& s = *state_;
+  auto result = worker_->takeResult();
+  if (!result) return false;
+  // A result for an emptied scene arrives late: ignore it.
+  if (!(requestedEmpty_ && result->tag != s.document.revision())) applyResult(result);
+  return true;
+}
+
 void Editor::pumpPreview() {
   EditorState& s = *state_;
   maintainMappedBuffers();
   stageMore();
-  if (auto result = worker_->takeResult()) {
-    // A result for an emptied scene arrives late: ignore it.
-    if (!(requestedEmpty_ && result->tag != s.document.revision())) applyResult(result);
-  }
+  takeResult();
   s.worker = worker_->status();
   requestPreviewIfNeeded();
+}
+
+double Editor::awaitEditResult() {
+  if (awaitUntil_ <= 0.0) return 0.0;
+  const double until = awaitUntil_;
+  awaitUntil_ = 0.0;
+  Stopwatch waited;
+  const auto shown = [this] {
+    const PreviewResult* p = state_->preview.get();
+    return p && p->tag == requestedRevision_;
+  };
+  uint64_t seen = awaitFromCount_;
+  while (!shown()) {
+    const double left = until - glfwGetTime();
+    if (left <= 0.0 || !resultSignal_->waitPast(seen, left)) break;
+    seen = resultSignal_->count();
+    if (takeResult()) panelsStale_ = true;  // the status bar and panels show the last result
+  }
+  return waited.seconds();
 }
 
 bool Editor::waitForPreview(double timeoutSeconds) {
@@ -647,6 +702,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   gl_->frameClock.restart();  // the status bar shows the previous frame's drawing time
   s.now = glfwGetTime() - startTime_;
 
+  panelsStale_ = false;
   rememberSelection(s);  // before this frame's input changes it (undo brings it back)
   deliverKeyEvents();
   // Said once the field is left (or another is typed into: Tab), for the field it was typed in.
@@ -736,6 +792,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   gl_->viewport.drawAnnotations(s, rect);
   drawViewportHints(s, rect, gl_->viewport.camera);
   ImGui::Render();
+  const double awaitedSeconds = awaitEditResult();
 
   updateLeafStyles();
   updateGhosts();
@@ -784,7 +841,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   }
   if (options_.slowFrameSeconds > 0.0)
     std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));
-  s.frameMs = gl_->frameClock.seconds() * 1000.0;
+  s.frameMs = (gl_->frameClock.seconds() - awaitedSeconds) * 1000.0;  // drawing, not waiting
 
   gl_->window.setTitle("Strata \u2014 " + s.document.title());
   autosave();
@@ -806,15 +863,21 @@ bool Editor::frame() {
     activeUntil_ = state_->now + 0.5;
   // An edit made since the last frame without input (a dialog's result, a script, a test) is
   // sent to the worker before sleeping: its result wakes the loop (glfwPostEmptyEvent).
+  const uint64_t resultsBefore = resultSignal_->count();
   const bool requested = requestPreviewIfNeeded();
   const bool working =
       state_->worker.busy || (state_->exportJob && state_->exportJob->status().running);
-  if (requested && !input)
-    // An edit just went to the engine and nothing else moves: a frame now would show the old
-    // result. Wait a little for the new one (its arrival wakes the loop): on a fast engine the
-    // edit then reaches the screen in this frame instead of the next.
-    lastWaitSeconds_ = 0.008;
-  else if (state_->now < activeUntil_)
+  if (requested && !input && options_.editResultWaitSeconds > 0.0) {
+    // An edit just went to the engine and nothing else moves: a frame drawn now would show the
+    // old result. This one is built while the engine works and waits for the new result just
+    // before drawing the view (awaitEditResult): on a fast engine the edit then reaches the
+    // screen in this frame instead of the next, and its wait overlaps building the panels.
+    awaitUntil_ = glfwGetTime() + options_.editResultWaitSeconds;
+    awaitFromCount_ = resultsBefore;
+    lastWaitSeconds_ = 0.0;
+  } else if (panelsStale_) {
+    lastWaitSeconds_ = 0.0;  // the last frame's panels were built before its result came
+  } else if (state_->now < activeUntil_)
     lastWaitSeconds_ = 0.0;
   else
     lastWaitSeconds_ = working ? 0.05 : 0.5;  // progress shows at 20 frames a second

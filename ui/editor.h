@@ -51,7 +51,11 @@ struct EditorOptions {
   // Tests: every frame takes at least this long (a slow machine), to show that input made
   // during a slow frame is still handled.
   double slowFrameSeconds = 0.0;
-  int coarseResolution = 96;                                  // of previews while dragging
+  int coarseResolution = 96;  // of previews while dragging
+  // A frame that sends an edit to the engine is built (panels, input) while the engine works,
+  // then waits up to this long for the edit's result before drawing the view, so that on a fast
+  // engine the edit reaches the screen in that frame.
+  double editResultWaitSeconds = 0.008;
   SplatPrimitive splatPrimitive = SplatPrimitive::Automatic;  // how the viewport draws splats
 };
 
@@ -147,8 +151,21 @@ class Editor {
   void updateGhosts();
   void autosave();
   void drawFrame(std::vector<uint8_t>* capture, int* width, int* height);
+  // Takes the worker's newest result, if any, and shows it (unless it is for a scene emptied
+  // since). Returns whether one was taken.
+  bool takeResult();
+  // In a frame that sent an edit (awaitUntil_ set): waits, until awaitUntil_, for the result of
+  // the revision sent and takes it; the panels built before it are redrawn by the next frame.
+  // Returns the seconds waited.
+  double awaitEditResult();
 
   EditorOptions options_;
+  // Counts the worker's results (its onResult, on the worker's thread) for awaitEditResult.
+  struct ResultSignal;
+  std::shared_ptr<ResultSignal> resultSignal_;
+  double awaitUntil_ = 0.0;      // glfwGetTime() until which this frame awaits its edit's result
+  uint64_t awaitFromCount_ = 0;  // the signal's count when the edit was sent
+  bool panelsStale_ = false;     // a result was taken after the panels were built
   std::unique_ptr<EditorState> state_;
   std::unique_ptr<Gl> gl_;
   std::unique_ptr<PreviewWorker> worker_;

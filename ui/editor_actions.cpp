@@ -571,6 +571,16 @@ void deleteSelection(EditorState& state) {
   pruneSelection(state);
 }
 
+// The node whose child `id` is (not through instances); null for the root or when absent.
+static NodePtr parentOf(const NodePtr& node, NodeId id) {
+  if (!node) return nullptr;
+  for (const NodePtr& child : node->children) {
+    if (child->id == id) return node;
+    if (NodePtr found = parentOf(child, id)) return found;
+  }
+  return nullptr;
+}
+
 void duplicateSelection(EditorState& state) {
   if (state.selection.empty()) return;
   // Each copy does what its original does (Document::duplicate) and sits one move-snap step
@@ -579,6 +589,7 @@ void duplicateSelection(EditorState& state) {
   // steps add up to a row.
   const double step = state.snap.step;
   std::vector<NodeId> copies;
+  int furthest = 1;  // grid steps from its original of the copy placed furthest
   state.document.beginInteraction();
   // A part inside another selected part is copied with it, once.
   for (NodeId id : outermostSelected(state.document.root(), state.selection))
@@ -589,18 +600,40 @@ void duplicateSelection(EditorState& state) {
       // A world move d is the local move P^-1 d, P the parent's object-to-world matrix.
       const glm::dvec3 local =
           glm::dvec3(glm::inverse(parentWorldMatrix(root, copy)) * glm::dvec4(step, 0, 0, 0));
-      Transform t = findNode(root, copy)->transform;
+      const NodePtr node = findNode(root, copy);
+      Transform t = node->transform;
       t.translate += local;
+      // Pressed again on the original, the next copy goes one step further than the copies
+      // already there (it landed on the first copy, looking like one part).
+      const NodePtr parent = parentOf(root, copy);
+      const auto taken = [&](const glm::dvec3& at) {
+        if (!parent) return false;
+        for (const NodePtr& sibling : parent->children)
+          if (sibling->id != copy && sibling->kind == node->kind &&
+              glm::length(sibling->transform.translate - at) <= 1e-6 * glm::length(local))
+            return true;
+        return false;
+      };
+      int steps = 1;
+      for (; steps <= 1000 && taken(t.translate); ++steps) t.translate += local;
+      furthest = std::max(furthest, steps);
       state.document.setTransform(copy, t);
     });
   state.document.endInteraction();
   if (copies.empty()) return;
   state.selection = copies;
-  char text[96];
-  std::snprintf(text, sizeof(text), "%s one grid step (%.4g %s) along +x from %s",
-                copies.size() == 1 ? "the copy sits" : "the copies sit", step,
-                unitSymbol(state.document.scene().settings.unit),
-                copies.size() == 1 ? "its original" : "their originals");
+  char text[160];
+  if (furthest == 1)
+    std::snprintf(text, sizeof(text), "%s one grid step (%.4g %s) along +x from %s",
+                  copies.size() == 1 ? "the copy sits" : "the copies sit", step,
+                  unitSymbol(state.document.scene().settings.unit),
+                  copies.size() == 1 ? "its original" : "their originals");
+  else
+    std::snprintf(text, sizeof(text),
+                  "%s %d grid steps (%.4g %s each) along +x from %s, beside the copies there",
+                  copies.size() == 1 ? "the copy sits" : "the copies sit up to", furthest, step,
+                  unitSymbol(state.document.scene().settings.unit),
+                  copies.size() == 1 ? "its original" : "their originals");
   logInfo(state, text);
 }
 

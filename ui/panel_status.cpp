@@ -299,6 +299,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   numberFieldNext("move step");
   if (ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str()))
     state.snapFollowsGrid = false;
+  if (convertLengthTypedIntoInput(&state.snap.step, unitSymbol(scene.settings.unit)))
+    state.snapFollowsGrid = false;  // "1cm" typed: 10 mm
   state.snap.step = std::max(state.snap.step, 1e-9);
   ImGui::SameLine();
   if (ImGui::Checkbox("= grid", &state.snapFollowsGrid) && state.snapFollowsGrid)

@@ -161,6 +161,25 @@ bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit
   return commit(changed, value, lengthUnit);
 }
 
+bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit) {
+  const ImGuiID id = ImGui::GetItemID();
+  if (id == 0 || gDropped.id != id) return false;
+  if (ImGui::IsItemActive()) {
+    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace)) ||
+        ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)))
+      gDropped.letters.clear();
+    return false;
+  }
+  if (!ImGui::IsItemDeactivated() ||
+      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) {
+    gDropped = {};  // left by Escape (or long ago): nothing to convert
+    return false;
+  }
+  const double before = *value;
+  *value = convertTypedUnit(id, *value, lengthUnit);
+  return !gConversion.empty() && *value != before;
+}
+
 std::string takeUnitConversion() {
   std::string said;
   said.swap(gConversion);

@@ -19,6 +19,12 @@ namespace strata::ui {
 // said by takeUnitConversion.
 bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit = "");
 bool commitTypedValue(bool changed, int* value);
+// For a length typed into an InputDouble field (announced by numberFieldNext), which applies
+// its number at every keystroke: call right after it. On the frame the field is left, a length
+// unit typed after the number converts `*value` into `lengthUnit` (the scene's unit: "1cm" in a
+// mm field gives 10), said by takeUnitConversion; returns whether it did. A deletion drops the
+// unit typed before it; Escape (the field restores its value) converts nothing.
+bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit);
 // What the last commit converted ("1 cm is 10 mm"), once; "" for none. The editor says it in place
 // of "a unit typed is not converted" (the letters it was told of by numberFieldCharacter).
 std::string takeUnitConversion();

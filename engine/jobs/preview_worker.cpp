@@ -46,6 +46,7 @@ PreviewWorker::~PreviewWorker() {
     stopping_ = true;
     hasRequest_ = false;
     if (running_) running_->cancel();
+    if (ghostsRunning_) ghostsRunning_->cancel();
   }
   wake_.notify_all();
   thread_.join();
@@ -68,6 +69,7 @@ void PreviewWorker::cancel() {
     hasRequest_ = false;
     pending_ = Request{};
     if (running_) running_->cancel();
+    if (ghostsRunning_) ghostsRunning_->cancel();
   }
   idle_.notify_all();
 }
@@ -193,11 +195,23 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     wholeSeconds_ = passSeconds;
     wholeResolution_ = resolution;
   }
+  // The ghosts shown from now on: this result's (a ghost still to finish: as last shown).
+  lastGhosts_.clear();
+  for (const GhostSplats& g : result->ghosts) lastGhosts_[g.id] = g.splats;
+  for (auto it = lastGhostWindows_.begin(); it != lastGhostWindows_.end();)
+    it = lastGhosts_.count(it->first) ? std::next(it) : lastGhostWindows_.erase(it);
+  const bool ghostsToFinish = !deferredGhosts_.empty() && result->error.empty();
+  std::shared_ptr<const PreviewResult> published = result;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     finished_ = std::move(result);
   }
   if (onResult_) onResult_();
+  if (ghostsToFinish)
+    finishGhosts(request, published);
+  else if (deferredGhosts_.empty())
+    ghostEvaluators_.clear();  // no ghost evaluated alone any more
+  deferredGhosts_.clear();
   return true;
 }
 
@@ -234,6 +248,85 @@ Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid) {
     cells[a] = int(hi - lo);
   }
   return shifted.window(start, cells);
+}
+
+// The splats of a ghost's LDI, on the host (few; the UI uploads them).
+static std::shared_ptr<const HostSplats> hostGhost(Backend& backend, const LdiHandle& ldi,
+                                                   Progress& progress) {
+  SplatsHandle ghost = backend.splats(ldi, progress);
+  std::vector<Splat> host(ghost->count());
+  if (!host.empty()) ghost->copyToHost(host.data());
+  return std::make_shared<HostSplats>(std::move(host));
+}
+
+bool PreviewWorker::finishGhosts(const Request& request,
+                                 const std::shared_ptr<const PreviewResult>& shown) {
+  // Cancelled by stop and cancel(), not by a newer request: that one is served next, with these
+  // ghosts' evaluators warm (an edit's result is shown before its ghosts, and a drag's ghosts
+  // still follow the hand).
+  auto progress = std::make_shared<Progress>();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // Stopping, or cancel() since this pass began (a newer request() cancels it too, but leaves
+    // one pending).
+    if (stopping_ || (running_ && running_->cancelled() && !hasRequest_)) return false;
+    ghostsRunning_ = progress;
+  }
+  // By an evaluator of their own each (sharing the main one's cache would evaluate their leaves
+  // on one window and then the other on every pass; one for all ghosts would drop one ghost's
+  // LDIs while evaluating the next: an evaluation keeps what it and the one before used).
+  std::map<NodeId, GhostEvaluator> kept;
+  auto result = std::make_shared<PreviewResult>(*shown);
+  bool finished = true, changed = false;
+  try {
+    for (const DeferredGhost& deferred : deferredGhosts_) {
+      auto found = ghostEvaluators_.find(deferred.id);
+      GhostEvaluator& ghost = kept[deferred.id];
+      if (found != ghostEvaluators_.end() && found->second.backend == deferred.backend)
+        ghost = std::move(found->second);
+      if (!ghost.evaluator) {
+        ghost.backend = deferred.backend;
+        ghost.evaluator = std::make_unique<Evaluator>(
+            deferred.onCpu ? std::shared_ptr<Backend>(std::make_shared<CpuBackend>()) : backend_);
+      }
+      EvalOptions options = ghostOptions_;
+      options.alone = deferred.id;
+      const EvalResult evaluated =
+          ghost.evaluator->evaluateOn(*request.scene, deferred.window, *progress, options);
+      auto place = std::find_if(result->ghosts.begin(), result->ghosts.end(),
+                                [&](const GhostSplats& g) { return g.id == deferred.id; });
+      // The ghost shown stands where its evaluator computed nothing (it was made from this very
+      // LDI: an edit elsewhere, a rename).
+      if (place != result->ghosts.end() && evaluated.computed == 0 &&
+          lastGhostWindows_[deferred.id] == deferred.window)
+        continue;
+      auto splats = hostGhost(ghost.evaluator->backend(), evaluated.root, *progress);
+      lastGhosts_[deferred.id] = splats;
+      lastGhostWindows_[deferred.id] = deferred.window;
+      changed = true;
+      if (place != result->ghosts.end())
+        place->splats = std::move(splats);
+      else
+        result->ghosts.push_back(GhostSplats{deferred.id, std::move(splats)});
+    }
+  } catch (...) {  // cancelled, or out of memory: the result stands without these ghosts
+    finished = false;
+  }
+  // Kept: the evaluators of this pass's ghosts (those not reached, where cancelled, as they
+  // were); those of ghosts no longer evaluated alone go.
+  for (const DeferredGhost& deferred : deferredGhosts_) {
+    auto found = ghostEvaluators_.find(deferred.id);
+    if (!kept.count(deferred.id) && found != ghostEvaluators_.end() && found->second.evaluator)
+      kept[deferred.id] = std::move(found->second);
+  }
+  ghostEvaluators_ = std::move(kept);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ghostsRunning_.reset();
+    if (finished && changed) finished_ = result;
+  }
+  if (finished && changed && onResult_) onResult_();
+  return finished && changed;
 }
 
 bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Progress& progress,
@@ -302,51 +395,27 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   result.stats.root.reset();  // the cache keeps what it needs; the UI needs only the splats
   if (!result.coarse) lastRoot_ = ShownRoot{result.stats.rootKey, grid, backend, splats};
   result.splats = std::move(splats);
-  // A ghost that reaches beyond the result's grid (a cutter sticking out of its part: the grid
-  // covers the part, not its cutters) is evaluated alone on a window of the same lattice that
-  // covers it, by an evaluator of its own per ghost (sharing the main one's cache would evaluate
-  // its leaves on one window and then the other on every pass; one for all ghosts would drop one
-  // ghost's LDIs while evaluating the next: an evaluation keeps what it and the one before used).
-  std::map<NodeId, GhostEvaluator> ghostsKept;
+  // A ghost within the result's grid comes from the LDI the evaluation kept. One that reaches
+  // beyond it (a cutter sticking out of its part: the grid covers the part, not its cutters) is
+  // evaluated alone on a window of the same lattice that covers it, after this result is shown
+  // (finishGhosts): meanwhile the result carries the ghost last shown of that node, if any.
+  deferredGhosts_.clear();
   for (KeptLdi& kept : result.stats.kept) {
     const Grid own = ghostWindow(*request.scene, kept.id, grid);
     if (!(own == grid)) {
-      auto found = ghostEvaluators_.find(kept.id);
-      GhostEvaluator ghost;
-      if (found != ghostEvaluators_.end() && found->second.backend == backend)
-        ghost = std::move(found->second);
-      if (!ghost.evaluator) {
-        ghost.backend = backend;
-        ghost.evaluator = std::make_unique<Evaluator>(
-            used == &evaluator ? backend_
-                               : std::shared_ptr<Backend>(std::make_shared<CpuBackend>()));
-      }
-      EvalOptions ghostOptions;
-      ghostOptions.alone = kept.id;
-      ghostOptions.measureRoot = false;
-      ghostOptions.skipModifiersUnderCells = options.skipModifiersUnderCells;
-      if (onlyIfCached) {
-        std::optional<EvalResult> cached =
-            ghost.evaluator->evaluateCached(*request.scene, own, progress, ghostOptions);
-        if (!cached) {  // every ghost's evaluator kept for the pass that computes
-          ghostsKept[kept.id] = std::move(ghost);
-          for (auto& [id, kept] : ghostsKept) ghostEvaluators_[id] = std::move(kept);
-          return false;
-        }
-        kept.ldi = cached->root;
-      } else {
-        kept.ldi = ghost.evaluator->evaluateOn(*request.scene, own, progress, ghostOptions).root;
-      }
-      ghostsKept[kept.id] = std::move(ghost);
+      deferredGhosts_.push_back(DeferredGhost{kept.id, own, backend, used != &evaluator});
+      auto last = lastGhosts_.find(kept.id);
+      if (last != lastGhosts_.end()) result.ghosts.push_back(GhostSplats{kept.id, last->second});
+      kept.ldi.reset();
+      continue;
     }
-    SplatsHandle ghost = backend->splats(kept.ldi, progress);
-    std::vector<Splat> host(ghost->count());
-    if (!host.empty()) ghost->copyToHost(host.data());
-    result.ghosts.push_back(GhostSplats{kept.id, std::make_shared<HostSplats>(std::move(host))});
+    result.ghosts.push_back(GhostSplats{kept.id, hostGhost(*backend, kept.ldi, progress)});
     kept.ldi.reset();
   }
   result.stats.kept.clear();
-  ghostEvaluators_ = std::move(ghostsKept);  // those of ghosts no longer alone go
+  ghostOptions_ = EvalOptions{};
+  ghostOptions_.measureRoot = false;
+  ghostOptions_.skipModifiersUnderCells = options.skipModifiersUnderCells;
   result.splatSeconds = splatClock.seconds();
   return true;
 }

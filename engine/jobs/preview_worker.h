@@ -25,6 +25,12 @@
 //     host first: into memory the caller lends (setHostSplatLender: the editor's mapped GL
 //     buffers, which the UI then copies from on the GPU) where it has a region free, else into
 //     arrays of its own.
+//   - Ghosts (the splats of cutters' and intersectors' own LDIs, PreviewResult::ghosts) come
+//     with the result where they lie within its grid. One that reaches beyond it is evaluated
+//     alone on a window of its own (ghostWindow) after the result is published, which then
+//     carries that node's ghost as last shown; a copy of the result with the new ghost follows
+//     (same splats: the UI keeps its image). A newer request waits for it (so that a drag's
+//     ghosts follow the hand); stop and cancel() end it.
 //   - Nothing here draws (no GL): ui/ uploads the splats or copies them through CUDA-GL
 //     interop. The worker catches everything and reports it in the result's `error`.
 //
@@ -168,9 +174,14 @@ class PreviewWorker {
   bool evaluatePass(Evaluator& evaluator, const Request& request, int resolution, bool coarse,
                     Progress& progress, bool onlyIfCached = false);
   // The evaluation and splats of one pass into `result`; false where `onlyIfCached` and the
-  // cache does not hold it (Evaluator::evaluateCached). Throws what the engine throws.
+  // cache does not hold it (Evaluator::evaluateCached). Throws what the engine throws. Ghosts
+  // that reach beyond the result's grid are left to finishGhosts (deferredGhosts_).
   bool computePass(Evaluator& evaluator, const Request& request, Progress& progress,
                    PreviewResult& result, bool onlyIfCached);
+  // After `shown` was published: evaluates deferredGhosts_ and publishes a copy of `shown` with
+  // them, unless none changed (each from its evaluator's cache, on the window it was shown
+  // from). Cancelled by stop and cancel() only. Returns whether it published.
+  bool finishGhosts(const Request& request, const std::shared_ptr<const PreviewResult>& shown);
 
   std::shared_ptr<Backend> backend_;
   std::string backendDescription_;
@@ -190,6 +201,21 @@ class PreviewWorker {
     std::unique_ptr<Evaluator> evaluator;
   };
   std::map<NodeId, GhostEvaluator> ghostEvaluators_;
+  // Worker thread only: the ghosts of the pass just computed that reach beyond its grid (the
+  // window each is evaluated on, and on which backend: the pass's, or the CPU's), and the options
+  // they are evaluated with.
+  struct DeferredGhost {
+    NodeId id = 0;
+    Grid window;
+    const Backend* backend = nullptr;
+    bool onCpu = false;  // the pass ran on modifierEvaluator_'s CPU backend
+  };
+  std::vector<DeferredGhost> deferredGhosts_;
+  EvalOptions ghostOptions_;
+  // Worker thread only: the ghosts of the last result published, shown in the next result until
+  // that one's are finished.
+  std::map<NodeId, std::shared_ptr<const HostSplats>> lastGhosts_;
+  std::map<NodeId, Grid> lastGhostWindows_;  // of those evaluated alone: the window of each
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // the worker: a request arrived, or stop
@@ -197,7 +223,8 @@ class PreviewWorker {
   bool stopping_ = false;
   bool hasRequest_ = false;
   Request pending_;
-  std::shared_ptr<Progress> running_;  // of the request being served; null when none
+  std::shared_ptr<Progress> running_;        // of the request being served; null when none
+  std::shared_ptr<Progress> ghostsRunning_;  // of finishGhosts while it runs; null otherwise
   std::shared_ptr<const PreviewResult> finished_;
   PreviewStatus status_;
   std::shared_ptr<const Scene> lastShown_;  // worker thread only

@@ -24,10 +24,12 @@ class GatedBackend : public CpuBackend {
 
   std::string description() const override { return "gated test backend"; }
 
-  void close(OnCancel onCancel = OnCancel::Leave) {
+  // From now on, calls wait at the gate; the first `letThrough` of them pass it first.
+  void close(OnCancel onCancel = OnCancel::Leave, int letThrough = 0) {
     std::lock_guard<std::mutex> lock(mutex_);
     closed_ = true;
     onCancel_ = onCancel;
+    letThrough_ = letThrough;
   }
   void open() {
     {
@@ -55,7 +57,9 @@ class GatedBackend : public CpuBackend {
     {
       std::unique_lock<std::mutex> lock(mutex_);
       ++arrivals_;
-      if (closed_) {
+      if (closed_ && letThrough_ > 0) {
+        --letThrough_;
+      } else if (closed_) {
         ++held_;
         changed_.notify_all();
         // Cancellation sets a flag and notifies no one: look at it now and then.
@@ -76,6 +80,7 @@ class GatedBackend : public CpuBackend {
   std::condition_variable changed_;
   bool closed_ = false;
   OnCancel onCancel_ = OnCancel::Leave;
+  int letThrough_ = 0;
   int held_ = 0;
   int arrivals_ = 0;
   int sampled_ = 0;

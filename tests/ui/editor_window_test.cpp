@@ -22,6 +22,7 @@
 #include "engine/eval/evaluator.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/user_files.h"
+#include "tests/support/gated_backend.h"
 #include "tests/support/off_host_splats_backend.h"
 #include "ui/editor.h"
 #include "ui/editor_actions.h"
@@ -224,6 +225,45 @@ TEST(EditorWindow, AnEditIsWrittenForRecoveryOnceItHasRested) {
   EXPECT_FALSE(state.document.dirty());
   EXPECT_TRUE(framesFor(20.0, [&] { return !written(); })) << "the recovery file stayed";
   std::filesystem::remove_all(folder);
+}
+
+// The frame that sends an edit to the engine builds its panels while the engine works and waits
+// for the result only before drawing the view: the edit is on screen at the end of that frame,
+// here where the engine takes a tenth of a second (a gate held that long: ten times the editor's
+// usual wait, so the wait is long here), and the next frame, which redraws the panels built
+// before the result came, follows without waiting for input.
+TEST(EditorWindow, AnEditIsShownByTheFrameThatSentIt) {
+  REQUIRE_DISPLAY();
+  auto gated = std::make_shared<test::GatedBackend>();
+  EditorOptions o = testOptions();
+  o.makeBackend = [gated] { return gated; };
+  o.editResultWaitSeconds = 30.0;
+  Editor editor(o);
+  EditorState& state = editor.state();
+  const NodeId sphere = addPrimitive(state, NodeKind::Sphere);
+  ASSERT_NE(sphere, 0u);
+  setResolution(state, 32);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  for (int i = 0; i < 3; ++i) editor.frame();
+  const double x0 = findNode(state.document.root(), sphere)->transform.translate.x;
+  Transform moved = findNode(state.document.root(), sphere)->transform;
+  moved.translate.x += 0.3;
+  gated->close();
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(sphere, moved); }));
+  const uint64_t revision = state.document.revision();
+  std::thread opener([&] {
+    if (gated->waitUntilHeld()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    gated->open();
+  });
+  editor.frame();
+  opener.join();
+  ASSERT_TRUE(state.preview);
+  EXPECT_EQ(state.preview->tag, revision) << "the edit's result was not shown by its frame";
+  editor.frame();
+  EXPECT_EQ(editor.lastWaitSeconds(), 0.0) << "the panels built before the result waited";
+  undo(state);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  EXPECT_EQ(findNode(state.document.root(), sphere)->transform.translate.x, x0);
 }
 
 // A result too large for one frame's upload goes up in shares over several frames, while the

@@ -721,6 +721,36 @@ TEST(Roles, DuplicatesKeepTheirRoleAndSitOneGridStepAlongX) {
   EXPECT_FALSE(findNode(state.document.root(), holeCopy));
 }
 
+// Ctrl+D pressed twice on the same original (the selection put back on it): the second copy
+// goes one step beyond the first instead of onto it (two parts that look like one), and says so.
+TEST(Roles, DuplicatingTheOriginalAgainGoesBesideTheFirstCopy) {
+  EditorState state;
+  const NodeId a = addPrimitive(state, NodeKind::Sphere);
+  const NodeId b = addPrimitive(state, NodeKind::Sphere);  // beside it, elsewhere
+  ASSERT_NE(b, 0u);
+  state.snap.step = 2.0;
+  const glm::dvec3 at = findNode(state.document.root(), a)->transform.translate;
+  state.selection = {a};
+  duplicateSelection(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId first = state.selection[0];
+  EXPECT_NEAR(glm::distance(findNode(state.document.root(), first)->transform.translate,
+                            at + glm::dvec3(2, 0, 0)),
+              0.0, 1e-9);
+  state.selection = {a};
+  duplicateSelection(state);
+  const NodeId second = state.selection[0];
+  EXPECT_NEAR(glm::distance(findNode(state.document.root(), second)->transform.translate,
+                            at + glm::dvec3(4, 0, 0)),
+              0.0, 1e-9);
+  EXPECT_NE(state.log.back().text.find("2 grid steps"), std::string::npos) << state.log.back().text;
+  undo(state);
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), first));
+  EXPECT_FALSE(findNode(state.document.root(), second));
+  EXPECT_TRUE(findNode(state.document.root(), b));
+}
+
 // A plate with a hole cut from it: the plate, the hole, and the difference holding both.
 struct PlateWithHole {
   NodeId plate = 0, hole = 0, group = 0;

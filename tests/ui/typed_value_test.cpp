@@ -235,6 +235,32 @@ TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
   EXPECT_TRUE(dropped.empty()) << dropped;
 }
 
+// A length typed with a unit into a number field of its own (the status bar's move step, in a
+// millimetre scene): converted once the field is left ("1cm" gave 1 mm there, the letters
+// dropped), and said.
+TEST(NumberField, ALengthTypedWithAUnitIntoAnInputDoubleIsConverted) {
+  const auto typed = [](const char* text) {
+    double value = 2.0;
+    typeIntoNumberField(
+        [&] {
+          numberFieldNext("step");
+          ImGui::InputDouble("step", &value, 0.0, 0.0, "%.4g");
+          convertLengthTypedIntoInput(&value, "mm");
+        },
+        text);
+    return value;
+  };
+  takeUnitConversion();
+  EXPECT_EQ(typed("1cm"), 10.0);
+  EXPECT_EQ(takeUnitConversion(), "1 cm is 10 mm");
+  EXPECT_NEAR(typed("0,5 in"), 12.7, 1e-12);
+  EXPECT_EQ(takeUnitConversion(), "0.5 in is 12.7 mm");
+  EXPECT_EQ(typed("3"), 3.0);  // no unit: the number as typed
+  EXPECT_EQ(takeUnitConversion(), "");
+  EXPECT_EQ(typed("4 xyz"), 4.0);  // no unit it knows: the number (the letters are said)
+  EXPECT_EQ(takeUnitConversion(), "");
+}
+
 // An InputInt with step buttons (the export dialog's resolution) announced as a number field:
 // a character typed into it ended the editor (numberFieldNext kept its text field alive, so the
 // InputInt's group did not take it as its active item and Dear ImGui asserted).

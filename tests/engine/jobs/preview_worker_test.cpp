@@ -385,6 +385,57 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
   EXPECT_EQ(after.back()->ghosts.size(), 4u);
 }
 
+// An edit's result is published before the ghosts that reach beyond its grid are evaluated (a
+// slow ghost must not hold the edit's image back): it carries the ghost last shown of that
+// node, and a copy with the new ghost (the same splats) follows.
+TEST(PreviewWorker, AnEditsResultComesBeforeItsGhostsBeyondTheGrid) {
+  auto gated = std::make_shared<test::GatedBackend>();
+  ResultLog log;
+  PreviewWorker worker(gated, 32, log.callback(), 1e9);  // no coarse pass first
+  log.attach(&worker);
+  NodePtr rod = cylinder(0.3, 6.0);
+  NodePtr base = box({2, 2, 2});
+  auto scene = std::make_shared<const Scene>(makeScene(op(NodeKind::Difference, {base, rod}), 64));
+  worker.request(scene, 64, false, 1, {rod->id});
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const ResultPtr first = log.results().back();
+  expectShows(first, 1, 64, false);
+  ASSERT_EQ(first->ghosts.size(), 1u);
+  const auto firstGhost = first->ghosts[0].splats;
+  ASSERT_GT(firstGhost->count(), 0u);
+
+  // The rod moved along x: the result samples it once on its grid, then its ghost alone is held.
+  auto moved = std::make_shared<Scene>(*scene);
+  auto root = std::make_shared<Node>(*moved->root);
+  auto movedRod = std::make_shared<Node>(*rod);
+  movedRod->transform.translate.x += 0.25;
+  root->children[1] = movedRod;
+  moved->root = root;
+  const size_t before = log.results().size();
+  gated->close(test::GatedBackend::OnCancel::Leave, 1);
+  worker.request(moved, 64, false, 2, {rod->id});
+  ASSERT_TRUE(gated->waitUntilHeld());
+  std::vector<ResultPtr> results = log.results();
+  ASSERT_EQ(results.size(), before + 1) << "the edit's result waited for its ghost";
+  const ResultPtr shown = results.back();
+  expectShows(shown, 2, 64, false);
+  ASSERT_EQ(shown->ghosts.size(), 1u);
+  EXPECT_EQ(shown->ghosts[0].splats, firstGhost) << "the ghost last shown, meanwhile";
+  gated->open();
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  results = log.results();
+  ASSERT_EQ(results.size(), before + 2);
+  const ResultPtr withGhost = results.back();
+  EXPECT_EQ(withGhost->tag, 2u);
+  EXPECT_EQ(withGhost->splats, shown->splats) << "the same image";
+  ASSERT_EQ(withGhost->ghosts.size(), 1u);
+  const Bounds was = splatBounds(*firstGhost), now = splatBounds(*withGhost->ghosts[0].splats);
+  EXPECT_NEAR(now.min.x - was.min.x, 0.25, 1.01 * shown->stats.grid.h);
+  EXPECT_NEAR(now.max.x - was.max.x, 0.25, 1.01 * shown->stats.grid.h);
+  EXPECT_GT(now.max.z, shown->stats.grid.bounds().max.z + 1.0) << "whole, beyond the grid";
+}
+
 // Regions of host memory lent as the editor's mapped buffers are (ui/mapped_splat_slots.h),
 // given back on whatever thread drops the last result holding one.
 class TestLender : public HostSplatLender {
