@@ -447,15 +447,26 @@ int runEdit(const std::vector<std::string>& argv) {
     editor.state().section = parseSection(args);
     selectByNames(editor.state(), args.text("--select", ""));
     editor.state().showAllGhosts = args.has("--ghosts");
+    // --resolution: the document opened (an undoable change of its resolution) and each new one
+    // are previewed at it (it was read by the measurements only, and silently dropped
+    // otherwise). --measure-frames raises it itself once the scene is shown.
+    if (args.has("--resolution") && !args.has("--measure-frames")) {
+      const int resolution = args.integer("--resolution", 0, kMinResolution, kMaxResolution);
+      editor.state().newDocumentResolution = resolution;
+      const int own = editor.state().document.scene().settings.resolution;
+      if (own != resolution) {
+        ui::setResolution(editor.state(), resolution);
+        ui::logInfo(editor.state(), "previewed at " + std::to_string(resolution) +
+                                        " cells (--resolution; Ctrl+Z goes back to the file's " +
+                                        std::to_string(own) + ")");
+      }
+    }
     if (args.has("--measure-frames"))
       return measureFrames(editor, args.number("--measure-frames", 10.0, 0.1, 3600.0),
                            args.has("--resolution")
                                ? args.integer("--resolution", 0, kMinResolution, kMaxResolution)
                                : 0);
     if (args.has("--measure-latency")) {
-      if (args.has("--resolution"))
-        ui::setResolution(editor.state(),
-                          args.integer("--resolution", 0, kMinResolution, kMaxResolution));
       return measureLatency(editor, args.integer("--measure-latency", 10, 1, 1000),
                             args.text("--move-leaf", ""), args.has("--drag"));
     }

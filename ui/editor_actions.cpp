@@ -1020,6 +1020,14 @@ void redo(EditorState& state) {
 }
 
 void newDocument(EditorState& state) {
+  if (state.newDocumentResolution > 0) {
+    Scene scene = Document().scene();
+    scene.settings.resolution = state.newDocumentResolution;
+    replaceDocument(state, Document(std::move(scene)));
+    logInfo(state, "new document, previewed at " + std::to_string(state.newDocumentResolution) +
+                       " cells (--resolution)");
+    return;
+  }
   replaceDocument(state, Document());
   logInfo(state, "new document");
 }

@@ -147,6 +147,9 @@ struct EditorState {
   // Ghosts (translucent parts that cut or intersect): those of the selection always, all of
   // them with this toggle (View > Ghosts of all cutters, G).
   bool showAllGhosts = false;
+  // The resolution `strata edit --resolution N` asked for: each new document (File > New) is
+  // previewed at it; 0 = a new document's own (SceneSettings).
+  int newDocumentResolution = 0;
   SectionState section;
   bool showDiagnostics = false;
   MeasureTool measure;  // M: distances and angles on the preview (measure_tool.h)

@@ -1,6 +1,8 @@
 // The Preview panel's resolution steps (ui/panels.h: resolutionStepNearest, resolutionStepAfter).
 #include <gtest/gtest.h>
 
+#include "ui/editor_actions.h"
+#include "ui/editor_state.h"
 #include "ui/panels.h"
 
 namespace strata::ui {
@@ -31,6 +33,21 @@ TEST(ResolutionSteps, MinusAndPlusStepFromAnyResolutionWithinTheRange) {
   EXPECT_EQ(resolutionStepAfter(1024, +1, 16, 1024), 1024);  // the end: the button is disabled
   EXPECT_EQ(resolutionStepAfter(16, -1, 16, 1024), 16);
   EXPECT_EQ(resolutionStepAfter(2000, -1, 16, 2000), 1536);
+}
+
+// `strata edit --resolution N`: File > New previews the new document at N (it went back to 256
+// whatever the command line said), as a document of its own (not modified, nothing to undo).
+TEST(ResolutionSteps, ANewDocumentTakesTheResolutionTheEditorWasStartedWith) {
+  EditorState state;
+  state.newDocumentResolution = 512;
+  newDocument(state);
+  EXPECT_EQ(state.document.scene().settings.resolution, 512);
+  EXPECT_FALSE(state.document.dirty());
+  EXPECT_FALSE(state.document.canUndo());
+  EXPECT_NE(state.log.back().text.find("512 cells"), std::string::npos) << state.log.back().text;
+  state.newDocumentResolution = 0;
+  newDocument(state);
+  EXPECT_EQ(state.document.scene().settings.resolution, SceneSettings().resolution);
 }
 
 }  // namespace
