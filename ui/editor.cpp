@@ -706,10 +706,9 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   rememberSelection(s);  // before this frame's input changes it (undo brings it back)
   deliverKeyEvents();
   // Said once the field is left (or another is typed into: Tab), for the field it was typed in.
-  if (const std::string converted = takeUnitConversion(); !converted.empty()) {
+  if (const std::string converted = takeUnitConversion(); !converted.empty())
     logInfo(s, "typed " + converted);
-    g_notTyped.clear();  // the letters were a unit, and converted
-  }
+  if (takeUnitConverted()) g_notTyped.clear();  // the letters were a unit, and converted
   if (!g_notTyped.empty()) {
     if (numberFieldBeingTyped() != g_notTypedIn) {
       logWarning(s, "number fields take digits only: \"" + g_notTyped +

@@ -41,6 +41,11 @@ std::string gLengthUnit;  // the scene's unit, for lengths typed with a unit (co
 void edited(EditorState& state, bool changed, const std::function<void()>& apply,
             const std::string& topic = "") {
   if (ImGui::IsItemActivated()) state.document.beginInteraction();
+  // A unit typed with the number is said before what applying it says (a refusal of "0 cm" was
+  // followed, and hidden, by "typed 0 cm is 0 mm").
+  if (changed)
+    if (const std::string converted = takeUnitConversion(); !converted.empty())
+      logInfo(state, "typed " + converted);
   if (changed) guarded(state, apply, topic);
   if (ImGui::IsItemDeactivated()) state.document.endInteraction();
 }

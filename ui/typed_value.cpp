@@ -33,6 +33,7 @@ struct Dropped {
 };
 Dropped gDropped;
 std::string gConversion;
+bool gConverted = false;  // since takeUnitConverted
 
 // The typed value in `lengthUnit` where the letters typed into field `id` name a length unit
 // ("cm" typed into a mm field: times 10); `value` unchanged otherwise.
@@ -50,6 +51,7 @@ double convertTypedUnit(ImGuiID id, double value, const std::string& lengthUnit)
   std::snprintf(text, sizeof(text), "%.6g %s is %.6g %s", value, typed.c_str(), converted,
                 lengthUnit.c_str());
   gConversion = text;
+  gConverted = true;
   return converted;
 }
 
@@ -178,6 +180,12 @@ bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit) {
   const double before = *value;
   *value = convertTypedUnit(id, *value, lengthUnit);
   return !gConversion.empty() && *value != before;
+}
+
+bool takeUnitConverted() {
+  const bool converted = gConverted;
+  gConverted = false;
+  return converted;
 }
 
 std::string takeUnitConversion() {

@@ -28,6 +28,9 @@ bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit);
 // What the last commit converted ("1 cm is 10 mm"), once; "" for none. The editor says it in place
 // of "a unit typed is not converted" (the letters it was told of by numberFieldCharacter).
 std::string takeUnitConversion();
+// Whether a commit converted a length unit since the last call (whoever took its text): the
+// letters the field dropped were that unit.
+bool takeUnitConverted();
 
 // A double-click on a slider opens its text field, as it does on a drag field (Dear ImGui 1.86's
 // sliders take only Ctrl+click). Call right after the slider with its value before the call.
