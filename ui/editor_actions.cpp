@@ -153,10 +153,24 @@ void placeNode(EditorState& state, NodeId id, const Placement& placement) {
 
 // The primitive node `addPrimitive` adds: sized to the scene (or the view); *sizeNote says how
 // ("1 mm, a quarter of the scene").
-NodePtr newPrimitive(EditorState& state, NodeKind kind, std::string* sizeNote = nullptr) {
+// Dropped on a part (`sizeFrom`), at most a quarter of that part: a cutter sized to the scene
+// swallowed the small part it was dropped on.
+NodePtr newPrimitive(EditorState& state, NodeKind kind, std::string* sizeNote = nullptr,
+                     NodeId sizeFrom = 0) {
   auto node = std::make_shared<Node>(*makePrimitiveNode(kind, state.document.nextId()));
   std::string from;
-  const double scale = sceneScale(state, &from);
+  double scale = sceneScale(state, &from);
+  if (sizeFrom) {
+    const Bounds part = selectionBounds(state.document.root(), {sizeFrom});
+    if (!part.empty()) {
+      const glm::dvec3 size = part.size();
+      const double quarter = niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+      if (quarter > 0.0 && quarter < scale) {
+        scale = quarter;
+        from = "a quarter of " + nodeLabel(*findNode(state.document.root(), sizeFrom));
+      }
+    }
+  }
   node->params = scaledPrimitiveParams(kind, node->params, scale);
   if (sizeNote) {
     char text[64];
@@ -375,10 +389,10 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
   state.document.beginInteraction();
   guarded(state, [&] {
     std::string note;
-    NodePtr node = newPrimitive(state, kind, &note);
     // Dropped on a part's surface: onto that part (dropped on the ground: onto the selection).
     const NodeId onto =
         placement.part && findNode(state.document.root(), placement.part) ? placement.part : 0;
+    NodePtr node = newPrimitive(state, kind, &note, onto);
     id = placeNew(state, node, state.placeMode, note, onto);
     placeNode(state, id, placement);
     if (placement.normal) {

@@ -207,6 +207,43 @@ TEST(ImportAndPlace, ACutterDroppedOnAPartCutsThatPartCentredOnThePoint) {
   EXPECT_NEAR(glm::distance(b.center(), on.point), 0.0, 1e-9);
 }
 
+// A cutter dropped on a small part beside a large one is sized from the part it lands on (at
+// most a quarter of it), not from the scene: sized to a quarter of the scene it swallowed the
+// part whole (an artist's test). A drop on the ground keeps the scene's size.
+TEST(ImportAndPlace, APartDroppedOnASmallPartIsSizedFromThatPart) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  Transform wide;
+  wide.scale = glm::dvec3(100.0, 100.0, 5.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(plate, wide); }));
+  const NodeId pin = addPrimitive(state, NodeKind::Cylinder);
+  PrimitiveParams thin = findNode(state.document.root(), pin)->params;
+  thin.radius = 1.0;
+  thin.height = 4.0;
+  ASSERT_TRUE(guarded(state, [&] { state.document.setParams(pin, thin); }));
+  clearSelection(state);
+  const Bounds pinBox = selectionBounds(state.document.root(), {pin});
+  state.placeMode = PlaceMode::Cut;
+  Placement on{pinBox.center() + glm::dvec3(0.0, 0.0, 0.5 * pinBox.size().z), false,
+               glm::dvec3(0.0, 0.0, 1.0)};
+  on.part = pin;
+  const NodeId hole = addPrimitiveAt(state, NodeKind::Cylinder, on);
+  const Bounds holeBox = selectionBounds(state.document.root(), {hole});
+  EXPECT_LE(std::max({holeBox.size().x, holeBox.size().y, holeBox.size().z}),
+            std::max({pinBox.size().x, pinBox.size().y, pinBox.size().z}) / 4.0 + 1e-9);
+  bool said = false;  // "... (1 mm, a quarter of cylinder ...)", before where it was placed
+  for (const auto& line : state.log)
+    said = said || line.text.find("a quarter of cyl") != std::string::npos;
+  EXPECT_TRUE(said) << state.log.back().text;
+  undo(state);
+  // On the ground (no part): the scene's quarter.
+  Placement ground{glm::dvec3(300.0, 0.0, 0.0), true, std::nullopt};
+  const NodeId far = addPrimitiveAt(state, NodeKind::Box, ground);
+  const Bounds farBox = selectionBounds(state.document.root(), {far});
+  EXPECT_GT(farBox.size().x, pinBox.size().x);
+  undo(state);
+}
+
 // What a drop on a surface goes onto: the part whose material the surface bounds (a hole's wall
 // is its cutter's surface: a boss dropped there became a cutter, a review found), and a part in
 // a pattern its pattern (a drop on one copy was repeated in every copy).
