@@ -397,6 +397,12 @@ void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
     s.preview = std::move(result);
     return;
   }
+  // The same splats as the result being uploaded (its copy with the ghosts finished): it takes
+  // that one's place, the upload going on where it was.
+  if (staging_ && result->splats && result->splats == staging_->splats) {
+    staging_ = std::move(result);
+    return;
+  }
   staging_.reset();  // a newer result replaces one still being uploaded
   // A host upload larger than a frame's share, with a result on screen to keep meanwhile (and
   // no CUDA-GL copier registered to the buffer drawn): over several frames.
@@ -505,19 +511,24 @@ double Editor::awaitEditResult() {
   if (awaitUntil_ <= 0.0) return 0.0;
   const double until = awaitUntil_;
   awaitUntil_ = 0.0;
-  Stopwatch waited;
-  const auto shown = [this] {
-    const PreviewResult* p = state_->preview.get();
+  // Shown, or on its way over several frames (stageMore): no more to wait for.
+  const auto arrived = [this] {
+    const PreviewResult* p = staging_ ? staging_.get() : state_->preview.get();
     return p && p->tag == requestedRevision_;
   };
+  double waited = 0.0;  // the waits only: taking a result is drawing's work (its upload)
   uint64_t seen = awaitFromCount_;
-  while (!shown()) {
+  while (!arrived()) {
     const double left = until - glfwGetTime();
-    if (left <= 0.0 || !resultSignal_->waitPast(seen, left)) break;
+    if (left <= 0.0) break;
+    Stopwatch wait;
+    const bool more = resultSignal_->waitPast(seen, left);
+    waited += wait.seconds();
+    if (!more) break;
     seen = resultSignal_->count();
     if (takeResult()) panelsStale_ = true;  // the status bar and panels show the last result
   }
-  return waited.seconds();
+  return waited;
 }
 
 bool Editor::waitForPreview(double timeoutSeconds) {
@@ -714,8 +725,8 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
       logWarning(s, "number fields take digits only: \"" + g_notTyped +
                         "\" was not typed (lengths are in " +
                         unitSymbol(s.document.scene().settings.unit) +
-                        ", the scene's unit: the inspector's lengths convert mm, cm, m, in or ft "
-                        "typed after the number; angles are in degrees)");
+                        "; a length field converts mm, cm, m, in or ft typed after the number; "
+                        "angles are in degrees)");
       g_notTyped.clear();
     }
   }

@@ -155,8 +155,8 @@ class Editor {
   // since). Returns whether one was taken.
   bool takeResult();
   // In a frame that sent an edit (awaitUntil_ set): waits, until awaitUntil_, for the result of
-  // the revision sent and takes it; the panels built before it are redrawn by the next frame.
-  // Returns the seconds waited.
+  // the revision sent (any: a coarse one ends the wait too) and takes it; the panels built
+  // before it are redrawn by the next frame. Returns the seconds spent waiting (not taking).
   double awaitEditResult();
 
   EditorOptions options_;

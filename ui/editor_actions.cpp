@@ -59,6 +59,7 @@ void replaceDocument(EditorState& state, Document document) {
   state.requestViewAll = true;
   state.section.at.reset();  // placed again in the middle of the new document's parts
   state.section.startFraction = 0.5;
+  state.snapFollowsGrid = true;  // a move step typed was the other document's
 }
 
 // The size new parts get: a quarter of the scene's largest extent, or in an empty scene a
@@ -164,7 +165,14 @@ NodePtr newPrimitive(EditorState& state, NodeKind kind, std::string* sizeNote = 
     const Bounds part = selectionBounds(state.document.root(), {sizeFrom});
     if (!part.empty()) {
       const glm::dvec3 size = part.size();
-      const double quarter = niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+      // The largest round length (1, 2 or 5 times a power of ten) of at most a quarter.
+      const double most = std::max({size.x, size.y, size.z}) / 4.0;
+      double quarter = 0.0;
+      if (most > 0.0 && std::isfinite(most)) {
+        const double power = std::pow(10.0, std::floor(std::log10(most)));
+        for (const double m : {10.0, 5.0, 2.0, 1.0})
+          if (quarter == 0.0 && m * power <= most * (1.0 + 1e-9)) quarter = m * power;
+      }
       if (quarter > 0.0 && quarter < scale) {
         scale = quarter;
         from = "a quarter of " + nodeLabel(*findNode(state.document.root(), sizeFrom));

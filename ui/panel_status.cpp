@@ -297,11 +297,33 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   const std::string stepFormat = std::string("%.3g ") + unitSymbol(scene.settings.unit);
   ImGui::SetNextItemWidth(100.0f);
   numberFieldNext("move step");
-  if (ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str()))
+  // The field applies each keystroke: what is typed is judged when the field is left (a step of
+  // 0 or less was clamped to 1e-09 without a word, and Ctrl+D then put copies on their originals).
+  static double stepBefore = 0.0, stepTyped = 0.0;  // UI thread only: the typing in this field
+  const double stepShown = state.snap.step;
+  const bool stepEdited =
+      ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str());
+  if (ImGui::IsItemActivated()) stepBefore = stepTyped = stepShown;
+  if (stepEdited) {
+    stepTyped = state.snap.step;
     state.snapFollowsGrid = false;
-  if (convertLengthTypedIntoInput(&state.snap.step, unitSymbol(scene.settings.unit)))
+  }
+  if (convertLengthTypedIntoInput(&stepTyped, unitSymbol(scene.settings.unit)))
     state.snapFollowsGrid = false;  // "1cm" typed: 10 mm
-  state.snap.step = std::max(state.snap.step, 1e-9);
+  if (ImGui::IsItemDeactivated()) {
+    if (const std::string converted = takeUnitConversion(); !converted.empty())
+      logInfo(state, "typed " + converted);
+    if (stepTyped > 0.0 && std::isfinite(stepTyped)) {
+      state.snap.step = stepTyped;
+    } else {
+      state.snap.step = stepBefore;
+      char text[128];
+      std::snprintf(text, sizeof(text), "the move step must be greater than 0: it stays %.4g %s",
+                    stepBefore, unitSymbol(scene.settings.unit));
+      logWarning(state, text);
+    }
+  }
+  state.snap.step = std::max(state.snap.step, 1e-9);  // while a 0 is being typed
   ImGui::SameLine();
   if (ImGui::Checkbox("= grid", &state.snapFollowsGrid) && state.snapFollowsGrid)
     state.snap.step = groundGridStep(sceneBounds(state.document.root()));

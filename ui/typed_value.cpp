@@ -135,13 +135,16 @@ bool typingIntoNumberField() {
 
 unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
   if (!typingIntoNumberField()) return codepoint;
-  if (codepoint == ',') return '.';
+  if (codepoint == ',') codepoint = '.';
   const bool kept = (codepoint >= '0' && codepoint <= '9') || codepoint == '.' ||
                     codepoint == '+' || codepoint == '-' || codepoint == '*' || codepoint == '/' ||
                     codepoint == 'e' || codepoint == 'E';
-  if (kept || codepoint == ' ') return codepoint;
-  // Kept for the field's commit, which converts a length unit (commitTypedValue).
   const ImGuiID field = numberFieldBeingTyped();
+  // After a unit's letters, nothing more reaches the number ("1 cm 2" became 12 cm): what follows
+  // is dropped with the letters, which then name no unit, and said.
+  const bool afterUnit = gDropped.id == field && !gDropped.letters.empty();
+  if (!afterUnit && (kept || codepoint == ' ')) return codepoint;
+  // Kept for the field's commit, which converts a length unit (commitTypedValue).
   if (gDropped.id != field) gDropped = {field, ""};
   const size_t before = dropped->size();
   // As UTF-8, so that a micro sign or a degree sign is said too.
@@ -156,7 +159,7 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
     dropped->push_back(char(0x80 | (codepoint & 0x3F)));
   }
   gDropped.letters += dropped->substr(before);
-  return codepoint;
+  return afterUnit && (kept || codepoint == ' ') ? 0 : codepoint;  // 0: nothing reaches it
 }
 
 bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit) {

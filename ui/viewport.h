@@ -75,6 +75,12 @@ class Viewport {
   // whole scene in view where it was.
   void toggleOrtho(const EditorState& state);
   bool gizmoDragging() const { return gizmo_.dragging(); }
+  // Where the gizmo sits: on the primary selected node (its parent's world matrix and its
+  // transform), or, with the pivot at the selection's centre and several parts or a group
+  // selected (or an instance), on a pivot there (world axes; *pivot set). False when nothing is
+  // selected.
+  bool gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld, Transform* transform,
+                      bool* pivot);
 
  private:
   ScreenMapping mapping(const EditorState& state, const ViewRect& rect) const;
@@ -82,11 +88,6 @@ class Viewport {
                           double pixelScale) const;
   double sceneRadius(const EditorState& state) const;
   bool placeGizmo(const EditorState& state);
-  // Where the gizmo sits: on the primary selected node (its parent's world matrix and its
-  // transform), or, with several parts selected and the pivot at the selection's centre, on
-  // a pivot there (world axes; *pivot set). False when nothing is selected.
-  bool gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld, Transform* transform,
-                      bool* pivot);
   struct PendingClick {
     glm::dvec2 mouse;  // window pixels from the view's top-left corner
     bool extend = false;

@@ -195,11 +195,16 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     wholeSeconds_ = passSeconds;
     wholeResolution_ = resolution;
   }
-  // The ghosts shown from now on: this result's (a ghost still to finish: as last shown).
-  lastGhosts_.clear();
-  for (const GhostSplats& g : result->ghosts) lastGhosts_[g.id] = g.splats;
-  for (auto it = lastGhostWindows_.begin(); it != lastGhostWindows_.end();)
-    it = lastGhosts_.count(it->first) ? std::next(it) : lastGhostWindows_.erase(it);
+  // The ghosts shown from now on: this result's (a ghost still to finish: as last shown, with
+  // what it was made from).
+  std::map<NodeId, ShownGhost> shownGhosts;
+  for (const GhostSplats& g : result->ghosts) {
+    auto last = lastGhosts_.find(g.id);
+    shownGhosts[g.id] = last != lastGhosts_.end() && last->second.splats == g.splats
+                            ? last->second
+                            : ShownGhost{g.splats, false, 0, Grid()};
+  }
+  lastGhosts_ = std::move(shownGhosts);
   const bool ghostsToFinish = !deferredGhosts_.empty() && result->error.empty();
   std::shared_ptr<const PreviewResult> published = result;
   {
@@ -278,12 +283,12 @@ bool PreviewWorker::finishGhosts(const Request& request,
   std::map<NodeId, GhostEvaluator> kept;
   auto result = std::make_shared<PreviewResult>(*shown);
   bool finished = true, changed = false;
-  try {
-    for (const DeferredGhost& deferred : deferredGhosts_) {
-      auto found = ghostEvaluators_.find(deferred.id);
-      GhostEvaluator& ghost = kept[deferred.id];
-      if (found != ghostEvaluators_.end() && found->second.backend == deferred.backend)
-        ghost = std::move(found->second);
+  for (const DeferredGhost& deferred : deferredGhosts_) {
+    auto found = ghostEvaluators_.find(deferred.id);
+    GhostEvaluator& ghost = kept[deferred.id];
+    if (found != ghostEvaluators_.end() && found->second.backend == deferred.backend)
+      ghost = std::move(found->second);
+    try {
       if (!ghost.evaluator) {
         ghost.backend = deferred.backend;
         ghost.evaluator = std::make_unique<Evaluator>(
@@ -295,22 +300,32 @@ bool PreviewWorker::finishGhosts(const Request& request,
           ghost.evaluator->evaluateOn(*request.scene, deferred.window, *progress, options);
       auto place = std::find_if(result->ghosts.begin(), result->ghosts.end(),
                                 [&](const GhostSplats& g) { return g.id == deferred.id; });
-      // The ghost shown stands where its evaluator computed nothing (it was made from this very
-      // LDI: an edit elsewhere, a rename).
-      if (place != result->ghosts.end() && evaluated.computed == 0 &&
-          lastGhostWindows_[deferred.id] == deferred.window)
+      // The ghost shown stands where it was made from this very LDI (its key on this window: an
+      // edit elsewhere, a rename); not merely where nothing was computed (the cache also holds
+      // the state before last, which an undo comes back to).
+      auto shownGhost = lastGhosts_.find(deferred.id);
+      if (place != result->ghosts.end() && shownGhost != lastGhosts_.end() &&
+          shownGhost->second.splats == place->splats && shownGhost->second.alone &&
+          shownGhost->second.key == evaluated.rootKey &&
+          shownGhost->second.window == deferred.window)
         continue;
       auto splats = hostGhost(ghost.evaluator->backend(), evaluated.root, *progress);
-      lastGhosts_[deferred.id] = splats;
-      lastGhostWindows_[deferred.id] = deferred.window;
+      lastGhosts_[deferred.id] = ShownGhost{splats, true, evaluated.rootKey, deferred.window};
       changed = true;
       if (place != result->ghosts.end())
         place->splats = std::move(splats);
       else
         result->ghosts.push_back(GhostSplats{deferred.id, std::move(splats)});
+    } catch (const Cancelled&) {  // the result stands as published
+      finished = false;
+      break;
+    } catch (...) {  // this ghost not drawn (its window's memory): the others still are, and said
+      const NodePtr node = findNode(request.scene->root, deferred.id);
+      result->stats.warnings.push_back(
+          "the ghost of " + (node ? nodeLabel(*node) : std::string("a part")) +
+          " is not drawn: " + jobErrorText(std::current_exception(), ""));
+      changed = true;
     }
-  } catch (...) {  // cancelled, or out of memory: the result stands without these ghosts
-    finished = false;
   }
   // Kept: the evaluators of this pass's ghosts (those not reached, where cancelled, as they
   // were); those of ghosts no longer evaluated alone go.
@@ -405,7 +420,8 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
     if (!(own == grid)) {
       deferredGhosts_.push_back(DeferredGhost{kept.id, own, backend, used != &evaluator});
       auto last = lastGhosts_.find(kept.id);
-      if (last != lastGhosts_.end()) result.ghosts.push_back(GhostSplats{kept.id, last->second});
+      if (last != lastGhosts_.end())
+        result.ghosts.push_back(GhostSplats{kept.id, last->second.splats});
       kept.ldi.reset();
       continue;
     }

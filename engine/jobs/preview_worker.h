@@ -179,8 +179,9 @@ class PreviewWorker {
   bool computePass(Evaluator& evaluator, const Request& request, Progress& progress,
                    PreviewResult& result, bool onlyIfCached);
   // After `shown` was published: evaluates deferredGhosts_ and publishes a copy of `shown` with
-  // them, unless none changed (each from its evaluator's cache, on the window it was shown
-  // from). Cancelled by stop and cancel() only. Returns whether it published.
+  // them, unless none changed (each the LDI its shown ghost was made from: the same key on the
+  // same window). A ghost that fails (its window's memory) is left out and said in the copy's
+  // warnings. Cancelled by stop and cancel() only. Returns whether it published.
   bool finishGhosts(const Request& request, const std::shared_ptr<const PreviewResult>& shown);
 
   std::shared_ptr<Backend> backend_;
@@ -213,9 +214,15 @@ class PreviewWorker {
   std::vector<DeferredGhost> deferredGhosts_;
   EvalOptions ghostOptions_;
   // Worker thread only: the ghosts of the last result published, shown in the next result until
-  // that one's are finished.
-  std::map<NodeId, std::shared_ptr<const HostSplats>> lastGhosts_;
-  std::map<NodeId, Grid> lastGhostWindows_;  // of those evaluated alone: the window of each
+  // that one's are finished; of those evaluated alone, what they were made from (the evaluated
+  // node's key on its window), so that a ghost made from the same LDI is not made again.
+  struct ShownGhost {
+    std::shared_ptr<const HostSplats> splats;
+    bool alone = false;
+    uint64_t key = 0;
+    Grid window;
+  };
+  std::map<NodeId, ShownGhost> lastGhosts_;
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // the worker: a request arrived, or stop

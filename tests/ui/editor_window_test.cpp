@@ -229,9 +229,10 @@ TEST(EditorWindow, AnEditIsWrittenForRecoveryOnceItHasRested) {
 
 // The frame that sends an edit to the engine builds its panels while the engine works and waits
 // for the result only before drawing the view: the edit is on screen at the end of that frame,
-// here where the engine takes a tenth of a second (a gate held that long: ten times the editor's
-// usual wait, so the wait is long here), and the next frame, which redraws the panels built
-// before the result came, follows without waiting for input.
+// here where the engine takes a second (a gate held that long: far more than the editor's usual
+// wait, so the wait is long here; long enough that the frame is waiting when it opens, even on a
+// loaded machine under a sanitizer), and the next frame, which redraws the panels built before
+// the result came, follows without waiting for input.
 TEST(EditorWindow, AnEditIsShownByTheFrameThatSentIt) {
   REQUIRE_DISPLAY();
   auto gated = std::make_shared<test::GatedBackend>();
@@ -252,7 +253,7 @@ TEST(EditorWindow, AnEditIsShownByTheFrameThatSentIt) {
   ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(sphere, moved); }));
   const uint64_t revision = state.document.revision();
   std::thread opener([&] {
-    if (gated->waitUntilHeld()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (gated->waitUntilHeld()) std::this_thread::sleep_for(std::chrono::seconds(1));
     gated->open();
   });
   editor.frame();

@@ -11,6 +11,7 @@
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/scene_queries.h"
+#include "ui/viewport.h"
 
 namespace strata::ui {
 namespace {
@@ -219,7 +220,7 @@ TEST(ImportAndPlace, APartDroppedOnASmallPartIsSizedFromThatPart) {
   const NodeId pin = addPrimitive(state, NodeKind::Cylinder);
   PrimitiveParams thin = findNode(state.document.root(), pin)->params;
   thin.radius = 1.0;
-  thin.height = 4.0;
+  thin.height = 14.0;  // a quarter is 3.5, which rounds to 5 (more than a quarter): 2
   ASSERT_TRUE(guarded(state, [&] { state.document.setParams(pin, thin); }));
   clearSelection(state);
   const Bounds pinBox = selectionBounds(state.document.root(), {pin});
@@ -242,6 +243,37 @@ TEST(ImportAndPlace, APartDroppedOnASmallPartIsSizedFromThatPart) {
   const Bounds farBox = selectionBounds(state.document.root(), {far});
   EXPECT_GT(farBox.size().x, pinBox.size().x);
   undo(state);
+}
+
+// A group selected alone, with the pivot at the selection's centre: its gizmo sits on what it
+// holds, not at its origin (a union wrapped around a part far from the world's origin had its
+// gizmo at the origin: an artist's test); with the pivot on the active part, at its origin.
+TEST(ImportAndPlace, AGroupsGizmoSitsOnWhatItHolds) {
+  EditorState state;
+  const NodeId pin = addPrimitive(state, NodeKind::Cylinder);
+  Transform far;
+  far.translate = glm::dvec3(40.0, -30.0, 5.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(pin, far); }));
+  state.selection = {pin};
+  groupSelection(state, NodeKind::Union);  // wrapped: the union's origin is the world's
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId group = state.selection[0];
+  ASSERT_NE(group, pin);
+  ASSERT_TRUE(isInSubtree(state.document.root(), group, pin));
+  Viewport viewport;
+  glm::dmat4 parentWorld(1.0);
+  Transform at;
+  bool pivot = false;
+  state.pivotAtSelectionCentre = true;
+  ASSERT_TRUE(viewport.gizmoPlacement(state, &parentWorld, &at, &pivot));
+  EXPECT_TRUE(pivot);
+  const glm::dvec3 centre = selectionBounds(state.document.root(), {group}).center();
+  EXPECT_NEAR(glm::distance(glm::dvec3(parentWorld * glm::dvec4(at.translate, 1.0)), centre), 0.0,
+              1e-9);
+  state.pivotAtSelectionCentre = false;
+  ASSERT_TRUE(viewport.gizmoPlacement(state, &parentWorld, &at, &pivot));
+  EXPECT_FALSE(pivot);
+  EXPECT_EQ(at.translate, findNode(state.document.root(), group)->transform.translate);
 }
 
 // What a drop on a surface goes onto: the part whose material the surface bounds (a hole's wall

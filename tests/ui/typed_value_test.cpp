@@ -183,6 +183,13 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   press(kEnter);
   EXPECT_EQ(stored, 3.0);
   EXPECT_EQ(takeUnitConversion(), "");
+  // Digits after the unit do not join the number ("1 cm 2" became 12 cm): dropped with the
+  // letters, which then name no unit (said, the number as typed before them).
+  dropped.clear();
+  typeInto("1 cm 2", &dropped);
+  EXPECT_EQ(stored, 1.0);
+  EXPECT_EQ(takeUnitConversion(), "");
+  EXPECT_EQ(dropped, "cm 2");
   lengthUnit.clear();  // an angle, a count: the number as typed
   typeInto("4 cm", &dropped);
   EXPECT_EQ(stored, 4.0);
@@ -258,6 +265,8 @@ TEST(NumberField, ALengthTypedWithAUnitIntoAnInputDoubleIsConverted) {
   EXPECT_EQ(typed("3"), 3.0);  // no unit: the number as typed
   EXPECT_EQ(takeUnitConversion(), "");
   EXPECT_EQ(typed("4 xyz"), 4.0);  // no unit it knows: the number (the letters are said)
+  EXPECT_EQ(takeUnitConversion(), "");
+  EXPECT_EQ(typed("1 cm 2"), 1.0);  // digits after the unit are not the number's
   EXPECT_EQ(takeUnitConversion(), "");
 }
 
