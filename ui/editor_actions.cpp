@@ -52,6 +52,8 @@ void settleErrors(EditorState& state) {
 
 void replaceDocument(EditorState& state, Document document) {
   settleErrors(state);
+  if (const std::string folder = documentFolder(state); !folder.empty())
+    state.lastDocumentFolder = folder;
   state.document = std::move(document);
   state.selection.clear();
   state.preview.reset();
@@ -1122,6 +1124,12 @@ std::string documentFolder(const EditorState& state) {
 std::string dialogFolder(const EditorState& state) {
   const std::string own = documentFolder(state);
   if (!own.empty()) return own;
+  // Untitled: the folder of the document it replaced (File > New after working on a file),
+  std::error_code missing;
+  if (!state.lastDocumentFolder.empty() &&
+      std::filesystem::is_directory(state.lastDocumentFolder, missing))
+    return state.lastDocumentFolder;
+  // else the last export's,
   if (!state.lastExportPath.empty())
     return std::filesystem::path(state.lastExportPath).parent_path().string() + "/";
   // An untitled document's files go to the user's home, not wherever the editor was started

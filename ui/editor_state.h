@@ -171,6 +171,9 @@ struct EditorState {
   // The last export's file (absolute) and the document it was of: the next export of that
   // document is offered the same place, not the document's folder again.
   std::string lastExportPath, lastExportDocument;
+  // The folder of the last document that had a file, when another replaced it (File > New,
+  // Open): where an untitled document's dialogs start (dialogFolder).
+  std::string lastDocumentFolder;
   int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;

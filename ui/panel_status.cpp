@@ -675,7 +675,11 @@ void drawDiagnostics(EditorState& state) {
   }
   ImGui::SameLine();
   ImGui::TextDisabled("(click a line to copy it)");
-  ImGui::BeginChild("log", ImVec2(0, 0), true);
+  // The rest of the window, but never fewer than eight lines (below the stages and the nodes it
+  // had almost no height: the window scrolls instead).
+  const float logHeight =
+      std::max(ImGui::GetContentRegionAvail().y, 8.0f * ImGui::GetTextLineHeightWithSpacing());
+  ImGui::BeginChild("log", ImVec2(0, logHeight), true);
   // Whole, wrapped; the evaluation's warnings first.
   auto line = [](const ImVec4& color, const std::string& text, int id) {
     ImGui::PushID(id);

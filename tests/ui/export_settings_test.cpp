@@ -129,6 +129,9 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
   untitled.lastExportPath = folder + "/out/ball.ply";
   EXPECT_EQ(exportSuggestion(untitled), folder + "/out/part.stl");
   EXPECT_EQ(dialogFolder(untitled), folder + "/out/");
+  // File > New after working on a file: that file's folder (Save As opened in $HOME).
+  newDocument(state);
+  EXPECT_EQ(dialogFolder(state), folder + "/");
   // Nothing written yet: the user's home, not the folder the editor was started in (an artist's
   // Save As opened in the program's own folder).
   const char* home = std::getenv("HOME");
