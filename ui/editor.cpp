@@ -594,6 +594,7 @@ void Editor::updateGhosts() {
   ghostedSelection_ = s.selection;
   ghostedAll_ = s.showAllGhosts;
   std::vector<Splat> layers[2];  // cutting, intersecting
+  double cells[2] = {0.0, 0.0};  // the coarsest lattice of each layer's ghosts
   if (shown && shown->scene) {
     const NodePtr& root = shown->scene->root;  // the tree the ghosts were evaluated from
     for (NodeId id : ghostsOf(root, s.selection, s.showAllGhosts)) {
@@ -602,10 +603,11 @@ void Editor::updateGhosts() {
         const int layer = roleOf(root, id) == ChildRole::Intersect ? 1 : 0;
         layers[layer].insert(layers[layer].end(), ghost.splats->splats().begin(),
                              ghost.splats->splats().end());
+        cells[layer] = std::max(cells[layer], ghost.h);
       }
     }
   }
-  gl_->renderer->setGhosts(layers[0], layers[1]);
+  gl_->renderer->setGhosts(layers[0], layers[1], cells);
 }
 
 void Editor::autosave() {

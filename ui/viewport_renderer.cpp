@@ -163,16 +163,22 @@ void ViewportRenderer::makeSplatLayer(GLuint* vao, GLuint* buffer) {
 }
 
 void ViewportRenderer::setGhosts(const std::vector<Splat>& cutting,
-                                 const std::vector<Splat>& intersecting) {
+                                 const std::vector<Splat>& intersecting,
+                                 const double cellSizes[2]) {
   const std::vector<Splat>* layers[2] = {&cutting, &intersecting};
+  const double cells[2] = {cellSizes ? cellSizes[0] : 0.0, cellSizes ? cellSizes[1] : 0.0};
   // The same ghosts (a new result of an edit that changed no part): the image stands.
   auto same = [](const std::vector<Splat>& a, const std::vector<Splat>& b) {
     return a.size() == b.size() &&
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Splat)) == 0);
   };
-  if (same(cutting, ghostSplats_[0]) && same(intersecting, ghostSplats_[1])) return;
+  if (same(cutting, ghostSplats_[0]) && same(intersecting, ghostSplats_[1]) &&
+      cells[0] == ghostCells_[0] && cells[1] == ghostCells_[1])
+    return;
   ghostSplats_[0] = cutting;
   ghostSplats_[1] = intersecting;
+  ghostCells_[0] = cells[0];
+  ghostCells_[1] = cells[1];
   for (int i = 0; i < 2; ++i) {
     ghosts_[i].count = layers[i]->size();
     if (layers[i]->empty()) continue;
@@ -280,6 +286,7 @@ void ViewportRenderer::setSplatCount(size_t count, const SplatShape& shape) {
   shape_ = shape;
   cellSize_ = shape.cellSize;
   ++contentVersion_;
+  ++splatsVersion_;
 }
 
 SplatShape splatShapeOf(const Grid& grid, const SplatResource& splats) {
@@ -517,6 +524,7 @@ void ViewportRenderer::setLeafStyles(const LeafStyleTable& styles) {
   leafTextureWidth_ = width;
   leafCount_ = count;
   ++contentVersion_;
+  ++splatsVersion_;
 }
 
 void ViewportRenderer::drawLines(const std::vector<LineVertex>& vertices, GLenum mode) {
@@ -779,10 +787,12 @@ void ViewportRenderer::drawGhosts(const ViewportFrame& f) {
   for (int i = 0; i < 2; ++i) {
     if (ghosts_[i].count == 0) continue;
     surfelProgram_.set("ghostColor", tints[i]);
+    surfelProgram_.set("cellSize", float(ghostCells_[i] > 0.0 ? ghostCells_[i] : cellSize_));
     glBindVertexArray(ghosts_[i].vao);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(ghosts_[i].count));
   }
   surfelProgram_.set("ghostColor", glm::vec4(0.0f));
+  surfelProgram_.set("cellSize", float(cellSize_));
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glBindTexture(GL_TEXTURE_2D, 0);
@@ -967,9 +977,13 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   // when that fits about two and a half frames' share (a fast GPU: one frame from the edit to
   // the screen); a moving view keeps to the share.
   const uint64_t view = viewKey(local, lines);
-  const bool viewMoved = view != shownView_;
+  // Moved: the camera, the size or the section, not the lines (a moved part's selection box
+  // came with its edit's result, which then counted as an orbit's frame: no first image, no
+  // complete image kept for a ghost finished after it).
+  const uint64_t camera = viewKey(local, {});
+  const bool viewMoved = camera != shownCamera_;
+  shownCamera_ = camera;
   const uint64_t key = view ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
-  shownView_ = view;
   size_t allowed = viewMoved ? fullShare_ : fullShare_ * 5 / 2;
   // Where the GPU's measured time per splat says that a whole image of the view's level costs
   // at most half the frame's target, it is drawn whole, a moving view's too, whatever share the
@@ -993,8 +1007,12 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   };
 
   // The image without lines, kept when one is complete (copyImage: colour and depth).
+  // The image of the splats alone (no ghosts, no lines), kept when one is complete
+  // (copyImage: colour and depth): a change of the lines or the ghosts alone (a measurement
+  // placed, a selection's box, a ghost finished after its result) draws them over a copy of it,
+  // instead of all the splats again (a software GL driver refined the whole image again).
   const uint64_t plainKey =
-      viewKey(local, {}) ^ (contentVersion_ * 0x9e3779b97f4a7c15ull) ^ 0x5bd1e995ull;
+      viewKey(local, {}) ^ (splatsVersion_ * 0x9e3779b97f4a7c15ull) ^ 0x5bd1e995ull;
   auto copyImage = [&](const RenderTarget& from, RenderTarget& to) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, from.framebuffer());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to.framebuffer());
@@ -1009,20 +1027,26 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     complete.bind();
   };
 
+  // The lines or the ghosts changed while the image of the same splats is being built: the
+  // build goes on (it draws them when complete) instead of starting again from a coarse image.
+  if (key != shownKey_ && refining_ && plainKey == buildingPlainKey_) shownKey_ = key;
   if (key != shownKey_ && !refining_ && plain_ && plainKey == plainKey_ && shown_ &&
       plain_->width() == f.width && plain_->height() == f.height) {
-    // Only the lines changed: the complete image kept without them, and the new lines.
+    // Only the lines or the ghosts changed: the complete image of the splats, and over it the
+    // ghosts (a few splats: all of them) and the lines.
     shownKey_ = key;
     copyImage(*plain_, *shown_);
     shown_->bind();
     glViewport(0, 0, f.width, f.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+    drawGhosts(local);
     drawLinesInto(local);
     drewSplatsLastFrame_ = 0;
     show = shown_.get();
-  } else if (key != shownKey_) {
+  } else if (key != shownKey_ && !(refining_ && plainKey == buildingPlainKey_)) {
     shownKey_ = key;
+    buildingPlainKey_ = plainKey;
     buildDone_ = 0;
     // The full image's splats: those of the level of detail the view needs.
     buildLevel_ = detailLevel(local);
@@ -1037,8 +1061,10 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
       shown_->bind();
       drawBackground(local);
       drawSplatRange(local, 0, first, 1, float(1 << firstLevel), SplatDraw::WholeImage);
+      // Kept for a change of the lines or ghosts alone (an orbit's frames too: the image they
+      // stop on is the one a ghost or a selection changes next; a copy on the GPU).
+      if (firstLevel == buildLevel_) keepPlain(*shown_);
       drawGhosts(local);
-      if (firstLevel == buildLevel_ && !viewMoved) keepPlain(*shown_);  // not every orbit frame
       drawLinesInto(local);
       refining_ = firstLevel != buildLevel_;
       refineOverShown_ = refining_;
@@ -1112,8 +1138,8 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     drewSplatsLastFrame_ = what == SplatDraw::WholeImage ? 0 : count;
     lastDrawFull_ = true;
     if (buildDone_ >= full) {
-      drawGhosts(local);
       keepPlain(*building_);
+      drawGhosts(local);
       drawLinesInto(local);
       std::swap(shown_, building_);
       refining_ = false;

@@ -118,9 +118,11 @@ class ViewportRenderer {
   size_t splatBytes() const { return splatCount_ * sizeof(Splat); }
 
   // Ghosts: splats of parts that cut (red) or intersect (violet), drawn translucent over the
-  // result (depth-tested against it, not written, not pickable), on the same grid (cellSize of
-  // the last splats). Replaces the previous ghosts; empty vectors draw none.
-  void setGhosts(const std::vector<Splat>& cutting, const std::vector<Splat>& intersecting);
+  // result (depth-tested against it, not written, not pickable), each layer as splats of
+  // `cellSizes[layer]` (scene units; 0: the result's), the coarsest lattice its ghosts were
+  // made on. Replaces the previous ghosts; empty vectors draw none.
+  void setGhosts(const std::vector<Splat>& cutting, const std::vector<Splat>& intersecting,
+                 const double cellSizes[2] = nullptr);
   size_t ghostCount() const { return ghosts_[0].count + ghosts_[1].count; }
 
   // Lines drawn over the background only, under every splat and ghost: the ground grid, which is
@@ -418,21 +420,24 @@ class ViewportRenderer {
   // drawCached's images: the coarse one (reduced, coarseShrink), the full one shown and the full
   // one being drawn.
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
+  uint64_t splatsVersion_ = 1;   // bumped by every change of splats or colours (not ghosts)
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  // The last complete image drawn at rest (not while the view moves) without its lines (colour
-  // and depth), and the view (lines left out) and content it shows: a change of the lines alone
-  // (a measurement placed, a selection's box) draws them over a copy of it, instead of all the
-  // splats again.
+  // The last complete image drawn at rest (not while the view moves) of the splats alone, without
+  // ghosts and lines (colour and depth), and the view (lines left out) and splats it shows: a
+  // change of the lines or the ghosts alone (a measurement placed, a selection's box, a ghost
+  // finished after its result) draws them over a copy of it, instead of all the splats again.
   std::unique_ptr<RenderTarget> plain_;
   std::optional<LeafStyleTable> styles_;  // the last setLeafStyles' table
   std::vector<Splat> ghostSplats_[2];     // the last setGhosts' layers
+  double ghostCells_[2] = {0.0, 0.0};     // and their cell sizes (0: the result's)
   uint64_t plainKey_ = 0;
-  uint64_t shownKey_ = 0;         // what shown_ (or coarse_, while refining) holds
-  uint64_t windowKey_ = 0;        // what the window shows (windowShows); 0: unknown
-  uint64_t shownView_ = 0;        // its view alone (viewKey)
-  bool refining_ = false;         // building_ is being drawn for shownKey_
-  bool refineOverShown_ = false;  // meanwhile shown_ holds a first image (else coarse_ is shown)
-  size_t buildDone_ = 0;          // splats drawn into building_ so far
+  uint64_t shownKey_ = 0;          // what shown_ (or coarse_, while refining) holds
+  uint64_t windowKey_ = 0;         // what the window shows (windowShows); 0: unknown
+  uint64_t shownCamera_ = 0;       // its view without the lines (viewKey of no lines)
+  uint64_t buildingPlainKey_ = 0;  // the splats and view (no lines) of the image being built
+  bool refining_ = false;          // building_ is being drawn for shownKey_
+  bool refineOverShown_ = false;   // meanwhile shown_ holds a first image (else coarse_ is shown)
+  size_t buildDone_ = 0;           // splats drawn into building_ so far
   // Splats a frame: of the coarse image (every k-th, reduced resolution) and at full resolution
   // (whole images and the refining shares). Safe starts for a software GL driver; each grows
   // 1.5x a frame while frames are quick.

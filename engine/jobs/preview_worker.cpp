@@ -195,16 +195,10 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     wholeSeconds_ = passSeconds;
     wholeResolution_ = resolution;
   }
-  // The ghosts shown from now on: this result's (a ghost still to finish: as last shown, with
-  // what it was made from).
-  std::map<NodeId, ShownGhost> shownGhosts;
-  for (const GhostSplats& g : result->ghosts) {
-    auto last = lastGhosts_.find(g.id);
-    shownGhosts[g.id] = last != lastGhosts_.end() && last->second.splats == g.splats
-                            ? last->second
-                            : ShownGhost{g.splats, false, 0, Grid()};
-  }
-  lastGhosts_ = std::move(shownGhosts);
+  // The ghosts shown from now on: this result's (a ghost still to finish: as last shown, or
+  // moved with its part, with what it was made from).
+  lastGhosts_ = std::move(passGhosts_);
+  passGhosts_.clear();
   const bool ghostsToFinish = !deferredGhosts_.empty() && result->error.empty();
   std::shared_ptr<const PreviewResult> published = result;
   {
@@ -264,6 +258,23 @@ static std::shared_ptr<const HostSplats> hostGhost(Backend& backend, const LdiHa
   return std::make_shared<HostSplats>(std::move(host));
 }
 
+PreviewWorker::ShownGhost PreviewWorker::movedGhost(const ShownGhost& shown,
+                                                    const glm::dmat4& world) {
+  const glm::dmat4 motion = world * glm::inverse(shown.world);
+  bool turned = false;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r)
+      turned = turned || std::fabs(motion[c][r] - (c == r ? 1.0 : 0.0)) > 1e-12;
+  const glm::dvec3 move(motion[3]);
+  if (turned || !(glm::length(move) > 0.0) || !shown.splats) return shown;
+  // Moved only: the same splats, moved by as much (until its own LDI is evaluated).
+  std::vector<Splat> splats = shown.splats->splats();
+  for (Splat& splat : splats)
+    for (int a = 0; a < 3; ++a) splat.position[a] = float(double(splat.position[a]) + move[a]);
+  return ShownGhost{
+      std::make_shared<HostSplats>(std::move(splats)), false, 0, Grid(), world, shown.h};
+}
+
 bool PreviewWorker::finishGhosts(const Request& request,
                                  const std::shared_ptr<const PreviewResult>& shown) {
   // Cancelled by stop and cancel(), not by a newer request: that one is served next, with these
@@ -310,12 +321,18 @@ bool PreviewWorker::finishGhosts(const Request& request,
           shownGhost->second.window == deferred.window)
         continue;
       auto splats = hostGhost(ghost.evaluator->backend(), evaluated.root, *progress);
-      lastGhosts_[deferred.id] = ShownGhost{splats, true, evaluated.rootKey, deferred.window};
+      lastGhosts_[deferred.id] = ShownGhost{splats,
+                                            true,
+                                            evaluated.rootKey,
+                                            deferred.window,
+                                            nodeWorldMatrix(request.scene->root, deferred.id),
+                                            deferred.window.h};
       changed = true;
-      if (place != result->ghosts.end())
+      if (place != result->ghosts.end()) {
         place->splats = std::move(splats);
-      else
-        result->ghosts.push_back(GhostSplats{deferred.id, std::move(splats)});
+        place->h = deferred.window.h;
+      } else
+        result->ghosts.push_back(GhostSplats{deferred.id, std::move(splats), deferred.window.h});
     } catch (const Cancelled&) {  // the result stands as published
       finished = false;
       break;
@@ -415,17 +432,24 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   // evaluated alone on a window of the same lattice that covers it, after this result is shown
   // (finishGhosts): meanwhile the result carries the ghost last shown of that node, if any.
   deferredGhosts_.clear();
+  passGhosts_.clear();
   for (KeptLdi& kept : result.stats.kept) {
     const Grid own = ghostWindow(*request.scene, kept.id, grid);
+    const glm::dmat4 world = nodeWorldMatrix(request.scene->root, kept.id);
     if (!(own == grid)) {
       deferredGhosts_.push_back(DeferredGhost{kept.id, own, backend, used != &evaluator});
       auto last = lastGhosts_.find(kept.id);
-      if (last != lastGhosts_.end())
-        result.ghosts.push_back(GhostSplats{kept.id, last->second.splats});
+      if (last != lastGhosts_.end()) {
+        ShownGhost shown = movedGhost(last->second, world);
+        result.ghosts.push_back(GhostSplats{kept.id, shown.splats, shown.h});
+        passGhosts_[kept.id] = std::move(shown);
+      }
       kept.ldi.reset();
       continue;
     }
-    result.ghosts.push_back(GhostSplats{kept.id, hostGhost(*backend, kept.ldi, progress)});
+    auto splats = hostGhost(*backend, kept.ldi, progress);
+    result.ghosts.push_back(GhostSplats{kept.id, splats, grid.h});
+    passGhosts_[kept.id] = ShownGhost{std::move(splats), false, 0, Grid(), world, grid.h};
     kept.ldi.reset();
   }
   result.stats.kept.clear();

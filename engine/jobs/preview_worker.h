@@ -28,7 +28,8 @@
 //   - Ghosts (the splats of cutters' and intersectors' own LDIs, PreviewResult::ghosts) come
 //     with the result where they lie within its grid. One that reaches beyond it is evaluated
 //     alone on a window of its own (ghostWindow) after the result is published, which then
-//     carries that node's ghost as last shown; a copy of the result with the new ghost follows
+//     carries that node's ghost as last shown (moved with the node where it only moved); a
+//     copy of the result with the new ghost follows
 //     (same splats: the UI keeps its image). A newer request waits for it (so that a drag's
 //     ghosts follow the hand); stop and cancel() end it.
 //   - Nothing here draws (no GL): ui/ uploads the splats or copies them through CUDA-GL
@@ -65,6 +66,9 @@ namespace strata {
 struct GhostSplats {
   NodeId id = 0;
   std::shared_ptr<const HostSplats> splats;  // always on the host (few; drawn by upload)
+  // The cell size of the lattice they were made on (scene units): drawn with splats of that
+  // size (a ghost carried from a coarse pass into a fine one was drawn as scattered dots).
+  double h = 0.0;
 };
 
 // Modifiers whose amount is under this many cells of a coarse pass are left out of it.
@@ -221,8 +225,15 @@ class PreviewWorker {
     bool alone = false;
     uint64_t key = 0;
     Grid window;
+    glm::dmat4 world{1.0};  // the node's object-to-world matrix where its splats were made
+    double h = 0.0;         // the cell size of their lattice
   };
   std::map<NodeId, ShownGhost> lastGhosts_;
+  std::map<NodeId, ShownGhost> passGhosts_;  // the pass being computed's, for lastGhosts_
+  // A ghost last shown, for its node now at `world`: where the node only moved (no turn or
+  // scale), its splats moved by as much (an old ghost over solid material stood where a moved
+  // cutter had been until its own was evaluated); else as it was.
+  static ShownGhost movedGhost(const ShownGhost& shown, const glm::dmat4& world);
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // the worker: a request arrived, or stop

@@ -363,6 +363,50 @@ TEST(EditorWindow, DeviceSplatsGoStraightIntoMappedBuffersAndLookAsUploaded) {
   EXPECT_GT(red, 10000);
 }
 
+// A change of the ghosts alone (shown with G, or finished after the result they belong to)
+// draws them over the kept image of the splats: not one splat is drawn again (the whole image
+// was drawn again, under a software GL driver a coarse image refined over a second).
+TEST(EditorWindow, AChangeOfTheGhostsAloneDrawsNoSplatAgain) {
+  REQUIRE_DISPLAY();
+  Editor editor(testOptions());
+  EditorState& state = editor.state();
+  const NodeId block = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  ASSERT_NE(addPrimitive(state, NodeKind::Cylinder), 0u);
+  state.placeMode = PlaceMode::Add;
+  ASSERT_TRUE(findNode(state.document.root(), block));
+  clearSelection(state);
+  setResolution(state, 48);
+  ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
+  const auto drawn = [&] {
+    return editor.splatsDrawnAsPoints() + editor.splatsDrawnAsQuads() +
+           editor.splatsDrawnByCompute();
+  };
+  const auto settle = [&] {
+    for (int i = 0; i < 2000 && !(editor.viewSettled() && !editor.uploading()); ++i) editor.frame();
+    for (int i = 0; i < 3; ++i) editor.frame();
+  };
+  settle();
+  const size_t before = drawn();
+  ASSERT_GT(before, 0u);
+  const std::shared_ptr<const PreviewResult> shown = state.preview;
+  state.showAllGhosts = true;
+  for (int i = 0; i < 2000 && !(state.preview && !state.preview->ghosts.empty()); ++i)
+    editor.frame();
+  ASSERT_TRUE(state.preview && !state.preview->ghosts.empty()) << "no ghost came";
+  EXPECT_NE(state.preview, shown);
+  EXPECT_EQ(state.preview->splats, shown->splats) << "the same splats";
+  settle();
+  EXPECT_EQ(drawn(), before) << "the splats were drawn again for a change of the ghosts";
+  state.showAllGhosts = false;
+  settle();
+  EXPECT_EQ(drawn(), before);
+  undo(state);  // resolution
+  undo(state);  // cutter
+  undo(state);  // box
+  EXPECT_TRUE(state.document.root()->children.empty());
+}
+
 TEST(EditorWindow, DifferenceShowsTheHoleFromAbove) {
   REQUIRE_DISPLAY();
   Editor editor(testOptions());

@@ -344,7 +344,10 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
   const Bounds window = grid.bounds();
   const double h = grid.h;
   std::map<NodeId, Bounds> drawn;
-  for (const GhostSplats& g : r->ghosts) drawn[g.id] = splatBounds(*g.splats);
+  for (const GhostSplats& g : r->ghosts) {
+    drawn[g.id] = splatBounds(*g.splats);
+    EXPECT_EQ(g.h, r->stats.grid.h) << "drawn with splats of its own lattice";
+  }
   ASSERT_EQ(drawn.size(), 4u);
 
   const Bounds rodBox = nodeBounds(rod, scene->root, glm::dmat4(1.0));
@@ -387,7 +390,7 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
 
 // An edit's result is published before the ghosts that reach beyond its grid are evaluated (a
 // slow ghost must not hold the edit's image back): it carries the ghost last shown of that
-// node, and a copy with the new ghost (the same splats) follows.
+// node, moved as the node moved, and a copy with the new ghost (the same splats) follows.
 TEST(PreviewWorker, AnEditsResultComesBeforeItsGhostsBeyondTheGrid) {
   auto gated = std::make_shared<test::GatedBackend>();
   ResultLog log;
@@ -422,7 +425,13 @@ TEST(PreviewWorker, AnEditsResultComesBeforeItsGhostsBeyondTheGrid) {
   const ResultPtr shown = results.back();
   expectShows(shown, 2, 64, false);
   ASSERT_EQ(shown->ghosts.size(), 1u);
-  EXPECT_EQ(shown->ghosts[0].splats, firstGhost) << "the ghost last shown, meanwhile";
+  // Meanwhile the ghost last shown, moved as the rod moved (it stood where the rod had been).
+  const Bounds firstBox = splatBounds(*firstGhost);
+  const Bounds meanwhile = splatBounds(*shown->ghosts[0].splats);
+  EXPECT_EQ(shown->ghosts[0].splats->count(), firstGhost->count());
+  EXPECT_NEAR(meanwhile.min.x - firstBox.min.x, 0.25, 1e-5);
+  EXPECT_NEAR(meanwhile.max.y - firstBox.max.y, 0.0, 1e-5);
+  EXPECT_EQ(shown->ghosts[0].h, first->ghosts[0].h);  // made on that ghost's lattice
   gated->open();
   ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
   results = log.results();
