@@ -31,12 +31,14 @@ int previewResolutionFor(int requested, int shownResolution, uint64_t shownCache
 }
 
 PreviewWorker::PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution,
-                             std::function<void()> onResult, double quickPassSeconds)
+                             std::function<void()> onResult, double quickPassSeconds,
+                             double moveGhostAfterSeconds)
     : backend_(std::move(backend)),
       backendDescription_(backend_->description()),
       coarse_(std::max(coarseResolution, 8)),
       quickPassSeconds_(quickPassSeconds),
-      onResult_(std::move(onResult)) {
+      onResult_(std::move(onResult)),
+      moveGhostAfterSeconds_(moveGhostAfterSeconds) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -294,6 +296,7 @@ bool PreviewWorker::finishGhosts(const Request& request,
   std::map<NodeId, GhostEvaluator> kept;
   auto result = std::make_shared<PreviewResult>(*shown);
   bool finished = true, changed = false;
+  Stopwatch clock;
   for (const DeferredGhost& deferred : deferredGhosts_) {
     auto found = ghostEvaluators_.find(deferred.id);
     GhostEvaluator& ghost = kept[deferred.id];
@@ -352,6 +355,7 @@ bool PreviewWorker::finishGhosts(const Request& request,
       kept[deferred.id] = std::move(found->second);
   }
   ghostEvaluators_ = std::move(kept);
+  if (finished && changed) ghostSeconds_ = clock.seconds();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ghostsRunning_.reset();
@@ -440,7 +444,10 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
       deferredGhosts_.push_back(DeferredGhost{kept.id, own, backend, used != &evaluator});
       auto last = lastGhosts_.find(kept.id);
       if (last != lastGhosts_.end()) {
-        ShownGhost shown = movedGhost(last->second, world);
+        // Moved with its part where ghosts take a while to come (a copy of every splat: where
+        // they come within a frame, the one last shown stands until then).
+        ShownGhost shown = ghostSeconds_ >= moveGhostAfterSeconds_ ? movedGhost(last->second, world)
+                                                                   : last->second;
         result.ghosts.push_back(GhostSplats{kept.id, shown.splats, shown.h});
         passGhosts_[kept.id] = std::move(shown);
       }

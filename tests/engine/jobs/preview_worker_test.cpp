@@ -394,8 +394,9 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
 TEST(PreviewWorker, AnEditsResultComesBeforeItsGhostsBeyondTheGrid) {
   auto gated = std::make_shared<test::GatedBackend>();
   ResultLog log;
-  // No coarse pass once a full pass was quick (the first request's is coarse first).
-  PreviewWorker worker(gated, 32, log.callback(), 1e9);
+  // No coarse pass once a full pass was quick (the first request's is coarse first); a ghost
+  // carried always moved with its part (however quick its ghosts).
+  PreviewWorker worker(gated, 32, log.callback(), 1e9, 0.0);
   log.attach(&worker);
   NodePtr rod = cylinder(0.3, 6.0);
   NodePtr base = box({2, 2, 2});
