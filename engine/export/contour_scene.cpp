@@ -476,14 +476,22 @@ MergedTiles mergeTiles(const Scene& scene, std::vector<TileContour> tiles, Progr
 ExportMesh meshFromTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
                          ContourReport& r) {
   const Grid& grid = r.grid;
+  // Timed step by step (the report's merge_steps): what a pipelined merge would overlap.
   Stopwatch merge;
   MergedTiles merged = mergeTiles(scene, std::move(tiles), progress, r);
+  r.mergeSteps.push_back({"sort and index", merge.seconds()});
   ExportMesh out = std::move(merged.mesh);
   std::vector<uint8_t>& resolved = merged.resolved;
   // Components once, for both (unfolding moves vertices, not triangles).
+  Stopwatch step;
   const std::vector<uint32_t> roots = vertexComponentRoots(out.mesh);
+  r.mergeSteps.push_back({"components", step.seconds()});
+  step.restart();
   r.unfoldedShells = unfoldInvertedShells(grid, merged.keys, roots, &out.mesh);
+  r.mergeSteps.push_back({"unfold", step.seconds()});
+  step.restart();
   r.droppedSpecks = dropUnresolvedSpecks(&out, &resolved, grid.h, &roots);
+  r.mergeSteps.push_back({"specks", step.seconds()});
   r.mergeSeconds = merge.seconds();
   r.deviationBound = std::sqrt(3.0) * grid.h;
   r.peakBytes = peakResidentBytes();
