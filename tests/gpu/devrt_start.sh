@@ -9,3 +9,17 @@ export LD_LIBRARY_PATH=/tmp/devlib:$LD_LIBRARY_PATH
 for f in .devrt/bin/*.xz; do xz -dkf "$f" && chmod +x "${f%.xz}"; done
 B=.devrt/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
 export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
+
+# The bundled scenes given, exported at 512 cells by both backends and compared byte for byte,
+# into $R/exports.txt.
+exports_cpu_vs_cuda() {
+  for scene in "$@"; do
+    for b in cpu cuda; do
+      timeout 120 $B/strata export $S/$scene.strata.json --resolution 512 --backend $b -q -o /tmp/$b.stl > /tmp/$b.log 2>&1
+      echo "== $scene 512 $b: rc $?" >> $R/exports.txt
+    done
+    cmp -s /tmp/cpu.stl /tmp/cuda.stl && echo "   CPU = CUDA, byte for byte" >> $R/exports.txt || echo "   FILES DIFFER" >> $R/exports.txt
+    rm -f /tmp/cpu.stl /tmp/cuda.stl
+  done
+  cat $R/exports.txt
+}

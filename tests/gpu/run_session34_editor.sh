@@ -7,36 +7,7 @@
 #   with a plate whose two cutters stick out of it on every side, ghosts shown: drawn whole;
 # - editor.txt: edit-to-screen (#11: --measure-latency 12, the demo and armadillo - bunny at 512
 #   and 1024 cells, interop and the host path, splats as the renderer picks).
-[ -d /tmp/devlib ] || { echo "no /tmp/devlib: run run_session34.sh first on this machine"; exit 1; }
-source .devrt/on-device.sh
-export LD_LIBRARY_PATH=/tmp/devlib:$LD_LIBRARY_PATH
-xz -dkf .devrt/bin/strata.xz && chmod +x .devrt/bin/strata
-B=.devrt/bin; S=assets/scenes; R=$OUT/r; mkdir -p $R
-export STRATA_ASSETS=$PWD/assets STRATA_TEST_DATA=$PWD/tests/data
-[ -n "$DISPLAY" ] || { echo "no display"; exit 1; }
-cat > /tmp/rod.strata.json <<'SCENE'
-{"format":"strata-scene","version":1,"unit":"millimetre","settings":{"resolution":512,"margin":0.05},
- "root":{"id":1,"name":"plate with pins","type":"difference","children":[
-  {"id":2,"name":"plate","type":"box","size":[40,40,5]},
-  {"id":3,"name":"long pin","type":"cylinder","radius":3,"height":60,"transform":{"translate":[8,8,0]}},
-  {"id":4,"name":"cross rod","type":"cylinder","radius":1.5,"height":70,"transform":{"translate":[0,-8,0],"rotate":[0,90,0]}}]}}
-SCENE
-for path in interop host; do
-  extra=""; [ $path = host ] && extra="--no-interop"
-  timeout 90 $B/strata edit /tmp/rod.strata.json --ghosts --backend cuda $extra --width 1280 --height 800 \
-    --screenshot $R/ghost_$path.png > $R/ghost_$path.txt 2>&1; echo "rc $?" >> $R/ghost_$path.txt
-  tail -2 $R/ghost_$path.txt
-done
-latency() {  # scene leaf resolution [--no-interop]
-  echo "== latency $(basename $1) '$2' $3 $4"
-  timeout 120 $B/strata edit $1 --measure-latency 12 --move-leaf "$2" --resolution $3 --backend cuda --splats auto $4 2>&1 | grep -E "^(edit|first image|latency|strata)"
-}
-{
-for res in 512 1024; do
-  for via in "" --no-interop; do
-    latency $S/demo.strata.json "bolt hole front left" $res $via
-    latency $S/armadillo_bunny.strata.json bunny $res $via
-  done
-done
-} > $R/editor.txt 2>&1
+source tests/gpu/devrt_x_start.sh
+ghost_shots
+latency_set strata > $R/editor.txt 2>&1
 grep -E "^(==|latency)" $R/editor.txt
