@@ -561,6 +561,10 @@ bool Editor::showsCoarseImage() const {
   return gl_->renderer->showsCoarseImage();
 }
 
+size_t Editor::shownGhostSplats() const {
+  return gl_->renderer->ghostCount();
+}
+
 size_t Editor::splatsDrawnAsPoints() const {
   return gl_->renderer->pointsDrawn();
 }
@@ -588,9 +592,11 @@ void Editor::updateLeafStyles() {
 void Editor::updateGhosts() {
   EditorState& s = *state_;
   const PreviewResult* shown = s.preview.get();
-  if (shown == ghostedResult_ && s.selection == ghostedSelection_ && s.showAllGhosts == ghostedAll_)
-    return;
-  ghostedResult_ = shown;
+  // The same result while it lives (not merely one at the same address: results now come in
+  // quick succession, the ghosts' copy after its result).
+  const bool sameResult = !ghostedResult_.expired() && ghostedResult_.lock() == s.preview;
+  if (sameResult && s.selection == ghostedSelection_ && s.showAllGhosts == ghostedAll_) return;
+  ghostedResult_ = s.preview;
   ghostedSelection_ = s.selection;
   ghostedAll_ = s.showAllGhosts;
   std::vector<Splat> layers[2];  // cutting, intersecting

@@ -103,6 +103,8 @@ class Editor {
   double splatNanoseconds(SplatPrimitive kind) const;
   // Whether a result is being uploaded over several frames (shown once all of it is there).
   bool uploading() const { return staging_ != nullptr; }
+  // The ghosts' splats the view draws (ViewportRenderer::ghostCount).
+  size_t shownGhostSplats() const;
   // Results whose device splats the worker copied straight into a mapped GL buffer and the
   // frame copied from there on the GPU, so far (MappedSplatSlots::copiedCount).
   size_t resultsInMappedBuffers() const;
@@ -187,7 +189,7 @@ class Editor {
   uint64_t styledRevision_ = ~uint64_t(0);
   std::vector<NodeId> styledSelection_;
   // Ghosts last given to the renderer: of which result, selection and toggle.
-  const PreviewResult* ghostedResult_ = nullptr;
+  std::weak_ptr<const PreviewResult> ghostedResult_;
   std::vector<NodeId> ghostedSelection_;
   bool ghostedAll_ = false;
   std::shared_ptr<const PreviewResult> staging_;  // being uploaded (stageMore), not shown yet

@@ -835,6 +835,28 @@ void groupSelection(EditorState& state, NodeKind kind) {
   state.document.beginInteraction();  // the group and its modifier's distance: one undo step
   guarded(state, [&] {
     NodeId id = state.document.group(state.selection, kind);
+    // A Boolean's or a modifier's origin is only where its gizmo turns and scales it: at the
+    // centre of what it holds, its parts moved back by as much (nothing moves in the world). It
+    // was the parent's origin, where a union wrapped around a part far from it had its gizmo (an
+    // artist's test). A pattern keeps it: its copies are placed about it.
+    if (patternOf(kind) == Pattern::None && !bounds.empty()) {
+      const NodePtr& root = state.document.root();
+      const glm::dvec3 centre =
+          glm::dvec3(glm::inverse(parentWorldMatrix(root, id)) * glm::dvec4(bounds.center(), 1.0));
+      const NodePtr group = findNode(root, id);
+      if (group && group->transform.matrix() == glm::dmat4(1.0)) {
+        std::vector<std::pair<NodeId, Transform>> parts;
+        for (const NodePtr& child : group->children) {
+          Transform t = child->transform;
+          t.translate -= centre;
+          parts.push_back({child->id, t});
+        }
+        Transform at = group->transform;
+        at.translate = centre;
+        state.document.setTransform(id, at);
+        for (const auto& [child, t] : parts) state.document.setTransform(child, t);
+      }
+    }
     if (modifierOf(kind) != Modifier::None) {
       double amount = modifierAmountFor(kind, bounds);
       std::string why;

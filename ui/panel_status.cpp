@@ -304,16 +304,14 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   const bool stepEdited =
       ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str());
   if (ImGui::IsItemActivated()) stepBefore = stepTyped = stepShown;
-  if (stepEdited) {
-    stepTyped = state.snap.step;
-    state.snapFollowsGrid = false;
-  }
-  if (convertLengthTypedIntoInput(&stepTyped, unitSymbol(scene.settings.unit)))
-    state.snapFollowsGrid = false;  // "1cm" typed: 10 mm
+  if (stepEdited) stepTyped = state.snap.step;
+  convertLengthTypedIntoInput(&stepTyped, unitSymbol(scene.settings.unit));  // "1cm": 10 mm
   if (ImGui::IsItemDeactivated()) {
     if (const std::string converted = takeUnitConversion(); !converted.empty())
       logInfo(state, "typed " + converted);
     if (stepTyped > 0.0 && std::isfinite(stepTyped)) {
+      // A step typed no longer follows the grid (Escape, which puts the step back, keeps it).
+      if (stepTyped != stepBefore) state.snapFollowsGrid = false;
       state.snap.step = stepTyped;
     } else {
       state.snap.step = stepBefore;

@@ -2,6 +2,7 @@
 #include "ui/typed_value.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <type_traits>
@@ -30,6 +31,8 @@ Typed gTyped;
 struct Dropped {
   ImGuiID id = 0;
   std::string letters;
+  double since = 0.0;        // when the field's typing began (ImGui time): letters of one typing
+  bool numberAfter = false;  // a digit or a point typed after the letters: no unit of the number
 };
 Dropped gDropped;
 std::string gConversion;
@@ -42,8 +45,11 @@ double convertTypedUnit(ImGuiID id, double value, const std::string& lengthUnit)
   std::string typed;
   for (char c : gDropped.letters)
     if (c != ' ') typed += c;
+  const bool numberAfter = gDropped.numberAfter;
   gDropped = {};
-  if (lengthUnit.empty()) return value;
+  // "1 cm 2" is 12 as the field shows it (the letters never reach it), not 12 cm: said as letters
+  // not typed, not converted.
+  if (lengthUnit.empty() || numberAfter) return value;
   const double from = sceneUnitMetres(typed), to = sceneUnitMetres(lengthUnit);
   if (!(from > 0.0) || !(to > 0.0)) return value;
   const double converted = value * (from / to);
@@ -140,12 +146,18 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
                     codepoint == '+' || codepoint == '-' || codepoint == '*' || codepoint == '/' ||
                     codepoint == 'e' || codepoint == 'E';
   const ImGuiID field = numberFieldBeingTyped();
-  // After a unit's letters, nothing more reaches the number ("1 cm 2" became 12 cm): what follows
-  // is dropped with the letters, which then name no unit, and said.
-  const bool afterUnit = gDropped.id == field && !gDropped.letters.empty();
-  if (!afterUnit && (kept || codepoint == ' ')) return codepoint;
+  // The letters of this typing only (the field's typing began when it became active): those of
+  // an earlier typing into it, never committed (a field that converts nothing), are forgotten.
+  const ImGuiContext* g = ImGui::GetCurrentContext();
+  const double since = g->Time - double(g->ActiveIdTimer);
+  if (gDropped.id != field || std::fabs(gDropped.since - since) > 1e-6)
+    gDropped = {field, "", since, false};
+  if (kept || codepoint == ' ') {
+    // A number typed after the letters ("1 cm 2" became 12 cm): the letters are no unit of it.
+    if (!gDropped.letters.empty() && codepoint != ' ') gDropped.numberAfter = true;
+    return codepoint;
+  }
   // Kept for the field's commit, which converts a length unit (commitTypedValue).
-  if (gDropped.id != field) gDropped = {field, ""};
   const size_t before = dropped->size();
   // As UTF-8, so that a micro sign or a degree sign is said too.
   if (codepoint < 0x80) {
@@ -159,7 +171,7 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
     dropped->push_back(char(0x80 | (codepoint & 0x3F)));
   }
   gDropped.letters += dropped->substr(before);
-  return afterUnit && (kept || codepoint == ' ') ? 0 : codepoint;  // 0: nothing reaches it
+  return codepoint;
 }
 
 bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit) {

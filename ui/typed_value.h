@@ -43,8 +43,9 @@ bool doubleClickOpensTyping(double before, double* beforePress);
 // for typing: Dear ImGui's temporary input, which keeps digits, signs, '.', 'e', '*' and '/' and
 // drops the rest without a word): a decimal comma becomes the decimal point (it was dropped, so
 // "9,5" became 95), and what the field will drop is added to *dropped (letters of a unit: "5 mm"
-// became 5, "0.5 in" 0.5 mm), for the editor to say; after such letters, digits and spaces are
-// dropped too (returns 0: "1 cm 2" became 12 cm). Other fields' characters pass as typed.
+// became 5, "0.5 in" 0.5 mm), for the editor to say; a number typed after such letters makes
+// them no unit ("1 cm 2" is the 12 the field shows, not 12 cm). Letters count for the typing they
+// were typed in. Other fields' characters pass as typed.
 // Call with the current ImGui context, before the character reaches it.
 unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped);
 // Whether a number field's text is being edited now: a drag or slider opened for typing, or an

@@ -147,13 +147,9 @@ bool Viewport::gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld,
   // An instance shows its target where the target's own transform puts it, its own origin
   // elsewhere (the parent's, for a new one: an artist found its gizmo at the world's origin):
   // its gizmo sits on what it shows, moving it as a group's pivot does.
-  // So does a group's with the pivot at the selection's centre: a group's origin is where it
-  // was made (the world's origin for a union wrapped around a part far from it), so its gizmo sat
-  // away from everything it holds (an artist's test).
   *pivot = !gizmo_.dragging() &&
            ((state.pivotAtSelectionCentre &&
-             (independentSelectionCount(state.document.root(), state.selection) >= 2 ||
-              isOperation(node->kind))) ||
+             independentSelectionCount(state.document.root(), state.selection) >= 2) ||
             node->kind == NodeKind::Instance);
   if (*pivot) {
     const Bounds& b = cachedSelectionBounds(state);

@@ -76,9 +76,8 @@ class Viewport {
   void toggleOrtho(const EditorState& state);
   bool gizmoDragging() const { return gizmo_.dragging(); }
   // Where the gizmo sits: on the primary selected node (its parent's world matrix and its
-  // transform), or, with the pivot at the selection's centre and several parts or a group
-  // selected (or an instance), on a pivot there (world axes; *pivot set). False when nothing is
-  // selected.
+  // transform), or, with several parts selected and the pivot at the selection's centre (or an
+  // instance), on a pivot there (world axes; *pivot set). False when nothing is selected.
   bool gizmoPlacement(const EditorState& state, glm::dmat4* parentWorld, Transform* transform,
                       bool* pivot);
 

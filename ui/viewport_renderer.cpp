@@ -977,12 +977,8 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   // when that fits about two and a half frames' share (a fast GPU: one frame from the edit to
   // the screen); a moving view keeps to the share.
   const uint64_t view = viewKey(local, lines);
-  // Moved: the camera, the size or the section, not the lines (a moved part's selection box
-  // came with its edit's result, which then counted as an orbit's frame: no first image, no
-  // complete image kept for a ghost finished after it).
-  const uint64_t camera = viewKey(local, {});
-  const bool viewMoved = camera != shownCamera_;
-  shownCamera_ = camera;
+  const bool viewMoved = view != shownView_;
+  shownView_ = view;
   const uint64_t key = view ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
   size_t allowed = viewMoved ? fullShare_ : fullShare_ * 5 / 2;
   // Where the GPU's measured time per splat says that a whole image of the view's level costs

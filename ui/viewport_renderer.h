@@ -433,7 +433,7 @@ class ViewportRenderer {
   uint64_t plainKey_ = 0;
   uint64_t shownKey_ = 0;          // what shown_ (or coarse_, while refining) holds
   uint64_t windowKey_ = 0;         // what the window shows (windowShows); 0: unknown
-  uint64_t shownCamera_ = 0;       // its view without the lines (viewKey of no lines)
+  uint64_t shownView_ = 0;         // its view alone (viewKey)
   uint64_t buildingPlainKey_ = 0;  // the splats and view (no lines) of the image being built
   bool refining_ = false;          // building_ is being drawn for shownKey_
   bool refineOverShown_ = false;   // meanwhile shown_ holds a first image (else coarse_ is shown)

@@ -262,13 +262,17 @@ static std::shared_ptr<const HostSplats> hostGhost(Backend& backend, const LdiHa
 
 PreviewWorker::ShownGhost PreviewWorker::movedGhost(const ShownGhost& shown,
                                                     const glm::dmat4& world) {
+  if (world == shown.world || !shown.splats) return shown;  // not moved (a turned part's
+  // inverse would leave a rounding's move: a copy for nothing)
   const glm::dmat4 motion = world * glm::inverse(shown.world);
   bool turned = false;
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r)
       turned = turned || std::fabs(motion[c][r] - (c == r ? 1.0 : 0.0)) > 1e-12;
   const glm::dvec3 move(motion[3]);
-  if (turned || !(glm::length(move) > 0.0) || !shown.splats) return shown;
+  const double reach =
+      1.0 + glm::length(glm::dvec3(world[3])) + glm::length(glm::dvec3(shown.world[3]));
+  if (turned || !(glm::length(move) > 1e-12 * reach)) return shown;
   // Moved only: the same splats, moved by as much (until its own LDI is evaluated).
   std::vector<Splat> splats = shown.splats->splats();
   for (Splat& splat : splats)
@@ -340,6 +344,12 @@ bool PreviewWorker::finishGhosts(const Request& request,
       finished = false;
       break;
     } catch (...) {  // this ghost not drawn (its window's memory): the others still are, and said
+      // Not the one carried either (stale, or moved from where it was).
+      result->ghosts.erase(
+          std::remove_if(result->ghosts.begin(), result->ghosts.end(),
+                         [&](const GhostSplats& g) { return g.id == deferred.id; }),
+          result->ghosts.end());
+      lastGhosts_.erase(deferred.id);
       const NodePtr node = findNode(request.scene->root, deferred.id);
       result->stats.warnings.push_back(
           "the ghost of " + (node ? nodeLabel(*node) : std::string("a part")) +

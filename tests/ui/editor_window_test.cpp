@@ -397,9 +397,11 @@ TEST(EditorWindow, AChangeOfTheGhostsAloneDrawsNoSplatAgain) {
   EXPECT_NE(state.preview, shown);
   EXPECT_EQ(state.preview->splats, shown->splats) << "the same splats";
   settle();
+  EXPECT_GT(editor.shownGhostSplats(), 0u) << "the ghosts reached the view";
   EXPECT_EQ(drawn(), before) << "the splats were drawn again for a change of the ghosts";
   state.showAllGhosts = false;
   settle();
+  EXPECT_EQ(editor.shownGhostSplats(), 0u);
   EXPECT_EQ(drawn(), before);
   undo(state);  // resolution
   undo(state);  // cutter

@@ -245,35 +245,44 @@ TEST(ImportAndPlace, APartDroppedOnASmallPartIsSizedFromThatPart) {
   undo(state);
 }
 
-// A group selected alone, with the pivot at the selection's centre: its gizmo sits on what it
-// holds, not at its origin (a union wrapped around a part far from the world's origin had its
-// gizmo at the origin: an artist's test); with the pivot on the active part, at its origin.
-TEST(ImportAndPlace, AGroupsGizmoSitsOnWhatItHolds) {
+// A group made around parts far from its parent's origin has its origin at their centre (its
+// gizmo sat at the world's origin, away from everything it holds: an artist's test); nothing
+// moves in the world, the parts' places are kept relative to it, and its gizmo turns it about
+// its own axes; one undo step.
+TEST(ImportAndPlace, AGroupMadeAroundPartsHasItsOriginAtTheirCentre) {
   EditorState state;
   const NodeId pin = addPrimitive(state, NodeKind::Cylinder);
   Transform far;
   far.translate = glm::dvec3(40.0, -30.0, 5.0);
+  far.rotateDegrees = glm::dvec3(0.0, 0.0, 30.0);
   ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(pin, far); }));
+  const glm::dmat4 pinWorld = nodeWorldMatrix(state.document.root(), pin);
+  const Bounds before = selectionBounds(state.document.root(), {pin});
   state.selection = {pin};
-  groupSelection(state, NodeKind::Union);  // wrapped: the union's origin is the world's
+  groupSelection(state, NodeKind::Union);
   ASSERT_EQ(state.selection.size(), 1u);
   const NodeId group = state.selection[0];
   ASSERT_NE(group, pin);
   ASSERT_TRUE(isInSubtree(state.document.root(), group, pin));
+  const NodePtr& root = state.document.root();
+  EXPECT_NEAR(glm::distance(findNode(root, group)->transform.translate, before.center()), 0.0,
+              1e-9);
+  const glm::dmat4 pinNow = nodeWorldMatrix(root, pin);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(pinNow[c][r], pinWorld[c][r], 1e-9);
   Viewport viewport;
   glm::dmat4 parentWorld(1.0);
   Transform at;
-  bool pivot = false;
+  bool pivot = true;
   state.pivotAtSelectionCentre = true;
   ASSERT_TRUE(viewport.gizmoPlacement(state, &parentWorld, &at, &pivot));
-  EXPECT_TRUE(pivot);
-  const glm::dvec3 centre = selectionBounds(state.document.root(), {group}).center();
-  EXPECT_NEAR(glm::distance(glm::dvec3(parentWorld * glm::dvec4(at.translate, 1.0)), centre), 0.0,
-              1e-9);
-  state.pivotAtSelectionCentre = false;
-  ASSERT_TRUE(viewport.gizmoPlacement(state, &parentWorld, &at, &pivot));
-  EXPECT_FALSE(pivot);
-  EXPECT_EQ(at.translate, findNode(state.document.root(), group)->transform.translate);
+  EXPECT_FALSE(pivot) << "the group's own gizmo, its own axes";
+  EXPECT_NEAR(
+      glm::distance(glm::dvec3(parentWorld * glm::dvec4(at.translate, 1.0)), before.center()), 0.0,
+      1e-9);
+  undo(state);  // one step: the group and its origin
+  EXPECT_FALSE(findNode(state.document.root(), group));
+  EXPECT_EQ(findNode(state.document.root(), pin)->transform.translate, far.translate);
 }
 
 // What a drop on a surface goes onto: the part whose material the surface bounds (a hole's wall

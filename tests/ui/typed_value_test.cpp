@@ -183,13 +183,13 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   press(kEnter);
   EXPECT_EQ(stored, 3.0);
   EXPECT_EQ(takeUnitConversion(), "");
-  // Digits after the unit do not join the number ("1 cm 2" became 12 cm): dropped with the
-  // letters, which then name no unit (said, the number as typed before them).
+  // A number typed after the unit ("1 cm 2" became 12 cm): the letters are no unit of it, the
+  // number is what the field shows (12), the letters said.
   dropped.clear();
   typeInto("1 cm 2", &dropped);
-  EXPECT_EQ(stored, 1.0);
+  EXPECT_EQ(stored, 12.0);
   EXPECT_EQ(takeUnitConversion(), "");
-  EXPECT_EQ(dropped, "cm 2");
+  EXPECT_EQ(dropped, "cm");
   lengthUnit.clear();  // an angle, a count: the number as typed
   typeInto("4 cm", &dropped);
   EXPECT_EQ(stored, 4.0);
@@ -266,7 +266,7 @@ TEST(NumberField, ALengthTypedWithAUnitIntoAnInputDoubleIsConverted) {
   EXPECT_EQ(takeUnitConversion(), "");
   EXPECT_EQ(typed("4 xyz"), 4.0);  // no unit it knows: the number (the letters are said)
   EXPECT_EQ(takeUnitConversion(), "");
-  EXPECT_EQ(typed("1 cm 2"), 1.0);  // digits after the unit are not the number's
+  EXPECT_EQ(typed("1 cm 2"), 12.0);  // the number the field shows, the letters no unit of it
   EXPECT_EQ(takeUnitConversion(), "");
 }
 

@@ -452,7 +452,9 @@ TEST(PreviewWorker, AnEditsResultComesBeforeItsGhostsBeyondTheGrid) {
 // skip of "nothing computed" left the moved ghost on the restored scene).
 TEST(PreviewWorker, AGhostBeyondTheGridFollowsAnUndoToTheStateBeforeLast) {
   ResultLog log;
-  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 1e9);
+  // The ghost carried never moved with its part (however slow the ghosts): the skip by the LDI's
+  // key is what is tested.
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 1e9, 1e9);
   log.attach(&worker);
   NodePtr rod = cylinder(0.3, 6.0);
   auto first =
@@ -489,6 +491,36 @@ TEST(PreviewWorker, AGhostBeyondTheGridFollowsAnUndoToTheStateBeforeLast) {
   ASSERT_FALSE(same(a, b)) << "the move changed the ghost";
   const std::vector<Splat> c = ghostOf(first, 3);  // undone
   EXPECT_TRUE(same(a, c)) << "the ghost of the state undone to";
+}
+
+// A turned cutter beyond the grid that did not move (an edit elsewhere: a rename) keeps the ghost
+// shown, the same splats, and no copy of the result follows (its world matrix's inverse left a
+// rounding's move, which made a moved copy and a new ghost on every edit).
+TEST(PreviewWorker, AnUnmovedTurnedGhostIsKeptAsItIs) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 1e9, 0.0);
+  log.attach(&worker);
+  auto turned = std::make_shared<Node>(*cylinder(0.3, 6.0, {0.2, -0.3, 0.1}));
+  turned->transform.rotateDegrees = glm::dvec3(30.0, 20.0, 0.0);
+  const NodePtr rod = turned;
+  auto scene =
+      std::make_shared<const Scene>(makeScene(op(NodeKind::Difference, {box({2, 2, 2}), rod}), 64));
+  worker.request(scene, 64, false, 1, {rod->id});
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const ResultPtr first = log.results().back();
+  ASSERT_EQ(first->ghosts.size(), 1u);
+  ASSERT_FALSE(ghostWindow(*scene, rod->id, first->stats.grid) == first->stats.grid);
+  auto renamed = std::make_shared<Scene>(*scene);
+  auto root = std::make_shared<Node>(*renamed->root);
+  root->name = "renamed";
+  renamed->root = root;
+  const size_t before = log.results().size();
+  worker.request(renamed, 64, false, 2, {rod->id});
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const std::vector<ResultPtr> after = log.results();
+  ASSERT_EQ(after.size(), before + 1) << "a copy with a ghost made again";
+  ASSERT_EQ(after.back()->ghosts.size(), 1u);
+  EXPECT_EQ(after.back()->ghosts[0].splats, first->ghosts[0].splats) << "the ghost shown, kept";
 }
 
 // Regions of host memory lent as the editor's mapped buffers are (ui/mapped_splat_slots.h),
