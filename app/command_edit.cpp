@@ -184,8 +184,11 @@ int measureLatency(ui::Editor& editor, int count, const std::string& leafName, b
                            ? "a coarse image"
                            : "level of detail " + std::to_string(editor.shownDetailLevel());
         }
-        char t[32];
-        std::snprintf(t, sizeof t, "%s%.1f", frameTimes.empty() ? "" : " ", editor.state().frameMs);
+        char t[96];
+        const auto& parts = editor.state().frameParts;
+        std::snprintf(t, sizeof t, "%s%.1f (build %.1f, view %.1f, panels %.1f, present %.1f)",
+                      frameTimes.empty() ? "" : " ", editor.state().frameMs, parts.build,
+                      parts.view, parts.panels, parts.present);
         frameTimes += t;
         if (editor.viewSettled()) break;
       }

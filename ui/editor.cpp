@@ -810,6 +810,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   gl_->viewport.drawAnnotations(s, rect);
   drawViewportHints(s, rect, gl_->viewport.camera);
   ImGui::Render();
+  const double builtAt = gl_->frameClock.seconds();
   const double awaitedSeconds = awaitEditResult();
 
   updateLeafStyles();
@@ -846,6 +847,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     // neither drawn nor sent, but where a changed panel reaches it.
     const bool viewShown = gl_->viewport.prepare(*gl_->renderer, s, rect, fbHeight, pixelScale);
     gl_->redraw.begin(drawData, fbWidth, fbHeight, {x, y, x + w, y + h}, viewShown);
+    const double viewFrom = gl_->frameClock.seconds();
     if (gl_->redraw.viewKept()) {
       gl_->renderer->skipFrame(s.frameMs);
       for (const PixelRect& r : gl_->redraw.viewRepaints())
@@ -853,9 +855,14 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     } else {
       gl_->viewport.drawPrepared(*gl_->renderer, s.frameMs);
     }
+    const double panelsFrom = gl_->frameClock.seconds();
     gl_->redraw.drawPanels(*gl_->panels, drawData);
+    const double presentFrom = gl_->frameClock.seconds();
     if (!gl_->window.present(gl_->redraw.rects(), fbWidth, fbHeight))
       gl_->redraw.invalidate();  // swapped: the back buffer's pixels are undefined
+    const double presented = gl_->frameClock.seconds();
+    s.frameParts = {builtAt * 1e3, (panelsFrom - viewFrom) * 1e3, (presentFrom - panelsFrom) * 1e3,
+                    (presented - presentFrom) * 1e3};
   }
   if (options_.slowFrameSeconds > 0.0)
     std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));

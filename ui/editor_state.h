@@ -126,6 +126,12 @@ struct EditorState {
   std::string backendDescription;
   std::string glDescription;
   double frameMs = 0.0;
+  // Where the last frame's time went (ms, CPU time on the UI thread up to each step, GL calls
+  // queued not waited on but where a step waits): building the panels (input, ImGui), the view,
+  // the panels' drawing, the present (swap, or the partial present).
+  struct FrameParts {
+    double build = 0.0, view = 0.0, panels = 0.0, present = 0.0;
+  } frameParts;
   // How splats reach GL: "CUDA-GL interop" or "host upload (...why)"; the last transfer.
   std::string splatTransfer = "host upload";
   double uploadMs = 0.0;
