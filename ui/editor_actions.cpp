@@ -595,16 +595,6 @@ void deleteSelection(EditorState& state) {
   pruneSelection(state);
 }
 
-// The node whose child `id` is (not through instances); null for the root or when absent.
-static NodePtr parentOf(const NodePtr& node, NodeId id) {
-  if (!node) return nullptr;
-  for (const NodePtr& child : node->children) {
-    if (child->id == id) return node;
-    if (NodePtr found = parentOf(child, id)) return found;
-  }
-  return nullptr;
-}
-
 void duplicateSelection(EditorState& state) {
   if (state.selection.empty()) return;
   // Each copy does what its original does (Document::duplicate) and sits one move-snap step
@@ -629,7 +619,8 @@ void duplicateSelection(EditorState& state) {
       t.translate += local;
       // Pressed again on the original, the next copy goes one step further than the copies
       // already there (it landed on the first copy, looking like one part).
-      const NodePtr parent = parentOf(root, copy);
+      NodeLocation where;
+      const NodePtr parent = locateNode(root, copy, &where) ? where.parent : nullptr;
       const auto taken = [&](const glm::dvec3& at) {
         if (!parent) return false;
         for (const NodePtr& sibling : parent->children)

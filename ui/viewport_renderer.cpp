@@ -978,8 +978,8 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
   // the screen); a moving view keeps to the share.
   const uint64_t view = viewKey(local, lines);
   const bool viewMoved = view != shownView_;
-  shownView_ = view;
   const uint64_t key = view ^ (contentVersion_ * 0x9e3779b97f4a7c15ull);
+  shownView_ = view;
   size_t allowed = viewMoved ? fullShare_ : fullShare_ * 5 / 2;
   // Where the GPU's measured time per splat says that a whole image of the view's level costs
   // at most half the frame's target, it is drawn whole, a moving view's too, whatever share the
@@ -1002,7 +1002,6 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     glDisable(GL_BLEND);
   };
 
-  // The image without lines, kept when one is complete (copyImage: colour and depth).
   // The image of the splats alone (no ghosts, no lines), kept when one is complete
   // (copyImage: colour and depth): a change of the lines or the ghosts alone (a measurement
   // placed, a selection's box, a ghost finished after its result) draws them over a copy of it,

@@ -422,8 +422,8 @@ class ViewportRenderer {
   uint64_t contentVersion_ = 1;  // bumped by every change of splats, colours or ghosts
   uint64_t splatsVersion_ = 1;   // bumped by every change of splats or colours (not ghosts)
   std::unique_ptr<RenderTarget> coarse_, shown_, building_;
-  // The last complete image drawn at rest (not while the view moves) of the splats alone, without
-  // ghosts and lines (colour and depth), and the view (lines left out) and splats it shows: a
+  // The last complete image of the view's level of detail, of the splats alone, without ghosts
+  // and lines (colour and depth), and the view (lines left out) and splats it shows: a
   // change of the lines or the ghosts alone (a measurement placed, a selection's box, a ghost
   // finished after its result) draws them over a copy of it, instead of all the splats again.
   std::unique_ptr<RenderTarget> plain_;

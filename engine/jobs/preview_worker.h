@@ -30,9 +30,8 @@
 //     alone on a window of its own (ghostWindow) after the result is published, which then
 //     carries that node's ghost as last shown (moved with the node where it only moved and
 //     ghosts take a while: the constructor's moveGhostAfterSeconds); a copy of the result with
-//     the new ghost follows
-//     (same splats: the UI keeps its image). A newer request waits for it (so that a drag's
-//     ghosts follow the hand); stop and cancel() end it.
+//     the new ghost follows (same splats: the UI keeps its image). A newer request waits for it
+//     (so that a drag's ghosts follow the hand); stop and cancel() end it.
 //   - Nothing here draws (no GL): ui/ uploads the splats or copies them through CUDA-GL
 //     interop. The worker catches everything and reports it in the result's `error`.
 //
@@ -138,7 +137,7 @@ class PreviewWorker {
   // on the worker thread each time a result is ready (e.g. to wake the UI's event loop); it may
   // call takeResult().
   // A ghost beyond the grid carried until its own is evaluated is moved with its part where the
-  // last ghosts took more than `moveGhostAfterSeconds` (0: always).
+  // last ghosts took at least `moveGhostAfterSeconds` (0: always).
   explicit PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96,
                          std::function<void()> onResult = {}, double quickPassSeconds = 0.05,
                          double moveGhostAfterSeconds = 0.02);
@@ -235,7 +234,7 @@ class PreviewWorker {
   std::map<NodeId, ShownGhost> lastGhosts_;
   std::map<NodeId, ShownGhost> passGhosts_;  // the pass being computed's, for lastGhosts_
   // Worker thread only: how long the last finishGhosts that made ghosts took; a ghost carried is
-  // moved with its part (movedGhost) only where that is more than moveGhostAfterSeconds_.
+  // moved with its part (movedGhost) only where that is at least moveGhostAfterSeconds_.
   double ghostSeconds_ = 0.0;
   double moveGhostAfterSeconds_;
   // A ghost last shown, for its node now at `world`: where the node only moved (no turn or
