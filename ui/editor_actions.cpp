@@ -621,18 +621,31 @@ void duplicateSelection(EditorState& state) {
       // already there (it landed on the first copy, looking like one part).
       NodeLocation where;
       const NodePtr parent = locateNode(root, copy, &where) ? where.parent : nullptr;
-      const auto taken = [&](const glm::dvec3& at) {
-        if (!parent) return false;
-        for (const NodePtr& sibling : parent->children)
+      // The index among the parent's children of the sibling of the copy's kind at `at`, -1.
+      const auto takenBy = [&](const glm::dvec3& at) {
+        if (!parent) return -1;
+        for (size_t i = 0; i < parent->children.size(); ++i) {
+          const NodePtr& sibling = parent->children[i];
           if (sibling->id != copy && sibling->kind == node->kind &&
               glm::length(sibling->transform.translate - at) <= 1e-6 * glm::length(local))
-            return true;
-        return false;
+            return int(i);
+        }
+        return -1;
       };
-      int steps = 1;
-      for (; steps <= 1000 && taken(t.translate); ++steps) t.translate += local;
+      int steps = 1, lastPassed = -1;
+      for (int by; steps <= 1000 && (by = takenBy(t.translate)) >= 0; ++steps) {
+        lastPassed = std::max(lastPassed, by);
+        t.translate += local;
+      }
       furthest = std::max(furthest, steps);
       state.document.setTransform(copy, t);
+      // Listed after the copies it stepped past, as it sits after them in the row (it was listed
+      // between its original and the first copy). Within its parent and past its original, so
+      // its role stays: a base's copy shares a union with it, a cutter stays among the cutters.
+      if (parent && lastPassed > where.index) {
+        const int before = lastPassed + 1;
+        state.document.move(copy, parent->id, before < int(parent->children.size()) ? before : -1);
+      }
     });
   state.document.endInteraction();
   if (copies.empty()) return;

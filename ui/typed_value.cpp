@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -61,6 +62,64 @@ double convertTypedUnit(ImGuiID id, double value, const std::string& lengthUnit)
   return converted;
 }
 
+std::string gHintShown;  // showDroppedLetters' line on the last frame it drew one (tests)
+
+// While field `id` (the last item) is being typed: the letters it dropped drawn after its text,
+// inside its frame and dimmed, so that "1cm" reads as typed (the field shows "1"), and under it
+// what they will do when the field is left. Nothing where it dropped none.
+void showDroppedLetters(ImGuiID id, const std::string& lengthUnit) {
+  std::string letters;
+  for (char c : gDropped.letters)
+    if (c != ' ') letters += c;
+  if (gDropped.id != id || letters.empty()) return;
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  const ImGuiInputTextState& field = g.InputTextState;
+  if (field.ID != id) return;
+  char typed[128] = "";
+  ImTextStrToUtf8(typed, int(sizeof(typed)), field.TextW.Data, field.TextW.Data + field.CurLenW);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
+  const float x = min.x + style.FramePadding.x + ImGui::CalcTextSize(typed).x - field.ScrollX +
+                  ImGui::CalcTextSize(" ").x;
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->PushClipRect(min, max, true);
+  draw->AddText(ImVec2(x, min.y + style.FramePadding.y), ImGui::GetColorU32(ImGuiCol_TextDisabled),
+                letters.c_str());
+  draw->PopClipRect();
+  // What leaving the field will make of them.
+  char* end = nullptr;
+  const double number = std::strtod(typed, &end);
+  const bool plain = end != typed && *end == '\0' && std::isfinite(number);
+  const double from = sceneUnitMetres(letters);
+  const double to = lengthUnit.empty() ? 0.0 : sceneUnitMetres(lengthUnit);
+  char line[200];
+  if (gDropped.numberAfter)
+    std::snprintf(line, sizeof(line), "\"%s\" before a number is no unit: the field keeps %s",
+                  letters.c_str(), typed);
+  else if (from > 0.0 && to > 0.0 && plain)
+    std::snprintf(line, sizeof(line), "%.6g %s: %.6g %s when the field is left", number,
+                  letters.c_str(), number * (from / to), lengthUnit.c_str());
+  else if (from > 0.0 && to > 0.0)
+    std::snprintf(line, sizeof(line), "%s: converted into %s when the field is left",
+                  letters.c_str(), lengthUnit.c_str());
+  else if (from > 0.0)
+    std::snprintf(line, sizeof(line), "\"%s\": this field is no length; the number is kept",
+                  letters.c_str());
+  else
+    std::snprintf(line, sizeof(line), "\"%s\" is no unit: the number is kept%s%s", letters.c_str(),
+                  lengthUnit.empty() ? "" : " (in ",
+                  lengthUnit.empty() ? "" : (lengthUnit + ")").c_str());
+  gHintShown = line;
+  ImGui::SetNextWindowPos(ImVec2(min.x, max.y + 2.0f));
+  // In the theme's text colour, not the one the field may have pushed (an axis's red).
+  ImVec4 text = g.Style.Colors[ImGuiCol_Text];
+  for (int i = g.ColorStack.Size - 1; i >= 0; --i)
+    if (g.ColorStack[i].Col == ImGuiCol_Text) text = g.ColorStack[i].BackupValue;
+  ImGui::BeginTooltip();
+  ImGui::TextColored(text, "%s", line);
+  ImGui::EndTooltip();
+}
+
 template <class T>
 bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
   const ImGuiID id = ImGui::GetItemID();
@@ -81,6 +140,7 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
     if (!gTyped.held && gDropped.id == id && !gDropped.letters.empty())
       gTyped.value = double(*value), gTyped.held = true;
     gTyped.frame = ImGui::GetFrameCount();
+    if constexpr (std::is_floating_point_v<T>) showDroppedLetters(id, lengthUnit);
     return false;
   }
   if (!gTyped.held || gTyped.id != id) return changed;
@@ -185,6 +245,7 @@ bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit) {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace)) ||
         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)))
       gDropped.letters.clear();
+    showDroppedLetters(id, lengthUnit);
     return false;
   }
   if (!ImGui::IsItemDeactivated() ||
@@ -195,6 +256,12 @@ bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit) {
   const double before = *value;
   *value = convertTypedUnit(id, *value, lengthUnit);
   return !gConversion.empty() && *value != before;
+}
+
+std::string droppedLettersHint() {
+  std::string shown;
+  shown.swap(gHintShown);
+  return shown;
 }
 
 bool takeUnitConverted() {

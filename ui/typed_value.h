@@ -28,6 +28,11 @@ bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit);
 // What the last commit converted ("1 cm is 10 mm"), once; "" for none. The editor says it in place
 // of "a unit typed is not converted" (the letters it was told of by numberFieldCharacter).
 std::string takeUnitConversion();
+// While a number field is typed, its dropped letters are drawn dimmed after its text (the field
+// itself never shows them) with a line under it saying what leaving the field will make of them
+// ("1.5 cm: 15 mm when the field is left"; "\"xyz\" is no unit: the number is kept"): by
+// commitTypedValue and convertLengthTypedIntoInput. The last such line drawn, once ("" for none).
+std::string droppedLettersHint();
 // Whether a commit converted a length unit since the last call (whoever took its text): the
 // letters the field dropped were that unit.
 bool takeUnitConverted();

@@ -822,6 +822,15 @@ TEST(Roles, DuplicatingTheOriginalAgainGoesBesideTheFirstCopy) {
                             at + glm::dvec3(4, 0, 0)),
               0.0, 1e-9);
   EXPECT_NE(state.log.back().text.find("2 grid steps"), std::string::npos) << state.log.back().text;
+  // Listed as the row sits: the original, the first copy, the second (it came between them).
+  NodeLocation original, firstAt, secondAt;
+  ASSERT_TRUE(locateNode(state.document.root(), a, &original));
+  ASSERT_TRUE(locateNode(state.document.root(), first, &firstAt));
+  ASSERT_TRUE(locateNode(state.document.root(), second, &secondAt));
+  EXPECT_EQ(firstAt.parent, secondAt.parent);
+  EXPECT_EQ(firstAt.index, original.index + 1);
+  EXPECT_EQ(secondAt.index, firstAt.index + 1);
+  EXPECT_EQ(roleOf(state.document.root(), second), roleOf(state.document.root(), a));
   undo(state);
   undo(state);
   EXPECT_FALSE(findNode(state.document.root(), first));
@@ -843,6 +852,34 @@ PlateWithHole addPlateWithHole(EditorState& state) {
   if (locateNode(state.document.root(), p.hole, &where)) p.group = where.parent->id;
   clearSelection(state);
   return p;
+}
+
+// A cutter copied twice with Ctrl+D: both copies cut, listed after the first copy in the row's
+// order, the plate still the base; one undo step each.
+TEST(Roles, ACutterCopiedTwiceKeepsEveryRoleAndTheRowsOrder) {
+  EditorState state;
+  const auto [plate, hole, group] = addPlateWithHole(state);
+  ASSERT_NE(group, 0u);
+  state.snap.step = 1.0;
+  state.selection = {hole};
+  duplicateSelection(state);
+  const NodeId first = state.selection.at(0);
+  state.selection = {hole};
+  duplicateSelection(state);
+  const NodeId second = state.selection.at(0);
+  const NodePtr& root = state.document.root();
+  const NodePtr holder = findNode(root, group);
+  ASSERT_TRUE(holder);
+  std::vector<NodeId> order;
+  for (const NodePtr& c : holder->children) order.push_back(c->id);
+  EXPECT_EQ(order, (std::vector<NodeId>{plate, hole, first, second}));
+  EXPECT_EQ(roleOf(root, plate), ChildRole::Base);
+  for (NodeId cutter : {hole, first, second}) EXPECT_EQ(roleOf(root, cutter), ChildRole::Cut);
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), second));
+  EXPECT_TRUE(findNode(state.document.root(), first));
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), first));
 }
 
 // A group and a part inside it selected together: what acts on the selection acts on the

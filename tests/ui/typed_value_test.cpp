@@ -196,6 +196,45 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   EXPECT_EQ(takeUnitConversion(), "");
 }
 
+// The letters of a unit never reach the field's text ("1cm" showed "1" until the field was left):
+// they are drawn after it while typing, with what leaving the field will make of them.
+TEST_F(TypedField, TheLettersTypedAreShownWithWhatTheyWillDo) {
+  lengthUnit = "mm";
+  std::string dropped;
+  const auto typeSome = [&](const char* text) {
+    for (const char* c = text; *c; ++c) {
+      ImGui::GetIO().AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+      frame();
+    }
+  };
+  frame(/*focus=*/true);
+  frame();
+  droppedLettersHint();
+  typeSome("1,5");
+  EXPECT_EQ(droppedLettersHint(), "");  // no letters: nothing drawn
+  typeSome("cm");
+  EXPECT_EQ(droppedLettersHint(), "1.5 cm: 15 mm when the field is left");
+  typeSome(" 2");
+  EXPECT_EQ(droppedLettersHint(), "\"cm\" before a number is no unit: the field keeps 1.52");
+  press(kEscape);
+  frame();
+  EXPECT_EQ(droppedLettersHint(), "");  // left: nothing shown
+  frame(/*focus=*/true);
+  frame();
+  typeSome("3 xyz");
+  EXPECT_EQ(droppedLettersHint(), "\"xyz\" is no unit: the number is kept (in mm)");
+  press(kEnter);
+  EXPECT_EQ(stored, 3.0);
+  lengthUnit.clear();
+  frame(/*focus=*/true);
+  frame();
+  typeSome("4 cm");
+  EXPECT_EQ(droppedLettersHint(), "\"cm\": this field is no length; the number is kept");
+  press(kEnter);
+  EXPECT_EQ(stored, 4.0);
+  takeUnitConversion();
+}
+
 // Types `text` (through numberFieldCharacter, as the editor feeds characters) into the number
 // field that `widget` draws (announced by numberFieldNext), then Enter, in an ImGui context of
 // its own; returns the letters the field dropped.
@@ -258,8 +297,10 @@ TEST(NumberField, ALengthTypedWithAUnitIntoAnInputDoubleIsConverted) {
     return value;
   };
   takeUnitConversion();
+  droppedLettersHint();
   EXPECT_EQ(typed("1cm"), 10.0);
   EXPECT_EQ(takeUnitConversion(), "1 cm is 10 mm");
+  EXPECT_EQ(droppedLettersHint(), "1 cm: 10 mm when the field is left");  // shown while typing
   EXPECT_NEAR(typed("0,5 in"), 12.7, 1e-12);
   EXPECT_EQ(takeUnitConversion(), "0.5 in is 12.7 mm");
   EXPECT_EQ(typed("3"), 3.0);  // no unit: the number as typed
