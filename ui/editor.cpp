@@ -599,8 +599,8 @@ void Editor::updateGhosts() {
   ghostedResult_ = s.preview;
   ghostedSelection_ = s.selection;
   ghostedAll_ = s.showAllGhosts;
-  std::vector<Splat> layers[2];  // cutting, intersecting
-  double cells[2] = {0.0, 0.0};  // the coarsest lattice of each layer's ghosts
+  std::vector<Splat> layers[2];                     // cutting, intersecting
+  std::vector<ViewportRenderer::GhostRun> runs[2];  // each ghost's splats and lattice
   if (shown && shown->scene) {
     const NodePtr& root = shown->scene->root;  // the tree the ghosts were evaluated from
     for (NodeId id : ghostsOf(root, s.selection, s.showAllGhosts)) {
@@ -609,11 +609,11 @@ void Editor::updateGhosts() {
         const int layer = roleOf(root, id) == ChildRole::Intersect ? 1 : 0;
         layers[layer].insert(layers[layer].end(), ghost.splats->splats().begin(),
                              ghost.splats->splats().end());
-        cells[layer] = std::max(cells[layer], ghost.h);
+        runs[layer].push_back({ghost.splats->splats().size(), ghost.h});
       }
     }
   }
-  gl_->renderer->setGhosts(layers[0], layers[1], cells);
+  gl_->renderer->setGhosts(layers[0], layers[1], runs);
 }
 
 void Editor::autosave() {

@@ -164,21 +164,27 @@ void ViewportRenderer::makeSplatLayer(GLuint* vao, GLuint* buffer) {
 
 void ViewportRenderer::setGhosts(const std::vector<Splat>& cutting,
                                  const std::vector<Splat>& intersecting,
-                                 const double cellSizes[2]) {
+                                 const std::vector<GhostRun> given[2]) {
   const std::vector<Splat>* layers[2] = {&cutting, &intersecting};
-  const double cells[2] = {cellSizes ? cellSizes[0] : 0.0, cellSizes ? cellSizes[1] : 0.0};
+  std::vector<GhostRun> runs[2];
+  for (int i = 0; i < 2; ++i) {
+    if (given) runs[i] = given[i];
+    size_t counted = 0;
+    for (const GhostRun& run : runs[i]) counted += run.count;
+    if (counted != layers[i]->size()) runs[i] = {GhostRun{layers[i]->size(), 0.0}};
+  }
   // The same ghosts (a new result of an edit that changed no part): the image stands.
   auto same = [](const std::vector<Splat>& a, const std::vector<Splat>& b) {
     return a.size() == b.size() &&
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Splat)) == 0);
   };
   if (same(cutting, ghostSplats_[0]) && same(intersecting, ghostSplats_[1]) &&
-      cells[0] == ghostCells_[0] && cells[1] == ghostCells_[1])
+      runs[0] == ghostRuns_[0] && runs[1] == ghostRuns_[1])
     return;
   ghostSplats_[0] = cutting;
   ghostSplats_[1] = intersecting;
-  ghostCells_[0] = cells[0];
-  ghostCells_[1] = cells[1];
+  ghostRuns_[0] = std::move(runs[0]);
+  ghostRuns_[1] = std::move(runs[1]);
   for (int i = 0; i < 2; ++i) {
     ghosts_[i].count = layers[i]->size();
     if (layers[i]->empty()) continue;
@@ -787,10 +793,22 @@ void ViewportRenderer::drawGhosts(const ViewportFrame& f) {
   for (int i = 0; i < 2; ++i) {
     if (ghosts_[i].count == 0) continue;
     surfelProgram_.set("ghostColor", tints[i]);
-    surfelProgram_.set("cellSize", float(ghostCells_[i] > 0.0 ? ghostCells_[i] : cellSize_));
     glBindVertexArray(ghosts_[i].vao);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(ghosts_[i].count));
+    glBindBuffer(GL_ARRAY_BUFFER, ghosts_[i].buffer);
+    // Each ghost's run with its own lattice's splat size (a ghost carried from a coarse pass
+    // beside one of the fine lattice: the fine one was drawn as scattered dots, or the coarse
+    // one as blobs); the runs' splats start where the attributes point.
+    size_t first = 0;
+    for (const GhostRun& run : ghostRuns_[i]) {
+      if (run.count == 0) continue;
+      surfelProgram_.set("cellSize", float(run.cellSize > 0.0 ? run.cellSize : cellSize_));
+      pointSplatAttributes(sizeof(Splat), first * sizeof(Splat));
+      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(run.count));
+      first += run.count;
+    }
+    pointSplatAttributes(sizeof(Splat), 0);
   }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   surfelProgram_.set("ghostColor", glm::vec4(0.0f));
   surfelProgram_.set("cellSize", float(cellSize_));
   glDepthMask(GL_TRUE);

@@ -118,11 +118,17 @@ class ViewportRenderer {
   size_t splatBytes() const { return splatCount_ * sizeof(Splat); }
 
   // Ghosts: splats of parts that cut (red) or intersect (violet), drawn translucent over the
-  // result (depth-tested against it, not written, not pickable), each layer as splats of
-  // `cellSizes[layer]` (scene units; 0: the result's), the coarsest lattice its ghosts were
-  // made on. Replaces the previous ghosts; empty vectors draw none.
+  // result (depth-tested against it, not written, not pickable). A layer's splats come in runs,
+  // one per ghost, each drawn with the cell size of the lattice it was made on (`runs[layer]`:
+  // counts adding up to the layer's splats, cell sizes in scene units, 0: the result's; none:
+  // the whole layer at the result's). Replaces the previous ghosts; empty vectors draw none.
+  struct GhostRun {
+    size_t count = 0;
+    double cellSize = 0.0;
+    bool operator==(const GhostRun& o) const { return count == o.count && cellSize == o.cellSize; }
+  };
   void setGhosts(const std::vector<Splat>& cutting, const std::vector<Splat>& intersecting,
-                 const double cellSizes[2] = nullptr);
+                 const std::vector<GhostRun> runs[2] = nullptr);
   size_t ghostCount() const { return ghosts_[0].count + ghosts_[1].count; }
 
   // Lines drawn over the background only, under every splat and ghost: the ground grid, which is
@@ -429,7 +435,7 @@ class ViewportRenderer {
   std::unique_ptr<RenderTarget> plain_;
   std::optional<LeafStyleTable> styles_;  // the last setLeafStyles' table
   std::vector<Splat> ghostSplats_[2];     // the last setGhosts' layers
-  double ghostCells_[2] = {0.0, 0.0};     // and their cell sizes (0: the result's)
+  std::vector<GhostRun> ghostRuns_[2];    // and their runs, one per ghost
   uint64_t plainKey_ = 0;
   uint64_t shownKey_ = 0;          // what shown_ (or coarse_, while refining) holds
   uint64_t windowKey_ = 0;         // what the window shows (windowShows); 0: unknown

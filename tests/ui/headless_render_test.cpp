@@ -561,5 +561,74 @@ TEST(HeadlessRender, AKeptViewRepaintsExactlyWithinTheRectangleGiven) {
   EXPECT_FALSE(glIsEnabled(GL_SCISSOR_TEST));
 }
 
+// The splats of a sphere of `radius` at `cells` cells moved by `shift`, as a ghost carries them;
+// *h: their lattice's cell size.
+std::vector<Splat> ghostSphere(double radius, int cells, const glm::vec3& shift, double* h) {
+  Scene scene = test::makeScene(test::sphere(radius), cells);
+  EvalResult result = test::evaluateCpu(scene);
+  CpuBackend backend;
+  Progress progress;
+  SplatsHandle splats = backend.splats(result.root, progress);
+  std::vector<Splat> out(splats->hostData(), splats->hostData() + splats->count());
+  for (Splat& s : out)
+    for (int k = 0; k < 3; ++k) s.position[k] += shift[k];
+  *h = result.grid.h;
+  return out;
+}
+
+// Ghosts of one layer made on different lattices (a ghost carried from a coarse pass beside one
+// of a fine pass) are each drawn with their own lattice's splat size: the coarse one whole, the
+// fine one not grown by the coarse one's splats (the whole layer was drawn at the coarsest).
+TEST(HeadlessRender, EachGhostIsDrawnWithItsOwnLatticesSplats) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  double fineH = 0.0, coarseH = 0.0;
+  const std::vector<Splat> fine = ghostSphere(0.5, 128, glm::vec3(-1.0f, 0.0f, 0.0f), &fineH);
+  const std::vector<Splat> coarse = ghostSphere(0.5, 8, glm::vec3(1.0f, 0.0f, 0.0f), &coarseH);
+  ASSERT_GT(coarseH, 8.0 * fineH);
+  std::vector<Splat> both = fine;
+  both.insert(both.end(), coarse.begin(), coarse.end());
+  const ViewportFrame frame = sphereFrame();  // 200 x 150; x < 0 left of the middle
+  const std::vector<LineVertex> none;
+  // The tinted pixels left and right of the middle, with the layer's runs as given.
+  struct Tinted {
+    int left = 0, right = 0;
+  };
+  const auto render = [&](const std::vector<ViewportRenderer::GhostRun>& runs) {
+    ViewportRenderer renderer;
+    RenderTarget target(frame.width, frame.height);
+    target.bind();
+    const std::vector<uint8_t> plain = [&] {
+      renderer.draw(frame, none, none, none);
+      return target.read();
+    }();
+    const std::vector<ViewportRenderer::GhostRun> layers[2] = {runs, {}};
+    renderer.setGhosts(both, {}, layers);
+    target.bind();
+    renderer.draw(frame, none, none, none);
+    const std::vector<uint8_t> ghosted = target.read();
+    Tinted t;
+    for (int y = 0; y < frame.height; ++y)
+      for (int x = 0; x < frame.width; ++x) {
+        const size_t i = (size_t(y) * size_t(frame.width) + size_t(x)) * 4;
+        const bool tinted = std::abs(int(ghosted[i]) - int(plain[i])) > 8;
+        (x < frame.width / 2 ? t.left : t.right) += tinted ? 1 : 0;
+      }
+    return t;
+  };
+  const Tinted own = render({{fine.size(), fineH}, {coarse.size(), coarseH}});
+  const Tinted coarsest = render({{both.size(), coarseH}});
+  const Tinted finest = render({{both.size(), fineH}});
+  // The fine ghost as its own splats draw it, not grown by a coarse lattice's.
+  EXPECT_GT(own.left, 500) << "the fine ghost is drawn";
+  EXPECT_LT(std::abs(own.left - finest.left), own.left / 50) << own.left << " " << finest.left;
+  EXPECT_GT(coarsest.left, own.left + own.left / 10)
+      << "drawn at the coarse size the fine ghost grows: " << coarsest.left << " " << own.left;
+  // The coarse ghost whole, as at its size, where the fine size leaves it in scattered dots.
+  EXPECT_EQ(own.right, coarsest.right);
+  EXPECT_LT(finest.right, own.right / 2) << finest.right << " " << own.right;
+}
+
 }  // namespace
 }  // namespace strata::ui
