@@ -159,8 +159,9 @@ struct MergedTiles {
   std::vector<uint64_t> keys;
   std::vector<uint8_t> resolved;
 };
+// *sortSeconds (where given): the time spent putting each tile's arrays in order.
 MergedTiles mergeTiles(const Scene& scene, std::vector<TileContour> tiles, Progress& progress,
-                       ContourReport& r);
+                       ContourReport& r, double* sortSeconds = nullptr);
 
 // The mesh from contoured tiles (any subset, in any order: each tile once): merged, indexed,
 // shells unfolded, specks dropped. Sets r's merge time, deviation bound and peak memory.
