@@ -204,8 +204,14 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
                          glm::all(glm::greaterThanEqual(parts.min, held.min)) &&
                          glm::all(glm::lessThanEqual(parts.max, held.max));
   if (shownGrid) grid = lastFullGrid;
+  // The grid a full pass being evaluated uses (the preview keeps its cells while parts move:
+  // the scene's own grid at this resolution said other numbers than the status bar's, which
+  // shows the result's, until it came).
+  const bool evaluatingGrid = state.worker.busy && state.worker.gridKnown &&
+                              state.worker.resolution == scene.settings.resolution;
+  if (evaluatingGrid) grid = state.worker.grid;
   std::string noGrid;
-  if (shownGrid || gridAt(state, scene.settings.resolution, &grid, &noGrid)) {
+  if (shownGrid || evaluatingGrid || gridAt(state, scene.settings.resolution, &grid, &noGrid)) {
     ImGui::Text("cell h = %.4g %s", grid.h, unitSymbol(scene.settings.unit));
     ImGui::Text("grid %d x %d x %d", grid.cells.x, grid.cells.y, grid.cells.z);
     const int longest = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));

@@ -111,7 +111,7 @@ void PreviewWorker::run() {
         status_.fraction = fraction;
       });
       running_ = progress;
-      status_ = PreviewStatus{true, "start", 0.0, 0};
+      status_ = PreviewStatus{true, "start", 0.0, 0, false, Grid()};
     }
     serve(evaluator, request, *progress);
     {
@@ -170,7 +170,7 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   if (progress.cancelled()) return false;  // superseded before it began
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    status_ = PreviewStatus{true, "start", 0.0, resolution};
+    status_ = PreviewStatus{true, "start", 0.0, resolution, false, Grid()};
   }
   auto result = std::make_shared<PreviewResult>();
   result->tag = request.tag;
@@ -385,6 +385,13 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   auto last = lastGrids_.find(result.resolution);
   const Grid grid = Evaluator::previewGridFor(*request.scene, result.resolution,
                                               last == lastGrids_.end() ? nullptr : &last->second);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status_.busy && status_.resolution == result.resolution) {
+      status_.gridKnown = true;
+      status_.grid = grid;
+    }
+  }
   // Modifiers on a backend that cannot evaluate them: this pass on the CPU (its own evaluator,
   // so that each cache keeps LDIs of its own backend).
   Backend* backend = backend_.get();

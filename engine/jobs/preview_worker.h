@@ -92,10 +92,12 @@ struct PreviewResult {
 };
 
 struct PreviewStatus {
-  bool busy = false;      // a request is being evaluated
-  std::string stage;      // of the running evaluation ("start", "evaluate", ...)
-  double fraction = 0.0;  // of that stage
-  int resolution = 0;     // of the running pass
+  bool busy = false;       // a request is being evaluated
+  std::string stage;       // of the running evaluation ("start", "evaluate", ...)
+  double fraction = 0.0;   // of that stage
+  int resolution = 0;      // of the running pass
+  bool gridKnown = false;  // the running pass's grid is decided:
+  Grid grid;               // that grid
 };
 
 // The resolution of a draft (a drag's, or a calm edit's first) pass when `full` is asked for:

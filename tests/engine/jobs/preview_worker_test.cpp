@@ -93,6 +93,32 @@ TEST(PreviewWorker, QuickRequestsLeaveOnlyTheLastResult) {
   EXPECT_FALSE(worker.status().busy);
 }
 
+// While a pass evaluates, its status names the grid it evaluates on: the grid its result then
+// has (the preview panel shows it; the scene's own grid at that resolution may differ, as the
+// preview keeps its lattice while parts move).
+TEST(PreviewWorker, TheStatusNamesTheGridOfThePassBeingEvaluated) {
+  auto backend = std::make_shared<GatedBackend>();
+  backend->close();
+  ResultLog log;
+  PreviewWorker worker(backend, 96, log.callback());
+  log.attach(&worker);
+  auto scene = boxMinusSphere(40);
+  EXPECT_FALSE(worker.status().gridKnown);
+  worker.request(scene, 40, false, 1);
+  ASSERT_TRUE(backend->waitUntilHeld());
+  const PreviewStatus during = worker.status();
+  EXPECT_TRUE(during.busy);
+  ASSERT_TRUE(during.gridKnown);
+  EXPECT_EQ(during.resolution, 40);
+  backend->open();
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const ResultPtr shown = log.results().back();
+  ASSERT_TRUE(shown->ok()) << shown->error;
+  EXPECT_TRUE(shown->stats.grid == during.grid);
+  EXPECT_FALSE(worker.status().gridKnown);  // idle: no pass, no grid
+}
+
 TEST(PreviewWorker, CancelStopsAPassMidwayAndTheWorkerServesOn) {
   auto backend = std::make_shared<GatedBackend>();
   backend->close();
