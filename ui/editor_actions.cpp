@@ -1047,7 +1047,28 @@ void setResolution(EditorState& state, int resolution) {
 
 // Undo and redo say in the status line what they reverted or repeated: a step that changes
 // nothing in view (a measurement off screen, a rename) must not look like a dead key.
+namespace {
+// Undo and redo while something is being dragged: a gizmo drag is cancelled (as Escape does:
+// everything it moved goes back), other drags (an inspector field held) are left to finish. An
+// undo in the middle of a drag closed its undo step under it, and the drag went on recording a
+// step a frame until the history held nothing else (an artist's test). True when it was one.
+bool duringADrag(EditorState& state, const char* what) {
+  if (state.gizmoDragging) {
+    state.cancelGizmoDrag = true;
+    logInfo(state, std::string(what) +
+                       " during the drag: the drag is cancelled, everything it moved is back");
+    return true;
+  }
+  if (state.document.interacting()) {
+    logWarning(state, std::string(what) + " waits until the field being dragged is let go");
+    return true;
+  }
+  return false;
+}
+}  // namespace
+
 void undo(EditorState& state) {
+  if (duringADrag(state, "Ctrl+Z")) return;
   const std::string label = state.document.undoLabel();
   rememberSelection(state);  // what redo comes back to
   if (!state.document.undo()) {
@@ -1059,6 +1080,7 @@ void undo(EditorState& state) {
 }
 
 void redo(EditorState& state) {
+  if (duringADrag(state, "Redo")) return;
   const std::string label = state.document.redoLabel();
   rememberSelection(state);
   if (!state.document.redo()) {

@@ -115,7 +115,14 @@ void drawDragReadout(const EditorState& state, const Gizmo& gizmo, const Transfo
 double Viewport::sceneRadius(const EditorState& state) const {
   Bounds b = sceneBounds(state.document.root());
   if (b.empty()) return std::max(camera.distance, 1.0);
-  return std::max(glm::length(b.size()) * 0.5 + glm::length(b.center() - camera.target), 1e-6);
+  const double radius =
+      std::max(glm::length(b.size()) * 0.5 + glm::length(b.center() - camera.target), 1e-6);
+  // Up to the next quarter power of two: the clip planes (and so the view) stay put while a part
+  // moves a little. They followed the scene's bounds exactly, so a gizmo drag changed the view
+  // it is worked out in, frame after frame with the mouse at rest (a new transform from rounding
+  // alone every frame: a new evaluation and, after an undo in the drag, a new undo step each), and
+  // every frame of a drag was drawn as a moved view (the coarse image) rather than a new result.
+  return std::exp2(std::ceil(std::log2(radius) * 4.0) / 4.0);
 }
 
 ScreenMapping Viewport::mapping(const EditorState& state, const ViewRect& rect) const {

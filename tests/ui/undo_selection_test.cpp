@@ -2,6 +2,7 @@
 // rememberSelection), without a window.
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "ui/editor_actions.h"
@@ -41,6 +42,43 @@ TEST(UndoSelection, PartsNoLongerThereAreLeftOut) {
   rememberSelection(state);
   undo(state);  // b is gone; a was selected then
   EXPECT_EQ(state.selection, (std::vector<NodeId>{a}));
+}
+
+// Ctrl+Z in the middle of a gizmo drag closed the drag's undo step under it: the drag went on
+// recording a step a frame until the history held nothing else (an artist's test). Now it
+// cancels the drag, as Escape does; with another drag under way (an inspector field held) it
+// waits. Nothing of the history is lost either way.
+TEST(UndoSelection, UndoDuringADragCancelsItOrWaitsAndKeepsTheHistory) {
+  EditorState state;
+  const NodeId a = addPrimitive(state, NodeKind::Box);
+  addPrimitive(state, NodeKind::Sphere);
+  const std::string before = state.document.undoLabel();
+  // A gizmo drag under way: its interaction open, one step recorded.
+  state.document.beginInteraction();
+  Transform moved = findNode(state.document.root(), a)->transform;
+  moved.translate.x += 5.0;
+  state.document.setTransform(a, moved);
+  state.gizmoDragging = true;
+  undo(state);
+  EXPECT_TRUE(state.cancelGizmoDrag) << "the drag is cancelled (the viewport does it)";
+  EXPECT_TRUE(state.document.interacting()) << "the undo left the drag's step alone";
+  EXPECT_NE(state.log.back().text.find("the drag is cancelled"), std::string::npos);
+  // What the viewport does with the cancel: the drag's step taken back, the history as before.
+  state.document.cancelInteraction();
+  state.gizmoDragging = state.cancelGizmoDrag = false;
+  EXPECT_EQ(state.document.undoLabel(), before);
+  // An inspector field held: undo and redo wait, the history untouched.
+  state.document.beginInteraction();
+  state.document.setTransform(a, moved);
+  undo(state);
+  redo(state);
+  EXPECT_TRUE(state.document.interacting());
+  EXPECT_NE(state.log.back().text.find("waits until the field"), std::string::npos);
+  state.document.endInteraction();
+  undo(state);  // the field's step, then the two parts
+  undo(state);
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), a));
 }
 
 }  // namespace
