@@ -310,12 +310,19 @@ void restoreSelection(EditorState& state) {
 }
 }  // namespace
 
-PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged) {
+PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged, NodeId target) {
   if (mods & kDropCut) return PlaceMode::Cut;
   if (mods & kDropIntersect) return PlaceMode::Intersect;
   if (mods & kDropAdd) return PlaceMode::Add;
-  if (dragged != 0 && findNode(state.document.root(), dragged))
-    return modeKeepingRole(roleOf(state.document.root(), dragged));
+  const NodePtr& root = state.document.root();
+  if (dragged != 0 && findNode(root, dragged)) {
+    const PlaceMode kept = modeKeepingRole(roleOf(root, dragged));
+    if (dragged == root->id) return kept;
+    // Judged on the tree without it, as movePart places it (ids past the tree's for what a
+    // removal leaves behind).
+    return modeKeepingEffect(removeKeepingRoles(root, dragged, state.document.nextId() + 1),
+                             target ? target : root->id, kept, removesMaterial(root, dragged));
+  }
   return state.placeMode;
 }
 
@@ -678,6 +685,7 @@ void copySelection(EditorState& state) {
     if (nested) continue;
     EditorState::CopiedPart part{findNode(root, id), modeKeepingRole(roleOf(root, id)),
                                  glm::dvec3(nodeWorldMatrix(root, id) * glm::dvec4(0, 0, 0, 1))};
+    part.removes = removesMaterial(root, id);
     NodeLocation at;
     if (locateNode(root, id, &at) && at.parent) {
       part.parent = at.parent->id;
@@ -760,9 +768,19 @@ void pasteClipboard(EditorState& state) {
                                     original->id != state.document.root()->id
                                 ? original->id
                                 : 0;
-        id = placeNew(state, named, copy.mode, "", onto);
+        // Doing there what it did (a countersink copied from the holes cuts where it lands).
+        const NodeId target = onto ? onto : primarySelection(state);
+        id = placeNew(
+            state, named,
+            modeKeepingEffect(state.document.root(), target ? target : state.document.root()->id,
+                              copy.mode, copy.removes),
+            "", onto);
       } else {
-        id = placeNew(state, copy.part, copy.mode);
+        const NodeId target = primarySelection(state);
+        id = placeNew(
+            state, copy.part,
+            modeKeepingEffect(state.document.root(), target ? target : state.document.root()->id,
+                              copy.mode, copy.removes));
       }
       pasted.push_back(id);
       const NodePtr& root = state.document.root();
@@ -829,6 +847,15 @@ void toggleSelectionHidden(EditorState& state) {
   for (NodeId id : state.selection)
     guarded(state, [&] { state.document.setVisible(id, allHidden); });
   state.document.endInteraction();
+}
+
+NodeKind groupKindKeepingRoles(const EditorState& state) {
+  const NodePtr& root = state.document.root();
+  const std::vector<NodeId> parts = outermostSelected(root, state.selection);
+  bool intersect = !parts.empty();
+  for (NodeId id : parts)
+    intersect = intersect && findNode(root, id) && roleOf(root, id) == ChildRole::Intersect;
+  return intersect ? NodeKind::Intersection : NodeKind::Union;
 }
 
 void groupSelection(EditorState& state, NodeKind kind) {
@@ -967,7 +994,7 @@ void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods) {
   if (moving.size() <= 1) {
     // One moves: the dragged row, or the selected group holding it (as the gizmo moves it).
     const NodeId part = moving.empty() ? dragged : moving.front();
-    dropNode(state, part, target, dropMode(state, mods, part));
+    dropNode(state, part, target, dropMode(state, mods, part, target));
     return;
   }
   // Several rows dragged at once: each moved onto the target keeping what it does (or taking
@@ -977,7 +1004,7 @@ void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods) {
     return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
   });
   std::vector<std::pair<NodeId, PlaceMode>> moves;
-  for (NodeId id : moving) moves.push_back({id, dropMode(state, mods, id)});
+  for (NodeId id : moving) moves.push_back({id, dropMode(state, mods, id, target)});
   const NodePtr before = root;
   state.document.beginInteraction();
   const bool moved = guarded(state, [&] {

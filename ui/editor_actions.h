@@ -33,10 +33,12 @@ void rememberSelection(EditorState& state);
 
 // The modifier bits dropMode reads (GLFW's: shift 1, control 2, alt 4).
 constexpr int kDropIntersect = 1, kDropCut = 2, kDropAdd = 4;
-// The mode a drop uses with the modifier keys held: Ctrl cuts, Shift intersects, Alt adds;
-// without one, an existing node `dragged` keeps its role (modeKeepingRole) and a new part from
-// the palette (dragged 0) takes the palette's mode.
-PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged = 0);
+// The mode a drop onto `target` (0 = the root) uses with the modifier keys held: Ctrl cuts,
+// Shift intersects, Alt adds; without one, an existing node `dragged` keeps what it does to the
+// result (modeKeepingEffect: its role's mode, or the other where its material was taken away and
+// would not be there, or the reverse) and a new part from the palette (dragged 0) takes the
+// palette's mode.
+PlaceMode dropMode(const EditorState& state, int mods, NodeId dragged = 0, NodeId target = 0);
 // What a part placed onto `target` (0 = the root) with `mode` would do, for tooltips ("cuts
 // from \"bracket\""), or, for an existing node `dragged`, what it would do once moved there. Sets
 // *refused (when given) and returns the reason when the drop would be refused.
@@ -75,6 +77,9 @@ void instanceSelection(EditorState& state);
 // Hides the selection, or shows it when every selected node is hidden.
 void toggleSelectionHidden(EditorState& state);
 void groupSelection(EditorState& state, NodeKind kind);
+// What Ctrl+G groups the selection as, keeping what its parts do: an intersection where they
+// all intersect (a union of them keeps what either keeps, which is more), else a union.
+NodeKind groupKindKeepingRoles(const EditorState& state);
 // Where alignSelection meets the active part's bounds on an axis.
 enum class AlignEdge { Min, Centre, Max };
 // Moves every selected part but the active (primary) one along world `axis` (0 x, 1 y, 2 z) so

@@ -97,13 +97,14 @@ struct EditorState {
   // copied; pasted with fresh ids by Ctrl+V.
   struct CopiedPart {
     NodePtr part;
-    PlaceMode mode = PlaceMode::Add;
-    glm::dvec3 worldOrigin{0.0};  // where its origin was in the world when copied
+    PlaceMode mode = PlaceMode::Add;  // of its role in its parent
+    glm::dvec3 worldOrigin{0.0};      // where its origin was in the world when copied
     // Where it was in the tree when copied: its parent (id and kind; 0 for the root) and its
     // place among the parent's children. A cut part pastes back there, in the role it had.
     NodeId parent = 0;
     NodeKind parentKind = NodeKind::Union;
     int index = -1;
+    bool removes = false;  // its material was taken away from the result (a hole)
   };
   std::vector<CopiedPart> clipboard;
   int pastes = 0;  // pasted since the clipboard was filled: each paste lands a step further

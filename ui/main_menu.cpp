@@ -106,7 +106,7 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Rename", "F2", false, any)) state.renaming = primarySelection(state);
     if (ImGui::BeginMenu("Group as", any)) {
       for (NodeKind k : operationKinds())
-        if (ImGui::MenuItem(kindLabel(k), k == NodeKind::Union ? "Ctrl+G" : nullptr))
+        if (ImGui::MenuItem(kindLabel(k), k == groupKindKeepingRoles(state) ? "Ctrl+G" : nullptr))
           groupSelection(state, k);
       ImGui::EndMenu();
     }
@@ -202,7 +202,7 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_X, ctrl)) cutSelection(state);
   if (keyPressed(state, GLFW_KEY_V, ctrl)) pasteClipboard(state);
   if (keyPressed(state, GLFW_KEY_D, GLFW_MOD_ALT)) instanceSelection(state);
-  if (keyPressed(state, GLFW_KEY_G, ctrl)) groupSelection(state, NodeKind::Union);
+  if (keyPressed(state, GLFW_KEY_G, ctrl)) groupSelection(state, groupKindKeepingRoles(state));
   if (keyPressed(state, GLFW_KEY_DELETE) || keyPressed(state, GLFW_KEY_BACKSPACE))
     deleteSelection(state);
   if (keyPressed(state, GLFW_KEY_H)) toggleSelectionHidden(state);

@@ -64,7 +64,7 @@ void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
   if (!payload) return;
   NodeId dragged = 0;
   if (payload->IsDataType(kPayload)) std::memcpy(&dragged, payload->Data, sizeof(NodeId));
-  const PlaceMode mode = dropMode(state, heldDropModifiers(), dragged);
+  const PlaceMode mode = dropMode(state, heldDropModifiers(), dragged, target);
   bool refused = false;
   const std::string sentence = placementSentence(state, target, mode, dragged, &refused);
   drop->hint = refused ? "can't drop here: " + sentence : sentence;

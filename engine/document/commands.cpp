@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "engine/document/measurement.h"
 #include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
@@ -357,6 +358,78 @@ NodePtr moveNodeToTop(const NodePtr& root, NodeId id, NodeId unionId) {
   return named;
 }
 
+namespace {
+
+// Members of a group from different parents all go where the first one is: each must do there
+// what it did. Relative to the lowest operation above all their parents (the place they share),
+// each member must do the same thing through the child of that place that holds it, with only
+// unions it adds to in between (a union's parts do to its parent what the union does). A hole
+// inside a cutter grouped with a part of the base was moved into the base and became a peg
+// (an artist's test); a part added beside a difference grouped with one of its base's parts
+// would be cut by its cutters.
+void checkGroupKeepsContexts(const NodePtr& root, const std::vector<NodeId>& members) {
+  if (members.size() < 2) return;
+  std::vector<std::vector<const Node*>> paths(members.size());
+  for (size_t m = 0; m < members.size(); ++m)
+    if (!pathToNode(root, members[m], &paths[m]) || paths[m].size() < 2) return;
+  // The place: the deepest node on every member's path above the member itself.
+  size_t place = 0;
+  for (;; ++place) {
+    bool shared = true;
+    for (const auto& path : paths)
+      shared = shared && place + 1 < path.size() - 1 && path[place + 1] == paths[0][place + 1];
+    if (!shared) break;
+  }
+  const auto indexIn = [](const Node& parent, const Node* child) {
+    for (size_t i = 0; i < parent.children.size(); ++i)
+      if (parent.children[i].get() == child) return int(i);
+    return -1;
+  };
+  const auto through = [&](size_t m) {
+    return childRole(*paths[m][place], indexIn(*paths[m][place], paths[m][place + 1]));
+  };
+  // "\"hole\" lies in \"bolt holes\", which cuts", or "\"hole\" cuts" where it is the holder.
+  const auto whatItDoes = [&](size_t m) {
+    const Node& holder = *paths[m][place + 1];
+    return &holder == paths[m].back()
+               ? nameWithId(holder) + " " + rolePhrase(through(m))
+               : nameWithId(*paths[m].back()) + " lies in " + nameWithId(holder) + ", which " +
+                     rolePhrase(through(m));
+  };
+  const Node& at = *paths[0][place];
+  const ChildRole role = through(0);
+  bool sameParent = true;
+  for (const auto& path : paths)
+    sameParent = sameParent && path[path.size() - 2] == paths[0][paths[0].size() - 2];
+  for (size_t m = 0; m < members.size(); ++m) {
+    const auto& path = paths[m];
+    const Node& member = *path.back();
+    if (through(m) != role)
+      throw Error(whatItDoes(m) + " in " + nameWithId(at) + ", and " + whatItDoes(0) +
+                  " there: a group plays one role, so one of them would no longer do what it "
+                  "did. Group parts that do the same (or move them first)");
+    // Parts leave their holders, or (the first's) receive the others: an instance of a holder
+    // would then show them moved too (a bore grouped out of the union an instance repeats).
+    if (!sameParent)
+      for (size_t k = place + 1; k + 1 < path.size(); ++k)
+        if (const Node* user = outsideReference(root, {path[k]->id}))
+          throw Error(nameWithId(member) + " lies in " + nameWithId(*path[k]) +
+                      ", which instance " + nameWithId(*user) +
+                      " repeats: a group with parts from elsewhere would change the instance "
+                      "too. Group parts within " +
+                      nameWithId(*path[k]) + " alone, or move them first");
+    for (size_t k = place + 1; k + 1 < path.size(); ++k)
+      if (path[k]->kind != NodeKind::Union)
+        throw Error(nameWithId(member) + " lies in " + nameWithId(*path[k]) + " (a " +
+                    kindName(path[k]->kind) + ") within " + nameWithId(at) +
+                    ": a group with parts outside it would take it out, and it would no longer "
+                    "do what it did. Group parts within " +
+                    nameWithId(*path[k]) + " alone, or move it first");
+  }
+}
+
+}  // namespace
+
 NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind kind,
                    NodeId groupId) {
   if (!isOperation(kind)) throw Error("a group must be a union, intersection or difference");
@@ -383,15 +456,30 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
   }
   // A group takes one role in its parent: members that do different things (the base and a
   // cutter, a part that adds and one that cuts) would change what some of them do.
-  const ChildRole role = roleOf(root, order[0]);
-  for (NodeId id : order)
-    if (roleOf(root, id) != role)
-      throw Error(nameWithId(requireNode(root, order[0])) + " " + rolePhrase(role) + " and " +
-                  nameWithId(requireNode(root, id)) + " " + rolePhrase(roleOf(root, id)) +
-                  ": a group plays one role, so group parts that do the same (or move them "
-                  "first)");
+  checkGroupKeepsContexts(root, order);
+  // A member from another parent keeps its place in the world: its transform in the first
+  // member's parent (where the group goes, itself unmoved) is what its own parent's made of it.
   std::vector<NodePtr> members;
-  for (NodeId id : order) members.push_back(findNode(root, id));
+  const glm::dmat4 groupParent = parentWorldMatrix(root, order[0]);
+  for (NodeId id : order) {
+    NodePtr member = findNode(root, id);
+    const glm::dmat4 ownParent = parentWorldMatrix(root, id);
+    if (ownParent != groupParent) {
+      bool exact = false;
+      const Transform t =
+          transformNear(glm::inverse(groupParent) * ownParent * member->transform.matrix(),
+                        member->transform, &exact);
+      if (!exact)
+        throw Error(nameWithId(*member) + " is turned and stretched where " +
+                    nameWithId(requireNode(root, order[0])) +
+                    " is not: no move, turn and scale keeps its shape in a group there. Group "
+                    "parts of one place, or move it first");
+      auto moved = std::make_shared<Node>(*member);
+      moved->transform = t;
+      member = moved;
+    }
+    members.push_back(member);
+  }
   NodePtr group = makeOperationNode(kind, groupId, members);
   NodePtr result = root;
   for (size_t i = 1; i < order.size(); ++i) result = detach(result, order[i]);

@@ -3,6 +3,7 @@
 #include <unordered_set>
 
 #include "engine/document/commands.h"
+#include "engine/document/measurement.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -206,6 +207,18 @@ PlaceMode modeKeepingRole(ChildRole role) {
   }
 }
 
+PlaceMode modeKeepingEffect(const NodePtr& root, NodeId target, PlaceMode kept, bool removes) {
+  if (kept == PlaceMode::Intersect) return kept;
+  for (const PlaceMode mode : {kept, PlaceMode::Add, PlaceMode::Cut}) {
+    try {
+      if (planPlacement(root, target, mode).removesMaterial == removes) return mode;
+    } catch (const Error&) {
+      return kept;
+    }
+  }
+  return kept;
+}
+
 NodeKind operationKindFor(PlaceMode mode) {
   const RayOp wanted = mode == PlaceMode::Cut         ? RayOp::Difference
                        : mode == PlaceMode::Intersect ? RayOp::Intersection
@@ -306,6 +319,20 @@ NodePtr movePart(const NodePtr& root, NodeId id, NodeId target, PlaceMode mode, 
   NodePtr without = removeKeepingRoles(root, id, groupId + 1);
   NodePtr result = placePart(without, planPlacement(without, target, mode), moved, groupId);
   checkInstances(result);
+  // It stays where it was in the world: its transform in its new parent is what its old parent
+  // made of it (a part dragged out of a moved group jumped by the group's move).
+  const glm::dmat4 oldParent = parentWorldMatrix(root, id);
+  const glm::dmat4 newParent = parentWorldMatrix(result, id);
+  if (newParent != oldParent) {
+    bool exact = false;
+    const Transform t = transformNear(
+        glm::inverse(newParent) * oldParent * moved->transform.matrix(), moved->transform, &exact);
+    if (!exact)
+      throw Error(quoted(*moved) + " is turned where " + quoted(*goal) +
+                  " is stretched (or the reverse): no move, turn and scale keeps its shape "
+                  "there. Move it onto a part that is not stretched, or undo the stretch first");
+    result = editNode(result, id, [&](Node& n) { n.transform = t; });
+  }
   return result;
 }
 

@@ -68,6 +68,14 @@ const char* placeModeName(PlaceMode mode);
 // intersection, add for the rest (a base or the root placed elsewhere adds). Moved and pasted
 // parts keep their role unless the artist picks another.
 PlaceMode modeKeepingRole(ChildRole role);
+// The mode for placing a part onto `target` (in `root`, which does not hold the part) so that its
+// material is taken away from the result exactly when `removes` says (removesMaterial where it
+// was): `kept`, its role's mode, where that does (nothing else then changes), else add or cut.
+// A part that added to a cutter (a countersink in a union of holes) pasted or dropped with its
+// role's mode onto a part of the base became a peg where it was a hole (an artist's test).
+// Intersecting parts keep `kept`; a target refused by every mode gives `kept` (the placement
+// then says why).
+PlaceMode modeKeepingEffect(const NodePtr& root, NodeId target, PlaceMode kept, bool removes);
 // The operation kind whose Boolean the mode applies (from the kind table).
 NodeKind operationKindFor(PlaceMode mode);
 

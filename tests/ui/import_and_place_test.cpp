@@ -882,6 +882,42 @@ TEST(Roles, ACutterCopiedTwiceKeepsEveryRoleAndTheRowsOrder) {
   EXPECT_FALSE(findNode(state.document.root(), first));
 }
 
+// A part that adds to a cutter (a countersink in a union of holes) takes material away: copied
+// and pasted onto the plate, or dragged onto it in the outliner, it still does (it became a peg
+// where it was a hole: an artist's test); grouped with the plate (Ctrl+G) it is refused.
+TEST(Roles, APartOfACutterPastedOrDroppedOnTheBaseStillCuts) {
+  EditorState state;
+  const auto [plate, hole, group] = addPlateWithHole(state);
+  selectNode(state, hole);
+  state.placeMode = PlaceMode::Add;
+  const NodeId countersink = addPrimitive(state, NodeKind::Cone);  // adds to the hole: a union
+  const NodePtr& root = state.document.root();
+  ASSERT_EQ(roleOf(root, countersink), ChildRole::Add);
+  ASSERT_TRUE(removesMaterial(root, countersink));
+
+  state.selection = {countersink};
+  copySelection(state);
+  state.selection = {plate};
+  pasteClipboard(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId pasted = state.selection[0];
+  EXPECT_NE(pasted, countersink);
+  EXPECT_TRUE(removesMaterial(state.document.root(), pasted)) << "the pasted copy fills";
+  undo(state);
+  EXPECT_FALSE(findNode(state.document.root(), pasted));
+
+  dropNodes(state, countersink, plate, 0);
+  EXPECT_TRUE(removesMaterial(state.document.root(), countersink)) << "the dropped part fills";
+  undo(state);
+
+  state.selection = {plate, countersink};
+  const NodePtr before = state.document.root();
+  groupSelection(state, groupKindKeepingRoles(state));
+  EXPECT_EQ(state.document.root(), before) << "grouped into the plate, the countersink would fill";
+  EXPECT_NE(state.log.back().text.find("would no longer do what it did"), std::string::npos)
+      << state.log.back().text;
+}
+
 // A group and a part inside it selected together: what acts on the selection acts on the
 // group once, the part moving with it (an artist's test: Ctrl+D copied the part twice, the
 // inspector moved it twice, the gizmo turned only the part).

@@ -10,6 +10,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/document/document.h"
+#include "engine/document/measurement.h"
 #include "engine/document/roles.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/error.h"
@@ -370,6 +371,125 @@ TEST(Roles, MovingAPartOntoItsOwnPlaceKeepsTheVolume) {
           << path << " node " << id;
     }
   }
+}
+
+// A part moved onto any node with the mode that keeps what it does (modeKeepingEffect: what a
+// drag in the outliner does without a key held) has its material taken away from the result
+// exactly where it had before. A countersink inside a union of holes dropped onto a part of the
+// base took its role's mode (add) and filled its own hole (an artist's test).
+TEST(Roles, APartMovedAnywhereWithTheModeKeepingItsEffectStillDoesWhatItDid) {
+  int moves = 0, changedMode = 0;
+  for (const std::string& path : bundledScenes()) {
+    const Scene scene = loadScene(path);
+    const NodePtr& root = scene.root;
+    const NodeId fresh = maxNodeId(root) + 1;
+    const std::vector<NodeId> ids = treeOrder(root);
+    for (NodeId moved : ids) {
+      if (moved == root->id) continue;
+      const PlaceMode kept = modeKeepingRole(roleOf(root, moved));
+      const bool removes = removesMaterial(root, moved);
+      for (NodeId target : ids) {
+        if (isInSubtree(root, moved, target)) continue;
+        const NodePtr without = removeKeepingRoles(root, moved, fresh + 1);
+        const PlaceMode mode = modeKeepingEffect(without, target, kept, removes);
+        // Onto a cutter's part every placement is cut away (and the reverse): nothing keeps it,
+        // and the placement's sentence says so before the drop.
+        bool keepable = false;
+        for (PlaceMode m : {PlaceMode::Add, PlaceMode::Cut})
+          keepable = keepable || planPlacement(without, target, m).removesMaterial == removes;
+        if (!keepable) continue;
+        NodePtr after;
+        try {
+          after = movePart(root, moved, target, mode, fresh);
+        } catch (const Error&) {
+          continue;  // an instance cycle: refused, nothing changed
+        }
+        const std::string what = std::filesystem::path(path).filename().string() + " move " +
+                                 std::to_string(moved) + " onto " + std::to_string(target);
+        expectRolesKept(root, after, moved, what);
+        if (kept != PlaceMode::Intersect) {
+          EXPECT_EQ(removesMaterial(after, moved), removes) << what;
+        }
+        changedMode += mode != kept ? 1 : 0;
+        ++moves;
+      }
+    }
+  }
+  EXPECT_GT(moves, 300);
+  EXPECT_GT(changedMode, 10) << "parts inside cutters moved elsewhere take the other mode";
+}
+
+// Grouping (Ctrl+G: a union, an intersection for parts that intersect) any two parts of every
+// bundled scene is refused or leaves the result as it was: parts from different places each do
+// there what they did (a hole grouped with a part of the base was moved into the base and became
+// a peg: an artist's test).
+TEST(Roles, EveryGroupOfTwoPartsIsRefusedOrKeepsTheResult) {
+  int kept = 0, refused = 0;
+  for (const std::string& path : bundledScenes()) {
+    Scene scene = loadScene(path);
+    scene.settings.resolution = 24;
+    const std::vector<NodeId> ids = treeOrder(scene.root);
+    if (ids.size() > 40) continue;  // the pairs of the larger scenes add nothing new, only time
+    const Bounds grid = test::evaluateCpu(scene).grid.bounds();
+    scene.settings.hasBounds = true;  // one grid for every variant: volumes compare exactly
+    scene.settings.bounds = grid;
+    const double before = test::evaluateCpu(scene).measure.volume;
+    const NodeId groupId = maxNodeId(scene.root) + 1;
+    for (size_t i = 0; i < ids.size(); ++i)
+      for (size_t j = i + 1; j < ids.size(); ++j) {
+        const NodeId a = ids[i], b = ids[j];
+        if (a == scene.root->id || isInSubtree(scene.root, a, b)) continue;
+        const NodeKind kind = roleOf(scene.root, a) == ChildRole::Intersect ? NodeKind::Intersection
+                                                                            : NodeKind::Union;
+        Scene grouped = scene;
+        try {
+          grouped.root = groupNodes(scene.root, {a, b}, kind, groupId);
+        } catch (const Error&) {
+          ++refused;
+          continue;
+        }
+        EXPECT_NEAR(test::evaluateCpu(grouped).measure.volume, before, 1e-9 * before)
+            << std::filesystem::path(path).filename().string() << " group " << a << ", " << b;
+        ++kept;
+      }
+  }
+  EXPECT_GT(kept, 20);
+  EXPECT_GT(refused, 20);
+}
+
+// A part grouped with one inside a moved group keeps its place in the world (it went into the
+// moved group with its own transform, and jumped by the group's move).
+TEST(Roles, AGroupOfPartsFromMovedParentsKeepsEveryPartInPlace) {
+  auto inner = makePrimitiveNode(NodeKind::Box, 3);
+  auto held = std::make_shared<Node>(*makeOperationNode(NodeKind::Union, 2, {inner}));
+  held->transform.translate = glm::dvec3(10.0, 0.0, 0.0);
+  held->transform.rotateDegrees = glm::dvec3(0.0, 0.0, 30.0);
+  auto outer = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 4));
+  outer->transform.translate = glm::dvec3(-3.0, 2.0, 1.0);
+  outer->transform.scale = glm::dvec3(2.0);
+  const NodePtr root = makeOperationNode(NodeKind::Union, 1, {held, outer});
+  const glm::dmat4 before = nodeWorldMatrix(root, 4);
+  const NodePtr grouped = groupNodes(root, {3, 4}, NodeKind::Union, 5);
+  const glm::dmat4 after = nodeWorldMatrix(grouped, 4);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(after[c][r], before[c][r], 1e-9) << c << " " << r;
+  EXPECT_EQ(nodeWorldMatrix(grouped, 3), nodeWorldMatrix(root, 3));
+  // The same for a part dropped into the moved group, and out of it again.
+  const NodePtr movedIn = movePart(root, 4, 3, PlaceMode::Add, 5);
+  const NodePtr movedOut = movePart(movedIn, 4, 1, PlaceMode::Add, 7);
+  for (const NodePtr& tree : {movedIn, movedOut}) {
+    const glm::dmat4 now = nodeWorldMatrix(tree, 4);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) EXPECT_NEAR(now[c][r], before[c][r], 1e-9) << c << " " << r;
+  }
+  // Turned, into a group stretched along x: no move, turn and scale keeps its shape. Refused.
+  auto stretchedGroup = std::make_shared<Node>(*held);
+  stretchedGroup->transform.rotateDegrees = glm::dvec3(0.0);
+  stretchedGroup->transform.scale = glm::dvec3(2.0, 1.0, 1.0);
+  auto turned = std::make_shared<Node>(*outer);
+  turned->transform.rotateDegrees = glm::dvec3(0.0, 0.0, 30.0);
+  const NodePtr shearing = makeOperationNode(NodeKind::Union, 1, {stretchedGroup, turned});
+  EXPECT_THROW(groupNodes(shearing, {3, 4}, NodeKind::Union, 5), Error);
 }
 
 }  // namespace
