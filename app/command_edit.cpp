@@ -11,6 +11,7 @@
 #include "engine/document/commands.h"
 #include "engine/eval/evaluator.h"
 #include "engine/io/mesh_formats.h"
+#include "engine/io/recovery_slots.h"
 #include "engine/io/scene_file.h"
 #include "engine/io/user_files.h"
 #include "engine/ldi/grid.h"
@@ -444,7 +445,8 @@ int runEdit(const std::vector<std::string>& argv) {
         options.layoutPath = userConfigDir() + "/layout.txt";
         options.exportSettingsPath = userConfigDir() + "/export.txt";
       }
-      options.recoveryPath = defaultRecoveryPath();
+      options.recoveryDir = defaultRecoveryDir();
+      options.legacyRecoveryPath = defaultRecoveryPath();  // the one file of earlier versions
     }
     ui::Editor editor(options);
     editor.state().section = parseSection(args);

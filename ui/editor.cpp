@@ -212,7 +212,16 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   s.makeBackend = options_.makeBackend;
   s.recentFilesPath = options_.recentFilesPath;
   if (!options_.layoutPath.empty()) layout_ = readPanelLayout(options_.layoutPath, layout_);
-  s.recoveryPath = options_.recoveryPath;
+  if (!options_.recoveryDir.empty()) {
+    try {
+      recoverySlot_ = std::make_unique<RecoverySlot>(options_.recoveryDir);
+      s.recoveryPath = recoverySlot_->path();
+      s.recoveryDir = options_.recoveryDir;
+    } catch (const Error& e) {
+      logWarning(s, std::string("no autosave: ") + e.what());
+    }
+    s.recoveryOffers = claimOrphanedRecoveries(options_.recoveryDir, options_.legacyRecoveryPath);
+  }
   s.exportSettingsPath = options_.exportSettingsPath;
   if (!s.exportSettingsPath.empty()) {
     const ExportSettings kept = readExportSettings(
@@ -222,7 +231,7 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
     s.exportSimplifyCells = kept.simplifyCells;
   }
   if (!s.recentFilesPath.empty()) s.recentFiles = readRecentFiles(s.recentFilesPath);
-  s.offerRecovery = recoveryFileExists(s.recoveryPath);
+  s.offerRecovery = !s.recoveryOffers.empty();
 
   gl_ = std::make_unique<Gl>(options_);
   s.glDescription = gl_->window.description() + " (context " +
@@ -921,9 +930,10 @@ bool Editor::frame() {
 int Editor::run() {
   while (frame()) {
   }
-  // A clean exit: nothing to recover next time (after an autosave still writing has finished).
+  // A clean exit: nothing to recover next time (after an autosave still writing has finished):
+  // this editor's slot goes; work offered and not answered stays for a later start.
   autosaveJob_.reset();
-  if (!state_->offerRecovery) removeRecoveryFile(state_->recoveryPath);
+  recoverySlot_.reset();
   return 0;
 }
 

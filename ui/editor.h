@@ -39,9 +39,13 @@ struct EditorOptions {
   PinHostMemory pinHostMemory;
   bool visible = true;  // false: an invisible window for off-screen rendering
   int width = 1600, height = 1000;
-  std::string recentFilesPath;     // "" = none
-  std::string layoutPath;          // the panel sizes remembered between runs; "" = the defaults
-  std::string recoveryPath;        // "" = no autosave and no recovery offer
+  std::string recentFilesPath;  // "" = none
+  std::string layoutPath;       // the panel sizes remembered between runs; "" = the defaults
+  // Crash recovery (engine/io/recovery_slots.h): this editor autosaves into a slot of its own in
+  // recoveryDir and offers the slots no running editor owns, with the single file of earlier
+  // versions at legacyRecoveryPath. "" = no autosave and no recovery offer.
+  std::string recoveryDir;
+  std::string legacyRecoveryPath;
   std::string exportSettingsPath;  // the export dialog's choices between runs; "" = not kept
   // A change is written for recovery once it has rested autosaveRestSeconds (a crash then loses
   // seconds of work, not minutes; a burst of edits is written once), and at least every
@@ -204,6 +208,7 @@ class Editor {
   double changedAt_ = 0.0;     // when that revision was first seen (seconds)
   uint64_t autosavingRevision_ = 0;
   bool recoveryWritten_ = false;                      // a recovery file of this session's may exist
+  std::unique_ptr<RecoverySlot> recoverySlot_;        // this editor's, removed on a clean exit
   std::unique_ptr<BackgroundJob<bool>> autosaveJob_;  // writing autosavingRevision_
   double startTime_ = 0.0;
   PanelLayout layout_;  // the panels' sizes (splitters), read from options_.layoutPath

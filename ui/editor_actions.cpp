@@ -1168,22 +1168,48 @@ bool saveDocumentAs(EditorState& state, const std::string& path) {
   });
 }
 
+namespace {
+// The offer answered: the next one (if any) is asked about next.
+void nextRecoveryOffer(EditorState& state) {
+  if (!state.recoveryOffers.empty()) state.recoveryOffers.erase(state.recoveryOffers.begin());
+  state.offerRecovery = !state.recoveryOffers.empty();
+}
+}  // namespace
+
 bool recoverDocument(EditorState& state) {
-  state.offerRecovery = false;
-  return guarded(state, [&] {
+  if (state.recoveryOffers.empty()) return false;
+  const RecoveryOffer offer = state.recoveryOffers.front();
+  const bool recovered = guarded(state, [&] {
     std::vector<std::string> warnings;
-    Document doc = readRecoveryFile(state.recoveryPath, &warnings);
+    Document doc = readRecoveryFile(offer.path, &warnings);
     replaceDocument(state, std::move(doc));
     for (const auto& w : warnings) logWarning(state, w);
     logInfo(state,
-            "recovered the unsaved work of the last session (its undo history was not kept: "
-            "undo starts from here)");
+            "recovered the unsaved work of an editor that ended without saving (its undo "
+            "history was not kept: undo starts from here)");
   });
+  // Read: the work is this editor's now (its own autosave keeps it); a damaged file stays.
+  if (recovered) forgetRecovery(offer);
+  nextRecoveryOffer(state);
+  return recovered;
 }
 
 void discardRecovery(EditorState& state) {
-  state.offerRecovery = false;
-  removeRecoveryFile(state.recoveryPath);
+  if (state.recoveryOffers.empty()) return;
+  const std::string kept = discardRecovery(state.recoveryOffers.front(), state.recoveryDir);
+  if (!kept.empty())
+    logInfo(state, "discarded the unsaved work; kept as " + kept + " (the last " +
+                       std::to_string(kKeptDiscards) + " discarded are kept: File > Open it)");
+  else
+    logWarning(state, "the unsaved work could not be moved aside: it is offered again next time");
+  nextRecoveryOffer(state);
+}
+
+void postponeRecovery(EditorState& state) {
+  if (!state.recoveryOffers.empty())
+    logInfo(state, "the unsaved work of " + state.recoveryOffers.front().path +
+                       " is offered again at the next start");
+  nextRecoveryOffer(state);
 }
 
 std::string documentFolder(const EditorState& state) {

@@ -125,8 +125,12 @@ bool openTemplate(EditorState& state, const std::string& path);
 // False without a message when the document has no path yet (the caller asks for one).
 bool saveDocument(EditorState& state);
 bool saveDocumentAs(EditorState& state, const std::string& path);
+// The recovery question's answers, for the first of state.recoveryOffers: recovered (it becomes
+// the document, its file forgotten), discarded (moved aside, kept: recovery_slots.h), or left
+// for a later start. Each then asks about the next offer, if any.
 bool recoverDocument(EditorState& state);
 void discardRecovery(EditorState& state);
+void postponeRecovery(EditorState& state);
 // The document's folder, absolute, with a trailing '/' ("" for an untitled document).
 std::string documentFolder(const EditorState& state);
 // The folder the file dialogs start in: the document's, else the last export's, else the user's

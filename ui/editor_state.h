@@ -16,6 +16,7 @@
 
 #include "engine/document/document.h"
 #include "engine/eval/backend.h"
+#include "engine/io/recovery_slots.h"
 #include "engine/jobs/background_job.h"
 #include "engine/jobs/export_job.h"
 #include "engine/jobs/part_measure_job.h"
@@ -114,8 +115,11 @@ struct EditorState {
   // Files outside the document.
   std::string recentFilesPath;  // "" = no recent-files list
   std::vector<std::string> recentFiles;
-  std::string recoveryPath;  // "" = no autosave
-  bool offerRecovery = false;
+  std::string recoveryPath;  // this editor's autosave (its recovery slot); "" = no autosave
+  std::string recoveryDir;   // the recovery folder, where discarded work is kept
+  // Work of editors that ended without saving (the newest first), offered one at a time.
+  std::vector<RecoveryOffer> recoveryOffers;
+  bool offerRecovery = false;  // !recoveryOffers.empty(): the question is up
 
   // Preview.
   std::shared_ptr<const PreviewResult> preview;  // shown in the viewport

@@ -38,25 +38,37 @@ void recoveryQuestion(EditorState& state) {
   if (state.offerRecovery && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   centreNext();
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-  // Which document, and from when: read once when the question opens.
+  if (state.recoveryOffers.empty()) {  // answered elsewhere
+    ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;
+  }
+  // Which document, and from when: read when the offer changes.
+  static std::string described;
   static RecoveryInfo info;
-  if (ImGui::IsWindowAppearing()) info = describeRecoveryFile(state.recoveryPath);
+  const RecoveryOffer& offer = state.recoveryOffers.front();
+  if (described != offer.path) info = describeRecoveryFile(described = offer.path);
   const std::string what = info.origin.empty() ? "an untitled document" : info.origin;
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);
-  ImGui::TextWrapped("The last session ended without saving its changes to %s.", what.c_str());
+  ImGui::TextWrapped("An editor ended without saving its changes to %s.", what.c_str());
   if (!info.writtenAt.empty()) ImGui::TextWrapped("Last autosaved %s.", info.writtenAt.c_str());
-  ImGui::TextDisabled("%s", state.recoveryPath.c_str());
+  if (state.recoveryOffers.size() > 1)
+    ImGui::TextWrapped("%zu more such documents are asked about after this one.",
+                       state.recoveryOffers.size() - 1);
+  ImGui::TextDisabled("%s", offer.path.c_str());
   ImGui::PopTextWrapPos();
-  if (ImGui::Button("Recover", ImVec2(120, 0))) {
-    recoverDocument(state);
-    removeRecoveryFile(state.recoveryPath);
-    ImGui::CloseCurrentPopup();
-  }
+  if (ImGui::Button("Recover", ImVec2(120, 0))) recoverDocument(state);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Open it in place of the document shown (undo starts from there)");
   ImGui::SameLine();
-  if (ImGui::Button("Discard", ImVec2(120, 0))) {
-    discardRecovery(state);
-    ImGui::CloseCurrentPopup();
-  }
+  if (ImGui::Button("Later", ImVec2(120, 0))) postponeRecovery(state);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Leave it for the next start");
+  ImGui::SameLine();
+  if (ImGui::Button("Discard", ImVec2(120, 0))) discardRecovery(state);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Put it aside (the last %d discarded are kept in %s/discarded)",
+                      kKeptDiscards, state.recoveryDir.c_str());
+  if (!state.offerRecovery) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();
 }
 

@@ -2,14 +2,16 @@
 //
 //   recent files:  $XDG_CONFIG_HOME/strata/recent.txt (default ~/.config/strata/recent.txt),
 //                  one absolute path per line, most recent first, at most kMaxRecentFiles
-//   recovery file: $XDG_DATA_HOME/strata/recovery.strata.json (default
-//                  ~/.local/share/strata/recovery.strata.json), a scene file written every few
-//                  minutes while the editor runs and removed on a clean exit, so that finding
-//                  one at start means the last session ended without saving. Its companion
-//                  "<recovery>.origin" holds the path of the document it was made from ("" for an
-//                  untitled one). Mesh paths in it are absolute, so it loads from its own folder.
+//   recovery file: a scene file an editor writes while it has unsaved changes and removes on a
+//                  clean exit, so that finding one at start means an editor ended without saving.
+//                  Each running editor has one of its own (recovery_slots.h: slots in
+//                  $XDG_DATA_HOME/strata/recovery); earlier versions shared
+//                  $XDG_DATA_HOME/strata/recovery.strata.json (defaultRecoveryPath), still offered.
+//                  Its companion "<recovery>.origin" holds the path of the document it was made
+//                  from ("" for an untitled one). Mesh paths in it are absolute, so it loads from
+//                  its own folder.
 //
-// Threads: any, but the files are not locked: one editor process at a time is assumed.
+// Threads: any. The recent-files list is not locked (the last writer wins).
 #pragma once
 
 #include <string>

@@ -200,7 +200,7 @@ TEST(EditorWindow, AnEditIsWrittenForRecoveryOnceItHasRested) {
   const std::string folder = ::testing::TempDir() + "/strata_autosave_rest";
   std::filesystem::remove_all(folder);
   EditorOptions o = testOptions();
-  o.recoveryPath = folder + "/recovery.strata.json";
+  o.recoveryDir = folder;
   o.autosaveRestSeconds = 0.3;
   o.autosaveSeconds = 3600.0;  // only the rest can trigger it here
   Editor editor(o);
@@ -213,11 +213,13 @@ TEST(EditorWindow, AnEditIsWrittenForRecoveryOnceItHasRested) {
     }
     return false;
   };
-  const auto written = [&] { return std::filesystem::exists(o.recoveryPath); };
+  const std::string slot = state.recoveryPath;  // this editor's own file in the folder
+  ASSERT_EQ(std::filesystem::path(slot).parent_path(), std::filesystem::path(folder));
+  const auto written = [&] { return std::filesystem::exists(slot); };
   ASSERT_NE(addPrimitive(state, NodeKind::Sphere), 0u);
   ASSERT_TRUE(state.document.dirty());
   ASSERT_TRUE(framesFor(20.0, written)) << "not written within 20 s of the edit";
-  const Document recovered = readRecoveryFile(o.recoveryPath);
+  const Document recovered = readRecoveryFile(slot);
   ASSERT_EQ(recovered.root()->children.size(), 1u);
   EXPECT_EQ(recovered.root()->children[0]->kind, NodeKind::Sphere);
   // Back to the saved (empty) state: nothing to recover.

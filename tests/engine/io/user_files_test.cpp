@@ -3,8 +3,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 
 #include "engine/io/document_files.h"
+#include "engine/io/recovery_slots.h"
 #include "engine/io/user_files.h"
 
 namespace strata {
@@ -103,6 +106,89 @@ TEST(DocumentRecovery, UntitledDocument) {
   EXPECT_EQ(recovered.path(), "");
   EXPECT_TRUE(recovered.dirty());
   EXPECT_EQ(recovered.root()->children.size(), 1u);
+}
+
+// Several editors at once (engine/io/recovery_slots.h): each autosaves into a slot of its own;
+// a running editor's slot is never offered to another; a clean end removes only its own slot; an
+// editor that crashed (its slot's lock free, as the kernel leaves a dead process's) is offered,
+// to one editor at a time; a discarded one is kept aside. One shared file let a second editor
+// overwrite, offer and delete a running editor's autosave (an artist's test).
+TEST(DocumentRecovery, EachEditorHasASlotAndOnlyTheWorkOfEditorsThatEndedIsOffered) {
+  const std::string dir = tempDir("slots") + "/recovery";
+  Document first, second;
+  first.addNode(NodeKind::Box);
+  second.addNode(NodeKind::Sphere);
+  auto a = std::make_unique<RecoverySlot>(dir);
+  auto b = std::make_unique<RecoverySlot>(dir);
+  EXPECT_NE(a->path(), b->path());
+  writeRecoveryFile(first, a->path());
+  writeRecoveryFile(second, b->path());
+  EXPECT_TRUE(claimOrphanedRecoveries(dir).empty()) << "two running editors: nothing to offer";
+  // One ends cleanly: its slot goes, the other's stays.
+  const std::string bPath = b->path();
+  b.reset();
+  EXPECT_FALSE(fs::exists(bPath));
+  EXPECT_TRUE(fs::exists(a->path()));
+  EXPECT_TRUE(claimOrphanedRecoveries(dir).empty());
+
+  // An editor that was killed: its file and its lock file, the lock held by nobody.
+  const std::string crashed = dir + "/999999-0.strata.json";
+  writeRecoveryFile(second, crashed);
+  { std::ofstream(crashed + ".lock").put('\n'); }
+  std::vector<RecoveryOffer> offers = claimOrphanedRecoveries(dir);
+  ASSERT_EQ(offers.size(), 1u);
+  EXPECT_EQ(offers[0].path, crashed);
+  EXPECT_TRUE(claimOrphanedRecoveries(dir).empty()) << "offered by one editor at a time";
+  // Left for later: offered again.
+  offers.clear();
+  offers = claimOrphanedRecoveries(dir);
+  ASSERT_EQ(offers.size(), 1u);
+  // Discarded: moved aside, not deleted.
+  const std::string kept = discardRecovery(offers[0], dir);
+  offers.clear();
+  EXPECT_FALSE(fs::exists(crashed));
+  EXPECT_FALSE(fs::exists(crashed + ".lock"));
+  ASSERT_FALSE(kept.empty());
+  EXPECT_EQ(fs::path(kept).parent_path(), fs::path(dir) / "discarded");
+  EXPECT_EQ(readRecoveryFile(kept).root()->children.at(0)->kind, NodeKind::Sphere);
+  EXPECT_TRUE(claimOrphanedRecoveries(dir).empty());
+  // The file of earlier versions is offered too; recovered, it is forgotten.
+  const std::string legacy = tempDir("slots_legacy") + "/recovery.strata.json";
+  writeRecoveryFile(first, legacy);
+  offers = claimOrphanedRecoveries(dir, legacy);
+  ASSERT_EQ(offers.size(), 1u);
+  EXPECT_EQ(offers[0].path, legacy);
+  forgetRecovery(offers[0]);
+  EXPECT_FALSE(fs::exists(legacy));
+  EXPECT_TRUE(fs::exists(a->path())) << "the running editor's slot is untouched throughout";
+  // The lock an editor killed with nothing unsaved left is cleared; a running one's stays.
+  { std::ofstream(dir + "/999998-0.strata.json.lock").put('\n'); }
+  claimOrphanedRecoveries(dir);
+  EXPECT_FALSE(fs::exists(dir + "/999998-0.strata.json.lock"));
+  EXPECT_TRUE(fs::exists(a->path() + ".lock"));
+}
+
+// Discarded work is kept, the newest kKeptDiscards of it.
+TEST(DocumentRecovery, TheLastDiscardsAreKept) {
+  const std::string dir = tempDir("discards") + "/recovery";
+  fs::create_directories(dir);
+  Document doc;
+  doc.addNode(NodeKind::Box);
+  std::vector<std::string> kept;
+  for (int i = 0; i < kKeptDiscards + 3; ++i) {
+    const std::string path = dir + "/" + std::to_string(900000 + i) + "-0.strata.json";
+    writeRecoveryFile(doc, path);
+    std::vector<RecoveryOffer> offers = claimOrphanedRecoveries(dir);
+    ASSERT_EQ(offers.size(), 1u);
+    kept.push_back(discardRecovery(offers[0], dir));
+    ASSERT_FALSE(kept.back().empty());
+  }
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(dir) / "discarded"))
+    files += e.path().string().size() > 12 &&
+             e.path().string().compare(e.path().string().size() - 12, 12, ".strata.json") == 0;
+  EXPECT_EQ(files, size_t(kKeptDiscards));
+  EXPECT_TRUE(fs::exists(kept.back()));
 }
 
 }  // namespace
