@@ -703,14 +703,26 @@ void copySelection(EditorState& state) {
 
 void cutSelection(EditorState& state) {
   if (state.selection.empty()) return;
+  // What the clipboard held: kept where nothing is cut (a refused cut filled it, and the next
+  // paste put a copy of the part it had refused to cut: an artist's test).
+  const std::vector<EditorState::CopiedPart> before = state.clipboard;
+  const int pastesBefore = state.pastes;
+  const bool fromCutBefore = state.clipboardFromCut;
   copySelection(state);
-  std::vector<NodeId> copied;
-  for (const EditorState::CopiedPart& part : state.clipboard) copied.push_back(part.part->id);
   deleteSelection(state);
-  // What was removed (a root or a part an instance uses stays, with the delete's error).
-  size_t removed = 0;
-  for (NodeId id : copied) removed += findNode(state.document.root(), id) ? 0 : 1;
-  if (removed == 0) return;
+  // What was removed (a root or a part an instance uses stays, with the delete's error): the
+  // clipboard holds those alone.
+  std::vector<EditorState::CopiedPart> cut;
+  for (const EditorState::CopiedPart& part : state.clipboard)
+    if (!findNode(state.document.root(), part.part->id)) cut.push_back(part);
+  const size_t removed = cut.size();
+  if (removed == 0) {
+    state.clipboard = before;
+    state.pastes = pastesBefore;
+    state.clipboardFromCut = fromCutBefore;
+    return;
+  }
+  state.clipboard = cut;
   state.clipboardFromCut = true;
   logInfo(state, "cut " + std::to_string(removed) + (removed == 1 ? " part" : " parts") +
                      " (Ctrl+V puts " + (removed == 1 ? "it" : "them") + " back where " +
@@ -1156,6 +1168,12 @@ bool openTemplate(EditorState& state, const std::string& path) {
 
 bool saveDocument(EditorState& state) {
   if (state.document.path().empty()) return false;
+  // Written since by another editor or program: asked first (its work was overwritten without a
+  // word, only the one .bak keeping it: an artist's test).
+  if (const std::string changed = changedOnDisk(state.document); !changed.empty()) {
+    state.overwriteQuestion = changed;
+    return false;
+  }
   return saveDocumentAs(state, state.document.path());
 }
 

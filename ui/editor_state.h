@@ -196,8 +196,12 @@ struct EditorState {
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
   bool askingQuitDuringExport = false;           // asking whether to cancel a running export
-  std::optional<PendingReplace> afterSaveAs;     // to do once the Save As being asked succeeds
-  NodeId renaming = 0;                           // outliner row being renamed
+  // A save over a file changed on disk since (engine/io/document_files.h: changedOnDisk) asks
+  // first: what changed, and what to do once it is overwritten.
+  std::string overwriteQuestion;
+  std::optional<PendingReplace> afterOverwrite;
+  std::optional<PendingReplace> afterSaveAs;  // to do once the Save As being asked succeeds
+  NodeId renaming = 0;                        // outliner row being renamed
   NodeId viewContextMenu = 0;  // a part right-clicked in the view: its menu is to open
   // The part under the pointer while a palette item is dragged over the view (0: the ground, or
   // not over the view): what a drop there goes onto, said before the release.

@@ -48,6 +48,7 @@ void performReplace(EditorState& state, const PendingReplace& action) {
 
 bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then) {
   if (saveDocument(state)) return true;
+  if (!state.overwriteQuestion.empty()) state.afterOverwrite = then;  // asked: panel_modals.cpp
   if (state.document.path().empty()) {
     state.afterSaveAs = then;
     state.dialog.open(DialogPurpose::SaveAs, dialogFolder(state) + "untitled.strata.json");

@@ -72,6 +72,39 @@ void recoveryQuestion(EditorState& state) {
   ImGui::EndPopup();
 }
 
+// A save over a file that changed on disk since it was opened or saved here.
+void overwriteQuestion(EditorState& state) {
+  const char* title = "File changed on disk";
+  if (!state.overwriteQuestion.empty() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  centreNext();
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);
+  ImGui::TextWrapped("%s.", state.overwriteQuestion.c_str());
+  ImGui::TextWrapped("Saving replaces what it holds now (kept once, as %s.bak).",
+                     state.document.path().c_str());
+  ImGui::PopTextWrapPos();
+  bool close = false;
+  if (ImGui::Button("Overwrite", ImVec2(120, 0))) {
+    const std::optional<PendingReplace> then = state.afterOverwrite;
+    if (saveDocumentAs(state, state.document.path()) && then) performReplace(state, *then);
+    close = true;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Save as...", ImVec2(120, 0))) {
+    state.afterSaveAs = state.afterOverwrite;
+    state.dialog.open(DialogPurpose::SaveAs, state.document.path());
+    close = true;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ESCAPE)) close = true;
+  if (close) {
+    state.overwriteQuestion.clear();
+    state.afterOverwrite.reset();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
 void unsavedQuestion(EditorState& state) {
   const char* title = "Unsaved changes";
   if (state.pendingReplace && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
@@ -499,6 +532,7 @@ void drawModals(EditorState& state) {
       measures.end());
   viewContextMenu(state);
   recoveryQuestion(state);
+  overwriteQuestion(state);
   unsavedQuestion(state);
   quitDuringExportQuestion(state);
   importDialog(state);

@@ -131,6 +131,18 @@ class Document {
   void setPath(const std::string& path) { path_ = path; }
   // Marks the current state as modified (e.g. a recovered document that was never saved).
   void markDirty() { savedRevision_ = ~uint64_t(0); }
+  // Its file as it was when last opened or saved here (document_files.h stamps and compares it),
+  // so that a save over a file another editor or program wrote since can ask first.
+  struct FileStamp {
+    bool known = false;
+    int64_t modifiedNs = 0;
+    uint64_t size = 0;
+    bool operator==(const FileStamp& o) const {
+      return known == o.known && modifiedNs == o.modifiedNs && size == o.size;
+    }
+  };
+  const FileStamp& fileStamp() const { return fileStamp_; }
+  void setFileStamp(const FileStamp& stamp) { fileStamp_ = stamp; }
 
  private:
   NodeId parentForAdd(NodeId parent, int* index) const;
@@ -143,6 +155,7 @@ class Document {
   bool resolutionStepOpen_ = false;
   std::string path_;
   uint64_t savedRevision_ = 0;
+  FileStamp fileStamp_;
 };
 
 }  // namespace strata

@@ -1,5 +1,8 @@
 #include "engine/io/document_files.h"
 
+#include <sys/stat.h>
+
+#include <ctime>
 #include <filesystem>
 
 #include "engine/document/commands.h"
@@ -14,7 +17,33 @@ Document openDocument(const std::string& path, std::vector<std::string>* warning
   SceneLoadReport report;
   Scene scene = loadScene(path, &report, {}, MissingMeshes::Keep);
   if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
-  return Document(std::move(scene), path);
+  Document document(std::move(scene), path);
+  document.setFileStamp(fileStampOf(path));
+  return document;
+}
+
+Document::FileStamp fileStampOf(const std::string& path) {
+  Document::FileStamp stamp;
+  struct stat st {};
+  if (path.empty() || ::stat(path.c_str(), &st) != 0) return stamp;
+  stamp.known = true;
+  stamp.modifiedNs = int64_t(st.st_mtim.tv_sec) * 1000000000 + int64_t(st.st_mtim.tv_nsec);
+  stamp.size = uint64_t(st.st_size);
+  return stamp;
+}
+
+std::string changedOnDisk(const Document& document) {
+  const Document::FileStamp& was = document.fileStamp();
+  if (document.path().empty() || !was.known) return "";
+  const Document::FileStamp now = fileStampOf(document.path());
+  if (now == was) return "";
+  if (!now.known) return "";  // deleted or moved away: a save puts it back, overwriting nothing
+  char when[32] = "";
+  const std::time_t t = std::time_t(now.modifiedNs / 1000000000);
+  std::tm local{};
+  if (localtime_r(&t, &local)) std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M:%S", &local);
+  return document.path() + " was written by another editor or program since it was opened or " +
+         "saved here (at " + when + ", " + std::to_string(now.size) + " bytes)";
 }
 
 void saveDocument(Document& document) {
@@ -33,6 +62,7 @@ void saveDocumentAs(Document& document, const std::string& path) {
   }
   saveScene(out, path);
   document.markSaved(path);
+  document.setFileStamp(fileStampOf(path));
 }
 
 NodeId importMeshFile(Document& document, const std::string& file, NodeId target, PlaceMode mode,

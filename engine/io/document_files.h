@@ -19,6 +19,13 @@ Document openDocument(const std::string& path, std::vector<std::string>* warning
 
 // Saves to document.path(); throws strata::Error when the document has none.
 void saveDocument(Document& document);
+
+// The stamp of the file at `path` now (its modification time and size; unknown where absent).
+Document::FileStamp fileStampOf(const std::string& path);
+// "" where the document's file is as it was when it was opened or saved here (or it has no file
+// yet); else a sentence for the artist saying that it changed since, and how ("written at
+// 23:11, now 12,345 bytes" / "deleted"). openDocument and saveDocumentAs stamp the document.
+std::string changedOnDisk(const Document& document);
 // Saves atomically (saveScene) to `path`, first copying an existing file there to
 // "<path>.bak". Mesh paths are written relative to the file's folder where the mesh lies
 // inside it, absolute otherwise. The document then belongs to `path` and is clean.

@@ -550,6 +550,29 @@ TEST(Roles, APasteLandsBesideItsOriginalAndACutOneWhereItWas) {
 // An artist cut a hole (a cutter in a difference beside other parts) and pasted with nothing
 // selected: it came back cutting the whole scene (a new difference around the root), so it also
 // drilled the ribs. A cut part goes back under its parent, in its place and role.
+// A cut refused (the part is used by an instance) leaves the clipboard as it was: the next paste
+// put a copy of the part it had refused to cut (an artist's test).
+TEST(Roles, ARefusedCutLeavesTheClipboardAsItWas) {
+  EditorState state;
+  const NodeId kept = addPrimitive(state, NodeKind::Sphere);
+  const NodeId used = addPrimitive(state, NodeKind::Box);
+  state.selection = {kept};
+  copySelection(state);
+  state.selection = {used};
+  instanceSelection(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  state.selection = {used};
+  const size_t nodes = treeOrder(state.document.root()).size();
+  cutSelection(state);
+  EXPECT_TRUE(findNode(state.document.root(), used)) << "the cut was refused";
+  ASSERT_EQ(state.clipboard.size(), 1u);
+  EXPECT_EQ(state.clipboard[0].part->id, kept) << "the clipboard holds what it held";
+  EXPECT_FALSE(state.clipboardFromCut);
+  pasteClipboard(state);
+  ASSERT_EQ(treeOrder(state.document.root()).size(), nodes + 1);
+  EXPECT_EQ(findNode(state.document.root(), state.selection.at(0))->kind, NodeKind::Sphere);
+}
+
 TEST(Roles, ACutPartPastesBackUnderItsParentInItsRole) {
   EditorState state;
   const auto [plate, hole, second] = plateWithTwoHoles(state);

@@ -2,9 +2,11 @@
 // rememberSelection), without a window.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "engine/io/document_files.h"
 #include "ui/editor_actions.h"
 
 namespace strata::ui {
@@ -79,6 +81,28 @@ TEST(UndoSelection, UndoDuringADragCancelsItOrWaitsAndKeepsTheHistory) {
   undo(state);
   undo(state);
   EXPECT_FALSE(findNode(state.document.root(), a));
+}
+
+// Ctrl+S over a file another editor wrote since it was opened here asks first (the question's
+// text in state.overwriteQuestion) and writes nothing until answered.
+TEST(UndoSelection, SavingOverAFileChangedOnDiskAsksFirst) {
+  const std::string folder = ::testing::TempDir() + "/strata_changed_on_disk";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string path = folder + "/part.strata.json";
+  EditorState state;
+  addPrimitive(state, NodeKind::Box);
+  ASSERT_TRUE(saveDocumentAs(state, path));
+  Document other = strata::openDocument(path);
+  other.addNode(NodeKind::Sphere);
+  strata::saveDocument(other);
+  const auto size = std::filesystem::file_size(path);
+  addPrimitive(state, NodeKind::Torus);
+  EXPECT_FALSE(saveDocument(state));
+  EXPECT_NE(state.overwriteQuestion.find("another editor or program"), std::string::npos);
+  EXPECT_EQ(std::filesystem::file_size(path), size) << "nothing written before the answer";
+  EXPECT_TRUE(state.document.dirty());
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

@@ -191,5 +191,28 @@ TEST(DocumentRecovery, TheLastDiscardsAreKept) {
   EXPECT_TRUE(fs::exists(kept.back()));
 }
 
+// A document knows its file as it opened or saved it: a file written since by another editor is
+// told (a second editor's save was overwritten without a word: an artist's test).
+TEST(DocumentUserFiles, AFileWrittenSinceItWasOpenedIsTold) {
+  const std::string path = tempDir("changed") + "/part.strata.json";
+  Document doc;
+  doc.addNode(NodeKind::Box);
+  saveDocumentAs(doc, path);
+  EXPECT_EQ(changedOnDisk(doc), "");
+  Document other = openDocument(path);
+  EXPECT_EQ(changedOnDisk(other), "");
+  other.addNode(NodeKind::Sphere);
+  saveDocument(other);  // another editor saves the same file
+  const std::string said = changedOnDisk(doc);
+  EXPECT_NE(said.find(path), std::string::npos) << said;
+  EXPECT_NE(said.find("another editor or program"), std::string::npos) << said;
+  EXPECT_EQ(changedOnDisk(other), "");
+  saveDocumentAs(doc, path);  // overwritten on purpose: the stamp follows
+  EXPECT_EQ(changedOnDisk(doc), "");
+  EXPECT_NE(changedOnDisk(other), "");
+  Document untitled;
+  EXPECT_EQ(changedOnDisk(untitled), "");
+}
+
 }  // namespace
 }  // namespace strata
