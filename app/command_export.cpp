@@ -120,6 +120,11 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
     throw Error(
         "--gpus and --distributed: a distributed export runs one backend per process "
         "(the processes of a host take its GPUs in turn); start one process per GPU");
+  // A folder that cannot take the file is said before the work (it was found after it). A
+  // distributed export's processes may see other file systems: its first process writes.
+  if (!args.has("--distributed"))
+    if (const std::string why = cannotWriteAt(output); !why.empty())
+      throw Error(output + ": " + why);
   std::unique_ptr<ProcessGroup> group;
   if (args.has("--distributed")) group = openMpiProcessGroup();
   const bool root = !group || group->rank() == 0;

@@ -20,6 +20,7 @@
 #include "engine/io/user_files.h"
 #include "engine/jobs/part_measure_job.h"
 #include "engine/kinds/primitives.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 #include "ui/export_settings.h"
 #include "ui/import_options.h"
@@ -1304,6 +1305,8 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
   }
   guarded(state, [&] {
     if (!state.makeBackend) throw Error("no backend to export with");
+    // Said now, not after the whole export (an artist's test of a read-only folder).
+    if (const std::string why = cannotWriteAt(path); !why.empty()) throw Error(path + ": " + why);
     ExportOptions options;
     options.resolution = resolution;
     options.simplifyCells = simplifyCells;

@@ -366,6 +366,30 @@ std::string notAFileToReadBack(const std::string& path) {
          "it; write it to a file";
 }
 
+std::string cannotWriteAt(const std::string& path) {
+  if (!notAFileToReadBack(path).empty() || namesSpecialFile(path)) return "";  // written through
+  std::string target;
+  try {
+    target = followTargetLinks(path).target;
+  } catch (const Error& e) {
+    return e.what();
+  }
+  std::string folder = target;
+  const size_t slash = folder.find_last_of('/');
+  folder = slash == std::string::npos ? "." : slash == 0 ? "/" : folder.substr(0, slash);
+  struct stat st {};
+  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    return "the folder " + folder + " does not exist";
+  static std::atomic<unsigned> next{0};
+  const std::string probe =
+      folder + "/.strata-probe-" + std::to_string(::getpid()) + "-" + std::to_string(next++);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) return "cannot create a file in " + folder + ": " + std::strerror(errno);
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return "";
+}
+
 std::string resolvedOutputPath(const std::string& path) {
   return followTargetLinks(path).target;
 }

@@ -72,6 +72,11 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
 // names a device, a pipe, a socket or a process's descriptor ("" where it names a regular file,
 // a link to one, or nothing yet).
 std::string notAFileToReadBack(const std::string& path);
+// Why no file can be written at `path` ("" where one can): its folder is missing, or a file cannot
+// be created in it (read-only, no permission, full of inodes); found by creating and removing a
+// probe file there, as the atomic write's temporary file will be. Asked before long work whose
+// end is a write (an export found a read-only folder only after all its work).
+std::string cannotWriteAt(const std::string& path);
 // The file a write of `path` replaces: the end of the chain of links at `path` itself (`path`
 // where it is no link, or leads into /proc). Throws strata::Error as a write would (a loop, a
 // link another user planted in a shared folder). For files named after it (an OBJ's MTL).

@@ -109,6 +109,20 @@ TEST_F(AtomicFileDir, WritesReplacesAndLeavesNoTemporaryFile) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
 
+// Whether a file can be written at a path is known before the work whose end writes it: a missing
+// folder, a folder nobody may create files in (/proc: not even root), and a good one (the probe
+// leaves nothing behind); a device is written through, never refused.
+TEST_F(AtomicFileDir, AFolderThatCannotTakeTheFileIsSaidBeforehand) {
+  EXPECT_EQ(cannotWriteAt(path("part.stl")), "");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 0)
+      << "the probe was left behind";
+  EXPECT_NE(cannotWriteAt(path("missing/part.stl")).find("does not exist"), std::string::npos);
+  EXPECT_NE(cannotWriteAt("/proc/strata-part.stl").find("cannot create a file in /proc"),
+            std::string::npos)
+      << cannotWriteAt("/proc/strata-part.stl");
+  EXPECT_EQ(cannotWriteAt("/dev/null"), "");
+}
+
 TEST_F(AtomicFileDir, NewFilesFollowTheUmaskAndReplacedFilesKeepTheirPermissions) {
   const std::string out = path("mode.txt");
   const mode_t mask = ::umask(022);
