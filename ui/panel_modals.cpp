@@ -450,7 +450,10 @@ void importDialog(EditorState& state) {
     return;
   }
   PendingImport& import = *state.pendingImport;
-  ImGui::TextUnformatted(import.path.c_str());
+  // Long lines (a path, a reader's error) wrap: the dialog ran off the window's edge with a
+  // truncated STL's error cut off (an artist's test).
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);
+  ImGui::TextWrapped("%s", import.path.c_str());
   const auto& units = importUnits();
   ImGui::SetNextItemWidth(220);
   if (ImGui::BeginCombo("file unit", units[size_t(import.unit)].label)) {
@@ -462,7 +465,11 @@ void importDialog(EditorState& state) {
   const double scale = importScale(import.unit, state.document.scene().settings.unit, &why);
   ImGui::TextDisabled("scene unit: %s; scale %.6g", state.document.scene().settings.unit.c_str(),
                       scale);
-  if (!why.empty()) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", why.c_str());
+  if (!why.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", why.c_str());
+    ImGui::PopStyleColor();
+  }
   const char* upAxes[] = {"+Z up (as written)", "+Y up (turn +Y to +Z)"};
   ImGui::SetNextItemWidth(220);
   ImGui::Combo("up axis", &import.upAxis, upAxes, 2);
@@ -486,8 +493,9 @@ void importDialog(EditorState& state) {
     ImGui::Text("in the scene: %.4g x %.4g x %.4g %s (x, y, z; z up)", scene.x, scene.y, scene.z,
                 unit);
   } else if (size && size->done()) {
-    ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s",
-                       size->error().empty() ? "no triangles" : size->error().c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.5f, 0.45f, 1.0f));
+    ImGui::TextWrapped("%s", size->error().empty() ? "no triangles" : size->error().c_str());
+    ImGui::PopStyleColor();
   } else {
     ImGui::TextDisabled("reading its size...");
   }
@@ -496,8 +504,16 @@ void importDialog(EditorState& state) {
                         import.placement->point.x, import.placement->point.y,
                         import.placement->point.z,
                         import.placement->onGround ? ", on the ground" : "");
+  ImGui::PopTextWrapPos();
   ImGui::Separator();
-  if (ImGui::Button("Import", ImVec2(120, 0)) || keyPressed(state, GLFW_KEY_ENTER)) {
+  // A file that could not be read cannot be imported: said above, the button off.
+  const bool unreadable =
+      size && size->done() && (!size->error().empty() || size->result().empty());
+  ImGui::BeginDisabled(unreadable);
+  const bool importNow =
+      ImGui::Button("Import", ImVec2(120, 0)) || (!unreadable && keyPressed(state, GLFW_KEY_ENTER));
+  ImGui::EndDisabled();
+  if (importNow) {
     state.lastImportUnit = import.unit;
     state.lastImportUpAxis = import.upAxis;
     PendingImport chosen = import;

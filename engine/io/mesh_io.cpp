@@ -293,8 +293,9 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
     }
     if (!options.allowOpen) {
       throw Error(name + ": " + problem +
-                  "; sampling it would leak. Repair the mesh, or accept it anyway with "
-                  "--allow-open (strata eval, boolean, export)");
+                  "; sampling it would leak. Repair the mesh (close its holes, e.g. in "
+                  "MeshLab), or on the command line accept it anyway with --allow-open "
+                  "(strata eval, boolean, export)");
     }
     meshio::addWarning(rep, name, problem + "; accepted because of --allow-open (may leak)");
   }
