@@ -337,7 +337,8 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
     const NodeId fresh = state.document.nextId();
     const NodePtr moved = movePart(root, dragged, target, mode, fresh);  // throws when refused
     const std::string does =
-        planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence;
+        planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence +
+        instancesChangedNote(root, moved, dragged);
     // Within its own parent, keeping its role, a drop only changes its place among its
     // siblings (onto the sibling below: after it): say so, not only what it does.
     NodeLocation was, now;

@@ -219,6 +219,33 @@ PlaceMode modeKeepingEffect(const NodePtr& root, NodeId target, PlaceMode kept, 
   return kept;
 }
 
+std::string instancesChangedNote(const NodePtr& before, const NodePtr& after, NodeId moved) {
+  std::string note;
+  int named = 0, more = 0;
+  std::vector<const Node*> stack{after.get()};
+  while (!stack.empty()) {
+    const Node* node = stack.back();
+    stack.pop_back();
+    for (const NodePtr& c : node->children) stack.push_back(c.get());
+    if (node->kind != NodeKind::Instance || node->id == moved) continue;
+    const NodeId part = node->instanceOf;
+    const NodePtr was = findNode(before, part), now = findNode(after, part);
+    if (!was || !now) continue;
+    const bool changed = part == moved
+                             ? !(was->transform == now->transform)
+                             : isInSubtree(before, part, moved) != isInSubtree(after, part, moved);
+    if (!changed) continue;
+    if (named++ < 2)
+      note += std::string(named == 1 ? "; " : ", ") + quoted(*node) + " (an instance of " +
+              quoted(*now) + ")";
+    else
+      ++more;
+  }
+  if (named == 0) return "";
+  if (more > 0) note += " and " + std::to_string(more) + " more";
+  return note + (named + more == 1 ? " changes with it" : " change with it");
+}
+
 NodeKind operationKindFor(PlaceMode mode) {
   const RayOp wanted = mode == PlaceMode::Cut         ? RayOp::Difference
                        : mode == PlaceMode::Intersect ? RayOp::Intersection

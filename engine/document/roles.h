@@ -76,6 +76,12 @@ PlaceMode modeKeepingRole(ChildRole role);
 // Intersecting parts keep `kept`; a target refused by every mode gives `kept` (the placement
 // then says why).
 PlaceMode modeKeepingEffect(const NodePtr& root, NodeId target, PlaceMode kept, bool removes);
+// The instances that a move of node `moved` (the tree `before`, then `after`) changes: those of a
+// part it leaves or joins, and those of itself where its own transform changed (it keeps its
+// place in the world in a parent placed otherwise); for the artist before a drop is released:
+// "; \"cross bore along y\" (an instance of \"cross bore\") changes with it" ("" for none). A part
+// dragged out of a group that an instance repeats changed the instance too, without a word.
+std::string instancesChangedNote(const NodePtr& before, const NodePtr& after, NodeId moved);
 // The operation kind whose Boolean the mode applies (from the kind table).
 NodeKind operationKindFor(PlaceMode mode);
 

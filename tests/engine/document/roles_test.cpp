@@ -492,5 +492,22 @@ TEST(Roles, AGroupOfPartsFromMovedParentsKeepsEveryPartInPlace) {
   EXPECT_THROW(groupNodes(shearing, {3, 4}, NodeKind::Union, 5), Error);
 }
 
+// A drop says which instances change with it: those of a group the part leaves or joins (the
+// bore dragged out of the cross bore that an instance repeats), not those of groups it only
+// moves within.
+TEST(Roles, AMoveSaysWhichInstancesChangeWithIt) {
+  const Scene scene = loadScene(test::assetsDir() + "/scenes/demo.strata.json");
+  const NodePtr& root = scene.root;
+  const NodeId fresh = maxNodeId(root) + 1;
+  // "bore along x" (18) leaves "cross bore" (17), which "cross bore along y" (19) repeats.
+  const NodePtr out = movePart(root, 18, 4, PlaceMode::Cut, fresh);
+  const std::string said = instancesChangedNote(root, out, 18);
+  EXPECT_NE(said.find("cross bore along y"), std::string::npos) << said;
+  EXPECT_NE(said.find("changes with it"), std::string::npos) << said;
+  // A bolt hole moved onto another in its own union: no instance of it, none said.
+  const NodePtr within = movePart(root, 9, 11, PlaceMode::Add, fresh);
+  EXPECT_EQ(instancesChangedNote(root, within, 9), "");
+}
+
 }  // namespace
 }  // namespace strata
