@@ -43,6 +43,7 @@ TEST(ExportSettings, RoundTripAndBadLinesKeepTheDefaults) {
 TEST(ExportSettings, AnExportRemembersItsChoices) {
   const std::string folder = ::testing::TempDir() + "/strata_export_settings_job";
   std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);  // an export's folder must exist (cannotWriteAt)
   EditorState state;
   state.makeBackend = [] { return std::make_shared<CpuBackend>(); };
   state.exportSettingsPath = folder + "/export.txt";
