@@ -1211,6 +1211,15 @@ bool recoverDocument(EditorState& state) {
   // Read: the work is this editor's now (its own autosave keeps it); a damaged file stays.
   if (recovered) forgetRecovery(offer);
   nextRecoveryOffer(state);
+  // The others are left for a later start (or another editor): recovering one of them here would
+  // replace the document just recovered, unsaved.
+  if (recovered && !state.recoveryOffers.empty()) {
+    logInfo(state, std::to_string(state.recoveryOffers.size()) +
+                       " more unsaved documents are offered at the next start (or to another "
+                       "editor started now)");
+    state.recoveryOffers.clear();
+    state.offerRecovery = false;
+  }
   return recovered;
 }
 

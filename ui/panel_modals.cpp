@@ -53,8 +53,10 @@ void recoveryQuestion(EditorState& state) {
   ImGui::TextWrapped("An editor ended without saving its changes to %s.", what.c_str());
   if (!info.writtenAt.empty()) ImGui::TextWrapped("Last autosaved %s.", info.writtenAt.c_str());
   if (state.recoveryOffers.size() > 1)
-    ImGui::TextWrapped("%zu more such documents are asked about after this one.",
-                       state.recoveryOffers.size() - 1);
+    ImGui::TextWrapped(
+        "%zu more such documents: asked about after this one is discarded or left for later; "
+        "after a Recover, at the next start.",
+        state.recoveryOffers.size() - 1);
   ImGui::TextDisabled("%s", offer.path.c_str());
   ImGui::PopTextWrapPos();
   if (ImGui::Button("Recover", ImVec2(120, 0))) recoverDocument(state);

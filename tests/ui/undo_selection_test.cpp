@@ -2,11 +2,14 @@
 // rememberSelection), without a window.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "engine/io/document_files.h"
+#include "engine/io/recovery_slots.h"
+#include "engine/io/user_files.h"
 #include "ui/editor_actions.h"
 
 namespace strata::ui {
@@ -103,6 +106,44 @@ TEST(UndoSelection, SavingOverAFileChangedOnDiskAsksFirst) {
   EXPECT_EQ(std::filesystem::file_size(path), size) << "nothing written before the answer";
   EXPECT_TRUE(state.document.dirty());
   std::filesystem::remove_all(folder);
+}
+
+// The recovery question with the work of two editors that ended without saving: the newest is
+// asked about first; a Recover takes it and leaves the other for a later start (recovering it
+// here would replace the first, unsaved); Discard keeps it aside; nothing is lost.
+TEST(UndoSelection, RecoveringOneOfTwoLeavesTheOtherForLater) {
+  const std::string dir = ::testing::TempDir() + "/strata_recover_two";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  Document older, newer;
+  older.addNode(NodeKind::Box);
+  newer.addNode(NodeKind::Torus);
+  writeRecoveryFile(older, dir + "/900001-0.strata.json");
+  std::filesystem::last_write_time(
+      dir + "/900001-0.strata.json",
+      std::filesystem::file_time_type::clock::now() - std::chrono::minutes(5));
+  writeRecoveryFile(newer, dir + "/900002-0.strata.json");
+  EditorState state;
+  state.recoveryDir = dir;
+  state.recoveryOffers = claimOrphanedRecoveries(dir);
+  state.offerRecovery = true;
+  ASSERT_EQ(state.recoveryOffers.size(), 2u);
+  EXPECT_TRUE(recoverDocument(state));
+  ASSERT_EQ(state.document.root()->children.size(), 1u);
+  EXPECT_EQ(state.document.root()->children[0]->kind, NodeKind::Torus) << "the newest first";
+  EXPECT_TRUE(state.document.dirty());
+  EXPECT_FALSE(state.offerRecovery) << "the other is not offered over the recovered work";
+  EXPECT_FALSE(std::filesystem::exists(dir + "/900002-0.strata.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/900001-0.strata.json")) << "left for later";
+  // The next start: offered, discarded, kept aside.
+  state.recoveryOffers = claimOrphanedRecoveries(dir);
+  state.offerRecovery = true;
+  ASSERT_EQ(state.recoveryOffers.size(), 1u);
+  discardRecovery(state);
+  EXPECT_FALSE(state.offerRecovery);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/900001-0.strata.json"));
+  EXPECT_NE(state.log.back().text.find("/discarded/"), std::string::npos) << state.log.back().text;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
