@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -256,8 +257,10 @@ std::vector<std::string> bundledScenes() {
   return paths;
 }
 
-TEST(Roles, EveryMoveInEveryBundledSceneKeepsEveryOtherRole) {
-  int moves = 0;
+// Calls visit(scene file name, root, moved, target, fresh id) for every part of every bundled
+// scene and every node it could be dropped onto (not inside itself).
+void forEveryMove(
+    const std::function<void(const std::string&, const NodePtr&, NodeId, NodeId, NodeId)>& visit) {
   for (const std::string& path : bundledScenes()) {
     const Scene scene = loadScene(path);
     const NodePtr& root = scene.root;
@@ -265,12 +268,20 @@ TEST(Roles, EveryMoveInEveryBundledSceneKeepsEveryOtherRole) {
     const std::vector<NodeId> ids = treeOrder(root);
     for (NodeId moved : ids) {
       if (moved == root->id) continue;
-      for (NodeId target : ids) {
-        if (isInSubtree(root, moved, target)) continue;
+      for (NodeId target : ids)
+        if (!isInSubtree(root, moved, target))
+          visit(std::filesystem::path(path).filename().string(), root, moved, target, fresh);
+    }
+  }
+}
+
+TEST(Roles, EveryMoveInEveryBundledSceneKeepsEveryOtherRole) {
+  int moves = 0;
+  forEveryMove(
+      [&](const std::string& name, const NodePtr& root, NodeId moved, NodeId target, NodeId fresh) {
         for (PlaceMode mode : kModes) {
-          const std::string what = std::filesystem::path(path).filename().string() + " move " +
-                                   std::to_string(moved) + " onto " + std::to_string(target) + " " +
-                                   placeModeName(mode);
+          const std::string what = name + " move " + std::to_string(moved) + " onto " +
+                                   std::to_string(target) + " " + placeModeName(mode);
           NodePtr after;
           try {
             after = movePart(root, moved, target, mode, fresh);
@@ -288,9 +299,7 @@ TEST(Roles, EveryMoveInEveryBundledSceneKeepsEveryOtherRole) {
           }
           ++moves;
         }
-      }
-    }
-  }
+      });
   EXPECT_GT(moves, 1000);
 }
 
@@ -379,17 +388,10 @@ TEST(Roles, MovingAPartOntoItsOwnPlaceKeepsTheVolume) {
 // base took its role's mode (add) and filled its own hole (an artist's test).
 TEST(Roles, APartMovedAnywhereWithTheModeKeepingItsEffectStillDoesWhatItDid) {
   int moves = 0, changedMode = 0;
-  for (const std::string& path : bundledScenes()) {
-    const Scene scene = loadScene(path);
-    const NodePtr& root = scene.root;
-    const NodeId fresh = maxNodeId(root) + 1;
-    const std::vector<NodeId> ids = treeOrder(root);
-    for (NodeId moved : ids) {
-      if (moved == root->id) continue;
-      const PlaceMode kept = modeKeepingRole(roleOf(root, moved));
-      const bool removes = removesMaterial(root, moved);
-      for (NodeId target : ids) {
-        if (isInSubtree(root, moved, target)) continue;
+  forEveryMove(
+      [&](const std::string& name, const NodePtr& root, NodeId moved, NodeId target, NodeId fresh) {
+        const PlaceMode kept = modeKeepingRole(roleOf(root, moved));
+        const bool removes = removesMaterial(root, moved);
         const NodePtr without = removeKeepingRoles(root, moved, fresh + 1);
         const PlaceMode mode = modeKeepingEffect(without, target, kept, removes);
         // Onto a cutter's part every placement is cut away (and the reverse): nothing keeps it,
@@ -397,24 +399,22 @@ TEST(Roles, APartMovedAnywhereWithTheModeKeepingItsEffectStillDoesWhatItDid) {
         bool keepable = false;
         for (PlaceMode m : {PlaceMode::Add, PlaceMode::Cut})
           keepable = keepable || planPlacement(without, target, m).removesMaterial == removes;
-        if (!keepable) continue;
+        if (!keepable) return;
         NodePtr after;
         try {
           after = movePart(root, moved, target, mode, fresh);
         } catch (const Error&) {
-          continue;  // an instance cycle: refused, nothing changed
+          return;  // an instance cycle: refused, nothing changed
         }
-        const std::string what = std::filesystem::path(path).filename().string() + " move " +
-                                 std::to_string(moved) + " onto " + std::to_string(target);
+        const std::string what =
+            name + " move " + std::to_string(moved) + " onto " + std::to_string(target);
         expectRolesKept(root, after, moved, what);
         if (kept != PlaceMode::Intersect) {
           EXPECT_EQ(removesMaterial(after, moved), removes) << what;
         }
         changedMode += mode != kept ? 1 : 0;
         ++moves;
-      }
-    }
-  }
+      });
   EXPECT_GT(moves, 300);
   EXPECT_GT(changedMode, 10) << "parts inside cutters moved elsewhere take the other mode";
 }
