@@ -739,8 +739,9 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   if (takeUnitConverted()) g_notTyped.clear();  // the letters were a unit, and converted
   if (!g_notTyped.empty()) {
     if (numberFieldBeingTyped() != g_notTypedIn) {
-      logWarning(s, "number fields take digits only: \"" + g_notTyped +
-                        "\" was not typed (lengths are in " +
+      logWarning(s, "\"" + g_notTyped +
+                        "\" makes no sense of the number typed: the field kept its value "
+                        "(lengths are in " +
                         unitSymbol(s.document.scene().settings.unit) +
                         "; a length field converts mm, cm, m, in or ft typed after the number; "
                         "angles are in degrees)");

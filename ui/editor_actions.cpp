@@ -889,7 +889,12 @@ void groupSelection(EditorState& state, NodeKind kind) {
       const glm::dvec3 centre =
           glm::dvec3(glm::inverse(parentWorldMatrix(root, id)) * glm::dvec4(bounds.center(), 1.0));
       const NodePtr group = findNode(root, id);
-      if (group && group->transform.matrix() == glm::dmat4(1.0)) {
+      // Not where an instance repeats one of its parts: the part's own transform would change,
+      // and the copy would move with it (an artist's re-test: a bore's copy went astray).
+      bool repeated = false;
+      for (const NodePtr& child : group ? group->children : std::vector<NodePtr>{})
+        repeated = repeated || instanceRepeating(root, child->id);
+      if (group && !repeated && group->transform.matrix() == glm::dmat4(1.0)) {
         std::vector<std::pair<NodeId, Transform>> parts;
         for (const NodePtr& child : group->children) {
           Transform t = child->transform;
@@ -1214,9 +1219,10 @@ bool recoverDocument(EditorState& state) {
   // The others are left for a later start (or another editor): recovering one of them here would
   // replace the document just recovered, unsaved.
   if (recovered && !state.recoveryOffers.empty()) {
-    logInfo(state, std::to_string(state.recoveryOffers.size()) +
-                       " more unsaved documents are offered at the next start (or to another "
-                       "editor started now)");
+    const size_t more = state.recoveryOffers.size();
+    logInfo(state, std::to_string(more) +
+                       (more == 1 ? " more unsaved document is" : " more unsaved documents are") +
+                       " offered at the next start (or to another editor started now)");
     state.recoveryOffers.clear();
     state.offerRecovery = false;
   }
@@ -1235,9 +1241,11 @@ void discardRecovery(EditorState& state) {
 }
 
 void postponeRecovery(EditorState& state) {
-  if (!state.recoveryOffers.empty())
-    logInfo(state, "the unsaved work of " + state.recoveryOffers.front().path +
+  if (!state.recoveryOffers.empty()) {
+    const std::string origin = describeRecoveryFile(state.recoveryOffers.front().path).origin;
+    logInfo(state, "the unsaved work on " + (origin.empty() ? "an untitled document" : origin) +
                        " is offered again at the next start");
+  }
   nextRecoveryOffer(state);
 }
 

@@ -54,9 +54,10 @@ void recoveryQuestion(EditorState& state) {
   if (!info.writtenAt.empty()) ImGui::TextWrapped("Last autosaved %s.", info.writtenAt.c_str());
   if (state.recoveryOffers.size() > 1)
     ImGui::TextWrapped(
-        "%zu more such documents: asked about after this one is discarded or left for later; "
+        "%zu more such %s: asked about after this one is discarded or left for later; "
         "after a Recover, at the next start.",
-        state.recoveryOffers.size() - 1);
+        state.recoveryOffers.size() - 1,
+        state.recoveryOffers.size() == 2 ? "document" : "documents");
   ImGui::TextDisabled("%s", offer.path.c_str());
   ImGui::PopTextWrapPos();
   if (ImGui::Button("Recover", ImVec2(120, 0))) recoverDocument(state);

@@ -311,7 +311,10 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
       ImGui::InputDouble("move step", &state.snap.step, 0.0, 0.0, stepFormat.c_str());
   if (ImGui::IsItemActivated()) stepBefore = stepTyped = stepShown;
   if (stepEdited) stepTyped = state.snap.step;
-  convertLengthTypedIntoInput(&stepTyped, unitSymbol(scene.settings.unit));  // "1cm": 10 mm
+  // "1cm": 10 mm; "3 xyz": the step it had.
+  if (convertLengthTypedIntoInput(&stepTyped, unitSymbol(scene.settings.unit)) ==
+      TypedUnit::Refused)
+    stepTyped = stepBefore;
   if (ImGui::IsItemDeactivated()) {
     if (const std::string converted = takeUnitConversion(); !converted.empty())
       logInfo(state, "typed " + converted);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -39,20 +40,33 @@ Dropped gDropped;
 std::string gConversion;
 bool gConverted = false;  // since takeUnitConverted
 
+// Letters a field that is no length takes as part of the number: an angle's degree sign.
+bool angleUnit(const std::string& letters) {
+  return letters == "\u00B0";
+}
+
 // The typed value in `lengthUnit` where the letters typed into field `id` name a length unit
-// ("cm" typed into a mm field: times 10); `value` unchanged otherwise.
-double convertTypedUnit(ImGuiID id, double value, const std::string& lengthUnit) {
+// ("cm" typed into a mm field: times 10); `value` where none were typed (or a field that is no
+// length got its degrees); none where the letters make no sense of the number: no unit, a length
+// unit in a field that is no length, or letters before a number ("1 cm 2": the field shows 12).
+// Such a number is not applied: the field keeps its value (an artist's re-test: "3 xyz" gave 3 mm
+// and "1 cm 2" 12 mm, said only as letters not typed).
+std::optional<double> convertTypedUnit(ImGuiID id, double value, const std::string& lengthUnit) {
   if (gDropped.id != id) return value;
   std::string typed;
   for (char c : gDropped.letters)
     if (c != ' ') typed += c;
   const bool numberAfter = gDropped.numberAfter;
   gDropped = {};
-  // "1 cm 2" is 12 as the field shows it (the letters never reach it), not 12 cm: said as letters
-  // not typed, not converted.
-  if (lengthUnit.empty() || numberAfter) return value;
+  if (typed.empty()) return value;
+  if (numberAfter) return std::nullopt;
+  if (lengthUnit.empty()) {
+    if (!angleUnit(typed)) return std::nullopt;
+    gConverted = true;  // its letters were understood: not said as letters not typed
+    return value;
+  }
   const double from = sceneUnitMetres(typed), to = sceneUnitMetres(lengthUnit);
-  if (!(from > 0.0) || !(to > 0.0)) return value;
+  if (!(from > 0.0) || !(to > 0.0)) return std::nullopt;
   const double converted = value * (from / to);
   char text[160];
   std::snprintf(text, sizeof(text), "%.6g %s is %.6g %s", value, typed.c_str(), converted,
@@ -93,24 +107,31 @@ void showDroppedLetters(ImGuiID id, const std::string& lengthUnit) {
   const double from = sceneUnitMetres(letters);
   const double to = lengthUnit.empty() ? 0.0 : sceneUnitMetres(lengthUnit);
   char line[200];
+  if (lengthUnit.empty() && angleUnit(letters) && !gDropped.numberAfter)
+    return;  // an angle's degrees: nothing to say
   if (gDropped.numberAfter)
-    std::snprintf(line, sizeof(line), "\"%s\" before a number is no unit: the field keeps %s",
-                  letters.c_str(), typed);
+    std::snprintf(line, sizeof(line),
+                  "\"%s\" before a number is no unit: leaving the field changes nothing",
+                  letters.c_str());
   else if (from > 0.0 && to > 0.0 && plain)
     std::snprintf(line, sizeof(line), "%.6g %s: %.6g %s when the field is left", number,
                   letters.c_str(), number * (from / to), lengthUnit.c_str());
   else if (from > 0.0 && to > 0.0)
     std::snprintf(line, sizeof(line), "%s: converted into %s when the field is left",
                   letters.c_str(), lengthUnit.c_str());
-  else if (from > 0.0)
-    std::snprintf(line, sizeof(line), "\"%s\": this field is no length; the number is kept",
+  else if (from > 0.0 || lengthUnit.empty())
+    std::snprintf(line, sizeof(line), "\"%s\": this field is no length: leaving it changes nothing",
                   letters.c_str());
   else
-    std::snprintf(line, sizeof(line), "\"%s\" is no unit: the number is kept%s%s", letters.c_str(),
-                  lengthUnit.empty() ? "" : " (in ",
-                  lengthUnit.empty() ? "" : (lengthUnit + ")").c_str());
+    std::snprintf(line, sizeof(line),
+                  "\"%s\" is no unit (mm, cm, m, in, ft): leaving the field changes nothing",
+                  letters.c_str());
   gHintShown = line;
-  ImGui::SetNextWindowPos(ImVec2(min.x, max.y + 2.0f));
+  // Below the field, within the window (it ran off the screen's edge beside the right panel's
+  // fields: an artist's re-test).
+  const float width = ImGui::CalcTextSize(line).x + 2.0f * style.WindowPadding.x;
+  const float right = ImGui::GetMainViewport()->Pos.x + ImGui::GetMainViewport()->Size.x;
+  ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, std::min(min.x, right - width)), max.y + 2.0f));
   // In the theme's text colour, not the one the field may have pushed (an axis's red).
   ImVec4 text = g.Style.Colors[ImGuiCol_Text];
   for (int i = g.ColorStack.Size - 1; i >= 0; --i)
@@ -150,8 +171,11 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
   if (gTyped.frame != ImGui::GetFrameCount() - 1) return changed;
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) return false;
   if (!changed) *value = T(gTyped.value);
-  if constexpr (std::is_floating_point_v<T>)
-    *value = T(convertTypedUnit(id, double(*value), lengthUnit));
+  // Letters that make no sense of the number: the field keeps its value (a count or a resolution
+  // as much as a length).
+  const std::optional<double> converted = convertTypedUnit(id, double(*value), lengthUnit);
+  if (!converted) return false;
+  if constexpr (std::is_floating_point_v<T>) *value = T(*converted);
   return true;
 }
 
@@ -238,24 +262,26 @@ bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit
   return commit(changed, value, lengthUnit);
 }
 
-bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit) {
+TypedUnit convertLengthTypedIntoInput(double* value, const std::string& lengthUnit) {
   const ImGuiID id = ImGui::GetItemID();
-  if (id == 0 || gDropped.id != id) return false;
+  if (id == 0 || gDropped.id != id) return TypedUnit::None;
   if (ImGui::IsItemActive()) {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace)) ||
         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)))
       gDropped.letters.clear();
     showDroppedLetters(id, lengthUnit);
-    return false;
+    return TypedUnit::None;
   }
   if (!ImGui::IsItemDeactivated() ||
       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) {
     gDropped = {};  // left by Escape (or long ago): nothing to convert
-    return false;
+    return TypedUnit::None;
   }
   const double before = *value;
-  *value = convertTypedUnit(id, *value, lengthUnit);
-  return !gConversion.empty() && *value != before;
+  const std::optional<double> converted = convertTypedUnit(id, *value, lengthUnit);
+  if (!converted) return TypedUnit::Refused;
+  *value = *converted;
+  return !gConversion.empty() && *value != before ? TypedUnit::Converted : TypedUnit::None;
 }
 
 std::string droppedLettersHint() {

@@ -16,15 +16,19 @@ namespace strata::ui {
 // `lengthUnit` (a length field's unit, "mm" or "millimetre"; "" for other fields): a length unit
 // typed after the number ("1cm", "0.5 in", "2 m"; import_options.h: sceneUnitMetres) converts
 // the typed value into the field's unit ("1cm" in a mm field: 10; it was dropped and gave 1),
-// said by takeUnitConversion.
+// said by takeUnitConversion. Letters that make no sense of the number (no unit, a length in a
+// field that is no length, letters before a number: "1 cm 2") apply nothing: false, the field
+// keeps its value. Degrees typed into a field that is no length are taken as the number.
 bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit = "");
 bool commitTypedValue(bool changed, int* value);
 // For a length typed into an InputDouble field (announced by numberFieldNext), which applies
 // its number at every keystroke: call right after it. On the frame the field is left, a length
 // unit typed after the number converts `*value` into `lengthUnit` (the scene's unit: "1cm" in a
-// mm field gives 10), said by takeUnitConversion; returns whether it did. A deletion drops the
-// unit typed before it; Escape (the field restores its value) converts nothing.
-bool convertLengthTypedIntoInput(double* value, const std::string& lengthUnit);
+// mm field gives 10), said by takeUnitConversion: Converted. Letters that are no unit of the
+// number: Refused, and the caller puts the value back as it was before the typing. A deletion
+// drops the unit typed before it; Escape (the field restores its value) converts nothing.
+enum class TypedUnit { None, Converted, Refused };
+TypedUnit convertLengthTypedIntoInput(double* value, const std::string& lengthUnit);
 // What the last commit converted ("1 cm is 10 mm"), once; "" for none. The editor says it in place
 // of "a unit typed is not converted" (the letters it was told of by numberFieldCharacter).
 std::string takeUnitConversion();

@@ -82,6 +82,14 @@ const Node* outsideReference(const NodePtr& node, const std::unordered_set<NodeI
   return nullptr;
 }
 
+}  // namespace
+
+const Node* instanceRepeating(const NodePtr& root, NodeId id) {
+  return outsideReference(root, {id});
+}
+
+namespace {
+
 NodePtr copyWithFreshIds(const NodePtr& node, NodeId* next,
                          std::unordered_map<NodeId, NodeId>* mapping) {
   auto copy = std::make_shared<Node>(*node);
@@ -465,6 +473,13 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
     NodePtr member = findNode(root, id);
     const glm::dmat4 ownParent = parentWorldMatrix(root, id);
     if (ownParent != groupParent) {
+      // An instance repeats the part with its own transform: a new one would move the copy too
+      // (the cross bore grouped with a bolt hole took its y-bore along: an artist's re-test).
+      if (const Node* user = outsideReference(root, {id}))
+        throw Error(nameWithId(*member) + " is repeated by instance " + nameWithId(*user) +
+                    ": in a group there it would get another move, turn or scale, and the "
+                    "instance would move with it. Group it with parts of its own place, or "
+                    "group the parts around it");
       bool exact = false;
       const Transform t =
           transformNear(glm::inverse(groupParent) * ownParent * member->transform.matrix(),

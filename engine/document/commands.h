@@ -57,6 +57,9 @@ void validateTransform(const Transform& transform);
 // Throws strata::Error when an instance refers to a missing node or, directly or through other
 // instances, to a node that contains it.
 void checkInstances(const NodePtr& root);
+// An instance that repeats node `id` (its first in tree order), or null: a change of the node's
+// own transform moves that copy too.
+const Node* instanceRepeating(const NodePtr& root, NodeId id);
 
 // The tree with node `id` replaced by `change` applied to a copy of it.
 NodePtr editNode(const NodePtr& root, NodeId id, const std::function<void(Node&)>& change);

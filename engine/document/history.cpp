@@ -3,16 +3,28 @@
 namespace strata {
 
 void History::record(const DocumentState& before, const std::string& label) {
+  if (depth_ > 0 && recordedInInteraction_) {
+    redo_.clear();
+    return;
+  }
+  if (depth_ > 0) {
+    redoBeforeInteraction_ = std::move(redo_);
+    oldestBeforeInteraction_.reset();
+  }
   redo_.clear();
-  if (depth_ > 0 && recordedInInteraction_) return;
   undo_.push_back(Step{before, label});
   if (depth_ > 0) recordedInInteraction_ = true;
-  if (undo_.size() > limit_) undo_.erase(undo_.begin());
+  if (undo_.size() > limit_) {
+    if (depth_ > 0) oldestBeforeInteraction_ = undo_.front();
+    undo_.erase(undo_.begin());
+  }
 }
 
 DocumentState History::undo(const DocumentState& current) {
   depth_ = 0;
   recordedInInteraction_ = false;
+  redoBeforeInteraction_.clear();
+  oldestBeforeInteraction_.reset();
   Step step = undo_.back();
   undo_.pop_back();
   redo_.push_back(Step{current, step.label});
@@ -22,6 +34,8 @@ DocumentState History::undo(const DocumentState& current) {
 DocumentState History::redo(const DocumentState& current) {
   depth_ = 0;
   recordedInInteraction_ = false;
+  redoBeforeInteraction_.clear();
+  oldestBeforeInteraction_.reset();
   Step step = redo_.back();
   redo_.pop_back();
   undo_.push_back(Step{current, step.label});
@@ -34,16 +48,26 @@ void History::beginInteraction() {
 
 void History::endInteraction() {
   if (depth_ == 0) return;
-  if (--depth_ == 0) recordedInInteraction_ = false;
+  if (--depth_ == 0) {
+    recordedInInteraction_ = false;
+    redoBeforeInteraction_.clear();
+    oldestBeforeInteraction_.reset();
+  }
 }
 
 std::optional<DocumentState> History::cancelInteraction() {
   const bool recorded = depth_ > 0 && recordedInInteraction_ && !undo_.empty();
   depth_ = 0;
   recordedInInteraction_ = false;
+  std::vector<Step> redo = std::move(redoBeforeInteraction_);
+  std::optional<Step> oldest = std::move(oldestBeforeInteraction_);
+  redoBeforeInteraction_.clear();
+  oldestBeforeInteraction_.reset();
   if (!recorded) return std::nullopt;
   DocumentState before = undo_.back().state;
   undo_.pop_back();
+  redo_ = std::move(redo);
+  if (oldest) undo_.insert(undo_.begin(), std::move(*oldest));
   return before;
 }
 

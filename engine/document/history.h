@@ -50,8 +50,9 @@ class History {
   void beginInteraction();
   void endInteraction();
   // Ends every open interaction and forgets its step: returns the state before its first edit
-  // (to restore), or nothing when it recorded none. The redo steps its first edit dropped stay
-  // dropped.
+  // (to restore), or nothing when it recorded none. The history is then as it was before the
+  // interaction: the redo steps its first edit dropped, and the oldest step the limit dropped,
+  // come back (a drag cancelled with Escape emptied redo: an artist's test).
   std::optional<DocumentState> cancelInteraction();
   bool interacting() const { return depth_ > 0; }
 
@@ -69,6 +70,10 @@ class History {
   size_t limit_;
   int depth_ = 0;
   bool recordedInInteraction_ = false;
+  // What the open interaction's first edit dropped: the redo steps, and the oldest undo step
+  // where the limit was reached. Given back by cancelInteraction, forgotten when it ends.
+  std::vector<Step> redoBeforeInteraction_;
+  std::optional<Step> oldestBeforeInteraction_;
 };
 
 }  // namespace strata

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "engine/document/commands.h"
+#include "engine/document/measurement.h"
 #include "engine/document/roles.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
@@ -939,6 +940,33 @@ TEST(Roles, APartOfACutterPastedOrDroppedOnTheBaseStillCuts) {
   EXPECT_EQ(state.document.root(), before) << "grouped into the plate, the countersink would fill";
   EXPECT_NE(state.log.back().text.find("would no longer do what it did"), std::string::npos)
       << state.log.back().text;
+}
+
+// Grouping parts one of which an instance repeats leaves that part's own transform alone (the
+// group's origin stays its parent's): centring the group moved the cross bore back by as much,
+// and the instance that repeats it with its transform took its y-bore elsewhere (an artist's
+// re-test).
+TEST(Roles, AGroupAroundAPartAnInstanceRepeatsLeavesItsTransform) {
+  EditorState state;
+  ASSERT_TRUE(openDocument(state, std::string(STRATA_ASSETS) + "/scenes/demo.strata.json"));
+  const auto named = [&](const std::string& name) {
+    for (NodeId id : treeOrder(state.document.root()))
+      if (findNode(state.document.root(), id)->name == name) return id;
+    return NodeId(0);
+  };
+  const NodeId holes = named("bolt holes"), bore = named("cross bore");
+  ASSERT_NE(holes, 0u);
+  ASSERT_NE(bore, 0u);
+  ASSERT_TRUE(instanceRepeating(state.document.root(), bore));
+  const Transform before = findNode(state.document.root(), bore)->transform;
+  const glm::dmat4 world = nodeWorldMatrix(state.document.root(), bore);
+  state.selection = {holes, bore};
+  groupSelection(state, NodeKind::Union);
+  ASSERT_EQ(state.selection.size(), 1u);
+  EXPECT_NE(state.selection[0], holes) << "grouped";
+  EXPECT_EQ(findNode(state.document.root(), bore)->transform, before);
+  EXPECT_EQ(nodeWorldMatrix(state.document.root(), bore), world);
+  undo(state);
 }
 
 // A group and a part inside it selected together: what acts on the selection acts on the

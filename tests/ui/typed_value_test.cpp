@@ -120,6 +120,7 @@ TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
 // unit's letters, which the field drops, are reported instead of vanishing; a name field (no
 // number field typing) gets every character as typed.
 TEST_F(TypedField, ADecimalCommaIsThePointAndDroppedLettersAreReported) {
+  lengthUnit = "mm";  // "mm" after the number: its own unit
   std::string dropped;
   EXPECT_FALSE(typingIntoNumberField());
   EXPECT_EQ(numberFieldCharacter(',', &dropped), unsigned(','));
@@ -161,8 +162,9 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   dropped.clear();
   typeInto("2 in", &dropped);
   EXPECT_NEAR(stored, 50.8, 1e-12);
+  // Letters that are no unit: nothing applied, the field keeps its value ("3 xyz" gave 3 mm).
   typeInto("3 xyz", &dropped);
-  EXPECT_EQ(stored, 3.0);
+  EXPECT_NEAR(stored, 50.8, 1e-12);
   takeUnitConversion();
   EXPECT_EQ(takeUnitConversion(), "");
   // The number already in the field: converted all the same (1 mm and "1cm" typed: 10 mm).
@@ -183,17 +185,27 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   press(kEnter);
   EXPECT_EQ(stored, 3.0);
   EXPECT_EQ(takeUnitConversion(), "");
-  // A number typed after the unit ("1 cm 2" became 12 cm): the letters are no unit of it, the
-  // number is what the field shows (12), the letters said.
+  // A number typed after the unit ("1 cm 2" became 12 mm, the field showing "12"): the letters
+  // are no unit of it; nothing applied, the letters said.
   dropped.clear();
   typeInto("1 cm 2", &dropped);
-  EXPECT_EQ(stored, 12.0);
+  EXPECT_EQ(stored, 3.0);
   EXPECT_EQ(takeUnitConversion(), "");
   EXPECT_EQ(dropped, "cm");
-  lengthUnit.clear();  // an angle, a count: the number as typed
+  lengthUnit.clear();  // an angle, a count: a length unit makes no sense there, degrees do
   typeInto("4 cm", &dropped);
-  EXPECT_EQ(stored, 4.0);
+  EXPECT_EQ(stored, 3.0);
   EXPECT_EQ(takeUnitConversion(), "");
+  takeUnitConverted();
+  frame(/*focus=*/true);
+  frame();
+  for (unsigned c : {unsigned('3'), unsigned('0'), 0x00B0u}) {  // "30°"
+    ImGui::GetIO().AddInputCharacter(numberFieldCharacter(c, &dropped));
+    frame();
+  }
+  press(kEnter);
+  EXPECT_EQ(stored, 30.0);
+  EXPECT_TRUE(takeUnitConverted()) << "its letters understood: not said as letters not typed";
 }
 
 // The letters of a unit never reach the field's text ("1cm" showed "1" until the field was left):
@@ -215,23 +227,25 @@ TEST_F(TypedField, TheLettersTypedAreShownWithWhatTheyWillDo) {
   typeSome("cm");
   EXPECT_EQ(droppedLettersHint(), "1.5 cm: 15 mm when the field is left");
   typeSome(" 2");
-  EXPECT_EQ(droppedLettersHint(), "\"cm\" before a number is no unit: the field keeps 1.52");
+  EXPECT_EQ(droppedLettersHint(),
+            "\"cm\" before a number is no unit: leaving the field changes nothing");
   press(kEscape);
   frame();
   EXPECT_EQ(droppedLettersHint(), "");  // left: nothing shown
   frame(/*focus=*/true);
   frame();
   typeSome("3 xyz");
-  EXPECT_EQ(droppedLettersHint(), "\"xyz\" is no unit: the number is kept (in mm)");
+  EXPECT_EQ(droppedLettersHint(),
+            "\"xyz\" is no unit (mm, cm, m, in, ft): leaving the field changes nothing");
   press(kEnter);
-  EXPECT_EQ(stored, 3.0);
+  EXPECT_EQ(stored, 7.0);
   lengthUnit.clear();
   frame(/*focus=*/true);
   frame();
   typeSome("4 cm");
-  EXPECT_EQ(droppedLettersHint(), "\"cm\": this field is no length; the number is kept");
+  EXPECT_EQ(droppedLettersHint(), "\"cm\": this field is no length: leaving it changes nothing");
   press(kEnter);
-  EXPECT_EQ(stored, 4.0);
+  EXPECT_EQ(stored, 7.0);
   takeUnitConversion();
 }
 
@@ -287,11 +301,13 @@ TEST(NumberField, AnInputDoubleTakesADecimalCommaToo) {
 TEST(NumberField, ALengthTypedWithAUnitIntoAnInputDoubleIsConverted) {
   const auto typed = [](const char* text) {
     double value = 2.0;
+    double before = value;
     typeIntoNumberField(
         [&] {
           numberFieldNext("step");
           ImGui::InputDouble("step", &value, 0.0, 0.0, "%.4g");
-          convertLengthTypedIntoInput(&value, "mm");
+          if (ImGui::IsItemActivated()) before = value;
+          if (convertLengthTypedIntoInput(&value, "mm") == TypedUnit::Refused) value = before;
         },
         text);
     return value;
@@ -305,9 +321,9 @@ TEST(NumberField, ALengthTypedWithAUnitIntoAnInputDoubleIsConverted) {
   EXPECT_EQ(takeUnitConversion(), "0.5 in is 12.7 mm");
   EXPECT_EQ(typed("3"), 3.0);  // no unit: the number as typed
   EXPECT_EQ(takeUnitConversion(), "");
-  EXPECT_EQ(typed("4 xyz"), 4.0);  // no unit it knows: the number (the letters are said)
+  EXPECT_EQ(typed("4 xyz"), 2.0);  // no unit it knows: the value it had (the letters are said)
   EXPECT_EQ(takeUnitConversion(), "");
-  EXPECT_EQ(typed("1 cm 2"), 12.0);  // the number the field shows, the letters no unit of it
+  EXPECT_EQ(typed("1 cm 2"), 2.0);  // letters before a number: no unit of it, the value it had
   EXPECT_EQ(takeUnitConversion(), "");
 }
 

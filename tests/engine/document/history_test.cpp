@@ -56,5 +56,42 @@ TEST(History, KeepsAtMostTheLimit) {
   EXPECT_EQ(h.undo(state(10)).revision, 9u);
 }
 
+// A cancelled interaction (a drag cancelled with Escape) leaves the history as it was: the redo
+// steps its first edit dropped come back (they were lost: an artist's test), and so does the
+// oldest step that edit pushed out at the limit. An interaction that ends keeps its step and
+// drops the redo steps, as any edit does.
+TEST(History, ACancelledInteractionLeavesTheHistoryAsItWas) {
+  History h(3);
+  h.record(state(0), "a");
+  h.record(state(1), "b");
+  h.record(state(2), "c");
+  EXPECT_EQ(h.undo(state(3)).revision, 2u);  // redo holds "c"
+  ASSERT_TRUE(h.canRedo());
+  h.beginInteraction();
+  h.record(state(2), "drag");
+  h.record(state(4), "drag");
+  EXPECT_FALSE(h.canRedo());
+  ASSERT_TRUE(h.cancelInteraction());
+  EXPECT_EQ(h.redoLabel(), "c");
+  EXPECT_EQ(h.undoSteps(), 2u);
+  // At the limit: the oldest step comes back too.
+  h.redo(state(2));
+  EXPECT_EQ(h.undoSteps(), 3u);
+  h.beginInteraction();
+  h.record(state(3), "drag");
+  EXPECT_EQ(h.undoSteps(), 3u);  // "a" pushed out
+  ASSERT_TRUE(h.cancelInteraction());
+  EXPECT_EQ(h.undoSteps(), 3u);
+  EXPECT_EQ(h.undo(state(3)).revision, 2u);
+  EXPECT_EQ(h.undo(state(2)).revision, 1u);
+  EXPECT_EQ(h.undo(state(1)).revision, 0u);
+  // Ended, not cancelled: the redo steps go.
+  h.beginInteraction();
+  h.record(state(0), "drag");
+  h.endInteraction();
+  EXPECT_FALSE(h.canRedo());
+  EXPECT_FALSE(h.cancelInteraction());
+}
+
 }  // namespace
 }  // namespace strata

@@ -482,6 +482,13 @@ TEST(Roles, AGroupOfPartsFromMovedParentsKeepsEveryPartInPlace) {
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r) EXPECT_NEAR(now[c][r], before[c][r], 1e-9) << c << " " << r;
   }
+  // A part an instance repeats would carry its copy along: refused.
+  auto copy = std::make_shared<Node>();
+  copy->kind = NodeKind::Instance;
+  copy->id = 6;
+  copy->instanceOf = 4;
+  const NodePtr repeated = makeOperationNode(NodeKind::Union, 1, {held, outer, copy});
+  EXPECT_THROW(groupNodes(repeated, {3, 4}, NodeKind::Union, 7), Error);
   // Turned, into a group stretched along x: no move, turn and scale keeps its shape. Refused.
   auto stretchedGroup = std::make_shared<Node>(*held);
   stretchedGroup->transform.rotateDegrees = glm::dvec3(0.0);
