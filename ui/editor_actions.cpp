@@ -880,6 +880,11 @@ void groupSelection(EditorState& state, NodeKind kind) {
   state.document.beginInteraction();  // the group and its modifier's distance: one undo step
   guarded(state, [&] {
     NodeId id = state.document.group(state.selection, kind);
+    // Said, so that an earlier refusal (of another grouping) does not read as this one's.
+    if (const NodePtr made = findNode(state.document.root(), id))
+      logInfo(state, "grouped " + std::to_string(made->children.size()) +
+                         (made->children.size() == 1 ? " part" : " parts") + " as " +
+                         displayName(*made));
     // A Boolean's or a modifier's origin is only where its gizmo turns and scales it: at the
     // centre of what it holds, its parts moved back by as much (nothing moves in the world). It
     // was the parent's origin, where a union wrapped around a part far from it had its gizmo (an
