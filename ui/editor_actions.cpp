@@ -743,6 +743,13 @@ void pasteClipboard(EditorState& state) {
   const double step = state.snap.step * double(state.pastes + 1);
   // Ids are reused (a new part may take a cut one's): what the clipboard came from says.
   const bool originalThere = !state.clipboardFromCut;
+  // The mode that makes a copy do where it lands (onto `onto`, else as placeNew places it) what
+  // it did (a countersink copied from the holes cuts there too).
+  const auto keepingEffect = [&](const EditorState::CopiedPart& copy, NodeId onto) {
+    const NodeId target = onto ? onto : primarySelection(state);
+    return modeKeepingEffect(state.document.root(), target ? target : state.document.root()->id,
+                             copy.mode, copy.removes);
+  };
   state.document.beginInteraction();
   guarded(state, [&] {
     for (const EditorState::CopiedPart& copy : state.clipboard) {
@@ -782,19 +789,9 @@ void pasteClipboard(EditorState& state) {
                                     original->id != state.document.root()->id
                                 ? original->id
                                 : 0;
-        // Doing there what it did (a countersink copied from the holes cuts where it lands).
-        const NodeId target = onto ? onto : primarySelection(state);
-        id = placeNew(
-            state, named,
-            modeKeepingEffect(state.document.root(), target ? target : state.document.root()->id,
-                              copy.mode, copy.removes),
-            "", onto);
+        id = placeNew(state, named, keepingEffect(copy, onto), "", onto);
       } else {
-        const NodeId target = primarySelection(state);
-        id = placeNew(
-            state, copy.part,
-            modeKeepingEffect(state.document.root(), target ? target : state.document.root()->id,
-                              copy.mode, copy.removes));
+        id = placeNew(state, copy.part, keepingEffect(copy, 0));
       }
       pasted.push_back(id);
       const NodePtr& root = state.document.root();

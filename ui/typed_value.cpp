@@ -40,9 +40,23 @@ Dropped gDropped;
 std::string gConversion;
 bool gConverted = false;  // since takeUnitConverted
 
-// Letters a field that is no length takes as part of the number: an angle's degree sign.
-bool angleUnit(const std::string& letters) {
-  return letters == "\u00B0";
+// What letters typed with a number (spaces left out) make of it, in a field whose unit is
+// `lengthUnit` ("" for a field that is no length): the one rule both the hint under the field
+// (showDroppedLetters) and the commit (convertTypedUnit) read.
+enum class Letters {
+  None,          // none typed
+  Converts,      // a length unit, in a length field: converted into the field's unit
+  Degrees,       // the degree sign, in a field that is no length: the number as typed
+  BeforeNumber,  // letters before a number ("1 cm 2"): no unit of it
+  NotALength,    // a length unit (or letters) in a field that is no length
+  NoUnit,        // letters that name no unit, in a length field
+};
+Letters judgeLetters(const std::string& letters, bool numberAfter, const std::string& lengthUnit) {
+  if (letters.empty()) return Letters::None;
+  if (numberAfter) return Letters::BeforeNumber;
+  if (lengthUnit.empty()) return letters == "\u00B0" ? Letters::Degrees : Letters::NotALength;
+  return sceneUnitMetres(letters) > 0.0 && sceneUnitMetres(lengthUnit) > 0.0 ? Letters::Converts
+                                                                             : Letters::NoUnit;
 }
 
 // The typed value in `lengthUnit` where the letters typed into field `id` name a length unit
@@ -56,17 +70,15 @@ std::optional<double> convertTypedUnit(ImGuiID id, double value, const std::stri
   std::string typed;
   for (char c : gDropped.letters)
     if (c != ' ') typed += c;
-  const bool numberAfter = gDropped.numberAfter;
+  const Letters verdict = judgeLetters(typed, gDropped.numberAfter, lengthUnit);
   gDropped = {};
-  if (typed.empty()) return value;
-  if (numberAfter) return std::nullopt;
-  if (lengthUnit.empty()) {
-    if (!angleUnit(typed)) return std::nullopt;
+  if (verdict == Letters::None) return value;
+  if (verdict == Letters::Degrees) {
     gConverted = true;  // its letters were understood: not said as letters not typed
     return value;
   }
+  if (verdict != Letters::Converts) return std::nullopt;
   const double from = sceneUnitMetres(typed), to = sceneUnitMetres(lengthUnit);
-  if (!(from > 0.0) || !(to > 0.0)) return std::nullopt;
   const double converted = value * (from / to);
   char text[160];
   std::snprintf(text, sizeof(text), "%.6g %s is %.6g %s", value, typed.c_str(), converted,
@@ -101,25 +113,24 @@ void showDroppedLetters(ImGuiID id, const std::string& lengthUnit) {
                 letters.c_str());
   draw->PopClipRect();
   // What leaving the field will make of them.
+  const Letters verdict = judgeLetters(letters, gDropped.numberAfter, lengthUnit);
+  if (verdict == Letters::Degrees) return;  // an angle's degrees: nothing to say
+  char line[200];
   char* end = nullptr;
   const double number = std::strtod(typed, &end);
   const bool plain = end != typed && *end == '\0' && std::isfinite(number);
-  const double from = sceneUnitMetres(letters);
-  const double to = lengthUnit.empty() ? 0.0 : sceneUnitMetres(lengthUnit);
-  char line[200];
-  if (lengthUnit.empty() && angleUnit(letters) && !gDropped.numberAfter)
-    return;  // an angle's degrees: nothing to say
-  if (gDropped.numberAfter)
+  if (verdict == Letters::BeforeNumber)
     std::snprintf(line, sizeof(line),
                   "\"%s\" before a number is no unit: leaving the field changes nothing",
                   letters.c_str());
-  else if (from > 0.0 && to > 0.0 && plain)
-    std::snprintf(line, sizeof(line), "%.6g %s: %.6g %s when the field is left", number,
-                  letters.c_str(), number * (from / to), lengthUnit.c_str());
-  else if (from > 0.0 && to > 0.0)
+  else if (verdict == Letters::Converts && plain)
+    std::snprintf(
+        line, sizeof(line), "%.6g %s: %.6g %s when the field is left", number, letters.c_str(),
+        number * (sceneUnitMetres(letters) / sceneUnitMetres(lengthUnit)), lengthUnit.c_str());
+  else if (verdict == Letters::Converts)
     std::snprintf(line, sizeof(line), "%s: converted into %s when the field is left",
                   letters.c_str(), lengthUnit.c_str());
-  else if (from > 0.0 || lengthUnit.empty())
+  else if (verdict == Letters::NotALength)
     std::snprintf(line, sizeof(line), "\"%s\": this field is no length: leaving it changes nothing",
                   letters.c_str());
   else

@@ -420,7 +420,7 @@ void checkGroupKeepsContexts(const NodePtr& root, const std::vector<NodeId>& mem
     // would then show them moved too (a bore grouped out of the union an instance repeats).
     if (!sameParent)
       for (size_t k = place + 1; k + 1 < path.size(); ++k)
-        if (const Node* user = outsideReference(root, {path[k]->id}))
+        if (const Node* user = instanceRepeating(root, path[k]->id))
           throw Error(nameWithId(member) + " lies in " + nameWithId(*path[k]) +
                       ", which instance " + nameWithId(*user) +
                       " repeats: a group with parts from elsewhere would change the instance "
@@ -475,7 +475,7 @@ NodePtr groupNodes(const NodePtr& root, const std::vector<NodeId>& ids, NodeKind
     if (ownParent != groupParent) {
       // An instance repeats the part with its own transform: a new one would move the copy too
       // (the cross bore grouped with a bolt hole took its y-bore along: an artist's re-test).
-      if (const Node* user = outsideReference(root, {id}))
+      if (const Node* user = instanceRepeating(root, id))
         throw Error(nameWithId(*member) + " is repeated by instance " + nameWithId(*user) +
                     ": in a group there it would get another move, turn or scale, and the "
                     "instance would move with it. Group it with parts of its own place, or "

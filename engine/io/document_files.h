@@ -23,8 +23,9 @@ void saveDocument(Document& document);
 // The stamp of the file at `path` now (its modification time and size; unknown where absent).
 Document::FileStamp fileStampOf(const std::string& path);
 // "" where the document's file is as it was when it was opened or saved here (or it has no file
-// yet); else a sentence for the artist saying that it changed since, and how ("written at
-// 23:11, now 12,345 bytes" / "deleted"). openDocument and saveDocumentAs stamp the document.
+// yet, or the file is gone: a save then overwrites nothing); else a sentence for the artist
+// saying that it changed since, and how ("at 2026-11-30 23:11:05, 12345 bytes"). openDocument
+// and saveDocumentAs stamp the document.
 std::string changedOnDisk(const Document& document);
 // Saves atomically (saveScene) to `path`, first copying an existing file there to
 // "<path>.bak". Mesh paths are written relative to the file's folder where the mesh lies

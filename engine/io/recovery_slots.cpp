@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
-#include <cstring>
 #include <ctime>
 #include <filesystem>
 
@@ -119,10 +118,11 @@ std::vector<RecoveryOffer> claimOrphanedRecoveries(const std::string& dir,
     std::vector<std::string> staleLocks;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
       const std::string path = it->path().string();
+      std::error_code entry;  // its own: the iteration's stops the loop
       if (endsWith(path, std::string(kExtension) + ".lock") &&
-          !fs::exists(path.substr(0, path.size() - 5), ec))
+          !fs::exists(path.substr(0, path.size() - 5), entry))
         staleLocks.push_back(path);
-      if (!it->is_regular_file(ec) || !endsWith(path, kExtension)) continue;
+      if (!it->is_regular_file(entry) || !endsWith(path, kExtension)) continue;
       claim(path, &offers);
     }
     // The locks of editors that ended without a recovery file to leave (killed with nothing

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -367,16 +368,14 @@ std::string notAFileToReadBack(const std::string& path) {
 }
 
 std::string cannotWriteAt(const std::string& path) {
-  if (!notAFileToReadBack(path).empty() || namesSpecialFile(path)) return "";  // written through
-  std::string target;
+  if (!notAFileToReadBack(path).empty()) return "";  // a device or a pipe: written through
+  std::string folder;
   try {
-    target = followTargetLinks(path).target;
+    folder = std::filesystem::path(followTargetLinks(path).target).parent_path().string();
   } catch (const Error& e) {
     return e.what();
   }
-  std::string folder = target;
-  const size_t slash = folder.find_last_of('/');
-  folder = slash == std::string::npos ? "." : slash == 0 ? "/" : folder.substr(0, slash);
+  if (folder.empty()) folder = ".";
   struct stat st {};
   if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
     return "the folder " + folder + " does not exist";
