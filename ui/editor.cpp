@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // ClearActiveID: a field's drag called off by Ctrl+Z or Escape
 
 #include <algorithm>
 #include <chrono>
@@ -795,7 +796,14 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   drawShortcutSheet(s);
   s.dialog.draw();
   s.gizmoDragging = gl_->viewport.gizmoDragging();
+  s.fieldDragHeld = !s.gizmoDragging && s.document.interacting() && ImGui::IsAnyItemActive() &&
+                    !ImGui::GetIO().WantTextInput;
   handleShortcuts(s);
+  if (s.cancelFieldDrag) {  // the field let go (it does not take the held button again)
+    s.cancelFieldDrag = false;
+    ImGui::ClearActiveID();
+    s.document.cancelInteraction();
+  }
 
   const ImGuiViewport* vp = ImGui::GetMainViewport();
   ViewRect rect;

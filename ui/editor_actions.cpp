@@ -539,7 +539,7 @@ NodeId importMesh(EditorState& state, const PendingImport& import) {
                             ? import.placement->part
                             : primarySelection(state);
     id = importMeshFile(state.document, import.path, onto, state.placeMode,
-                        importTransform(scale, import.upAxis), &sentence);
+                        importTransform(scale, import.upAxis), &sentence, import.acceptOpen);
     // Where it was dropped; otherwise resting on the ground beside the scene (right of it, a
     // tenth of its size away; at the origin in an empty scene), never inside another part or
     // around the camera. Then the view shows all of the scene, the new part with it (framing
@@ -1096,8 +1096,8 @@ void setResolution(EditorState& state, int resolution) {
 // Undo and redo say in the status line what they reverted or repeated: a step that changes
 // nothing in view (a measurement off screen, a rename) must not look like a dead key.
 namespace {
-// Undo and redo while something is being dragged: a gizmo drag is cancelled (as Escape does:
-// everything it moved goes back), other drags (an inspector field held) are left to finish. An
+// Undo and redo while something is being dragged: a gizmo drag or a field dragged with the mouse
+// is cancelled (as Escape does: everything it moved goes back), other drags are left to finish. An
 // undo in the middle of a drag closed its undo step under it, and the drag went on recording a
 // step a frame until the history held nothing else (an artist's test). True when it was one.
 bool duringADrag(EditorState& state, const char* what) {
@@ -1107,8 +1107,14 @@ bool duringADrag(EditorState& state, const char* what) {
                        " during the drag: the drag is cancelled, everything it moved is back");
     return true;
   }
+  if (state.fieldDragHeld) {
+    state.cancelFieldDrag = true;
+    logInfo(state, std::string(what) +
+                       " during the drag: the drag is cancelled, the field's value is back");
+    return true;
+  }
   if (state.document.interacting()) {
-    logWarning(state, std::string(what) + " waits until the field being dragged is let go");
+    logWarning(state, std::string(what) + " waits until the drag under way ends");
     return true;
   }
   return false;
@@ -1215,8 +1221,17 @@ bool recoverDocument(EditorState& state) {
             "recovered the unsaved work of an editor that ended without saving (its undo "
             "history was not kept: undo starts from here)");
   });
-  // Read: the work is this editor's now (its own autosave keeps it); a damaged file stays.
-  if (recovered) forgetRecovery(offer);
+  // Read: the work is this editor's now (its own autosave keeps it). A damaged file is moved
+  // aside with the discarded ones, where it can be mended and opened: left in place, it was
+  // offered again at every start, to fail again.
+  if (recovered) {
+    forgetRecovery(offer);
+  } else {
+    const std::string kept = discardRecovery(offer, state.recoveryDir);
+    if (!kept.empty())
+      logWarning(state, "the unsaved work could not be read back; the file is kept as " + kept +
+                            " (not offered again: mend it and File > Open it)");
+  }
   nextRecoveryOffer(state);
   // The others are left for a later start (or another editor): recovering one of them here would
   // replace the document just recovered, unsaved.

@@ -76,6 +76,16 @@ struct PendingImport {
   int unit = 0;    // index into importUnits() (import_options.h); 0 = scene units
   int upAxis = 0;  // 0: +Z up (as written), 1: +Y up (turned so that +Y becomes +Z)
   std::optional<Placement> placement;
+  // Taken although it is not a closed oriented surface (the dialog's box, offered only for such
+  // a mesh): the leaf is marked open (Node::meshOpen) and the scene file keeps the choice.
+  bool acceptOpen = false;
+};
+
+// What the import dialog learns of its file off the UI thread: its extent as the file has it,
+// and what keeps it from being a closed oriented surface ("" where it is one).
+struct ImportProbe {
+  Bounds bounds;
+  std::string openProblem;
 };
 
 // A key press as the window system reported it (GLFW key code and modifier bits).
@@ -208,8 +218,8 @@ struct EditorState {
   NodeId paletteDropPart = 0;
   std::optional<PendingImport> pendingImport;  // the import dialog is open for it
   std::optional<Placement> importPlacement;    // for the mesh being chosen (palette drag)
-  // The extent of the file the import dialog is open for, read off the UI thread (its path).
-  std::unique_ptr<BackgroundJob<Bounds>> importSizeJob;
+  // The file the import dialog is open for, read and checked off the UI thread (its path).
+  std::unique_ptr<BackgroundJob<ImportProbe>> importSizeJob;
   std::string importSizePath;
   // The shown result's extent (Diagnostics), from its splats off the UI thread (a device copy
   // waits on the splats' stream); a new one starts once the last is done, never joined running.
@@ -228,6 +238,11 @@ struct EditorState {
   // request to call it off (the viewport restores what the drag moved, with no undo step).
   bool gizmoDragging = false;
   bool cancelGizmoDrag = false;
+  // A panel's field dragged with the mouse (set by the editor each frame before the shortcuts;
+  // Dear ImGui holds the keyboard then), and the request of Ctrl+Z, redo or Escape to call its
+  // drag off (the editor lets the field go and restores what the drag changed, with no undo step).
+  bool fieldDragHeld = false;
+  bool cancelFieldDrag = false;
   bool quitNow = false;
 
   // This frame's key presses, collected from GLFW as they happened: ImGui 1.86 samples key

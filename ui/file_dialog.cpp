@@ -269,7 +269,10 @@ void FileDialog::draw() {
   const bool typed = ImGui::InputText(
       "##path", field_, sizeof(field_),
       ImGuiInputTextFlags_EnterReturnsTrue | (selectAll_ ? ImGuiInputTextFlags_AutoSelectAll : 0));
-  if (ImGui::IsItemEdited()) missingFolder_.clear();  // the button named the path refused
+  if (ImGui::IsItemEdited()) {  // the refusal's button and the replace question named the old path
+    missingFolder_.clear();
+    replacing_.clear();
+  }
   if (ImGui::IsItemDeactivated()) selectAll_ = true;
   if (!replacing_.empty()) {  // asked once: the same path again replaces it
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));

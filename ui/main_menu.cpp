@@ -194,7 +194,19 @@ void handleShortcuts(EditorState& state) {
   if (keyPressed(state, GLFW_KEY_E, ctrl))
     state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
   if (keyPressed(state, GLFW_KEY_Q, ctrl)) requestQuit(state);
-  if (io.WantCaptureKeyboard) return;
+  if (io.WantCaptureKeyboard) {
+    // A field dragged with the mouse holds the keyboard: Ctrl+Z, redo and Escape call its drag
+    // off, as they do a gizmo's (Ctrl+Z was ignored there, and the drag committed on release).
+    if (state.fieldDragHeld) {
+      if (keyPressed(state, GLFW_KEY_Z, ctrl))
+        undo(state);
+      else if (keyPressed(state, GLFW_KEY_Z, ctrl | shift) || keyPressed(state, GLFW_KEY_Y, ctrl))
+        redo(state);
+      else if (keyPressed(state, GLFW_KEY_ESCAPE))
+        state.cancelFieldDrag = true;
+    }
+    return;
+  }
   if (keyPressed(state, GLFW_KEY_Z, ctrl)) undo(state);
   if (keyPressed(state, GLFW_KEY_Z, ctrl | shift) || keyPressed(state, GLFW_KEY_Y, ctrl))
     redo(state);

@@ -646,6 +646,13 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
     if (node->mesh)
       ImGui::Text("%zu triangles, %zu vertices", node->mesh->triangles.size(),
                   node->mesh->positions.size());
+    if (node->meshOpen) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+      ImGui::TextWrapped(
+          "open mesh, taken as it is: its inside is guessed where rays pass its "
+          "holes, so what it makes may leak");
+      ImGui::PopStyleColor();
+    }
   }
   if (node->kind == NodeKind::Instance) {
     NodePtr target = findNode(state.document.root(), node->instanceOf);

@@ -480,14 +480,24 @@ void importDialog(EditorState& state) {
   // 8 mm long and on its side with nothing said): the file read off the UI thread, once.
   if (state.importSizePath != import.path) {
     state.importSizePath = import.path;
+    // Read as the import reads it (open meshes taken, to say what keeps them from being closed).
     state.importSizeJob =
-        std::make_unique<BackgroundJob<Bounds>>([path = import.path](Progress& progress) {
-          return meshBounds(readMeshFileVerbatim(path, nullptr, &progress));
+        std::make_unique<BackgroundJob<ImportProbe>>([path = import.path](Progress& progress) {
+          MeshReadOptions options;
+          options.allowOpen = true;
+          options.progress = &progress;
+          MeshReadReport report;
+          ImportProbe probe;
+          probe.bounds = meshBounds(readMeshFile(path, options, &report));
+          probe.openProblem = report.openProblem;
+          return probe;
         });
   }
-  const BackgroundJob<Bounds>* size = state.importSizeJob.get();
-  if (size && size->done() && size->error().empty() && !size->result().empty()) {
-    const glm::dvec3 file = size->result().size();
+  const BackgroundJob<ImportProbe>* size = state.importSizeJob.get();
+  const bool read = size && size->done() && size->error().empty() && !size->result().bounds.empty();
+  const bool open = read && !size->result().openProblem.empty();
+  if (read) {
+    const glm::dvec3 file = size->result().bounds.size();
     // +Y up turns the file's y onto z and its z onto -y.
     const glm::dvec3 scene =
         scale * (import.upAxis == 1 ? glm::dvec3(file.x, file.z, file.y) : file);
@@ -507,11 +517,23 @@ void importDialog(EditorState& state) {
                         import.placement->point.x, import.placement->point.y,
                         import.placement->point.z,
                         import.placement->onGround ? ", on the ground" : "");
+  // An open mesh (holes, a fin, a flipped patch) is taken only when the artist says so: its
+  // inside is guessed where rays pass through its holes, so the result may leak.
+  if (open) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+    ImGui::TextWrapped(
+        "Not a closed surface: %s. Its inside is guessed where rays pass its "
+        "holes, so parts made with it may leak; closing it first (e.g. in "
+        "MeshLab) gives an exact result.",
+        size->result().openProblem.c_str());
+    ImGui::PopStyleColor();
+    ImGui::Checkbox("import it anyway (the scene marks it open)", &import.acceptOpen);
+  }
   ImGui::PopTextWrapPos();
   ImGui::Separator();
-  // A file that could not be read cannot be imported: said above, the button off.
-  const bool unreadable =
-      size && size->done() && (!size->error().empty() || size->result().empty());
+  // A file that could not be read cannot be imported, nor an open one not accepted: said above,
+  // the button off.
+  const bool unreadable = (size && size->done() && !read) || (open && !import.acceptOpen);
   ImGui::BeginDisabled(unreadable);
   const bool importNow =
       ImGui::Button("Import", ImVec2(120, 0)) || (!unreadable && keyPressed(state, GLFW_KEY_ENTER));

@@ -138,7 +138,7 @@ NodePtr makeOperationNode(NodeKind kind, NodeId id, std::vector<NodePtr> childre
 }
 
 NodePtr makeMeshNode(NodeId id, const std::string& name, std::shared_ptr<const TriangleMesh> mesh,
-                     const std::string& meshPath, const std::string& meshHash) {
+                     const std::string& meshPath, const std::string& meshHash, bool meshOpen) {
   auto node = std::make_shared<Node>();
   node->id = id;
   node->kind = NodeKind::Mesh;
@@ -146,6 +146,7 @@ NodePtr makeMeshNode(NodeId id, const std::string& name, std::shared_ptr<const T
   node->mesh = std::move(mesh);
   node->meshPath = meshPath;
   node->meshHash = meshHash;
+  node->meshOpen = meshOpen;
   return node;
 }
 

@@ -25,7 +25,8 @@ NodePtr makePrimitiveNode(NodeKind kind, NodeId id);
 NodePtr makeOperationNode(NodeKind kind, NodeId id, std::vector<NodePtr> children);
 // A mesh leaf holding a loaded, checked mesh; `meshPath` absolute (see Document).
 NodePtr makeMeshNode(NodeId id, const std::string& name, std::shared_ptr<const TriangleMesh> mesh,
-                     const std::string& meshPath, const std::string& meshHash);
+                     const std::string& meshPath, const std::string& meshHash,
+                     bool meshOpen = false);
 
 // A deep copy of `node` with ids counting up from `firstId` in pre-order (instances inside it
 // that refer into it follow the copy).

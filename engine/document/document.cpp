@@ -138,15 +138,6 @@ NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
   return id;
 }
 
-NodeId Document::addMesh(std::shared_ptr<const TriangleMesh> mesh, const std::string& file,
-                         const std::string& hash, NodeId target, PlaceMode mode,
-                         const Transform& transform, std::string* sentence) {
-  auto node = std::make_shared<Node>(
-      *makeMeshNode(1, fs::path(file).stem().string(), std::move(mesh), file, hash));
-  node->transform = transform;
-  return place(node, target, mode, sentence);
-}
-
 NodeId Document::place(const NodePtr& node, NodeId target, PlaceMode mode, std::string* sentence) {
   const NodeId id = nextId();
   NodePtr fresh = withFreshIds(node, id);

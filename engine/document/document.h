@@ -62,13 +62,6 @@ class Document {
   NodeId addNode(NodeKind kind, NodeId parent = 0, int index = -1);
   // Adds `node` (a subtree from elsewhere, e.g. a mesh leaf) with fresh ids; returns its id.
   NodeId addSubtree(const NodePtr& node, NodeId parent = 0, int index = -1);
-  // Adds a loaded, checked mesh as a mesh leaf named after its file's stem onto `target` with
-  // `mode` (place). `file` is the absolute path it was read from, `hash` the file's content
-  // hash; `transform` becomes the leaf's (import options: unit scale, up axis). Reading the file
-  // is engine/io's (importMeshFile in document_files.h).
-  NodeId addMesh(std::shared_ptr<const TriangleMesh> mesh, const std::string& file,
-                 const std::string& hash, NodeId target = 0, PlaceMode mode = PlaceMode::Add,
-                 const Transform& transform = Transform{}, std::string* sentence = nullptr);
   // Adds `node` (a subtree from elsewhere: a new primitive, a mesh leaf, a pasted copy) with
   // fresh ids onto `target` (0 = the root) with `mode` (roles.h): it does what the mode says and
   // no existing part changes its role. Returns the new node's id; *sentence (when given) says

@@ -53,6 +53,9 @@ struct Node {
   std::string meshPath;
   std::string meshHash;
   std::shared_ptr<const TriangleMesh> mesh;
+  // Accepted although it is not a closed oriented surface (the artist chose it on import; the
+  // command line's --allow-open for every mesh): its inside is guessed where rays pass its holes.
+  bool meshOpen = false;
 
   NodeId instanceOf = 0;  // Instance leaves: the id of the referenced node
 

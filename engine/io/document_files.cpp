@@ -66,11 +66,18 @@ void saveDocumentAs(Document& document, const std::string& path) {
 }
 
 NodeId importMeshFile(Document& document, const std::string& file, NodeId target, PlaceMode mode,
-                      const Transform& transform, std::string* sentence) {
-  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file));
+                      const Transform& transform, std::string* sentence, bool acceptOpen) {
+  MeshReadOptions options;
+  options.allowOpen = acceptOpen;
+  MeshReadReport report;
+  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file, options, &report));
   const std::string hash = hashFile(file);
   const std::string stored = fs::absolute(file).lexically_normal().generic_string();
-  return document.addMesh(std::move(mesh), stored, hash, target, mode, transform, sentence);
+  auto node =
+      std::make_shared<Node>(*makeMeshNode(1, fs::path(file).stem().string(), std::move(mesh),
+                                           stored, hash, !report.openProblem.empty()));
+  node->transform = transform;
+  return document.place(node, target, mode, sentence);
 }
 
 }  // namespace strata

@@ -32,12 +32,14 @@ std::string changedOnDisk(const Document& document);
 // inside it, absolute otherwise. The document then belongs to `path` and is clean.
 void saveDocumentAs(Document& document, const std::string& path);
 
-// Reads a closed mesh file (readMeshFile) and adds it as a mesh leaf named after the file, its
-// path made absolute (see Document's constructor), onto `target` (0 = the root) with `mode`
-// (Document::place) with `transform`; *sentence says what it does. One undo step. Returns the
-// new leaf's id. Throws strata::Error.
+// Reads a closed mesh file (readMeshFile) and adds it as a mesh leaf named after its file's
+// stem, its path made absolute (see Document's constructor) with the file's content hash, onto
+// `target` (0 = the root) with `mode` (Document::place) with `transform` (import options: unit
+// scale, up axis); *sentence says what it does. With `acceptOpen` a mesh that is not a closed
+// oriented surface is taken too, the leaf marked open (Node::meshOpen). One undo step. Returns
+// the new leaf's id. Throws strata::Error.
 NodeId importMeshFile(Document& document, const std::string& file, NodeId target = 0,
                       PlaceMode mode = PlaceMode::Add, const Transform& transform = Transform{},
-                      std::string* sentence = nullptr);
+                      std::string* sentence = nullptr, bool acceptOpen = false);
 
 }  // namespace strata

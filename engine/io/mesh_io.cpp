@@ -197,7 +197,9 @@ bool visitFileTriangles(const std::string& path, const TriangleBlockVisitor& vis
 
 TriangleMesh readMeshFile(const std::string& path, const MeshReadOptions& options,
                           MeshReadReport* report) {
-  return readMeshBytes(path, readWholeFile(path), options, report);
+  const std::string bytes = readWholeFile(path);
+  if (options.progress) options.progress->check();
+  return readMeshBytes(path, bytes, options, report);
 }
 
 TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
@@ -211,6 +213,7 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
   }
 
   TriangleMesh mesh = parseByExtension(name, bytes, rep, Corners::WeldUnindexed);
+  if (options.progress) options.progress->check();
   if (mesh.triangles.size() > maxInputTriangles())
     throw Error(tooManyTrianglesMessage(name, mesh.triangles.size()));
 
@@ -294,10 +297,14 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
     if (!options.allowOpen) {
       throw Error(name + ": " + problem +
                   "; sampling it would leak. Repair the mesh (close its holes, e.g. in "
-                  "MeshLab), or on the command line accept it anyway with --allow-open "
-                  "(strata eval, boolean, export)");
+                  "MeshLab), or take it anyway: \"import it anyway\" in the editor's import "
+                  "dialog, --allow-open on the command line (strata eval, boolean, export)");
     }
-    meshio::addWarning(rep, name, problem + "; accepted because of --allow-open (may leak)");
+    meshio::addWarning(rep, name,
+                       problem +
+                           "; accepted as an open mesh (--allow-open, or marked open in "
+                           "the scene): sampling may leak");
+    if (rep) rep->openProblem = problem.substr(problem.find(':') + 2);
   }
   return mesh;
 }

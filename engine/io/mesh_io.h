@@ -27,12 +27,18 @@ namespace strata {
 struct MeshReadOptions {
   bool allowOpen = false;  // accept open / non-manifold meshes (sampling may then leak)
   double unitScale = 1.0;  // multiply every coordinate (e.g. 25.4 for inch files into mm)
+  // Checked between reading the file, parsing it and preparing the mesh (throws Cancelled):
+  // a dialog's read of a large file given up with the dialog. Not owned; may be null.
+  const Progress* progress = nullptr;
 };
 
 struct MeshReadReport {
   std::vector<std::string> warnings;  // each names the file and what was repaired or suspicious
   size_t fileVertices = 0;            // as read, before welding
   size_t fileFaces = 0;               // polygons as read, before triangulation
+  // Where the mesh is not a closed oriented surface and was accepted (MeshReadOptions::
+  // allowOpen): what is wrong with it ("3 open (boundary) edges"); empty for a closed mesh.
+  std::string openProblem;
 };
 
 // The most triangles a mesh file may hold (through 3MF components: place), checked before the

@@ -19,7 +19,8 @@ namespace strata {
 // 2: offset, shell, round and fillet nodes. Version 1 files read unchanged.
 // 3: a shell's opening (the `opening` member).
 // 4: patterns: array, circularArray and mirror nodes.
-constexpr int kSceneFormatVersion = 4;
+// 5: a mesh accepted although it is open (the mesh's `open` member).
+constexpr int kSceneFormatVersion = 5;
 
 struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. a mesh whose content hash changed since saving

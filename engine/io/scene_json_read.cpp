@@ -569,6 +569,8 @@ class SceneReader {
           fail(at + "/hash",
                "expected \"fnv1a64:\" followed by 16 lowercase hex digits, got " + describe(*hash));
       }
+      if (auto open = v.find("open"); open != v.end())
+        node->meshOpen = boolean(*open, at + "/open");
       meshEntries_.push_back(self);
     } else if (node->kind == NodeKind::Instance) {
       auto of = v.find("of");
@@ -824,20 +826,23 @@ class SceneReader {
       std::string hash;
       std::string error;  // why it could not be read (MissingMeshes::Keep)
     };
-    std::map<std::string, Loaded> cache;  // by resolved path: each file is read once
+    // By resolved path and whether the node accepts it open: each file is read once either way.
+    std::map<std::pair<std::string, bool>, Loaded> cache;
     for (size_t index : meshEntries_) {
       Node& node = *entries_[index].node;
       std::string at = pointerOf(index);
       std::filesystem::path path(node.meshPath);
       if (path.is_relative() && !baseDir_.empty()) path = std::filesystem::path(baseDir_) / path;
       std::string resolved = path.lexically_normal().string();
-      auto found = cache.find(resolved);
+      MeshReadOptions options = meshOptions_;
+      options.allowOpen = options.allowOpen || node.meshOpen;
+      auto found = cache.find({resolved, node.meshOpen});
       if (found == cache.end()) {
         Loaded loaded;
         try {
           MeshReadReport meshReport;
-          loaded.mesh = std::make_shared<const TriangleMesh>(
-              readMeshFile(resolved, meshOptions_, &meshReport));
+          loaded.mesh =
+              std::make_shared<const TriangleMesh>(readMeshFile(resolved, options, &meshReport));
           loaded.hash = hashFile(resolved);
           for (const std::string& w : meshReport.warnings) warn(at + "/path", w);
         } catch (const Error& error) {
@@ -847,7 +852,7 @@ class SceneReader {
           loaded.hash.clear();
           loaded.error = error.what();
         }
-        found = cache.emplace(resolved, std::move(loaded)).first;
+        found = cache.emplace(std::make_pair(resolved, node.meshOpen), std::move(loaded)).first;
       }
       node.mesh = found->second.mesh;
       std::string label = "mesh node " + std::to_string(node.id) +

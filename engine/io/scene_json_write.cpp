@@ -120,6 +120,7 @@ ojson nodeToJson(const Node& node, int depth) {
   } else if (node.kind == NodeKind::Mesh) {
     j["path"] = node.meshPath;
     if (!node.meshHash.empty()) j["hash"] = node.meshHash;
+    if (node.meshOpen) j["open"] = true;
   } else if (node.kind == NodeKind::Instance) {
     j["of"] = node.instanceOf;
   } else if (const char* key = nodeKindInfo(node.kind).amountKey) {
@@ -181,6 +182,13 @@ bool holdsPattern(const Node& node) {
   return false;
 }
 
+bool holdsOpenMesh(const Node& node) {
+  if (node.kind == NodeKind::Mesh && node.meshOpen) return true;
+  for (const NodePtr& child : node.children)
+    if (child && holdsOpenMesh(*child)) return true;
+  return false;
+}
+
 bool holdsOpening(const Node& node) {
   if (writesOpening(node)) return true;
   for (const NodePtr& child : node.children)
@@ -197,11 +205,13 @@ std::string sceneToJson(const Scene& scene) {
   doc["format"] = "strata-scene";
   // The oldest version that holds the scene: files without modifiers stay readable by
   // builds that read version 1, files without a shell's opening by those that read 2, files
-  // without patterns or measurements by those that read 3.
-  doc["version"] = holdsPattern(*scene.root) || !scene.measurements.empty() ? 4
-                   : holdsOpening(*scene.root)                              ? 3
-                   : holdsModifier(*scene.root)                             ? 2
-                                                                            : 1;
+  // without patterns or measurements by those that read 3, files without an open mesh by those
+  // that read 4.
+  doc["version"] = holdsOpenMesh(*scene.root)                                 ? 5
+                   : holdsPattern(*scene.root) || !scene.measurements.empty() ? 4
+                   : holdsOpening(*scene.root)                                ? 3
+                   : holdsModifier(*scene.root)                               ? 2
+                                                                              : 1;
   doc["unit"] = s.unit;
   ojson settings;
   settings["resolution"] = s.resolution;

@@ -137,7 +137,7 @@ std::vector<NodeKindInfo> buildTable() {
                    "M",
                    "An imported closed triangle mesh",
                    RayOp::Union,
-                   {"path", "hash"}});
+                   {"path", "hash", "open"}});
   table.push_back({NodeKind::Instance,
                    "instance",
                    KindRole::Instance,

@@ -297,6 +297,26 @@ TEST(Document, MeshImportAndSaveAsElsewhereKeepsTheMeshFound) {
   EXPECT_TRUE(findNode(again.root(), mesh)->mesh);
   EXPECT_EQ(findNode(again.root(), mesh)->name, "bunny");
   EXPECT_THROW(importMeshFile(doc, dir + "/missing.obj"), Error);
+  // An open mesh: refused unless accepted, then marked open, and a closed one accepted "open"
+  // is not marked (nothing about it is guessed).
+  {
+    std::ofstream open(dir + "/open.obj");
+    open << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n";
+  }
+  try {
+    importMeshFile(doc, dir + "/open.obj");
+    ADD_FAILURE() << "an open mesh was taken without being accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("open (boundary) edges"), std::string::npos) << e.what();
+  }
+  const NodeId open =
+      importMeshFile(doc, dir + "/open.obj", 0, PlaceMode::Add, Transform{}, nullptr, true);
+  EXPECT_TRUE(findNode(doc.root(), open)->meshOpen);
+  const NodeId closed =
+      importMeshFile(doc, dir + "/meshes/bunny.obj", 0, PlaceMode::Add, Transform{}, nullptr, true);
+  EXPECT_FALSE(findNode(doc.root(), closed)->meshOpen);
+  saveDocument(doc);
+  EXPECT_TRUE(findNode(openDocument(dir + "/other/copy.strata.json").root(), open)->meshOpen);
 }
 
 }  // namespace

@@ -637,6 +637,10 @@ TEST(MeshIoPrepare, OpenMeshRejectedUnlessAllowed) {
   const TriangleMesh m = readMeshBytes("open.obj", open, options, &report);
   EXPECT_EQ(m.triangles.size(), 11u);
   EXPECT_TRUE(anyWarningContains(report, "open (boundary) edges"));
+  EXPECT_EQ(report.openProblem, "3 open (boundary) edges");
+  MeshReadReport closed;
+  readMeshBytes("closed.obj", cubeObj(), options, &closed);
+  EXPECT_EQ(closed.openProblem, "");
 }
 
 TEST(MeshIoPrepare, NonManifoldRejected) {

@@ -290,8 +290,8 @@ TEST(SceneFileValidation, FormatAndVersion) {
   expectError(R"({"format": "obj", "version": 1})", {"/format: expected \"strata-scene\""});
   expectError(R"({"format": "strata-scene", "root": {"id": 1, "type": "box"}})",
               {"/version: missing required field"});
-  expectError(R"({"format": "strata-scene", "version": 5})",
-              {"/version: version 5 is newer than this build of Strata reads (4)"});
+  expectError(R"({"format": "strata-scene", "version": 6})",
+              {"/version: version 6 is newer than this build of Strata reads (5)"});
   expectError(R"({"format": "strata-scene", "version": 99999999999999999999})",
               {"/version: expected an integer"});
   expectError(R"({"format": "strata-scene", "version": "1"})",
@@ -568,6 +568,49 @@ TEST_F(SceneFileDir, SceneFileMeshHashMismatchWarns) {
   // The node now records the hash of what it holds.
   EXPECT_EQ(findNode(scene.root, 3)->meshHash, hashFile(kBunny));
   ASSERT_TRUE(findNode(scene.root, 3)->mesh);
+}
+
+// A mesh the artist took although it is open (the editor's import dialog) is marked so in the
+// scene (version 5, the mesh's "open"): the file loads without --allow-open on every command and
+// in the editor, and saves the mark back; the same file under a mesh not so marked is refused.
+TEST_F(SceneFileDir, AnOpenMeshMarkedOpenLoadsAndKeepsTheMark) {
+  writeText(dir_ / "open.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+            "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+            "f 3 4 8\nf 3 8 7\nf 4 1 5\n");  // a unit cube short of one triangle
+  const std::string marked = doc(R"({"id": 1, "type": "union", "children": [
+      {"id": 2, "type": "mesh", "path": "open.obj", "open": true}]})");
+  writeText(dir_ / "s.strata.json", marked);
+  SceneLoadReport report;
+  Scene scene = loadScene((dir_ / "s.strata.json").string(), &report);
+  NodePtr leaf = findNode(scene.root, 2);
+  ASSERT_TRUE(leaf && leaf->mesh);
+  EXPECT_TRUE(leaf->meshOpen);
+  EXPECT_EQ(leaf->mesh->triangles.size(), 11u);
+  bool said = false;
+  for (const std::string& w : report.warnings) said = said || w.find("open") != std::string::npos;
+  EXPECT_TRUE(said) << "the load still says it is open";
+  const std::string written = sceneToJson(scene);
+  EXPECT_NE(written.find("\"open\": true"), std::string::npos) << written;
+  EXPECT_NE(written.find("\"version\": 5"), std::string::npos)
+      << "older builds refuse it by version";
+  Scene again = parseScene(written, "again", dir_.string());
+  EXPECT_TRUE(findNode(again.root, 2)->meshOpen);
+  // Unmarked, and beside a marked node of the same file: that node is refused, the other loads.
+  writeText(dir_ / "u.strata.json", doc(R"({"id": 1, "type": "union", "children": [
+      {"id": 2, "type": "mesh", "path": "open.obj"}]})"));
+  try {
+    loadScene((dir_ / "u.strata.json").string());
+    ADD_FAILURE() << "an open mesh not marked open loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("open (boundary) edge"), std::string::npos) << e.what();
+  }
+  // Taken open no more (the mark cleared): the file says nothing of it and needs no version 5.
+  Scene closed = parseScene(written, "again", dir_.string());
+  std::const_pointer_cast<Node>(findNode(closed.root, 2))->meshOpen = false;
+  const std::string plain = sceneToJson(closed);
+  EXPECT_EQ(plain.find("\"open\""), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("\"version\": 5"), std::string::npos) << plain;
 }
 
 // Names and the unit reach terminals and the editor: control characters in them (an escape
