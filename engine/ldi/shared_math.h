@@ -453,8 +453,16 @@ STRATA_HD void sortRayEvents(RayEvent* events, int n) {
 // outside [lo, hi] only update the winding; a solid crossing lo or hi is closed there with a
 // synthetic surfel facing along -axis / +axis (normalMinus / normalPlus). Returns the number of
 // surfels written to out (at most n + 1).
+// A ray whose hits leave the winding away from zero went through a hole of an open mesh (taken
+// with --allow-open or marked open; a closed mesh's rays always balance, by the hit test's tie
+// rule): what lies beyond its last hit is unknown, and taking it as inside ran a streak of solid
+// to the grid's end. Such a ray is left empty for this leaf (0 surfels); the two other axes still
+// sample the part there, and the contour's node signs follow their majority.
 STRATA_HD int normalizeLeafRay(const Surfel* in, int n, float lo, float hi, uint32_t leaf,
                                uint32_t normalMinus, uint32_t normalPlus, Surfel* out) {
+  int balance = 0;
+  for (int m = 0; m < n; ++m) balance += surfelEnters(in[m].tag) ? 1 : -1;
+  if (balance != 0) return 0;
   int written = 0;
   int winding = 0;
   bool inside = false;

@@ -235,10 +235,11 @@ TEST(PatternNodes, SceneFilesKeepTheCopiesAndTheVersion) {
     }
   }
   // A newer file than this build reads is refused by its version, not by its fields.
-  EXPECT_THROW(
-      parseScene(R"({"format": "strata-scene", "version": 5, "root": {"id": 1, "type": "sphere"}})",
-                 "new.strata.json", "."),
-      Error);
+  EXPECT_THROW(parseScene(R"({"format": "strata-scene", "version": )" +
+                              std::to_string(kSceneFormatVersion + 1) +
+                              R"(, "root": {"id": 1, "type": "sphere"}})",
+                          "new.strata.json", "."),
+               Error);
 }
 
 // Files of versions 1 and 2 (the bundled demo and scaffold) read unchanged by this build: saved
