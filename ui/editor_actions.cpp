@@ -439,7 +439,7 @@ void dropPaletteItem(EditorState& state, int item, NodeId target, PlaceMode mode
     clearSelection(state);
   if (item == kImportMeshItem) {
     state.importPlacement.reset();
-    state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
+    state.dialog.open(DialogPurpose::ImportMesh, importFolder(state));
     return;
   }
   const PlaceMode saved = state.placeMode;
@@ -1274,6 +1274,14 @@ std::string documentFolder(const EditorState& state) {
   const std::filesystem::path path =
       std::filesystem::absolute(std::filesystem::path(state.document.path()), error);
   return (error ? std::filesystem::path(state.document.path()) : path).parent_path().string() + "/";
+}
+
+std::string importFolder(const EditorState& state) {
+  std::error_code missing;
+  if (!state.lastImportFolder.empty() &&
+      std::filesystem::is_directory(state.lastImportFolder, missing))
+    return state.lastImportFolder + "/";
+  return dialogFolder(state);
 }
 
 std::string dialogFolder(const EditorState& state) {

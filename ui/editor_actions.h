@@ -137,6 +137,10 @@ std::string documentFolder(const EditorState& state);
 // home (never where the editor happened to be started), with a trailing '/'; "" where none is
 // known (the dialog then shows the working folder).
 std::string dialogFolder(const EditorState& state);
+// Where the import dialog opens: the folder the last mesh was chosen from while it exists
+// (meshes live apart from scenes: an artist walked back to them at every import), else
+// dialogFolder.
+std::string importFolder(const EditorState& state);
 // The file an export of the document is offered: the last export's of the same document, else
 // the document's name beside it with .stl ("part.stl" for an untitled one).
 std::string exportSuggestion(const EditorState& state);

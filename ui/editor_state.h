@@ -227,6 +227,7 @@ struct EditorState {
   std::weak_ptr<const SplatResource> resultBoundsOf;  // the splats resultBoundsJob measures
   int lastImportUnit = 0;                             // the import dialog's last choices
   int lastImportUpAxis = 0;
+  std::string lastImportFolder;  // where the last mesh was chosen from (importFolder)
 
   // Requests to the frame loop.
   bool requestViewAll = false;

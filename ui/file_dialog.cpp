@@ -390,8 +390,18 @@ void FileDialog::listFolder(const std::string& folder) {
   listError_.clear();
   missingFolder_.clear();
   std::error_code ec;
-  const fs::path dir = fs::absolute(folder.empty() ? "." : folder, ec).lexically_normal();
+  fs::path dir = fs::absolute(folder.empty() ? "." : folder, ec).lexically_normal();
+  // "/a/b/" is the folder "/a/b" (Up from it only dropped the slash: an artist pressed it twice).
+  if (!dir.has_filename() && dir != dir.root_path()) dir = dir.parent_path();
+  // The path field follows the folder shown, keeping a file name typed or suggested (it kept
+  // the first folder while the listing moved on, and Open took that).
+  const fs::path before(field_);
+  std::error_code typeError;
+  const std::string name = before.has_filename() && !fs::is_directory(before, typeError)
+                               ? before.filename().string()
+                               : std::string();
   folder_ = dir.string();
+  std::snprintf(field_, sizeof(field_), "%s", (dir / name).string().c_str());
   std::vector<std::string> extensions;
   if (isMeshDialog(purpose_)) extensions = meshExtensions(meshAccess(purpose_));
   fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec);

@@ -75,7 +75,7 @@ void drawMainMenu(EditorState& state) {
     ImGui::Separator();
     if (ImGui::MenuItem("Import mesh...")) {
       state.importPlacement.reset();
-      state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
+      state.dialog.open(DialogPurpose::ImportMesh, importFolder(state));
     }
     if (ImGui::MenuItem("Export...", "Ctrl+E"))
       state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
@@ -283,6 +283,7 @@ void handleDialogResult(EditorState& state) {
       state.exportEstimate.reset();
       break;
     case DialogPurpose::ImportMesh: {
+      state.lastImportFolder = std::filesystem::path(path).parent_path().string();
       askImportOptions(state, path, state.importPlacement);
       state.importPlacement.reset();
       break;

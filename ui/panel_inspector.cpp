@@ -53,9 +53,18 @@ void edited(EditorState& state, bool changed, const std::function<void()>& apply
 // Three drag fields (x, y, z) on one row; each is its own item, so activation is exact.
 // A component marked in `mixed` differs across the selection: it shows the primary node's value
 // with a "~" in front.
+// `apply` gets the new value, the component changed, and whether a number was typed into a
+// field the selection differs on: every selected part then takes that number (a drag, or a
+// number typed where all agree, moves each by as much; typing 5 into "~-9.65" shifted the parts
+// by 14.65 each: an artist's test).
+struct VecEdit {
+  int component = 0;
+  bool setsAll = false;
+};
 bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double speed,
-              const std::function<void(const glm::dvec3&)>& apply, const char* format,
-              const glm::bvec3& mixed = glm::bvec3(false), const char* topic = nullptr) {
+              const std::function<void(const glm::dvec3&, VecEdit)>& apply, const char* format,
+              const glm::bvec3& mixed = glm::bvec3(false), const char* topic = nullptr,
+              const char* mixedDrag = "moves every one by as much") {
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
@@ -108,11 +117,15 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
                                      nullptr, shown.c_str());
     changed = commitTypedValue(changed, &next[i], sceneUnitMetres(unit) > 0.0 ? unit : "");
+    const VecEdit edit{i, changed && mixed[i] && lastCommitWasTyped()};
     if (mixed[i] && ImGui::IsItemHovered())
-      ImGui::SetTooltip("differs across the selection; dragging shifts every one by as much");
+      ImGui::SetTooltip(
+          "differs across the selection: dragging %s, a number typed sets every "
+          "one to it",
+          mixedDrag);
     ImGui::PopStyleColor();
     edited(
-        state, changed, [&] { apply(next); }, topic ? topic : label);
+        state, changed, [&] { apply(next, edit); }, topic ? topic : label);
     if (changed) *value = next;
     any = any || changed;
     ImGui::PopID();
@@ -173,7 +186,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
       glm::dvec3 value = p.*param.vector;
       dragVec3(
           state, param.label, &value, speed,
-          [&](const glm::dvec3& v) {
+          [&](const glm::dvec3& v, VecEdit) {
             if (glm::any(glm::lessThan(v, glm::dvec3(minimum))))
               return refuseBelowMinimum(state, param.label, minimum);
             for (const NodePtr& n : nodes) {
@@ -347,27 +360,34 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
     };
     dragVec3(
         state, "move", &t.translate, speed,
-        [&](const glm::dvec3& v) {
+        [&](const glm::dvec3& v, VecEdit edit) {
           const glm::dvec3 delta = v - node->transform.translate;
           applyAll([&](Transform n) {
-            n.translate += delta;
+            if (edit.setsAll)
+              n.translate[edit.component] = v[edit.component];
+            else
+              n.translate += delta;
             return n;
           });
         },
         gLengthFormat.c_str(), mixedComponents(nodes, &Transform::translate));
     dragVec3(
         state, "rotate", &t.rotateDegrees, 0.5,
-        [&](const glm::dvec3& v) {
+        [&](const glm::dvec3& v, VecEdit edit) {
           const glm::dvec3 delta = v - node->transform.rotateDegrees;
           applyAll([&](Transform n) {
-            n.rotateDegrees += delta;
+            if (edit.setsAll)
+              n.rotateDegrees[edit.component] = v[edit.component];
+            else
+              n.rotateDegrees += delta;
             return n;
           });
         },
-        "%.2f\u00B0", mixedComponents(nodes, &Transform::rotateDegrees));
+        "%.2f\u00B0", mixedComponents(nodes, &Transform::rotateDegrees), nullptr,
+        "turns every one by as much");
     dragVec3(
         state, "scale", &t.scale, 0.005,
-        [&](const glm::dvec3& v) {
+        [&](const glm::dvec3& v, VecEdit edit) {
           for (int i = 0; i < 3; ++i)
             if (v[i] == 0.0 && node->transform.scale[i] != 0.0)
               throw Error(std::string("scale ") + "xyz"[i] +
@@ -381,11 +401,17 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
             for (int i = 0; i < 3; ++i)
               if (factor[i] != 1.0) factor = glm::dvec3(factor[i]);
           applyAll([&](Transform n) {
-            n.scale *= factor;
+            const int c = edit.component;
+            if (edit.setsAll && state.uniformScale && n.scale[c] != 0.0)
+              n.scale *= v[c] / n.scale[c];  // that axis to the number, the others in proportion
+            else if (edit.setsAll)
+              n.scale[c] = v[c];
+            else
+              n.scale *= factor;
             return n;
           });
         },
-        "%.4g", mixedComponents(nodes, &Transform::scale));
+        "%.4g", mixedComponents(nodes, &Transform::scale), nullptr, "scales every one by as much");
     if (ImGui::SmallButton(nodes.size() > 1 ? "reset all" : "reset")) {
       state.document.beginInteraction();
       guarded(state, [&] { applyAll([](const Transform&) { return Transform(); }); });
@@ -495,10 +521,14 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
     const glm::dvec3 before = value;
     dragVec3(
         state, label, &value, speed,
-        [&](const glm::dvec3& next) {
-          // Each node's own value moved by as much as the primary's.
-          setPatternField(state, nodes,
-                          [&](PatternParams& q) { q.*field = q.*field + (next - before); });
+        [&](const glm::dvec3& next, VecEdit edit) {
+          // Each node's own value moved by as much as the primary's, or set to a typed one.
+          setPatternField(state, nodes, [&](PatternParams& q) {
+            if (edit.setsAll)
+              (q.*field)[edit.component] = next[edit.component];
+            else
+              q.*field = q.*field + (next - before);
+          });
         },
         gLengthFormat.c_str(), mixedVec(field));
   };

@@ -504,7 +504,7 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   const std::string importLabel = std::string(kindGlyph(NodeKind::Mesh)) + " Import mesh...";
   if (ImGui::Button(importLabel.c_str(), ImVec2(-1, 0))) {
     state.importPlacement.reset();
-    state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
+    state.dialog.open(DialogPurpose::ImportMesh, importFolder(state));
   }
   if (ImGui::IsItemHovered()) {
     std::string formats;  // from the one table of formats

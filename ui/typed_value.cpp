@@ -152,8 +152,12 @@ void showDroppedLetters(ImGuiID id, const std::string& lengthUnit) {
   ImGui::EndTooltip();
 }
 
+// Whether the last commit that applied a value applied a typed one (lastCommitWasTyped).
+bool gLastCommitTyped = false;
+
 template <class T>
 bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
+  gLastCommitTyped = false;
   const ImGuiID id = ImGui::GetItemID();
   if (id != 0 && ImGui::TempInputIsActive(id)) {
     // Typing starts (it did not type on the last frame): no letters of an earlier typing count.
@@ -187,10 +191,15 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
   const std::optional<double> converted = convertTypedUnit(id, double(*value), lengthUnit);
   if (!converted) return false;
   if constexpr (std::is_floating_point_v<T>) *value = T(*converted);
+  gLastCommitTyped = true;
   return true;
 }
 
 }  // namespace
+
+bool lastCommitWasTyped() {
+  return gLastCommitTyped;
+}
 
 bool doubleClickOpensTyping(double before, double* beforePress) {
   static ImGuiID pressedId = 0;  // the slider last pressed (not by a double-click's second press)

@@ -21,6 +21,10 @@ namespace strata::ui {
 // keeps its value. Degrees typed into a field that is no length are taken as the number.
 bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit = "");
 bool commitTypedValue(bool changed, int* value);
+// Whether the last commitTypedValue call applied a number typed into the field (true) rather
+// than a drag's value or nothing (false): a field shared by several parts sets every one to a
+// typed number, where a drag moves each by as much. UI thread.
+bool lastCommitWasTyped();
 // For a length typed into an InputDouble field (announced by numberFieldNext), which applies
 // its number at every keystroke: call right after it. On the frame the field is left, a length
 // unit typed after the number converts `*value` into `lengthUnit` (the scene's unit: "1cm" in a

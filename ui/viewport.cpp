@@ -551,7 +551,7 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
     const Placement placement = placementAt(renderer, state, rect, drop_->mouse, pixelScale);
     if (drop_->item == kImportMeshItem) {
       state.importPlacement = placement;
-      state.dialog.open(DialogPurpose::ImportMesh, dialogFolder(state));
+      state.dialog.open(DialogPurpose::ImportMesh, importFolder(state));
     } else {
       const PlaceMode saved = state.placeMode;
       state.placeMode = drop_->mode;

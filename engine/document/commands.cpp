@@ -131,7 +131,8 @@ NodePtr makeOperationNode(NodeKind kind, NodeId id, std::vector<NodePtr> childre
   auto node = std::make_shared<Node>();
   node->id = id;
   node->kind = kind;
-  node->name = std::string(kindName(kind)) + " " + std::to_string(id);
+  // For people: "circular array 23", not the file's "circularArray 23".
+  node->name = std::string(kindLabel(kind)) + " " + std::to_string(id);
   node->amount = nodeKindInfo(kind).defaultAmount;
   node->children = std::move(children);
   return node;
@@ -513,14 +514,16 @@ NodePtr setOperationKind(const NodePtr& root, NodeId id, NodeKind kind) {
   if (node.kind == kind) return root;
   // A name Strata gave ("difference 4") follows the kind ("intersection 4"); a name the artist
   // chose stays.
-  const std::string oldDefault = std::string(kindName(node.kind)) + " " + std::to_string(id);
-  const bool defaultName = node.name == oldDefault;
+  // (Earlier builds named it by the file's word: "circularArray 4" is Strata's too.)
+  const std::string number = " " + std::to_string(id);
+  const bool defaultName =
+      node.name == kindLabel(node.kind) + number || node.name == kindName(node.kind) + number;
   return editNode(root, id, [&](Node& n) {
     n.kind = kind;
     // A modifier's amount: kept between modifiers, the kind's default when it becomes one.
     if (modifierOf(kind) != Modifier::None && modifierOf(node.kind) == Modifier::None)
       n.amount = nodeKindInfo(kind).defaultAmount;
-    if (defaultName) n.name = std::string(kindName(kind)) + " " + std::to_string(id);
+    if (defaultName) n.name = kindLabel(kind) + number;
   });
 }
 

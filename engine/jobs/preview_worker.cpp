@@ -157,7 +157,12 @@ void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress
   // Nor when the last full pass was quick: the full result follows at once, and a coarse one
   // first would only cost a frame (on a GPU the edit then reaches the screen a frame later).
   const bool quick = lastFullSeconds_ >= 0.0 && lastFullSeconds_ < quickPassSeconds_;
-  if (coarse < full && lastShown_ != request.scene && !quick) {
+  // Nor when the full result shown has the same parts (the preview's resolution raised, the
+  // grid's margin changed): its image stays until the new full one; a coarse pass showed the
+  // parts at 96 cells, porous, for the whole 13 s of a 768-cell pass (an artist's test).
+  const bool sameParts = request.scene && shownRoot_ && request.scene->root == shownRoot_ &&
+                         shownFullResolution_ >= coarse;
+  if (coarse < full && lastShown_ != request.scene && !quick && !sameParts) {
     // What the cache holds whole comes at once: no coarse image of an unchanged part.
     if (evaluatePass(evaluator, request, full, false, progress, true)) return;
     if (!evaluatePass(evaluator, request, coarse, true, progress)) return;
@@ -186,6 +191,8 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     result->error = jobErrorText(std::current_exception(), "; lower the resolution");
   }
   lastShown_ = request.scene;
+  shownRoot_ = request.scene ? request.scene->root : nullptr;
+  shownFullResolution_ = coarse || !result->error.empty() ? 0 : resolution;
   // What a pass that computes costs (one served from the cache says nothing of the next).
   const double passSeconds = result->stats.seconds + result->splatSeconds;
   const bool measured = result->error.empty() && !onlyIfCached;

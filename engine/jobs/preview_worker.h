@@ -13,7 +13,10 @@
 //     the full one, unless the last full pass took less than quickPassSeconds (then the full one
 //     comes at once). A calm request whose full result the cache holds whole (an edit that changed
 //     no part: a measurement, a name) skips the coarse pass, and where its root is the one shown
-//     its result carries the same splats (the UI keeps its image). A coarse pass passes modifiers
+//     its result carries the same splats (the UI keeps its image). Nor does a calm request
+//     whose parts are those of the full result shown (only the resolution or the grid changed):
+//     that image stays until the new full one, a coarse pass would show the same parts worse.
+//     A coarse pass passes modifiers
 //     under kCoarseModifierCells of its cells through (EvalOptions::skipModifiersUnderCells): it
 //     shows the parts whole, unrounded, rather than torn by a radius its cells cannot resolve, and
 //     comes sooner.
@@ -255,10 +258,15 @@ class PreviewWorker {
   std::shared_ptr<const PreviewResult> finished_;
   PreviewStatus status_;
   std::shared_ptr<const Scene> lastShown_;  // worker thread only
-  double lastFullSeconds_ = -1.0;           // worker thread only: the last full pass; -1 none yet
-  int lastFullResolution_ = 0;              // worker thread only: of that pass
-  double wholeSeconds_ = -1.0;  // worker thread only: the last pass that computed every node
-  int wholeResolution_ = 0;     // worker thread only: of that pass
+  // The root of the last result published, and its resolution where it was a full pass (0 for a
+  // coarse one or an error): a request with the same root (the resolution or the grid changed,
+  // no part) keeps that image until its own full result. Worker thread only.
+  NodePtr shownRoot_;
+  int shownFullResolution_ = 0;
+  double lastFullSeconds_ = -1.0;  // worker thread only: the last full pass; -1 none yet
+  int lastFullResolution_ = 0;     // worker thread only: of that pass
+  double wholeSeconds_ = -1.0;     // worker thread only: the last pass that computed every node
+  int wholeResolution_ = 0;        // worker thread only: of that pass
   // Worker thread only: the last grid of each resolution evaluated, which the next follows
   // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
   std::map<int, Grid> lastGrids_;

@@ -56,7 +56,7 @@ class TypedField : public ::testing::Test {
     if (!rowClicked &&
         commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value,
                          lengthUnit))
-      stored = value, writes.push_back(value);
+      stored = value, writes.push_back(value), typedWrites.push_back(lastCommitWasTyped());
     // A second field after it, which Tab moves to.
     double other = storedOther;
     if (commitTypedValue(ImGui::DragScalar("##w", ImGuiDataType_Double, &other, 1.0f), &other))
@@ -100,6 +100,7 @@ class TypedField : public ::testing::Test {
   ImVec2 sliderMin{};
   double stored = 7.0, storedOther = 1.0;
   std::vector<double> writes, otherWrites;
+  std::vector<bool> typedWrites;  // lastCommitWasTyped() at each of the first field's writes
 };
 
 TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
@@ -111,8 +112,24 @@ TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
   press(kEnter);
   ASSERT_EQ(writes.size(), 1u);
   EXPECT_EQ(stored, 25.0);
+  EXPECT_TRUE(typedWrites.back()) << "a typed number: a field shared by several parts sets all";
   frame();
   EXPECT_EQ(writes.size(), 1u);
+  // A drag with the mouse: not typed (each part moves by as much).
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(40, 30);
+  frame();
+  io.MouseDown[0] = true;
+  frame();
+  for (int k = 0; k < 4; ++k) {
+    io.MousePos.x += 10;
+    frame();
+  }
+  io.MouseDown[0] = false;
+  frame();
+  ASSERT_GT(writes.size(), 1u) << "the drag wrote";
+  EXPECT_FALSE(typedWrites.back());
+  EXPECT_FALSE(lastCommitWasTyped());
 }
 
 // An artist typed "9,5" and got 95: Dear ImGui's number fields drop the comma. Typed through

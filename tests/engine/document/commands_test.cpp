@@ -202,6 +202,14 @@ TEST(DocumentCommands, ADefaultNameFollowsTheKindAChosenOneStays) {
   EXPECT_EQ(changed->name, "intersection 4");
   NodePtr named = editNode(fresh, 4, [](Node& n) { n.name = "bracket"; });
   EXPECT_EQ(setOperationKind(named, 4, NodeKind::Union)->name, "bracket");
+  // Named for people ("circularArray 23" was the file's word), and the earlier builds' default
+  // names still count as Strata's.
+  EXPECT_EQ(makeOperationNode(NodeKind::CircularArray, 23, {})->name, "circular array 23");
+  NodePtr old = editNode(fresh, 4, [](Node& n) {
+    n.kind = NodeKind::CircularArray;
+    n.name = "circularArray 4";
+  });
+  EXPECT_EQ(setOperationKind(old, 4, NodeKind::Array)->name, "array 4");
 }
 
 TEST(DocumentCommands, ValidatesParametersAndTransforms) {

@@ -346,6 +346,36 @@ TEST(PreviewWorker, AnEditThatChangedNoPartKeepsTheSplatsShown) {
   EXPECT_NE(r[4]->splats, r[1]->splats);
 }
 
+// The preview's resolution raised (the same parts, a finer grid): the full result shown stays
+// until the finer one replaces it, with no coarse pass between them (an artist saw the scaffold
+// at 96 cells, porous, for the whole 13 s of a 768-cell pass). A part changed afterwards goes
+// coarse first again.
+TEST(PreviewWorker, AFinerResolutionOfTheSamePartsKeepsTheFullResultShown) {
+  ResultLog log;
+  // Nothing counts as quick: only the rule under test skips the coarse pass.
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 0.0);
+  log.attach(&worker);
+  auto scene = boxMinusSphere(64, 0);
+  worker.request(scene, 64, false, 1);
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  auto finer = std::make_shared<Scene>(*scene);
+  finer->settings.resolution = 128;  // the same root: no part changed
+  worker.request(finer, 128, false, 2);
+  ASSERT_TRUE(log.waitFor(3));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  worker.request(boxMinusSphere(128, 1), 128, false, 3);  // the sphere grew: a part changed
+  ASSERT_TRUE(log.waitFor(5));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 5u);
+  expectShows(r[0], 1, 32, true);
+  expectShows(r[1], 1, 64, false);
+  expectShows(r[2], 2, 128, false);  // no coarse result before it
+  expectShows(r[3], 3, 32, true);
+  expectShows(r[4], 3, 128, false);
+}
+
 // A cutter that sticks out of its part (a rod through a plate) is drawn whole as a ghost: it was
 // clipped at the result's grid, which covers the plate (an artist saw a stub). One far longer is
 // drawn up to the grid's longest side beyond it; one inside the grid comes from the
