@@ -1330,6 +1330,7 @@ void logExportEnd(EditorState& state) {
     std::snprintf(text, sizeof(text), ": written and checked, watertight, %zu triangles (%.1f s)",
                   s.check.triangles, s.seconds);
     logInfo(state, "exported " + s.path + text);
+    for (const std::string& w : s.warnings) logWarning(state, "export: " + w);
   } else if (s.succeeded) {
     logWarning(state, "exported " + s.path + ", but its check FAILED (see the Export window)");
   } else if (s.cancelled) {

@@ -225,7 +225,11 @@ struct EditorState {
   // waits on the splats' stream); a new one starts once the last is done, never joined running.
   std::unique_ptr<BackgroundJob<Bounds>> resultBoundsJob;
   std::weak_ptr<const SplatResource> resultBoundsOf;  // the splats resultBoundsJob measures
-  int lastImportUnit = 0;                             // the import dialog's last choices
+  // The export dialog's parts too small or thin for its cells (Evaluator::smallPartWarnings), for
+  // the document revision and resolution in exportSmallPartsFor.
+  std::vector<std::string> exportSmallParts;
+  std::pair<uint64_t, int> exportSmallPartsFor{~uint64_t(0), 0};
+  int lastImportUnit = 0;  // the import dialog's last choices
   int lastImportUpAxis = 0;
   std::string lastImportFolder;  // where the last mesh was chosen from (importFolder)
 

@@ -479,10 +479,17 @@ void countField(EditorState& state, const NodeList& nodes, const char* label, fl
                 int value, bool mixed, const std::function<void(PatternParams&, int)>& set) {
   ImGui::PushID(label);
   ImGui::SetNextItemWidth(width);
-  const bool changed =
-      commitTypedValue(ImGui::DragInt("##n", &value, 0.1f, 1, kMaxPatternCount,
-                                      mixed ? "~%d" : "%d", ImGuiSliderFlags_AlwaysClamp),
-                       &value);
+  // A drag stays within the range; a number typed outside it is set to the nearest end and said
+  // (0 became 1 and 200000 became 10000 without a word).
+  const bool changed = commitTypedValue(
+      ImGui::DragInt("##n", &value, 0.1f, 1, kMaxPatternCount, mixed ? "~%d" : "%d"), &value);
+  if (changed && (value < 1 || value > kMaxPatternCount)) {
+    const int typed = value;
+    value = std::clamp(value, 1, kMaxPatternCount);
+    logWarning(state, std::string(label) + " " + std::to_string(typed) + ": a pattern makes 1 to " +
+                          std::to_string(kMaxPatternCount) + " copies; set to " +
+                          std::to_string(value));
+  }
   edited(state, changed,
          [&] { setPatternField(state, nodes, [&](PatternParams& p) { set(p, value); }); });
   ImGui::PopID();

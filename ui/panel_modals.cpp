@@ -235,18 +235,24 @@ void exportWindow(EditorState& state) {
     if (!s.fileDifference.empty()) ImGui::TextWrapped("%s", s.fileDifference.c_str());
     ImGui::Text("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles, c.vertices,
                 c.components, c.genus);
+    // Parts the export's cells could not keep (the report said nothing of a sphere lost in
+    // it: an artist's test).
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+    for (const std::string& w : s.warnings) ImGui::TextWrapped("%s", w.c_str());
+    ImGui::PopStyleColor();
     const SimplifyReport& r = s.simplify;
+    const char* unit = unitSymbol(state.document.scene().settings.unit);
     if (r.refused)
       ImGui::TextWrapped("not simplified: %s", r.refusedWhy);
     else if (r.trianglesBefore > 0)
       ImGui::TextWrapped(
           "simplified from %zu triangles (%.1f%%); deviation from the unsimplified surface "
-          "at most %.3g (%.2f cells, measured)",
+          "at most %.3g %s (%.2f cells, measured)",
           r.trianglesBefore, 100.0 * double(r.trianglesAfter) / double(r.trianglesBefore),
-          r.measured.bound(), s.simplifyCells * r.measured.bound() / std::max(r.tolerance, 1e-300));
+          r.measured.bound(), unit,
+          s.simplifyCells * r.measured.bound() / std::max(r.tolerance, 1e-300));
     ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
                 c.nonManifoldEdges, c.misorientedEdges);
-    const char* unit = unitSymbol(state.document.scene().settings.unit);
     ImGui::Text("volume %.6g %s^3, area %.6g %s^2, %.2f s", c.volume, unit, c.area, unit,
                 s.seconds);
   } else if (s.cancelled) {
@@ -375,6 +381,23 @@ void exportOptionsDialog(EditorState& state) {
                         scene.settings.unit.c_str(), scene.settings.resolution);
   else
     ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s", noGrid.c_str());
+  // Parts too small or thin for the export's cells, said before it runs (the preview's panel
+  // said it at the preview's resolution, the export nothing: an artist's test). Worked out from
+  // the parts' bounds when the resolution or the document changes.
+  if (noGrid.empty()) {
+    const auto key = std::make_pair(state.document.revision(), resolution);
+    if (state.exportSmallPartsFor != key) {
+      state.exportSmallPartsFor = key;
+      state.exportSmallParts = Evaluator::smallPartWarnings(scene, resolution);
+    }
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+    const size_t shown = std::min<size_t>(state.exportSmallParts.size(), 3);
+    for (size_t i = 0; i < shown; ++i) ImGui::TextWrapped("%s", state.exportSmallParts[i].c_str());
+    if (state.exportSmallParts.size() > shown)
+      ImGui::TextWrapped("and %zu more parts too small or thin for these cells",
+                         state.exportSmallParts.size() - shown);
+    ImGui::PopStyleColor();
+  }
   ImGui::Checkbox("simplify", &state.exportSimplify);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(

@@ -231,15 +231,13 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
           state.previewCappedAt, scene.settings.resolution);
       ImGui::PopStyleColor();
     }
-    // What the evaluation said about parts too small or too thin for the cell size.
+    // What the evaluation said about parts too small or too thin for the cell size: counted
+    // here, said in full at the panel's end (in full here, it pushed the gizmo's mode and pivot
+    // out of the panel: an artist's test).
     if (state.preview && !state.preview->stats.warnings.empty()) {
-      const auto& warnings = state.preview->stats.warnings;
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.35f, 1.0f));
-      for (size_t i = 0; i < warnings.size() && i < 3; ++i)
-        ImGui::TextWrapped("%s", warnings[i].c_str());
-      if (warnings.size() > 3)
-        ImGui::TextWrapped("and %zu more (View > Diagnostics)", warnings.size() - 3);
-      ImGui::PopStyleColor();
+      const size_t n = state.preview->stats.warnings.size();
+      ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), "%zu %s (below)", n,
+                         n == 1 ? "warning" : "warnings");
     }
   } else {
     // Why no grid holds the scene (empty, or too large or small to measure), wrapped.
@@ -350,6 +348,16 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     ImGui::SetTooltip(
         "With several parts selected, what the gizmo turns and scales them about:\nthe centre "
         "of their box (world axes), or the origin of the part clicked last (its axes)");
+  if (noGrid.empty() && state.preview && !state.preview->stats.warnings.empty()) {
+    const auto& warnings = state.preview->stats.warnings;
+    ImGui::Separator();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.35f, 1.0f));
+    for (size_t i = 0; i < warnings.size() && i < 3; ++i)
+      ImGui::TextWrapped("%s", warnings[i].c_str());
+    if (warnings.size() > 3)
+      ImGui::TextWrapped("and %zu more (View > Diagnostics)", warnings.size() - 3);
+    ImGui::PopStyleColor();
+  }
   ImGui::End();
 }
 

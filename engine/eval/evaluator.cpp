@@ -180,6 +180,24 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
   return nodeLabel(node) + text;
 }
 
+// smallerThanCellWarning of every visible leaf under `node` (instances and pattern copies
+// included), each sentence once, into *out.
+void collectSmallParts(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
+                       bool asInstance, int depth, double h, std::vector<std::string>* out) {
+  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
+  const glm::dmat4 world = parentWorld * node->transform.matrix();
+  if (node->kind == NodeKind::Instance) {
+    collectSmallParts(findNode(root, node->instanceOf), root, world, true, depth + 1, h, out);
+  } else if (isOperation(node->kind)) {
+    for (const glm::dmat4& placement : placementsOf(*node))
+      for (const auto& c : node->children)
+        collectSmallParts(c, root, world * placement, false, depth + 1, h, out);
+  } else {
+    const std::string w = smallerThanCellWarning(*node, leafBounds(*node, world), h);
+    if (!w.empty() && std::find(out->begin(), out->end(), w) == out->end()) out->push_back(w);
+  }
+}
+
 // Bounds of everything visible, whatever the operations: the fallback grid of a scene whose
 // result is empty (so that the evaluation still runs and reports an empty result).
 void allLeafBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
@@ -401,6 +419,14 @@ std::string boundsCutWarning(const Scene& scene) {
          ": the result is cut flat there; widen the bounds or remove them";
 }
 }  // namespace
+
+std::vector<std::string> Evaluator::smallPartWarnings(const Scene& scene, int resolution) {
+  std::vector<std::string> out;
+  if (!scene.root) return out;
+  const Grid grid = gridFor(scene, resolution);
+  collectSmallParts(scene.root, scene.root, glm::dmat4(1.0), false, 0, grid.h, &out);
+  return out;
+}
 
 Grid Evaluator::gridFor(const Scene& scene, int resolution) {
   int n = resolution > 0 ? resolution : scene.settings.resolution;

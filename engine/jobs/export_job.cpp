@@ -136,6 +136,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     result.simplify = report.simplify;
     result.check = report.check;
     result.fileDifference = report.fileDifference;
+    result.warnings = report.contour.warnings;
   } catch (const Cancelled&) {
     result.cancelled = true;
   } catch (...) {
@@ -151,6 +152,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     s.check = result.check;
     s.simplify = result.simplify;
     s.fileDifference = result.fileDifference;
+    s.warnings = result.warnings;
     s.seconds = clock.seconds();
   });
 }

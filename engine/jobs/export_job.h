@@ -54,6 +54,9 @@ struct ExportStatus {
   int resolution = 0;
   double simplifyCells = 0.0;  // as asked (0: not simplified)
   SimplifyReport simplify;     // valid when succeeded and simplifyCells > 0
+  // What the evaluation said of the scene at the export's resolution (valid when succeeded):
+  // parts too small or too thin for its cells, a part shrunk away (ContourReport::warnings).
+  std::vector<std::string> warnings;
 };
 
 // Where a stage's own `fraction` falls on the job's one bar: each stage a fixed part, in the

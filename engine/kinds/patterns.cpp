@@ -25,6 +25,21 @@ bool fullTurn(double angle) {
 
 }  // namespace
 
+std::string patternChangeLabel(const PatternParams& before, const PatternParams& after) {
+  std::string label;
+  int changes = 0;
+  auto changed = [&](bool differs, const char* what) {
+    if (differs) label = what, ++changes;
+  };
+  changed(before.counts != after.counts || before.count != after.count, "copies' count");
+  changed(before.step != after.step, "copies' step");
+  changed(before.angle != after.angle, "copies' angle");
+  changed(before.axis != after.axis, "copies' axis");
+  changed(before.center != after.center, "copies' centre");
+  changed(before.keepOriginal != after.keepOriginal, "keep the original");
+  return changes == 1 ? label : "copies";
+}
+
 uint64_t patternCopies(Pattern pattern, const PatternParams& p) {
   switch (pattern) {
     case Pattern::Array:

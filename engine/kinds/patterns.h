@@ -50,6 +50,10 @@ struct PatternParams {
   bool operator!=(const PatternParams& o) const { return !(*this == o); }
 };
 
+// What changed from `before` to `after`, for people ("copies' count", "copies' step", "angle"):
+// an undo says which field it takes back. "copies" where several changed.
+std::string patternChangeLabel(const PatternParams& before, const PatternParams& after);
+
 // How many placements `pattern` makes (1 for Pattern::None); saturates at UINT64_MAX.
 uint64_t patternCopies(Pattern pattern, const PatternParams& params);
 

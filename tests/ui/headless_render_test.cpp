@@ -286,8 +286,11 @@ TEST(HeadlessRender, ImagesDrawnAShareAFrameStillTimeEachKind) {
     for (int i = 0; i < 2; ++i) {  // the view moved (a coarse image), then at rest (refined)
       renderer.setFrameShares(ViewportRenderer::kMinShare, ViewportRenderer::kMinShare);
       renderer.drawCached(frame, {}, {}, {}, 100.0);
-      if (i == 0) {
-        EXPECT_TRUE(renderer.showsCoarseImage()) << "view " << view;
+      // The first moved view is drawn a share at a time (nothing timed yet); later ones may be
+      // drawn whole where the times now say they fit the share (on a loaded machine now and
+      // then: a CI run saw the fourth drawn whole).
+      if (i == 0 && view == 0) {
+        EXPECT_TRUE(renderer.showsCoarseImage());
       }
       glFinish();  // the timer's result is there for the next frame
     }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/document/commands.h"
+#include "engine/eval/evaluator.h"
 #include "engine/util/error.h"
 #include "tests/support/scene_builder.h"
 
@@ -104,6 +105,23 @@ TEST(LeafPlacement, APartThinnerThanTwoCellsIsNamedWithTheResolutionItNeeds) {
   EXPECT_TRUE(
       test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, sheet}), 256))
           .warnings.empty());
+}
+
+// Before an export at its own resolution runs, the same sentences from the parts' bounds alone
+// (the export dialog says them): each once however many copies a pattern makes.
+TEST(LeafPlacement, SmallPartsAreNamedBeforeAnythingIsEvaluated) {
+  auto big = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  auto sheet = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  sheet->name = "sheet";
+  sheet->params.size = glm::dvec3(0.8, 0.8, 0.02);
+  auto copies = std::make_shared<Node>(*makeOperationNode(NodeKind::Array, 4, {sheet}));
+  copies->pattern.counts = glm::ivec3(1, 1, 5);
+  copies->pattern.step = glm::dvec3(0.0, 0.0, 0.1);
+  const Scene scene = test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, copies}), 32);
+  const std::vector<std::string> before = Evaluator::smallPartWarnings(scene, 32);
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_EQ(before[0], test::evaluateCpu(scene).warnings.at(0)) << "what the evaluation says";
+  EXPECT_TRUE(Evaluator::smallPartWarnings(scene, 256).empty());
 }
 
 }  // namespace

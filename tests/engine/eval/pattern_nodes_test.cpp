@@ -287,3 +287,29 @@ TEST(PatternNodes, ATiledExportIsWatertightWithOneComponentPerCopy) {
 
 }  // namespace
 }  // namespace strata::test
+
+namespace strata {
+namespace {
+
+// An undo of a pattern's edit says which field it takes back ("undone: copies" whichever it was:
+// an artist's test); several at once are the copies.
+TEST(PatternNodes, AnUndoSaysWhichFieldOfTheCopiesItTakesBack) {
+  const PatternParams a;
+  PatternParams b = a;
+  b.count = 6;
+  EXPECT_EQ(patternChangeLabel(a, b), "copies' count");
+  b.angle = 90.0;
+  EXPECT_EQ(patternChangeLabel(a, b), "copies");
+  PatternParams c = a;
+  c.step.x = 2.0;
+  EXPECT_EQ(patternChangeLabel(a, c), "copies' step");
+  Document doc;
+  const NodeId ring = doc.addNode(NodeKind::CircularArray);
+  PatternParams p = findNode(doc.root(), ring)->pattern;
+  p.angle = 180.0;
+  doc.setPattern(ring, p);
+  EXPECT_EQ(doc.undoLabel(), "copies' angle");
+}
+
+}  // namespace
+}  // namespace strata
