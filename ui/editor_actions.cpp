@@ -361,9 +361,11 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
 
 NodeId addPrimitive(EditorState& state, NodeKind kind) {
   NodeId id = 0;
-  // Centred on the top of what it is placed onto (the selection, else the whole scene), so that
-  // it shows: a part added at the origin inside another changed nothing to see. The first part
-  // of a scene stands on the ground (z = 0) at the origin, as a printed part does on the bed
+  // On the middle of the top of what it is placed onto (the selection, else the whole scene), so
+  // that it shows: a part added at the origin inside another changed nothing to see. One that
+  // adds material rests on that top, as a part dropped there does (centred on it, it sat half
+  // sunk: an artist's test); a cutter or an intersector is centred on it. The first part of a
+  // scene stands on the ground (z = 0) at the origin, as a printed part does on the bed
   // (centred on the origin, half of it was below the ground grid). One undo step.
   const NodeId target = primarySelection(state);
   const Bounds onto = target ? selectionBounds(state.document.root(), {target})
@@ -374,10 +376,12 @@ NodeId addPrimitive(EditorState& state, NodeKind kind) {
     NodePtr node = newPrimitive(state, kind, &note);
     id = placeNew(state, node, state.placeMode, note);
     Placement at;
-    if (!onto.empty())
+    if (!onto.empty()) {
       at.point = glm::dvec3(onto.center().x, onto.center().y, onto.max.z);
-    else
+      at.normal = glm::dvec3(0.0, 0.0, 1.0);  // the top's: a part that adds rests on it
+    } else {
       at.onGround = true;
+    }
     placeNode(state, id, at);
     selectNode(state, id);
   });

@@ -42,4 +42,9 @@ Transform importTransform(double scale, int upAxis) {
   return t;
 }
 
+double emptySceneSpan(const std::string& sceneUnit) {
+  const double metres = sceneUnitMetres(sceneUnit);
+  return metres > 0.0 ? std::max(1.0, 0.1 / metres) : 10.0;
+}
+
 }  // namespace strata::ui

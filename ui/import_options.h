@@ -19,6 +19,12 @@ const std::vector<ImportUnit>& importUnits();
 // Metres per unit of a scene unit name ("millimetre", "mm", "inch", ...); 0 when unknown.
 double sceneUnitMetres(const std::string& sceneUnit);
 
+// What the view of an empty scene spans, in its unit: about a tenth of a metre (a hand-sized
+// part: 100 mm, 10 cm, 3.9 in), at least one unit (1 m, 1 ft); 10 where the unit is unknown.
+// New parts are a quarter of it (a millimetre scene's first box was 2 mm: the view showed 8 of
+// its units whatever they were).
+double emptySceneSpan(const std::string& sceneUnit);
+
 // The factor from file units (importUnits()[unit]) to scene units. 1 for "scene units"; when
 // the scene's unit is unknown, 1 with *why saying so.
 double importScale(int unit, const std::string& sceneUnit, std::string* why);

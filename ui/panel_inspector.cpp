@@ -363,7 +363,9 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
         [&](const glm::dvec3& v, VecEdit edit) {
           const glm::dvec3 delta = v - node->transform.translate;
           applyAll([&](Transform n) {
-            if (edit.setsAll)
+            // A value equal to the one shown takes the new one as it is: 6.2 moved by the drag's
+            // difference to 6.3 came out 6.300000000000001 (and was saved so).
+            if (edit.setsAll || n.translate == node->transform.translate)
               n.translate[edit.component] = v[edit.component];
             else
               n.translate += delta;
@@ -376,7 +378,7 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
         [&](const glm::dvec3& v, VecEdit edit) {
           const glm::dvec3 delta = v - node->transform.rotateDegrees;
           applyAll([&](Transform n) {
-            if (edit.setsAll)
+            if (edit.setsAll || n.rotateDegrees == node->transform.rotateDegrees)
               n.rotateDegrees[edit.component] = v[edit.component];
             else
               n.rotateDegrees += delta;
@@ -531,7 +533,7 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
         [&](const glm::dvec3& next, VecEdit edit) {
           // Each node's own value moved by as much as the primary's, or set to a typed one.
           setPatternField(state, nodes, [&](PatternParams& q) {
-            if (edit.setsAll)
+            if (edit.setsAll || q.*field == before)
               (q.*field)[edit.component] = next[edit.component];
             else
               q.*field = q.*field + (next - before);

@@ -14,6 +14,7 @@
 #include "engine/ldi/grid.h"
 #include "engine/util/error.h"
 #include "ui/editor_actions.h"
+#include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
 #include "ui/typed_value.h"
@@ -331,7 +332,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
   state.snap.step = std::max(state.snap.step, 1e-9);  // while a 0 is being typed
   ImGui::SameLine();
   if (ImGui::Checkbox("= grid", &state.snapFollowsGrid) && state.snapFollowsGrid)
-    state.snap.step = groundGridStep(sceneBounds(state.document.root()));
+    state.snap.step = groundGridStep(sceneBounds(state.document.root()),
+                                     emptySceneSpan(state.document.scene().settings.unit));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The move step is the ground grid's spacing, which follows the scene's size");
   const char* modes[] = {"move (W)", "rotate (E)", "scale (R)"};

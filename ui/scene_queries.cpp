@@ -151,8 +151,8 @@ NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection,
   return id;
 }
 
-double groundGridStep(const Bounds& scene) {
-  const glm::dvec3 size = scene.empty() ? glm::dvec3(10.0) : scene.size();
+double groundGridStep(const Bounds& scene, double emptySpan) {
+  const glm::dvec3 size = scene.empty() ? glm::dvec3(emptySpan) : scene.size();
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);
 }
 

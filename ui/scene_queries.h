@@ -62,9 +62,9 @@ NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection,
 double niceLength(double approximate);
 
 // The spacing of the ground grid drawn under a scene with these bounds (an eighth of its
-// largest extent, rounded by niceLength; 1 for an empty scene's 10-unit grid). The move snap
-// follows it.
-double groundGridStep(const Bounds& scene);
+// largest extent, rounded by niceLength; an empty scene's: an eighth of `emptySpan`, what its
+// view spans: emptySceneSpan in import_options.h). The move snap follows it.
+double groundGridStep(const Bounds& scene, double emptySpan = 10.0);
 
 // "mm", "cm", "m", "in" for a scene's unit name; the name itself otherwise.
 const char* unitSymbol(const std::string& unit);

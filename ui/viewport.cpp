@@ -11,6 +11,7 @@
 
 #include "engine/document/commands.h"
 #include "ui/editor_actions.h"
+#include "ui/import_options.h"
 #include "ui/measure_tool.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
@@ -33,8 +34,8 @@ void appendBox(const Bounds& b, const glm::vec4& color, std::vector<LineVertex>*
 
 // The ground grid in the z = 0 plane around the scene, fading out towards its rim, with the x
 // (red) and y (green) axes. Drawn as the renderer's backdrop: never across a part's face.
-void appendGrid(const Bounds& scene, std::vector<LineVertex>* lines) {
-  const double step = groundGridStep(scene);
+void appendGrid(const Bounds& scene, double emptySpan, std::vector<LineVertex>* lines) {
+  const double step = groundGridStep(scene, emptySpan);
   glm::dvec3 centre = scene.empty() ? glm::dvec3(0.0) : scene.center();
   double cx = std::round(centre.x / step) * step, cy = std::round(centre.y / step) * step;
   const int n = 14;
@@ -187,8 +188,9 @@ bool Viewport::placeGizmo(const EditorState& state) {
 void Viewport::viewAll(const EditorState& state) {
   Bounds b = sceneBounds(state.document.root());
   if (b.empty()) {
+    // The view spans emptySceneSpan units (the camera's field shows about 0.8 of its distance).
     camera.target = glm::dvec3(0.0);
-    camera.distance = 10.0;
+    camera.distance = 1.25 * emptySceneSpan(state.document.scene().settings.unit);
     pendingFrame_.reset();
     return;
   }
@@ -269,7 +271,9 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   if (!io.WantCaptureKeyboard && !io.WantTextInput) handleKeys(state);
   // What new parts and the snap are sized from.
   state.viewExtent = camera.unitsPerPixel(rect.height) * rect.height;
-  if (state.snapFollowsGrid) state.snap.step = groundGridStep(sceneBounds(state.document.root()));
+  if (state.snapFollowsGrid)
+    state.snap.step = groundGridStep(sceneBounds(state.document.root()),
+                                     emptySceneSpan(state.document.scene().settings.unit));
 
   // An ongoing gizmo drag keeps the mouse wherever it goes.
   if (gizmo_.dragging()) {
@@ -626,7 +630,9 @@ bool Viewport::prepare(ViewportRenderer& renderer, const EditorState& state, con
   const ScreenMapping view = mapping(state, rect);
 
   std::vector<LineVertex> grid, lines, overlay, triangles;
-  if (state.showGrid) appendGrid(sceneBounds(state.document.root()), &grid);
+  if (state.showGrid)
+    appendGrid(sceneBounds(state.document.root()),
+               emptySceneSpan(state.document.scene().settings.unit), &grid);
   renderer.setBackdrop(std::move(grid));
   if (frame.sectionOn) appendSectionOutline(state, frame, &lines);
   if (!state.selection.empty()) {

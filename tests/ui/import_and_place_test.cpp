@@ -54,6 +54,24 @@ TEST(ImportOptions, ScaleConvertsFileUnitsToSceneUnits) {
   EXPECT_NE(why.find("furlong"), std::string::npos) << why;
 }
 
+// An empty scene's view spans about a tenth of a metre in its unit (at least one unit), so that
+// a millimetre scene's first box is 25 mm, not 2 (its view showed 8 units whatever they were).
+TEST(ImportOptions, AnEmptySceneIsSeenAtAHandsSpanInItsUnit) {
+  EXPECT_DOUBLE_EQ(emptySceneSpan("millimetre"), 100.0);
+  EXPECT_DOUBLE_EQ(emptySceneSpan("mm"), 100.0);
+  EXPECT_NEAR(emptySceneSpan("cm"), 10.0, 1e-9);
+  EXPECT_NEAR(emptySceneSpan("inch"), 100.0 / 25.4, 1e-9);
+  EXPECT_DOUBLE_EQ(emptySceneSpan("metre"), 1.0);
+  EXPECT_DOUBLE_EQ(emptySceneSpan("furlong"), 10.0);
+  EditorState state;
+  ASSERT_EQ(sceneUnitMetres(state.document.scene().settings.unit), 0.001);
+  Viewport view;
+  view.viewAll(state);
+  const double shown = view.camera.unitsPerPixel(600.0) * 600.0;
+  EXPECT_GT(shown, 60.0);
+  EXPECT_LT(shown, 140.0);
+}
+
 TEST(ImportOptions, YUpTurnsPlusYOntoPlusZ) {
   const glm::dmat4 m = importTransform(2.0, 1).matrix();
   const glm::dvec3 y = glm::dvec3(m * glm::dvec4(0, 1, 0, 0));
@@ -1127,7 +1145,12 @@ TEST(ScaleAwareDefaults, NewPartsAreSizedFromTheViewOrTheSceneAndSaySo) {
   EXPECT_NEAR(b.size().x, niceLength(25.0) * defaultSize, 1e-6);
   EXPECT_NE(state.log.back().text.find("a quarter of the scene"), std::string::npos)
       << state.log.back().text;
-  EXPECT_EQ(groundGridStep(sceneBounds(state.document.root())), 10.0);  // 100 / 8, rounded
+  // It adds: it rests on the box's top, over its middle (centred there, it sat half sunk).
+  EXPECT_NEAR(b.min.z, a.max.z, 1e-9);
+  EXPECT_NEAR(b.center().x, a.center().x, 1e-9);
+  const Bounds scene = sceneBounds(state.document.root());
+  EXPECT_NEAR(scene.size().z, 120.0, 1e-6);
+  EXPECT_EQ(groundGridStep(scene), niceLength(120.0 / 8.0));  // its largest extent / 8, rounded
 }
 
 }  // namespace
