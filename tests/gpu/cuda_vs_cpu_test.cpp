@@ -121,11 +121,7 @@ TEST_F(CudaVsCpu, RealMeshesMatch) {
 // An open mesh (holes every 400th triangle): the rays through its holes are left empty on both
 // backends alike, and its export is the same mesh.
 TEST_F(CudaVsCpu, AnOpenMeshMatches) {
-  auto closed = dataMesh("bunny.obj");
-  auto open = std::make_shared<TriangleMesh>(*closed);
-  open->triangles.clear();
-  for (size_t t = 0; t < closed->triangles.size(); ++t)
-    if (t % 400 != 399) open->triangles.push_back(closed->triangles[t]);
+  auto open = withHoles(*dataMesh("bunny.obj"), 400);
   for (int resolution : {96, 384}) {
     expectIdentical(makeScene(meshLeaf(open), resolution), cuda_, "open bunny");
     expectSameExport(makeScene(meshLeaf(open), resolution), cuda_, 64);

@@ -106,4 +106,12 @@ std::shared_ptr<const TriangleMesh> dataMesh(const std::string& file) {
   return std::make_shared<TriangleMesh>(readMeshFile(testDataDir() + "/" + file));
 }
 
+std::shared_ptr<const TriangleMesh> withHoles(const TriangleMesh& mesh, size_t every) {
+  auto open = std::make_shared<TriangleMesh>(mesh);
+  open->triangles.clear();
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    if (t % every != every - 1) open->triangles.push_back(mesh.triangles[t]);
+  return open;
+}
+
 }  // namespace strata::test

@@ -36,5 +36,8 @@ std::string assetsDir();
 
 // Reads a mesh from tests/data (checked and prepared).
 std::shared_ptr<const TriangleMesh> dataMesh(const std::string& file);
+// `mesh` with every `every`-th triangle left out (its last of each run): an open mesh with
+// holes, as a scan taken with --allow-open or marked open.
+std::shared_ptr<const TriangleMesh> withHoles(const TriangleMesh& mesh, size_t every);
 
 }  // namespace strata::test

@@ -38,6 +38,15 @@ class ResultLog {
     std::lock_guard<std::mutex> lock(mutex_);
     return results_;
   }
+  // Requests `scene` calmly from the attached worker and waits until `total` results have come
+  // and the worker is idle.
+  ::testing::AssertionResult serve(std::shared_ptr<const Scene> scene, int resolution, uint64_t tag,
+                                   size_t total) {
+    worker_->request(std::move(scene), resolution, false, tag);
+    if (!waitFor(total)) return ::testing::AssertionFailure() << "fewer than " << total;
+    if (!worker_->waitUntilIdle(kJobTimeout)) return ::testing::AssertionFailure() << "busy";
+    return ::testing::AssertionSuccess();
+  }
 
  private:
   void onResult() {
@@ -322,19 +331,13 @@ TEST(PreviewWorker, AnEditThatChangedNoPartKeepsTheSplatsShown) {
   PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 0.0);
   log.attach(&worker);
   auto scene = boxMinusSphere(64, 0);
-  worker.request(scene, 64, false, 1);
-  ASSERT_TRUE(log.waitFor(2));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ASSERT_TRUE(log.serve(scene, 64, 1, 2));
   auto renamed = std::make_shared<Scene>(*scene);
   auto root = std::make_shared<Node>(*renamed->root);
   root->name = "renamed";
   renamed->root = root;
-  worker.request(renamed, 64, false, 2);
-  ASSERT_TRUE(log.waitFor(3));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
-  worker.request(boxMinusSphere(64, 1), 64, false, 3);  // the sphere grew: a part changed
-  ASSERT_TRUE(log.waitFor(5));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ASSERT_TRUE(log.serve(renamed, 64, 2, 3));
+  ASSERT_TRUE(log.serve(boxMinusSphere(64, 1), 64, 3, 5));  // the sphere grew: a part changed
   std::vector<ResultPtr> r = log.results();
   ASSERT_EQ(r.size(), 5u);
   expectShows(r[1], 1, 64, false);
@@ -356,17 +359,11 @@ TEST(PreviewWorker, AFinerResolutionOfTheSamePartsKeepsTheFullResultShown) {
   PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 0.0);
   log.attach(&worker);
   auto scene = boxMinusSphere(64, 0);
-  worker.request(scene, 64, false, 1);
-  ASSERT_TRUE(log.waitFor(2));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ASSERT_TRUE(log.serve(scene, 64, 1, 2));
   auto finer = std::make_shared<Scene>(*scene);
   finer->settings.resolution = 128;  // the same root: no part changed
-  worker.request(finer, 128, false, 2);
-  ASSERT_TRUE(log.waitFor(3));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
-  worker.request(boxMinusSphere(128, 1), 128, false, 3);  // the sphere grew: a part changed
-  ASSERT_TRUE(log.waitFor(5));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  ASSERT_TRUE(log.serve(finer, 128, 2, 3));
+  ASSERT_TRUE(log.serve(boxMinusSphere(128, 1), 128, 3, 5));  // the sphere grew: a part changed
   std::vector<ResultPtr> r = log.results();
   ASSERT_EQ(r.size(), 5u);
   expectShows(r[0], 1, 32, true);
