@@ -379,6 +379,16 @@ size_t Editor::uploadChunkBytes() const {
       std::clamp(uploadBytesPerMs_ * kUploadMsPerFrame, double(1 << 20), double(1 << 28)));
 }
 
+namespace {
+// The full result `next` shows the parts of the full result `shown` at another resolution (the
+// preview's resolution changed, nothing else): the image shown may stay until next's is drawn.
+bool sameRefinedParts(const PreviewResult* shown, const PreviewResult& next) {
+  return shown && !shown->coarse && !next.coarse && shown->ok() && next.ok() && shown->scene &&
+         next.scene && shown->scene->root == next.scene->root &&
+         shown->resolution != next.resolution;
+}
+}  // namespace
+
 void Editor::stageMore() {
   if (!staging_) return;
   EditorState& s = *state_;
@@ -392,6 +402,7 @@ void Editor::stageMore() {
   const size_t bytes = (stagedSplats_ - before) * sizeof(Splat);
   if (ms > 0.5 && bytes >= (size_t(1) << 20)) uploadBytesPerMs_ = double(bytes) / ms;
   if (stagedSplats_ < splats.count()) return;
+  if (sameRefinedParts(s.preview.get(), *staging_)) gl_->renderer->holdShownImage();
   gl_->renderer->commitStagedSplats(splats.count(), splatShapeOf(staging_->stats.grid, splats));
   s.previewError = staging_->error;
   s.uploadMs = stagingMs_;
@@ -427,6 +438,7 @@ void Editor::applyResult(std::shared_ptr<const PreviewResult> result) {
     return;
   }
   s.previewError = result->error;
+  if (sameRefinedParts(s.preview.get(), *result)) gl_->renderer->holdShownImage();
   Stopwatch upload;
   transferSplats(*result);
   s.uploadMs = upload.seconds() * 1000.0;

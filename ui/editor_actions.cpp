@@ -63,6 +63,12 @@ void replaceDocument(EditorState& state, Document document) {
   state.section.at.reset();  // placed again in the middle of the new document's parts
   state.section.startFraction = 0.5;
   state.snapFollowsGrid = true;  // a move step typed was the other document's
+  // The export dialog's resolution and simplification were chosen for the other document: this
+  // one's first export starts from its own resolution, unsimplified (a quick Export after Ctrl+O
+  // wrote a coarser, simplified mesh than the scene asks for: an artist's test). The tolerance
+  // in cells, a preference, stays.
+  state.exportResolution = 0;
+  state.exportSimplify = false;
 }
 
 // The size new parts get: a quarter of the scene's largest extent, or in an empty scene a

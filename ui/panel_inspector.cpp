@@ -17,6 +17,7 @@
 
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
+#include "engine/io/document_files.h"
 #include "engine/kinds/primitives.h"
 #include "engine/util/error.h"
 #include "ui/editor_actions.h"
@@ -691,6 +692,26 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
           "open mesh, taken as it is: its inside is guessed where rays pass its "
           "holes, so what it makes may leak");
       ImGui::PopStyleColor();
+    }
+    // Kept without its mesh: why, and for an open one the choice the import dialog offers.
+    if (meshMissing(*node) && !node->meshProblem.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.5f, 0.45f, 1.0f));
+      ImGui::TextWrapped("not in the result: %s", node->meshProblem.c_str());
+      ImGui::PopStyleColor();
+      if (node->meshRefusedAsOpen && nodes.size() == 1 &&
+          ImGui::Button("take it as an open mesh")) {
+        const NodeId id = node->id;
+        guarded(state, [&] {
+          acceptOpenMesh(state.document, id);
+          logInfo(state, nodeLabel(*node) +
+                             " taken as an open mesh: its inside is guessed where rays pass "
+                             "its holes (the scene marks it open)");
+        });
+      }
+      if (node->meshRefusedAsOpen && ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Read the file again and take it although it is not closed, as the "
+            "import dialog's \"import it anyway\" does");
     }
   }
   if (node->kind == NodeKind::Instance) {

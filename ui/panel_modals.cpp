@@ -394,7 +394,7 @@ void exportOptionsDialog(EditorState& state) {
     const size_t shown = std::min<size_t>(state.exportSmallParts.size(), 3);
     for (size_t i = 0; i < shown; ++i) ImGui::TextWrapped("%s", state.exportSmallParts[i].c_str());
     if (state.exportSmallParts.size() > shown)
-      ImGui::TextWrapped("and %zu more parts too small or thin for these cells",
+      ImGui::TextWrapped("and %zu more (parts too small or thin for these cells, or missing)",
                          state.exportSmallParts.size() - shown);
     ImGui::PopStyleColor();
   }

@@ -338,11 +338,17 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
       const char* inside = removes == ownCut ? ""
                            : ownCut          ? "\ninside a cutter: its material stays in the result"
                                              : "\ninside a cutter: its material is taken away";
+      // Why, where loading said (an open mesh read as "could not be read": an artist's test).
       const std::string missingNote =
-          meshMissing(*node) ? "\nits file could not be read: \"" + node->meshPath +
-                                   "\"\nnothing of it is evaluated; put the file back and open "
-                                   "the scene again, or delete the node"
-                             : "";
+          !meshMissing(*node) ? ""
+          : node->meshRefusedAsOpen
+              ? "\nnot taken: " + node->meshProblem +
+                    "\nnothing of it is evaluated; the inspector can take "
+                    "it as an open mesh"
+              : "\nits file could not be read: " +
+                    (node->meshProblem.empty() ? "\"" + node->meshPath + "\"" : node->meshProblem) +
+                    "\nnothing of it is evaluated; put the file back and "
+                    "open the scene again, or delete the node";
       // What it does to what: "bunny adds to 'mirror 10'" (a bare "bunny adds" said to what not).
       std::vector<const Node*> path;
       std::string within;
@@ -355,10 +361,15 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
                  : role == ChildRole::Intersect ? " the rest of " + parentName
                                                 : " of " + parentName;
       }
-      ImGui::SetTooltip("%s %s%s%s%s%s", node->name.empty() ? "(unnamed)" : node->name.c_str(),
-                        role == ChildRole::Base ? "is the base" : rolePhrase(role), within.c_str(),
-                        role == ChildRole::Base ? ": the cutters beside it cut it" : "", inside,
-                        missingNote.c_str());
+      // Wrapped: a reader's error runs long (it ran off the screen).
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+      ImGui::Text("%s %s%s%s%s%s", node->name.empty() ? "(unnamed)" : node->name.c_str(),
+                  role == ChildRole::Base ? "is the base" : rolePhrase(role), within.c_str(),
+                  role == ChildRole::Base ? ": the cutters beside it cut it" : "", inside,
+                  missingNote.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
     }
     contextMenu(state, node);
   }

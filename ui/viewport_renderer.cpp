@@ -1067,7 +1067,18 @@ void ViewportRenderer::drawCached(const ViewportFrame& f, const std::vector<Line
     // levels where the view's level costs more than kFirstImageMs (firstImageLevel).
     const int firstLevel = viewMoved ? buildLevel_ : firstImageLevel(local);
     const size_t first = levelEnd(firstLevel);
-    if (first <= allowed) {
+    // The same parts at another resolution (holdShownImage), at rest, too many splats for one
+    // frame: the image shown stays while the new one is built.
+    const bool hold = holdShownImage_ && !viewMoved && shown_ && (!refining_ || refineOverShown_) &&
+                      shown_->width() == f.width && shown_->height() == f.height &&
+                      levelEnd(buildLevel_) > allowed;
+    holdShownImage_ = false;
+    if (hold) {
+      refining_ = true;
+      refineOverShown_ = true;
+      drewSplatsLastFrame_ = 0;
+      show = shown_.get();
+    } else if (first <= allowed) {
       // The full image at once, or a first image at a coarser level at full resolution (discs
       // as wide as their rays are apart) refined to the view's level over the next frames.
       ensureTarget(&shown_, f.width, f.height);

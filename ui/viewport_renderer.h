@@ -172,6 +172,12 @@ class ViewportRenderer {
   // overlayTriangles) holds; the scissor test is off on return.
   void repaintWindow(const ViewportFrame& frame, const std::vector<LineVertex>& overlay,
                      const std::vector<LineVertex>& overlayTriangles, const PixelRect& clip);
+  // The splats about to be given (uploadSplats, setSplatCount, commitStagedSplats) show the same
+  // parts as those shown, at another resolution: where their image cannot be drawn whole at once
+  // from the view shown at rest, the complete image shown stays until the new one is (a first
+  // or coarse image of the new splats showed the parts worse for seconds: an artist raised the
+  // preview's resolution). Taken by the next new content drawCached draws.
+  void holdShownImage() { holdShownImage_ = true; }
   // The full image is still being drawn: the frame loop must keep frames coming.
   bool refining() const { return refining_; }
   // The view shows the coarse image (half resolution, every k-th splat) while it refines.
@@ -443,6 +449,7 @@ class ViewportRenderer {
   uint64_t buildingPlainKey_ = 0;  // the splats and view (no lines) of the image being built
   bool refining_ = false;          // building_ is being drawn for shownKey_
   bool refineOverShown_ = false;   // meanwhile shown_ holds a first image (else coarse_ is shown)
+  bool holdShownImage_ = false;    // holdShownImage
   size_t buildDone_ = 0;           // splats drawn into building_ so far
   // Splats a frame: of the coarse image (every k-th, reduced resolution) and at full resolution
   // (whole images and the refining shares). Safe starts for a software GL driver; each grows

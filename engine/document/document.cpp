@@ -169,6 +169,20 @@ NodeId Document::duplicate(NodeId id) {
   return copy;
 }
 
+void Document::setMesh(NodeId id, std::shared_ptr<const TriangleMesh> mesh, const std::string& hash,
+                       bool open) {
+  NodePtr node = findNode(root(), id);
+  if (!node || node->kind != NodeKind::Mesh)
+    throw Error("there is no mesh node with id " + std::to_string(id));
+  apply(open ? "take as an open mesh" : "read the mesh again", editNode(root(), id, [&](Node& n) {
+          n.mesh = std::move(mesh);
+          n.meshHash = hash;
+          n.meshOpen = open;
+          n.meshProblem.clear();
+          n.meshRefusedAsOpen = false;
+        }));
+}
+
 void Document::rename(NodeId id, const std::string& name) {
   NodePtr node = findNode(root(), id);
   if (node && node->name == name) return;  // no change, no undo step

@@ -84,6 +84,10 @@ class Document {
   // A pattern's copies (Node::pattern); checked as the kind requires, and refused when the
   // scene would exceed its leaf limit (engine/document/expansion.h).
   void setPattern(NodeId id, const PatternParams& pattern);
+  // A mesh leaf's content read again (engine/io's acceptOpenMesh): its mesh, the file's content
+  // hash and whether it is taken open; its problem cleared. One undo step.
+  void setMesh(NodeId id, std::shared_ptr<const TriangleMesh> mesh, const std::string& hash,
+               bool open);
   void setVisible(NodeId id, bool visible);
   // The preview's resolution: saved with the document, so an undo step (kResolutionStep) of its
   // own, changes in a row one step; the other steps' undo and redo keep the resolution set last,

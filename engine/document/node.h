@@ -56,6 +56,11 @@ struct Node {
   // Accepted although it is not a closed oriented surface (the artist chose it on import; the
   // command line's --allow-open for every mesh): its inside is guessed where rays pass its holes.
   bool meshOpen = false;
+  // A mesh leaf kept without its mesh (meshMissing): why, as loading found it, and whether it
+  // was refused only for being open (it can be taken as open: acceptOpenMesh in
+  // engine/io/document_files.h). Not saved.
+  std::string meshProblem;
+  bool meshRefusedAsOpen = false;
 
   NodeId instanceOf = 0;  // Instance leaves: the id of the referenced node
 

@@ -180,8 +180,14 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
   return nodeLabel(node) + text;
 }
 
-// smallerThanCellWarning of every visible leaf under `node` (instances and pattern copies
-// included), each sentence once, into *out.
+// What is said of a mesh node kept without its file (meshMissing).
+std::string missingMeshWarning(const Node& node) {
+  return "mesh node '" + node.name + "' has no mesh (its file \"" + node.meshPath +
+         "\" could not be read): nothing of it is evaluated";
+}
+
+// smallerThanCellWarning (or missingMeshWarning) of every visible leaf under `node` (instances
+// and pattern copies included), each sentence once, into *out.
 void collectSmallParts(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
                        bool asInstance, int depth, double h, std::vector<std::string>* out) {
   if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
@@ -193,7 +199,9 @@ void collectSmallParts(const NodePtr& node, const NodePtr& root, const glm::dmat
       for (const auto& c : node->children)
         collectSmallParts(c, root, world * placement, false, depth + 1, h, out);
   } else {
-    const std::string w = smallerThanCellWarning(*node, leafBounds(*node, world), h);
+    const std::string w = meshMissing(*node)
+                              ? missingMeshWarning(*node)
+                              : smallerThanCellWarning(*node, leafBounds(*node, world), h);
     if (!w.empty() && std::find(out->begin(), out->end(), w) == out->end()) out->push_back(w);
   }
 }
@@ -539,10 +547,7 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
     if (mesh->triangles.empty()) {
       // A mesh node kept without its file (meshMissing: MissingMeshes::Keep): nothing, on any
       // backend, and said.
-      cache_[v.key] =
-          CacheEntry{backend_->empty(ctx.grid), generation_,
-                     "mesh node '" + node->name + "' has no mesh (its file \"" + node->meshPath +
-                         "\" could not be read): nothing of it is evaluated"};
+      cache_[v.key] = CacheEntry{backend_->empty(ctx.grid), generation_, missingMeshWarning(*node)};
       hit = cache_.find(v.key);
     } else {
       Bounds bounds;

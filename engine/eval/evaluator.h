@@ -133,8 +133,9 @@ class Evaluator {
   // The grid an evaluation at `resolution` (0 = the scene's) would use.
   static Grid gridFor(const Scene& scene, int resolution);
   // What an evaluation at `resolution` would say of visible parts too small or too thin for its
-  // cells (the warnings it gives them: "... is only 1.1 cells thick ..."), each once, from the
-  // parts' bounds alone, nothing evaluated: said before an export at its own resolution runs.
+  // cells (the warnings it gives them: "... is only 1.1 cells thick ...") and of mesh nodes kept
+  // without their file, each once, from the parts' bounds alone, nothing evaluated: said before
+  // an export at its own resolution runs.
   // Throws what gridFor throws.
   static std::vector<std::string> smallPartWarnings(const Scene& scene, int resolution);
   // The grid of an interactive preview at `resolution` that follows `previous` (the last one

@@ -65,6 +65,17 @@ void saveDocumentAs(Document& document, const std::string& path) {
   document.setFileStamp(fileStampOf(path));
 }
 
+void acceptOpenMesh(Document& document, NodeId id) {
+  const NodePtr node = findNode(document.root(), id);
+  if (!node || node->kind != NodeKind::Mesh)
+    throw Error("there is no mesh node with id " + std::to_string(id));
+  MeshReadOptions options;
+  options.allowOpen = true;
+  MeshReadReport report;
+  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(node->meshPath, options, &report));
+  document.setMesh(id, std::move(mesh), hashFile(node->meshPath), !report.openProblem.empty());
+}
+
 NodeId importMeshFile(Document& document, const std::string& file, NodeId target, PlaceMode mode,
                       const Transform& transform, std::string* sentence, bool acceptOpen) {
   MeshReadOptions options;

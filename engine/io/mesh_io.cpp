@@ -295,10 +295,11 @@ TriangleMesh readMeshBytes(const std::string& name, const std::string& bytes,
                               "misoriented edges (non-orientable)");
     }
     if (!options.allowOpen) {
-      throw Error(name + ": " + problem +
-                  "; sampling it would leak. Repair the mesh (close its holes, e.g. in "
-                  "MeshLab), or take it anyway: \"import it anyway\" in the editor's import "
-                  "dialog, --allow-open on the command line (strata eval, boolean, export)");
+      throw OpenMeshRefused(
+          name + ": " + problem +
+          "; sampling it would leak. Repair the mesh (close its holes, e.g. in "
+          "MeshLab), or take it anyway: \"import it anyway\" in the editor's import "
+          "dialog, --allow-open on the command line (strata eval, boolean, export)");
     }
     meshio::addWarning(rep, name,
                        problem +

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "engine/geometry/mesh.h"
+#include "engine/util/error.h"
 #include "engine/util/progress.h"
 
 namespace strata {
@@ -30,6 +31,13 @@ struct MeshReadOptions {
   // Checked between reading the file, parsing it and preparing the mesh (throws Cancelled):
   // a dialog's read of a large file given up with the dialog. Not owned; may be null.
   const Progress* progress = nullptr;
+};
+
+// A mesh that is not a closed oriented surface, refused (MeshReadOptions::allowOpen unset): it
+// may be taken anyway as an open mesh (the scene's "open" mark, --allow-open).
+class OpenMeshRefused : public Error {
+ public:
+  explicit OpenMeshRefused(const std::string& message) : Error(message) {}
 };
 
 struct MeshReadReport {

@@ -825,6 +825,7 @@ class SceneReader {
       std::shared_ptr<const TriangleMesh> mesh;
       std::string hash;
       std::string error;  // why it could not be read (MissingMeshes::Keep)
+      bool open = false;  // refused only for being open
     };
     // By resolved path and whether the node accepts it open: each file is read once either way.
     std::map<std::pair<std::string, bool>, Loaded> cache;
@@ -851,6 +852,7 @@ class SceneReader {
           loaded.mesh = std::make_shared<const TriangleMesh>();
           loaded.hash.clear();
           loaded.error = error.what();
+          loaded.open = dynamic_cast<const OpenMeshRefused*>(&error) != nullptr;
         }
         found = cache.emplace(std::make_pair(resolved, node.meshOpen), std::move(loaded)).first;
       }
@@ -858,9 +860,15 @@ class SceneReader {
       std::string label = "mesh node " + std::to_string(node.id) +
                           (node.name.empty() ? "" : " \"" + node.name + "\"");
       if (!found->second.error.empty()) {
-        warn(at + "/path", label + " is kept without its mesh (" + found->second.error +
-                               "): nothing of it is evaluated, and its path and hash are saved as "
-                               "they were; put the file back, or replace or delete the node");
+        node.meshProblem = found->second.error;
+        node.meshRefusedAsOpen = found->second.open;
+        warn(at + "/path",
+             label + " is kept without its mesh (" + found->second.error +
+                 "): nothing of it is evaluated, and its path and hash are saved as "
+                 "they were; " +
+                 (found->second.open ? "take it as an open mesh (the editor's inspector, or "
+                                       "\"open\": true here), repair the file, or delete the node"
+                                     : "put the file back, or replace or delete the node"));
         continue;  // the recorded hash stays: it still names the content meant
       }
       if (node.meshHash.empty())

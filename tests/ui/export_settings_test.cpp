@@ -69,6 +69,21 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
   std::filesystem::remove_all(folder);
 }
 
+// The export dialog's choices were made for the document they exported: a new or opened one
+// starts from its own resolution, unsimplified (after Ctrl+O a quick Export wrote a coarser,
+// simplified mesh than the scene asked for: an artist's test); the tolerance, a preference,
+// stays.
+TEST(ExportSettings, AnotherDocumentStartsFromItsOwnResolution) {
+  EditorState state;
+  state.exportResolution = 128;
+  state.exportSimplify = true;
+  state.exportSimplifyCells = 0.5f;
+  newDocument(state);
+  EXPECT_EQ(state.exportResolution, 0) << "the dialog takes the scene's";
+  EXPECT_FALSE(state.exportSimplify);
+  EXPECT_FLOAT_EQ(state.exportSimplifyCells, 0.5f);
+}
+
 // An artist's Ctrl+Q at "evaluate 10%" closed the editor and the export with it, without a word:
 // quitting while an export runs asks first; once it has ended, quitting goes on as before (here
 // to the unsaved-changes question, the document being new).

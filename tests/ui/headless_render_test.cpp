@@ -39,10 +39,10 @@ Rgb pixel(const SceneRender& render, int width, int x, int y) {
   return {p[0], p[1], p[2]};
 }
 
-// A unit sphere of 128 cells evaluated on the CPU, its splats uploaded to `renderer`; returns
-// how many.
-size_t uploadSphere(ViewportRenderer& renderer) {
-  Scene scene = test::makeScene(test::sphere(1.0), 128);
+// A unit sphere of `resolution` cells evaluated on the CPU, its splats uploaded to `renderer`;
+// returns how many.
+size_t uploadSphere(ViewportRenderer& renderer, int resolution = 128) {
+  Scene scene = test::makeScene(test::sphere(1.0), resolution);
   EvalResult result = test::evaluateCpu(scene);
   CpuBackend backend;
   Progress progress;
@@ -631,6 +631,58 @@ TEST(HeadlessRender, EachGhostIsDrawnWithItsOwnLatticesSplats) {
   // The coarse ghost whole, as at its size, where the fine size leaves it in scattered dots.
   EXPECT_EQ(own.right, coarsest.right);
   EXPECT_LT(finest.right, own.right / 2) << finest.right << " " << own.right;
+}
+
+}  // namespace
+}  // namespace strata::ui
+
+namespace strata::ui {
+namespace {
+
+// The same parts at a finer resolution (the preview's resolution raised) with too many splats
+// for a frame: the complete image shown stays, pixel for pixel, while the new one is drawn, and
+// is replaced once that is complete. Without the hold, a first or coarse image of the new
+// splats shows them worse meanwhile (an artist saw it for seconds).
+TEST(HeadlessRender, AFinerSamplingOfTheSamePartsKeepsTheImageShownUntilItsOwnIsDrawn) {
+  std::string why;
+  auto gl = headlessOrSkipReason(&why);
+  if (!gl) GTEST_SKIP() << why;
+  ViewportRenderer renderer;
+  renderer.trustTimers(false);
+  uploadSphere(renderer, 64);
+  const ViewportFrame frame = sphereFrame();
+  RenderTarget window(frame.width, frame.height);
+  auto drawFrame = [&] {
+    window.bind();
+    renderer.drawCached(frame, {}, {}, {}, 100.0);
+    glFinish();
+    return window.read();
+  };
+  renderer.setFrameShares(size_t(1) << 30, size_t(1) << 30);
+  const std::vector<uint8_t> before = drawFrame();
+  ASSERT_FALSE(renderer.refining());
+  for (const bool hold : {true, false}) {
+    renderer.setFrameShares(ViewportRenderer::kMinShare, ViewportRenderer::kMinShare);
+    if (hold) renderer.holdShownImage();
+    const size_t finer = uploadSphere(renderer, hold ? 256 : 192);
+    ASSERT_GT(finer, 3 * ViewportRenderer::kMinShare);
+    const std::vector<uint8_t> first = drawFrame();
+    EXPECT_TRUE(renderer.refining());
+    if (hold) {
+      EXPECT_FALSE(renderer.showsCoarseImage());
+      EXPECT_TRUE(first == before) << "the image shown stays";
+    } else {
+      EXPECT_FALSE(first == before) << "a first or coarse image of the new splats";
+    }
+    for (int i = 0; i < 1000 && renderer.refining(); ++i) drawFrame();
+    EXPECT_FALSE(renderer.refining()) << "the new image is drawn and shown";
+    if (hold) {
+      // Back to the coarser sampling for the run without the hold, its image complete.
+      renderer.setFrameShares(size_t(1) << 30, size_t(1) << 30);
+      uploadSphere(renderer, 64);
+      EXPECT_TRUE(drawFrame() == before);
+    }
+  }
 }
 
 }  // namespace

@@ -317,6 +317,32 @@ TEST(Document, MeshImportAndSaveAsElsewhereKeepsTheMeshFound) {
   EXPECT_FALSE(findNode(doc.root(), closed)->meshOpen);
   saveDocument(doc);
   EXPECT_TRUE(findNode(openDocument(dir + "/other/copy.strata.json").root(), open)->meshOpen);
+  // The mark taken out of the file by hand: the node is kept without its mesh, says why (it was
+  // shown as a file that could not be read), and can be taken as open again, one undo step.
+  {
+    std::ifstream in(dir + "/other/copy.strata.json");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t mark = text.find("\"open\": true,");
+    ASSERT_NE(mark, std::string::npos) << text;
+    text.erase(mark, std::string("\"open\": true,").size());
+    std::ofstream(dir + "/other/unmarked.strata.json") << text;
+  }
+  Document unmarked = openDocument(dir + "/other/unmarked.strata.json");
+  NodePtr kept = findNode(unmarked.root(), open);
+  ASSERT_TRUE(kept && meshMissing(*kept));
+  EXPECT_TRUE(kept->meshRefusedAsOpen);
+  EXPECT_NE(kept->meshProblem.find("open (boundary) edges"), std::string::npos)
+      << kept->meshProblem;
+  acceptOpenMesh(unmarked, open);
+  NodePtr taken = findNode(unmarked.root(), open);
+  EXPECT_TRUE(taken->meshOpen);
+  EXPECT_FALSE(meshMissing(*taken));
+  EXPECT_EQ(unmarked.undoLabel(), "take as an open mesh");
+  ASSERT_TRUE(unmarked.undo());
+  EXPECT_TRUE(meshMissing(*findNode(unmarked.root(), open)));
+  // A file that cannot be read at all is not taken.
+  EXPECT_FALSE(findNode(openDocument(dir + "/other/unmarked.strata.json").root(), closed)
+                   ->meshRefusedAsOpen);
 }
 
 }  // namespace

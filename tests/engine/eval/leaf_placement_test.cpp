@@ -122,6 +122,15 @@ TEST(LeafPlacement, SmallPartsAreNamedBeforeAnythingIsEvaluated) {
   ASSERT_EQ(before.size(), 1u);
   EXPECT_EQ(before[0], test::evaluateCpu(scene).warnings.at(0)) << "what the evaluation says";
   EXPECT_TRUE(Evaluator::smallPartWarnings(scene, 256).empty());
+  // A mesh node kept without its file (meshMissing) is said too: it will not be in the file.
+  auto lost = std::make_shared<Node>(
+      *makeMeshNode(5, "scan", std::make_shared<TriangleMesh>(), "/nowhere/scan.stl", ""));
+  const Scene withLost =
+      test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, copies, lost}), 256);
+  const std::vector<std::string> said = Evaluator::smallPartWarnings(withLost, 256);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_NE(said[0].find("'scan' has no mesh"), std::string::npos) << said[0];
+  EXPECT_EQ(said[0], test::evaluateCpu(withLost).warnings.at(0));
 }
 
 }  // namespace
