@@ -5,7 +5,9 @@
 # normalizeLeafRay, both backends). Results in $OUT/r: gpu_tests.txt (with AnOpenMeshMatches),
 # exports.txt (the bundled scenes and a bunny with holes, marked open in its scene, exported by
 # both backends and compared byte for byte), open.txt (the open bunny's check on each backend).
+# Copies strata and strata_gpu_gl_tests (when carried) to /tmp/devbin for run_session37_editor.sh.
 source tests/gpu/devrt_start.sh
+mkdir -p /tmp/devbin && cp $B/strata $B/strata_gpu_gl_tests /tmp/devbin/ 2>/dev/null
 nvidia-smi -L > $R/host.txt 2>&1; nproc >> $R/host.txt
 timeout 300 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
 tail -3 $R/gpu_tests.txt
