@@ -69,6 +69,9 @@ void replaceDocument(EditorState& state, Document document) {
   // in cells, a preference, stays.
   state.exportResolution = 0;
   state.exportSimplify = false;
+  // The palette's mode was chosen for the other document's parts: a new part adds again (after
+  // Ctrl+O it was still "cut": an artist's re-test).
+  state.placeMode = PlaceMode::Add;
 }
 
 // The size new parts get: a quarter of the scene's largest extent, or in an empty scene a
@@ -602,6 +605,11 @@ void deleteSelection(EditorState& state) {
     ids.push_back(id);
   }
   if (ids.empty()) return;
+  // Said in the status bar (it kept the message before, as if Delete had done nothing).
+  const NodePtr first = findNode(state.document.root(), ids[0]);
+  const std::string what =
+      ids.size() == 1 && first ? displayName(*first) : std::to_string(ids.size()) + " parts";
+  const uint64_t before = state.document.revision();
   if (ids.size() == 1) {
     guarded(state, [&] { state.document.remove(ids[0]); });
   } else {
@@ -611,6 +619,8 @@ void deleteSelection(EditorState& state) {
       if (findNode(state.document.root(), id)) guarded(state, [&] { state.document.remove(id); });
     state.document.endInteraction();
   }
+  if (state.document.revision() != before)
+    logInfo(state, "deleted " + what + " (Ctrl+Z brings it back)");
   pruneSelection(state);
 }
 

@@ -197,7 +197,16 @@ void Document::setTransform(NodeId id, const Transform& given) {
   transform.rotateDegrees += glm::dvec3(0.0);
   NodePtr node = findNode(root(), id);
   if (node && node->transform == transform) return;
-  apply("transform", editNode(root(), id, [&](Node& n) { n.transform = transform; }));
+  // What an undo takes back, named ("undone: transform" whichever it was: an artist's test).
+  std::string label = "transform";
+  if (node) {
+    const Transform& t = node->transform;
+    const bool moved = t.translate != transform.translate;
+    const bool turned = t.rotateDegrees != transform.rotateDegrees;
+    const bool scaled = t.scale != transform.scale;
+    if (moved + turned + scaled == 1) label = moved ? "position" : turned ? "rotation" : "scale";
+  }
+  apply(label, editNode(root(), id, [&](Node& n) { n.transform = transform; }));
 }
 
 void Document::setColor(NodeId id, const glm::vec3& color) {
@@ -215,7 +224,17 @@ void Document::setParams(NodeId id, const PrimitiveParams& params) {
     throw Error(std::string("a ") + kindName(node->kind) + " node has no primitive parameters");
   validateParams(node->kind, params);
   if (node->params == params) return;
-  apply("parameters", editNode(root(), id, [&](Node& n) { n.params = params; }));
+  // The parameter changed, named ("size", "top radius"); "parameters" where several did.
+  std::string label = "parameters";
+  int changed = 0;
+  if (const PrimitiveInfo* info = primitiveInfo(node->kind))
+    for (const PrimitiveParam& p : info->params)
+      if ((p.scalar && node->params.*p.scalar != params.*p.scalar) ||
+          (p.vector && node->params.*p.vector != params.*p.vector))
+        label = p.label, ++changed;
+  if (node->params.segments != params.segments) label = "segments", ++changed;
+  if (changed != 1) label = "parameters";
+  apply(label, editNode(root(), id, [&](Node& n) { n.params = params; }));
 }
 
 void Document::setAmount(NodeId id, double amount) {

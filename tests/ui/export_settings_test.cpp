@@ -72,13 +72,15 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
 // The export dialog's choices were made for the document they exported: a new or opened one
 // starts from its own resolution, unsimplified (after Ctrl+O a quick Export wrote a coarser,
 // simplified mesh than the scene asked for: an artist's test); the tolerance, a preference,
-// stays.
+// stays. The palette's mode goes back to adding too.
 TEST(ExportSettings, AnotherDocumentStartsFromItsOwnResolution) {
   EditorState state;
   state.exportResolution = 128;
   state.exportSimplify = true;
   state.exportSimplifyCells = 0.5f;
+  state.placeMode = PlaceMode::Cut;
   newDocument(state);
+  EXPECT_EQ(state.placeMode, PlaceMode::Add) << "the palette adds again";
   EXPECT_EQ(state.exportResolution, 0) << "the dialog takes the scene's";
   EXPECT_FALSE(state.exportSimplify);
   EXPECT_FLOAT_EQ(state.exportSimplifyCells, 0.5f);

@@ -673,6 +673,8 @@ TEST(Roles, DeletingAnEmptyBaseSaysWhyItStays) {
   const NodeId difference = where.parent->id;
   state.selection = {plate};
   deleteSelection(state);
+  EXPECT_NE(state.log.back().text.find("deleted "), std::string::npos)
+      << "said: " << state.log.back().text;
   const NodeId emptyBase = findNode(state.document.root(), difference)->children[0]->id;
   ASSERT_TRUE(findNode(state.document.root(), emptyBase)->children.empty());
   const NodePtr before = state.document.root();

@@ -347,3 +347,37 @@ TEST(Document, MeshImportAndSaveAsElsewhereKeepsTheMeshFound) {
 
 }  // namespace
 }  // namespace strata
+
+namespace strata {
+namespace {
+
+// An undo names what it takes back: the position, rotation or scale, the parameter (it said
+// "transform" and "parameters" whichever it was: an artist's test); several at once keep the
+// general word.
+TEST(Document, AnUndoNamesTheFieldItTakesBack) {
+  Document doc;
+  const NodeId box = doc.addNode(NodeKind::Box);
+  Transform t = findNode(doc.root(), box)->transform;
+  t.translate.x = 5.0;
+  doc.setTransform(box, t);
+  EXPECT_EQ(doc.undoLabel(), "position");
+  t.scale = glm::dvec3(2.0);
+  doc.setTransform(box, t);
+  EXPECT_EQ(doc.undoLabel(), "scale");
+  t.rotateDegrees.z = 30.0;
+  t.translate.y = 1.0;
+  doc.setTransform(box, t);
+  EXPECT_EQ(doc.undoLabel(), "transform");
+  const NodeId cone = doc.addNode(NodeKind::Cone);
+  PrimitiveParams p = findNode(doc.root(), cone)->params;
+  p.topRadius = 0.2;
+  doc.setParams(cone, p);
+  EXPECT_EQ(doc.undoLabel(), "top radius");
+  p.height = 3.0;
+  p.radius = 0.7;
+  doc.setParams(cone, p);
+  EXPECT_EQ(doc.undoLabel(), "parameters");
+}
+
+}  // namespace
+}  // namespace strata
