@@ -1247,10 +1247,16 @@ bool recoverDocument(EditorState& state) {
   if (recovered) {
     forgetRecovery(offer);
   } else {
+    // The reader's error and where the file went, in one line (the status bar showed the move
+    // and "+1 earlier error"; the reason was only in Diagnostics: an artist's re-test).
+    const std::string why = state.log.empty() ? std::string() : state.log.back().text;
     const std::string kept = discardRecovery(offer, state.recoveryDir);
-    if (!kept.empty())
-      logWarning(state, "the unsaved work could not be read back; the file is kept as " + kept +
-                            " (not offered again: mend it and File > Open it)");
+    if (!kept.empty()) {
+      state.log.back().dismissed = true;  // said again below, with where the file went
+      logError(state, "the unsaved work could not be read back (" + why +
+                          "); the file is kept as " + kept +
+                          ", not offered again: mend it and File > Open it");
+    }
   }
   nextRecoveryOffer(state);
   // The others are left for a later start (or another editor): recovering one of them here would

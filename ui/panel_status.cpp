@@ -182,8 +182,17 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     if (ImGui::Button(direction < 0 ? "-##coarser" : "+##finer", ImVec2(button, button)))
       setResolution(state, next);
     ImGui::EndDisabled();
-    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-      ImGui::SetTooltip(direction < 0 ? "Coarser: %d cells" : "Finer: %d cells", next);
+    // At the end of the range the button is off and says so (it offered "Finer: 1024 cells" at
+    // 1024: an artist's re-test).
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+      if (next == scene.settings.resolution)
+        ImGui::SetTooltip(direction < 0 ? "%d cells: the coarsest step"
+                                        : "%d cells: the finest step (double-click the field to "
+                                          "type more)",
+                          next);
+      else
+        ImGui::SetTooltip(direction < 0 ? "Coarser: %d cells" : "Finer: %d cells", next);
+    }
   }
   // The grid of the preview shown where it is this resolution's full pass (the preview keeps its
   // lattice while parts move: Evaluator::previewGridFor), so that the panel and the status bar

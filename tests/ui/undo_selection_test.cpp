@@ -180,6 +180,8 @@ TEST(UndoSelection, ADamagedRecoveryFileIsKeptAsideAndNotOfferedAgain) {
   EXPECT_FALSE(state.offerRecovery);
   EXPECT_TRUE(state.document.root()->children.empty()) << "the document is left as it was";
   EXPECT_NE(state.log.back().text.find("/discarded/"), std::string::npos) << state.log.back().text;
+  EXPECT_NE(state.log.back().text.find("line 1"), std::string::npos)
+      << "the reader's reason in the same line: " << state.log.back().text;
   EXPECT_FALSE(std::filesystem::exists(dir + "/900003-0.strata.json"));
   bool kept = false;
   for (const auto& e : std::filesystem::directory_iterator(dir + "/discarded"))
