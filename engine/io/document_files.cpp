@@ -65,28 +65,40 @@ void saveDocumentAs(Document& document, const std::string& path) {
   document.setFileStamp(fileStampOf(path));
 }
 
+namespace {
+// A mesh file as a document's leaf holds it: read and checked (open ones too with `acceptOpen`,
+// then `open` says whether it is), with the file's content hash.
+struct LeafMesh {
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::string hash;
+  bool open = false;
+};
+LeafMesh readLeafMesh(const std::string& file, bool acceptOpen) {
+  MeshReadOptions options;
+  options.allowOpen = acceptOpen;
+  MeshReadReport report;
+  LeafMesh read;
+  read.mesh = std::make_shared<const TriangleMesh>(readMeshFile(file, options, &report));
+  read.hash = hashFile(file);
+  read.open = !report.openProblem.empty();
+  return read;
+}
+}  // namespace
+
 void acceptOpenMesh(Document& document, NodeId id) {
   const NodePtr node = findNode(document.root(), id);
   if (!node || node->kind != NodeKind::Mesh)
     throw Error("there is no mesh node with id " + std::to_string(id));
-  MeshReadOptions options;
-  options.allowOpen = true;
-  MeshReadReport report;
-  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(node->meshPath, options, &report));
-  document.setMesh(id, std::move(mesh), hashFile(node->meshPath), !report.openProblem.empty());
+  LeafMesh read = readLeafMesh(node->meshPath, true);
+  document.setMesh(id, std::move(read.mesh), read.hash, read.open);
 }
 
 NodeId importMeshFile(Document& document, const std::string& file, NodeId target, PlaceMode mode,
                       const Transform& transform, std::string* sentence, bool acceptOpen) {
-  MeshReadOptions options;
-  options.allowOpen = acceptOpen;
-  MeshReadReport report;
-  auto mesh = std::make_shared<const TriangleMesh>(readMeshFile(file, options, &report));
-  const std::string hash = hashFile(file);
+  LeafMesh read = readLeafMesh(file, acceptOpen);
   const std::string stored = fs::absolute(file).lexically_normal().generic_string();
-  auto node =
-      std::make_shared<Node>(*makeMeshNode(1, fs::path(file).stem().string(), std::move(mesh),
-                                           stored, hash, !report.openProblem.empty()));
+  auto node = std::make_shared<Node>(*makeMeshNode(
+      1, fs::path(file).stem().string(), std::move(read.mesh), stored, read.hash, read.open));
   node->transform = transform;
   return document.place(node, target, mode, sentence);
 }

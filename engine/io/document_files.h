@@ -38,13 +38,13 @@ void saveDocumentAs(Document& document, const std::string& path);
 // scale, up axis); *sentence says what it does. With `acceptOpen` a mesh that is not a closed
 // oriented surface is taken too, the leaf marked open (Node::meshOpen). One undo step. Returns
 // the new leaf's id. Throws strata::Error.
+NodeId importMeshFile(Document& document, const std::string& file, NodeId target = 0,
+                      PlaceMode mode = PlaceMode::Add, const Transform& transform = Transform{},
+                      std::string* sentence = nullptr, bool acceptOpen = false);
+
 // A mesh leaf kept without its mesh because it is open (Node::meshRefusedAsOpen): its file read
 // again and taken as an open mesh (Node::meshOpen, saved as "open": true). One undo step.
 // Throws strata::Error (naming the file) where it cannot be read even so.
 void acceptOpenMesh(Document& document, NodeId id);
-
-NodeId importMeshFile(Document& document, const std::string& file, NodeId target = 0,
-                      PlaceMode mode = PlaceMode::Add, const Transform& transform = Transform{},
-                      std::string* sentence = nullptr, bool acceptOpen = false);
 
 }  // namespace strata
