@@ -444,6 +444,7 @@ int runEdit(const std::vector<std::string>& argv) {
       if (!userConfigDir().empty()) {
         options.layoutPath = userConfigDir() + "/layout.txt";
         options.exportSettingsPath = userConfigDir() + "/export.txt";
+        options.importSettingsPath = userConfigDir() + "/import.txt";
       }
       options.recoveryDir = defaultRecoveryDir();
       options.legacyRecoveryPath = defaultRecoveryPath();  // the one file of earlier versions

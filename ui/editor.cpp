@@ -22,8 +22,8 @@
 #include "engine/io/user_files.h"
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
+#include "ui/dialog_settings.h"
 #include "ui/editor_actions.h"
-#include "ui/export_settings.h"
 #include "ui/gl_window.h"
 #include "ui/input_queue.h"
 #include "ui/panel_renderer.h"
@@ -230,6 +230,13 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
     s.exportResolution = kept.resolution;
     s.exportSimplify = kept.simplify;
     s.exportSimplifyCells = kept.simplifyCells;
+  }
+  s.importSettingsPath = options_.importSettingsPath;
+  if (!s.importSettingsPath.empty()) {
+    const ImportSettings kept = readImportSettings(s.importSettingsPath, {});
+    s.lastImportFolder = kept.folder;
+    s.lastImportUnit = kept.unit;
+    s.lastImportUpAxis = kept.upAxis;
   }
   if (!s.recentFilesPath.empty()) s.recentFiles = readRecentFiles(s.recentFilesPath);
   s.offerRecovery = !s.recoveryOffers.empty();

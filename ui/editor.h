@@ -47,6 +47,7 @@ struct EditorOptions {
   std::string recoveryDir;
   std::string legacyRecoveryPath;
   std::string exportSettingsPath;  // the export dialog's choices between runs; "" = not kept
+  std::string importSettingsPath;  // the import dialog's folder, unit, up axis; "" = not kept
   // A change is written for recovery once it has rested autosaveRestSeconds (a crash then loses
   // seconds of work, not minutes; a burst of edits is written once), and at least every
   // autosaveSeconds while edits keep coming. Written on a thread of its own.

@@ -22,7 +22,7 @@
 #include "engine/kinds/primitives.h"
 #include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
-#include "ui/export_settings.h"
+#include "ui/dialog_settings.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
@@ -1308,6 +1308,16 @@ std::string importFolder(const EditorState& state) {
       std::filesystem::is_directory(state.lastImportFolder, missing))
     return state.lastImportFolder + "/";
   return dialogFolder(state);
+}
+
+void rememberImportChoices(EditorState& state) {
+  if (state.importSettingsPath.empty()) return;
+  try {
+    writeImportSettings(state.importSettingsPath,
+                        {state.lastImportFolder, state.lastImportUnit, state.lastImportUpAxis});
+  } catch (const std::exception& e) {
+    logWarning(state, std::string("import options not remembered: ") + e.what());
+  }
 }
 
 std::string dialogFolder(const EditorState& state) {

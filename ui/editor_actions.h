@@ -141,6 +141,9 @@ std::string dialogFolder(const EditorState& state);
 // (meshes live apart from scenes: an artist walked back to them at every import), else
 // dialogFolder.
 std::string importFolder(const EditorState& state);
+// Keeps the import dialog's folder, unit and up axis for the next run (importSettingsPath); a
+// failure to write them is a warning in the log.
+void rememberImportChoices(EditorState& state);
 // The file an export of the document is offered: the last export's of the same document, else
 // the document's name beside it with .stl ("part.stl" for an untitled one).
 std::string exportSuggestion(const EditorState& state);

@@ -225,13 +225,17 @@ struct EditorState {
   // waits on the splats' stream); a new one starts once the last is done, never joined running.
   std::unique_ptr<BackgroundJob<Bounds>> resultBoundsJob;
   std::weak_ptr<const SplatResource> resultBoundsOf;  // the splats resultBoundsJob measures
-  // The export dialog's parts too small or thin for its cells (Evaluator::smallPartWarnings), for
-  // the document revision and resolution in exportSmallPartsFor.
+  // The export dialog's grid (Evaluator::gridFor; or why there is none) and its parts too small
+  // or thin for its cells (Evaluator::smallPartWarnings), for the document revision and
+  // resolution in exportGridFor.
+  Grid exportGrid;
+  std::string exportNoGrid;
   std::vector<std::string> exportSmallParts;
-  std::pair<uint64_t, int> exportSmallPartsFor{~uint64_t(0), 0};
+  std::pair<uint64_t, int> exportGridFor{~uint64_t(0), 0};
   int lastImportUnit = 0;  // the import dialog's last choices
   int lastImportUpAxis = 0;
-  std::string lastImportFolder;  // where the last mesh was chosen from (importFolder)
+  std::string lastImportFolder;    // where the last mesh was chosen from (importFolder)
+  std::string importSettingsPath;  // where those three are kept between runs ("" = not kept)
 
   // Requests to the frame loop.
   bool requestViewAll = false;

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 
+#include "engine/geometry/mesh_world_bounds.h"
 #include "engine/kinds/primitives.h"
 #include "ui/editor_actions.h"
 #include "ui/editor_state.h"
@@ -24,8 +25,7 @@ const glm::vec4 kMeasureColor(1.0f, 0.86f, 0.25f, 1.0f);
 Bounds localBox(const Node& node) {
   Bounds b;
   if (isPrimitive(node.kind)) return primitiveLocalBounds(node.kind, node.params);
-  if (node.kind == NodeKind::Mesh && node.mesh)
-    for (const auto& p : node.mesh->positions) b.include(glm::dvec3(p));
+  if (node.kind == NodeKind::Mesh) return meshWorldBounds(node.mesh, glm::dmat4(1.0));
   return b;
 }
 

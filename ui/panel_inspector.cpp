@@ -698,20 +698,23 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.5f, 0.45f, 1.0f));
       ImGui::TextWrapped("not in the result: %s", node->meshProblem.c_str());
       ImGui::PopStyleColor();
-      if (node->meshRefusedAsOpen && nodes.size() == 1 &&
-          ImGui::Button("take it as an open mesh")) {
-        const NodeId id = node->id;
-        guarded(state, [&] {
-          acceptOpenMesh(state.document, id);
-          logInfo(state, nodeLabel(*node) +
-                             " taken as an open mesh: its inside is guessed where rays pass "
-                             "its holes (the scene marks it open)");
-        });
+      // The button is drawn for one selected node only; its tooltip with it (it was attached to
+      // the line above when several were selected).
+      if (node->meshRefusedAsOpen && nodes.size() == 1) {
+        if (ImGui::Button("take it as an open mesh")) {
+          const NodeId id = node->id;
+          guarded(state, [&] {
+            acceptOpenMesh(state.document, id);
+            logInfo(state, nodeLabel(*node) +
+                               " taken as an open mesh: its inside is guessed where rays pass "
+                               "its holes (the scene marks it open)");
+          });
+        }
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip(
+              "Read the file again and take it although it is not closed, as the "
+              "import dialog's \"import it anyway\" does");
       }
-      if (node->meshRefusedAsOpen && ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "Read the file again and take it although it is not closed, as the "
-            "import dialog's \"import it anyway\" does");
     }
   }
   if (node->kind == NodeKind::Instance) {

@@ -368,28 +368,31 @@ void exportOptionsDialog(EditorState& state) {
   }
   ImGui::NewLine();
   // A scene no grid can hold (too large or too small to measure: Evaluator::gridFor) is said
-  // here and not exported, instead of its error ending the editor.
-  Grid grid;
-  std::string noGrid;
-  try {
-    grid = Evaluator::gridFor(scene, resolution);
-  } catch (const Error& e) {
-    noGrid = e.what();
+  // here and not exported, instead of its error ending the editor. Parts too small or thin for
+  // the export's cells are said before it runs (the preview's panel said it at the preview's
+  // resolution, the export nothing: an artist's test). Both worked out from the parts' bounds
+  // when the resolution or the document changes, not every frame.
+  const auto key = std::make_pair(state.document.revision(), resolution);
+  if (state.exportGridFor != key) {
+    state.exportGridFor = key;
+    state.exportGrid = Grid();
+    state.exportNoGrid.clear();
+    state.exportSmallParts.clear();
+    try {
+      state.exportGrid = Evaluator::gridFor(scene, resolution);
+      state.exportSmallParts = Evaluator::smallPartWarnings(scene, resolution);
+    } catch (const Error& e) {
+      state.exportNoGrid = e.what();
+    }
   }
+  const Grid& grid = state.exportGrid;
+  const std::string& noGrid = state.exportNoGrid;
   if (noGrid.empty())
     ImGui::TextDisabled("cell %.4g %s; the preview is at %d cells", grid.h,
                         scene.settings.unit.c_str(), scene.settings.resolution);
   else
     ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.45f, 1.0f), "%s", noGrid.c_str());
-  // Parts too small or thin for the export's cells, said before it runs (the preview's panel
-  // said it at the preview's resolution, the export nothing: an artist's test). Worked out from
-  // the parts' bounds when the resolution or the document changes.
   if (noGrid.empty()) {
-    const auto key = std::make_pair(state.document.revision(), resolution);
-    if (state.exportSmallPartsFor != key) {
-      state.exportSmallPartsFor = key;
-      state.exportSmallParts = Evaluator::smallPartWarnings(scene, resolution);
-    }
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
     const size_t shown = std::min<size_t>(state.exportSmallParts.size(), 3);
     for (size_t i = 0; i < shown; ++i) ImGui::TextWrapped("%s", state.exportSmallParts[i].c_str());
@@ -564,6 +567,7 @@ void importDialog(EditorState& state) {
   if (importNow) {
     state.lastImportUnit = import.unit;
     state.lastImportUpAxis = import.upAxis;
+    rememberImportChoices(state);
     PendingImport chosen = import;
     state.pendingImport.reset();
     importMesh(state, chosen);

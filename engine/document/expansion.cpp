@@ -42,6 +42,7 @@ class ExpansionCounter {
     Totals totals = visit({root.get(), true});
     result_.leaves = totals.leaves;
     result_.nodes = totals.nodes;
+    result_.modifiers = totals.modifiers;
     result_.depth = totals.depth;
     return result_;
   }
@@ -51,6 +52,7 @@ class ExpansionCounter {
     uint64_t leaves = 0;
     uint64_t nodes = 0;
     int depth = 0;
+    uint64_t modifiers = 0;
   };
   struct Frame {
     StateKey key;
@@ -118,24 +120,27 @@ class ExpansionCounter {
     if (!child.viaInstance && !child.node->visible) return;
     parent.sum.leaves = saturatingAdd(parent.sum.leaves, t.leaves);
     parent.sum.nodes = saturatingAdd(parent.sum.nodes, t.nodes);
+    parent.sum.modifiers = saturatingAdd(parent.sum.modifiers, t.modifiers);
   }
 
   static Totals finish(const Frame& f) {
     const Node& n = *f.key.node;
     if (n.kind == NodeKind::Instance) return f.sum;  // the target's totals, as evaluated
-    if (!isOperation(n.kind)) return {1, 1, 1};
+    if (!isOperation(n.kind)) return {1, 1, 1, 0};
+    const uint64_t own = modifierOf(n.kind) != Modifier::None ? 1 : 0;
     if (n.kind == NodeKind::Shell && n.opening != 0) {
       // A shell with an opening evaluates its children twice: as they are, and without the
       // opening for its wall (evaluator.cpp; an upper bound, most of it from the cache).
       return {saturatingAdd(f.sum.leaves, f.sum.leaves),
-              saturatingAdd(saturatingAdd(f.sum.nodes, f.sum.nodes), 2), f.sum.depth + 1};
+              saturatingAdd(saturatingAdd(f.sum.nodes, f.sum.nodes), 2), f.sum.depth + 1,
+              saturatingAdd(saturatingAdd(f.sum.modifiers, f.sum.modifiers), own)};
     }
     const uint64_t copies = patternCopies(patternOf(n.kind), n.pattern);
     // A pattern visits its children once per copy; its copies count as visits even when it
     // holds nothing (they are listed).
     return {saturatingMultiply(f.sum.leaves, copies),
             saturatingAdd(saturatingMultiply(std::max<uint64_t>(f.sum.nodes, 1), copies), 1),
-            f.sum.depth + 1};
+            f.sum.depth + 1, saturatingAdd(saturatingMultiply(f.sum.modifiers, copies), own)};
   }
 
   std::unordered_map<NodeId, const Node*> byId_;

@@ -17,6 +17,7 @@ struct TreeExpansion {
   // Saturate at kSaturated (about 1.8e19) instead of overflowing.
   uint64_t leaves = 0;         // leaf visits of an evaluation (visible leaves, through instances)
   uint64_t nodes = 0;          // node visits of an evaluation (operations included)
+  uint64_t modifiers = 0;      // visits of modifier nodes (offset, shell, round...), in nodes too
   int depth = 0;               // longest root-to-leaf path through instances (a leaf alone: 1)
   bool missingTarget = false;  // an instance refers to no node of the tree
   bool cycle = false;          // an instance refers to one of its ancestors

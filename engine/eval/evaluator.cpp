@@ -14,6 +14,7 @@
 #include "engine/document/commands.h"
 #include "engine/document/expansion.h"
 #include "engine/document/measurement.h"
+#include "engine/geometry/mesh_world_bounds.h"
 #include "engine/kinds/primitives.h"
 #include "engine/ldi/offset_math.h"
 #include "engine/util/error.h"
@@ -73,11 +74,7 @@ std::vector<glm::dmat4> placementsOf(const Node& node) {
 // A mesh's or a primitive's world bounds (empty for a mesh not loaded).
 Bounds leafBounds(const Node& node, const glm::dmat4& world) {
   Bounds b;
-  if (node.kind == NodeKind::Mesh) {
-    if (node.mesh)
-      for (const auto& p : node.mesh->positions) b.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
-    return b;
-  }
+  if (node.kind == NodeKind::Mesh) return meshWorldBounds(node.mesh, world);
   if (isPrimitive(node.kind)) return primitiveWorldBounds(node.kind, node.params, world);
   return b;
 }
@@ -144,6 +141,19 @@ void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds&
   bool finite = true;
   for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(size[a]) && std::isfinite(far[a]);
   if (!finite) throw Error(who + ": its coordinates overflow");
+  const double widest = std::max({size.x, size.y, size.z});
+  for (int a = 0; a < 3; ++a)
+    if (!(size[a] > 0.0) && far[a] * 1e-12 < widest) {
+      // A single sheet (an open mesh that is a flat surface, say), where a part as thick as it
+      // is wide would be representable: said as such (it was "its size of 0 cannot be
+      // represented", which reads as a precision problem).
+      char text[160];
+      std::snprintf(text, sizeof(text),
+                    " is flat: all its points lie at %c = %.6g, so it has no thickness and "
+                    "encloses no volume",
+                    "xyz"[a], bounds.min[a]);
+      throw Error(who + text);
+    }
   for (int a = 0; a < 3; ++a)
     if (!(size[a] > far[a] * 1e-12)) {  // fewer than ~4500 doubles across the part
       char text[120];
@@ -267,8 +277,11 @@ struct Evaluator::Context {
     auto& list = result->warnings;
     if (std::find(list.begin(), list.end(), warning) == list.end()) list.push_back(warning);
   }
-  void nodeDone() {
-    ++done;
+  // Progress units a modifier's visit counts for (see evaluate): its passes over the whole
+  // lattice outweigh a leaf's sampling or a Boolean (one unit each) by about the grid's layers.
+  int modifierUnits = 1;
+  void nodeDone(int units = 1) {
+    done += units;
     progress->report("evaluate", double(done) / double(total));
   }
 };
@@ -550,8 +563,7 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
       cache_[v.key] = CacheEntry{backend_->empty(ctx.grid), generation_, missingMeshWarning(*node)};
       hit = cache_.find(v.key);
     } else {
-      Bounds bounds;
-      for (const auto& p : mesh->positions) bounds.include(glm::dvec3(world * glm::dvec4(p, 1.0)));
+      const Bounds bounds = meshWorldBounds(mesh, world);
       checkLeafPlacement(*node, world, bounds);
       if (onlyCached_) throw NotCached{};
       ctx.pending.push_back(Context::PendingLeaf{
@@ -848,8 +860,9 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
       // The modifier's own progress ("modify", over its offsets' passes) moves the evaluation's
       // bar within this node's step: a round at high resolution is most of an evaluation.
       Progress within(ctx.progress, [&ctx](const std::string&, double f) {
-        ctx.progress->report("evaluate",
-                             (double(ctx.done) + std::clamp(f, 0.0, 1.0)) / double(ctx.total));
+        ctx.progress->report(
+            "evaluate", (double(ctx.done) + std::clamp(f, 0.0, 1.0) * double(ctx.modifierUnits)) /
+                            double(ctx.total));
       });
       LdiHandle out = backend_->modify(modifier, node->amount, united, within, wallOf);
       record.seconds += watch.seconds();
@@ -873,7 +886,7 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   if (record.outcome == NodeOutcome::Computed) ++ctx.result->computed;
   record.surfels = v.ldi->surfelCount();
   ctx.result->nodes.push_back(record);
-  ctx.nodeDone();
+  ctx.nodeDone(modifier != Modifier::None ? ctx.modifierUnits : 1);
   return v;
 }
 
@@ -918,7 +931,19 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   ctx.keep.insert(options.keep.begin(), options.keep.end());
   ctx.skipModifiersUnderCells = options.skipModifiersUnderCells;
   const TreeExpansion expansion = checkExpansion(scene.root, scene.settings.maxLeaves);
-  ctx.total = int(std::min<uint64_t>(expansion.nodes, 1u << 30)) + 1;
+  // A unit of progress a node visit (and a leaf sampled, added as they are collected), but a
+  // modifier's visit as many as half the grid's layers: its passes run over every lattice node,
+  // where a leaf's sampling follows its rays (an offset at 768 cells took two thirds of the
+  // bone scaffold's evaluation, and the bar sat at 33% through it: an artist's test).
+  const uint64_t lattice =
+      uint64_t(grid.cells.x + 1) * uint64_t(grid.cells.y + 1) * uint64_t(grid.cells.z + 1);
+  const uint64_t longest = uint64_t(std::max({grid.cells.x, grid.cells.y, grid.cells.z}) + 1);
+  ctx.modifierUnits = int(std::clamp<uint64_t>(lattice / (2 * longest * longest), 1, 4096));
+  ctx.total =
+      int(std::min<uint64_t>(expansion.nodes + std::min<uint64_t>(expansion.modifiers, 1u << 20) *
+                                                   uint64_t(ctx.modifierUnits - 1),
+                             1u << 30)) +
+      1;
   for (int s = 0; s < kStageCount; ++s) ctx.stages[s].name = kStageNames[s];
   result.grid = ctx.grid;
 

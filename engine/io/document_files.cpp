@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "engine/document/commands.h"
+#include "engine/geometry/mesh_world_bounds.h"
 #include "engine/io/mesh_io.h"
 #include "engine/io/scene_file.h"
 #include "engine/util/error.h"
@@ -17,6 +18,15 @@ Document openDocument(const std::string& path, std::vector<std::string>* warning
   SceneLoadReport report;
   Scene scene = loadScene(path, &report, {}, MissingMeshes::Keep);
   if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
+  // The editor asks the meshes' bounds on every edit: their trees built now, with the loading.
+  std::vector<const Node*> stack{scene.root.get()};
+  while (!stack.empty()) {
+    const Node* node = stack.back();
+    stack.pop_back();
+    if (!node) continue;
+    prepareMeshWorldBounds(node->mesh);
+    for (const NodePtr& child : node->children) stack.push_back(child.get());
+  }
   Document document(std::move(scene), path);
   document.setFileStamp(fileStampOf(path));
   return document;
@@ -79,6 +89,7 @@ LeafMesh readLeafMesh(const std::string& file, bool acceptOpen) {
   MeshReadReport report;
   LeafMesh read;
   read.mesh = std::make_shared<const TriangleMesh>(readMeshFile(file, options, &report));
+  prepareMeshWorldBounds(read.mesh);  // the editor asks its bounds on every edit
   read.hash = hashFile(file);
   read.open = !report.openProblem.empty();
   return read;

@@ -109,4 +109,26 @@ TEST(Expansion, AShellWithAnOpeningCountsItsChildrenTwice) {
   EXPECT_EQ(measureExpansion(shell).nodes, 8u);
 }
 
+// Modifier visits are counted apart (the evaluator's progress weighs them): through patterns'
+// copies and instances, a shell with an opening's children twice, hidden ones not at all.
+TEST(Expansion, ModifierVisitsAreCountedThroughCopiesAndInstances) {
+  NodePtr grown = test::modifier(NodeKind::Offset, 0.1, {test::sphere(1.0)});
+  auto array = std::make_shared<Node>(*test::op(NodeKind::Array, {grown}));
+  array->pattern.counts = glm::ivec3(3, 1, 1);
+  array->pattern.step = glm::dvec3(3.0, 0.0, 0.0);
+  EXPECT_EQ(measureExpansion(array).modifiers, 3u);
+  auto hidden =
+      std::make_shared<Node>(*test::modifier(NodeKind::Round, 0.1, {test::box(glm::dvec3(1.0))}));
+  hidden->visible = false;
+  auto root = std::make_shared<Node>(*test::op(NodeKind::Union, {array, hidden}));
+  EXPECT_EQ(measureExpansion(root).modifiers, 3u);
+  auto inner = test::modifier(NodeKind::Offset, 0.05, {test::sphere(1.0)});
+  NodePtr hole = test::box(glm::dvec3(0.5));
+  auto shell = std::make_shared<Node>(
+      *test::modifier(NodeKind::Shell, 0.1, {test::op(NodeKind::Difference, {inner, hole})}));
+  EXPECT_EQ(measureExpansion(shell).modifiers, 2u);
+  shell->opening = hole->id;
+  EXPECT_EQ(measureExpansion(shell).modifiers, 3u);
+}
+
 }  // namespace strata

@@ -135,3 +135,30 @@ TEST(LeafPlacement, SmallPartsAreNamedBeforeAnythingIsEvaluated) {
 
 }  // namespace
 }  // namespace strata
+
+namespace strata {
+namespace {
+
+// An open mesh that is one flat sheet was refused with "lies 0 from the origin along z, where its
+// size of 0 cannot be represented in double precision": it is said to be flat. A part whose
+// thickness is lost to its distance from the origin still gets the precision sentence.
+TEST(LeafPlacement, AFlatSheetIsSaidToBeFlat) {
+  auto sheet = std::make_shared<TriangleMesh>();
+  sheet->positions = {{0, 0, 0.25}, {1, 0, 0.25}, {1, 1, 0.25}, {0, 1, 0.25}};
+  sheet->triangles = {{0, 1, 2}, {0, 2, 3}};
+  auto node = std::make_shared<Node>(*makeMeshNode(2, "sheet", sheet, "/tmp/sheet.obj", "", true));
+  Scene scene = test::makeSceneInBox(makeOperationNode(NodeKind::Union, 1, {node}), 16,
+                                     glm::dvec3(-1.0), glm::dvec3(2.0));
+  const std::string m = evaluationError(scene);
+  EXPECT_NE(m.find("'sheet' is flat: all its points lie at z = 0.25"), std::string::npos) << m;
+
+  auto far = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  far->name = "far cube";
+  far->transform.translate.z = 1e300;
+  const std::string f = evaluationError(test::makeSceneInBox(
+      makeOperationNode(NodeKind::Union, 1, {far}), 16, glm::dvec3(-1.0), glm::dvec3(1.0)));
+  EXPECT_NE(f.find("cannot be represented"), std::string::npos) << f;
+}
+
+}  // namespace
+}  // namespace strata

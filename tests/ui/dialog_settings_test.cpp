@@ -1,6 +1,6 @@
-// The export dialog's choices kept between runs (ui/export_settings.h), and an export started
+// The export dialog's choices kept between runs (ui/dialog_settings.h), and an export started
 // from the editor writing them.
-#include "ui/export_settings.h"
+#include "ui/dialog_settings.h"
 
 #include <gtest/gtest.h>
 
@@ -162,6 +162,47 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
     setenv("HOME", keptHome.c_str(), 1);
   else
     unsetenv("HOME");
+  std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace strata::ui
+
+namespace strata::ui {
+namespace {
+
+// The import dialog's folder, unit and up axis were kept within a run only: an artist importing
+// a folder of scans browsed to it again after every restart. A folder with spaces comes back
+// whole; a unit or axis out of range, or a folder that is gone, leaves the defaults.
+TEST(ImportSettings, TheImportDialogsChoicesOutliveTheRun) {
+  const std::string folder = ::testing::TempDir() + "/strata_import_settings";
+  std::filesystem::remove_all(folder);
+  const std::string scans = folder + "/my scans";
+  std::filesystem::create_directories(scans);
+  {
+    EditorState state;
+    state.importSettingsPath = folder + "/config/import.txt";
+    state.lastImportFolder = scans;
+    state.lastImportUnit = 2;
+    state.lastImportUpAxis = 1;
+    rememberImportChoices(state);
+  }
+  const ImportSettings back = readImportSettings(folder + "/config/import.txt", {});
+  EXPECT_EQ(back.folder, scans);
+  EXPECT_EQ(back.unit, 2);
+  EXPECT_EQ(back.upAxis, 1);
+  EditorState next;
+  next.lastImportFolder = back.folder;
+  EXPECT_EQ(importFolder(next), scans + "/");
+  {
+    std::ofstream out(folder + "/config/import.txt");
+    out << "unit 999\nupAxis 2\nfolder " << folder << "/gone\n";
+  }
+  const ImportSettings bad = readImportSettings(folder + "/config/import.txt", {});
+  EXPECT_EQ(bad.unit, 0);
+  EXPECT_EQ(bad.upAxis, 0);
+  next.lastImportFolder = bad.folder;
+  EXPECT_NE(importFolder(next), folder + "/gone/") << "a folder that is gone is not offered";
   std::filesystem::remove_all(folder);
 }
 
