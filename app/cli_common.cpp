@@ -23,12 +23,29 @@ const std::vector<std::string> kValuedOptions = {
 const std::vector<std::string> kFlagOptions = {
     "--quiet", "-q", "--nodes", "--allow-open", "--force", "--distributed", "--stream"};
 
+namespace {
+// Where this command began (beginCommand): the files committed and warnings printed before it
+// belong to earlier commands of a batch.
+size_t g_committedBefore = 0;
+std::atomic<size_t> g_warningsPrinted{0};
+}  // namespace
+
+void beginCommand() {
+  g_committedBefore = committedFiles().size();
+  g_warningsPrinted = 0;
+  setWorkerCount(0);
+  setMaxInputFileBytes(kDefaultMaxInputFileBytes);
+  setMaxInputTriangles(kDefaultMaxInputTriangles);
+}
+
 int runGuarded(const std::function<int()>& body) {
   try {
     return body();
   } catch (const Cancelled&) {
     // A cancel once the file was in place (during its check) leaves it: said, not denied.
-    const std::vector<std::string> written = committedFiles();
+    std::vector<std::string> written = committedFiles();
+    written.erase(written.begin(),
+                  written.begin() + std::ptrdiff_t(std::min(g_committedBefore, written.size())));
     if (written.empty())
       std::fprintf(stderr, "\nstrata: cancelled; nothing was written\n");
     else
@@ -59,8 +76,7 @@ void namingInput(const std::string& input, const std::vector<std::string>& named
 }
 
 void printWarning(const std::string& line) {
-  static std::atomic<size_t> printed{0};
-  const size_t n = printed++;
+  const size_t n = g_warningsPrinted++;
   if (n < kWarningsShown)
     std::fprintf(stderr, "strata: warning: %s\n", line.c_str());
   else if (n == kWarningsShown)

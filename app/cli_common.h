@@ -20,6 +20,11 @@ extern const std::vector<std::string> kFlagOptions;
 // bad_alloc give 1, Cancelled gives 130.
 int runGuarded(const std::function<int()>& body);
 
+// Starts a command of a batch (strata batch) as if it were a process of its own: the worker
+// count, the input limits and the warnings printed back to their defaults, the files written
+// before it not its own. A single command needs no call. Main thread.
+void beginCommand();
+
 // Runs `body`; a strata::Error whose message does not begin with one of `named` (the files the
 // command reads and writes, as "FILE: ...") is rethrown as "INPUT: message", so that every
 // error of a command names a file (an error deep in the engine names none: "the tree is too

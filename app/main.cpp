@@ -34,6 +34,10 @@ const char* kUsageHead =
     "  strata export SCENE -o FILE    write the scene's result as a watertight mesh\n"
     "  strata render SCENE -o F.png   render the editor's view of the scene to a PNG\n"
     "                                 (--width W --height H, --view iso|front|right|top...)\n"
+    "  strata batch FILE [-k]         run the commands of FILE (one a line, as typed after\n"
+    "                                 strata; - reads standard input) in one process, the\n"
+    "                                 backend started once; stops at the first failure unless\n"
+    "                                 -k (--keep-going)\n"
     "\n"
     "options:\n"
     "  --resolution N    cells along the longest side (default: the scene's, 256 for boolean)\n"
@@ -145,6 +149,7 @@ int runCommand(const std::vector<std::string>& args) {
     return strata::runModifier(command, rest);
   if (command == "edit") return strata::runEdit(rest);
   if (command == "render") return strata::runRender(rest);
+  if (command == "batch") return strata::runBatch(rest, runCommand);
   if (strata::looksLikeScenePath(command)) return strata::runEdit(args);
   std::fprintf(stderr, "strata: unknown command '%s'\n\n%s", command.c_str(), usage().c_str());
   return 2;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -601,6 +602,72 @@ TEST(Cli, AScreenshotWithoutADisplayIsAnError) {
   FILE* f = std::fopen(out.c_str(), "rb");
   EXPECT_EQ(f, nullptr);
   if (f) std::fclose(f);
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// `strata batch FILE`: each line a command as typed after `strata`, run in one process (the
+// CUDA driver's start, 0.3 s a process on an H200, paid once). Each job writes what the same
+// command alone writes; quotes, comments and a leading "strata" read as a shell reads them.
+TEST(CliBatch, EachLineRunsAsTheCommandAloneWould) {
+  const std::string folder = temp("batch dir");
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string alone = folder + "/alone.stl", jobs = folder + "/jobs.txt";
+  ASSERT_EQ(strata("boolean difference " + data("bunny.obj") + " " + data("eight.obj") +
+                   " --resolution 48 -q -o '" + alone + "'")
+                .code,
+            0);
+  {
+    std::ofstream out(jobs);
+    out << "# two jobs and a comment\n\n"
+        << "strata boolean difference " << data("bunny.obj") << " '" << data("eight.obj")
+        << "' --resolution 48 -q -o \"" << folder << "/in batch.stl\"  # the same command\n"
+        << "eval " << STRATA_ASSETS << "/scenes/demo.strata.json --resolution 32 -q\n";
+  }
+  CliRun r = strata("batch '" + jobs + "'");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("job 2 of 2 (line 4): eval"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 jobs in"), std::string::npos) << r.output;
+  EXPECT_EQ(fileBytes(folder + "/in batch.stl"), fileBytes(alone));
+  EXPECT_FALSE(fileBytes(alone).empty());
+  std::filesystem::remove_all(folder);
+}
+
+// Every line is checked before the first job runs (a typo on line 3 left nothing half done);
+// a failing job stops the batch unless -k; the exit code is the first failure's.
+TEST(CliBatch, BadLinesStopItBeforeAnyJobAndAFailureStopsItUnlessKeepGoing) {
+  const std::string folder = temp("batch_bad");
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string made = folder + "/made.stl", jobs = folder + "/jobs.txt";
+  const std::string good = "boolean union " + data("bunny.obj") + " " + data("eight.obj") +
+                           " --resolution 32 -q -o " + made + "\n";
+  std::ofstream(jobs) << good << "eval a.strata.json\nboolean union \"x.obj y.obj\n";
+  CliRun r = strata("batch " + jobs);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find(jobs + ":3: a double quote (\") is not closed"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(made)) << "no job ran";
+  std::ofstream(jobs) << "edit demo.strata.json\n";
+  r = strata("batch " + jobs);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(jobs + ":1: 'edit' cannot run in a batch"), std::string::npos)
+      << r.output;
+  std::ofstream(jobs) << "eval " << folder << "/missing.strata.json -q\n" << good;
+  r = strata("batch " + jobs);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("missing.strata.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("failed: line 1; the 1 after it not run"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(made));
+  r = strata("batch -k " + jobs);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("2 of 2 jobs run"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(made)) << "the job after the failure ran";
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace
