@@ -209,7 +209,6 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   const uint64_t present = peakResidentBytes();  // before the probes, which add their own
   ContourReport report;
   size_t probeTriangles = 0;
-  ExportMesh probeMesh;  // kept to be simplified, where the export is
   double seconds = 0.0;
   // The job's modifiers run on each tile's grown window (once where that is the whole grid).
   const glm::dvec3 window = grownTileCells(e.grid, tiling.tileCells, tiling.halo);
@@ -224,7 +223,6 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
       report = ContourReport();
       ExportMesh mesh = contourScene(scene, probe, probeOptions, progress, &report);
       probeTriangles = mesh.mesh.triangles.size();
-      if (simplifyCells > 0.0) probeMesh = std::move(mesh);  // the last probe's, the finest
       return ProbeRun{report.grid, report.modifySeconds, report.modifiedNodes};
     });
   } catch (const BackendOutOfMemory&) {
@@ -280,14 +278,14 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   e.fileBytes = uint64_t(double(e.triangles) * (format ? format->bytesPerTriangle : 50.0));
   e.seconds = seconds + kWriteCheckSecondsPerTriangle * double(e.triangles);
-  if (simplifyCells > 0.0 && !probeMesh.mesh.triangles.empty()) {
-    Stopwatch clock;
-    const SimplifyReport simplified =
-        simplifyMesh(&probeMesh, simplifyCells * report.grid.h, progress);
-    e.seconds += clock.seconds() / double(probeTriangles) * double(e.triangles);
+  if (simplifyCells > 0.0 && probeTriangles > 0) {
+    // The export dialog's count (estimateExportTriangles: the same probes, the same number), its
+    // simplification's time per triangle scaled to the job's triangles.
+    const TriangleEstimate counted =
+        estimateExportTriangles(scene, options.resolution, simplifyCells, backend, progress);
+    e.seconds += counted.simplifySecondsPerTriangle * double(e.triangles);
     e.peakBytes += uint64_t(double(e.triangles) * kSimplifyBytesPerTriangle);
-    e.simplifiedTriangles =
-        std::min(e.triangles, uint64_t(double(simplified.trianglesAfter) * std::sqrt(scale)));
+    e.simplifiedTriangles = std::min(e.triangles, counted.simplified);
     e.fileBytes =
         uint64_t(double(e.simplifiedTriangles) * (format ? format->bytesPerTriangle : 50.0));
   }
@@ -314,21 +312,57 @@ TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, dou
                                          const std::shared_ptr<Backend>& backend,
                                          Progress& progress) {
   const Grid grid = Evaluator::gridFor(scene, resolution);
-  const int probeResolution = triangleProbeResolution(longestSide(grid));
-  Evaluator probe(backend);
-  ContourOptions options;
-  options.resolution = probeResolution;
-  options.tileCells = probeResolution * 2;  // one tile
-  ContourReport report;
-  ExportMesh mesh = contourScene(scene, probe, options, progress, &report);
-  const double linear = double(longestSide(grid)) / double(longestSide(report.grid));
+  const int jobCells = longestSide(grid);
+  const int probeResolution = triangleProbeResolution(jobCells);
+  // One probe contoured (and simplified) at `cells` in one tile: its grid's longest side and
+  // its triangles, unsimplified and simplified.
+  struct Probed {
+    int cells = 0;
+    uint64_t triangles = 0, simplified = 0;
+    double simplifySeconds = 0.0;
+  };
+  auto probeAt = [&](int cells) {
+    Evaluator probe(backend);
+    ContourOptions options;
+    options.resolution = cells;
+    options.tileCells = cells * 2;  // one tile
+    ContourReport report;
+    ExportMesh mesh = contourScene(scene, probe, options, progress, &report);
+    Probed p{longestSide(report.grid), mesh.mesh.triangles.size(), 0, 0.0};
+    if (simplifyCells > 0.0 && !mesh.mesh.triangles.empty()) {
+      Stopwatch clock;
+      p.simplified = simplifyMesh(&mesh, simplifyCells * report.grid.h, progress).trianglesAfter;
+      p.simplifySeconds = clock.seconds();
+    }
+    return p;
+  };
+  const Probed fine = probeAt(probeResolution);
+  const double linear = double(jobCells) / double(std::max(1, fine.cells));
   TriangleEstimate e;
-  e.triangles = uint64_t(double(mesh.mesh.triangles.size()) * linear * linear);
-  if (simplifyCells > 0.0 && !mesh.mesh.triangles.empty()) {
-    const SimplifyReport r = simplifyMesh(&mesh, simplifyCells * report.grid.h, progress);
-    e.simplified = std::min(e.triangles, uint64_t(double(r.trianglesAfter) * linear));
+  e.triangles = uint64_t(double(fine.triangles) * linear * linear);
+  if (simplifyCells <= 0.0 || fine.triangles == 0) return e;
+  e.simplifySecondsPerTriangle = fine.simplifySeconds / double(fine.triangles);
+  if (fine.cells >= jobCells) {  // the probe is the job
+    e.simplified = fine.simplified;
+    return e;
   }
+  // How the simplified count grows, measured between this probe and one at half its cells.
+  const Probed coarse = probeAt(std::max(probeResolution / 2, kProbeResolution / 2));
+  e.simplified =
+      std::min(e.triangles, simplifiedAtResolution(coarse.simplified, coarse.cells, fine.simplified,
+                                                   fine.cells, jobCells));
   return e;
+}
+
+uint64_t simplifiedAtResolution(uint64_t coarseCount, int coarseCells, uint64_t count, int cells,
+                                int jobCells) {
+  if (count == 0 || cells <= 0 || jobCells <= cells) return count;
+  double exponent = 1.0;
+  if (coarseCount > 0 && coarseCells > 0 && coarseCells < cells)
+    exponent = std::clamp(std::log(double(count) / double(coarseCount)) /
+                              std::log(double(cells) / double(coarseCells)),
+                          0.0, 2.0);
+  return uint64_t(std::llround(double(count) * std::pow(double(jobCells) / cells, exponent)));
 }
 
 std::string bytesText(double bytes) {
