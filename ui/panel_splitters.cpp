@@ -3,11 +3,9 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
-#include "engine/util/atomic_file.h"
+#include "ui/settings_file.h"
 
 namespace strata::ui {
 namespace {
@@ -101,30 +99,29 @@ bool drawSplitters(PanelLayout& layout) {
 }
 
 PanelLayout readPanelLayout(const std::string& path, PanelLayout layout) {
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string name;
-    float value = 0.0f;
-    if (!(words >> name >> value) || !(value > 0.0f) || value > 100000.0f) continue;
+  readSettingLines(path, [&](const std::string& name, const std::string& text) {
+    double number = 0.0;
+    if (!settingNumber(text, &number) || !(number > 0.0) || number > 100000.0) return;
+    const float value = float(number);
     if (name == "leftWidth") layout.wanted.leftWidth = value;
     if (name == "rightWidth") layout.wanted.rightWidth = value;
     if (name == "paletteHeight") layout.wanted.paletteHeight = value;
     if (name == "previewHeight") layout.wanted.previewHeight = value;
-  }
+  });
   static_cast<PanelSizes&>(layout) = layout.wanted;
   return layout;
 }
 
 void writePanelLayout(const std::string& path, const PanelLayout& layout) {
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  writeFileAtomically(path, [&](std::ostream& out) {
-    out << "leftWidth " << layout.wanted.leftWidth << "\n"
-        << "rightWidth " << layout.wanted.rightWidth << "\n"
-        << "paletteHeight " << layout.wanted.paletteHeight << "\n"
-        << "previewHeight " << layout.wanted.previewHeight << "\n";
-  });
+  auto text = [](float v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+  };
+  writeSettingLines(path, {{"leftWidth", text(layout.wanted.leftWidth)},
+                           {"rightWidth", text(layout.wanted.rightWidth)},
+                           {"paletteHeight", text(layout.wanted.paletteHeight)},
+                           {"previewHeight", text(layout.wanted.previewHeight)}});
 }
 
 }  // namespace strata::ui
