@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include "engine/export/drop_specks.h"
+
 namespace strata {
 namespace {
 const char* yes(bool b) {
@@ -96,14 +98,8 @@ std::string formatExportText(const ExportSummary& summary) {
                   r.unfoldedShells, r.unfoldedShells == 1 ? "" : "s");
     out << line;
   }
-  if (r.droppedSpecks.components) {
-    std::snprintf(line, sizeof(line),
-                  "          %d speck%s the grid cannot resolve left out (%zu triangles: closed "
-                  "components within one cell, or around nodes the rays disagree on)\n",
-                  r.droppedSpecks.components, r.droppedSpecks.components == 1 ? "" : "s",
-                  r.droppedSpecks.triangles);
-    out << line;
-  }
+  if (r.droppedSpecks.components)
+    out << "          " << droppedSpecksSentence(r.droppedSpecks) << "\n";
   const DegenerateRepair& dr = s.result.degenerateRepair;
   if (dr.flipped || dr.rotated || dr.collapsed) {
     std::snprintf(line, sizeof(line),

@@ -514,7 +514,8 @@ bool Editor::requestPreviewIfNeeded() {
   }
   requestedEmpty_ = false;
   worker_->request(s.document.snapshot(), resolution, interactive, revision,
-                   ghosts ? ghostCandidates(s.document.root()) : std::vector<NodeId>{});
+                   ghosts ? ghostCandidates(s.document.root()) : std::vector<NodeId>{},
+                   s.selection);
   return true;
 }
 

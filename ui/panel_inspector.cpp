@@ -662,10 +662,16 @@ void nodeKindSections(EditorState& state, const NodePtr& node, const NodeList& n
       ImGui::SetNextItemWidth(-1);
       double amount = node->amount;
       const bool signedAmount = modifierOf(node->kind) == Modifier::Offset;
-      const double lo = signedAmount ? -1e300 : 1e-6, hi = 1e300;
+      // Dragged by a percent of the amount a pixel, stopping at zero (amountDrag).
+      static double dragSign = 0.0;  // the amount's sign where the running drag began
+      const bool dragging =
+          ImGui::GetActiveID() == ImGui::GetID("##amount") && ImGui::IsMouseDown(0);
+      if (!dragging) dragSign = node->amount > 0.0 ? 1.0 : node->amount < 0.0 ? -1.0 : 0.0;
+      const AmountDrag drag =
+          amountDrag(node->amount, signedAmount, dragging ? dragSign : 0.0, speed * 0.005);
       const bool changed = commitTypedValue(
-          ImGui::DragScalar("##amount", ImGuiDataType_Double, &amount, float(speed), &lo, &hi,
-                            gLengthFormat.c_str(), ImGuiSliderFlags_AlwaysClamp),
+          ImGui::DragScalar("##amount", ImGuiDataType_Double, &amount, float(drag.speed), &drag.lo,
+                            &drag.hi, gLengthFormat.c_str(), ImGuiSliderFlags_AlwaysClamp),
           &amount, gLengthUnit);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", signedAmount ? "Grows the children (> 0) or shrinks them (< 0)"

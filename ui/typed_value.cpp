@@ -325,4 +325,14 @@ bool commitTypedValue(bool changed, int* value) {
   return commit(changed, value);
 }
 
+AmountDrag amountDrag(double amount, bool signedAmount, double dragSign, double floorSpeed) {
+  AmountDrag d;
+  d.speed = std::max(std::fabs(amount) * 0.01, floorSpeed);
+  d.lo = signedAmount ? -1e300 : 1e-6;
+  d.hi = 1e300;
+  if (signedAmount && dragSign > 0.0) d.lo = 0.0;
+  if (signedAmount && dragSign < 0.0) d.hi = 0.0;
+  return d;
+}
+
 }  // namespace strata::ui

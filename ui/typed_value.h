@@ -69,4 +69,16 @@ unsigned numberFieldBeingTyped();
 // field is then a number field for numberFieldCharacter.
 void numberFieldNext(const char* label);
 
+// How a modifier's amount field (distance, thickness, radius) drags: `speed` units a pixel, the
+// value held within [lo, hi]. A percent of the amount a pixel, at least `floorSpeed` (the
+// scene's speed took a 2 mm offset to +10 mm in 60 pixels, through zero, and a round of 0.8 mm
+// to 8.4 in 40: an artist's test). A signed amount (an offset) dragged from one side of zero
+// (`dragSign`: the amount's sign where the running drag began, 0 when not dragging) stops at
+// zero rather than turning a shrink into a growth; a typed value may cross it. Unsigned amounts
+// stay above 1e-6.
+struct AmountDrag {
+  double speed = 0.0, lo = 0.0, hi = 0.0;
+};
+AmountDrag amountDrag(double amount, bool signedAmount, double dragSign, double floorSpeed);
+
 }  // namespace strata::ui

@@ -115,6 +115,9 @@ Bounds boundsOf(const NodePtr& node, const NodePtr& root, const glm::dmat4& pare
   return b;
 }
 
+// A part thinner than this fraction of its width is flat: a sheet, its thickness rounding.
+constexpr double kFlatPart = 1e-9;
+
 // Numbers a leaf's placement must keep: a finite, invertible world transform whose scales neither
 // underflow nor overflow, and a size that the coordinates' precision can still represent.
 // Throws strata::Error naming the leaf.
@@ -142,25 +145,19 @@ void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds&
   for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(size[a]) && std::isfinite(far[a]);
   if (!finite) throw Error(who + ": its coordinates overflow");
   const double widest = std::max({size.x, size.y, size.z});
-  for (int a = 0; a < 3; ++a)
-    if (!(size[a] > 0.0) && far[a] * 1e-12 < widest) {
-      // A single sheet (an open mesh that is a flat surface, say), where a part as thick as it
-      // is wide would be representable: said as such (it was "its size of 0 cannot be
-      // represented", which reads as a precision problem).
-      char text[160];
-      std::snprintf(text, sizeof(text),
-                    " is flat: all its points lie at %c = %.6g, so it has no thickness and "
-                    "encloses no volume",
-                    "xyz"[a], bounds.min[a]);
-      throw Error(who + text);
-    }
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a) {
+    // A single sheet (an open mesh that is a flat surface, say) whose width is representable:
+    // evaluated (it encloses nothing) and said to be flat (smallerThanCellWarning). It was
+    // refused as "its size of 0 cannot be represented", which read as a precision problem and
+    // stopped the whole scene.
+    if (size[a] <= kFlatPart * widest && far[a] * 1e-12 < widest) continue;
     if (!(size[a] > far[a] * 1e-12)) {  // fewer than ~4500 doubles across the part
       char text[120];
       std::snprintf(text, sizeof(text), "%.3g from the origin along %c, where its size of %.3g",
                     far[a], "xyz"[a], size[a]);
       throw Error(who + " lies " + text + " cannot be represented in double precision");
     }
+  }
 }
 
 // "part 'X' (0.001 across) is smaller than a cell (0.01); ..." when the leaf's largest extent is
@@ -171,6 +168,11 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
   const glm::dvec3 size = bounds.size();
   const double extent = std::max({size.x, size.y, size.z});
   const double thickness = std::min({size.x, size.y, size.z});
+  // A sheet, flat but for rounding (an imported plane turned +Y up lay 6e-16 thick): "only
+  // 1.8e-15 cells thick; about 2.2e+15x the resolution" said nothing useful (an artist's test).
+  if (extent > 0.0 && thickness <= kFlatPart * extent)
+    return nodeLabel(node) +
+           " is flat (no thickness): it encloses no volume and adds nothing to the result";
   if (extent >= h && thickness < 2.0 * h) {
     // Big enough to show, too thin to keep its shape: say by how much the resolution must grow
     // for it to be four cells thick.
@@ -246,6 +248,7 @@ struct Evaluator::Context {
   std::unordered_map<uint64_t, NodeId> firstLeafWithContent;  // leaf content key -> leaf id
   std::unordered_set<NodeId> keep;                            // EvalOptions::keep
   double skipModifiersUnderCells = 0.0;                       // EvalOptions'
+  std::unordered_set<NodeId> applyModifiers;                  // EvalOptions'
   int insideInstance = 0;  // > 0 while visiting an instance's target
 
   // The first walk only collects the leaves to sample (sampleMeshes takes them in one call);
@@ -831,7 +834,8 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
   }
   const Modifier modifier = modifierOf(node->kind);
   const bool skipped = modifier != Modifier::None &&
-                       std::abs(node->amount) < ctx.skipModifiersUnderCells * ctx.grid.h;
+                       std::abs(node->amount) < ctx.skipModifiersUnderCells * ctx.grid.h &&
+                       !ctx.applyModifiers.count(node->id);
   if (skipped) {
     const std::string name = nodeLabel(*node);
     auto& list = ctx.result->skippedModifiers;
@@ -930,6 +934,7 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   ctx.result = &result;
   ctx.keep.insert(options.keep.begin(), options.keep.end());
   ctx.skipModifiersUnderCells = options.skipModifiersUnderCells;
+  ctx.applyModifiers.insert(options.applyModifiers.begin(), options.applyModifiers.end());
   const TreeExpansion expansion = checkExpansion(scene.root, scene.settings.maxLeaves);
   // A unit of progress a node visit (and a leaf sampled, added as they are collected), but a
   // modifier's visit as many as half the grid's layers: its passes run over every lattice node,

@@ -42,6 +42,10 @@ struct EvalOptions {
   // amount (a 1 mm round on cells of 1.1 mm tears 3 mm walls apart), so that it shows the parts
   // whole until the full pass comes. 0: every modifier applies (exports, the full preview).
   double skipModifiersUnderCells = 0.0;
+  // Modifiers applied whatever skipModifiersUnderCells says: the ones being edited (a coarse
+  // draft of a drag on a round's radius showed the parts unrounded, whatever the radius: an
+  // artist's test).
+  std::vector<NodeId> applyModifiers;
   // Whether EvalResult::measure holds the root's volume, area and thinnest wall (a pass over its
   // surfels); without, only its surfel count (an export's tiles, which read nothing else).
   bool measureRoot = true;

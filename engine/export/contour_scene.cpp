@@ -28,6 +28,13 @@ void collectLeafStyles(const NodePtr& node, std::map<uint32_t, LeafStyle>* style
   for (const auto& c : node->children) collectLeafStyles(c, styles);
 }
 
+// The ids of the mesh leaves taken as open (Node::meshOpen), sorted: the leaf ids triangles carry.
+void collectOpenLeaves(const NodePtr& node, std::vector<uint32_t>* open) {
+  if (!node) return;
+  if (node->kind == NodeKind::Mesh && node->meshOpen) open->push_back(uint32_t(node->id));
+  for (const auto& c : node->children) collectOpenLeaves(c, open);
+}
+
 // The tiles of `grid` of `size` cells per axis, refused where cell indices or the tile count
 // would overflow.
 glm::ivec3 tileCounts(const Grid& grid, const glm::ivec3& size) {
@@ -202,6 +209,19 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
   ExportMesh out;
   out.unit = scene.settings.unit;
   collectLeafStyles(scene.root, &out.leaves);
+  // An open mesh's rays through its holes are left empty (normalizeLeafRay), so no node of its
+  // inside has all three rays agreeing: the speck rule (drop_specks.h) would take all of it for
+  // an artefact, and did (an open cube beside another part vanished from the export, which the
+  // preview showed solid: an artist's test). Its triangles count as resolved; only the size
+  // rule applies to them.
+  std::vector<uint32_t> openLeaves;
+  collectOpenLeaves(scene.root, &openLeaves);
+  std::sort(openLeaves.begin(), openLeaves.end());
+  const auto resolvedBits = [&openLeaves](const ContourTriangle& t) {
+    if (openLeaves.empty() || !std::binary_search(openLeaves.begin(), openLeaves.end(), t.leaf))
+      return t.resolved;
+    return uint8_t(t.resolved | kInsideResolved | kOutsideResolved);
+  };
   {
     // The tiles' vertices in merged order: positions into the mesh, keys kept; then released.
     // One tile's are in order already (sortTiles); several tiles share their halo's keys.
@@ -265,7 +285,7 @@ ExportMesh indexedMesh(const Scene& scene, const Grid& grid, TiledContour& c, Co
     out.mesh.triangles[i] = {cachedIndexOf(t.vertex[0]), cachedIndexOf(t.vertex[1]),
                              cachedIndexOf(t.vertex[2])};
     out.triangleLeaf[i] = t.leaf;
-    (*resolved)[i] = t.resolved;
+    (*resolved)[i] = resolvedBits(t);
   });
   c.tiles.clear();
   c.tiles.shrink_to_fit();

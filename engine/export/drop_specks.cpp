@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <unordered_map>
@@ -60,6 +61,16 @@ size_t compactInOrder(size_t count, Keep keep, Move move) {
 }
 
 }  // namespace
+
+std::string droppedSpecksSentence(const DroppedSpecks& dropped) {
+  if (dropped.components == 0) return "";
+  char text[200];
+  std::snprintf(text, sizeof(text),
+                "%d speck%s the grid cannot resolve left out (%zu triangles: closed components "
+                "within one cell, or around nodes the rays disagree on)",
+                dropped.components, dropped.components == 1 ? "" : "s", dropped.triangles);
+  return text;
+}
 
 bool keepComponent(uint8_t bits, uint32_t vertices, const glm::dvec3& lo, const glm::dvec3& hi,
                    double cell) {

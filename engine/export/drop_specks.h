@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -31,6 +32,10 @@ struct DroppedSpecks {
   int components = 0;    // closed components left out
   size_t triangles = 0;  // their triangles
 };
+
+// "3 specks the grid cannot resolve left out (36 triangles: ...)", or "" when none were: what
+// the command line's report and the editor's export window say of them.
+std::string droppedSpecksSentence(const DroppedSpecks& dropped);
 
 // Removes from `mesh` every component (triangles joined through shared vertices) that the grid
 // does not resolve (see above), given each triangle's CellTriangle::resolved bits, and the

@@ -3,8 +3,9 @@
 //
 //   - The caller hands immutable snapshots (std::shared_ptr<const Scene>) with the requested
 //     resolution; only the latest request survives, and a new one cancels the running
-//     evaluation (Progress::cancel). Requests replaced before the worker took them are never
-//     evaluated.
+//     evaluation (Progress::cancel), except that a drag's request lets a drag's running draft
+//     finish (each draft shows, the next takes the newest position). Requests replaced before
+//     the worker took them are never evaluated.
 //   - An interactive request (the user is dragging) is evaluated only at a draft resolution
 //     (draftResolutionFor: the finest of requested, requested/2, requested/4 that the last full
 //     pass and the last pass that computed every node predict under quickPassSeconds, never
@@ -19,7 +20,8 @@
 //     A coarse pass passes modifiers
 //     under kCoarseModifierCells of its cells through (EvalOptions::skipModifiersUnderCells): it
 //     shows the parts whole, unrounded, rather than torn by a radius its cells cannot resolve, and
-//     comes sooner.
+//     comes sooner; but not the modifiers being edited (request's `edited`), whose amount a drag
+//     must show.
 //   - Results are finished, immutable values (std::shared_ptr<const PreviewResult>): the root's
 //     splats (Backend::splats: made where the backend keeps its LDIs, on the device for CUDA)
 //     and the evaluation's statistics. A pass that finished before it was superseded still
@@ -152,8 +154,10 @@ class PreviewWorker {
 
   // Replaces any pending request and cancels the running one. The result carries the splats of
   // each of `ghosts`' own LDIs (visible nodes only).
+  // `edited`: the nodes being edited (the selection): a coarse pass applies their modifiers
+  // whatever its cells (EvalOptions::applyModifiers), so that a drag on an amount shows it.
   void request(std::shared_ptr<const Scene> scene, int resolution, bool interactive, uint64_t tag,
-               std::vector<NodeId> ghosts = {});
+               std::vector<NodeId> ghosts = {}, std::vector<NodeId> edited = {});
   // Drops the pending request and cancels the running one (e.g. nothing is left to show).
   void cancel();
   // The newest finished result not taken yet, or null.
@@ -177,6 +181,7 @@ class PreviewWorker {
     bool interactive = false;
     uint64_t tag = 0;
     std::vector<NodeId> ghosts;
+    std::vector<NodeId> edited;
   };
   void run();
   // Evaluates one request: its coarse pass where one applies, then its full pass.
@@ -253,6 +258,7 @@ class PreviewWorker {
   bool stopping_ = false;
   bool hasRequest_ = false;
   Request pending_;
+  bool runningInteractive_ = false;          // the request being served is a drag's
   std::shared_ptr<Progress> running_;        // of the request being served; null when none
   std::shared_ptr<Progress> ghostsRunning_;  // of finishGhosts while it runs; null otherwise
   std::shared_ptr<const PreviewResult> finished_;

@@ -439,3 +439,29 @@ TEST_F(TypedField, AClickElsewhereAppliesTheTypedNumber) {
 
 }  // namespace
 }  // namespace strata::ui
+
+namespace strata::ui {
+namespace {
+
+// A modifier's amount drags by a percent of itself a pixel (the scene's speed took a 2 mm offset
+// to +10 mm in 60 pixels, through zero: an artist's test), never slower than the floor, and a
+// drag from one side of zero stops there; a typed value (no drag) may cross it.
+TEST(AmountDrag, APercentOfTheAmountAPixelStoppingAtZero) {
+  const AmountDrag offset = amountDrag(-2.0, true, -1.0, 0.001);
+  EXPECT_DOUBLE_EQ(offset.speed, 0.02);
+  EXPECT_LE(60.0 * offset.speed, 1.5) << "60 pixels move a 2 mm offset by at most 1.5 mm";
+  EXPECT_DOUBLE_EQ(offset.hi, 0.0) << "a shrink dragged up stops at zero";
+  EXPECT_LT(offset.lo, -1e100);
+  const AmountDrag grow = amountDrag(3.0, true, 1.0, 0.001);
+  EXPECT_DOUBLE_EQ(grow.lo, 0.0);
+  const AmountDrag typed = amountDrag(-2.0, true, 0.0, 0.001);
+  EXPECT_LT(typed.lo, -1e100);
+  EXPECT_GT(typed.hi, 1e100) << "typed, an offset may change side";
+  const AmountDrag round = amountDrag(0.8, false, 1.0, 0.001);
+  EXPECT_DOUBLE_EQ(round.lo, 1e-6);
+  EXPECT_LE(40.0 * round.speed, 0.4);
+  EXPECT_DOUBLE_EQ(amountDrag(0.0, true, 0.0, 0.001).speed, 0.001) << "the floor";
+}
+
+}  // namespace
+}  // namespace strata::ui

@@ -18,6 +18,7 @@
 #include "engine/export/job_estimate.h"
 #include "engine/io/mesh_io.h"
 #include "tests/engine/jobs/job_test_support.h"
+#include "tests/support/export_cases.h"
 #include "tests/support/gated_backend.h"
 #include "tests/support/mesh_invariants.h"
 
@@ -342,6 +343,30 @@ TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
   EXPECT_EQ(stages[0], "estimate");  // the probes' own stages are not shown
   EXPECT_EQ(stages[1], "evaluate");
   EXPECT_EQ(contentOf(path), "an older export\n");
+}
+
+}  // namespace
+}  // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+// What the grid could not resolve and left out is said in the job's status, as the command
+// line says it (the export window said only "watertight, 1 component(s)" where a part had been
+// left out: an artist's test).
+TEST(ExportJob, SpecksLeftOutAreSaid) {
+  const std::string folder = freshFolder("specks");
+  const std::string path = folder + "/part.stl";
+  auto scene = std::make_shared<const Scene>(makeScene(
+      op(NodeKind::Difference, {sphere(0.42), meshLeaf(facetedTorus(0.33, 0.12, 96, 48))}), 64));
+  ExportWatch watch;
+  ExportJob job(scene, path, ExportOptions{}, std::make_shared<CpuBackend>(), watch.listener());
+  ASSERT_TRUE(watch.waitUntilFinished());
+  const ExportStatus s = job.status();
+  ASSERT_TRUE(s.succeeded) << s.error;
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings.back().find("the grid cannot resolve left out"), std::string::npos)
+      << s.warnings.back();
 }
 
 }  // namespace

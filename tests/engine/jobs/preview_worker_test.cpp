@@ -128,6 +128,40 @@ TEST(PreviewWorker, TheStatusNamesTheGridOfThePassBeingEvaluated) {
   EXPECT_FALSE(worker.status().gridKnown);  // idle: no pass, no grid
 }
 
+// A drag's newer positions do not cancel the draft of an earlier one: it finishes and shows,
+// then the newest position is evaluated (the ones between are never evaluated). Cancelling each
+// draft in turn showed nothing through a whole drag wherever a draft took longer than the hand's
+// next move (an artist's 100 armadillos). The hand's release (a calm request) still cancels.
+TEST(PreviewWorker, ADragsDraftFinishesAndTheNewestPositionFollows) {
+  auto backend = std::make_shared<GatedBackend>();
+  backend->close(GatedBackend::OnCancel::Leave);
+  ResultLog log;
+  PreviewWorker worker(backend, 32, log.callback());
+  log.attach(&worker);
+  worker.request(boxMinusSphere(32, 1), 32, true, 1);
+  ASSERT_TRUE(backend->waitUntilHeld());  // the first position's draft is sampling
+  worker.request(boxMinusSphere(32, 2), 32, true, 2);
+  worker.request(boxMinusSphere(32, 3), 32, true, 3);
+  backend->open();
+  ASSERT_TRUE(log.waitFor(2));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 2u);
+  expectShows(r[0], 1, 32, false);
+  expectShows(r[1], 3, 32, false);
+
+  backend->close(GatedBackend::OnCancel::Leave);
+  worker.request(boxMinusSphere(32, 4), 32, true, 4);
+  ASSERT_TRUE(backend->waitUntilHeld());
+  worker.request(boxMinusSphere(32, 5), 32, false, 5);  // released: the draft is cancelled
+  backend->open();
+  ASSERT_TRUE(log.waitFor(3));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  r = log.results();
+  ASSERT_EQ(r.size(), 3u);
+  expectShows(r[2], 5, 32, false);
+}
+
 TEST(PreviewWorker, CancelStopsAPassMidwayAndTheWorkerServesOn) {
   auto backend = std::make_shared<GatedBackend>();
   backend->close();
@@ -208,6 +242,24 @@ TEST(PreviewWorker, TheCoarsePassLeavesOutModifiersItsCellsCannotResolve) {
   EXPECT_TRUE(r[1]->stats.skippedModifiers.empty());
   EXPECT_LT(r[1]->stats.measure.volume, 15.8);  // the box of 16, its edges rounded
   EXPECT_GT(r[0]->stats.measure.volume, r[1]->stats.measure.volume + 0.3);  // not rounded
+}
+
+// The modifier being edited is applied by the coarse pass too: a drag on a round's radius showed
+// the parts unrounded ("coarse, unmodified") whatever the radius (an artist's test).
+TEST(PreviewWorker, TheCoarsePassAppliesTheModifierBeingEdited) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 16, log.callback());
+  log.attach(&worker);
+  auto round = std::make_shared<Node>(*modifier(NodeKind::Round, 0.2, {box({4.0, 4.0, 1.0})}));
+  round->name = "rim";
+  auto scene = std::make_shared<const Scene>(makeScene(round, 64));
+  worker.request(scene, 64, true, 1, {}, {round->id});  // its radius dragged
+  ASSERT_TRUE(log.waitFor(1));
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 1u);
+  expectShows(r[0], 1, 16, true);
+  EXPECT_TRUE(r[0]->stats.skippedModifiers.empty());
 }
 
 TEST(PreviewWorker, DragStaysCoarseAndItsStopRefinesWithoutRepeatingIt) {
