@@ -1005,9 +1005,28 @@ void setSelectionOperation(EditorState& state, NodeKind kind) {
       state.document.setOperation(id, kind);
       if (!changes.empty())
         logInfo(state, displayName(*n) + " is a " + kindName(kind) + ": " + changes);
-      // Becoming a pattern: copies spaced for what it holds.
-      if (patternOf(kind) != Pattern::None && patternOf(n->kind) != patternOf(kind))
-        state.document.setPattern(id, patternFor(state, kind, held));
+      // Becoming a pattern: copies spaced for what it holds, but what it had as another kind
+      // of pattern kept (an array's 10 x 10 came back as 3 copies after a turn as a circular
+      // array: an artist's test; undo had them).
+      if (patternOf(kind) != Pattern::None && patternOf(n->kind) != patternOf(kind)) {
+        const PatternParams fresh = patternFor(state, kind, held);
+        PatternParams kept = n->pattern;
+        const Pattern p = patternOf(kind);
+        if (p == Pattern::Array && kept.counts == glm::ivec3(1)) {
+          kept.counts = fresh.counts;
+          kept.step = fresh.step;
+        } else if (p == Pattern::Circular && kept.count <= 1) {
+          kept.count = fresh.count;
+          kept.angle = fresh.angle;
+          kept.axis = fresh.axis;
+          kept.center = fresh.center;
+        } else if (p == Pattern::Mirror) {
+          kept.axis = fresh.axis;  // a mirror's plane, for what it holds
+          kept.center = fresh.center;
+          kept.keepOriginal = fresh.keepOriginal;
+        }
+        state.document.setPattern(id, kept);
+      }
     });
   }
   state.document.endInteraction();

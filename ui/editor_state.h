@@ -234,7 +234,10 @@ struct EditorState {
   std::pair<uint64_t, int> exportGridFor{~uint64_t(0), 0};
   int lastImportUnit = 0;  // the import dialog's last choices
   int lastImportUpAxis = 0;
-  std::string lastImportFolder;    // where the last mesh was chosen from (importFolder)
+  std::string lastImportFolder;  // where the last mesh was chosen from (importFolder)
+  // A part picked in the view: the outliner opens the rows above it and scrolls its row into view
+  // (it stayed where it was, the part's row out of sight: an artist's test); 0 once done.
+  NodeId revealInOutliner = 0;
   std::string importSettingsPath;  // where those three are kept between runs ("" = not kept)
 
   // Requests to the frame loop.

@@ -237,8 +237,14 @@ void exportWindow(EditorState& state) {
                 c.components, c.genus);
     // Parts the export's cells could not keep (the report said nothing of a sphere lost in
     // it: an artist's test).
+    // A few in full, the rest counted (the log holds them all): a window of every warning grew
+    // past the screen and its Close button out of reach (an artist's test).
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
-    for (const std::string& w : s.warnings) ImGui::TextWrapped("%s", w.c_str());
+    const size_t shownWarnings = s.warnings.size() > 4 ? 3 : s.warnings.size();
+    for (size_t i = 0; i < shownWarnings; ++i) ImGui::TextWrapped("%s", s.warnings[i].c_str());
+    if (s.warnings.size() > shownWarnings)
+      ImGui::TextWrapped("and %zu more warnings (all of them in the log: View > Diagnostics)",
+                         s.warnings.size() - shownWarnings);
     ImGui::PopStyleColor();
     const SimplifyReport& r = s.simplify;
     const char* unit = unitSymbol(state.document.scene().settings.unit);
@@ -422,7 +428,17 @@ void exportOptionsDialog(EditorState& state) {
   TriangleEstimateJob* estimate = state.exportEstimate.get();
   const bool current =
       estimate && estimate->resolution() == resolution && estimate->simplifyCells() == cells;
-  if (!current && !ImGui::IsAnyItemActive()) {  // not while a field or slider is held
+  // Not while a field or slider is held and changing; once its value has stood for half a second
+  // it is estimated (a typed 5000 stayed "estimating the triangles..." for as long as its field
+  // kept the focus, and Tab did not leave it: an artist's test).
+  static std::pair<int, double> seen{-1, -1.0};
+  static double seenSince = 0.0;
+  if (seen != std::make_pair(resolution, cells)) {
+    seen = {resolution, cells};
+    seenSince = ImGui::GetTime();
+  }
+  const bool settled = !ImGui::IsAnyItemActive() || ImGui::GetTime() - seenSince > 0.5;
+  if (!current && settled) {
     retireEstimate(state);
     state.exportEstimate = std::make_unique<TriangleEstimateJob>(
         state.document.snapshot(), resolution, cells, state.makeBackend);

@@ -258,6 +258,12 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
   const float right = ImGui::GetContentRegionMax().x;
   const ImVec2 rowStart = ImGui::GetCursorPos();
 
+  // Revealing a part picked in the view: every row above it open.
+  const bool reveal = state.revealInOutliner != 0;
+  if (reveal && !leaf && !chained && state.revealInOutliner != node->id &&
+      findNode(node, state.revealInOutliner))
+    ImGui::SetNextItemOpen(true);
+
   bool open;
   float clipRight = 1e9f;
   if (state.renaming == node->id) {
@@ -281,7 +287,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
     // A name too long for the column ends in an ellipsis (the operation's kind word after it
     // keeps its room); the row's tooltip has it whole.
     const std::string prefix = std::string(kindGlyph(node->kind)) + (chained ? "  \u2026 " : "  ");
-    const std::string suffix = missing ? " (missing)" : "";
+    const std::string suffix = missing ? " (missing)" : node->meshOpen ? " (open)" : "";
     const float textStart = ImGui::GetCursorScreenPos().x + ImGui::GetFontSize() +
                             2.0f * ImGui::GetStyle().FramePadding.x;
     const float kindRoom =
@@ -307,6 +313,10 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
         gPressedRow = node->id;  // a drag takes the whole selection; a click, this row alone
       else
         selectNode(state, node->id, io.KeyCtrl);
+    }
+    if (reveal && state.revealInOutliner == node->id) {
+      if (!ImGui::IsItemVisible()) ImGui::SetScrollHereY(0.5f);
+      state.revealInOutliner = 0;
     }
     if (gPressedRow == node->id && ImGui::IsMouseReleased(0)) {
       if (ImGui::IsItemHovered() && !ImGui::GetDragDropPayload()) selectNode(state, node->id);
@@ -452,6 +462,7 @@ void drawOutliner(EditorState& state, const PanelLayout& layout) {
   gRowsShown.swap(gRowsDrawn);
   gRowsDrawn.clear();
   if (root) nodeRow(state, root, ChildRole::Root, false, &drop);
+  state.revealInOutliner = 0;  // done, or its row is not drawn (inside a chain shown compactly)
   // Empty space below the tree: a drop here places the node onto the root.
   ImVec2 avail = ImGui::GetContentRegionAvail();
   ImGui::InvisibleButton("##empty", ImVec2(std::max(avail.x, 1.0f), std::max(avail.y, 24.0f)));

@@ -514,9 +514,10 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
   }
   if (click_) {
     std::optional<PickHit> hit = pickAt(renderer, state, rect, click_->mouse, pixelScale);
-    if (hit && findNode(state.document.root(), hit->leaf))
+    if (hit && findNode(state.document.root(), hit->leaf)) {
       selectNode(state, hit->leaf, click_->extend);
-    else if (!click_->extend)
+      state.revealInOutliner = hit->leaf;  // its row opened and scrolled into view
+    } else if (!click_->extend)
       clearSelection(state);
     click_.reset();
   }

@@ -537,13 +537,21 @@ TEST(EditorWindow, GroupAsAPatternIsOneUndoStepSpacedFromTheParts) {
   EXPECT_DOUBLE_EQ(array->pattern.step.x, 10.0);  // 1.25 x 8
   ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
   expectCopies(3);
+  PatternParams grid = array->pattern;
+  grid.counts = glm::ivec3(2, 2, 1);
+  state.document.setPattern(array->id, grid);
   setSelectionOperation(state, NodeKind::CircularArray);
   array = findNode(state.document.root(), array->id);
   EXPECT_EQ(array->pattern.count, 6);
   ASSERT_TRUE(editor.waitForPreview(60.0)) << state.previewError;
   expectCopies(6);  // at radius 10 they are disjoint
-  undo(state);
-  undo(state);
+  // Back to an array: its 2 x 2 as it was (3 copies again, an artist's test), and back to a
+  // circular array: its 6.
+  setSelectionOperation(state, NodeKind::Array);
+  EXPECT_EQ(findNode(state.document.root(), array->id)->pattern.counts, glm::ivec3(2, 2, 1));
+  setSelectionOperation(state, NodeKind::CircularArray);
+  EXPECT_EQ(findNode(state.document.root(), array->id)->pattern.count, 6);
+  for (int i = 0; i < 5; ++i) undo(state);
   EXPECT_EQ(sceneToJson(state.document.scene()), before);
 
   state.selection = {block};
