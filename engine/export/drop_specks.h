@@ -11,7 +11,9 @@
 //     (contour_cells.h);
 //   - it fits within one cell: its vertices span less than the cell size h along every axis.
 // A feature at least a cell across along some axis, with a node the grid is sure of on each
-// side, is kept, whatever its shape; what was left out is counted in the export's report.
+// side, is kept, whatever its shape; what was left out is counted in the export's report. The
+// triangles of an open mesh (Node::meshOpen) count as resolved: its rays through its holes are
+// left empty, so no node of its inside has all three rays agreeing (contour_scene.cpp).
 // Where every component would go (the whole result is thinner than a cell), none does.
 //
 // Synchronous; parallel inside (parallel_for.h); the result does not depend on the thread count.

@@ -36,6 +36,13 @@ void addOctahedron(ExportMesh& m, std::vector<uint8_t>& resolved, glm::dvec3 at,
   }
 }
 
+// The scene contoured on the CPU (report in *report) and its mesh checked.
+MeshCheck exportedCheck(const Scene& scene, ContourReport* report) {
+  Evaluator evaluator(std::make_shared<CpuBackend>());
+  Progress progress;
+  return checkMesh(contourScene(scene, evaluator, ContourOptions{}, progress, report).mesh);
+}
+
 TEST(DropSpecks, LeavesOutWhatTheGridDoesNotResolveAndKeepsTheRestInOrder) {
   const double h = 1.0;
   constexpr uint8_t kBoth = kInsideResolved | kOutsideResolved;
@@ -100,11 +107,8 @@ TEST(DropSpecks, NothingToDropChangesNothing) {
 TEST(DropSpecks, ASphereMinusAGrazingTorusExportsOnePart) {
   const Scene scene = makeScene(
       op(NodeKind::Difference, {sphere(0.42), meshLeaf(facetedTorus(0.33, 0.12, 96, 48))}), 64);
-  Evaluator evaluator(std::make_shared<CpuBackend>());
-  Progress progress;
   ContourReport report;
-  const ExportMesh mesh = contourScene(scene, evaluator, ContourOptions{}, progress, &report);
-  const MeshCheck c = checkMesh(mesh.mesh);
+  const MeshCheck c = exportedCheck(scene, &report);
   EXPECT_TRUE(c.watertight());
   EXPECT_GT(report.droppedSpecks.components, 0);
   EXPECT_EQ(c.components, 1);
@@ -153,11 +157,8 @@ TEST(DropSpecks, AnOpenMeshBesideAnotherPartIsNotTakenForASpeck) {
   open->transform.translate = glm::dvec3(2.0, 0.0, 0.0);
   const NodePtr openLeaf = open;
   const Scene scene = makeScene(op(NodeKind::Union, {box(glm::dvec3(1.0)), openLeaf}), 48);
-  Evaluator evaluator(std::make_shared<CpuBackend>());
-  Progress progress;
   ContourReport report;
-  const ExportMesh mesh = contourScene(scene, evaluator, ContourOptions{}, progress, &report);
-  const MeshCheck c = checkMesh(mesh.mesh);
+  const MeshCheck c = exportedCheck(scene, &report);
   EXPECT_TRUE(c.watertight());
   EXPECT_EQ(c.components, 2) << report.droppedSpecks.components << " left out";
   EXPECT_EQ(report.droppedSpecks.components, 0);

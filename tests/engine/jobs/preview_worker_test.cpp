@@ -223,7 +223,7 @@ TEST(PreviewWorker, CalmEditShowsTheCoarseResultThenTheFullOne) {
 // The coarse pass of a calm edit shows a part under a round smaller than two of its cells
 // unrounded (a round its cells cannot resolve tears thin walls apart), and says so; the full
 // pass rounds it.
-TEST(PreviewWorker, TheCoarsePassLeavesOutModifiersItsCellsCannotResolve) {
+TEST(PreviewWorker, TheCoarsePassLeavesOutModifiersItsCellsCannotResolveButTheEditedOne) {
   ResultLog log;
   PreviewWorker worker(std::make_shared<CpuBackend>(), 16, log.callback());
   log.attach(&worker);
@@ -242,24 +242,19 @@ TEST(PreviewWorker, TheCoarsePassLeavesOutModifiersItsCellsCannotResolve) {
   EXPECT_TRUE(r[1]->stats.skippedModifiers.empty());
   EXPECT_LT(r[1]->stats.measure.volume, 15.8);  // the box of 16, its edges rounded
   EXPECT_GT(r[0]->stats.measure.volume, r[1]->stats.measure.volume + 0.3);  // not rounded
-}
-
-// The modifier being edited is applied by the coarse pass too: a drag on a round's radius showed
-// the parts unrounded ("coarse, unmodified") whatever the radius (an artist's test).
-TEST(PreviewWorker, TheCoarsePassAppliesTheModifierBeingEdited) {
-  ResultLog log;
-  PreviewWorker worker(std::make_shared<CpuBackend>(), 16, log.callback());
-  log.attach(&worker);
-  auto round = std::make_shared<Node>(*modifier(NodeKind::Round, 0.2, {box({4.0, 4.0, 1.0})}));
-  round->name = "rim";
-  auto scene = std::make_shared<const Scene>(makeScene(round, 64));
-  worker.request(scene, 64, true, 1, {}, {round->id});  // its radius dragged
-  ASSERT_TRUE(log.waitFor(1));
-  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
-  const std::vector<ResultPtr> r = log.results();
-  ASSERT_EQ(r.size(), 1u);
-  expectShows(r[0], 1, 16, true);
-  EXPECT_TRUE(r[0]->stats.skippedModifiers.empty());
+  // The modifier being edited is applied by the coarse pass too: a drag on a round's radius
+  // showed the parts unrounded ("coarse, unmodified") whatever the radius (an artist's test).
+  // A worker of its own: one that has measured a quick full pass drafts in full.
+  ResultLog dragLog;
+  PreviewWorker dragWorker(std::make_shared<CpuBackend>(), 16, dragLog.callback());
+  dragLog.attach(&dragWorker);
+  dragWorker.request(scene, 64, true, 2, {}, {round->id});
+  ASSERT_TRUE(dragLog.waitFor(1));
+  ASSERT_TRUE(dragWorker.waitUntilIdle(kJobTimeout));
+  const std::vector<ResultPtr> drafts = dragLog.results();
+  ASSERT_EQ(drafts.size(), 1u);
+  expectShows(drafts[0], 2, 16, true);
+  EXPECT_TRUE(drafts[0]->stats.skippedModifiers.empty());
 }
 
 TEST(PreviewWorker, DragStaysCoarseAndItsStopRefinesWithoutRepeatingIt) {
