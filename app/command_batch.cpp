@@ -14,7 +14,6 @@
 // and the rest not.
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -22,6 +21,7 @@
 
 #include "app/cli_common.h"
 #include "app/commands.h"
+#include "engine/util/atomic_file.h"
 #include "engine/util/error.h"
 
 namespace strata {
@@ -83,11 +83,9 @@ bool batchable(const std::string& command) {
 // Every job of `path` ("-": standard input), checked. Throws strata::Error naming the file and
 // the line.
 std::vector<Job> readJobs(const std::string& path) {
-  std::ifstream file;
-  if (path != "-") {
-    file.open(path);
-    if (!file) throw Error(path + ": cannot be read");
-  }
+  // A file through readWholeFile: FIFOs, devices, folders and files past --max-file-size are
+  // refused with a reason (a FIFO hung the batch).
+  std::istringstream file(path == "-" ? std::string() : readWholeFile(path));
   std::istream& in = path == "-" ? std::cin : file;
   const std::string name = path == "-" ? "standard input" : path;
   std::vector<Job> jobs;

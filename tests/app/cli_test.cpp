@@ -667,6 +667,12 @@ TEST(CliBatch, BadLinesStopItBeforeAnyJobAndAFailureStopsItUnlessKeepGoing) {
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("2 of 2 jobs run"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(made)) << "the job after the failure ran";
+  // A FIFO given as the file is refused, not waited on (it hung the batch).
+  const std::string fifo = folder + "/jobs.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  r = strata("batch " + fifo);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("is a FIFO"), std::string::npos) << r.output;
   std::filesystem::remove_all(folder);
 }
 
