@@ -18,6 +18,10 @@ std::string text(double v) {
 
 ExportSettings readExportSettings(const std::string& path, ExportSettings settings) {
   readSettingLines(path, [&](const std::string& name, const std::string& text) {
+    if (name == "folder") {
+      settings.folder = text;
+      return;
+    }
     double value = 0.0;
     if (!settingNumber(text, &value)) return;
     if (name == "resolution" && value >= kMinResolution && value <= kMaxResolution)
@@ -32,7 +36,8 @@ ExportSettings readExportSettings(const std::string& path, ExportSettings settin
 void writeExportSettings(const std::string& path, const ExportSettings& settings) {
   writeSettingLines(path, {{"resolution", std::to_string(settings.resolution)},
                            {"simplify", settings.simplify ? "1" : "0"},
-                           {"simplifyCells", text(settings.simplifyCells)}});
+                           {"simplifyCells", text(settings.simplifyCells)},
+                           {"folder", settings.folder}});
 }
 
 ImportSettings readImportSettings(const std::string& path, ImportSettings settings) {

@@ -15,10 +15,14 @@ struct ExportSettings {
   int resolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool simplify = false;
   float simplifyCells = 0.25f;
+  // The folder of the last export ("" = none yet): where an untitled document's first export of
+  // a run is offered (an artist's first export of every run opened in $HOME), and a document
+  // whose folder cannot be written to (a bundled scene).
+  std::string folder;
 };
 
 // The settings saved in `path` over `defaults`; a missing or damaged file (or a line it does not
-// know, or a value out of range) leaves the defaults.
+// know, or a value out of range) leaves the defaults. A folder line takes the rest of its line.
 ExportSettings readExportSettings(const std::string& path, ExportSettings defaults);
 // Writes them atomically, creating the folder. Throws strata::Error.
 void writeExportSettings(const std::string& path, const ExportSettings& settings);

@@ -226,10 +226,11 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   s.exportSettingsPath = options_.exportSettingsPath;
   if (!s.exportSettingsPath.empty()) {
     const ExportSettings kept = readExportSettings(
-        s.exportSettingsPath, {s.exportResolution, s.exportSimplify, s.exportSimplifyCells});
+        s.exportSettingsPath, {s.exportResolution, s.exportSimplify, s.exportSimplifyCells, ""});
     s.exportResolution = kept.resolution;
     s.exportSimplify = kept.simplify;
     s.exportSimplifyCells = kept.simplifyCells;
+    s.rememberedExportFolder = kept.folder;
   }
   s.importSettingsPath = options_.importSettingsPath;
   if (!s.importSettingsPath.empty()) {

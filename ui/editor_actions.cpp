@@ -1347,9 +1347,10 @@ std::string dialogFolder(const EditorState& state) {
   if (!state.lastDocumentFolder.empty() &&
       std::filesystem::is_directory(state.lastDocumentFolder, missing))
     return state.lastDocumentFolder;
-  // else the last export's,
+  // else the last export's (of this run, else of an earlier one),
   if (!state.lastExportPath.empty())
     return std::filesystem::path(state.lastExportPath).parent_path().string() + "/";
+  if (const std::string kept = rememberedExportFolder(state); !kept.empty()) return kept;
   // An untitled document's files go to the user's home, not wherever the editor was started
   // from (an artist's Save As opened in the program's own folder).
   std::error_code error;
@@ -1358,21 +1359,45 @@ std::string dialogFolder(const EditorState& state) {
   return "";
 }
 
+std::string rememberedExportFolder(const EditorState& state) {
+  std::error_code missing;
+  if (state.rememberedExportFolder.empty() ||
+      !std::filesystem::is_directory(state.rememberedExportFolder, missing))
+    return "";
+  std::string folder = state.rememberedExportFolder;
+  if (folder.back() != '/') folder += '/';
+  return folder;
+}
+
 std::string exportSuggestion(const EditorState& state) {
   if (!state.lastExportPath.empty() && !state.document.path().empty() &&
       state.lastExportDocument == state.document.path())
     return state.lastExportPath;
   if (state.document.path().empty()) {
-    // Untitled: the last export's folder (which may be another untitled document's), a new name.
-    if (state.lastExportPath.empty()) return dialogFolder(state) + "part.stl";
-    return (std::filesystem::path(state.lastExportPath).parent_path() / "part.stl").string();
+    // Untitled: the last export's folder (which may be another untitled document's, or an
+    // earlier run's), a new name.
+    if (!state.lastExportPath.empty())
+      return (std::filesystem::path(state.lastExportPath).parent_path() / "part.stl").string();
+    const std::string kept = rememberedExportFolder(state);
+    return (kept.empty() ? dialogFolder(state) : kept) + "part.stl";
   }
   std::string name = std::filesystem::path(state.document.path()).filename().string();
   const std::string suffix = ".strata.json";
   if (name.size() > suffix.size() &&
       name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
     name = name.substr(0, name.size() - suffix.size());
-  return documentFolder(state) + name + ".stl";
+  const std::string beside = documentFolder(state) + name + ".stl";
+  // A document in a folder that takes no file (a bundled scene, a read-only share): the last
+  // export's folder, where there is one.
+  if (!cannotWriteAt(beside).empty()) {
+    const std::string folder =
+        !state.lastExportPath.empty()
+            ? std::filesystem::path(state.lastExportPath).parent_path().string() + "/"
+            : rememberedExportFolder(state);
+    if (!folder.empty() && cannotWriteAt(folder + name + ".stl").empty())
+      return folder + name + ".stl";
+  }
+  return beside;
 }
 
 void logExportEnd(EditorState& state) {
@@ -1422,9 +1447,15 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
   });
   if (!state.exportSettingsPath.empty()) {  // the dialog opens with these choices next time
     try {
-      writeExportSettings(state.exportSettingsPath,
-                          {resolution, simplifyCells > 0.0,
-                           simplifyCells > 0.0 ? float(simplifyCells) : state.exportSimplifyCells});
+      const std::string folder =
+          state.lastExportPath.empty()
+              ? state.rememberedExportFolder
+              : std::filesystem::path(state.lastExportPath).parent_path().string();
+      writeExportSettings(
+          state.exportSettingsPath,
+          {resolution, simplifyCells > 0.0,
+           simplifyCells > 0.0 ? float(simplifyCells) : state.exportSimplifyCells, folder});
+      state.rememberedExportFolder = folder;
     } catch (const std::exception& e) {
       logWarning(state, std::string("export options not remembered: ") + e.what());
     }

@@ -133,9 +133,9 @@ void discardRecovery(EditorState& state);
 void postponeRecovery(EditorState& state);
 // The document's folder, absolute, with a trailing '/' ("" for an untitled document).
 std::string documentFolder(const EditorState& state);
-// The folder the file dialogs start in: the document's, else the last export's, else the user's
-// home (never where the editor happened to be started), with a trailing '/'; "" where none is
-// known (the dialog then shows the working folder).
+// The folder the file dialogs start in: the document's, else the last export's (of this run,
+// else of an earlier one), else the user's home (never where the editor happened to be started),
+// with a trailing '/'; "" where none is known (the dialog then shows the working folder).
 std::string dialogFolder(const EditorState& state);
 // Where the import dialog opens: the folder the last mesh was chosen from while it exists
 // (meshes live apart from scenes: an artist walked back to them at every import), else
@@ -145,8 +145,13 @@ std::string importFolder(const EditorState& state);
 // failure to write them is a warning in the log.
 void rememberImportChoices(EditorState& state);
 // The file an export of the document is offered: the last export's of the same document, else
-// the document's name beside it with .stl ("part.stl" for an untitled one).
+// the document's name beside it with .stl, or in the last export's folder (of this run, else of
+// an earlier one) where the document's own takes no file; an untitled one's "part.stl" in the
+// last export's folder (of this run, else of an earlier one), else dialogFolder.
 std::string exportSuggestion(const EditorState& state);
+// The folder of an earlier run's last export (EditorState::rememberedExportFolder) with a
+// trailing '/', while it exists; else "".
+std::string rememberedExportFolder(const EditorState& state);
 // The part a palette drop on the surface of leaf `picked` goes onto: the leaf, or where its
 // surface is a cutter's or an intersector's the operation whose material it bounds, or the
 // pattern it lies in (0 when `picked` is not in the tree).

@@ -195,6 +195,9 @@ struct EditorState {
   // The folder of the last document that had a file, when another replaced it (File > New,
   // Open): where an untitled document's dialogs start (dialogFolder).
   std::string lastDocumentFolder;
+  // The folder of the last export of an earlier run (export.txt): where an untitled document's
+  // first export is offered, and a document's whose own folder cannot be written to.
+  std::string rememberedExportFolder;
   int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;

@@ -452,9 +452,15 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
   }
   if (state.worker.busy) {
     ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "|  evaluating %d: %s %.0f%%",
-                       state.worker.resolution, state.worker.stage.c_str(),
-                       state.worker.fraction * 100.0);
+    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "|  evaluating %d%s: %s %.0f%%",
+                       state.worker.resolution,
+                       state.worker.settling ? " on the export's lattice" : "",
+                       state.worker.stage.c_str(), state.worker.fraction * 100.0);
+    if (state.worker.settling && ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "While you edit, the preview keeps its lattice so that parts you left alone are not\n"
+          "sampled again. At rest it is evaluated on the scene's own lattice: what an export at\n"
+          "this resolution, and the document reopened, show.");
   }
   const PreviewResult* shown = state.preview.get();
   if (shown && shown->ok()) {

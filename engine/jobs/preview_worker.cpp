@@ -32,13 +32,14 @@ int previewResolutionFor(int requested, int shownResolution, uint64_t shownCache
 
 PreviewWorker::PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution,
                              std::function<void()> onResult, double quickPassSeconds,
-                             double moveGhostAfterSeconds)
+                             double moveGhostAfterSeconds, double settleSeconds)
     : backend_(std::move(backend)),
       backendDescription_(backend_->description()),
       coarse_(std::max(coarseResolution, 8)),
       quickPassSeconds_(quickPassSeconds),
       onResult_(std::move(onResult)),
-      moveGhostAfterSeconds_(moveGhostAfterSeconds) {
+      moveGhostAfterSeconds_(moveGhostAfterSeconds),
+      settleSeconds_(settleSeconds) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -47,6 +48,7 @@ PreviewWorker::~PreviewWorker() {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
     hasRequest_ = false;
+    settling_.reset();
     if (running_) running_->cancel();
     if (ghostsRunning_) ghostsRunning_->cancel();
   }
@@ -76,9 +78,11 @@ void PreviewWorker::cancel() {
     std::lock_guard<std::mutex> lock(mutex_);
     hasRequest_ = false;
     pending_ = Request{};
+    settling_.reset();
     if (running_) running_->cancel();
     if (ghostsRunning_) ghostsRunning_->cancel();
   }
+  wake_.notify_all();  // a settling wait ends
   idle_.notify_all();
 }
 
@@ -94,7 +98,29 @@ PreviewStatus PreviewWorker::status() const {
 
 bool PreviewWorker::waitUntilIdle(std::chrono::milliseconds timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
-  return idle_.wait_for(lock, timeout, [this] { return !hasRequest_ && !running_; });
+  return idle_.wait_for(lock, timeout, [this] { return !hasRequest_ && !running_ && !settling_; });
+}
+
+std::optional<PreviewWorker::Request> PreviewWorker::settlingPass(const Request& request,
+                                                                  const Progress& progress) const {
+  if (request.interactive || request.ownLattice || progress.cancelled() || !request.scene ||
+      !request.scene->root || settleSeconds_ < 0.0)
+    return std::nullopt;
+  // Its full pass was the last result published, and it succeeded.
+  if (lastShown_ != request.scene || shownFullResolution_ != request.resolution)
+    return std::nullopt;
+  const auto last = lastGrids_.find(request.resolution);
+  if (last == lastGrids_.end()) return std::nullopt;
+  try {
+    if (last->second == Evaluator::previewGridFor(*request.scene, request.resolution, nullptr))
+      return std::nullopt;
+  } catch (...) {
+    return std::nullopt;  // the pass said it already
+  }
+  Request settle = request;
+  settle.ownLattice = true;
+  settle.edited.clear();
+  return settle;
 }
 
 void PreviewWorker::run() {
@@ -105,11 +131,21 @@ void PreviewWorker::run() {
     std::shared_ptr<Progress> progress;
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [this] { return stopping_ || hasRequest_; });
+      // A settling pass waits for the hand to rest: a request meanwhile replaces it.
+      if (settling_) {
+        wake_.wait_for(lock, std::chrono::duration<double>(settleSeconds_),
+                       [this] { return stopping_ || hasRequest_ || !settling_; });
+        if (settling_ && !hasRequest_) request = std::move(*settling_);
+        settling_.reset();
+      }
+      if (!request.scene) {
+        wake_.wait(lock, [this] { return stopping_ || hasRequest_; });
+        if (stopping_) return;
+        request = std::move(pending_);
+        pending_ = Request{};
+        hasRequest_ = false;
+      }
       if (stopping_) return;
-      request = std::move(pending_);
-      pending_ = Request{};
-      hasRequest_ = false;
       // Taken and cancellable in one step: request() and cancel() reach it from now on.
       progress = std::make_shared<Progress>([this](const std::string& stage, double fraction) {
         std::lock_guard<std::mutex> guard(mutex_);
@@ -121,10 +157,12 @@ void PreviewWorker::run() {
       status_ = PreviewStatus{true, "start", 0.0, 0, false, Grid()};
     }
     serve(evaluator, request, *progress);
+    std::optional<Request> settle = settlingPass(request, *progress);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_.reset();
       status_ = PreviewStatus{};
+      if (!hasRequest_ && !stopping_) settling_ = std::move(settle);
     }
     idle_.notify_all();
   }
@@ -182,7 +220,7 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   if (progress.cancelled()) return false;  // superseded before it began
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    status_ = PreviewStatus{true, "start", 0.0, resolution, false, Grid()};
+    status_ = PreviewStatus{true, "start", 0.0, resolution, false, Grid(), request.ownLattice};
   }
   auto result = std::make_shared<PreviewResult>();
   result->tag = request.tag;
@@ -407,8 +445,9 @@ bool PreviewWorker::computePass(Evaluator& evaluator, const Request& request, Pr
   options.applyModifiers = request.edited;
   if (!request.scene->root) throw Error("the scene has no root node");
   auto last = lastGrids_.find(result.resolution);
-  const Grid grid = Evaluator::previewGridFor(*request.scene, result.resolution,
-                                              last == lastGrids_.end() ? nullptr : &last->second);
+  const Grid grid = Evaluator::previewGridFor(
+      *request.scene, result.resolution,
+      last == lastGrids_.end() || request.ownLattice ? nullptr : &last->second);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (status_.busy && status_.resolution == result.resolution) {

@@ -37,6 +37,13 @@
 //     ghosts take a while: the constructor's moveGhostAfterSeconds); a copy of the result with
 //     the new ghost follows (same splats: the UI keeps its image). A newer request waits for it
 //     (so that a drag's ghosts follow the hand); stop and cancel() end it.
+//   - At rest, the lattice of the export: a calm request's full pass follows the lattice of the
+//     last one (Evaluator::previewGridFor keeps it while the scene's size changes a little, so
+//     that an edit keeps the LDIs of the parts it left alone); where that is not the scene's own
+//     lattice (the one gridFor, and so `strata export` at that resolution and a reopened
+//     document, samples), the same request is evaluated again on its own lattice once no newer
+//     request has come for `settleSeconds`, and published. The image at rest is what the export
+//     at that resolution samples (a preview on a kept lattice showed a strut a reopen lost).
 //   - Nothing here draws (no GL): ui/ uploads the splats or copies them through CUDA-GL
 //     interop. The worker catches everything and reports it in the result's `error`.
 //
@@ -55,6 +62,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -103,6 +111,7 @@ struct PreviewStatus {
   int resolution = 0;      // of the running pass
   bool gridKnown = false;  // the running pass's grid is decided:
   Grid grid;               // that grid
+  bool settling = false;   // the pass on the scene's own lattice, after an edit came to rest
 };
 
 // The resolution of a draft (a drag's, or a calm edit's first) pass when `full` is asked for:
@@ -144,10 +153,11 @@ class PreviewWorker {
   // on the worker thread each time a result is ready (e.g. to wake the UI's event loop); it may
   // call takeResult().
   // A ghost beyond the grid carried until its own is evaluated is moved with its part where the
-  // last ghosts took at least `moveGhostAfterSeconds` (0: always).
+  // last ghosts took at least `moveGhostAfterSeconds` (0: always). A result on a kept lattice is
+  // evaluated again on the scene's own once no request has come for `settleSeconds`.
   explicit PreviewWorker(std::shared_ptr<Backend> backend, int coarseResolution = 96,
                          std::function<void()> onResult = {}, double quickPassSeconds = 0.05,
-                         double moveGhostAfterSeconds = 0.02);
+                         double moveGhostAfterSeconds = 0.02, double settleSeconds = 1.0);
   ~PreviewWorker();  // cancels the running evaluation, drops the pending one, and joins
   PreviewWorker(const PreviewWorker&) = delete;
   PreviewWorker& operator=(const PreviewWorker&) = delete;
@@ -163,7 +173,8 @@ class PreviewWorker {
   // The newest finished result not taken yet, or null.
   std::shared_ptr<const PreviewResult> takeResult();
   PreviewStatus status() const;
-  // Blocks until no request is pending or being evaluated, or until `timeout` has passed;
+  // Blocks until no request is pending or being evaluated and no pass on the scene's own
+  // lattice is due (the settle time and that pass included), or until `timeout` has passed;
   // returns whether the worker is idle. For tests and headless callers: the UI never waits.
   bool waitUntilIdle(std::chrono::milliseconds timeout);
   // Whether results must carry host splats (default) or may keep them where the backend made
@@ -182,8 +193,12 @@ class PreviewWorker {
     uint64_t tag = 0;
     std::vector<NodeId> ghosts;
     std::vector<NodeId> edited;
+    bool ownLattice = false;  // on the scene's own lattice (the settling pass), not the last one
   };
   void run();
+  // The settling pass due after `request` was served (a copy on the scene's own lattice), or
+  // none: a drag's, a cancelled one, one on its own lattice already, one with an error.
+  std::optional<Request> settlingPass(const Request& request, const Progress& progress) const;
   // Evaluates one request: its coarse pass where one applies, then its full pass.
   void serve(Evaluator& evaluator, const Request& request, Progress& progress);
   // Evaluates one pass and publishes its result; returns false when cancelled, or with
@@ -258,7 +273,9 @@ class PreviewWorker {
   bool stopping_ = false;
   bool hasRequest_ = false;
   Request pending_;
-  bool runningInteractive_ = false;          // the request being served is a drag's
+  bool runningInteractive_ = false;  // the request being served is a drag's
+  std::optional<Request> settling_;  // the settling pass due once settleSeconds_ pass
+  double settleSeconds_;
   std::shared_ptr<Progress> running_;        // of the request being served; null when none
   std::shared_ptr<Progress> ghostsRunning_;  // of finishGhosts while it runs; null otherwise
   std::shared_ptr<const PreviewResult> finished_;

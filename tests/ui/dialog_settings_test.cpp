@@ -24,11 +24,12 @@ TEST(ExportSettings, RoundTripAndBadLinesKeepTheDefaults) {
   const std::string path = folder + "/export.txt";
   const ExportSettings defaults;
   EXPECT_EQ(readExportSettings(path, defaults).resolution, 0);  // no file: the defaults
-  writeExportSettings(path, {512, true, 0.5f});
+  writeExportSettings(path, {512, true, 0.5f, "/tmp/a folder"});
   const ExportSettings back = readExportSettings(path, defaults);
   EXPECT_EQ(back.resolution, 512);
   EXPECT_TRUE(back.simplify);
   EXPECT_FLOAT_EQ(back.simplifyCells, 0.5f);
+  EXPECT_EQ(back.folder, "/tmp/a folder");
   {
     std::ofstream out(path);
     out << "resolution 99999999\nsimplify 7\nsimplifyCells nan\nwhat 3\nsimplifyCells 0.3\n";
@@ -54,6 +55,8 @@ TEST(ExportSettings, AnExportRemembersItsChoices) {
   EXPECT_EQ(kept.resolution, 48);
   EXPECT_TRUE(kept.simplify);
   EXPECT_FLOAT_EQ(kept.simplifyCells, 0.25f);
+  EXPECT_EQ(std::filesystem::path(kept.folder),
+            std::filesystem::absolute(folder).lexically_normal());
   // Its end said in the log, once (the status bar kept "exporting ..." after it: an artist).
   for (int waited = 0; !state.exportJob->status().finished && waited < 120000; waited += 5)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -162,6 +165,45 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
     setenv("HOME", keptHome.c_str(), 1);
   else
     unsetenv("HOME");
+  std::filesystem::remove_all(folder);
+}
+
+// The last export's folder is kept between runs (export.txt): the first export of an untitled
+// document in a new run is offered it (an artist's first export of every run opened in $HOME), and
+// so is a document whose own folder takes no file (here: gone since it was saved).
+TEST(ExportSettings, TheLastExportsFolderIsOfferedInTheNextRun) {
+  const std::string folder =
+      std::filesystem::absolute(::testing::TempDir() + "/strata export folder")
+          .lexically_normal()
+          .string();
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder + "/prints");
+  std::filesystem::create_directories(folder + "/scenes");
+  const std::string settings = folder + "/export.txt";
+  {  // a run that exports into prints/
+    EditorState run;
+    run.makeBackend = [] { return std::make_shared<CpuBackend>(); };
+    run.exportSettingsPath = settings;
+    addPrimitive(run, NodeKind::Sphere);
+    startExport(run, folder + "/prints/ball.stl", 32, 0.0, false);
+    ASSERT_TRUE(run.exportJob);
+    run.exportJob.reset();  // waits for it
+  }
+  const ExportSettings kept = readExportSettings(settings, {});
+  EXPECT_EQ(kept.folder, folder + "/prints");  // a folder with spaces comes back whole
+  EditorState next;                            // the next run, as the editor starts it
+  next.rememberedExportFolder = kept.folder;
+  EXPECT_EQ(exportSuggestion(next), folder + "/prints/part.stl");
+  EXPECT_EQ(dialogFolder(next), folder + "/prints/");
+  // A document saved in scenes/, which has gone since: its export goes to prints/.
+  addPrimitive(next, NodeKind::Box);
+  ASSERT_TRUE(saveDocumentAs(next, folder + "/scenes/block.strata.json"));
+  EXPECT_EQ(exportSuggestion(next), folder + "/scenes/block.stl");  // its own folder first
+  std::filesystem::remove_all(folder + "/scenes");
+  EXPECT_EQ(exportSuggestion(next), folder + "/prints/block.stl");
+  // A folder that has gone is not offered.
+  std::filesystem::remove_all(folder + "/prints");
+  EXPECT_EQ(rememberedExportFolder(next), "");
   std::filesystem::remove_all(folder);
 }
 

@@ -420,6 +420,41 @@ TEST(PreviewWorker, AFinerResolutionOfTheSamePartsKeepsTheFullResultShown) {
   expectShows(r[4], 3, 128, false);
 }
 
+// An edit that grows the scene a little is evaluated on the lattice of the result before it (the
+// cache keeps the parts it left alone); once no request has come for the settle time, the same
+// scene is evaluated again on its own lattice: the image at rest is the one a reopened document
+// and `strata export` at that resolution sample (an artist's reopened scene looked different).
+TEST(PreviewWorker, AtRestTheResultIsOnTheScenesOwnLattice) {
+  ResultLog log;
+  PreviewWorker worker(std::make_shared<CpuBackend>(), 32, log.callback(), 1e9, 0.02, 0.0);
+  log.attach(&worker);
+  auto scene = [](double x) {
+    return std::make_shared<const Scene>(
+        makeScene(op(NodeKind::Union, {box({2, 2, 2}), sphere(0.5, {x, 1, 1})}), 64));
+  };
+  const auto before = scene(3.0);
+  ASSERT_TRUE(log.serve(before, 64, 1, 2));  // coarse, then full: on its own lattice already
+  EXPECT_EQ(log.results().size(), 2u);
+  const auto grown = scene(3.13);  // about 4% longer along x: within the lattice's slack
+  worker.request(grown, 64, false, 2);
+  ASSERT_TRUE(worker.waitUntilIdle(kJobTimeout));
+  const std::vector<ResultPtr> r = log.results();
+  ASSERT_EQ(r.size(), 4u);  // the edit's full result, then the one at rest
+  const Grid own = Evaluator::previewGridFor(*grown, 64, nullptr);
+  expectShows(r[2], 2, 64, false);
+  EXPECT_FALSE(r[2]->stats.grid == own) << "the edit's pass kept the lattice before it";
+  EXPECT_EQ(r[2]->stats.grid.h, r[1]->stats.grid.h);
+  expectShows(r[3], 2, 64, false);
+  EXPECT_TRUE(r[3]->stats.grid == own);
+  // What the export at 64 cells samples: the same surfels.
+  EXPECT_EQ(r[3]->surfels, evaluateCpu(*grown).root->surfelCount());
+  EXPECT_NE(r[2]->surfels, r[3]->surfels);
+  // Served again unchanged: nothing more to settle.
+  ASSERT_TRUE(log.serve(grown, 64, 3, 5));
+  EXPECT_EQ(log.results().size(), 5u);
+  EXPECT_TRUE(log.results().back()->stats.grid == own);
+}
+
 // A cutter that sticks out of its part (a rod through a plate) is drawn whole as a ghost: it was
 // clipped at the result's grid, which covers the plate (an artist saw a stub). One far longer is
 // drawn up to the grid's longest side beyond it; one inside the grid comes from the
