@@ -300,6 +300,18 @@ Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid) {
     start[a] = int(lo);
     cells[a] = int(hi - lo);
   }
+  // No finer than kGhostMaxCells along its longest side: every other node of the lattice (and so
+  // on), the window widened to whole coarse cells. A translucent ghost needs no more, and its
+  // rays grow with the window's area: a box cutting half a part, reaching far beyond it, took as
+  // long again as the part's own pass at 1024 cells (an artist's test).
+  while (std::max(cells.x, std::max(cells.y, cells.z)) > kGhostMaxCells) {
+    shifted.h *= 2.0;
+    for (int a = 0; a < 3; ++a) {
+      const int end = start[a] + cells[a];
+      start[a] /= 2;  // >= 0: floor
+      cells[a] = (end + 1) / 2 - start[a];
+    }
+  }
   return shifted.window(start, cells);
 }
 

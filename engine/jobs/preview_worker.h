@@ -145,6 +145,9 @@ int previewResolutionFor(int requested, int shownResolution, uint64_t shownCache
 // of it: a ghost's rays grow with its window's area), on `grid`'s lattice with its origin moved
 // back by a power of two at least that long (nodes at the same places; the window never starts
 // below node 0, and the lattice stays while the grid's size changes within a factor of two).
+// Such a window is at most kGhostMaxCells along its longest side: past that, its lattice keeps
+// every second node (every fourth, ...) of `grid`'s, its cell size `grid.h` times a power of two.
+constexpr int kGhostMaxCells = 512;
 Grid ghostWindow(const Scene& scene, NodeId id, const Grid& grid);
 
 class PreviewWorker {

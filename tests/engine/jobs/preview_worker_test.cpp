@@ -523,6 +523,37 @@ TEST(PreviewWorker, AGhostReachesBeyondTheResultsGrid) {
   EXPECT_EQ(after.back()->ghosts.size(), 4u);
 }
 
+// A ghost's own window is at most kGhostMaxCells along its longest side: a box cutting half a
+// part and reaching far beyond it (rays over nine times the part's area at 1024 cells) is drawn
+// from every second, fourth ... node of the result's lattice, and still covers what it did.
+TEST(GhostWindow, AFarReachingCutterIsDrawnFromACoarserLatticeOfTheSameNodes) {
+  NodePtr slab = box({40, 40, 40}, {0, 0, 20});  // the upper half of the part and far beyond
+  auto scene = std::make_shared<const Scene>(
+      makeScene(op(NodeKind::Difference, {box({2, 2, 2}), slab}), 1024));
+  const Grid grid = Evaluator::previewGridFor(*scene, 1024, nullptr);
+  const Grid own = ghostWindow(*scene, slab->id, grid);
+  EXPECT_LE(std::max(own.cells.x, std::max(own.cells.y, own.cells.z)), kGhostMaxCells);
+  const double scale = own.h / grid.h;
+  EXPECT_GE(scale, 2.0);
+  EXPECT_EQ(scale, std::exp2(std::round(std::log2(scale))));  // a power of two
+  for (int a = 0; a < 3; ++a) {  // its first node is a node of the result's lattice
+    const double node = (own.origin[a] + own.first[a] * own.h - grid.origin[a]) / grid.h;
+    EXPECT_NEAR(node, std::round(node), 1e-6) << a;
+  }
+  // It reaches as far as the window on the result's lattice would: the grid's longest side
+  // beyond it (the slab's own faces are farther).
+  const int reach = std::max(grid.cells.x, std::max(grid.cells.y, grid.cells.z));
+  const Bounds shown = own.bounds(), part = grid.bounds();
+  for (int a = 0; a < 2; ++a) {
+    EXPECT_LE(shown.min[a], part.min[a] - reach * grid.h + 1e-9) << a;
+    EXPECT_GE(shown.max[a], part.max[a] + reach * grid.h - 1e-9) << a;
+  }
+  EXPECT_LE(shown.min.z, 0.0 - kGuardCells * grid.h);
+  // The same scene at 128 cells (a window of at most 384): the result's own lattice.
+  const Grid coarse = Evaluator::previewGridFor(*scene, 128, nullptr);
+  EXPECT_EQ(ghostWindow(*scene, slab->id, coarse).h, coarse.h);
+}
+
 // An edit's result is published before the ghosts that reach beyond its grid are evaluated (a
 // slow ghost must not hold the edit's image back): it carries the ghost last shown of that
 // node, moved as the node moved, and a copy with the new ghost (the same splats) follows.
