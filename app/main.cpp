@@ -1,4 +1,5 @@
 // strata: the command line and the editor on the engine's code path.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -134,7 +135,10 @@ int runCommand(const std::vector<std::string>& args) {
   if (args.empty()) return strata::runEdit({});
   const std::string command = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (command == "--help" || command == "-h" || command == "help") {
+  // `strata --help`, and `strata COMMAND ... --help` for every command (its own option parser
+  // would refuse the flag): the usage, exit 0, nothing run.
+  const auto isHelp = [](const std::string& a) { return a == "--help" || a == "-h"; };
+  if (isHelp(command) || command == "help" || std::any_of(rest.begin(), rest.end(), isHelp)) {
     std::fputs(usage().c_str(), stdout);
     return 0;
   }

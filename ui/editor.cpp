@@ -907,7 +907,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     std::this_thread::sleep_for(std::chrono::duration<double>(options_.slowFrameSeconds));
   s.frameMs = (gl_->frameClock.seconds() - awaitedSeconds) * 1000.0;  // drawing, not waiting
 
-  gl_->window.setTitle("Strata \u2014 " + s.document.title());
+  gl_->window.setTitle(windowTitle(s));
   autosave();
 }
 

@@ -51,8 +51,8 @@ struct EditorOptions {
   // A change is written for recovery once it has rested autosaveRestSeconds (a crash then loses
   // seconds of work, not minutes; a burst of edits is written once), and at least every
   // autosaveSeconds while edits keep coming. Written on a thread of its own.
-  double autosaveRestSeconds = 3.0;
-  double autosaveSeconds = 120.0;
+  double autosaveRestSeconds = 1.0;
+  double autosaveSeconds = 30.0;
   // Tests: every frame takes at least this long (a slow machine), to show that input made
   // during a slow frame is still handled.
   double slowFrameSeconds = 0.0;

@@ -56,6 +56,7 @@ void replaceDocument(EditorState& state, Document document) {
   if (const std::string folder = documentFolder(state); !folder.empty())
     state.lastDocumentFolder = folder;
   state.document = std::move(document);
+  state.templateName.clear();
   state.selection.clear();
   state.preview.reset();
   state.previewError.clear();
@@ -345,9 +346,24 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
     if (dragged == 0) return planPlacement(root, target, mode).sentence;
     const NodeId fresh = state.document.nextId();
     const NodePtr moved = movePart(root, dragged, target, mode, fresh);  // throws when refused
-    const std::string does =
+    std::string does =
         planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence +
         instancesChangedNote(root, moved, dragged);
+    // A role that changes is said in words, with why: a part dropped without a modifier keeps
+    // taking material away or not (dropMode), which there may need the other role (an artist
+    // saw "adds" turn into "cuts" without a word of why).
+    const ChildRole roleBefore = roleOf(root, dragged), roleAfter = roleOf(moved, dragged);
+    if (roleBefore != ChildRole::Root && roleAfter != roleBefore &&
+        !(roleBefore == ChildRole::Base && roleAfter == ChildRole::Add) &&
+        !(roleBefore == ChildRole::Add && roleAfter == ChildRole::Base)) {
+      const bool removes = removesMaterial(moved, dragged);
+      does += std::string("; its role changes from \"") + roleWord(roleBefore) + "\" to \"" +
+              roleWord(roleAfter) + "\"" +
+              (removes == removesMaterial(root, dragged)
+                   ? (removes ? ", so that it still takes material away"
+                              : ", so that it still takes no material away")
+                   : "");
+    }
     // Within its own parent, keeping its role, a drop only changes its place among its
     // siblings (onto the sibling below: after it): say so, not only what it does.
     NodeLocation was, now;
@@ -1215,6 +1231,7 @@ bool openTemplate(EditorState& state, const std::string& path) {
     std::vector<std::string> warnings;
     Document original = strata::openDocument(path, &warnings);  // mesh paths absolute
     replaceDocument(state, Document(original.scene()));
+    state.templateName = std::filesystem::path(path).filename().string();
     for (const auto& w : warnings) logWarning(state, w);
     logInfo(state, "opened a copy of " + path + " (Save asks where to keep it)");
   });
@@ -1369,6 +1386,18 @@ std::string rememberedExportFolder(const EditorState& state) {
   return folder;
 }
 
+std::string documentLabel(const EditorState& state) {
+  const Document& d = state.document;
+  std::string name = d.name();
+  if (d.path().empty() && !state.templateName.empty())
+    name += " (a copy of " + state.templateName + ")";
+  return name + (d.dirty() ? " *" : "");
+}
+
+std::string windowTitle(const EditorState& state) {
+  return "Strata \u2014 " + documentLabel(state);
+}
+
 std::string exportSuggestion(const EditorState& state) {
   if (!state.lastExportPath.empty() && !state.document.path().empty() &&
       state.lastExportDocument == state.document.path())
@@ -1427,24 +1456,30 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
     logWarning(state, "an export is already running");
     return;
   }
-  guarded(state, [&] {
-    if (!state.makeBackend) throw Error("no backend to export with");
-    // Said now, not after the whole export (an artist's test of a read-only folder).
-    if (const std::string why = cannotWriteAt(path); !why.empty()) throw Error(path + ": " + why);
-    ExportOptions options;
-    options.resolution = resolution;
-    options.simplifyCells = simplifyCells;
-    state.exportJob =
-        std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),
-                                    nullptr, ExportGuard{insist, 0});
-    state.exportEndLogged = false;
-    logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
-                       (simplifyCells > 0.0 ? ", simplified" : ""));
-    std::error_code error;
-    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
-    state.lastExportPath = error ? path : absolute.lexically_normal().string();
-    state.lastExportDocument = state.document.path();
-  });
+  // Said now, not after the whole export, and in the export window (an artist's test of a
+  // read-only folder).
+  state.exportNotStarted.reset();
+  if (const std::string why = cannotWriteAt(path); !why.empty()) {
+    state.exportNotStarted = EditorState::ExportNotStarted{path, why};
+    logError(state, path + ": " + why);
+  }
+  if (!state.exportNotStarted)
+    guarded(state, [&] {
+      if (!state.makeBackend) throw Error("no backend to export with");
+      ExportOptions options;
+      options.resolution = resolution;
+      options.simplifyCells = simplifyCells;
+      state.exportJob =
+          std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),
+                                      nullptr, ExportGuard{insist, 0});
+      state.exportEndLogged = false;
+      logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
+                         (simplifyCells > 0.0 ? ", simplified" : ""));
+      std::error_code error;
+      const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+      state.lastExportPath = error ? path : absolute.lexically_normal().string();
+      state.lastExportDocument = state.document.path();
+    });
   if (!state.exportSettingsPath.empty()) {  // the dialog opens with these choices next time
     try {
       const std::string folder =

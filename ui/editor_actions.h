@@ -149,6 +149,11 @@ void rememberImportChoices(EditorState& state);
 // an earlier one) where the document's own takes no file; an untitled one's "part.stl" in the
 // last export's folder (of this run, else of an earlier one), else dialogFolder.
 std::string exportSuggestion(const EditorState& state);
+// The document as the menu bar names it: its file's name, " *" when unsaved; an untitled copy of
+// a template names it ("untitled (a copy of demo.strata.json) *").
+std::string documentLabel(const EditorState& state);
+// The window's title: "Strata — " and documentLabel.
+std::string windowTitle(const EditorState& state);
 // The folder of an earlier run's last export (EditorState::rememberedExportFolder) with a
 // trailing '/', while it exists; else "".
 std::string rememberedExportFolder(const EditorState& state);

@@ -186,6 +186,12 @@ struct EditorState {
   // Jobs and dialogs.
   std::unique_ptr<ExportJob> exportJob;
   bool exportEndLogged = false;  // its end said in the log (the status bar showed "exporting")
+  // An export refused before it started (its folder takes no file): shown in the export window
+  // with why and a way to choose another file, not only in the status bar (an artist's test).
+  struct ExportNotStarted {
+    std::string path, why;
+  };
+  std::optional<ExportNotStarted> exportNotStarted;
   // The export dialog (panel_modals.cpp): open while a path waits for its options. The choices
   // are the export's own (not the preview's resolution) and stay for the next export.
   std::optional<std::string> pendingExportPath;
@@ -198,6 +204,9 @@ struct EditorState {
   // The folder of the last export of an earlier run (export.txt): where an untitled document's
   // first export is offered, and a document's whose own folder cannot be written to.
   std::string rememberedExportFolder;
+  // The file an untitled document was opened as a copy of (the bundled demo): the window's title
+  // names it (a bare "untitled" said nothing of the demo on screen: an artist's test); "" else.
+  std::string templateName;
   int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;

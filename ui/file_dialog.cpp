@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/io/mesh_formats.h"
+#include "engine/util/atomic_file.h"
 
 namespace strata::ui {
 namespace {
@@ -361,6 +362,10 @@ ResolvedPath resolveDialogPath(const std::string& field, const std::string& fold
     if (!fs::exists(parent, ec)) r.missingFolder = parent.string();
   } else if (saving && fs::is_directory(path, ec))
     r.error = path.string() + " is a folder: type a file name";
+  else if (const std::string why = saving ? cannotWriteAt(path.string()) : ""; !why.empty())
+    // A folder that takes no file (read-only, not ours): said here, where another can be
+    // chosen, not by a failed save or export after the dialog closed (an artist's test).
+    r.error = why + ": choose another folder";
   else if (!saving && !fs::is_regular_file(path, ec))
     r.error = (fs::is_directory(path, ec) ? path.string() + " is a folder, not a file"
                                           : "there is no file " + path.string());

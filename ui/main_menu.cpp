@@ -4,6 +4,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "engine/document/commands.h"
@@ -168,8 +169,11 @@ void drawMainMenu(EditorState& state) {
     if (ImGui::MenuItem("Shortcuts", "F1")) state.showShortcuts = true;
     ImGui::EndMenu();
   }
-  ImGui::SameLine(ImGui::GetWindowWidth() - 360.0f);
-  ImGui::TextDisabled("%s", state.document.title().c_str());
+  // At the right end, after the menus where the window is narrow.
+  const std::string label = documentLabel(state);
+  const float right = ImGui::GetWindowWidth() - ImGui::CalcTextSize(label.c_str()).x - 16.0f;
+  ImGui::SameLine(std::max(ImGui::GetCursorPosX(), right));
+  ImGui::TextDisabled("%s", label.c_str());
   ImGui::EndMainMenuBar();
 }
 

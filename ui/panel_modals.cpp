@@ -200,7 +200,30 @@ void viewContextMenu(EditorState& state) {
   ImGui::EndPopup();
 }
 
+// An export refused before it started: its file, why, and another file to choose.
+void exportNotStartedWindow(EditorState& state) {
+  if (!state.exportNotStarted) return;
+  bool open = true;
+  centreNext();
+  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  ImGui::Begin("Export", &open, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::TextWrapped("%s", state.exportNotStarted->path.c_str());
+  ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "not started: nothing was written");
+  ImGui::TextWrapped("%s", state.exportNotStarted->why.c_str());
+  if (ImGui::Button("Choose another file...", ImVec2(200, 0))) {
+    state.exportNotStarted.reset();
+    state.dialog.open(DialogPurpose::Export, exportSuggestion(state));
+    ImGui::End();
+    return;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Close", ImVec2(120, 0))) open = false;
+  ImGui::End();
+  if (!open) state.exportNotStarted.reset();
+}
+
 void exportWindow(EditorState& state) {
+  exportNotStartedWindow(state);
   if (!state.exportJob) return;
   logExportEnd(state);
   ExportStatus s = state.exportJob->status();

@@ -89,7 +89,8 @@ void dropTarget(const EditorState& state, NodeId target, PendingDrop* drop) {
 void dragHint() {
   if (gShownHint.empty()) {
     ImGui::TextDisabled(
-        "drop on a row: it keeps what it does (Ctrl: cut, Shift: intersect, Alt: add)");
+        "drop on a row: a hole stays a hole and a solid takes no material away, its role "
+        "changed where the place needs it (Ctrl: cut, Shift: intersect, Alt: add)");
     return;
   }
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
@@ -345,9 +346,11 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
       // Inside a cutter (the parity of the cutters above differs from its own role's) the
       // material goes the other way than the role says.
       const bool ownCut = role == ChildRole::Cut;
-      const char* inside = removes == ownCut ? ""
-                           : ownCut          ? "\ninside a cutter: its material stays in the result"
-                                             : "\ninside a cutter: its material is taken away";
+      const char* inside =
+          removes == ownCut ? ""
+          : ownCut
+              ? "\ninside a cutter: where it lies that cutter cuts nothing (it adds no material)"
+              : "\ninside a cutter: its material is taken away (a hole, not a solid)";
       // Why, where loading said (an open mesh read as "could not be read": an artist's test).
       const std::string missingNote =
           !meshMissing(*node) ? ""

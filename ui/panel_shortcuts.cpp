@@ -53,7 +53,9 @@ const ShortcutGroup kGroups[] = {
        "onto that part (in the view: the part under the "
        "pointer; on the ground: onto the selection)"},
       {"dropped on a surface", "an added part rests on it; a cutter is centred on the point"},
-      {"drag a row onto a row", "moves the part: it keeps what it does; the tooltip says it"},
+      {"drag a row onto a row",
+       "moves the part: a hole stays a hole, a solid takes no material away (its role changes "
+       "where the place needs it); the tooltip says what it will do"},
       {"Ctrl while dropping", "cuts"},
       {"Shift while dropping", "intersects"},
       {"Alt while dropping", "adds"}}},
@@ -71,7 +73,9 @@ const ShortcutGroup kGroups[] = {
       {"5", "orthographic / perspective"},
       {"G", "ghosts of every part that cuts or intersects"},
       {"W E R", "move, rotate, scale gizmo"},
-      {"M", "measure: two clicks a distance, a third the angle; Esc ends"},
+      {"M",
+       "measure: two clicks a distance, a third the angle; Esc ends; they stay until "
+       "Edit > Clear measurements (one at a time: View > Diagnostics)"},
       {"F1", "this sheet"}}},
 };
 

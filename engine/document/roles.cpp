@@ -295,8 +295,9 @@ PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
   // Inside a cutter (an odd number of cutters above it) a part's material goes the other way
   // than its own role says: the sentence says so.
   if (plan.removesMaterial != ownCut)
-    plan.sentence += ownCut ? ", inside a cutter: its material stays"
-                            : ", inside a cutter: it takes material away";
+    plan.sentence += ownCut ? ", inside a cutter: where it lies that cutter cuts nothing, so "
+                              "the material there stays (it adds none of its own)"
+                            : ", inside a cutter: it takes material away (a hole, not a solid)";
   return plan;
 }
 

@@ -154,6 +154,18 @@ TEST(Cli, HelpAndNoArgumentsRunTheDemo) {
   EXPECT_NE(demo.output.find("result"), std::string::npos);
 }
 
+// `--help` after any command prints the usage and runs nothing (no editor opens, no file is
+// read), where the command's own parser would refuse an unknown option.
+TEST(Cli, HelpAfterACommandPrintsTheUsage) {
+  for (const std::string command : {"edit --help", "export --help", "boolean union -h",
+                                    "eval missing.strata.json --help", "batch --help"}) {
+    CliRun help = strata(command, /*withoutDisplay=*/true);
+    EXPECT_EQ(help.code, 0) << command << "\n" << help.output;
+    EXPECT_NE(help.output.find("strata boolean OP A B"), std::string::npos) << command;
+    EXPECT_EQ(help.output.find("unknown option"), std::string::npos) << command;
+  }
+}
+
 // The usage texts list the formats of engine/io/mesh_formats.h: --help every readable and
 // writable extension, the export usage lines every writable one.
 TEST(Cli, UsageListsEveryMeshFormat) {

@@ -41,6 +41,31 @@ TEST(ExportSettings, RoundTripAndBadLinesKeepTheDefaults) {
   std::filesystem::remove_all(folder);
 }
 
+// An export into a folder that takes no file does not start, and says so where the export's
+// progress would show: the export window's own state, not only the status bar (an artist's
+// test); the next export that starts clears it.
+TEST(ExportSettings, AnExportThatCannotStartSaysWhyInItsWindow) {
+  const std::string folder = ::testing::TempDir() + "/strata_export_not_started";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  EditorState state;
+  state.makeBackend = [] { return std::make_shared<CpuBackend>(); };
+  addPrimitive(state, NodeKind::Sphere);
+  startExport(state, "/proc/ball.stl", 32, 0.0, false);
+  EXPECT_FALSE(state.exportJob);
+  ASSERT_TRUE(state.exportNotStarted);
+  EXPECT_EQ(state.exportNotStarted->path, "/proc/ball.stl");
+  EXPECT_NE(state.exportNotStarted->why.find("cannot create a file in /proc"), std::string::npos)
+      << state.exportNotStarted->why;
+  ASSERT_FALSE(state.log.empty());
+  EXPECT_NE(state.log.back().text.find("/proc/ball.stl"), std::string::npos);
+  startExport(state, folder + "/ball.stl", 32, 0.0, false);
+  EXPECT_TRUE(state.exportJob);
+  EXPECT_FALSE(state.exportNotStarted);
+  state.exportJob.reset();  // cancels and joins
+  std::filesystem::remove_all(folder);
+}
+
 TEST(ExportSettings, AnExportRemembersItsChoices) {
   const std::string folder = ::testing::TempDir() + "/strata_export_settings_job";
   std::filesystem::remove_all(folder);

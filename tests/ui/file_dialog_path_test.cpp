@@ -1,11 +1,12 @@
 // resolveDialogPath: what the built-in browser's path field means. A name alone lies in the
 // folder shown, a name saved without an extension the dialog takes gets the suggested one, a
-// save into a missing folder, a folder given as a file and an open of a missing file are
-// refused with a message naming them.
+// save into a missing folder or one that takes no file, a folder given as a file and an open of a
+// missing file are refused with a message naming them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,22 @@ TEST_F(DialogPath, MissingFoldersAndFilesAreRefusedByName) {
   EXPECT_NE(resolveDialogPath("..", folder_.string(), true, ".stl", kMeshes).error, "");
   const ResolvedPath folder = resolveDialogPath("sub", folder_.string(), false, "", kMeshes);
   EXPECT_NE(folder.error.find("folder"), std::string::npos) << folder.error;
+}
+
+// A folder that exists but takes no file (an artist's test: a read-only folder let the dialog
+// close, and the export then failed where only the status bar said it) is refused in the dialog,
+// named with why; opening from it is not affected. /proc takes no new file, even for root.
+TEST_F(DialogPath, AFolderThatTakesNoFileIsRefusedBeforeTheDialogCloses) {
+  const ResolvedPath save = resolveDialogPath("part", "/proc", true, ".stl", kMeshes);
+  EXPECT_EQ(save.path, "");
+  EXPECT_NE(save.error.find("cannot create a file in /proc"), std::string::npos) << save.error;
+  EXPECT_NE(save.error.find("choose another folder"), std::string::npos) << save.error;
+  EXPECT_EQ(save.missingFolder, "");  // it exists: nothing to create
+  EXPECT_EQ(resolveDialogPath("version", "/proc", false, "", kMeshes).error, "");
+  // A writable folder leaves no probe behind.
+  ASSERT_EQ(resolveDialogPath("part2", folder_.string(), true, ".stl", kMeshes).error, "");
+  EXPECT_EQ(std::distance(fs::directory_iterator(folder_), fs::directory_iterator{}), 1);
+  // part.stl only
 }
 
 }  // namespace

@@ -519,6 +519,57 @@ TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
   EXPECT_NE(state.log.back().text.find("pasted"), std::string::npos) << state.log.back().text;
 }
 
+// An artist's test: a part dragged without a modifier onto a single part (not a group) came out
+// with another role, and nothing said why. A countersink (it adds to a hole, so it takes
+// material away) dropped onto the plate must cut to stay a hole: the sentence shown before the
+// release, and the log after it, name the role change and what it keeps; undo gives the role
+// back. A solid dropped onto a part of a hole cuts that part, and says so too.
+TEST(Roles, ADropThatChangesARoleSaysSoBeforeTheRelease) {
+  EditorState state;
+  const NodeId plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  state.selection = {hole};
+  state.placeMode = PlaceMode::Add;
+  const NodeId countersink = addPrimitive(state, NodeKind::Cone);
+  state.selection = {plate};
+  const NodeId rib = addPrimitive(state, NodeKind::Box);
+  ASSERT_EQ(roleOf(state.document.root(), countersink), ChildRole::Add);
+  ASSERT_TRUE(removesMaterial(state.document.root(), countersink));
+  ASSERT_TRUE(removesMaterial(state.document.root(), hole));
+
+  const PlaceMode mode = dropMode(state, 0, countersink, plate);
+  bool refused = true;
+  const std::string sentence = placementSentence(state, plate, mode, countersink, &refused);
+  EXPECT_FALSE(refused);
+  dropNode(state, countersink, plate, mode);
+  EXPECT_TRUE(removesMaterial(state.document.root(), countersink)) << sentence;
+  EXPECT_EQ(roleOf(state.document.root(), countersink), ChildRole::Cut) << sentence;
+  EXPECT_NE(sentence.find("its role changes from \"adds\" to \"cuts\", so that it still takes "
+                          "material away"),
+            std::string::npos)
+      << sentence;
+  ASSERT_FALSE(state.log.empty());
+  EXPECT_NE(state.log.back().text.find("its role changes"), std::string::npos)
+      << state.log.back().text;
+  undo(state);
+  EXPECT_EQ(roleOf(state.document.root(), countersink), ChildRole::Add);
+  EXPECT_TRUE(removesMaterial(state.document.root(), countersink));
+
+  // The rib (a solid) onto the hole, a part of the union of holes: it cuts that part (keeping
+  // material from being cut there), said before the release.
+  const std::string intoHole =
+      placementSentence(state, hole, dropMode(state, 0, rib, hole), rib, &refused);
+  EXPECT_FALSE(refused);
+  EXPECT_NE(intoHole.find("its role changes from \"adds\" to \"cuts\", so that it still takes "
+                          "no material away"),
+            std::string::npos)
+      << intoHole;
+  // Moved within its own union (its role kept), nothing is said of roles.
+  const std::string kept = placementSentence(state, plate, dropMode(state, 0, rib, plate), rib);
+  EXPECT_EQ(kept.find("its role changes"), std::string::npos) << kept;
+}
+
 // Ctrl+V put the copy exactly on its original (the same name, nothing to see): a paste whose
 // original is still there lands one grid step along +x, the next paste a step further; a cut
 // part pasted lands where it was.

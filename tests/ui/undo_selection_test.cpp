@@ -191,5 +191,23 @@ TEST(UndoSelection, ADamagedRecoveryFileIsKeptAsideAndNotOfferedAgain) {
   std::filesystem::remove_all(dir);
 }
 
+// The demo opens as an untitled copy: the title names what it is a copy of (a bare
+// "untitled" under the demo's parts puzzled an artist), until another document replaces it or
+// it is saved under a name of its own.
+TEST(WindowTitle, AnUntitledCopyNamesItsTemplate) {
+  EditorState state;
+  EXPECT_EQ(windowTitle(state), "Strata \u2014 untitled");
+  ASSERT_TRUE(openTemplate(state, std::string(STRATA_ASSETS) + "/scenes/demo.strata.json"));
+  EXPECT_EQ(windowTitle(state), "Strata \u2014 untitled (a copy of demo.strata.json)");
+  addPrimitive(state, NodeKind::Box);
+  EXPECT_EQ(windowTitle(state), "Strata \u2014 untitled (a copy of demo.strata.json) *");
+  const std::string path = ::testing::TempDir() + "/strata_title_test.strata.json";
+  ASSERT_TRUE(saveDocumentAs(state, path));
+  EXPECT_EQ(windowTitle(state), "Strata \u2014 strata_title_test.strata.json");
+  newDocument(state);
+  EXPECT_EQ(windowTitle(state), "Strata \u2014 untitled");
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace strata::ui
