@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -308,6 +309,30 @@ void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes
       state.document.setColor(n->id, glm::clamp(color, glm::vec3(0.0f), glm::vec3(1.0f)));
   });
   nodeRole(state, *node, nodes.size());
+}
+
+// The selection's size as placed: the extent of its result along the scene's axes, scale and
+// turn included (an artist scaling a 20 mm box by 1.5 saw 20 mm and 1.5, never the 30 mm it
+// prints at). Bounds of the same tree and selection are kept between frames (a mesh's vertices
+// are gone through once).
+void placedSize(const EditorState& state) {
+  static std::weak_ptr<const Node> lastRoot;
+  static std::vector<NodeId> lastSelection;
+  static Bounds lastBounds;
+  const NodePtr& root = state.document.root();
+  if (lastRoot.lock() != root || lastSelection != state.selection) {
+    lastBounds = selectionBounds(root, state.selection);
+    lastRoot = root;
+    lastSelection = state.selection;
+  }
+  if (lastBounds.empty()) return;
+  const glm::dvec3 size = lastBounds.size();
+  ImGui::TextDisabled("spans %.5g x %.5g x %.5g %s, as placed", size.x, size.y, size.z,
+                      gLengthUnit.c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "What the selection's result spans along the scene's x, y and z, as placed (scale and "
+        "turn included): the size it exports and prints at");
 }
 
 // Which components of `field` differ from the primary node's across `nodes`.
@@ -786,6 +811,7 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
       if (NodePtr n = findNode(state.document.root(), other)) outer.push_back(n);
   outer.push_back(holder ? holder : node);
   nodeTransform(state, outer.back(), outer, speed);
+  placedSize(state);
   nodeKindSections(state, node, nodes, speed);
   ImGui::PopID();
   ImGui::End();
