@@ -1052,11 +1052,12 @@ void renameNode(EditorState& state, NodeId id, const std::string& name) {
   guarded(state, [&] { state.document.rename(id, name); });
 }
 
-void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode) {
+void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode,
+              const std::string& label) {
   guarded(state, [&] {
     const std::string sentence = placementSentence(state, target, mode, dragged);
     const NodePtr before = state.document.root();
-    state.document.moveOnto(dragged, target, mode);
+    state.document.moveOnto(dragged, target, mode, label);
     if (state.document.root() == before) return;  // dropped where it was
     if (NodePtr node = findNode(state.document.root(), dragged))
       logInfo(state, displayName(*node) + " " + sentence);
@@ -1140,7 +1141,7 @@ void setRole(EditorState& state, NodeId id, PlaceMode mode) {
   }
   const ChildRole role = roleOf(state.document.root(), id);
   if (modeKeepingRole(role) == mode) return;
-  dropNode(state, id, parentOf(state, id)->id, mode);
+  dropNode(state, id, parentOf(state, id)->id, mode, "role");
 }
 
 void setResolution(EditorState& state, int resolution) {

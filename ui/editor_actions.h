@@ -93,8 +93,9 @@ void setSelectionOperation(EditorState& state, NodeKind kind);
 void renameNode(EditorState& state, NodeId id, const std::string& name);
 // Drag and drop in the outliner: node `dragged` onto row `target` (0: empty space, the root)
 // with `mode` (movePart in roles.h: every other part keeps its role); the log says what it does
-// now. One undo step.
-void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode);
+// now. One undo step, named `label` (Edit > Undo "move"; "role" for the inspector's role).
+void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode,
+              const std::string& label = "move");
 // An outliner drop of `dragged` onto `target` with the drop modifiers `mods` held (dropMode):
 // where `dragged` is one of several selected rows, every selected part no other selected part
 // holds moves, each with its own dropMode, in tree order, as one undo step (refused whole,

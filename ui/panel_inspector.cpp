@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -120,12 +121,23 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
                                      nullptr, shown.c_str());
     changed = commitTypedValue(changed, &next[i], sceneUnitMetres(unit) > 0.0 ? unit : "");
     const VecEdit edit{i, changed && mixed[i] && lastCommitWasTyped()};
+    ImGui::PopStyleColor();  // the tooltips below in the usual colour
     if (mixed[i] && ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "differs across the selection: dragging %s, a number typed sets every "
           "one to it",
           mixedDrag);
-    ImGui::PopStyleColor();
+    else if (ImGui::IsItemHovered() && !ImGui::IsItemActive()) {
+      // A field too narrow for the number shows it rounded (-26.5 for the gizmo's -26.480444:
+      // an artist's test): the whole number on hover.
+      char text[64];
+      ImFormatString(text, sizeof(text), fieldFormat.c_str(), next[i]);
+      if (std::strtod(text, nullptr) != next[i]) {
+        ImFormatString(text, sizeof(text), "%.10g", next[i]);
+        ImGui::SetTooltip("%s%s%s (double-click to type)", text, unit.empty() ? "" : " ",
+                          unit.c_str());
+      }
+    }
     edited(
         state, changed, [&] { apply(next, edit); }, topic ? topic : label);
     if (changed) *value = next;
@@ -313,26 +325,32 @@ void nodeIdentity(EditorState& state, const NodePtr& node, const NodeList& nodes
 
 // The selection's size as placed: the extent of its result along the scene's axes, scale and
 // turn included (an artist scaling a 20 mm box by 1.5 saw 20 mm and 1.5, never the 30 mm it
-// prints at). Bounds of the same tree and selection are kept between frames (a mesh's vertices
-// are gone through once).
+// prints at); "within" where that box is only a bound of it (a cut part, a fillet: an artist's
+// re-test saw a filleted part "span" twice the radius more than it did). Kept between frames
+// for the same tree and selection (a mesh's vertices are gone through once).
 void placedSize(const EditorState& state) {
   static std::weak_ptr<const Node> lastRoot;
   static std::vector<NodeId> lastSelection;
   static Bounds lastBounds;
+  static bool lastTight = false;
   const NodePtr& root = state.document.root();
   if (lastRoot.lock() != root || lastSelection != state.selection) {
     lastBounds = selectionBounds(root, state.selection);
+    lastTight = selectionBoundsTight(root, state.selection);
     lastRoot = root;
     lastSelection = state.selection;
   }
   if (lastBounds.empty()) return;
   const glm::dvec3 size = lastBounds.size();
-  ImGui::TextDisabled("spans %.5g x %.5g x %.5g %s, as placed", size.x, size.y, size.z,
-                      gLengthUnit.c_str());
+  ImGui::TextDisabled("%s %.4g x %.4g x %.4g %s, as placed", lastTight ? "spans" : "within", size.x,
+                      size.y, size.z, gLengthUnit.c_str());
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "What the selection's result spans along the scene's x, y and z, as placed (scale and "
-        "turn included): the size it exports and prints at");
+    ImGui::SetTooltip(lastTight
+                          ? "What the selection's result spans along the scene's x, y and z, as "
+                            "placed (scale and turn included): the size it exports at"
+                          : "A box along the scene's x, y and z that holds the selection's result "
+                            "as placed: a cut, an intersection, a shrinking offset, a round, a "
+                            "fillet or a turn leaves the part smaller than it (measure with M)");
 }
 
 // Which components of `field` differ from the primary node's across `nodes`.
@@ -476,7 +494,9 @@ void shellOpeningField(EditorState& state, const NodePtr& shell) {
     partsInside(shell, 0, &parts);
     for (const auto& [part, depth] : parts) {
       ImGui::PushID(int(part->id));
-      const std::string label = std::string(size_t(2 * depth), ' ') + part->name;
+      // A part that adds to the shell's parts opens nothing: said in the list.
+      const std::string label = std::string(size_t(2 * depth), ' ') + part->name +
+                                (removesMaterial(shell, part->id) ? "" : "  (adds: opens nothing)");
       if (ImGui::Selectable(label.c_str(), part->id == shell->opening))
         guarded(state, [&] { state.document.setOpening(shell->id, part->id); });
       ImGui::PopID();
@@ -488,8 +508,18 @@ void shellOpeningField(EditorState& state, const NodePtr& shell) {
         "A part inside the shell where the wall opens: the wall follows the shell's children "
         "as they would be without it, so where it cuts them the hollow reaches the outside "
         "(a drain hole, a mouth)");
-  if (shell->opening != 0 && current && !shellOpening(shell))
+  if (shell->opening != 0 && current && !shellOpening(shell)) {
     ImGui::TextDisabled("the opening is hidden: the wall is closed");
+  } else if (shell->opening != 0 && current && !removesMaterial(shell, current->id)) {
+    // An artist chose a part that adds (a cylinder added on top of the sphere) and got a solid
+    // plug on a closed wall: the wall opens only where the opening cuts the shell's parts.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+    ImGui::TextWrapped(
+        "\"%s\" adds to the shell's parts, so the wall stays closed: an opening must cut them "
+        "(drag its row onto the part it should open with Ctrl held: it then cuts that part)",
+        current->name.c_str());
+    ImGui::PopStyleColor();
+  }
 }
 
 // Sets one field of every selected pattern's copies (all of the primary's kind).

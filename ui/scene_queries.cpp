@@ -32,6 +32,50 @@ Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection
   return b;
 }
 
+namespace {
+
+bool quarterTurns(const Transform& t) {
+  for (int a = 0; a < 3; ++a)
+    if (std::fmod(std::fabs(t.rotateDegrees[a]), 90.0) != 0.0) return false;
+  return true;
+}
+
+bool subtreeBoundsTight(const NodePtr& node, const NodePtr& root, int depth) {
+  if (!node || !node->visible) return true;  // takes no part
+  if (depth > 64 || !quarterTurns(node->transform)) return false;
+  if (node->kind == NodeKind::Instance)
+    return subtreeBoundsTight(findNode(root, node->instanceOf), root, depth + 1);
+  switch (node->kind) {
+    case NodeKind::Union:
+    case NodeKind::Shell:
+    case NodeKind::Array:
+    case NodeKind::Mirror:
+      break;
+    case NodeKind::Offset:
+      if (node->amount < 0.0) return false;
+      break;
+    default:
+      if (isOperation(node->kind)) return false;  // a cut, an intersection, a round, a fillet...
+      return true;                                // a leaf turned by quarter turns
+  }
+  for (const NodePtr& child : node->children)
+    if (!subtreeBoundsTight(child, root, depth + 1)) return false;
+  return true;
+}
+
+}  // namespace
+
+bool selectionBoundsTight(const NodePtr& root, const std::vector<NodeId>& selection) {
+  for (NodeId id : selection) {
+    std::vector<const Node*> path;
+    if (!pathToNode(root, id, &path)) continue;
+    for (const Node* above : path)
+      if (!quarterTurns(above->transform)) return false;
+    if (!subtreeBoundsTight(findNode(root, id), root, 0)) return false;
+  }
+  return true;
+}
+
 Bounds sceneBounds(const NodePtr& root) {
   if (!root) return Bounds();
   // Asked several times a frame; the tree is immutable, so remember the last answer.

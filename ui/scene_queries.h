@@ -21,6 +21,11 @@ using strata::parentWorldMatrix;
 
 // World bounds of the visible result of each selected node (empty when nothing is visible).
 Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection);
+// Whether selectionBounds of these nodes is their result's extent, not only a bound of it:
+// false where a cutter, an intersection, a shrinking offset, a round, a fillet or a circular
+// array may leave less, or a turn other than quarter turns (on a node or above it) makes the box
+// of a turned part larger than the part. Conservative: false may be said of a tight box.
+bool selectionBoundsTight(const NodePtr& root, const std::vector<NodeId>& selection);
 // World bounds of the whole visible scene; falls back to every leaf when the result is empty.
 Bounds sceneBounds(const NodePtr& root);
 

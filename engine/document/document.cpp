@@ -150,11 +150,11 @@ NodeId Document::place(const NodePtr& node, NodeId target, PlaceMode mode, std::
   return id;
 }
 
-void Document::moveOnto(NodeId id, NodeId target, PlaceMode mode) {
+void Document::moveOnto(NodeId id, NodeId target, PlaceMode mode, const std::string& label) {
   if (target == 0) target = root()->id;
   const NodePtr moved = movePart(root(), id, target, mode, nextId());
   if (sameShape(root(), moved)) return;  // dropped where it was: no undo step
-  apply("move", moved);
+  apply(label, moved);
 }
 
 void Document::remove(NodeId id) {

@@ -68,8 +68,9 @@ class Document {
   // what it does.
   NodeId place(const NodePtr& node, NodeId target, PlaceMode mode, std::string* sentence = nullptr);
   // Drag and drop with roles: moves node `id` onto `target` (0 = the root) with `mode`
-  // (movePart in roles.h); no undo step where that leaves every node where it was.
-  void moveOnto(NodeId id, NodeId target, PlaceMode mode);
+  // (movePart in roles.h); no undo step where that leaves every node where it was. `label`
+  // names the undo step ("role" where the move changes a part's role in place).
+  void moveOnto(NodeId id, NodeId target, PlaceMode mode, const std::string& label = "move");
 
   void remove(NodeId id);
   NodeId duplicate(NodeId id);

@@ -383,7 +383,10 @@ std::string cannotWriteAt(const std::string& path) {
   const std::string probe =
       folder + "/.strata-probe-" + std::to_string(::getpid()) + "-" + std::to_string(next++);
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-  if (fd < 0) return "cannot create a file in " + folder + ": " + std::strerror(errno);
+  // A folder that exists but answers "no such file" to a new one (/proc, /sys) says so in words.
+  if (fd < 0)
+    return "cannot create a file in " + folder + ": " +
+           (errno == ENOENT ? std::string("it takes no new files") : std::strerror(errno));
   ::close(fd);
   ::unlink(probe.c_str());
   return "";

@@ -798,6 +798,8 @@ TEST(Roles, ARolePickedWhereThePartIsChangesOnlyItsOwn) {
   EXPECT_EQ(roleOf(state.document.root(), hole), ChildRole::Add);
   EXPECT_FALSE(removesMaterial(state.document.root(), hole));
   undo(state);
+  // The undo step is named for what the artist did (it said "undone: move": an artist's test).
+  EXPECT_EQ(state.log.back().text, "undone: role");
   undo(state);
   undo(state);
   EXPECT_EQ(state.document.root(), before);  // three steps, one each

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -313,6 +314,37 @@ TEST(GroupDrag, TheWholeGroupIsOneUndoStep) {
   ASSERT_TRUE(doc.undo());
   expectNear(worldOrigin(doc.root(), 3), {5.0, 0.0, 0.0});
   expectNear(worldOrigin(doc.root(), 2), {0.0, 0.0, 0.0});
+}
+
+// The inspector says "spans" only where the selection's box is its result's extent: a box
+// scaled, in a union, arrayed, grown; "within" where a cut, a fillet, a shrinking offset or a
+// turn other than quarter turns leaves the part smaller than its box.
+TEST(SelectionBounds, TightOnlyWhereTheBoxIsTheExtent) {
+  auto box = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  box->transform.scale = glm::dvec3(1.5, 1.0, 1.0);
+  auto turned = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Cylinder, 3));
+  turned->transform.rotateDegrees = glm::dvec3(0.0, 90.0, 0.0);
+  auto grown = std::make_shared<Node>(*makeOperationNode(NodeKind::Offset, 4, {box, turned}));
+  grown->amount = 1.0;
+  NodePtr root = makeOperationNode(NodeKind::Union, 1, {grown});
+  EXPECT_TRUE(selectionBoundsTight(root, {2}));
+  EXPECT_TRUE(selectionBoundsTight(root, {3}));  // a quarter turn
+  EXPECT_TRUE(selectionBoundsTight(root, {4}));
+  EXPECT_TRUE(selectionBoundsTight(root, {1}));
+  const auto with = [&](const std::function<void(Node&)>& change, NodeId id) {
+    return editNode(root, id, change);
+  };
+  EXPECT_FALSE(selectionBoundsTight(with([](Node& n) { n.amount = -1.0; }, 4), {4}));
+  EXPECT_FALSE(selectionBoundsTight(with([](Node& n) { n.kind = NodeKind::Fillet; }, 4), {4}));
+  EXPECT_FALSE(selectionBoundsTight(with([](Node& n) { n.kind = NodeKind::Difference; }, 4), {4}));
+  EXPECT_FALSE(
+      selectionBoundsTight(with([](Node& n) { n.transform.rotateDegrees.z = 30.0; }, 3), {3}));
+  // A turn above the part turns its box too.
+  EXPECT_FALSE(
+      selectionBoundsTight(with([](Node& n) { n.transform.rotateDegrees.x = 45.0; }, 4), {2}));
+  // The bounds themselves: the scaled box's.
+  const Bounds b = selectionBounds(root, {2});
+  EXPECT_NEAR(b.size().x, 1.5 * findNode(root, 2)->params.size.x, 1e-9);
 }
 
 }  // namespace
