@@ -200,14 +200,6 @@ double groundGridStep(const Bounds& scene, double emptySpan) {
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);
 }
 
-const char* unitSymbol(const std::string& unit) {
-  if (unit == "millimetre" || unit == "millimeter") return "mm";
-  if (unit == "centimetre" || unit == "centimeter") return "cm";
-  if (unit == "metre" || unit == "meter") return "m";
-  if (unit == "inch") return "in";
-  return unit.c_str();
-}
-
 double niceLength(double approximate) {
   if (!(approximate > 0) || !std::isfinite(approximate)) return 1.0;
   double p = std::pow(10.0, std::floor(std::log10(approximate)));

@@ -10,6 +10,7 @@
 
 #include "engine/document/measurement.h"
 #include "engine/document/node.h"
+#include "engine/document/scene.h"
 #include "engine/geometry/mesh.h"
 #include "ui/viewport_renderer.h"
 
@@ -71,7 +72,7 @@ double niceLength(double approximate);
 // view spans: emptySceneSpan in import_options.h). The move snap follows it.
 double groundGridStep(const Bounds& scene, double emptySpan = 10.0);
 
-// "mm", "cm", "m", "in" for a scene's unit name; the name itself otherwise.
-const char* unitSymbol(const std::string& unit);
+// "mm", "cm", "m", "in" for a scene's unit name (engine/document/scene.h).
+using strata::unitSymbol;
 
 }  // namespace strata::ui

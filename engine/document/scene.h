@@ -23,6 +23,16 @@ struct SceneSettings {
   uint64_t maxLeaves = kDefaultMaxLeaves;
 };
 
+// "mm", "cm", "m", "in" for a scene's unit name (SceneSettings::unit); the name itself
+// otherwise. The returned pointer lives as long as `unit`.
+inline const char* unitSymbol(const std::string& unit) {
+  if (unit == "millimetre" || unit == "millimeter") return "mm";
+  if (unit == "centimetre" || unit == "centimeter") return "cm";
+  if (unit == "metre" || unit == "meter") return "m";
+  if (unit == "inch") return "in";
+  return unit.c_str();
+}
+
 struct Scene {
   SceneSettings settings;
   NodePtr root;  // never null for a loaded scene

@@ -160,10 +160,12 @@ void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds&
   }
 }
 
-// "part 'X' (0.001 across) is smaller than a cell (0.01); ..." when the leaf's largest extent is
+// "part 'X' (0.001 mm across) is smaller than a cell (0.01 mm); ..." (`unit`: the scene's
+// unitSymbol) when the leaf's largest extent is
 // below the cell size h, so that it may vanish or break up at this resolution; "... is only 1.4
 // cells thick ..." when its smallest extent (of its world bounds) is below 2 h; "" otherwise.
-std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, double h) {
+std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, double h,
+                                   const char* unit) {
   if (bounds.empty()) return "";
   const glm::dvec3 size = bounds.size();
   const double extent = std::max({size.x, size.y, size.z});
@@ -176,19 +178,19 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
   if (extent >= h && thickness < 2.0 * h) {
     // Big enough to show, too thin to keep its shape: say by how much the resolution must grow
     // for it to be four cells thick.
-    char text[240];
+    char text[280];
     std::snprintf(text, sizeof(text),
-                  " is only %.2g cells thick (%.3g; a cell is %.3g): its shape is lost at this "
-                  "resolution; about %.2gx the resolution makes it 4 cells thick",
-                  thickness / h, thickness, h, 4.0 * h / std::max(thickness, 1e-300));
+                  " is only %.2g cells thick (%.3g %s; a cell is %.3g %s): its shape is lost at "
+                  "this resolution; about %.2gx the resolution makes it 4 cells thick",
+                  thickness / h, thickness, unit, h, unit, 4.0 * h / std::max(thickness, 1e-300));
     return nodeLabel(node) + text;
   }
   if (extent >= h) return "";
-  char text[160];
+  char text[200];
   std::snprintf(text, sizeof(text),
-                " (%.3g across) is smaller than a cell (%.3g): it may vanish at this resolution; "
-                "raise the resolution to see it",
-                extent, h);
+                " (%.3g %s across) is smaller than a cell (%.3g %s): it may vanish at this "
+                "resolution; raise the resolution to see it",
+                extent, unit, h, unit);
   return nodeLabel(node) + text;
 }
 
@@ -201,19 +203,20 @@ std::string missingMeshWarning(const Node& node) {
 // smallerThanCellWarning (or missingMeshWarning) of every visible leaf under `node` (instances
 // and pattern copies included), each sentence once, into *out.
 void collectSmallParts(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
-                       bool asInstance, int depth, double h, std::vector<std::string>* out) {
+                       bool asInstance, int depth, double h, const char* unit,
+                       std::vector<std::string>* out) {
   if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
   const glm::dmat4 world = parentWorld * node->transform.matrix();
   if (node->kind == NodeKind::Instance) {
-    collectSmallParts(findNode(root, node->instanceOf), root, world, true, depth + 1, h, out);
+    collectSmallParts(findNode(root, node->instanceOf), root, world, true, depth + 1, h, unit, out);
   } else if (isOperation(node->kind)) {
     for (const glm::dmat4& placement : placementsOf(*node))
       for (const auto& c : node->children)
-        collectSmallParts(c, root, world * placement, false, depth + 1, h, out);
+        collectSmallParts(c, root, world * placement, false, depth + 1, h, unit, out);
   } else {
     const std::string w = meshMissing(*node)
                               ? missingMeshWarning(*node)
-                              : smallerThanCellWarning(*node, leafBounds(*node, world), h);
+                              : smallerThanCellWarning(*node, leafBounds(*node, world), h, unit);
     if (!w.empty() && std::find(out->begin(), out->end(), w) == out->end()) out->push_back(w);
   }
 }
@@ -290,11 +293,11 @@ struct Evaluator::Context {
 };
 
 // What a modifier node that left nothing of its (non-empty) parts did.
-std::string emptiedByModifier(const Node& node) {
-  char amount[32];
-  std::snprintf(amount, sizeof(amount), "%.4g", std::fabs(node.amount));
-  char twice[32];
-  std::snprintf(twice, sizeof(twice), "%.4g", 2.0 * std::fabs(node.amount));
+std::string emptiedByModifier(const Node& node, const char* unit) {
+  char amount[48];
+  std::snprintf(amount, sizeof(amount), "%.4g %s", std::fabs(node.amount), unit);
+  char twice[48];
+  std::snprintf(twice, sizeof(twice), "%.4g %s", 2.0 * std::fabs(node.amount), unit);
   const std::string who = nodeLabel(node) + " ";
   switch (modifierOf(node.kind)) {
     case Modifier::Round:
@@ -448,7 +451,8 @@ std::vector<std::string> Evaluator::smallPartWarnings(const Scene& scene, int re
   std::vector<std::string> out;
   if (!scene.root) return out;
   const Grid grid = gridFor(scene, resolution);
-  collectSmallParts(scene.root, scene.root, glm::dmat4(1.0), false, 0, grid.h, &out);
+  collectSmallParts(scene.root, scene.root, glm::dmat4(1.0), false, 0, grid.h,
+                    unitSymbol(scene.settings.unit), &out);
   return out;
 }
 
@@ -570,7 +574,8 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
       checkLeafPlacement(*node, world, bounds);
       if (onlyCached_) throw NotCached{};
       ctx.pending.push_back(Context::PendingLeaf{
-          v.key, mesh, world, uint32_t(leafId), smallerThanCellWarning(*node, bounds, ctx.grid.h)});
+          v.key, mesh, world, uint32_t(leafId),
+          smallerThanCellWarning(*node, bounds, ctx.grid.h, unitSymbol(ctx.scene->settings.unit))});
     }
   }
   if (ctx.collecting) return v;
@@ -883,7 +888,7 @@ Evaluator::Visit Evaluator::visitNode(const NodePtr& node, const glm::dmat4& par
       const Bounds window = ctx.grid.bounds();
       if (!whole.empty() && glm::all(glm::greaterThanEqual(whole.min, window.min)) &&
           glm::all(glm::lessThanEqual(whole.max, window.max)))
-        ctx.warn(emptiedByModifier(*node));
+        ctx.warn(emptiedByModifier(*node, unitSymbol(ctx.scene->settings.unit)));
     }
   }
   if (record.outcome == NodeOutcome::Cached) ++ctx.result->reused;

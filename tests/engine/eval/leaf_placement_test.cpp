@@ -79,6 +79,9 @@ TEST(LeafPlacement, APartSmallerThanACellIsNamedInTheWarnings) {
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("sphere 'speck'"), std::string::npos) << r.warnings[0];
   EXPECT_NE(r.warnings[0].find("smaller than a cell"), std::string::npos) << r.warnings[0];
+  // Lengths in the scene's unit (an artist read "(20; a cell is 15.6)" without one).
+  EXPECT_NE(r.warnings[0].find("mm across) is smaller than a cell ("), std::string::npos)
+      << r.warnings[0];
   // Cached on the next evaluation, still said.
   EvalResult again =
       test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, speck}), 32));
@@ -101,6 +104,7 @@ TEST(LeafPlacement, APartThinnerThanTwoCellsIsNamedWithTheResolutionItNeeds) {
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("box 'sheet' is only"), std::string::npos) << r.warnings[0];
   EXPECT_NE(r.warnings[0].find("cells thick"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("(0.02 mm; a cell is "), std::string::npos) << r.warnings[0];
   // At a resolution that makes it thick enough, nothing is said.
   EXPECT_TRUE(
       test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, sheet}), 256))
@@ -170,6 +174,29 @@ TEST(LeafPlacement, AFlatSheetIsSaidToBeFlat) {
   const std::string f = evaluationError(test::makeSceneInBox(
       makeOperationNode(NodeKind::Union, 1, {far}), 16, glm::dvec3(-1.0), glm::dvec3(1.0)));
   EXPECT_NE(f.find("cannot be represented"), std::string::npos) << f;
+}
+
+}  // namespace
+}  // namespace strata
+
+namespace strata {
+namespace {
+
+// A modifier that left nothing says by how much, in the scene's unit.
+TEST(LeafPlacement, AnEmptiedModifierSaysItsAmountsInTheScenesUnit) {
+  auto box = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  box->params.size = glm::dvec3(1.0, 1.0, 1.0);
+  auto shrunk = std::make_shared<Node>(*makeOperationNode(NodeKind::Offset, 3, {box}));
+  shrunk->amount = -0.75;
+  auto other = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 4));
+  other->transform.translate.x = 3.0;
+  const EvalResult r = test::evaluateCpu(
+      test::makeScene(makeOperationNode(NodeKind::Union, 1, {shrunk, other}), 32));
+  bool said = false;
+  for (const std::string& w : r.warnings)
+    said = said || w.find("shrinking by 0.75 mm removes every part thinner than 1.5 mm") !=
+                       std::string::npos;
+  EXPECT_TRUE(said) << (r.warnings.empty() ? std::string("no warnings") : r.warnings[0]);
 }
 
 }  // namespace
