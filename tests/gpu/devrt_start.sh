@@ -23,3 +23,12 @@ exports_cpu_vs_cuda() {
   done
   cat $R/exports.txt
 }
+
+# A lease's first call: the binaries kept in /tmp/devbin for its editor call (devrt_x_start.sh),
+# the host described ($R/host.txt), the GPU tests run ($R/gpu_tests.txt; the last lines shown).
+first_call_checks() {
+  mkdir -p /tmp/devbin && cp $B/strata $B/strata_gpu_gl_tests /tmp/devbin/ 2>/dev/null
+  nvidia-smi -L > $R/host.txt 2>&1; nproc >> $R/host.txt
+  timeout 300 $B/strata_gpu_tests > $R/gpu_tests.txt 2>&1; echo "gpu tests rc $?" >> $R/gpu_tests.txt
+  tail -3 $R/gpu_tests.txt
+}

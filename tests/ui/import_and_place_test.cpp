@@ -41,6 +41,22 @@ PlateWithTwoHoles plateWithTwoHoles(EditorState& state) {
   return made;
 }
 
+// A plate with a hole cut from it: the plate, the hole, and the difference holding both.
+struct PlateWithHole {
+  NodeId plate = 0, hole = 0, group = 0;
+};
+PlateWithHole addPlateWithHole(EditorState& state) {
+  PlateWithHole p;
+  p.plate = addPrimitive(state, NodeKind::Box);
+  state.placeMode = PlaceMode::Cut;
+  p.hole = addPrimitive(state, NodeKind::Cylinder);
+  state.placeMode = PlaceMode::Add;
+  NodeLocation where;
+  if (locateNode(state.document.root(), p.hole, &where)) p.group = where.parent->id;
+  clearSelection(state);
+  return p;
+}
+
 TEST(ImportOptions, ScaleConvertsFileUnitsToSceneUnits) {
   std::string why;
   EXPECT_DOUBLE_EQ(importScale(unitIndex("scene units"), "millimetre", &why), 1.0);
@@ -469,14 +485,9 @@ TEST(Roles, NewPastedAndDroppedPartsDoWhatTheModeSays) {
 // picks another (Ctrl cut, Shift intersect, Alt add); new parts from the palette take its mode.
 TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  const auto [plate, hole, group] = addPlateWithHole(state);
   state.selection = {plate};
-  const NodeId rib = [&] {
-    state.placeMode = PlaceMode::Add;
-    return addPrimitive(state, NodeKind::Box);
-  }();
+  const NodeId rib = addPrimitive(state, NodeKind::Box);
   ASSERT_EQ(roleOf(state.document.root(), hole), ChildRole::Cut);
   ASSERT_EQ(state.placeMode, PlaceMode::Add);
   // Dragged with no modifier: it keeps cutting, wherever it lands; the sentence says so.
@@ -526,11 +537,8 @@ TEST(Roles, MovedAndPastedPartsKeepTheirRoleWhateverThePaletteSays) {
 // back. A solid dropped onto a part of a hole cuts that part, and says so too.
 TEST(Roles, ADropThatChangesARoleSaysSoBeforeTheRelease) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  const auto [plate, hole, group] = addPlateWithHole(state);
   state.selection = {hole};
-  state.placeMode = PlaceMode::Add;
   const NodeId countersink = addPrimitive(state, NodeKind::Cone);
   state.selection = {plate};
   const NodeId rib = addPrimitive(state, NodeKind::Box);
@@ -777,11 +785,8 @@ TEST(Roles, ADropOntoASiblingSaysItOnlyChangesItsPlace) {
 // and a base.
 TEST(Roles, ARolePickedWhereThePartIsChangesOnlyItsOwn) {
   EditorState state;
-  const NodeId plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  const NodeId hole = addPrimitive(state, NodeKind::Cylinder);
+  const auto [plate, hole, difference] = addPlateWithHole(state);
   state.selection = {plate};
-  state.placeMode = PlaceMode::Add;
   const NodeId rib = addPrimitive(state, NodeKind::Box);
   ASSERT_EQ(roleOf(state.document.root(), rib), ChildRole::Add);
   const NodePtr before = state.document.root();
@@ -933,22 +938,6 @@ TEST(Roles, DuplicatingTheOriginalAgainGoesBesideTheFirstCopy) {
   EXPECT_FALSE(findNode(state.document.root(), first));
   EXPECT_FALSE(findNode(state.document.root(), second));
   EXPECT_TRUE(findNode(state.document.root(), b));
-}
-
-// A plate with a hole cut from it: the plate, the hole, and the difference holding both.
-struct PlateWithHole {
-  NodeId plate = 0, hole = 0, group = 0;
-};
-PlateWithHole addPlateWithHole(EditorState& state) {
-  PlateWithHole p;
-  p.plate = addPrimitive(state, NodeKind::Box);
-  state.placeMode = PlaceMode::Cut;
-  p.hole = addPrimitive(state, NodeKind::Cylinder);
-  state.placeMode = PlaceMode::Add;
-  NodeLocation where;
-  if (locateNode(state.document.root(), p.hole, &where)) p.group = where.parent->id;
-  clearSelection(state);
-  return p;
 }
 
 // A cutter copied twice with Ctrl+D: both copies cut, listed after the first copy in the row's
