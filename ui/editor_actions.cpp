@@ -1462,6 +1462,7 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
   state.exportNotStarted.reset();
   if (const std::string why = cannotWriteAt(path); !why.empty()) {
     state.exportNotStarted = EditorState::ExportNotStarted{path, why};
+    state.exportJob.reset();  // the last one ended (checked above): one window says this one
     logError(state, path + ": " + why);
   }
   if (!state.exportNotStarted)

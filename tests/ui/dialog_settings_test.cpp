@@ -62,6 +62,14 @@ TEST(ExportSettings, AnExportThatCannotStartSaysWhyInItsWindow) {
   startExport(state, folder + "/ball.stl", 32, 0.0, false);
   EXPECT_TRUE(state.exportJob);
   EXPECT_FALSE(state.exportNotStarted);
+  // Refused after that one ended, the window shows the refusal alone (both were drawn into the
+  // one "Export" window).
+  for (int waited = 0; !state.exportJob->status().finished && waited < 120000; waited += 5)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  startExport(state, "/proc/ball.stl", 32, 0.0, false);
+  EXPECT_FALSE(state.exportJob);
+  EXPECT_TRUE(state.exportNotStarted);
+  startExport(state, folder + "/ball.stl", 32, 0.0, false);
   state.exportJob.reset();  // cancels and joins
   std::filesystem::remove_all(folder);
 }
