@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "app/cli_common.h"
 #include "app/commands.h"
@@ -427,6 +428,7 @@ int runEdit(const std::vector<std::string>& argv) {
     ui::EditorOptions options;
     options.scenePath = scene;
     options.sceneAsTemplate = args.positional().empty();  // the demo: never saved over
+    options.bundledScenesFolder = std::filesystem::path(demoScenePath()).parent_path().string();
     chooseEditorBackend(args, &options);
     options.splatPrimitive = parseSplats(args);
     options.editResultWaitSeconds = args.number("--edit-wait", 8.0, 0.0, 1000.0) / 1000.0;

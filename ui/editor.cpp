@@ -212,6 +212,7 @@ Editor::Editor(EditorOptions options) : options_(std::move(options)) {
   EditorState& s = *state_;
   s.makeBackend = options_.makeBackend;
   s.recentFilesPath = options_.recentFilesPath;
+  s.bundledScenesFolder = options_.bundledScenesFolder;
   if (!options_.layoutPath.empty()) layout_ = readPanelLayout(options_.layoutPath, layout_);
   if (!options_.recoveryDir.empty()) {
     try {
@@ -534,6 +535,10 @@ void Editor::pumpPreview() {
   maintainMappedBuffers();
   stageMore();
   takeResult();
+  if (!s.preview)
+    s.fullPassWarnings.clear();
+  else if (!s.preview->coarse && s.fullPassWarnings != s.preview->stats.warnings)
+    s.fullPassWarnings = s.preview->stats.warnings;
   s.worker = worker_->status();
   requestPreviewIfNeeded();
 }

@@ -29,6 +29,8 @@ namespace strata::ui {
 struct EditorOptions {
   std::string scenePath;         // opened at start; "" = a new, empty document
   bool sceneAsTemplate = false;  // open scenePath as an untitled copy (the bundled demo)
+  // The shipped scenes' folder: any scene there opens as an untitled copy (EditorState's).
+  std::string bundledScenesFolder;
   // Makes a backend; called once for the preview worker and once per export.
   std::function<std::shared_ptr<Backend>()> makeBackend;
   // Optional: copies the backend's device splats into GL (CUDA-GL interop). Without it, or when

@@ -409,6 +409,7 @@ NodeId addPrimitive(EditorState& state, NodeKind kind) {
     }
     placeNode(state, id, at);
     selectNode(state, id);
+    state.revealSelection = true;
   });
   state.document.endInteraction();
   return id;
@@ -550,6 +551,7 @@ NodeId addOperation(EditorState& state, NodeKind kind) {
     if (patternOf(kind) != Pattern::None) node->pattern = patternFor(state, kind, Bounds());
     id = placeNew(state, node, state.placeMode);
     selectNode(state, id);
+    state.revealSelection = true;
   });
   return id;
 }
@@ -695,6 +697,7 @@ void duplicateSelection(EditorState& state) {
   state.document.endInteraction();
   if (copies.empty()) return;
   state.selection = copies;
+  state.revealSelection = true;
   char text[160];
   if (furthest == 1)
     std::snprintf(text, sizeof(text), "%s one grid step (%.4g %s) along +x from %s",
@@ -848,6 +851,7 @@ void pasteClipboard(EditorState& state) {
   state.document.endInteraction();
   if (pasted.empty()) return;
   state.selection = pasted;
+  state.revealSelection = true;
   // After a cut's first paste, its part is back in place: later pastes are copies of it.
   if (state.clipboardFromCut)
     state.clipboardFromCut = false;
@@ -880,7 +884,10 @@ void instanceSelection(EditorState& state) {
     });
   }
   state.document.endInteraction();
-  if (!instances.empty()) state.selection = instances;
+  if (!instances.empty()) {
+    state.selection = instances;
+    state.revealSelection = true;
+  }
 }
 
 void toggleSelectionHidden(EditorState& state) {
@@ -1123,7 +1130,7 @@ std::string roleChangeRefusal(const EditorState& state, NodeId id, PlaceMode mod
   if (modeKeepingRole(role) == mode) return "";
   // Where it would land (an only child goes back where it was, doing what it did).
   try {
-    const NodePtr after = movePart(root, id, parent->id, mode, state.document.nextId());
+    const NodePtr after = changeRole(root, id, mode, state.document.nextId());
     if (modeKeepingRole(roleOf(after, id)) == mode) return "";
   } catch (const Error& e) {
     return e.what();
@@ -1141,7 +1148,37 @@ void setRole(EditorState& state, NodeId id, PlaceMode mode) {
   }
   const ChildRole role = roleOf(state.document.root(), id);
   if (modeKeepingRole(role) == mode) return;
-  dropNode(state, id, parentOf(state, id)->id, mode, "role");
+  const Node* parent = parentOf(state, id);
+  if (mode == PlaceMode::Add || !unitesItsChildren(*parent)) {
+    dropNode(state, id, parent->id, mode, "role");
+    return;
+  }
+  // In a modifier or a pattern it acts on its siblings there (changeRole).
+  guarded(state, [&] {
+    const std::string sentence = roleChangeSentence(state, id, mode);
+    state.document.apply("role",
+                         changeRole(state.document.root(), id, mode, state.document.nextId()));
+    if (NodePtr node = findNode(state.document.root(), id))
+      logInfo(state, displayName(*node) + " " + sentence);
+  });
+}
+
+std::string roleChangeSentence(const EditorState& state, NodeId id, PlaceMode mode) {
+  const Node* parent = parentOf(state, id);
+  if (!parent) return "";
+  if (mode == PlaceMode::Add || !unitesItsChildren(*parent))
+    return placementSentence(state, parent->id, mode, id);
+  std::vector<std::string> names;
+  for (const NodePtr& child : parent->children)
+    if (child->id != id) names.push_back(displayName(*child));
+  const size_t count = names.size();
+  std::string siblings = count > 3 ? std::to_string(count) + " parts" : "";
+  for (size_t i = 0; count <= 3 && i < count; ++i)
+    siblings += (i == 0 ? "" : i + 1 == count ? " and " : ", ") + names[i];
+  return std::string(mode == PlaceMode::Cut ? "cuts " : "intersects ") + siblings + " inside " +
+         displayName(*parent) + " (a new " + kindLabel(operationKindFor(mode)) + " there takes " +
+         (count > 1 ? "them" : "it") + " and this part), which " +
+         (patternOf(parent->kind) != Pattern::None ? "repeats" : "changes") + " the result";
 }
 
 void setResolution(EditorState& state, int resolution) {
@@ -1214,7 +1251,21 @@ void newDocument(EditorState& state) {
   logInfo(state, "new document");
 }
 
+namespace {
+// Whether `path` names a file directly inside the bundled scenes' folder (links and ".." resolved).
+bool isBundledScene(const EditorState& state, const std::string& path) {
+  if (state.bundledScenesFolder.empty()) return false;
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(state.bundledScenesFolder, ec);
+  if (ec) return false;
+  const fs::path file = fs::weakly_canonical(path, ec);
+  return !ec && file.parent_path() == folder;
+}
+}  // namespace
+
 bool openDocument(EditorState& state, const std::string& path) {
+  if (isBundledScene(state, path) && !meshFormatFor(path, MeshAccess::Read))
+    return openTemplate(state, path);
   return guarded(state, [&] {
     if (meshFormatFor(path, MeshAccess::Read))
       throw Error(path + ": a mesh, not a scene: File > Import mesh adds it to this scene");
@@ -1234,7 +1285,9 @@ bool openTemplate(EditorState& state, const std::string& path) {
     replaceDocument(state, Document(original.scene()));
     state.templateName = std::filesystem::path(path).filename().string();
     for (const auto& w : warnings) logWarning(state, w);
-    logInfo(state, "opened a copy of " + path + " (Save asks where to keep it)");
+    logInfo(state, "opened a copy of " + path +
+                       (isBundledScene(state, path) ? ", an example shipped with Strata" : "") +
+                       " (Save asks where to keep it)");
   });
 }
 

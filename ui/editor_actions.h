@@ -102,10 +102,15 @@ void dropNode(EditorState& state, NodeId dragged, NodeId target, PlaceMode mode,
 // nothing moved, where one move is refused); else dropNode.
 void dropNodes(EditorState& state, NodeId dragged, NodeId target, int mods);
 // Node `id` made to do what `mode` says (add, cut, intersect) where it is: moved onto its own
-// parent with that mode (dropNode), so that every other part keeps its role; the log says what
-// it does now. Refused, with the reason in the log, for the root and a difference's base (whose
-// role is its place). Nothing happens where it already does that. One undo step.
+// parent with that mode (dropNode), or in a modifier or pattern made to cut or intersect its
+// siblings there (changeRole in roles.h), so that every other part keeps its role; the log says
+// what it does now. Refused, with the reason in the log, for the root and a difference's base
+// (whose role is its place). Nothing happens where it already does that. One undo step.
 void setRole(EditorState& state, NodeId id, PlaceMode mode);
+// What setRole(id, mode) would make the part do, for the artist before the click: where it is
+// moved onto its parent (placementSentence), or inside a modifier or pattern what it cuts or
+// intersects there ("cuts \"sphere 4\" inside \"shell 5\" ...", changeRole in roles.h).
+std::string roleChangeSentence(const EditorState& state, NodeId id, PlaceMode mode);
 // Why setRole(id, mode) would be refused ("" where it would take, or where the part already does
 // that): the root, a base, or a part that would land doing what it did (the only child of its
 // operation goes back there).
@@ -119,6 +124,7 @@ void redo(EditorState& state);
 
 // Files. Each returns false (with a message) when it failed.
 void newDocument(EditorState& state);
+// A scene in state.bundledScenesFolder opens as an untitled copy (openTemplate), and says so.
 bool openDocument(EditorState& state, const std::string& path);
 // Opens a scene as a new, untitled document (the bundled demo: saving asks where, never
 // overwriting the original). Mesh paths become absolute so that they resolve from anywhere.

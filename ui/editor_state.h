@@ -133,7 +133,11 @@ struct EditorState {
 
   // Preview.
   std::shared_ptr<const PreviewResult> preview;  // shown in the viewport
-  std::string previewError;                      // of the newest evaluation, "" when it worked
+  // The warnings of the last full pass shown (Editor::pumpPreview): what the panels list while a
+  // drag shows drafts, whose own warnings quote their coarser cells (an artist read "a cell is
+  // 2.1 mm" of a 0.4 mm scene); empty with no preview.
+  std::vector<std::string> fullPassWarnings;
+  std::string previewError;  // of the newest evaluation, "" when it worked
   // The preview runs at this many cells instead of the document's resolution, which would not
   // fit in memory (previewResolutionFor); 0 when it runs at the document's.
   int previewCappedAt = 0;
@@ -207,6 +211,10 @@ struct EditorState {
   // The file an untitled document was opened as a copy of (the bundled demo): the window's title
   // names it (a bare "untitled" said nothing of the demo on screen: an artist's test); "" else.
   std::string templateName;
+  // The folder of the scenes shipped with Strata: one opened from there (File > Open, Recent, the
+  // command line) opens as an untitled copy, as the demo does, so that saving never edits the
+  // shipped file (an artist's Ctrl+S changed the bundled example for every later user); "" none.
+  std::string bundledScenesFolder;
   int exportResolution = 0;  // cells along the longest side; 0: the document's, until chosen
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;
@@ -255,6 +263,10 @@ struct EditorState {
   // Requests to the frame loop.
   bool requestViewAll = false;
   bool requestFrameSelected = false;
+  // An edit added the selection (a new part, a copy, a paste): the view shows it where it lies
+  // out of view (Viewport::revealSelection; an artist's part added beside a zoomed-in detail
+  // landed off screen without a word).
+  bool revealSelection = false;
   int requestAxisView = -1;  // an AxisView (camera.h) from the View menu; -1 none
   bool requestToggleOrtho = false;
   bool showShortcuts = false;  // the shortcut sheet (F1, Help menu)

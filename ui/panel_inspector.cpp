@@ -268,7 +268,7 @@ void nodeRole(EditorState& state, const Node& node, size_t selected) {
                                           refusal.empty() ? 0 : ImGuiSelectableFlags_Disabled);
     if (mode != current && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
       const std::string says =
-          refusal.empty() ? "it " + placementSentence(state, parent->id, mode, node.id) : refusal;
+          refusal.empty() ? "it " + roleChangeSentence(state, node.id, mode) : refusal;
       ImGui::SetTooltip("%s", says.c_str());
     }
     if (chosen && mode != current) setRole(state, node.id, mode);

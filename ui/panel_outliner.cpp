@@ -184,9 +184,8 @@ void contextMenuItems(EditorState& state, const NodePtr& node) {
       if (ImGui::MenuItem(word, nullptr, current, refusal.empty()) && !current)
         setRole(state, node->id, mode);
       if (!current && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-        const std::string says = refusal.empty()
-                                     ? "it " + placementSentence(state, parent->id, mode, node->id)
-                                     : refusal;
+        const std::string says =
+            refusal.empty() ? "it " + roleChangeSentence(state, node->id, mode) : refusal;
         ImGui::SetTooltip("%s", says.c_str());
       }
     }

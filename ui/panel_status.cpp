@@ -244,8 +244,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     // What the evaluation said about parts too small or too thin for the cell size: counted
     // here, said in full at the panel's end (in full here, it pushed the gizmo's mode and pivot
     // out of the panel: an artist's test).
-    if (state.preview && !state.preview->stats.warnings.empty()) {
-      const size_t n = state.preview->stats.warnings.size();
+    if (!state.fullPassWarnings.empty()) {
+      const size_t n = state.fullPassWarnings.size();
       ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), "%zu %s (below)", n,
                          n == 1 ? "warning" : "warnings");
     }
@@ -359,8 +359,8 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     ImGui::SetTooltip(
         "With several parts selected, what the gizmo turns and scales them about:\nthe centre "
         "of their box (world axes), or the origin of the part clicked last (its axes)");
-  if (noGrid.empty() && state.preview && !state.preview->stats.warnings.empty()) {
-    const auto& warnings = state.preview->stats.warnings;
+  if (noGrid.empty() && !state.fullPassWarnings.empty()) {
+    const auto& warnings = state.fullPassWarnings;
     ImGui::Separator();
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.35f, 1.0f));
     for (size_t i = 0; i < warnings.size() && i < 3; ++i)
@@ -700,8 +700,7 @@ void drawDiagnostics(EditorState& state) {
   ImGui::SameLine();
   if (ImGui::SmallButton("copy all")) {
     std::string all;
-    if (shown)
-      for (const std::string& w : shown->stats.warnings) all += "warning: " + w + "\n";
+    for (const std::string& w : state.fullPassWarnings) all += "warning: " + w + "\n";
     for (const auto& line : state.log) all += line.text + "\n";
     ImGui::SetClipboardText(all.c_str());
   }
@@ -725,9 +724,8 @@ void drawDiagnostics(EditorState& state) {
     ImGui::PopID();
   };
   int id = 0;
-  if (shown)
-    for (const std::string& w : shown->stats.warnings)
-      line(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), w, id++);
+  for (const std::string& w : state.fullPassWarnings)
+    line(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), w, id++);
   for (const auto& entry : state.log) {
     ImVec4 color = entry.level == LogLevel::Error     ? ImVec4(1.0f, 0.45f, 0.45f, 1.0f)
                    : entry.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.35f, 1.0f)

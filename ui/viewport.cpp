@@ -228,6 +228,38 @@ void Viewport::frameSelected(const EditorState& state) {
     pendingFrame_ = b;
 }
 
+bool Viewport::revealSelection(EditorState& state, const ViewRect& rect) {
+  state.revealSelection = false;
+  const Bounds part = selectionBounds(state.document.root(), state.selection);
+  if (part.empty() || pendingFrame_) return false;  // a framing already asked shows it
+  const ScreenMapping view = mapping(state, rect);
+  bool shown = true;
+  for (int i = 0; i < 8 && shown; ++i) {
+    const glm::dvec3 corner(i & 1 ? part.max.x : part.min.x, i & 2 ? part.max.y : part.min.y,
+                            i & 4 ? part.max.z : part.min.z);
+    glm::dvec2 pixel;
+    shown = view.toScreen(corner, &pixel) && pixel.x >= 0.0 && pixel.y >= 0.0 &&
+            pixel.x <= view.size.x && pixel.y <= view.size.y;
+  }
+  if (shown) return false;
+  // What the view showed: the rectangle through its target, across the screen.
+  const double halfHeight = 0.5 * camera.unitsPerPixel(rect.height) * rect.height;
+  const double halfWidth = halfHeight * rect.width / std::max(rect.height, 1.0);
+  Bounds both = part;
+  for (int sx = -1; sx <= 1; sx += 2)
+    for (int sy = -1; sy <= 1; sy += 2)
+      both.include(camera.target + camera.right() * (sx * halfWidth) +
+                   camera.up() * (sy * halfHeight));
+  camera.frame(both, rect.width / std::max(rect.height, 1.0));
+  const NodePtr first = findNode(state.document.root(), state.selection.front());
+  logInfo(state, (state.selection.size() == 1 && first ? nodeLabel(*first) + " was"
+                                                       : std::string("the new parts were")) +
+                     " out of view: the view moved out to show " +
+                     (state.selection.size() == 1 ? "it" : "them") +
+                     " beside what it showed (Home shows the whole scene)");
+  return true;
+}
+
 void Viewport::toggleOrtho(const EditorState& state) {
   pendingOrthoToggle_ = sceneBounds(state.document.root());
 }
@@ -263,6 +295,7 @@ void Viewport::handleKeys(EditorState& state) {
 
 void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   framePending(rect);
+  if (state.revealSelection) revealSelection(state, rect);
   ImGuiIO& io = ImGui::GetIO();
   const glm::dvec2 mouse(io.MousePos.x - rect.x, io.MousePos.y - rect.y);
   const bool inside = mouse.x >= 0 && mouse.y >= 0 && mouse.x < rect.width && mouse.y < rect.height;

@@ -71,6 +71,12 @@ class Viewport {
   // nothing but the inside of a part. Call once a frame, after handleInput.
   void keepCameraOutside(EditorState& state);
   void frameSelected(const EditorState& state);
+  // After an edit that added the selection (EditorState::revealSelection): where any corner of
+  // its box lies outside the view in `rect`, the camera moves out at once to show the box and
+  // what it showed around its target (not the whole scene: an artist zoomed onto a detail stays
+  // near it), and says so; false where it was in view already (the view as it is). Clears the
+  // request.
+  bool revealSelection(EditorState& state, const ViewRect& rect);
   // Orthographic <-> perspective (at the next handleInput or draw): Camera::setOrtho, keeping the
   // whole scene in view where it was.
   void toggleOrtho(const EditorState& state);

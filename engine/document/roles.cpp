@@ -364,4 +364,32 @@ NodePtr movePart(const NodePtr& root, NodeId id, NodeId target, PlaceMode mode, 
   return result;
 }
 
+bool unitesItsChildren(const Node& op) {
+  return modifierOf(op.kind) != Modifier::None || patternOf(op.kind) != Pattern::None;
+}
+
+NodePtr changeRole(const NodePtr& root, NodeId id, PlaceMode mode, NodeId groupId) {
+  NodeLocation where;
+  if (!locateNode(root, id, &where)) throw Error("there is no node with id " + std::to_string(id));
+  if (!where.parent || mode == PlaceMode::Add || !unitesItsChildren(*where.parent))
+    return movePart(root, id, where.parent ? where.parent->id : id, mode, groupId);
+  const Node& parent = *where.parent;
+  const NodePtr part = parent.children[size_t(where.index)];
+  if (parent.children.size() < 2)
+    throw Error(quoted(*part) + " is all that " + quoted(parent) + " holds: there is nothing in " +
+                "it to " + placeModeName(mode) + ". Drag it onto the part it should act on");
+  if (findNode(root, groupId) || findNode(root, groupId + 1))
+    throw Error("role: the new operation's id is in use");
+  std::vector<NodePtr> siblings;
+  for (const NodePtr& child : parent.children)
+    if (child->id != id) siblings.push_back(child);
+  const NodePtr acted = siblings.size() == 1
+                            ? siblings.front()
+                            : makeOperationNode(NodeKind::Union, groupId + 1, std::move(siblings));
+  const NodePtr op = makeOperationNode(operationKindFor(mode), groupId, {acted, part});
+  NodePtr result = editNode(root, parent.id, [&](Node& n) { n.children = {op}; });
+  checkInstances(result);
+  return result;
+}
+
 }  // namespace strata

@@ -106,6 +106,20 @@ PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode);
 // `groupId` (unused in the tree and the part). Returns the new root.
 NodePtr placePart(const NodePtr& root, const PlacePlan& plan, const NodePtr& part, NodeId groupId);
 
+// Whether `op` unites its children and then changes or repeats the union as one solid (a
+// modifier: offset, shell, round, fillet; a pattern: array, circular array, mirror).
+bool unitesItsChildren(const Node& op);
+
+// Node `id` made to do what `mode` says where it is, every other part keeping its role: moved
+// onto its own parent with that mode (movePart), except where the parent unites its children
+// (unitesItsChildren) and the part is to cut or intersect: there it acts on its siblings inside
+// the parent, which then changes or repeats the result. The siblings (their union, id
+// `groupId + 1`, where there are several) and the part become the two children of a new
+// operation of the mode's Boolean (id `groupId`), the parent's only child; a shell's opening
+// stays inside its shell, a pattern repeats the cut. Both ids must be unused. Throws
+// strata::Error as movePart does, and for the only child of such a parent (nothing to act on).
+NodePtr changeRole(const NodePtr& root, NodeId id, PlaceMode mode, NodeId groupId);
+
 // Detaches node `id` and places it onto `target` with `mode`. Refused for the root, for a
 // target inside the moved node, and when it would make an instance cycle. A moved base of a
 // difference with cutters leaves an empty base behind (see removeKeepingRoles). The wrapping

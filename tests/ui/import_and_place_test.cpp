@@ -2,6 +2,8 @@
 // palette do to the document (ui/editor_actions.h), without a window.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <glm/geometric.hpp>
 
 #include "engine/document/commands.h"
@@ -109,6 +111,33 @@ TEST(ImportAndPlace, AMeshOpenedAsASceneIsRefusedByWhatItIs) {
       << state.log.back().text;
   EXPECT_NE(state.log.back().text.find("Import mesh"), std::string::npos);
   EXPECT_TRUE(findNode(state.document.root(), kept));
+}
+
+// A scene shipped with Strata opened with File > Open (or Recent, or on the command line) is an
+// untitled copy, as the demo is, so that Ctrl+S cannot change the shipped file (an artist's
+// did); the same file elsewhere opens as itself.
+TEST(ImportAndPlace, ABundledSceneOpensAsAnUntitledCopy) {
+  EditorState state;
+  state.bundledScenesFolder = std::string(STRATA_ASSETS) + "/scenes";
+  const std::string shipped = state.bundledScenesFolder + "/two_spheres.strata.json";
+  ASSERT_TRUE(openDocument(state, shipped));
+  EXPECT_TRUE(state.document.path().empty());
+  EXPECT_EQ(state.templateName, "two_spheres.strata.json");
+  EXPECT_NE(state.log.back().text.find("shipped with Strata"), std::string::npos)
+      << state.log.back().text;
+  EXPECT_FALSE(state.document.root()->children.empty());
+  // Through a path with ".." in it: the same folder.
+  ASSERT_TRUE(
+      openDocument(state, state.bundledScenesFolder + "/../scenes/two_spheres.strata.json"));
+  EXPECT_TRUE(state.document.path().empty());
+
+  const std::string folder = ::testing::TempDir() + "/strata_own_copy";
+  std::filesystem::create_directories(folder);
+  const std::string own = folder + "/two_spheres.strata.json";
+  std::filesystem::copy_file(shipped, own, std::filesystem::copy_options::overwrite_existing);
+  ASSERT_TRUE(openDocument(state, own));
+  EXPECT_EQ(state.document.path(), own);
+  EXPECT_TRUE(state.templateName.empty());
 }
 
 // A part dropped on a flat top got turns of a few thousandths of a degree ("-0.00" in the
@@ -840,6 +869,72 @@ TEST(Roles, ARolePickedWhereThePartIsChangesOnlyItsOwn) {
   } else {
     ADD_FAILURE() << "the sphere did not land alone in the new union";
   }
+}
+
+// "cuts" picked for a part inside a shell: it cuts the shell's other parts there, stays inside
+// the shell (an artist's opening left the shell, and a new difference cut the finished shell),
+// says so before the click and in the log, and is undone as "role".
+TEST(Roles, ARolePickedInsideAShellCutsItsSiblingsThere) {
+  EditorState state;
+  const NodeId ball = addPrimitive(state, NodeKind::Sphere);
+  state.selection = {ball};
+  groupSelection(state, NodeKind::Shell);
+  const Node* shellNode = parentOf(state, ball);
+  ASSERT_NE(shellNode, nullptr);
+  ASSERT_EQ(shellNode->kind, NodeKind::Shell);
+  const NodeId shell = shellNode->id;
+  state.selection = {ball};
+  const NodeId bore = addPrimitive(state, NodeKind::Cylinder);
+  ASSERT_TRUE(isInSubtree(state.document.root(), shell, bore));
+  ASSERT_EQ(roleOf(state.document.root(), bore), ChildRole::Add);
+  const NodePtr before = state.document.root();
+  const std::string says = roleChangeSentence(state, bore, PlaceMode::Cut);
+  EXPECT_NE(says.find("inside"), std::string::npos) << says;
+  ASSERT_FALSE(findNode(before, ball)->name.empty());
+  EXPECT_NE(says.find(findNode(before, ball)->name), std::string::npos) << says;
+  setRole(state, bore, PlaceMode::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), bore), ChildRole::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), ball), ChildRole::Base);
+  EXPECT_TRUE(isInSubtree(state.document.root(), shell, bore));
+  EXPECT_EQ(findNode(state.document.root(), shell)->children.size(), 1u);
+  EXPECT_NE(state.log.back().text.find(says), std::string::npos) << state.log.back().text;
+  undo(state);
+  EXPECT_EQ(state.log.back().text, "undone: role");
+  EXPECT_EQ(state.document.root(), before);
+}
+
+// A part added out of view (a copy one large step away from a part the view was zoomed onto)
+// moves the view out to show it and the part that was in view, and says so; one added in view
+// leaves the view as it is (an artist's part landed off screen without a word).
+TEST(ImportAndPlace, APartAddedOutOfViewIsShownWithWhatWasInView) {
+  EditorState state;
+  const NodeId first = addPrimitive(state, NodeKind::Box);
+  const ViewRect rect{0.0, 0.0, 800.0, 600.0};
+  Viewport view;
+  view.camera.frame(selectionBounds(state.document.root(), {first}), 800.0 / 600.0);
+  const Camera zoomed = view.camera;
+  ASSERT_TRUE(state.revealSelection);
+  EXPECT_FALSE(view.revealSelection(state, rect));
+  EXPECT_FALSE(state.revealSelection);
+  EXPECT_EQ(view.camera.target, zoomed.target);
+  EXPECT_EQ(view.camera.distance, zoomed.distance);
+
+  state.snapFollowsGrid = false;
+  state.snap.step = 400.0;
+  state.selection = {first};
+  duplicateSelection(state);
+  ASSERT_EQ(state.selection.size(), 1u);
+  const NodeId copy = state.selection[0];
+  ASSERT_TRUE(state.revealSelection);
+  EXPECT_TRUE(view.revealSelection(state, rect));
+  EXPECT_NE(state.log.back().text.find("out of view"), std::string::npos) << state.log.back().text;
+  EXPECT_GT(view.camera.distance, zoomed.distance);
+  for (NodeId shown : {copy, first}) {
+    state.selection = {shown};
+    EXPECT_FALSE(view.revealSelection(state, rect)) << "in view now: " << shown;
+  }
+  // Not the whole scene's framing where a far part would be left out of it: both, no more.
+  EXPECT_LT(view.camera.distance, 4.0 * 400.0);
 }
 
 // An error is settled by a later success on its topic: a refused 100000 cells does not stay red

@@ -516,5 +516,77 @@ TEST(Roles, AMoveSaysWhichInstancesChangeWithIt) {
   EXPECT_EQ(instancesChangedNote(root, within, 9), "");
 }
 
+// A part made to cut or intersect inside a modifier or a pattern acts on its siblings there (an
+// artist's "cuts" on a shell's opening moved it out of the shell, around which a new difference
+// cut the finished shell once; in an array it cut one copy, not each).
+TEST(Roles, ARoleChangedInsideAModifierOrPatternActsOnItsSiblingsThere) {
+  // An array of three boxes, each with a sphere at its centre: made to cut, the sphere cuts
+  // every copy.
+  NodePtr cube = test::box(glm::dvec3(10.0));
+  NodePtr ball = test::sphere(4.0);
+  auto array = std::make_shared<Node>(*test::op(NodeKind::Array, {cube, ball}));
+  array->pattern.counts = glm::ivec3(3, 1, 1);
+  array->pattern.step = glm::dvec3(20.0, 0.0, 0.0);
+  NodePtr root = test::op(NodeKind::Union, {array});
+  const NodeId fresh = maxNodeId(root) + 1;
+  const NodePtr cut = changeRole(root, ball->id, PlaceMode::Cut, fresh);
+  const NodePtr arrayAfter = findNode(cut, array->id);
+  ASSERT_EQ(arrayAfter->children.size(), 1u);
+  EXPECT_EQ(arrayAfter->children[0]->kind, NodeKind::Difference);
+  EXPECT_EQ(arrayAfter->children[0]->id, fresh);
+  EXPECT_EQ(roleOf(cut, cube->id), ChildRole::Base);
+  EXPECT_EQ(roleOf(cut, ball->id), ChildRole::Cut);
+  const Scene scene =
+      test::makeSceneInBox(cut, 128, glm::dvec3(-6.0, -6.0, -6.0), glm::dvec3(50.0, 6.0, 6.0));
+  const double expected = 3.0 * (1000.0 - 4.0 / 3.0 * 3.14159265358979 * 64.0);
+  EXPECT_NEAR(test::evaluateCpu(scene).measure.volume, expected, 0.02 * expected);
+  // Back to adding: beside the difference, inside the array, the boxes whole again.
+  const NodePtr back = changeRole(cut, ball->id, PlaceMode::Add, maxNodeId(cut) + 1);
+  EXPECT_EQ(roleOf(back, ball->id), ChildRole::Add);
+  EXPECT_TRUE(isInSubtree(back, array->id, ball->id));
+
+  // A shell of a sphere with a cylinder through its top as its opening: made to cut, the
+  // cylinder stays inside the shell (still its opening), and two siblings are cut as one union.
+  NodePtr body = test::sphere(10.0);
+  NodePtr rim = test::torus(8.0, 1.0);
+  NodePtr bore = test::cylinder(2.0, 30.0, glm::dvec3(0.0, 0.0, 10.0));
+  auto shell = std::make_shared<Node>(*test::modifier(NodeKind::Shell, 1.0, {body, bore, rim}));
+  shell->opening = bore->id;
+  NodePtr scene2 = test::op(NodeKind::Union, {shell});
+  const NodeId fresh2 = maxNodeId(scene2) + 1;
+  const NodePtr opened = changeRole(scene2, bore->id, PlaceMode::Cut, fresh2);
+  const NodePtr shellAfter = findNode(opened, shell->id);
+  ASSERT_EQ(shellAfter->children.size(), 1u);
+  const NodePtr inside = shellAfter->children[0];
+  EXPECT_EQ(inside->kind, NodeKind::Difference);
+  ASSERT_EQ(inside->children.size(), 2u);
+  EXPECT_EQ(inside->children[0]->kind, NodeKind::Union);
+  EXPECT_EQ(inside->children[0]->id, fresh2 + 1);
+  EXPECT_EQ(childIds(inside->children[0]), (std::vector<NodeId>{body->id, rim->id}));
+  EXPECT_EQ(inside->children[1]->id, bore->id);
+  ASSERT_TRUE(shellOpening(shellAfter));
+  EXPECT_EQ(shellOpening(shellAfter)->id, bore->id);
+  EXPECT_EQ(roleOf(opened, body->id), ChildRole::Add);
+  EXPECT_EQ(roleOf(opened, rim->id), ChildRole::Add);
+  // Intersect the same way.
+  const NodePtr kept = changeRole(scene2, rim->id, PlaceMode::Intersect, fresh2);
+  EXPECT_EQ(findNode(kept, shell->id)->children[0]->kind, NodeKind::Intersection);
+  EXPECT_EQ(roleOf(kept, rim->id), ChildRole::Intersect);
+
+  // The only child of a modifier has nothing there to act on: refused, said why.
+  NodePtr lone = test::sphere(1.0);
+  NodePtr grown = test::modifier(NodeKind::Offset, 0.5, {lone});
+  NodePtr scene3 = test::op(NodeKind::Union, {grown, test::box(glm::dvec3(1.0))});
+  try {
+    changeRole(scene3, lone->id, PlaceMode::Cut, maxNodeId(scene3) + 1);
+    ADD_FAILURE() << "the only child of a modifier was made to cut";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing in it to cut"), std::string::npos) << e.what();
+  }
+  // In a plain union a changed role still wraps the union (movePart): the same as before.
+  NodePtr plain = sampleTree();
+  EXPECT_EQ(changeRole(plain, 2, PlaceMode::Cut, 7)->kind, NodeKind::Difference);
+}
+
 }  // namespace
 }  // namespace strata
