@@ -963,6 +963,9 @@ void groupSelection(EditorState& state, NodeKind kind) {
     if (patternOf(kind) != Pattern::None)
       state.document.setPattern(id, patternFor(state, kind, bounds));
     selectNode(state, id);
+    // A pattern's copies lie about its origin (the parent's: a mirror of a part far from it lands
+    // as far on the other side): the view shows them where they are out of it.
+    if (patternOf(kind) != Pattern::None) state.revealSelection = true;
   });
   state.document.endInteraction();
 }

@@ -937,6 +937,26 @@ TEST(ImportAndPlace, APartAddedOutOfViewIsShownWithWhatWasInView) {
   EXPECT_LT(view.camera.distance, 4.0 * 400.0);
 }
 
+// A mirror of a part far from its parent's origin has its image as far on the other side: the
+// view, framed on the part, moves out to show the image too.
+TEST(ImportAndPlace, AMirrorsImageOutOfViewIsShown) {
+  EditorState state;
+  const NodeId rib = addPrimitive(state, NodeKind::Box);
+  Transform far;
+  far.translate = glm::dvec3(300.0, 0.0, 0.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(rib, far); }));
+  const ViewRect rect{0.0, 0.0, 800.0, 600.0};
+  Viewport view;
+  view.camera.frame(selectionBounds(state.document.root(), {rib}), 800.0 / 600.0);
+  state.selection = {rib};
+  groupSelection(state, NodeKind::Mirror);
+  const Bounds both = selectionBounds(state.document.root(), state.selection);
+  ASSERT_LT(both.min.x, -250.0) << "the image lies across the parent's origin";
+  ASSERT_TRUE(state.revealSelection);
+  EXPECT_TRUE(view.revealSelection(state, rect));
+  EXPECT_FALSE(view.revealSelection(state, rect)) << "both in view now";
+}
+
 // An error is settled by a later success on its topic: a refused 100000 cells does not stay red
 // once 512 is applied (an artist read it as the 512's failure).
 TEST(EditorLog, ALaterSuccessOnTheSameTopicSettlesItsError) {
