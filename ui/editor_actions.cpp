@@ -81,8 +81,12 @@ double sceneScale(const EditorState& state, std::string* from = nullptr) {
   const Bounds b = sceneBounds(state.document.root());
   if (!b.empty()) {
     const glm::dvec3 size = b.size();
-    if (from) *from = "a quarter of the scene";
-    return niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+    const double scene = niceLength(std::max({size.x, size.y, size.z}) / 4.0);
+    // Zoomed in on a detail, a quarter of the view where that is less: a part a quarter of the
+    // scene hid the detail it was added to (an artist's 125 mm torus over 20 mm spheres).
+    const double view = state.viewExtent > 0.0 ? niceLength(state.viewExtent / 4.0) : scene;
+    if (from) *from = view < scene ? "a quarter of the view" : "a quarter of the scene";
+    return std::min(scene, view);
   }
   if (state.viewExtent > 0.0) {
     if (from) *from = "a quarter of the view";
@@ -398,7 +402,8 @@ NodeId addPrimitive(EditorState& state, NodeKind kind) {
   state.document.beginInteraction();
   guarded(state, [&] {
     std::string note;
-    NodePtr node = newPrimitive(state, kind, &note);
+    // Sized from what it goes onto where that is smaller (as a part dropped on it is).
+    NodePtr node = newPrimitive(state, kind, &note, target);
     id = placeNew(state, node, state.placeMode, note);
     Placement at;
     if (!onto.empty()) {
@@ -1156,11 +1161,14 @@ void setRole(EditorState& state, NodeId id, PlaceMode mode) {
     dropNode(state, id, parent->id, mode, "role");
     return;
   }
-  // In a modifier or a pattern it acts on its siblings there (changeRole).
+  // In a modifier or a pattern it acts on its siblings there (changeRole); a cutter in a shell
+  // without an opening becomes its opening too (opensTheShell), in the same undo step.
   guarded(state, [&] {
     const std::string sentence = roleChangeSentence(state, id, mode);
-    state.document.apply("role",
-                         changeRole(state.document.root(), id, mode, state.document.nextId()));
+    NodePtr changed = changeRole(state.document.root(), id, mode, state.document.nextId());
+    if (opensTheShell(*parent, mode))
+      changed = editNode(changed, parent->id, [&](Node& shell) { shell.opening = id; });
+    state.document.apply("role", changed);
     if (NodePtr node = findNode(state.document.root(), id))
       logInfo(state, displayName(*node) + " " + sentence);
   });
@@ -1181,7 +1189,15 @@ std::string roleChangeSentence(const EditorState& state, NodeId id, PlaceMode mo
   return std::string(mode == PlaceMode::Cut ? "cuts " : "intersects ") + siblings + " inside " +
          displayName(*parent) + " (a new " + kindLabel(operationKindFor(mode)) + " there takes " +
          (count > 1 ? "them" : "it") + " and this part), which " +
-         (patternOf(parent->kind) != Pattern::None ? "repeats" : "changes") + " the result";
+         (opensTheShell(*parent, mode)
+              ? "opens the shell's wall where it cuts (the shell's opening; \"none\" there keeps "
+                "the wall closed, a pocket)"
+          : patternOf(parent->kind) != Pattern::None ? "repeats the result"
+                                                     : "changes the result");
+}
+
+bool opensTheShell(const Node& parent, PlaceMode mode) {
+  return parent.kind == NodeKind::Shell && mode == PlaceMode::Cut && parent.opening == 0;
 }
 
 void setResolution(EditorState& state, int resolution) {

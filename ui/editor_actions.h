@@ -111,6 +111,10 @@ void setRole(EditorState& state, NodeId id, PlaceMode mode);
 // moved onto its parent (placementSentence), or inside a modifier or pattern what it cuts or
 // intersects there ("cuts \"sphere 4\" inside \"shell 5\" ...", changeRole in roles.h).
 std::string roleChangeSentence(const EditorState& state, NodeId id, PlaceMode mode);
+// Whether a part made to do `mode` inside `parent` (setRole) also becomes its opening: a cutter in
+// a shell that has none, so that the hollow reaches out where it cuts (a drain hole, a mouth:
+// an artist's cutter inside a shell made a closed pocket, the wall following the cut).
+bool opensTheShell(const Node& parent, PlaceMode mode);
 // Why setRole(id, mode) would be refused ("" where it would take, or where the part already does
 // that): the root, a base, or a part that would land doing what it did (the only child of its
 // operation goes back there).

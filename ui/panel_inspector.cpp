@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/document/commands.h"
+#include "engine/document/measurement.h"
 #include "engine/document/roles.h"
 #include "engine/io/document_files.h"
 #include "engine/kinds/primitives.h"
@@ -351,6 +352,28 @@ void placedSize(const EditorState& state) {
                           : "A box along the scene's x, y and z that holds the selection's result "
                             "as placed: a cut, an intersection, a shrinking offset, a round, a "
                             "fillet or a turn leaves the part smaller than it (measure with M)");
+}
+
+// Where the fields' numbers are measured from, under them, where that is not the world's frame:
+// an artist's box moved into a shell at z = 8 read its z change from 26 to 18 without having
+// moved, the fields being in the shell's frame.
+void parentFrameNote(const EditorState& state, const Node& shown) {
+  const NodePtr& root = state.document.root();
+  const glm::dmat4 parentWorld = parentWorldMatrix(root, shown.id);
+  if (parentWorld == glm::dmat4(1.0)) return;
+  const Node* parent = parentOf(state, shown.id);
+  const glm::dvec3 origin(parentWorld[3]);
+  const auto zero = [](double v) { return std::fabs(v) < 5e-13 ? 0.0 : v; };
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("in the frame of %s (its origin at %.4g, %.4g, %.4g %s)",
+                     parent ? nodeLabel(*parent).c_str() : "its parent", zero(origin.x),
+                     zero(origin.y), zero(origin.z), gLengthUnit.c_str());
+  ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Move, rotate and scale are measured in the frame of the group that holds the part\n"
+        "(its position, turn and scale): the same place in the world reads differently\n"
+        "once the part is inside another group. \"spans\" below is in the scene's axes.");
 }
 
 // Which components of `field` differ from the primary node's across `nodes`.
@@ -841,6 +864,7 @@ void drawInspector(EditorState& state, const PanelLayout& layout) {
       if (NodePtr n = findNode(state.document.root(), other)) outer.push_back(n);
   outer.push_back(holder ? holder : node);
   nodeTransform(state, outer.back(), outer, speed);
+  parentFrameNote(state, *outer.back());
   placedSize(state);
   nodeKindSections(state, node, nodes, speed);
   ImGui::PopID();

@@ -568,12 +568,18 @@ void measurementList(EditorState& state) {
                 unit);
     if (std::isfinite(r.measure.thinnestWall)) {
       const glm::dvec3 at = r.measure.thinnestAt;
-      ImGui::TextWrapped("thinnest wall about %.4g %s (%.2g cells) at (%.4g, %.4g, %.4g)%s",
-                         r.measure.thinnestWall, unit, r.measure.thinnestWall / r.grid.h, at.x,
-                         at.y, at.z,
-                         r.measure.thinnestWall < 2.0 * r.grid.h
-                             ? "; thinner than two cells: raise the resolution to judge it"
-                             : "");
+      // Spans under half a cell are not judged (measureLdi): where the warnings name a part
+      // thinner than that, this line must not read as the thinnest wall there is (an artist's
+      // 0.3 mm shim beside "thinnest wall about 3.9 mm").
+      ImGui::TextWrapped(
+          "thinnest wall about %.4g %s (%.2g cells) at (%.4g, %.4g, %.4g)%s; walls under half a "
+          "cell (%.3g %s) are not judged%s",
+          r.measure.thinnestWall, unit, r.measure.thinnestWall / r.grid.h, at.x, at.y, at.z,
+          r.measure.thinnestWall < 2.0 * r.grid.h
+              ? "; thinner than two cells: raise the resolution to judge it"
+              : "",
+          0.5 * r.grid.h, unit,
+          state.fullPassWarnings.empty() ? "" : " (the warnings below name thinner parts)");
     }
     // The result's own extent, from its splats (the tree's bounds are its parts' boxes: a turned
     // rib's box or a cutter's made it larger than the part an artist measured); once a result,

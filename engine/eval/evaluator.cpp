@@ -1,5 +1,6 @@
 #include "engine/eval/evaluator.h"
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <unordered_set>
 
@@ -160,16 +162,36 @@ void checkLeafPlacement(const Node& node, const glm::dmat4& world, const Bounds&
   }
 }
 
+// How thick a leaf whose own box (in its frame) is `local` is where `world` places it: the least
+// distance between opposite faces of that box carried into the world (a parallelepiped, turned,
+// scaled or sheared), so that a thin plate turned 45 degrees, whose world box is as deep as it is
+// wide, is still as thin as it is (an artist's turned 0.3 mm shim was exported in strips without
+// a word). Infinity for an empty box; 0 for a flat one.
+double placedThickness(const Bounds& local, const glm::dmat4& world) {
+  if (local.empty()) return std::numeric_limits<double>::infinity();
+  const glm::dvec3 size = local.size();
+  const glm::dvec3 edge[3] = {glm::dvec3(world[0]) * size.x, glm::dvec3(world[1]) * size.y,
+                              glm::dvec3(world[2]) * size.z};
+  const double volume = std::fabs(glm::dot(edge[0], glm::cross(edge[1], edge[2])));
+  double thickness = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const double face = glm::length(glm::cross(edge[(a + 1) % 3], edge[(a + 2) % 3]));
+    if (face > 0.0) thickness = std::min(thickness, volume / face);
+  }
+  return thickness;
+}
+
 // "part 'X' (0.001 mm across) is smaller than a cell (0.01 mm); ..." (`unit`: the scene's
-// unitSymbol) when the leaf's largest extent is
-// below the cell size h, so that it may vanish or break up at this resolution; "... is only 1.4
-// cells thick ..." when its smallest extent (of its world bounds) is below 2 h; "" otherwise.
-std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, double h,
+// unitSymbol) when the leaf's largest extent (of its world bounds) is below the cell size h, so
+// that it may vanish or break up at this resolution; "... is only 1.4 cells thick ..." when its
+// thickness (the least of its world bounds' sizes and `placed`, its placedThickness) is below
+// 2 h; "" otherwise.
+std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, double placed, double h,
                                    const char* unit) {
   if (bounds.empty()) return "";
   const glm::dvec3 size = bounds.size();
   const double extent = std::max({size.x, size.y, size.z});
-  const double thickness = std::min({size.x, size.y, size.z});
+  const double thickness = std::min({size.x, size.y, size.z, placed});
   // A sheet, flat but for rounding (an imported plane turned +Y up lay 6e-16 thick): "only
   // 1.8e-15 cells thick; about 2.2e+15x the resolution" said nothing useful (an artist's test).
   if (extent > 0.0 && thickness <= kFlatPart * extent)
@@ -214,9 +236,12 @@ void collectSmallParts(const NodePtr& node, const NodePtr& root, const glm::dmat
       for (const auto& c : node->children)
         collectSmallParts(c, root, world * placement, false, depth + 1, h, unit, out);
   } else {
-    const std::string w = meshMissing(*node)
-                              ? missingMeshWarning(*node)
-                              : smallerThanCellWarning(*node, leafBounds(*node, world), h, unit);
+    const std::string w =
+        meshMissing(*node)
+            ? missingMeshWarning(*node)
+            : smallerThanCellWarning(*node, leafBounds(*node, world),
+                                     placedThickness(leafBounds(*node, glm::dmat4(1.0)), world), h,
+                                     unit);
     if (!w.empty() && std::find(out->begin(), out->end(), w) == out->end()) out->push_back(w);
   }
 }
@@ -445,6 +470,85 @@ std::string boundsCutWarning(const Scene& scene) {
   return "the scene's own bounds (settings.bounds) cut its parts, which reach " + sides +
          ": the result is cut flat there; widen the bounds or remove them";
 }
+// Each visible leaf's world bounds (instances and pattern copies each once), for farPartWarning.
+void collectLeafBoxes(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
+                      bool asInstance, int depth,
+                      std::vector<std::pair<const Node*, Bounds>>* out) {
+  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
+  const glm::dmat4 world = parentWorld * node->transform.matrix();
+  if (node->kind == NodeKind::Instance) {
+    collectLeafBoxes(findNode(root, node->instanceOf), root, world, true, depth + 1, out);
+  } else if (isOperation(node->kind)) {
+    for (const glm::dmat4& placement : placementsOf(*node))
+      for (const auto& c : node->children)
+        collectLeafBoxes(c, root, world * placement, false, depth + 1, out);
+  } else {
+    out->push_back({node.get(), leafBounds(*node, world)});
+  }
+}
+
+double longestSide(const Bounds& b) {
+  const glm::dvec3 s = b.size();
+  return std::max({s.x, s.y, s.z});
+}
+
+// "" unless one leaf far from the rest stretches the scene's grid: where the grid's longest side
+// is at least 4 times what the rest of the scene needs and twice the leaf's own (every cell 4 times
+// as large: an artist's sphere at x = 120 doubled the cell, and a position typed as 1e9 emptied the
+// view, the warnings blaming the parts that had become smaller than a cell); then which leaf, and
+// by how much. Leaves are taken within the scene's bounds (a cutter beyond its part stretches
+// nothing).
+std::string farPartWarning(const Scene& scene) {
+  if (scene.settings.hasBounds || !scene.root) return "";
+  const Bounds all = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
+  if (all.empty()) return "";
+  std::vector<std::pair<const Node*, Bounds>> leaves;
+  collectLeafBoxes(scene.root, scene.root, glm::dmat4(1.0), false, 0, &leaves);
+  for (auto& leaf : leaves) leaf.second = leaf.second.intersected(all);
+  leaves.erase(std::remove_if(leaves.begin(), leaves.end(),
+                              [](const auto& leaf) { return leaf.second.empty(); }),
+               leaves.end());
+  const size_t n = leaves.size();
+  if (n < 2) return "";
+  std::vector<Bounds> before(n + 1), after(n + 1);  // the union of the leaves before / after i
+  for (size_t i = 0; i < n; ++i) {
+    before[i + 1] = before[i];
+    before[i + 1].include(leaves[i].second);
+    after[n - 1 - i] = after[n - i];
+    after[n - 1 - i].include(leaves[n - 1 - i].second);
+  }
+  // The leaf without which the grid shrinks most, and the next most: one part far from the rest
+  // is said, not two (or more) far apart, which the scene means to hold (parts laid out on a
+  // print bed), where no one of them alone stretches the grid.
+  const double whole = longestSide(all);
+  size_t far = n;
+  double rest = whole, next = whole;
+  for (size_t i = 0; i < n; ++i) {
+    Bounds others = before[i];
+    others.include(after[i + 1]);
+    if (others.empty()) continue;
+    const double side = longestSide(others);
+    if (side < rest) {
+      next = rest;
+      rest = side;
+      far = i;
+    } else if (side < next) {
+      next = side;
+    }
+  }
+  if (far == n || !(rest > 0.0) || whole < 4.0 * rest || whole >= 2.0 * next) return "";
+  // Far, not large: the grid is mostly the space between it and the rest (a large part holding
+  // a small one stretches nothing).
+  if (2.0 * longestSide(leaves[far].second) > whole) return "";
+  const char* unit = unitSymbol(scene.settings.unit);
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                " lies far from the rest of the scene: the grid spans %.4g %s to hold it where the "
+                "rest spans %.4g %s, so every cell is %.3gx as large and the rest that much "
+                "coarser; move it closer, or hide it while working on the rest",
+                whole, unit, rest, unit, whole / rest);
+  return nodeLabel(*leaves[far].first) + text;
+}
 }  // namespace
 
 std::vector<std::string> Evaluator::smallPartWarnings(const Scene& scene, int resolution) {
@@ -453,6 +557,9 @@ std::vector<std::string> Evaluator::smallPartWarnings(const Scene& scene, int re
   const Grid grid = gridFor(scene, resolution);
   collectSmallParts(scene.root, scene.root, glm::dmat4(1.0), false, 0, grid.h,
                     unitSymbol(scene.settings.unit), &out);
+  // First: it says why the others are small (evaluate puts it first too).
+  const std::string far = farPartWarning(scene);
+  if (!far.empty()) out.insert(out.begin(), far);
   return out;
 }
 
@@ -575,7 +682,9 @@ Evaluator::Visit Evaluator::visitLeaf(const NodePtr& node, const glm::dmat4& wor
       if (onlyCached_) throw NotCached{};
       ctx.pending.push_back(Context::PendingLeaf{
           v.key, mesh, world, uint32_t(leafId),
-          smallerThanCellWarning(*node, bounds, ctx.grid.h, unitSymbol(ctx.scene->settings.unit))});
+          smallerThanCellWarning(*node, bounds,
+                                 placedThickness(meshWorldBounds(mesh, glm::dmat4(1.0)), world),
+                                 ctx.grid.h, unitSymbol(ctx.scene->settings.unit))});
     }
   }
   if (ctx.collecting) return v;
@@ -978,6 +1087,11 @@ EvalResult Evaluator::evaluateOn(const Scene& scene, const Grid& grid, Progress&
   result.root = root.ldi;
   result.rootKey = root.key;
   if (options.alone == 0) ctx.warn(boundsCutWarning(scene));
+  // First: it says why parts are smaller than a cell (the empty result's hint quotes the first).
+  if (const std::string far = options.alone == 0 ? farPartWarning(scene) : std::string();
+      !far.empty() &&
+      std::find(result.warnings.begin(), result.warnings.end(), far) == result.warnings.end())
+    result.warnings.insert(result.warnings.begin(), far);
   Stopwatch measure;
   if (options.measureRoot)
     result.measure = backend_->measure(root.ldi, progress);

@@ -873,7 +873,9 @@ TEST(Roles, ARolePickedWhereThePartIsChangesOnlyItsOwn) {
 
 // "cuts" picked for a part inside a shell: it cuts the shell's other parts there, stays inside
 // the shell (an artist's opening left the shell, and a new difference cut the finished shell),
-// says so before the click and in the log, and is undone as "role".
+// and becomes the shell's opening where it has none (another artist's cut inside a shell made a
+// closed pocket); says so before the click and in the log, and is undone as "role". A second
+// cutter leaves the opening the first made.
 TEST(Roles, ARolePickedInsideAShellCutsItsSiblingsThere) {
   EditorState state;
   const NodeId ball = addPrimitive(state, NodeKind::Sphere);
@@ -892,12 +894,27 @@ TEST(Roles, ARolePickedInsideAShellCutsItsSiblingsThere) {
   EXPECT_NE(says.find("inside"), std::string::npos) << says;
   ASSERT_FALSE(findNode(before, ball)->name.empty());
   EXPECT_NE(says.find(findNode(before, ball)->name), std::string::npos) << says;
+  EXPECT_NE(says.find("opens the shell's wall"), std::string::npos) << says;
   setRole(state, bore, PlaceMode::Cut);
   EXPECT_EQ(roleOf(state.document.root(), bore), ChildRole::Cut);
   EXPECT_EQ(roleOf(state.document.root(), ball), ChildRole::Base);
   EXPECT_TRUE(isInSubtree(state.document.root(), shell, bore));
   EXPECT_EQ(findNode(state.document.root(), shell)->children.size(), 1u);
+  EXPECT_EQ(findNode(state.document.root(), shell)->opening, bore);
+  EXPECT_EQ(shellOpening(findNode(state.document.root(), shell))->id, bore);
   EXPECT_NE(state.log.back().text.find(says), std::string::npos) << state.log.back().text;
+
+  // A second cutter in the same shell: it cuts there too, and the opening stays the first's.
+  state.selection = {ball};
+  const NodeId vent = addPrimitive(state, NodeKind::Box);
+  ASSERT_TRUE(isInSubtree(state.document.root(), shell, vent));
+  const std::string second = roleChangeSentence(state, vent, PlaceMode::Cut);
+  EXPECT_EQ(second.find("opens the shell's wall"), std::string::npos) << second;
+  setRole(state, vent, PlaceMode::Cut);
+  EXPECT_EQ(roleOf(state.document.root(), vent), ChildRole::Cut);
+  EXPECT_EQ(findNode(state.document.root(), shell)->opening, bore);
+  undo(state);
+  undo(state);  // the box's addition
   undo(state);
   EXPECT_EQ(state.log.back().text, "undone: role");
   EXPECT_EQ(state.document.root(), before);
@@ -1310,6 +1327,14 @@ TEST(ScaleAwareDefaults, NewPartsAreSizedFromTheViewOrTheSceneAndSaySo) {
   const Bounds scene = sceneBounds(state.document.root());
   EXPECT_NEAR(scene.size().z, 120.0, 1e-6);
   EXPECT_EQ(groundGridStep(scene), niceLength(120.0 / 8.0));  // its largest extent / 8, rounded
+  // Zoomed in on a detail (the view 40 mm high), nothing selected: a quarter of the view, not of
+  // the scene, which hid the detail (an artist's test).
+  state.viewExtent = 40.0;
+  clearSelection(state);
+  const NodeId third = addPrimitive(state, NodeKind::Box);
+  EXPECT_NEAR(selectionBounds(state.document.root(), {third}).size().x, niceLength(10.0), 1e-9);
+  EXPECT_NE(state.log.back().text.find("a quarter of the view"), std::string::npos)
+      << state.log.back().text;
 }
 
 }  // namespace

@@ -111,6 +111,75 @@ TEST(LeafPlacement, APartThinnerThanTwoCellsIsNamedWithTheResolutionItNeeds) {
           .warnings.empty());
 }
 
+// A thin sheet turned about an axis in its plane (so that its world box is as deep as it is wide)
+// is still as thin as it is: said by the evaluation and before it (an artist's 0.3 mm shim turned
+// 113 degrees was exported in 36 strips without a word), and by its thickness, not its box's.
+TEST(LeafPlacement, ATurnedThinSheetIsStillSaidToBeThin) {
+  auto big = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  auto sheet = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  sheet->name = "shim";
+  sheet->params.size = glm::dvec3(0.8, 0.8, 0.02);
+  sheet->transform.rotateDegrees = glm::dvec3(0.0, 113.0, 0.0);
+  const Scene scene = test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, sheet}), 32);
+  const EvalResult r = test::evaluateCpu(scene);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("box 'shim' is only"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("(0.02 mm; a cell is "), std::string::npos) << r.warnings[0];
+  EXPECT_EQ(Evaluator::smallPartWarnings(scene, 32), r.warnings);
+  // Turned and scaled unevenly inside a turned group (a sheared box): still its true thickness.
+  auto group = std::make_shared<Node>(*makeOperationNode(NodeKind::Union, 4, {sheet}));
+  group->transform.scale = glm::dvec3(1.0, 1.0, 3.0);
+  group->transform.rotateDegrees = glm::dvec3(30.0, 0.0, 0.0);
+  const Scene sheared = test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, group}), 32);
+  const std::vector<std::string> said = Evaluator::smallPartWarnings(sheared, 32);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_NE(said[0].find("box 'shim' is only"), std::string::npos) << said[0];
+  // A cube turned the same way is as thick as it is: nothing said.
+  auto cube = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 5));
+  cube->params.size = glm::dvec3(0.5);
+  cube->transform.rotateDegrees = glm::dvec3(0.0, 113.0, 45.0);
+  EXPECT_TRUE(
+      test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {big, cube}), 32))
+          .warnings.empty());
+}
+
+// One part far from the rest stretches the grid: said first (it is why the others come out
+// smaller than a cell), with by how much; two parts far apart, which a scene means to hold, and a
+// cutter reaching beyond its part are not said.
+TEST(LeafPlacement, APartFarFromTheRestIsSaidFirst) {
+  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  auto boss = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  boss->params.size = glm::dvec3(0.3);
+  boss->transform.translate = glm::dvec3(0.2, 0.0, 0.6);
+  auto stray = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 4));
+  stray->name = "stray";
+  stray->params.size = glm::dvec3(0.2);
+  stray->transform.translate = glm::dvec3(100.0, 0.0, 0.0);
+  const Scene scene =
+      test::makeScene(makeOperationNode(NodeKind::Union, 1, {plate, boss, stray}), 32);
+  const EvalResult r = test::evaluateCpu(scene);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("box 'stray' lies far from the rest"), std::string::npos)
+      << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("as large"), std::string::npos) << r.warnings[0];
+  EXPECT_GT(r.warnings.size(), 1u) << "the plate and the boss are now smaller than a cell";
+  EXPECT_EQ(Evaluator::smallPartWarnings(scene, 32), r.warnings);
+
+  // Two parts far apart: neither alone stretches the grid.
+  auto twin = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 5));
+  twin->transform.translate = glm::dvec3(100.0, 0.0, 0.0);
+  for (const std::string& w : Evaluator::smallPartWarnings(
+           test::makeScene(makeOperationNode(NodeKind::Union, 1, {plate, twin}), 32), 32))
+    EXPECT_EQ(w.find("lies far"), std::string::npos) << w;
+  // A cutter far beyond its part (and the part near the rest): nothing stretches.
+  auto bore = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Cylinder, 6));
+  bore->params.height = 200.0;
+  auto cut = std::make_shared<Node>(*makeOperationNode(NodeKind::Difference, 7, {plate, bore}));
+  const EvalResult clean =
+      test::evaluateCpu(test::makeScene(makeOperationNode(NodeKind::Union, 1, {cut, boss}), 32));
+  for (const std::string& w : clean.warnings) EXPECT_EQ(w.find("lies far"), std::string::npos) << w;
+}
+
 // Before an export at its own resolution runs, the same sentences from the parts' bounds alone
 // (the export dialog says them): each once however many copies a pattern makes.
 TEST(LeafPlacement, SmallPartsAreNamedBeforeAnythingIsEvaluated) {
