@@ -1057,6 +1057,7 @@ void setSelectionOperation(EditorState& state, NodeKind kind) {
           kept.keepOriginal = fresh.keepOriginal;
         }
         state.document.setPattern(id, kept);
+        state.revealSelection = true;  // its copies where they lie, out of view or not
       }
     });
   }

@@ -14,6 +14,7 @@
 #include "ui/import_options.h"
 #include "ui/measure_tool.h"
 #include "ui/panels.h"
+#include "ui/pattern_guides.h"
 #include "ui/scene_queries.h"
 
 namespace strata::ui {
@@ -601,6 +602,7 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
 }
 
 void Viewport::drawAnnotations(const EditorState& state, const ViewRect& rect) {
+  drawPatternGuides(state, mapping(state, rect), rect.x, rect.y);
   drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y);
 }
 

@@ -13,6 +13,7 @@
 #include "engine/util/error.h"
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
+#include "ui/pattern_guides.h"
 #include "ui/scene_queries.h"
 #include "ui/viewport.h"
 
@@ -972,6 +973,43 @@ TEST(ImportAndPlace, AMirrorsImageOutOfViewIsShown) {
   ASSERT_TRUE(state.revealSelection);
   EXPECT_TRUE(view.revealSelection(state, rect));
   EXPECT_FALSE(view.revealSelection(state, rect)) << "both in view now";
+}
+
+// A selected mirror (or a part inside it) shows its plane, a circular array its axis, through
+// the pattern's centre in the world and as wide as the pattern; nothing else shows a guide.
+TEST(ImportAndPlace, AMirrorsPlaneAndACircularArraysAxisAreShown) {
+  EditorState state;
+  const NodeId rib = addPrimitive(state, NodeKind::Box);
+  Transform far;
+  far.translate = glm::dvec3(30.0, 0.0, 0.0);
+  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(rib, far); }));
+  EXPECT_TRUE(patternGuides(state).empty()) << "a part in no pattern";
+  state.selection = {rib};
+  groupSelection(state, NodeKind::Mirror);
+  const NodeId mirror = state.selection.at(0);
+  std::vector<PatternGuide> guides = patternGuides(state);
+  ASSERT_EQ(guides.size(), 1u);
+  EXPECT_TRUE(guides[0].plane);
+  EXPECT_EQ(guides[0].node, mirror);
+  EXPECT_NEAR(guides[0].point.x, 0.0, 1e-9) << "the plane x = 0 of the mirror's frame";
+  EXPECT_NEAR(guides[0].u.x, 0.0, 1e-9);
+  EXPECT_NEAR(guides[0].v.x, 0.0, 1e-9);
+  EXPECT_GT(glm::length(guides[0].u), 30.0) << "as wide as the pattern (about 70 mm)";
+  EXPECT_NE(guides[0].label.find("across x"), std::string::npos) << guides[0].label;
+  state.selection = {rib};  // a part inside it: the same guide
+  ASSERT_EQ(patternGuides(state).size(), 1u);
+  EXPECT_EQ(patternGuides(state)[0].node, mirror);
+
+  state.selection = {mirror};
+  setSelectionOperation(state, NodeKind::CircularArray);
+  guides = patternGuides(state);
+  ASSERT_EQ(guides.size(), 1u);
+  EXPECT_FALSE(guides[0].plane);
+  EXPECT_NEAR(glm::length(guides[0].u - glm::dvec3(0.0, 0.0, glm::length(guides[0].u))), 0.0, 1e-9)
+      << "along z";
+  EXPECT_TRUE(state.revealSelection) << "its copies shown where they lie";
+  undo(state);
+  undo(state);
 }
 
 // An error is settled by a later success on its topic: a refused 100000 cells does not stay red
