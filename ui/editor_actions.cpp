@@ -1430,6 +1430,12 @@ void rememberImportChoices(EditorState& state) {
   }
 }
 
+std::string saveAsSuggestion(const EditorState& state) {
+  if (!state.document.path().empty()) return state.document.path();
+  return dialogFolder(state) +
+         (state.templateName.empty() ? std::string("untitled.strata.json") : state.templateName);
+}
+
 std::string dialogFolder(const EditorState& state) {
   const std::string own = documentFolder(state);
   if (!own.empty()) return own;

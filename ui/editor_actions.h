@@ -148,6 +148,10 @@ std::string documentFolder(const EditorState& state);
 // else of an earlier one), else the user's home (never where the editor happened to be started),
 // with a trailing '/'; "" where none is known (the dialog then shows the working folder).
 std::string dialogFolder(const EditorState& state);
+// What Save as offers: the document's own path, else in dialogFolder the name of the file an
+// untitled copy was opened from (a copy of flange_patterns was offered "untitled.strata.json":
+// an artist's test), else "untitled.strata.json".
+std::string saveAsSuggestion(const EditorState& state);
 // Where the import dialog opens: the folder the last mesh was chosen from while it exists
 // (meshes live apart from scenes: an artist walked back to them at every import), else
 // dialogFolder.

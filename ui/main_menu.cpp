@@ -52,7 +52,7 @@ bool saveOrAsk(EditorState& state, std::optional<PendingReplace> then) {
   if (!state.overwriteQuestion.empty()) state.afterOverwrite = then;  // asked: panel_modals.cpp
   if (state.document.path().empty()) {
     state.afterSaveAs = then;
-    state.dialog.open(DialogPurpose::SaveAs, dialogFolder(state) + "untitled.strata.json");
+    state.dialog.open(DialogPurpose::SaveAs, saveAsSuggestion(state));
   }
   return false;
 }
@@ -70,9 +70,7 @@ void drawMainMenu(EditorState& state) {
     ImGui::Separator();
     if (ImGui::MenuItem("Save", "Ctrl+S")) saveOrAsk(state, std::nullopt);
     if (ImGui::MenuItem("Save as...", "Ctrl+Shift+S"))
-      state.dialog.open(DialogPurpose::SaveAs, state.document.path().empty()
-                                                   ? dialogFolder(state) + "untitled.strata.json"
-                                                   : state.document.path());
+      state.dialog.open(DialogPurpose::SaveAs, saveAsSuggestion(state));
     ImGui::Separator();
     if (ImGui::MenuItem("Import mesh...")) {
       state.importPlacement.reset();
@@ -190,9 +188,7 @@ void handleShortcuts(EditorState& state) {
   const int ctrl = GLFW_MOD_CONTROL, shift = GLFW_MOD_SHIFT;
   if (keyPressed(state, GLFW_KEY_S, ctrl)) saveOrAsk(state, std::nullopt);
   if (keyPressed(state, GLFW_KEY_S, ctrl | shift))
-    state.dialog.open(DialogPurpose::SaveAs, state.document.path().empty()
-                                                 ? dialogFolder(state) + "untitled.strata.json"
-                                                 : state.document.path());
+    state.dialog.open(DialogPurpose::SaveAs, saveAsSuggestion(state));
   if (keyPressed(state, GLFW_KEY_N, ctrl)) replaceOrAsk(state, {PendingReplace::New, ""});
   if (keyPressed(state, GLFW_KEY_O, ctrl)) replaceOrAsk(state, {PendingReplace::Open, ""});
   if (keyPressed(state, GLFW_KEY_E, ctrl))

@@ -121,7 +121,7 @@ NodeId Document::addSubtree(const NodePtr& node, NodeId parent, int index) {
   NodePtr fresh = withFreshIds(node, id);
   NodeId target = parentForAdd(parent, &index);
   std::string label =
-      "add " + (fresh->name.empty() ? std::string(kindName(fresh->kind)) : fresh->name);
+      "add " + (fresh->name.empty() ? std::string(kindLabel(fresh->kind)) : fresh->name);
   if (!isOperation(root()->kind) && target == root()->id) {
     // A leaf root: wrap it and the new node in a union.
     NodeId unionId = maxNodeId(fresh) + 1;
@@ -145,7 +145,7 @@ NodeId Document::place(const NodePtr& node, NodeId target, PlaceMode mode, std::
   const PlacePlan plan = planPlacement(root(), target, mode);
   NodePtr result = placePart(root(), plan, fresh, maxNodeId(fresh) + 1);
   checkInstances(result);
-  apply("add " + (fresh->name.empty() ? std::string(kindName(fresh->kind)) : fresh->name), result);
+  apply("add " + (fresh->name.empty() ? std::string(kindLabel(fresh->kind)) : fresh->name), result);
   if (sentence) *sentence = plan.sentence;
   return id;
 }
@@ -314,12 +314,12 @@ void Document::moveToTop(NodeId id) {
 
 NodeId Document::group(const std::vector<NodeId>& ids, NodeKind kind) {
   NodeId id = nextId();
-  apply(std::string("group as ") + kindName(kind), groupNodes(root(), ids, kind, id));
+  apply(std::string("group as ") + kindLabel(kind), groupNodes(root(), ids, kind, id));
   return id;
 }
 
 void Document::setOperation(NodeId id, NodeKind kind) {
-  apply(std::string("make ") + kindName(kind), setOperationKind(root(), id, kind));
+  apply(std::string("make ") + kindLabel(kind), setOperationKind(root(), id, kind));
 }
 
 void Document::cancelInteraction() {

@@ -127,6 +127,10 @@ TEST(ImportAndPlace, ABundledSceneOpensAsAnUntitledCopy) {
   EXPECT_NE(state.log.back().text.find("shipped with Strata"), std::string::npos)
       << state.log.back().text;
   EXPECT_FALSE(state.document.root()->children.empty());
+  // Save as offers the shipped file's name, not "untitled", in a folder of the user's.
+  const std::string offered = saveAsSuggestion(state);
+  EXPECT_NE(offered.find("two_spheres.strata.json"), std::string::npos) << offered;
+  EXPECT_EQ(offered.find("/scenes/"), std::string::npos) << offered;
   // Through a path with ".." in it: the same folder.
   ASSERT_TRUE(
       openDocument(state, state.bundledScenesFolder + "/../scenes/two_spheres.strata.json"));

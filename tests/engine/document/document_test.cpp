@@ -377,6 +377,12 @@ TEST(Document, AnUndoNamesTheFieldItTakesBack) {
   p.radius = 0.7;
   doc.setParams(cone, p);
   EXPECT_EQ(doc.undoLabel(), "parameters");
+  // Kinds as people read them, not as files spell them ("make circularArray": an artist's test).
+  const NodeId group = doc.group({cone}, NodeKind::CircularArray);
+  EXPECT_EQ(doc.undoLabel(), "group as circular array");
+  doc.setOperation(group, NodeKind::Union);
+  doc.setOperation(group, NodeKind::CircularArray);
+  EXPECT_EQ(doc.undoLabel(), "make circular array");
 }
 
 }  // namespace
