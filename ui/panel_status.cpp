@@ -246,8 +246,19 @@ void drawPreviewPanel(EditorState& state, const PanelLayout& layout) {
     // out of the panel: an artist's test).
     if (!state.fullPassWarnings.empty()) {
       const size_t n = state.fullPassWarnings.size();
-      ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), "%zu %s (below)", n,
+      ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.35f, 1.0f), "%zu %s (below; hover to read)", n,
                          n == 1 ? "warning" : "warnings");
+      // Read where the count is: in a short panel they sat out of sight below the gizmo's
+      // settings (an artist's test); a click opens Diagnostics, which lists them with the rest.
+      if (ImGui::IsItemHovered()) {
+        ImGui::BeginTooltip();
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+        for (const std::string& w : state.fullPassWarnings) ImGui::TextUnformatted(w.c_str());
+        ImGui::TextDisabled("click: View > Diagnostics");
+        ImGui::PopTextWrapPos();
+        ImGui::EndTooltip();
+      }
+      if (ImGui::IsItemClicked()) state.showDiagnostics = true;
     }
   } else {
     // Why no grid holds the scene (empty, or too large or small to measure), wrapped.
