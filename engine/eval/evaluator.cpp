@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
 #include <unordered_set>
@@ -222,45 +223,51 @@ std::string missingMeshWarning(const Node& node) {
          "\" could not be read): nothing of it is evaluated";
 }
 
-// smallerThanCellWarning (or missingMeshWarning) of every visible leaf under `node` (instances
-// and pattern copies included), each sentence once, into *out.
-void collectSmallParts(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
-                       bool asInstance, int depth, double h, const char* unit,
-                       std::vector<std::string>* out) {
+// Calls `leaf` with every visible leaf under `node` (instances and pattern copies each once)
+// and its world matrix; `parentWorld` is node's parent's, `asInstance` says node is reached
+// through an instance (which shows it even where it is hidden). The one walk of the leaves as
+// placed: the small parts' warnings, the fallback grid and the far part's warning use it.
+void forEachVisibleLeaf(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
+                        bool asInstance, int depth,
+                        const std::function<void(const Node&, const glm::dmat4&)>& leaf) {
   if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
   const glm::dmat4 world = parentWorld * node->transform.matrix();
   if (node->kind == NodeKind::Instance) {
-    collectSmallParts(findNode(root, node->instanceOf), root, world, true, depth + 1, h, unit, out);
+    forEachVisibleLeaf(findNode(root, node->instanceOf), root, world, true, depth + 1, leaf);
   } else if (isOperation(node->kind)) {
     for (const glm::dmat4& placement : placementsOf(*node))
       for (const auto& c : node->children)
-        collectSmallParts(c, root, world * placement, false, depth + 1, h, unit, out);
+        forEachVisibleLeaf(c, root, world * placement, false, depth + 1, leaf);
   } else {
-    const std::string w =
-        meshMissing(*node)
-            ? missingMeshWarning(*node)
-            : smallerThanCellWarning(*node, leafBounds(*node, world),
-                                     placedThickness(leafBounds(*node, glm::dmat4(1.0)), world), h,
-                                     unit);
-    if (!w.empty() && std::find(out->begin(), out->end(), w) == out->end()) out->push_back(w);
+    leaf(*node, world);
   }
 }
 
-// Bounds of everything visible, whatever the operations: the fallback grid of a scene whose
-// result is empty (so that the evaluation still runs and reports an empty result).
-void allLeafBounds(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
-                   bool asInstance, int depth, Bounds* out) {
-  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
-  glm::dmat4 world = parentWorld * node->transform.matrix();
-  if (node->kind == NodeKind::Instance) {
-    allLeafBounds(findNode(root, node->instanceOf), root, world, true, depth + 1, out);
-  } else if (isOperation(node->kind)) {
-    for (const glm::dmat4& placement : placementsOf(*node))
-      for (const auto& c : node->children)
-        allLeafBounds(c, root, world * placement, false, depth + 1, out);
-  } else {
-    out->include(boundsOf(node, root, parentWorld, true, depth));  // visibility checked above
-  }
+// smallerThanCellWarning (or missingMeshWarning) of every visible leaf of the scene `root`,
+// each sentence once, into *out.
+void collectSmallParts(const NodePtr& root, double h, const char* unit,
+                       std::vector<std::string>* out) {
+  forEachVisibleLeaf(
+      root, root, glm::dmat4(1.0), false, 0, [&](const Node& node, const glm::dmat4& world) {
+        const std::string w =
+            meshMissing(node)
+                ? missingMeshWarning(node)
+                : smallerThanCellWarning(node, leafBounds(node, world),
+                                         placedThickness(leafBounds(node, glm::dmat4(1.0)), world),
+                                         h, unit);
+        if (!w.empty() && std::find(out->begin(), out->end(), w) == out->end()) out->push_back(w);
+      });
+}
+
+// Bounds of everything visible in the scene `root`, whatever the operations: the fallback grid
+// of a scene whose result is empty (so that the evaluation still runs and reports an empty
+// result).
+Bounds allLeafBounds(const NodePtr& root) {
+  Bounds out;
+  forEachVisibleLeaf(
+      root, root, glm::dmat4(1.0), true, 0,
+      [&](const Node& node, const glm::dmat4& world) { out.include(leafBounds(node, world)); });
+  return out;
 }
 
 }  // namespace
@@ -470,23 +477,6 @@ std::string boundsCutWarning(const Scene& scene) {
   return "the scene's own bounds (settings.bounds) cut its parts, which reach " + sides +
          ": the result is cut flat there; widen the bounds or remove them";
 }
-// Each visible leaf's world bounds (instances and pattern copies each once), for farPartWarning.
-void collectLeafBoxes(const NodePtr& node, const NodePtr& root, const glm::dmat4& parentWorld,
-                      bool asInstance, int depth,
-                      std::vector<std::pair<const Node*, Bounds>>* out) {
-  if (!node || depth > kDepthGuard || (!node->visible && !asInstance)) return;
-  const glm::dmat4 world = parentWorld * node->transform.matrix();
-  if (node->kind == NodeKind::Instance) {
-    collectLeafBoxes(findNode(root, node->instanceOf), root, world, true, depth + 1, out);
-  } else if (isOperation(node->kind)) {
-    for (const glm::dmat4& placement : placementsOf(*node))
-      for (const auto& c : node->children)
-        collectLeafBoxes(c, root, world * placement, false, depth + 1, out);
-  } else {
-    out->push_back({node.get(), leafBounds(*node, world)});
-  }
-}
-
 double longestSide(const Bounds& b) {
   const glm::dvec3 s = b.size();
   return std::max({s.x, s.y, s.z});
@@ -503,7 +493,10 @@ std::string farPartWarning(const Scene& scene) {
   const Bounds all = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
   if (all.empty()) return "";
   std::vector<std::pair<const Node*, Bounds>> leaves;
-  collectLeafBoxes(scene.root, scene.root, glm::dmat4(1.0), false, 0, &leaves);
+  forEachVisibleLeaf(scene.root, scene.root, glm::dmat4(1.0), false, 0,
+                     [&](const Node& node, const glm::dmat4& world) {
+                       leaves.push_back({&node, leafBounds(node, world)});
+                     });
   for (auto& leaf : leaves) leaf.second = leaf.second.intersected(all);
   leaves.erase(std::remove_if(leaves.begin(), leaves.end(),
                               [](const auto& leaf) { return leaf.second.empty(); }),
@@ -555,8 +548,7 @@ std::vector<std::string> Evaluator::smallPartWarnings(const Scene& scene, int re
   std::vector<std::string> out;
   if (!scene.root) return out;
   const Grid grid = gridFor(scene, resolution);
-  collectSmallParts(scene.root, scene.root, glm::dmat4(1.0), false, 0, grid.h,
-                    unitSymbol(scene.settings.unit), &out);
+  collectSmallParts(scene.root, grid.h, unitSymbol(scene.settings.unit), &out);
   // First: it says why the others are small (evaluate puts it first too).
   const std::string far = farPartWarning(scene);
   if (!far.empty()) out.insert(out.begin(), far);
@@ -572,7 +564,7 @@ Grid Evaluator::gridFor(const Scene& scene, int resolution) {
     return makeGridExact(scene.settings.bounds, n);
   }
   Bounds b = boundsOf(scene.root, scene.root, glm::dmat4(1.0), true, 0);
-  if (b.empty()) allLeafBounds(scene.root, scene.root, glm::dmat4(1.0), true, 0, &b);
+  if (b.empty()) b = allLeafBounds(scene.root);
   checkSceneSize(b);
   return makeGrid(b, n, scene.settings.margin);
 }

@@ -44,6 +44,13 @@ PlateWithTwoHoles plateWithTwoHoles(EditorState& state) {
   return made;
 }
 
+// A part of `kind` added (the palette's way) and then moved to `transform`, in one undo step each.
+NodeId addPartAt(EditorState& state, NodeKind kind, const Transform& transform) {
+  const NodeId id = addPrimitive(state, kind);
+  EXPECT_TRUE(guarded(state, [&] { state.document.setTransform(id, transform); }));
+  return id;
+}
+
 // A plate with a hole cut from it: the plate, the hole, and the difference holding both.
 struct PlateWithHole {
   NodeId plate = 0, hole = 0, group = 0;
@@ -320,11 +327,10 @@ TEST(ImportAndPlace, APartDroppedOnASmallPartIsSizedFromThatPart) {
 // its own axes; one undo step.
 TEST(ImportAndPlace, AGroupMadeAroundPartsHasItsOriginAtTheirCentre) {
   EditorState state;
-  const NodeId pin = addPrimitive(state, NodeKind::Cylinder);
   Transform far;
   far.translate = glm::dvec3(40.0, -30.0, 5.0);
   far.rotateDegrees = glm::dvec3(0.0, 0.0, 30.0);
-  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(pin, far); }));
+  const NodeId pin = addPartAt(state, NodeKind::Cylinder, far);
   const glm::dmat4 pinWorld = nodeWorldMatrix(state.document.root(), pin);
   const Bounds before = selectionBounds(state.document.root(), {pin});
   state.selection = {pin};
@@ -963,10 +969,9 @@ TEST(ImportAndPlace, APartAddedOutOfViewIsShownWithWhatWasInView) {
 // view, framed on the part, moves out to show the image too.
 TEST(ImportAndPlace, AMirrorsImageOutOfViewIsShown) {
   EditorState state;
-  const NodeId rib = addPrimitive(state, NodeKind::Box);
   Transform far;
   far.translate = glm::dvec3(300.0, 0.0, 0.0);
-  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(rib, far); }));
+  const NodeId rib = addPartAt(state, NodeKind::Box, far);
   const ViewRect rect{0.0, 0.0, 800.0, 600.0};
   Viewport view;
   view.camera.frame(selectionBounds(state.document.root(), {rib}), 800.0 / 600.0);
@@ -983,10 +988,9 @@ TEST(ImportAndPlace, AMirrorsImageOutOfViewIsShown) {
 // the pattern's centre in the world and as wide as the pattern; nothing else shows a guide.
 TEST(ImportAndPlace, AMirrorsPlaneAndACircularArraysAxisAreShown) {
   EditorState state;
-  const NodeId rib = addPrimitive(state, NodeKind::Box);
   Transform far;
   far.translate = glm::dvec3(30.0, 0.0, 0.0);
-  ASSERT_TRUE(guarded(state, [&] { state.document.setTransform(rib, far); }));
+  const NodeId rib = addPartAt(state, NodeKind::Box, far);
   EXPECT_TRUE(patternGuides(state).empty()) << "a part in no pattern";
   state.selection = {rib};
   groupSelection(state, NodeKind::Mirror);
