@@ -25,11 +25,6 @@ NodeId guidedPattern(const NodePtr& root, NodeId id) {
   return 0;
 }
 
-double longestSide(const Bounds& b) {
-  const glm::dvec3 s = b.size();
-  return std::max({s.x, s.y, s.z});
-}
-
 }  // namespace
 
 std::vector<PatternGuide> patternGuides(const EditorState& state) {
@@ -45,8 +40,8 @@ std::vector<PatternGuide> patternGuides(const EditorState& state) {
   for (NodeId id : patterns) {
     const NodePtr node = findNode(root, id);
     if (!node) continue;
-    double reach = longestSide(selectionBounds(root, {id}));
-    if (!(reach > 0.0)) reach = longestSide(sceneBounds(root));
+    double reach = selectionBounds(root, {id}).longestSide();
+    if (!(reach > 0.0)) reach = sceneBounds(root).longestSide();
     if (!(reach > 0.0)) continue;
     reach *= 0.6;
     const glm::dmat4 world = nodeWorldMatrix(root, id);
@@ -74,8 +69,8 @@ std::vector<PatternGuide> patternGuides(const EditorState& state) {
   return guides;
 }
 
-void drawPatternGuides(const EditorState& state, const ScreenMapping& view, double x0, double y0) {
-  const std::vector<PatternGuide> guides = patternGuides(state);
+void drawPatternGuides(const std::vector<PatternGuide>& guides, const ScreenMapping& view,
+                       double x0, double y0) {
   if (guides.empty()) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   draw->PushClipRect(ImVec2(float(x0), float(y0)),

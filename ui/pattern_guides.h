@@ -31,7 +31,8 @@ struct PatternGuide {
 // its point (or of the scene's where the pattern has none).
 std::vector<PatternGuide> patternGuides(const EditorState& state);
 
-// Draws patternGuides over the view, whose top-left corner is at window pixel (x0, y0).
-void drawPatternGuides(const EditorState& state, const ScreenMapping& view, double x0, double y0);
+// Draws `guides` (patternGuides) over the view, whose top-left corner is at window pixel (x0, y0).
+void drawPatternGuides(const std::vector<PatternGuide>& guides, const ScreenMapping& view,
+                       double x0, double y0);
 
 }  // namespace strata::ui

@@ -14,7 +14,6 @@
 #include "ui/import_options.h"
 #include "ui/measure_tool.h"
 #include "ui/panels.h"
-#include "ui/pattern_guides.h"
 #include "ui/scene_queries.h"
 
 namespace strata::ui {
@@ -602,7 +601,12 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
 }
 
 void Viewport::drawAnnotations(const EditorState& state, const ViewRect& rect) {
-  drawPatternGuides(state, mapping(state, rect), rect.x, rect.y);
+  if (guidesRevision_ != state.document.revision() || guidesOf_ != state.selection) {
+    guidesRevision_ = state.document.revision();
+    guidesOf_ = state.selection;
+    guides_ = patternGuides(state);
+  }
+  drawPatternGuides(guides_, mapping(state, rect), rect.x, rect.y);
   drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y);
 }
 

@@ -18,6 +18,7 @@
 #include "ui/camera.h"
 #include "ui/editor_state.h"
 #include "ui/gizmo.h"
+#include "ui/pattern_guides.h"
 #include "ui/viewport_renderer.h"
 
 namespace strata::ui {
@@ -135,6 +136,11 @@ class Viewport {
   uint64_t selectionBoundsRevision_ = ~uint64_t(0);
   std::vector<NodeId> selectionBoundsOf_;
   Bounds selectionBounds_;
+  // The pattern guides drawn each frame (pattern_guides.h), worked out again likewise: a
+  // pattern's bounds go through every copy.
+  uint64_t guidesRevision_ = ~uint64_t(0);
+  std::vector<NodeId> guidesOf_;
+  std::vector<PatternGuide> guides_;
 
   Gizmo gizmo_;
   std::optional<Bounds> pendingFrame_;

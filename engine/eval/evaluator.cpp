@@ -477,11 +477,6 @@ std::string boundsCutWarning(const Scene& scene) {
   return "the scene's own bounds (settings.bounds) cut its parts, which reach " + sides +
          ": the result is cut flat there; widen the bounds or remove them";
 }
-double longestSide(const Bounds& b) {
-  const glm::dvec3 s = b.size();
-  return std::max({s.x, s.y, s.z});
-}
-
 // "" unless one leaf far from the rest stretches the scene's grid: where the grid's longest side
 // is at least 4 times what the rest of the scene needs and twice the leaf's own (every cell 4 times
 // as large: an artist's sphere at x = 120 doubled the cell, and a position typed as 1e9 emptied the
@@ -513,14 +508,14 @@ std::string farPartWarning(const Scene& scene) {
   // The leaf without which the grid shrinks most, and the next most: one part far from the rest
   // is said, not two (or more) far apart, which the scene means to hold (parts laid out on a
   // print bed), where no one of them alone stretches the grid.
-  const double whole = longestSide(all);
+  const double whole = all.longestSide();
   size_t far = n;
   double rest = whole, next = whole;
   for (size_t i = 0; i < n; ++i) {
     Bounds others = before[i];
     others.include(after[i + 1]);
     if (others.empty()) continue;
-    const double side = longestSide(others);
+    const double side = others.longestSide();
     if (side < rest) {
       next = rest;
       rest = side;
@@ -532,7 +527,7 @@ std::string farPartWarning(const Scene& scene) {
   if (far == n || !(rest > 0.0) || whole < 4.0 * rest || whole >= 2.0 * next) return "";
   // Far, not large: the grid is mostly the space between it and the rest (a large part holding
   // a small one stretches nothing).
-  if (2.0 * longestSide(leaves[far].second) > whole) return "";
+  if (2.0 * leaves[far].second.longestSide() > whole) return "";
   const char* unit = unitSymbol(scene.settings.unit);
   char text[320];
   std::snprintf(text, sizeof(text),

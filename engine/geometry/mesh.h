@@ -3,6 +3,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -32,6 +33,7 @@ struct Bounds {
   Bounds intersected(const Bounds& b) const;
   glm::dvec3 size() const { return max - min; }
   glm::dvec3 center() const { return (min + max) * 0.5; }
+  double longestSide() const { return std::max({size().x, size().y, size().z}); }
 };
 
 // Signed volume (sum of signed tetrahedra against the origin) and surface area of a mesh.
