@@ -64,6 +64,13 @@ void Camera::zoom(double wheelSteps) {
   distance = std::clamp(distance * std::pow(0.85, wheelSteps), 1e-6, 1e9);
 }
 
+void Camera::zoomAbout(const glm::dvec3& point, double wheelSteps) {
+  const double before = distance;
+  zoom(wheelSteps);
+  const double k = distance / before;  // the clamped factor
+  target = point + (target - point) * k;
+}
+
 void Camera::frame(const Bounds& bounds, double aspect) {
   if (bounds.empty()) return;
   target = bounds.center();

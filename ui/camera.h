@@ -41,7 +41,14 @@ class Camera {
 
   void orbit(double dxPixels, double dyPixels);
   void pan(double dxPixels, double dyPixels, double heightPixels);
+  // Zooms about the target: the distance shrinks by 0.85 per step (grows for negative steps).
   void zoom(double wheelSteps);
+  // Zooms about `point` (a surface point under the cursor): the eye, the target and the distance
+  // scale about it by 0.85 per step, so the point stays under the same pixel and the eye moves
+  // along its line of sight to the point, closing in on it without reaching it. Zooming about
+  // the target alone passed through the surface in front of it when the target lay inside a
+  // part (an artist's test).
+  void zoomAbout(const glm::dvec3& point, double wheelSteps);
   // Looks at `bounds` from the current direction, as close as the box's corners allow with a
   // small margin, in a view of width / height `aspect`.
   void frame(const Bounds& bounds, double aspect);

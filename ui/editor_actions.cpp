@@ -1550,9 +1550,14 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
       ExportOptions options;
       options.resolution = resolution;
       options.simplifyCells = simplifyCells;
-      state.exportJob =
-          std::make_unique<ExportJob>(state.document.snapshot(), path, options, state.makeBackend(),
-                                      nullptr, ExportGuard{insist, 0});
+      ExportGuard guard;
+      guard.insist = insist;
+      // The dialog's count, where it was for this very choice: the export window says the same.
+      if (state.exportEstimate)
+        guard.counted =
+            state.exportEstimate->countOf(state.document.snapshot(), resolution, simplifyCells);
+      state.exportJob = std::make_unique<ExportJob>(state.document.snapshot(), path, options,
+                                                    state.makeBackend(), nullptr, guard);
       state.exportEndLogged = false;
       logInfo(state, "exporting " + path + " at resolution " + std::to_string(resolution) +
                          (simplifyCells > 0.0 ? ", simplified" : ""));

@@ -157,6 +157,27 @@ void refuseBelowMinimum(EditorState& state, const char* label, double minimum) {
                         ": the value is kept");
 }
 
+// Sets a part's shape parameters; a part resting on the ground stays on it (keptOnTheGround),
+// and the log says so once per edit.
+void setParamsOnTheGround(EditorState& state, NodeId id, const PrimitiveParams& params) {
+  const NodePtr before = state.document.root();
+  state.document.setParams(id, params);
+  bool moved = false;
+  const Transform t = keptOnTheGround(before, state.document.root(), id, &moved);
+  if (!moved) return;
+  state.document.setTransform(id, t);
+  // Once for a drag of the field, not every frame of it.
+  static NodeId saidOf = 0;
+  static double saidAt = -1e9;
+  const bool said = saidOf == id && ImGui::GetTime() - saidAt < 2.0;
+  saidOf = id;
+  saidAt = ImGui::GetTime();
+  if (said) return;
+  const NodePtr node = findNode(state.document.root(), id);
+  logInfo(state, "\"" + (node->name.empty() ? nodeLabel(*node) : node->name) +
+                     "\" rested on the ground and stays on it (its position along z moved)");
+}
+
 // A positive length parameter.
 void lengthField(EditorState& state, const NodePtr& node, const std::vector<NodePtr>& nodes,
                  const char* label, double PrimitiveParams::*field, double speed, double minimum) {
@@ -180,7 +201,7 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
         for (const NodePtr& n : nodes) {
           PrimitiveParams q = n->params;
           q.*field = value;
-          state.document.setParams(n->id, q);
+          setParamsOnTheGround(state, n->id, q);
         }
       },
       kParamsTopic);
@@ -207,7 +228,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
             for (const NodePtr& n : nodes) {
               PrimitiveParams q = n->params;
               q.*param.vector = v;
-              state.document.setParams(n->id, q);
+              setParamsOnTheGround(state, n->id, q);
             }
           },
           gLengthFormat.c_str(), glm::bvec3(false), kParamsTopic);
@@ -678,6 +699,46 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
               "The mirror plane's normal: x mirrors left to right across the yz plane", p.axis);
     vecField("centre", &PatternParams::center);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("A point of the mirror plane");
+    // The plane placed from the parts, each selected mirror from its own (mirrorPlaneAt).
+    const char* axis = axisName(std::clamp(p.axis, 0, 2));
+    const struct {
+      MirrorPlaneAt where;
+      std::string label, tip;
+    } places[] = {
+        {MirrorPlaneAt::Origin, "origin", "The plane through the mirror's origin"},
+        {MirrorPlaneAt::PartsLowSide, std::string("-") + axis + " side",
+         std::string("The plane at the parts' lowest ") + axis +
+             ": the image touches them there (model one half, mirror it at its cut face)"},
+        {MirrorPlaneAt::PartsCentre, "middle",
+         "The plane through the middle of the parts: the image overlaps them"},
+        {MirrorPlaneAt::PartsHighSide, std::string("+") + axis + " side",
+         std::string("The plane at the parts' highest ") + axis + ": the image touches them there"},
+    };
+    ImGui::TextUnformatted("plane at");
+    // On the label's row while they fit the panel, then on the next rows under the fields.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    float right = 0.0f;  // where the last button ended, in window coordinates
+    for (size_t k = 0; k < std::size(places); ++k) {
+      const float width = ImGui::CalcTextSize(places[k].label.c_str()).x + 2 * style.FramePadding.x;
+      const float maxX = ImGui::GetWindowContentRegionMax().x;
+      if (k == 0)
+        ImGui::SameLine(110.0f);
+      else if (right + style.ItemSpacing.x + width <= maxX)
+        ImGui::SameLine();
+      else
+        ImGui::SetCursorPosX(110.0f);
+      if (ImGui::SmallButton(places[k].label.c_str())) {
+        state.document.beginInteraction();
+        guarded(state, [&] {
+          for (const NodePtr& n : nodes)
+            state.document.setPattern(n->id,
+                                      mirrorPlaneAt(state.document.root(), n->id, places[k].where));
+        });
+        state.document.endInteraction();
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", places[k].tip.c_str());
+      right = ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x;
+    }
     bool keep = p.keepOriginal;
     bool mixed = false;
     for (const NodePtr& n : nodes) mixed = mixed || n->pattern.keepOriginal != keep;

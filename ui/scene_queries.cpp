@@ -200,6 +200,44 @@ double groundGridStep(const Bounds& scene, double emptySpan) {
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);
 }
 
+Transform keptOnTheGround(const NodePtr& before, const NodePtr& after, NodeId id, bool* moved) {
+  if (moved) *moved = false;
+  const NodePtr node = findNode(after, id);
+  if (!node) return Transform();
+  const Bounds was = selectionBounds(before, {id}), now = selectionBounds(after, {id});
+  if (was.empty() || now.empty()) return node->transform;
+  const double size = std::max(was.longestSide(), now.longestSide());
+  if (!(std::fabs(was.min.z) <= 1e-6 * size) || now.min.z == was.min.z) return node->transform;
+  // The world's z in the parent's frame: the part's translation moves along it.
+  const glm::dmat4 parent = parentWorldMatrix(after, id);
+  const glm::dvec3 up = glm::dvec3(glm::inverse(parent) * glm::dvec4(0.0, 0.0, -now.min.z, 0.0));
+  Transform t = node->transform;
+  t.translate += up;
+  if (moved) *moved = true;
+  return t;
+}
+
+PatternParams mirrorPlaneAt(const NodePtr& root, NodeId id, MirrorPlaneAt where) {
+  const NodePtr node = findNode(root, id);
+  if (!node) return PatternParams();
+  PatternParams p = node->pattern;
+  if (patternOf(node->kind) != Pattern::Mirror) return p;
+  const int a = std::clamp(p.axis, 0, 2);
+  if (where == MirrorPlaneAt::Origin) {
+    p.center[a] = 0.0;
+    return p;
+  }
+  // The children's placed results in the mirror's own frame (the frame its placements use).
+  Bounds parts;
+  for (const NodePtr& child : node->children)
+    parts.include(nodeBounds(child, root, glm::dmat4(1.0)));
+  if (parts.empty()) return p;
+  p.center[a] = where == MirrorPlaneAt::PartsLowSide    ? parts.min[a]
+                : where == MirrorPlaneAt::PartsHighSide ? parts.max[a]
+                                                        : parts.center()[a];
+  return p;
+}
+
 double niceLength(double approximate) {
   if (!(approximate > 0) || !std::isfinite(approximate)) return 1.0;
   double p = std::pow(10.0, std::floor(std::log10(approximate)));

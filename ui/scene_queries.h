@@ -12,6 +12,7 @@
 #include "engine/document/node.h"
 #include "engine/document/scene.h"
 #include "engine/geometry/mesh.h"
+#include "engine/kinds/patterns.h"
 #include "ui/viewport_renderer.h"
 
 namespace strata::ui {
@@ -63,6 +64,26 @@ std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<Nod
 // The outermost selected node holding `id` (tree edges), or `id` itself where none does: what
 // the gizmo and the inspector's transform act on for the active part `id`.
 NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id);
+
+// A part resting on the ground (the bottom of its world bounds at z = 0, within a millionth of
+// its size) whose shape was changed from the tree `before` to `after` (a size, a radius typed
+// in the inspector) stays on it: its transform in `after`, moved along the world's z so that its
+// bottom is at 0 again; its transform in `after` as it is where it did not rest on the ground or
+// shows nothing. A box 10 high made 20 high sank 5 into the ground, made 4 floated 3 above it
+// (an artist's test). `moved` (when not null) says whether it moved.
+Transform keptOnTheGround(const NodePtr& before, const NodePtr& after, NodeId id,
+                          bool* moved = nullptr);
+
+// Where a mirror's plane goes, placed from its parts (the inspector's "plane at" buttons): back
+// through the mirror's origin, through the middle of its parts, or at their low or high side
+// along the mirror's axis (the image then touches the original there: model one half, mirror it
+// at its cut face). A new mirror's plane passes through its parent's origin, often far from the
+// parts (an artist's test).
+enum class MirrorPlaneAt { Origin, PartsCentre, PartsLowSide, PartsHighSide };
+// The parameters of mirror `id` with its plane's point along its axis moved there (the other
+// coordinates of the point kept); the parts' box is taken in the mirror's frame. Unchanged where
+// `id` is not a mirror or its parts show nothing.
+PatternParams mirrorPlaneAt(const NodePtr& root, NodeId id, MirrorPlaneAt where);
 
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);

@@ -401,7 +401,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
   const bool haveGizmo = !state.measure.active && placeGizmo(state);
   hot_ = haveGizmo && inside && !navigating_ ? gizmo_.hover(view, mouse) : -1;
 
-  if (inside && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+  if (inside && io.MouseWheel != 0.0f)
+    wheel_ = PendingWheel{mouse, (wheel_ ? wheel_->steps : 0.0) + io.MouseWheel};
 
   const bool middle = io.MouseDown[2];
   const bool altLeft = io.MouseDown[0] && io.KeyAlt;
@@ -499,6 +500,28 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
 
 void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, const ViewRect& rect,
                             double pixelScale) {
+  if (wheel_) {
+    const bool samePivot =
+        wheelPivot_ && glm::length(wheelPivot_->mouse - wheel_->mouse) < 1.0 &&
+        wheelPivot_->target == camera.target && wheelPivot_->distance == camera.distance &&
+        wheelPivot_->yaw == camera.yawDegrees && wheelPivot_->pitch == camera.pitchDegrees &&
+        wheelPivot_->ortho == camera.ortho;
+    if (!samePivot) {
+      wheelPivot_ = WheelPivot{wheel_->mouse, std::nullopt};
+      if (std::optional<PickHit> hit = pickAt(renderer, state, rect, wheel_->mouse, pixelScale))
+        wheelPivot_->point = hit->position;
+    }
+    if (wheelPivot_->point)
+      camera.zoomAbout(*wheelPivot_->point, wheel_->steps);
+    else
+      camera.zoom(wheel_->steps);
+    wheelPivot_->target = camera.target;
+    wheelPivot_->distance = camera.distance;
+    wheelPivot_->yaw = camera.yawDegrees;
+    wheelPivot_->pitch = camera.pitchDegrees;
+    wheelPivot_->ortho = camera.ortho;
+    wheel_.reset();
+  }
   if (click_ && state.measure.active) {
     std::optional<PickHit> hit = pickAt(renderer, state, rect, click_->mouse, pixelScale);
     if (hit) {

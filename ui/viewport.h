@@ -4,9 +4,10 @@
 // the point under the cursor), whichever way the splats reached GL.
 //
 // Navigation: orbit with the middle mouse button (or Alt + left), pan with Shift + middle, zoom
-// with the wheel; F frames the selection, Home shows everything, 1 / 3 / 7 look from the front,
-// right, top (Ctrl: back, left, bottom), 5 toggles orthographic; W / E / R pick move, rotate,
-// scale. Input is taken only when ImGui does not want it.
+// with the wheel (about the surface under the cursor); F frames the selection, Home shows
+// everything, 1 / 3 / 7 look from the front, right, top (Ctrl: back, left, bottom), 5 toggles
+// orthographic; W / E / R pick move, rotate, scale. Input is taken only when ImGui does not want
+// it.
 //
 // Threads: the UI thread.
 #pragma once
@@ -154,6 +155,24 @@ class Viewport {
   bool navigating_ = false;
   bool clickPending_ = false;
   std::optional<PendingClick> click_;
+  // Wheel steps of this frame at `mouse`, zoomed about the surface under it by resolvePicks
+  // (Camera::zoomAbout), about the target where the cursor shows nothing. The surface point is
+  // looked up once for a run of steps: while the cursor stays on its pixel and the camera is as
+  // the last zoom left it, the point is still under it (zoomAbout keeps it there).
+  struct PendingWheel {
+    glm::dvec2 mouse;
+    double steps = 0.0;
+  };
+  std::optional<PendingWheel> wheel_;
+  struct WheelPivot {
+    glm::dvec2 mouse;
+    std::optional<glm::dvec3> point;  // none: the cursor showed nothing
+    glm::dvec3 target{0.0};           // the camera the zoom left
+    double distance = 0.0;
+    double yaw = 0.0, pitch = 0.0;
+    bool ortho = false;
+  };
+  std::optional<WheelPivot> wheelPivot_;
   // A right click on the view: the part under it selected and its menu opened
   // (EditorState::viewContextMenu).
   std::optional<PendingClick> contextClick_;

@@ -313,12 +313,14 @@ NodePtr duplicateNode(const NodePtr& root, NodeId id, NodeId firstId, NodeId* co
   named->name = copyName(root, node->name);
   if (copyId) *copyId = named->id;
   // The copy plays the original's role: placed onto the original with that role's mode, it lands
-  // beside it, or (the base of a difference) unites with it in a union in the base's place.
+  // beside it, or (the base of a difference) unites with it in a union in the base's place; the
+  // copy of a modifier or a pattern is not put inside the original.
   const ChildRole role = roleOf(root, id);
   const PlaceMode mode = role == ChildRole::Cut         ? PlaceMode::Cut
                          : role == ChildRole::Intersect ? PlaceMode::Intersect
                                                         : PlaceMode::Add;
-  return placePart(root, planPlacement(root, id, mode), named, maxNodeId(named) + 1);
+  return placePart(root, planPlacement(root, id, mode, IntoUniting::No), named,
+                   maxNodeId(named) + 1);
 }
 
 NodePtr moveNode(const NodePtr& root, NodeId id, NodeId parentId, int index) {

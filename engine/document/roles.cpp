@@ -256,7 +256,7 @@ NodeKind operationKindFor(PlaceMode mode) {
               "\"");
 }
 
-PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
+PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode, IntoUniting into) {
   NodeLocation where;
   if (!locateNode(root, target, &where))
     throw Error("there is no node with id " + std::to_string(target));
@@ -265,7 +265,16 @@ PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode) {
   const bool targetRemoves = removesMaterial(root, target);
   PlacePlan plan;
   bool ownCut = false;  // the part's own role is a cutter's
-  if (isOperation(node->kind) && (node->kind == kind || node->children.empty())) {
+  const bool joinsUniting = into == IntoUniting::Yes && mode == PlaceMode::Add &&
+                            isOperation(node->kind) && unitesItsChildren(*node);
+  if (joinsUniting && !node->children.empty()) {
+    // 1. Into a modifier or a pattern: it joins the children that it changes or repeats.
+    plan.parent = target;
+    plan.sentence = std::string("joins what ") + quoted(*node) +
+                    (patternOf(node->kind) != Pattern::None ? " repeats" : " changes") +
+                    " (it becomes one of its parts)";
+    plan.removesMaterial = targetRemoves;
+  } else if (isOperation(node->kind) && (node->kind == kind || node->children.empty())) {
     // 1. Into an operation of the mode's Boolean, or into an empty operation of any.
     plan.parent = target;
     if (node->children.empty() && nodeKindInfo(node->kind).rayOp == RayOp::Difference)

@@ -9,7 +9,10 @@
 // A part is placed onto a target node with a mode the artist chose (add, cut, intersect), and
 // the rule is the same for adding, pasting and dropping:
 //   1. the target is an operation of the mode's Boolean: the part becomes its last child (an
-//      empty operation takes it as its first child);
+//      empty operation takes it as its first child); a part added onto a modifier or a pattern
+//      (which unite their children, see unitesItsChildren) joins its children likewise, so that
+//      the modifier changes it or the pattern repeats it: a row dropped onto a shell's row goes
+//      into the shell, as into a folder (an artist's test saw it land beside the shell);
 //   2. the target already plays the mode's role in its parent (a union's child for add, a
 //      difference's cutter for cut, an intersection's child for intersect): the part goes right
 //      after it, beside it;
@@ -99,8 +102,13 @@ struct PlacePlan {
   std::string sentence;  // ends with what happens to the material when it is not what the
                          // mode says (a part that adds inside a cutter takes material away)
 };
+// Whether a part added onto a modifier or a pattern goes into it (rule 1: a drop, a paste or a
+// palette click onto it) or is placed as onto any other part (a duplicate of the modifier lands
+// beside it, not inside it).
+enum class IntoUniting { Yes, No };
 // Throws strata::Error when `target` is not in the tree.
-PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode);
+PlacePlan planPlacement(const NodePtr& root, NodeId target, PlaceMode mode,
+                        IntoUniting into = IntoUniting::Yes);
 
 // Carries out `plan` for `part` (its ids new to the tree). A wrapping operation gets id
 // `groupId` (unused in the tree and the part). Returns the new root.

@@ -191,15 +191,16 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
 
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
-                           Progress& progress, int probeAbove, double simplifyCells) {
+                           Progress& progress, int probeAbove, double simplifyCells,
+                           const TriangleEstimate* counted) {
   return estimateExport(scene, options, path, backend, workersMemory({backend}, 1), progress,
-                        probeAbove, simplifyCells);
+                        probeAbove, simplifyCells, counted);
 }
 
 JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
                            const std::string& path, const std::shared_ptr<Backend>& backend,
                            const WorkersMemory& memory, Progress& progress, int probeAbove,
-                           double simplifyCells) {
+                           double simplifyCells, const TriangleEstimate* counted) {
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, options.resolution);
   const ExportTiling tiling = exportTiling(scene, options, memory.bytes, memory.offsetBytesPerNode);
@@ -231,7 +232,8 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   const double scale = scaleFrom(report.grid, e.grid);
   e.probed = true;
   e.surfels = uint64_t(double(report.surfels) * scale);
-  e.triangles = uint64_t(double(probeTriangles) * scale);
+  e.triangles = counted && counted->triangles > 0 ? counted->triangles
+                                                  : uint64_t(double(probeTriangles) * scale);
   // One tile at a time (the cache is cleared between tiles): its share of the LDIs (where the
   // backend keeps them on the host) and of the contour's arrays, beside the mesh of every tile.
   const double tiles = double(std::max(1, e.tiles));
@@ -281,11 +283,13 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   if (simplifyCells > 0.0 && probeTriangles > 0) {
     // The export dialog's count (estimateExportTriangles: the same probes, the same number), its
     // simplification's time per triangle scaled to the job's triangles.
-    const TriangleEstimate counted =
-        estimateExportTriangles(scene, options.resolution, simplifyCells, backend, progress);
-    e.seconds += counted.simplifySecondsPerTriangle * double(e.triangles);
+    const TriangleEstimate simplified =
+        counted && counted->simplified > 0
+            ? *counted
+            : estimateExportTriangles(scene, options.resolution, simplifyCells, backend, progress);
+    e.seconds += simplified.simplifySecondsPerTriangle * double(e.triangles);
     e.peakBytes += uint64_t(double(e.triangles) * kSimplifyBytesPerTriangle);
-    e.simplifiedTriangles = std::min(e.triangles, counted.simplified);
+    e.simplifiedTriangles = std::min(e.triangles, simplified.simplified);
     e.fileBytes =
         uint64_t(double(e.simplifiedTriangles) * (format ? format->bytesPerTriangle : 50.0));
   }

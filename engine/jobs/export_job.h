@@ -8,10 +8,12 @@
 // reports it in the status.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -19,6 +21,7 @@
 #include "engine/eval/backend.h"
 #include "engine/export/check_written.h"
 #include "engine/export/export_scene.h"
+#include "engine/export/job_estimate.h"
 #include "engine/geometry/mesh_check.h"
 #include "engine/util/progress.h"
 
@@ -29,8 +32,8 @@ struct ExportStatus {
   bool finished = false;   // ended (succeeded, failed or cancelled)
   bool succeeded = false;  // written, re-read and checked
   bool cancelled = false;
-  // "start", "estimate", "evaluate", "export", "merge" (written in pieces), "simplify",
-  // "write <format>", "check"
+  // "start", "estimate", "evaluate", "contour" (the first tile's), "export", "merge",
+  // "simplify", "write <format>", "check"
   std::string stage;
   // The whole job done, in [0, 1]: the stages as parts of one bar (overallExportFraction);
   // never goes back while the job runs.
@@ -61,12 +64,18 @@ struct ExportStatus {
 
 // Where a stage's own `fraction` falls on the job's one bar: each stage a fixed part, in the
 // order they run, larger for the stages that take longer (contouring; simplifying when asked).
-double overallExportFraction(const std::string& stage, double fraction, bool simplifying);
+// "evaluate" and "contour" are the first of the job's `tiles` (contour_scene.h), "export" all of
+// them: a job of one tile fills most of the bar while it evaluates.
+double overallExportFraction(const std::string& stage, double fraction, bool simplifying,
+                             int tiles = 1);
 
 // When an export may start (see job_estimate.h).
 struct ExportGuard {
   bool insist = false;       // start even when the estimate does not fit
   uint64_t memoryBytes = 0;  // memory the job may use; 0: what the system has available
+  // The export dialog's triangle count for this scene and choice (estimateExport's `counted`):
+  // the job's estimate says the same number.
+  std::optional<TriangleEstimate> counted;
 };
 
 class ExportJob {
@@ -99,6 +108,7 @@ class ExportJob {
   Listener onChange_;
   mutable std::mutex mutex_;
   ExportStatus status_;
+  std::atomic<int> tiles_{1};  // the job's tiles, once estimated (overallExportFraction)
   std::shared_ptr<Progress> progress_;
   std::thread thread_;
 };

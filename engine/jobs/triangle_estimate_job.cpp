@@ -7,7 +7,8 @@ namespace strata {
 TriangleEstimateJob::TriangleEstimateJob(std::shared_ptr<const Scene> scene, int resolution,
                                          double simplifyCells,
                                          std::function<std::shared_ptr<Backend>()> makeBackend)
-    : resolution_(resolution),
+    : scene_(scene),
+      resolution_(resolution),
       simplifyCells_(simplifyCells),
       job_([scene = std::move(scene), resolution, simplifyCells,
             makeBackend = std::move(makeBackend)](Progress& progress) {

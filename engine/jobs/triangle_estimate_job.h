@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "engine/document/scene.h"
@@ -25,14 +26,27 @@ class TriangleEstimateJob {
                       std::function<std::shared_ptr<Backend>()> makeBackend);
 
   void cancel() { job_.cancel(); }
+  // The scene it counts (the document's snapshot when it began: the same pointer while the
+  // document is unchanged).
+  const std::shared_ptr<const Scene>& scene() const { return scene_; }
   int resolution() const { return resolution_; }
   double simplifyCells() const { return simplifyCells_; }
   bool done() const { return job_.done(); }
   // Valid once done(): the estimate, or why there is none.
   TriangleEstimate result() const { return job_.result(); }
   std::string error() const { return job_.error(); }
+  // The finished count of `scene` at `resolution` within `simplifyCells` (none otherwise): what
+  // an export of that choice may take as its triangles (ExportGuard::counted).
+  std::optional<TriangleEstimate> countOf(const std::shared_ptr<const Scene>& scene, int resolution,
+                                          double simplifyCells) const {
+    if (!done() || !error().empty() || scene != scene_ || resolution != resolution_ ||
+        simplifyCells != simplifyCells_)
+      return std::nullopt;
+    return result();
+  }
 
  private:
+  std::shared_ptr<const Scene> scene_;
   int resolution_;
   double simplifyCells_;
   BackgroundJob<TriangleEstimate> job_;

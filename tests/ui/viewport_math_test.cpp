@@ -64,6 +64,39 @@ TEST(EditorMath, AxisViewsLookAlongTheAxes) {
   expectNear(centre.origin, c.eye());
 }
 
+// The wheel zooms about the surface point under the cursor: the point stays under its pixel and
+// the eye closes in on it along the line of sight without passing it, however many steps; the
+// target (inside a part, behind the surface) is never reached through the surface.
+TEST(EditorMath, ZoomingAboutASurfacePointNeverPassesIt) {
+  for (const bool ortho : {false, true}) {
+    Camera c;
+    c.ortho = ortho;
+    c.target = glm::dvec3(0.0);  // inside a part whose front surface is 2 units before it
+    c.distance = 10.0;
+    const glm::dvec2 size(800, 600), pixel(560, 210);
+    const Ray ray = c.rayThrough(pixel, size);
+    // The surface point under the pixel: in front of the target, on the ray.
+    const double t = glm::dot(c.target - ray.origin, ray.direction) - 2.0;
+    const glm::dvec3 point = ray.origin + t * ray.direction;
+    for (int step = 0; step < 200; ++step) {
+      c.zoomAbout(point, 1.0);
+      const Ray now = c.rayThrough(pixel, size);
+      // Still under the same pixel: on the ray through it.
+      const glm::dvec3 along = point - now.origin;
+      EXPECT_NEAR(glm::length(along - glm::dot(along, now.direction) * now.direction), 0.0,
+                  1e-9 * (1.0 + glm::length(along)));
+      if (!ortho) {
+        EXPECT_GT(glm::dot(along, now.direction), 0.0) << "the eye passed the point";
+      }
+    }
+    EXPECT_NEAR(c.distance, 1e-6, 1e-12);  // clamped as zoom() is
+    // Out again: the distance grows.
+    const Camera closest = c;
+    c.zoomAbout(point, -1.0);
+    EXPECT_GT(c.distance, closest.distance);
+  }
+}
+
 TEST(EditorMath, FramingKeepsEveryCornerInView) {
   for (bool ortho : {false, true}) {
     Camera c;
@@ -319,6 +352,78 @@ TEST(GroupDrag, TheWholeGroupIsOneUndoStep) {
 // The inspector says "spans" only where the selection's box is its result's extent: a box
 // scaled, in a union, arrayed, grown; "within" where a cut, a fillet, a shrinking offset or a
 // turn other than quarter turns leaves the part smaller than its box.
+// A part resting on the ground stays on it when its size changes (a box made higher sank into
+// the ground, one made lower floated: an artist's test), inside a turned and scaled group too;
+// one that did not rest on the ground keeps its transform.
+TEST(SelectionBounds, APartRestingOnTheGroundStaysOnItWhenResized) {
+  auto box = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  box->params.size = glm::dvec3(4.0, 4.0, 10.0);
+  auto group = std::make_shared<Node>(*makeOperationNode(NodeKind::Union, 2, {box}));
+  group->transform.rotateDegrees = glm::dvec3(90.0, 0.0, 0.0);  // the box's z along the world's y
+  group->transform.scale = glm::dvec3(2.0);
+  const NodePtr floating = makeOperationNode(NodeKind::Union, 1, {group});
+  // Rested on the ground: the box's world bottom at z = 0.
+  const Bounds at = selectionBounds(floating, {3});
+  const NodePtr root = editNode(floating, 2, [&](Node& n) { n.transform.translate.z = -at.min.z; });
+  ASSERT_NEAR(selectionBounds(root, {3}).min.z, 0.0, 1e-12);
+  for (const glm::dvec3 size : {glm::dvec3(4.0, 9.0, 10.0), glm::dvec3(4.0, 1.5, 10.0)}) {
+    const NodePtr resized = editNode(root, 3, [&](Node& n) { n.params.size = size; });
+    ASSERT_NE(selectionBounds(resized, {3}).min.z, 0.0) << "a change that keeps the bottom";
+    bool moved = false;
+    const Transform t = keptOnTheGround(root, resized, 3, &moved);
+    EXPECT_TRUE(moved);
+    const NodePtr kept = editNode(resized, 3, [&](Node& n) { n.transform = t; });
+    EXPECT_NEAR(selectionBounds(kept, {3}).min.z, 0.0, 1e-9);
+    // Only along the world's z: x and y of the box as resized.
+    EXPECT_NEAR(selectionBounds(kept, {3}).min.x, selectionBounds(resized, {3}).min.x, 1e-9);
+    EXPECT_NEAR(selectionBounds(kept, {3}).min.y, selectionBounds(resized, {3}).min.y, 1e-9);
+  }
+  // Above the ground: as it is.
+  const NodePtr lifted = editNode(root, 2, [](Node& n) { n.transform.translate.z += 1.0; });
+  const NodePtr grown = editNode(lifted, 3, [](Node& n) { n.params.size.y = 9.0; });
+  bool moved = true;
+  EXPECT_EQ(keptOnTheGround(lifted, grown, 3, &moved), findNode(grown, 3)->transform);
+  EXPECT_FALSE(moved);
+}
+
+// A mirror's plane placed from its parts (the inspector's "plane at"): their box in the mirror's
+// own frame (moved and turned in the world), along its axis only; the image then touches the
+// parts at that side, which the world bounds of the result show.
+TEST(SelectionBounds, AMirrorsPlaneIsPlacedFromItsParts) {
+  auto box = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  box->params.size = glm::dvec3(10.0, 4.0, 2.0);
+  box->transform.translate = glm::dvec3(30.0, 1.0, 0.0);  // x from 25 to 35 in the mirror's frame
+  auto mirror = std::make_shared<Node>(*makeOperationNode(NodeKind::Mirror, 2, {box}));
+  mirror->pattern.axis = 0;
+  mirror->pattern.center = glm::dvec3(0.0, 7.0, 0.0);
+  mirror->transform.translate = glm::dvec3(5.0, 0.0, 0.0);
+  mirror->transform.rotateDegrees = glm::dvec3(0.0, 0.0, 90.0);  // its x along the world's y
+  const NodePtr root = makeOperationNode(NodeKind::Union, 1, {mirror});
+  struct Case {
+    MirrorPlaneAt where;
+    double x;
+  } cases[] = {{MirrorPlaneAt::PartsLowSide, 25.0},
+               {MirrorPlaneAt::PartsCentre, 30.0},
+               {MirrorPlaneAt::PartsHighSide, 35.0},
+               {MirrorPlaneAt::Origin, 0.0}};
+  for (const Case& c : cases) {
+    const PatternParams p = mirrorPlaneAt(root, 2, c.where);
+    EXPECT_NEAR(p.center.x, c.x, 1e-9);
+    EXPECT_EQ(p.center.y, 7.0);  // the other coordinates kept
+    EXPECT_EQ(p.axis, 0);
+    // The result: the parts and their image, side by side along the world's y.
+    const NodePtr placed = editNode(root, 2, [&](Node& n) { n.pattern = p; });
+    const Bounds b = selectionBounds(placed, {2});
+    const double lo = std::min(25.0, 2.0 * c.x - 35.0), hi = std::max(35.0, 2.0 * c.x - 25.0);
+    EXPECT_NEAR(b.min.y, lo, 1e-9);
+    EXPECT_NEAR(b.max.y, hi, 1e-9);
+  }
+  // Not a mirror, or nothing in it: unchanged.
+  EXPECT_EQ(mirrorPlaneAt(root, 3, MirrorPlaneAt::PartsCentre), box->pattern);
+  const NodePtr empty = editNode(root, 2, [](Node& n) { n.children.clear(); });
+  EXPECT_EQ(mirrorPlaneAt(empty, 2, MirrorPlaneAt::PartsHighSide), mirror->pattern);
+}
+
 TEST(SelectionBounds, TightOnlyWhereTheBoxIsTheExtent) {
   auto box = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
   box->transform.scale = glm::dvec3(1.5, 1.0, 1.0);

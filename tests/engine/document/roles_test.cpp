@@ -91,6 +91,49 @@ TEST(Roles, TheThreePlacementRules) {
   EXPECT_EQ(fill.sentence, "becomes the base of \"difference 9\"");
 }
 
+// A part added onto a modifier's or a pattern's row goes into it, as into a folder (an artist's
+// test saw it land beside the shell); a cutter cuts the finished shell; a duplicate of the shell
+// lands beside it.
+TEST(Roles, APartAddedOntoAModifierOrAPatternJoinsWhatItChangesOrRepeats) {
+  for (const NodeKind kind : {NodeKind::Shell, NodeKind::Offset, NodeKind::Array,
+                              NodeKind::CircularArray, NodeKind::Mirror}) {
+    SCOPED_TRACE(kindName(kind));
+    // root(1, union) { box(2), m(3, kind) { sphere(4) } }
+    const NodePtr root =
+        makeOperationNode(NodeKind::Union, 1,
+                          {makePrimitiveNode(NodeKind::Box, 2),
+                           makeOperationNode(kind, 3, {makePrimitiveNode(NodeKind::Sphere, 4)})});
+    const NodePtr part = makePrimitiveNode(NodeKind::Cone, 7);
+    const PlacePlan into = planPlacement(root, 3, PlaceMode::Add);
+    const NodePtr placed = placePart(root, into, part, 8);
+    EXPECT_EQ(childIds(findNode(placed, 3)), (std::vector<NodeId>{4, 7}));
+    EXPECT_EQ(childIds(placed), (std::vector<NodeId>{2, 3}));
+    EXPECT_EQ(into.sentence, "joins what \"" + findNode(root, 3)->name + "\" " +
+                                 (patternOf(kind) != Pattern::None ? "repeats" : "changes") +
+                                 " (it becomes one of its parts)");
+    EXPECT_FALSE(into.removesMaterial);
+    // Beside it where the caller asks (what a duplicate of it does).
+    const PlacePlan beside = planPlacement(root, 3, PlaceMode::Add, IntoUniting::No);
+    EXPECT_EQ(childIds(placePart(root, beside, part, 8)), (std::vector<NodeId>{2, 3, 7}));
+    NodeId copy = 0;
+    const NodePtr duplicated = duplicateNode(root, 3, 8, &copy);
+    EXPECT_EQ(childIds(duplicated), (std::vector<NodeId>{2, 3, copy}));
+    // A cutter cuts the finished result: a new difference takes its place.
+    const NodePtr cut = placePart(root, planPlacement(root, 3, PlaceMode::Cut), part, 8);
+    EXPECT_EQ(childIds(cut), (std::vector<NodeId>{2, 8}));
+    EXPECT_EQ(childIds(findNode(cut, 8)), (std::vector<NodeId>{3, 7}));
+    // A row dragged onto it moves into it, keeping its place in the world.
+    const NodePtr moved = movePart(root, 2, 3, PlaceMode::Add, 9);
+    EXPECT_EQ(childIds(findNode(moved, 3)), (std::vector<NodeId>{4, 2}));
+    // Inside a cutter it takes material away, and the sentence says so.
+    const NodePtr holes = makeOperationNode(
+        NodeKind::Difference, 1, {makePrimitiveNode(NodeKind::Box, 2), findNode(root, 3)});
+    const PlacePlan hole = planPlacement(holes, 3, PlaceMode::Add);
+    EXPECT_TRUE(hole.removesMaterial);
+    EXPECT_NE(hole.sentence.find("inside a cutter"), std::string::npos);
+  }
+}
+
 // Switching an operation's Boolean changes its children's roles: said before the click.
 TEST(Roles, TheSentenceOfAKindChangeNamesEveryChildWhoseRoleChanges) {
   const NodePtr body = makeOperationNode(

@@ -39,6 +39,41 @@ TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
   EXPECT_NE(text.find("triangles"), std::string::npos) << text;
 }
 
+// The export window's estimate says the export dialog's count (3.3 million there against
+// 3.6 million in the dialog, for 3.69 million written: an artist's test): given the dialog's
+// count, the job's triangles, file and simplified triangles are its.
+TEST(JobEstimate, TheJobTakesTheDialogsCountOfItsTriangles) {
+  const Scene scene = test::makeScene(
+      test::op(NodeKind::Difference, {test::box({2.0, 2.0, 1.0}), test::sphere(0.8, {0, 0, 0.5})}),
+      160);
+  auto backend = std::make_shared<CpuBackend>();
+  Progress progress;
+  ContourOptions options;
+  options.resolution = 160;
+  for (const double cells : {0.0, 0.25}) {
+    const TriangleEstimate dialog = estimateExportTriangles(scene, 160, cells, backend, progress);
+    ASSERT_GT(dialog.triangles, 0u);
+    const JobEstimate alone =
+        estimateExport(scene, options, "/tmp/x.stl", backend, progress, /*probeAbove=*/0, cells);
+    const JobEstimate job = estimateExport(scene, options, "/tmp/x.stl", backend, progress,
+                                           /*probeAbove=*/0, cells, &dialog);
+    ASSERT_TRUE(job.probed);
+    EXPECT_NE(alone.triangles, dialog.triangles) << "probes that agree prove nothing";
+    EXPECT_EQ(job.triangles, dialog.triangles);
+    if (cells > 0.0) {
+      EXPECT_EQ(job.simplifiedTriangles, dialog.simplified);
+      EXPECT_EQ(job.fileBytes, dialog.simplified * 50u);
+    } else {
+      EXPECT_EQ(job.fileBytes, dialog.triangles * 50u);
+    }
+    // (Counts under a million are written out in full.)
+    ASSERT_LT(dialog.triangles, 1000000u);
+    const uint64_t said = cells > 0.0 ? dialog.simplified : dialog.triangles;
+    EXPECT_NE(describeEstimate(job).find("about " + std::to_string(said)), std::string::npos)
+        << describeEstimate(job);
+  }
+}
+
 // A simplified export's estimate counts the simplification (an export estimated at "3 s,
 // 1 GiB" took 95 s and 3.1 GB): more time and memory than the same export unsimplified, a file
 // of the simplified triangles, within a factor of two of them, and says it is simplified.

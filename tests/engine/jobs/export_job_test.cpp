@@ -214,20 +214,37 @@ TEST(ExportJob, AMeshTooLargeForMemoryIsWrittenInPieces) {
   EXPECT_TRUE(contentOf(folder + "/part.stl") == contentOf(folder + "/whole.stl"));
 }
 
+// In the order the stages run (the first tile's evaluation and contour, then every tile's
+// "export"), never back; a job of one tile fills most of the export's part of the bar while it
+// evaluates (the bar sat at "evaluate 10%" through a long one: an artist's test).
 TEST(ExportJob, TheStagesFillOneBarInOrder) {
   for (bool simplifying : {false, true}) {
-    double last = 0.0;
-    for (const std::string stage :
-         {"estimate", "evaluate", "export", "merge", "simplify", "write STL", "check"}) {
-      if (!simplifying && stage == "simplify") continue;
-      if (simplifying && stage == "merge") continue;  // (only written in pieces)
-      for (double f : {0.0, 0.5, 1.0}) {
-        const double overall = overallExportFraction(stage, f, simplifying);
-        EXPECT_GE(overall, last) << stage << " " << f;
-        last = overall;
+    for (int tiles : {1, 2, 64}) {
+      double last = 0.0;
+      for (const std::string stage : {"estimate", "evaluate", "contour", "export", "merge",
+                                      "simplify", "write STL", "check"}) {
+        if (!simplifying && stage == "simplify") continue;
+        // "export" is first reported once the first tile is done (1 / tiles).
+        const std::vector<double> fractions =
+            stage == "export" ? std::vector<double>{1.0 / tiles, (1.0 + 1.0 / tiles) / 2, 1.0}
+                              : std::vector<double>{0.0, 0.5, 1.0};
+        for (double f : fractions) {
+          const double overall = overallExportFraction(stage, f, simplifying, tiles);
+          EXPECT_GE(overall, last) << stage << " " << f << " " << tiles;
+          last = overall;
+        }
+        if (stage == "contour") {  // the first tile done: its share of "export"
+          EXPECT_DOUBLE_EQ(last, overallExportFraction("export", 1.0 / tiles, simplifying, tiles));
+        }
       }
+      EXPECT_DOUBLE_EQ(last, 1.0);
     }
-    EXPECT_DOUBLE_EQ(last, 1.0);
+    const double oneTile = overallExportFraction("evaluate", 1.0, simplifying, 1);
+    EXPECT_GT(oneTile - overallExportFraction("estimate", 1.0, simplifying, 1),
+              0.6 * (overallExportFraction("export", 1.0, simplifying, 1) -
+                     overallExportFraction("estimate", 1.0, simplifying, 1)));
+    EXPECT_LT(overallExportFraction("evaluate", 1.0, simplifying, 64),
+              overallExportFraction("export", 0.05, simplifying, 64));
   }
 }
 
@@ -316,7 +333,7 @@ TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
   {
     ExportWatch watch;
     ExportJob job(boxMinusSphere(32), path, big, std::make_shared<CpuBackend>(), watch.listener(),
-                  ExportGuard{false, uint64_t(1) << 20});
+                  ExportGuard{false, uint64_t(1) << 20, std::nullopt});
     ASSERT_TRUE(watch.waitUntilFinished());
     const ExportStatus s = job.status();
     EXPECT_TRUE(s.refused);
@@ -330,7 +347,7 @@ TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
   // to see it begin).
   ExportWatch watch("evaluate");
   ExportJob job(boxMinusSphere(32), path, big, std::make_shared<CpuBackend>(), watch.listener(),
-                ExportGuard{true, uint64_t(1) << 20});
+                ExportGuard{true, uint64_t(1) << 20, std::nullopt});
   ASSERT_TRUE(watch.waitUntilHeld());
   job.cancel();
   watch.release();
