@@ -55,7 +55,9 @@ const ShortcutGroup kGroups[] = {
       {"dropped on a surface", "an added part rests on it; a cutter is centred on the point"},
       {"drag a row onto a row",
        "moves the part: a hole stays a hole, a solid takes no material away (its role changes "
-       "where the place needs it); the tooltip says what it will do"},
+       "where the place needs it); onto a modifier's or a pattern's row, a solid goes into it (it "
+       "is "
+       "shelled, rounded or repeated with its parts); the tooltip says what it will do"},
       {"Ctrl while dropping", "cuts"},
       {"Shift while dropping", "intersects"},
       {"Alt while dropping", "adds"}}},
@@ -67,7 +69,7 @@ const ShortcutGroup kGroups[] = {
     {"View",
      {{"middle drag, Alt+left drag", "orbit"},
       {"Shift+middle drag", "pan"},
-      {"wheel", "zoom"},
+      {"wheel", "zoom about the point under the cursor"},
       {"F / Home", "frame the selection / everything"},
       {"1 3 7 (Ctrl: opposite)", "front, right, top"},
       {"5", "orthographic / perspective"},
