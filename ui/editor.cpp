@@ -389,12 +389,15 @@ size_t Editor::uploadChunkBytes() const {
 }
 
 namespace {
-// The full result `next` shows the parts of the full result `shown` at another resolution (the
-// preview's resolution changed, nothing else): the image shown may stay until next's is drawn.
+// The full result `next` shows the parts of the result `shown` at another resolution: the
+// preview's resolution changed, nothing else, or a drag's last draft (a coarse result of the
+// same tree) is followed by the full result. The image shown may stay until next's is drawn:
+// next's first image, from coarser levels of its splats, looked worse than the draft it
+// replaced (gaps and specks for a second or two on a software GL driver: an artist's test).
 bool sameRefinedParts(const PreviewResult* shown, const PreviewResult& next) {
-  return shown && !shown->coarse && !next.coarse && shown->ok() && next.ok() && shown->scene &&
-         next.scene && shown->scene->root == next.scene->root &&
-         shown->resolution != next.resolution;
+  return shown && !next.coarse && shown->ok() && next.ok() && shown->scene && next.scene &&
+         shown->scene->root == next.scene->root &&
+         (shown->coarse || shown->resolution != next.resolution);
 }
 }  // namespace
 
@@ -692,7 +695,10 @@ void Editor::autosave() {
 
 namespace {
 // Hints over the viewport: the empty-scene hint, the projection and the gizmo mode.
-void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera& camera) {
+// `drawing`: the view still shows an earlier image while the result's is drawn (the renderer
+// refines), said in the corner.
+void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera& camera,
+                       bool drawing) {
   const bool ortho = camera.ortho;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   if (s.preview && s.preview->splatCount() == 0 && s.previewError.empty()) {
@@ -722,11 +728,12 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera&
   }
   char corner[160];
   const char* axisView = camera.axisViewName();
-  std::snprintf(corner, sizeof(corner), "%s%s%s  \u00B7  %s", axisView, *axisView ? ", " : "",
+  std::snprintf(corner, sizeof(corner), "%s%s%s  \u00B7  %s%s", axisView, *axisView ? ", " : "",
                 ortho ? "orthographic" : "perspective",
                 s.gizmoMode == GizmoMode::Move     ? "move (W)"
                 : s.gizmoMode == GizmoMode::Rotate ? "rotate (E)"
-                                                   : "scale (R)");
+                                                   : "scale (R)",
+                drawing ? "  \u00B7  drawing..." : "");
   // A dark outline under the light text: readable over light parts as over the background.
   for (const ImVec2 d : {ImVec2(1, 1), ImVec2(-1, 1), ImVec2(1, -1), ImVec2(-1, -1)})
     draw->AddText(ImVec2(float(rect.x + 10) + d.x, float(rect.y + 8) + d.y),
@@ -852,7 +859,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
     s.document.endInteraction();
 
   gl_->viewport.drawAnnotations(s, rect);
-  drawViewportHints(s, rect, gl_->viewport.camera);
+  drawViewportHints(s, rect, gl_->viewport.camera, gl_->renderer->refining());
   ImGui::Render();
   const double builtAt = gl_->frameClock.seconds();
   const double awaitedSeconds = awaitEditResult();

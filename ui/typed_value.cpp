@@ -176,6 +176,12 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
     if (!gTyped.held && gDropped.id == id && !gDropped.letters.empty())
       gTyped.value = double(*value), gTyped.held = true;
     gTyped.frame = ImGui::GetFrameCount();
+    // Marked as being typed into: its frame in the theme's accent (a drag field opened for
+    // typing looked as it did for dragging, and an artist could not tell that it waited for
+    // Enter).
+    ImGui::GetWindowDrawList()->AddRect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
+                                        ImGui::GetColorU32(ImGuiCol_CheckMark),
+                                        ImGui::GetStyle().FrameRounding, 0, 2.0f);
     if constexpr (std::is_floating_point_v<T>) showDroppedLetters(id, lengthUnit);
     return false;
   }

@@ -10,7 +10,8 @@
 namespace strata::ui {
 
 // Returns whether the caller should apply `*value` now. While the last item's text input is
-// active, false, and the typed value is held (at most one field types at a time). On the frame
+// active, false, and the typed value is held (at most one field types at a time); the field's
+// frame is then drawn in the theme's accent: it is being typed into. On the frame
 // the field is left (Enter, Tab, a click elsewhere), true with `*value` the typed value; Escape
 // drops it (false, as Dear ImGui restores the text). A drag with the mouse: `changed` as given.
 // `lengthUnit` (a length field's unit, "mm" or "millimetre"; "" for other fields): a length unit
