@@ -22,31 +22,28 @@ double overallExportFraction(const std::string& stage, double fraction, bool sim
     const char* prefix;
     double from, to;
   };
+  // Where each stage ends on the bar; a simplification takes most of it where it runs, and
+  // none where it does not.
+  struct Ends {
+    double estimate, exportAll, merge, simplify, write;
+  };
+  const Ends ends =
+      simplifying ? Ends{0.03, 0.28, 0.3, 0.9, 0.93} : Ends{0.05, 0.65, 0.7, 0.7, 0.8};
   // "evaluate" and "contour" are the first tile's (the evaluation and the contour of a job of
   // one tile: the bar sat at "evaluate 10%" through a long one, an artist's test); "export" is
   // every tile's, the first included, so it starts where "evaluate" does.
-  const double exportFrom = simplifying ? 0.03 : 0.05, exportTo = simplifying ? 0.28 : 0.65;
-  const double firstTile = (exportTo - exportFrom) / double(std::max(1, tiles));
-  const double evaluated = exportFrom + 0.8 * firstTile;
-  const Part plain[] = {{"estimate", 0.0, exportFrom},
-                        {"evaluate", exportFrom, evaluated},
-                        {"contour", evaluated, exportFrom + firstTile},
-                        {"export", exportFrom, exportTo},
-                        {"merge", exportTo, 0.7},
-                        {"write", 0.7, 0.8},
-                        {"check", 0.8, 1.0}};
-  const Part simplified[] = {{"estimate", 0.0, exportFrom},
-                             {"evaluate", exportFrom, evaluated},
-                             {"contour", evaluated, exportFrom + firstTile},
-                             {"export", exportFrom, exportTo},
-                             {"merge", exportTo, 0.3},
-                             {"simplify", 0.3, 0.9},
-                             {"write", 0.9, 0.93},
-                             {"check", 0.93, 1.0}};
+  const double firstTile = (ends.exportAll - ends.estimate) / double(std::max(1, tiles));
+  const double evaluated = ends.estimate + 0.8 * firstTile;
+  const Part parts[] = {{"estimate", 0.0, ends.estimate},
+                        {"evaluate", ends.estimate, evaluated},
+                        {"contour", evaluated, ends.estimate + firstTile},
+                        {"export", ends.estimate, ends.exportAll},
+                        {"merge", ends.exportAll, ends.merge},
+                        {"simplify", ends.merge, ends.simplify},
+                        {"write", ends.simplify, ends.write},
+                        {"check", ends.write, 1.0}};
   const double f = std::clamp(fraction, 0.0, 1.0);
-  const Part* begin = simplifying ? std::begin(simplified) : std::begin(plain);
-  const Part* end = simplifying ? std::end(simplified) : std::end(plain);
-  for (const Part* part = begin; part != end; ++part)
+  for (const Part* part = std::begin(parts); part != std::end(parts); ++part)
     if (stage.rfind(part->prefix, 0) == 0)  // (the ends exactly: one stage's end, the next's start)
       return f >= 1.0 ? part->to : std::min(part->to, part->from + (part->to - part->from) * f);
   return 0.0;  // "start" and anything unknown
