@@ -352,7 +352,7 @@ std::string placementSentence(const EditorState& state, NodeId target, PlaceMode
     const NodePtr moved = movePart(root, dragged, target, mode, fresh);  // throws when refused
     std::string does =
         planPlacement(removeKeepingRoles(root, dragged, fresh + 1), target, mode).sentence +
-        instancesChangedNote(root, moved, dragged);
+        leavesNote(root, moved, dragged) + instancesChangedNote(root, moved, dragged);
     // A role that changes is said in words, with why: a part dropped without a modifier keeps
     // taking material away or not (dropMode), which there may need the other role (an artist
     // saw "adds" turn into "cuts" without a word of why).
@@ -407,8 +407,14 @@ NodeId addPrimitive(EditorState& state, NodeKind kind) {
     id = placeNew(state, node, state.placeMode, note);
     Placement at;
     if (!onto.empty()) {
-      at.point = glm::dvec3(onto.center().x, onto.center().y, onto.max.z);
+      // Onto the selection: the top of its box. With nothing selected: the top of the parts
+      // standing under the scene's middle, else the ground there.
+      const std::optional<double> top =
+          target ? std::optional<double>(onto.max.z)
+                 : topOfPartsUnder(state.document.root(), glm::dvec2(onto.center()));
+      at.point = glm::dvec3(onto.center().x, onto.center().y, top ? *top : 0.0);
       at.normal = glm::dvec3(0.0, 0.0, 1.0);  // the top's: a part that adds rests on it
+      at.onGround = !top;
     } else {
       at.onGround = true;
     }
@@ -1522,6 +1528,9 @@ void logExportEnd(EditorState& state) {
     for (const std::string& w : s.warnings) logWarning(state, "export: " + w);
   } else if (s.succeeded) {
     logWarning(state, "exported " + s.path + ", but its check FAILED (see the Export window)");
+  } else if (s.cancelledAfterWrite) {
+    logWarning(state, "export of " + s.path + " cancelled after the file was written: " +
+                          exportCancelledAfterWriteText);
   } else if (s.cancelled) {
     logInfo(state, "export of " + s.path + " cancelled; nothing was written");
   } else {

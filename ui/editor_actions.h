@@ -181,6 +181,10 @@ NodeId dropTargetFor(const NodePtr& root, NodeId picked);
 // does not fit anyway.
 void startExport(EditorState& state, const std::string& path, int resolution,
                  double simplifyCells = 0.0, bool insist = false);
+// What a cancel after the write leaves (ExportStatus::cancelledAfterWrite), for the log and the
+// Export window alike.
+inline constexpr const char* exportCancelledAfterWriteText =
+    "the new file is in place and whole, but was not checked (export again to check it)";
 // Once the export has ended, says how in the log, once (written and checked, failed, cancelled):
 // the status bar showed "exporting ..." long after. Called every frame (the Export window).
 void logExportEnd(EditorState& state);

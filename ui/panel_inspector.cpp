@@ -41,6 +41,20 @@ constexpr const char* kParamsTopic = "parameters";
 std::string gLengthFormat = "%.4g";
 std::string gLengthUnit;  // the scene's unit, for lengths typed with a unit (commitTypedValue)
 
+// `format` for `value`, with a mark ("\u2026") after the number where the field shows it
+// rounded: a field showed 16 for 15.9694 and an artist took the hole to sit at exactly 16 mm
+// (the whole number shows on hover).
+std::string markedWhereRounded(const std::string& format, double value) {
+  char text[64];
+  ImFormatString(text, sizeof(text), format.c_str(), value);
+  if (std::strtod(text, nullptr) == value) return format;
+  const size_t percent = format.find('%');
+  const size_t conversion =
+      percent == std::string::npos ? std::string::npos : format.find_first_of("gfeGFE", percent);
+  if (conversion == std::string::npos) return format;
+  return format.substr(0, conversion + 1) + "\u2026" + format.substr(conversion + 1);
+}
+
 // Brackets an edit made by the last ImGui item in begin/end interaction and applies it.
 void edited(EditorState& state, bool changed, const std::function<void()>& apply,
             const std::string& topic = "") {
@@ -117,7 +131,8 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     ImGui::SetNextItemWidth(w);
     ImGui::PushStyleColor(ImGuiCol_Text, colors[i]);
     glm::dvec3 next = *value;
-    const std::string shown = mixed[i] ? std::string("~") + fieldFormat : fieldFormat;
+    const std::string marked = markedWhereRounded(fieldFormat, next[i]);
+    const std::string shown = mixed[i] ? std::string("~") + marked : marked;
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
                                      nullptr, shown.c_str());
     changed = commitTypedValue(changed, &next[i], sceneUnitMetres(unit) > 0.0 ? unit : "");
@@ -188,9 +203,9 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   ImGui::SameLine(110.0f);
   ImGui::SetNextItemWidth(-1);
   double value = p.*field;
-  bool changed = ImGui::DragScalar((std::string("##") + label).c_str(), ImGuiDataType_Double,
-                                   &value, float(speed), &minimum, nullptr,
-                                   (mixed ? "~" + gLengthFormat : gLengthFormat).c_str());
+  bool changed = ImGui::DragScalar(
+      (std::string("##") + label).c_str(), ImGuiDataType_Double, &value, float(speed), &minimum,
+      nullptr, ((mixed ? "~" : "") + markedWhereRounded(gLengthFormat, value)).c_str());
   changed = commitTypedValue(changed, &value, gLengthUnit);
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
@@ -735,6 +750,7 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
                                       mirrorPlaneAt(state.document.root(), n->id, places[k].where));
         });
         state.document.endInteraction();
+        state.revealSelection = true;  // the image, where it now lies out of view, is shown
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", places[k].tip.c_str());
       right = ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x;

@@ -228,7 +228,11 @@ void exportWindow(EditorState& state) {
   logExportEnd(state);
   ExportStatus s = state.exportJob->status();
   bool open = true;
-  centreNext();
+  // Its top edge in one place from one export to the next (centred, it moved with the height of
+  // its first frame, and Cancel with it: an artist clicked the bar instead, twice).
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.25f),
+                          ImGuiCond_Appearing, ImVec2(0.5f, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
   ImGui::Begin("Export", s.running ? nullptr : &open, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::TextWrapped("%s", s.path.c_str());
@@ -284,6 +288,9 @@ void exportWindow(EditorState& state) {
                 c.nonManifoldEdges, c.misorientedEdges);
     ImGui::Text("volume %.6g %s^3, area %.6g %s^2, %.2f s", c.volume, unit, c.area, unit,
                 s.seconds);
+  } else if (s.cancelledAfterWrite) {
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "cancelled after the file was written");
+    ImGui::TextWrapped("%s", exportCancelledAfterWriteText);
   } else if (s.cancelled) {
     ImGui::TextUnformatted("cancelled; nothing was written");
   } else {
@@ -300,7 +307,10 @@ void exportWindow(EditorState& state) {
     }
   }
   if (!s.notice.empty()) ImGui::TextWrapped("%s", s.notice.c_str());
-  if (!s.running && ImGui::Button("Close", ImVec2(120, 0))) open = false;
+  // Esc closes the ended export's window, as it closes the dialogs.
+  if (!s.running && (ImGui::Button("Close", ImVec2(120, 0)) ||
+                     (keyPressed(state, GLFW_KEY_ESCAPE) && !ImGui::IsAnyItemActive())))
+    open = false;
   ImGui::End();
   if (!open) state.exportJob.reset();
 }

@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "engine/document/commands.h"
+#include "engine/document/roles.h"
 #include "engine/eval/evaluator.h"
 
 namespace strata::ui {
@@ -100,6 +101,23 @@ Bounds computeSceneBounds(const NodePtr& root) {
   return b;
 }
 }  // namespace
+
+std::optional<double> topOfPartsUnder(const NodePtr& root, glm::dvec2 xy) {
+  std::optional<double> top;
+  if (!root) return top;
+  for (NodeId id : treeOrder(root)) {
+    const NodePtr node = findNode(root, id);
+    if (!node || isOperation(node->kind) || removesMaterial(root, id)) continue;
+    std::vector<const Node*> path;  // hidden where it or a node above it is
+    if (!pathToNode(root, id, &path) ||
+        std::any_of(path.begin(), path.end(), [](const Node* n) { return !n->visible; }))
+      continue;
+    const Bounds b = selectionBounds(root, {id});
+    if (b.empty() || xy.x < b.min.x || xy.x > b.max.x || xy.y < b.min.y || xy.y > b.max.y) continue;
+    top = top ? std::max(*top, b.max.z) : b.max.z;
+  }
+  return top;
+}
 
 LeafStyleTable leafStyles(const NodePtr& root, const std::vector<NodeId>& selection) {
   LeafStyleTable table;

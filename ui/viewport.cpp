@@ -508,8 +508,19 @@ void Viewport::resolvePicks(ViewportRenderer& renderer, EditorState& state, cons
         wheelPivot_->ortho == camera.ortho;
     if (!samePivot) {
       wheelPivot_ = WheelPivot{wheel_->mouse, std::nullopt};
-      if (std::optional<PickHit> hit = pickAt(renderer, state, rect, wheel_->mouse, pixelScale))
+      if (std::optional<PickHit> hit = pickAt(renderer, state, rect, wheel_->mouse, pixelScale)) {
         wheelPivot_->point = hit->position;
+      } else {
+        // Over empty space: towards the point under the cursor at the target's depth, not the
+        // target (zoomed in from the sky the view went into the middle of the part: an artist's
+        // test).
+        const Ray ray = camera.rayThrough(wheel_->mouse, glm::dvec2(rect.width, rect.height));
+        const double along = glm::dot(ray.direction, camera.forward());
+        if (along > 1e-9)
+          wheelPivot_->point =
+              ray.origin +
+              ray.direction * (glm::dot(camera.target - ray.origin, camera.forward()) / along);
+      }
     }
     if (wheelPivot_->point)
       camera.zoomAbout(*wheelPivot_->point, wheel_->steps);

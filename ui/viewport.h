@@ -156,9 +156,9 @@ class Viewport {
   bool clickPending_ = false;
   std::optional<PendingClick> click_;
   // Wheel steps of this frame at `mouse`, zoomed about the surface under it by resolvePicks
-  // (Camera::zoomAbout), about the target where the cursor shows nothing. The surface point is
-  // looked up once for a run of steps: while the cursor stays on its pixel and the camera is as
-  // the last zoom left it, the point is still under it (zoomAbout keeps it there).
+  // (Camera::zoomAbout), about the point under it at the target's depth where it shows nothing. The
+  // surface point is looked up once for a run of steps: while the cursor stays on its pixel and the
+  // camera is as the last zoom left it, the point is still under it (zoomAbout keeps it there).
   struct PendingWheel {
     glm::dvec2 mouse;
     double steps = 0.0;

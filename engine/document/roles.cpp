@@ -1,5 +1,6 @@
 #include "engine/document/roles.h"
 
+#include <algorithm>
 #include <unordered_set>
 
 #include "engine/document/commands.h"
@@ -244,6 +245,44 @@ std::string instancesChangedNote(const NodePtr& before, const NodePtr& after, No
   if (named == 0) return "";
   if (more > 0) note += " and " + std::to_string(more) + " more";
   return note + (named + more == 1 ? " changes with it" : " change with it");
+}
+
+std::string leavesNote(const NodePtr& before, const NodePtr& after, NodeId moved) {
+  NodeLocation was;
+  if (!locateNode(before, moved, &was) || !was.parent) return "";
+  const Node& parent = *was.parent;
+  if (!findNode(after, parent.id)) return "";
+  // Still a child of its parent, or inside a new operation that took a sibling's place there
+  // (wrapped with it): it acts there as before, or its role's change is said. Inside a child
+  // that was there before (the cutter of a plate dropped into the plate's body), or out of it,
+  // it no longer does what it did.
+  std::vector<const Node*> path;
+  pathToNode(after, moved, &path);
+  const auto at =
+      std::find_if(path.begin(), path.end(), [&](const Node* n) { return n->id == parent.id; });
+  if (at != path.end() && at + 1 != path.end() &&
+      ((*(at + 1))->id == moved || !findNode(before, (*(at + 1))->id)))
+    return "";
+  std::string note;
+  switch (childRole(parent, was.index)) {
+    case ChildRole::Base:
+      note = "; it is no longer the base of " + quoted(parent) +
+             (parent.children.size() > 1 ? ", whose cutters then cut nothing" : "");
+      break;
+    case ChildRole::Cut:
+      note = "; it no longer cuts " + quoted(*parent.children.front());
+      break;
+    case ChildRole::Intersect:
+      note = "; it no longer intersects the rest of " + quoted(parent);
+      break;
+    default:
+      note = "; it no longer adds to " + quoted(parent);
+      break;
+  }
+  if (patternOf(parent.kind) != Pattern::None) note += ", nor is repeated by it";
+  const NodePtr left = findNode(after, parent.id);
+  if (left->children.empty()) note += "; " + quoted(parent) + " is left empty";
+  return note;
 }
 
 NodeKind operationKindFor(PlaceMode mode) {

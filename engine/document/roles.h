@@ -85,6 +85,13 @@ PlaceMode modeKeepingEffect(const NodePtr& root, NodeId target, PlaceMode kept, 
 // "; \"cross bore along y\" (an instance of \"cross bore\") changes with it" ("" for none). A part
 // dragged out of a group that an instance repeats changed the instance too, without a word.
 std::string instancesChangedNote(const NodePtr& before, const NodePtr& after, NodeId moved);
+// What a move of node `moved` (the tree `before`, then `after`) stops it doing where it was,
+// for the artist before a drop is released: "; it no longer cuts \"body\"", "; it no longer
+// adds to \"ribs\", nor is repeated by it; \"ribs\" is left empty" ("" where it stays within its
+// parent). A cutter dragged elsewhere took its hole out of the part it cut, and a solid dragged
+// out of a mirror took its image, with a tooltip that named only where they went (an artist's
+// test).
+std::string leavesNote(const NodePtr& before, const NodePtr& after, NodeId moved);
 // The operation kind whose Boolean the mode applies (from the kind table).
 NodeKind operationKindFor(PlaceMode mode);
 

@@ -1,8 +1,10 @@
 #include "engine/jobs/export_job.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <iterator>
 #include <new>
+#include <optional>
 
 #include "engine/export/drop_specks.h"
 #include "engine/export/export_scene.h"
@@ -100,6 +102,14 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
   Stopwatch clock;
   const std::string path = status().path;
   ExportStatus result;
+  // The file as it was before the job (none, or its time of last writing): a cancel tells from
+  // it whether the new file was already put in place.
+  const auto stamp = [&path] {
+    std::error_code error;
+    const auto time = std::filesystem::last_write_time(path, error);
+    return error ? std::optional<std::filesystem::file_time_type>() : std::optional(time);
+  };
+  const std::optional<std::filesystem::file_time_type> before = stamp();
   try {
     progress_->report("estimate", 0.0);
     // The probes report as the one stage "estimate", never going back (each probe and a
@@ -163,6 +173,8 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
       result.warnings.push_back(specks);
   } catch (const Cancelled&) {
     result.cancelled = true;
+    const std::optional<std::filesystem::file_time_type> after = stamp();
+    result.cancelledAfterWrite = after && after != before;
   } catch (...) {
     result.error = jobErrorText(std::current_exception(), "; export at a lower resolution");
   }
@@ -171,6 +183,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     s.finished = true;
     s.succeeded = result.succeeded;
     s.cancelled = result.cancelled;
+    s.cancelledAfterWrite = result.cancelledAfterWrite;
     s.error = result.error;
     s.refused = result.refused;
     s.check = result.check;

@@ -32,6 +32,10 @@ struct ExportStatus {
   bool finished = false;   // ended (succeeded, failed or cancelled)
   bool succeeded = false;  // written, re-read and checked
   bool cancelled = false;
+  // Cancelled once the file was written: the new file is in place, whole, but was not checked
+  // (the check after the write leaves it there: export_scene.h). The window said "nothing was
+  // written" beside a complete 286 MiB file (an artist's test).
+  bool cancelledAfterWrite = false;
   // "start", "estimate", "evaluate", "contour" (the first tile's), "export", "merge",
   // "simplify", "write <format>", "check"
   std::string stage;

@@ -134,6 +134,41 @@ TEST(Roles, APartAddedOntoAModifierOrAPatternJoinsWhatItChangesOrRepeats) {
   }
 }
 
+// A drop's tooltip says what the moved part stops doing where it was: a cutter dragged away
+// took its hole out of the part it cut, a solid dragged out of a mirror its image, and the
+// tooltip named only where they went (an artist's test).
+TEST(Roles, AMovedPartSaysWhatItNoLongerDoesWhereItWas) {
+  const NodePtr root = sampleTree();
+  const auto name = [&](NodeId id) { return "\"" + findNode(root, id)->name + "\""; };
+  // The cutter onto the box: it no longer cuts the sphere.
+  EXPECT_EQ(leavesNote(root, movePart(root, 5, 2, PlaceMode::Cut, 10), 5),
+            "; it no longer cuts " + name(4));
+  // The base away: its difference keeps cutters over an empty base.
+  EXPECT_EQ(leavesNote(root, movePart(root, 4, 6, PlaceMode::Add, 10), 4),
+            "; it is no longer the base of " + name(3) + ", whose cutters then cut nothing");
+  // Beside a sibling, or wrapped with one, it stays where it acted: nothing to say.
+  EXPECT_EQ(leavesNote(root, movePart(root, 2, 6, PlaceMode::Add, 10), 2), "");
+  EXPECT_EQ(leavesNote(root, movePart(root, 5, 4, PlaceMode::Add, 10), 5), "");
+  // Out of a mirror: its image goes, and the mirror is left empty.
+  const NodePtr mirrored = insertChild(
+      root, 1, -1, makeOperationNode(NodeKind::Mirror, 7, {makePrimitiveNode(NodeKind::Cone, 8)}));
+  EXPECT_EQ(leavesNote(mirrored, movePart(mirrored, 8, 2, PlaceMode::Add, 10), 8),
+            "; it no longer adds to \"" + findNode(mirrored, 7)->name +
+                "\", nor is repeated by it; \"" + findNode(mirrored, 7)->name + "\" is left empty");
+  // Wrapped with the base it cut, it still cuts it: nothing to say.
+  EXPECT_EQ(leavesNote(root, movePart(root, 5, 4, PlaceMode::Cut, 10), 5), "");
+  // Into the base it cut (the bore of a plate dropped into the plate's body, a union): it no
+  // longer cuts it, though it stays inside its old parent.
+  const NodePtr plate = makeOperationNode(
+      NodeKind::Difference, 1,
+      {makeOperationNode(NodeKind::Union, 2, {makePrimitiveNode(NodeKind::Box, 3)}),
+       makePrimitiveNode(NodeKind::Cylinder, 4)});
+  EXPECT_EQ(leavesNote(plate, movePart(plate, 4, 2, PlaceMode::Add, 10), 4),
+            "; it no longer cuts \"" + findNode(plate, 2)->name + "\"");
+  // The root stays the root.
+  EXPECT_EQ(leavesNote(root, root, 1), "");
+}
+
 // Switching an operation's Boolean changes its children's roles: said before the click.
 TEST(Roles, TheSentenceOfAKindChangeNamesEveryChildWhoseRoleChanges) {
   const NodePtr body = makeOperationNode(

@@ -265,6 +265,7 @@ void cancelAt(const std::string& stage, const std::string& path, const std::stri
   const ExportStatus s = job.status();
   EXPECT_TRUE(s.finished);
   EXPECT_TRUE(s.cancelled);
+  EXPECT_FALSE(s.cancelledAfterWrite);
   EXPECT_FALSE(s.succeeded);
   EXPECT_EQ(s.error, "");
 
@@ -288,6 +289,30 @@ TEST(ExportJob, CancelledAtAnyStageLeavesNothingAndKeepsTheOldFile) {
     SCOPED_TRACE(stage + ", no earlier file");
     const std::string folder = freshFolder("cancel_new");
     cancelAt(stage, folder + "/part.ply", folder);
+  }
+}
+
+// A cancel during the check leaves the new file, whole: the job says so, over an earlier file
+// and where there was none (the window said "nothing was written" beside a complete file: an
+// artist's test).
+TEST(ExportJob, CancelledDuringTheCheckSaysTheFileWasWritten) {
+  for (const bool earlier : {true, false}) {
+    SCOPED_TRACE(earlier ? "over an earlier file" : "no earlier file");
+    const std::string folder = freshFolder("cancel_check");
+    const std::string path = folder + "/part.stl";
+    if (earlier) writeText(path, "the previous export\n");
+    ExportWatch watch("check");
+    ExportJob job(boxMinusSphere(32), path, smallTiles(), std::make_shared<CpuBackend>(),
+                  watch.listener());
+    ASSERT_TRUE(watch.waitUntilHeld()) << "never reached the check";
+    job.cancel();
+    watch.release();
+    ASSERT_TRUE(watch.waitUntilFinished());
+    const ExportStatus s = job.status();
+    EXPECT_TRUE(s.cancelled);
+    EXPECT_TRUE(s.cancelledAfterWrite);
+    EXPECT_FALSE(s.succeeded);
+    EXPECT_GT(readMeshFileRaw(path).triangles.size(), 100u) << "the new file, whole";
   }
 }
 
