@@ -147,10 +147,10 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
   if (!group)
     workers = exportWorkers(choice, args.text("--gpus", "all"), args.has("--gpus"), &perDevice);
 
+  JobEstimate estimate;  // process 0's
   if (root) {
     Progress probe;
     // The tiling the export will pick: each worker's share of its device's memory.
-    JobEstimate estimate;
     namingInput(input, {output}, [&] {
       estimate =
           estimateExport(scene, options, output, choice.backend, workersMemory(workers, perDevice),
@@ -201,6 +201,12 @@ int exportAndReport(const Scene& scene, const CliArgs& args, const std::string& 
                                               terminal.progress(), notice);
     });
   }
+  // Bodies the cells alone joined or parted (a contact or a gap thinner than a cell).
+  const glm::ivec3 cells = summary.result.contour.grid.cells;
+  if (const std::string bodies = bodiesDifferSentence(
+          estimate, std::max(cells.x, std::max(cells.y, cells.z)), summary.result.check.components);
+      !bodies.empty())
+    summary.result.contour.warnings.push_back(bodies);
   return printExportSummary(args, summary);
 }
 

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -709,6 +711,44 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
     });
     vecField("centre", &PatternParams::center);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("A point of the axis (the array's frame)");
+    // The axis placed from what the copies go round, each selected array from its own
+    // (circularAxisThroughNeighbours), or back through the array's origin.
+    ImGui::TextUnformatted("axis through");
+    ImGui::SameLine(110.0f);
+    const auto placeAxes = [&](const std::function<PatternParams(const NodePtr&)>& placed) {
+      state.document.beginInteraction();
+      guarded(state, [&] {
+        for (const NodePtr& n : nodes) state.document.setPattern(n->id, placed(n));
+      });
+      state.document.endInteraction();
+      state.revealSelection = true;  // copies now lying out of view are shown
+    };
+    if (ImGui::SmallButton("origin"))
+      placeAxes([&](const NodePtr& n) {
+        PatternParams q = n->pattern;
+        q.center = glm::dvec3(0.0);
+        return q;
+      });
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The axis through the array's origin");
+    ImGui::SameLine();
+    const std::optional<CircularAxisPlace> around =
+        circularAxisThroughNeighbours(state.document.root(), node->id);
+    ImGui::BeginDisabled(!around);
+    if (ImGui::SmallButton("what it goes round"))
+      placeAxes([&](const NodePtr& n) {
+        const std::optional<CircularAxisPlace> place =
+            circularAxisThroughNeighbours(state.document.root(), n->id);
+        return place ? place->params : n->pattern;
+      });
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip(
+          "%s", around
+                    ? ("The axis through the middle of " + around->around +
+                       " (what a cutter cuts; else the parts beside it): bolt holes round a flange")
+                          .c_str()
+                    : "Nothing beside the array to go round (it has no parent, or its neighbours "
+                      "show nothing)");
   } else if (pattern == Pattern::Mirror) {
     axisField(state, nodes, "across",
               "The mirror plane's normal: x mirrors left to right across the yz plane", p.axis);

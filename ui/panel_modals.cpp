@@ -262,6 +262,16 @@ void exportWindow(EditorState& state) {
     if (!s.fileDifference.empty()) ImGui::TextWrapped("%s", s.fileDifference.c_str());
     ImGui::Text("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles, c.vertices,
                 c.components, c.genus);
+    // Several bodies: what joins them said plainly (a sphere resting on a box was two bodies in
+    // the file, "watertight", and nothing said why: an artist's test).
+    if (passed && c.components > 1) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+      ImGui::TextWrapped(
+          "%d separate bodies: parts that only touch (at a point or along an edge) are not "
+          "joined; overlap them to make one body",
+          c.components);
+      ImGui::PopStyleColor();
+    }
     // Parts the export's cells could not keep (the report said nothing of a sphere lost in
     // it: an artist's test).
     // A few in full, the rest counted (the log holds them all): a window of every warning grew
@@ -399,10 +409,16 @@ void exportOptionsDialog(EditorState& state) {
   for (int preset : {256, 512, 1024, 2048}) {
     char label[16];
     std::snprintf(label, sizeof(label), "%d", preset);
+    // The preset the resolution stands at (typed, remembered from the last export, or clicked)
+    // looks pressed: a remembered 1024 showed four alike buttons (an artist's test).
+    const bool current = resolution == preset;
+    if (current)
+      ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
     if (ImGui::Button(label, ImVec2(56, 0))) {
       resolution = preset;
       clampNote.clear();
     }
+    if (current) ImGui::PopStyleColor();
     ImGui::SameLine();
   }
   ImGui::NewLine();

@@ -17,6 +17,7 @@
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
+#include "ui/text_fit.h"
 #include "ui/typed_value.h"
 #include "ui/viewport.h"
 
@@ -421,14 +422,30 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
   // preview's error or the latest message, and the evaluation under way.
   if (!state.previewError.empty()) {
     ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "|  %s", state.previewError.c_str());
+    const std::string fitted =
+        fitWithEllipsis("|  " + state.previewError, ImGui::GetContentRegionAvail().x,
+                        [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
+    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "%s", fitted.c_str());
+    if (ImGui::IsItemHovered() && fitted.size() != state.previewError.size() + 3) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+      ImGui::TextUnformatted(state.previewError.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
   } else if (LogLine* message = statusLine(state)) {
     LogLine& last = *message;
     ImGui::SameLine();
     ImVec4 color = last.level == LogLevel::Error     ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f)
                    : last.level == LogLevel::Warning ? ImVec4(1.0f, 0.8f, 0.3f, 1.0f)
                                                      : ImVec4(0.6f, 0.85f, 0.6f, 1.0f);
-    ImGui::TextColored(color, "|  %s", last.text.c_str());
+    // A message longer than what is left of the bar ends in an ellipsis (it ran off the edge,
+    // cut mid-word with nothing to say so: an artist's test); the whole of it on hover.
+    const float room = ImGui::GetContentRegionAvail().x;
+    const std::string fitted = fitWithEllipsis("|  " + last.text, room, [](const std::string& s) {
+      return ImGui::CalcTextSize(s.c_str()).x;
+    });
+    ImGui::TextColored(color, "%s", fitted.c_str());
     // A message longer than the bar: the whole of it on hover, and a click opens the messages.
     if (ImGui::IsItemHovered()) {
       ImGui::BeginTooltip();

@@ -103,19 +103,29 @@ Bounds computeSceneBounds(const NodePtr& root) {
 }  // namespace
 
 std::optional<double> topOfPartsUnder(const NodePtr& root, glm::dvec2 xy) {
+  // One walk down the tree carrying the parent's world matrix and whether the parts below take
+  // material away (a cutter's parity), as removesMaterial and parentWorldMatrix would find for
+  // each leaf from the root: linear in the nodes, on the UI thread at every palette click.
   std::optional<double> top;
-  if (!root) return top;
-  for (NodeId id : treeOrder(root)) {
-    const NodePtr node = findNode(root, id);
-    if (!node || isOperation(node->kind) || removesMaterial(root, id)) continue;
-    std::vector<const Node*> path;  // hidden where it or a node above it is
-    if (!pathToNode(root, id, &path) ||
-        std::any_of(path.begin(), path.end(), [](const Node* n) { return !n->visible; }))
-      continue;
-    const Bounds b = selectionBounds(root, {id});
-    if (b.empty() || xy.x < b.min.x || xy.x > b.max.x || xy.y < b.min.y || xy.y > b.max.y) continue;
-    top = top ? std::max(*top, b.max.z) : b.max.z;
-  }
+  std::function<void(const NodePtr&, const glm::dmat4&, bool, int)> visit =
+      [&](const NodePtr& node, const glm::dmat4& parent, bool removes, int depth) {
+        if (!node || !node->visible || depth > 512) return;  // hidden: it and all below it
+        if (!isOperation(node->kind)) {
+          if (removes) return;
+          const Bounds b = nodeBounds(node, root, parent);
+          if (b.empty() || xy.x < b.min.x || xy.x > b.max.x || xy.y < b.min.y || xy.y > b.max.y)
+            return;
+          top = top ? std::max(*top, b.max.z) : b.max.z;
+          return;
+        }
+        // A mirror that drops its original shows its children as their image.
+        const glm::dmat4 below = parent * node->transform.matrix() *
+                                 firstPlacement(patternOf(node->kind), node->pattern);
+        for (size_t c = 0; c < node->children.size(); ++c)
+          visit(node->children[c], below,
+                removes != (childRole(*node, static_cast<int>(c)) == ChildRole::Cut), depth + 1);
+      };
+  visit(root, glm::dmat4(1.0), false, 0);
   return top;
 }
 
@@ -254,6 +264,42 @@ PatternParams mirrorPlaneAt(const NodePtr& root, NodeId id, MirrorPlaneAt where)
                 : where == MirrorPlaneAt::PartsHighSide ? parts.max[a]
                                                         : parts.center()[a];
   return p;
+}
+
+std::optional<CircularAxisPlace> circularAxisThroughNeighbours(const NodePtr& root, NodeId id) {
+  const NodePtr node = findNode(root, id);
+  NodeLocation where;
+  if (!node || patternOf(node->kind) != Pattern::Circular || !locateNode(root, id, &where) ||
+      !where.parent)
+    return std::nullopt;
+  const Node& parent = *where.parent;
+  const ChildRole role = childRole(parent, where.index);
+  std::vector<NodePtr> neighbours;
+  if (role == ChildRole::Cut || role == ChildRole::Intersect)
+    neighbours.push_back(parent.children.front());
+  else
+    for (const NodePtr& sibling : parent.children)
+      if (sibling.get() != node.get()) neighbours.push_back(sibling);
+  // Their boxes in the array's own frame: they sit in the parent's frame, the array's own
+  // transform between the two.
+  const glm::dmat4 intoArray = glm::inverse(node->transform.matrix());
+  Bounds box;
+  std::vector<const Node*> shown;
+  for (const NodePtr& n : neighbours) {
+    const Bounds b = nodeBounds(n, root, intoArray);
+    if (b.empty()) continue;
+    box.include(b);
+    shown.push_back(n.get());
+  }
+  if (box.empty()) return std::nullopt;
+  CircularAxisPlace place;
+  place.params = node->pattern;
+  const int a = std::clamp(place.params.axis, 0, 2);
+  for (int k = 0; k < 3; ++k)
+    if (k != a) place.params.center[k] = box.center()[k];
+  place.around = nodeLabel(*shown.front());
+  if (shown.size() > 1) place.around += " and " + std::to_string(shown.size() - 1) + " more";
+  return place;
 }
 
 double niceLength(double approximate) {

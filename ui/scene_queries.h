@@ -93,6 +93,19 @@ enum class MirrorPlaneAt { Origin, PartsCentre, PartsLowSide, PartsHighSide };
 // `id` is not a mirror or its parts show nothing.
 PatternParams mirrorPlaneAt(const NodePtr& root, NodeId id, MirrorPlaneAt where);
 
+// Where a circular array's axis goes, placed from its neighbours (the inspector's "axis
+// through" buttons): what its copies go round is usually what they cut or join (bolt holes round
+// a flange), whose middle the artist had to read off and type (an artist's test). The
+// neighbours: for a cutter or an intersector (of a difference or an intersection), the base it
+// acts on; otherwise its visible siblings. None where it has no parent or they show nothing.
+struct CircularAxisPlace {
+  PatternParams params;  // the array's parameters with the axis through their middle
+  std::string around;    // "union 'body'", "box 'hub' and 2 more" (nodeLabel): for the tooltip
+};
+// The parameters of circular array `id` with its axis's point moved to the middle of its
+// neighbours' box, taken in the array's frame (the coordinate along its axis kept).
+std::optional<CircularAxisPlace> circularAxisThroughNeighbours(const NodePtr& root, NodeId id);
+
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);
 

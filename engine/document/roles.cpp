@@ -251,7 +251,8 @@ std::string leavesNote(const NodePtr& before, const NodePtr& after, NodeId moved
   NodeLocation was;
   if (!locateNode(before, moved, &was) || !was.parent) return "";
   const Node& parent = *was.parent;
-  if (!findNode(after, parent.id)) return "";
+  const NodePtr left = findNode(after, parent.id);
+  if (!left) return "";
   // Still a child of its parent, or inside a new operation that took a sibling's place there
   // (wrapped with it): it acts there as before, or its role's change is said. Inside a child
   // that was there before (the cutter of a plate dropped into the plate's body), or out of it,
@@ -280,7 +281,6 @@ std::string leavesNote(const NodePtr& before, const NodePtr& after, NodeId moved
       break;
   }
   if (patternOf(parent.kind) != Pattern::None) note += ", nor is repeated by it";
-  const NodePtr left = findNode(after, parent.id);
   if (left->children.empty()) note += "; " + quoted(parent) + " is left empty";
   return note;
 }

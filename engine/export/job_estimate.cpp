@@ -8,6 +8,7 @@
 #include "engine/eval/evaluator.h"
 #include "engine/export/check_streamed.h"
 #include "engine/export/simplify_mesh.h"
+#include "engine/geometry/mesh_check.h"
 #include "engine/io/mesh_formats.h"
 #include "engine/ldi/offset_math.h"
 #include "engine/util/error.h"
@@ -210,6 +211,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   const uint64_t present = peakResidentBytes();  // before the probes, which add their own
   ContourReport report;
   size_t probeTriangles = 0;
+  TriangleMesh lastProbe;
   double seconds = 0.0;
   // The job's modifiers run on each tile's grown window (once where that is the whole grid).
   const glm::dvec3 window = grownTileCells(e.grid, tiling.tileCells, tiling.halo);
@@ -224,6 +226,7 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
       report = ContourReport();
       ExportMesh mesh = contourScene(scene, probe, probeOptions, progress, &report);
       probeTriangles = mesh.mesh.triangles.size();
+      lastProbe = std::move(mesh.mesh);  // its components counted after the timing
       return ProbeRun{report.grid, report.modifySeconds, report.modifiedNodes};
     });
   } catch (const BackendOutOfMemory&) {
@@ -231,6 +234,8 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   }
   const double scale = scaleFrom(report.grid, e.grid);
   e.probed = true;
+  e.probeComponents = checkMesh(lastProbe).components;  // as the export's check counts them
+  e.probeCells = longestSide(report.grid);
   e.surfels = uint64_t(double(report.surfels) * scale);
   e.triangles = counted && counted->triangles > 0 ? counted->triangles
                                                   : uint64_t(double(probeTriangles) * scale);
@@ -356,6 +361,21 @@ TriangleEstimate estimateExportTriangles(const Scene& scene, int resolution, dou
       std::min(e.triangles, simplifiedAtResolution(coarse.simplified, coarse.cells, fine.simplified,
                                                    fine.cells, jobCells));
   return e;
+}
+
+std::string bodiesDifferSentence(const JobEstimate& estimate, int jobCells, int components) {
+  if (!estimate.probed || estimate.probeComponents < 0 || components == estimate.probeComponents)
+    return "";
+  const auto bodies = [](int n) {
+    return std::to_string(n) + (n == 1 ? " body" : " separate bodies");
+  };
+  return bodies(components) + " at " + std::to_string(jobCells) +
+         " cells, where the estimate's probe of the same scene at " +
+         std::to_string(estimate.probeCells) + " cells made " +
+         std::to_string(estimate.probeComponents) +
+         ": where parts touch at a point or along an edge, lie closer than a cell or are a few "
+         "cells across, the cells decide what joins, what parts and what shows. Overlap parts "
+         "meant to be one body; keep parts meant apart more than a cell apart";
 }
 
 uint64_t simplifiedAtResolution(uint64_t coarseCount, int coarseCells, uint64_t count, int cells,

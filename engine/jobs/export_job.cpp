@@ -171,6 +171,13 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     if (const std::string specks = droppedSpecksSentence(report.contour.droppedSpecks);
         !specks.empty())
       result.warnings.push_back(specks);
+    // Bodies joined or apart by the cells alone (a sphere resting on a box: one body at 512
+    // cells, two at 1024, without a word: an artist's test).
+    const glm::ivec3 cells = report.contour.grid.cells;
+    if (const std::string bodies = bodiesDifferSentence(
+            estimate, std::max(cells.x, std::max(cells.y, cells.z)), report.check.components);
+        !bodies.empty())
+      result.warnings.push_back(bodies);
   } catch (const Cancelled&) {
     result.cancelled = true;
     const std::optional<std::filesystem::file_time_type> after = stamp();

@@ -14,6 +14,8 @@
 #include <string>
 
 #include "engine/io/mesh_formats.h"
+#include "engine/io/scene_file.h"
+#include "tests/support/export_cases.h"
 
 namespace {
 
@@ -238,6 +240,19 @@ TEST(CliExport, EveryFormatPassesTheCheck) {
     EXPECT_EQ(j["check"]["components"].get<int>(), 1);
     EXPECT_NEAR(j["volume"].get<double>(), 194.288371812, 0.05 * 194.288371812) << ext;
   }
+}
+
+// Bodies the cells alone parted are said by the command line too (bodiesDifferSentence): bars
+// joined at the estimate's probe and apart at the export's cells.
+TEST(CliExport, BodiesTheCellsAloneJoinOrPartAreSaid) {
+  const std::string scene = temp("close_bars.strata.json");
+  strata::saveScene(strata::test::barsCloserThanTheProbesCell(600), scene);
+  CliRun r =
+      strata("export " + scene + " --resolution 600 --backend cpu -q -o " + temp("close_bars.stl"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 separate bodies at 600 cells, where the estimate's probe"),
+            std::string::npos)
+      << r.output;
 }
 
 // --simplify: fewer triangles, the same check passed, the deviation measured and reported.

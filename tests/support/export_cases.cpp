@@ -2,7 +2,12 @@
 
 #include <cmath>
 
+#include "engine/eval/cpu_backend.h"
+#include "engine/eval/evaluator.h"
+#include "engine/export/export_scene.h"
+#include "engine/export/job_estimate.h"
 #include "engine/geometry/mesh_check.h"
+#include "engine/util/error.h"
 #include "tests/support/scene_builder.h"
 
 namespace strata::test {
@@ -42,6 +47,30 @@ NodePtr foldedSliver() {
   t.translate = glm::dvec3(-1.0);
   t.scale = glm::dvec3(-0.3, 0.3, 0.3);
   return withTransform(meshLeaf(mesh), t);
+}
+
+Scene barsWithAGap(double gapFrom, double gapTo, int resolution) {
+  return makeScene(
+      op(NodeKind::Union, {box({gapFrom + 50.0, 5.0, 5.0}, {(gapFrom - 50.0) / 2.0, 0.0, 0.0}),
+                           box({50.0 - gapTo, 5.0, 5.0}, {(gapTo + 50.0) / 2.0, 0.0, 0.0})}),
+      resolution);
+}
+
+Scene barsCloserThanTheProbesCell(int resolution, int* probeCells) {
+  const Scene any = barsWithAGap(-1.0, 1.0, resolution);
+  Progress quiet;
+  const JobEstimate estimate =
+      estimateExport(any, ExportOptions{}, "bars.stl", std::make_shared<CpuBackend>(), quiet);
+  if (!estimate.probed) throw Error("barsCloserThanTheProbesCell: the export is not probed");
+  const Grid probe = Evaluator::gridFor(any, estimate.probeCells);
+  const Grid job = Evaluator::gridFor(any, resolution);
+  // The probe's nodes either side of x = 0, and the gap half-way between them.
+  const double below = probe.origin.x + std::floor(-probe.origin.x / probe.h) * probe.h;
+  const double middle = below + 0.5 * probe.h, half = 0.15 * probe.h;
+  if (2.0 * half < 2.0 * job.h)
+    throw Error("barsCloserThanTheProbesCell: the export's cells would not see the gap");
+  if (probeCells) *probeCells = estimate.probeCells;
+  return barsWithAGap(middle - half, middle + half, resolution);
 }
 
 }  // namespace strata::test

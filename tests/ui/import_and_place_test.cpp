@@ -2,6 +2,7 @@
 // palette do to the document (ui/editor_actions.h), without a window.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include <glm/geometric.hpp>
@@ -163,6 +164,15 @@ TEST(ImportAndPlace, ADropOnAFlatFaceLeavesThePartUnturned) {
   const Transform t = findNode(state.document.root(), flat)->transform;
   EXPECT_EQ(t.rotateDegrees, glm::dvec3(0.0));
   EXPECT_EQ(t.scale, glm::dvec3(1.0));
+  // The status gives the contact point and the centre the inspector's move fields show.
+  ASSERT_FALSE(state.log.empty());
+  char centre[96];
+  std::snprintf(centre, sizeof(centre), "its centre at (%.4g, %.4g, %.4g)", t.translate.x,
+                t.translate.y, t.translate.z);
+  EXPECT_NE(state.log.back().text.find("touching the surface at (1, 2, 3)"), std::string::npos)
+      << state.log.back().text;
+  EXPECT_NE(state.log.back().text.find(centre), std::string::npos) << state.log.back().text;
+  EXPECT_NE(t.translate, glm::dvec3(1, 2, 3));  // it rests on the point: its centre lies above
   const glm::dvec3 slant = glm::normalize(glm::dvec3(0.0, 0.1, 1.0));
   const NodeId turned =
       addPrimitiveAt(state, NodeKind::Box, Placement{glm::dvec3(1, 2, 3), false, slant});

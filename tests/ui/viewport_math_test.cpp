@@ -2,15 +2,20 @@
 // (ui/camera.h, ui/gizmo.h), and the import options (ui/import_options.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/document/commands.h"
 #include "engine/document/document.h"
+#include "engine/document/roles.h"
 #include "engine/eval/cpu_backend.h"
 #include "engine/eval/evaluator.h"
+#include "engine/io/scene_file.h"
+#include "tests/support/scene_builder.h"
 #include "ui/camera.h"
 #include "ui/gizmo.h"
 #include "ui/scene_queries.h"
@@ -408,6 +413,44 @@ TEST(SelectionBounds, TheTopOfThePartsUnderAPoint) {
   // Hidden: not standing there.
   const NodePtr hidden = editNode(root, 5, [](Node& n) { n.visible = false; });
   EXPECT_EQ(topOfPartsUnder(hidden, {0.0, 0.0}), std::nullopt);
+  // Moved with what holds them.
+  const NodePtr raised = editNode(root, 1, [](Node& n) { n.transform.translate.z = 3.0; });
+  EXPECT_EQ(topOfPartsUnder(raised, {0.0, 0.0}), std::optional<double>(13.0));
+}
+
+// The walk (one pass carrying the world matrix and the cutters' parity) answers as the
+// definition does, leaf by leaf from the root, on every bundled scene at a grid of points.
+TEST(SelectionBounds, TheTopOfThePartsUnderAPointIsThePerLeafDefinitionsOnEveryBundledScene) {
+  int scenes = 0, answered = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::assetsDir() + "/scenes")) {
+    if (entry.path().string().find(".strata.json") == std::string::npos) continue;
+    const NodePtr root = loadScene(entry.path().string()).root;
+    ++scenes;
+    const Bounds all = sceneBounds(root);
+    for (int i = 0; i <= 6; ++i)
+      for (int j = 0; j <= 6; ++j) {
+        const glm::dvec2 xy(all.min.x + (all.max.x - all.min.x) * i / 6.0,
+                            all.min.y + (all.max.y - all.min.y) * j / 6.0);
+        std::optional<double> expected;
+        for (NodeId id : treeOrder(root)) {
+          const NodePtr node = findNode(root, id);
+          if (isOperation(node->kind) || removesMaterial(root, id)) continue;
+          std::vector<const Node*> path;
+          pathToNode(root, id, &path);
+          if (std::any_of(path.begin(), path.end(), [](const Node* n) { return !n->visible; }))
+            continue;
+          const Bounds b = selectionBounds(root, {id});
+          if (b.empty() || xy.x < b.min.x || xy.x > b.max.x || xy.y < b.min.y || xy.y > b.max.y)
+            continue;
+          expected = expected ? std::max(*expected, b.max.z) : b.max.z;
+        }
+        EXPECT_EQ(topOfPartsUnder(root, xy), expected)
+            << entry.path() << " at " << xy.x << ", " << xy.y;
+        answered += expected.has_value();
+      }
+  }
+  EXPECT_GT(scenes, 5);
+  EXPECT_GT(answered, 50);  // most points lie over some part
 }
 
 // A mirror's plane placed from its parts (the inspector's "plane at"): their box in the mirror's
@@ -446,6 +489,50 @@ TEST(SelectionBounds, AMirrorsPlaneIsPlacedFromItsParts) {
   EXPECT_EQ(mirrorPlaneAt(root, 3, MirrorPlaneAt::PartsCentre), box->pattern);
   const NodePtr empty = editNode(root, 2, [](Node& n) { n.children.clear(); });
   EXPECT_EQ(mirrorPlaneAt(empty, 2, MirrorPlaneAt::PartsHighSide), mirror->pattern);
+}
+
+// A circular array's axis placed through what its copies go round (the inspector's "axis
+// through" button): a cutter's through the base it cuts, a part added beside others through
+// theirs, in the array's own frame, the coordinate along the axis kept.
+TEST(SelectionBounds, ACircularArraysAxisGoesThroughWhatItGoesRound) {
+  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  plate->params.size = glm::dvec3(40.0, 30.0, 4.0);
+  plate->transform.translate = glm::dvec3(10.0, 20.0, 0.0);
+  auto hole = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Cylinder, 4));
+  hole->transform.translate = glm::dvec3(25.0, 20.0, 0.0);
+  auto ring = std::make_shared<Node>(*makeOperationNode(NodeKind::CircularArray, 3, {hole}));
+  ring->pattern.count = 6;
+  ring->pattern.center = glm::dvec3(0.0, 0.0, 7.0);
+  ring->transform.translate = glm::dvec3(1.0, 2.0, 3.0);  // its frame moved from the plate's
+  auto other = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 6));
+  other->transform.translate = glm::dvec3(-100.0, 0.0, 0.0);  // a second cutter: not gone round
+  const NodePtr cut = makeOperationNode(NodeKind::Difference, 1, {plate, ring, other});
+  const std::optional<CircularAxisPlace> through = circularAxisThroughNeighbours(cut, 3);
+  ASSERT_TRUE(through);
+  EXPECT_NEAR(through->params.center.x, 9.0, 1e-9);   // the plate's middle, 10 - 1
+  EXPECT_NEAR(through->params.center.y, 18.0, 1e-9);  // 20 - 2
+  EXPECT_EQ(through->params.center.z, 7.0);           // along the axis: kept
+  EXPECT_EQ(through->params.count, 6);
+  EXPECT_NE(through->around.find("box"), std::string::npos) << through->around;
+  // The copies then lie round the plate's middle: their box is centred on it.
+  const NodePtr placed = editNode(cut, 3, [&](Node& n) { n.pattern = through->params; });
+  const Bounds copies = selectionBounds(placed, {3});
+  EXPECT_NEAR(copies.center().x, 10.0, 1e-6);
+  EXPECT_NEAR(copies.center().y, 20.0, 1e-6);
+  // Added beside parts: through all of them.
+  const NodePtr joined = makeOperationNode(NodeKind::Union, 1, {plate, ring, other});
+  const std::optional<CircularAxisPlace> beside = circularAxisThroughNeighbours(joined, 3);
+  ASSERT_TRUE(beside);
+  const Bounds both = [&] {
+    Bounds b = selectionBounds(joined, {2});
+    b.include(selectionBounds(joined, {6}));
+    return b;
+  }();
+  EXPECT_NEAR(beside->params.center.x, both.center().x - 1.0, 1e-9);
+  EXPECT_NE(beside->around.find("and 1 more"), std::string::npos) << beside->around;
+  // Alone at the top, or not a circular array: none.
+  EXPECT_FALSE(circularAxisThroughNeighbours(ring, 3));
+  EXPECT_FALSE(circularAxisThroughNeighbours(cut, 2));
 }
 
 TEST(SelectionBounds, TightOnlyWhereTheBoxIsTheExtent) {
