@@ -29,6 +29,7 @@
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
+#include "ui/text_fit.h"
 #include "ui/theme.h"
 #include "ui/typed_value.h"
 
@@ -42,20 +43,6 @@ constexpr const char* kParamsTopic = "parameters";
 // The format of length fields: the number and the scene's unit ("%.4g mm"), set per frame.
 std::string gLengthFormat = "%.4g";
 std::string gLengthUnit;  // the scene's unit, for lengths typed with a unit (commitTypedValue)
-
-// `format` for `value`, with a mark ("\u2026") after the number where the field shows it
-// rounded: a field showed 16 for 15.9694 and an artist took the hole to sit at exactly 16 mm
-// (the whole number shows on hover).
-std::string markedWhereRounded(const std::string& format, double value) {
-  char text[64];
-  ImFormatString(text, sizeof(text), format.c_str(), value);
-  if (std::strtod(text, nullptr) == value) return format;
-  const size_t percent = format.find('%');
-  const size_t conversion =
-      percent == std::string::npos ? std::string::npos : format.find_first_of("gfeGFE", percent);
-  if (conversion == std::string::npos) return format;
-  return format.substr(0, conversion + 1) + "\u2026" + format.substr(conversion + 1);
-}
 
 // Brackets an edit made by the last ImGui item in begin/end interaction and applies it.
 void edited(EditorState& state, bool changed, const std::function<void()>& apply,
@@ -174,14 +161,14 @@ void refuseBelowMinimum(EditorState& state, const char* label, double minimum) {
                         ": the value is kept");
 }
 
-// Sets a part's shape parameters; a part resting on the ground stays on it (keptOnTheGround),
-// and the log says so once per edit.
-void setParamsOnTheGround(EditorState& state, NodeId id, const PrimitiveParams& params) {
+// Sets a part's shape parameters; a part resting on the ground or on another part stays on it
+// (keptResting), and the log says so once per edit.
+void setParamsKeptResting(EditorState& state, NodeId id, const PrimitiveParams& params) {
   const NodePtr before = state.document.root();
   state.document.setParams(id, params);
-  bool moved = false;
-  const Transform t = keptOnTheGround(before, state.document.root(), id, &moved);
-  if (!moved) return;
+  Rest rest;
+  const Transform t = keptResting(before, state.document.root(), id, &rest);
+  if (!rest.moved) return;
   state.document.setTransform(id, t);
   // Once for a drag of the field, not every frame of it.
   static NodeId saidOf = 0;
@@ -191,8 +178,13 @@ void setParamsOnTheGround(EditorState& state, NodeId id, const PrimitiveParams& 
   saidAt = ImGui::GetTime();
   if (said) return;
   const NodePtr node = findNode(state.document.root(), id);
-  logInfo(state, "\"" + (node->name.empty() ? nodeLabel(*node) : node->name) +
-                     "\" rested on the ground and stays on it (its position along z moved)");
+  const NodePtr on = findNode(state.document.root(), rest.on);
+  const std::string name = "\"" + (node->name.empty() ? nodeLabel(*node) : node->name) + "\"";
+  if (rest.onGround || !on)
+    logInfo(state, name + " rested on the ground and stays on it (its position along z moved)");
+  else
+    logInfo(state, name + " rested on \"" + (on->name.empty() ? nodeLabel(*on) : on->name) +
+                       "\" and stays on it (it grows from its base; its position moved)");
 }
 
 // A positive length parameter.
@@ -218,7 +210,7 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
         for (const NodePtr& n : nodes) {
           PrimitiveParams q = n->params;
           q.*field = value;
-          setParamsOnTheGround(state, n->id, q);
+          setParamsKeptResting(state, n->id, q);
         }
       },
       kParamsTopic);
@@ -245,7 +237,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
             for (const NodePtr& n : nodes) {
               PrimitiveParams q = n->params;
               q.*param.vector = v;
-              setParamsOnTheGround(state, n->id, q);
+              setParamsKeptResting(state, n->id, q);
             }
           },
           gLengthFormat.c_str(), glm::bvec3(false), kParamsTopic);
@@ -734,21 +726,49 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
     const std::optional<CircularAxisPlace> around =
         circularAxisThroughNeighbours(state.document.root(), node->id);
     ImGui::BeginDisabled(!around);
-    if (ImGui::SmallButton("what it goes round"))
+    // What the click will do to the ring, said before and after it: the parts stay, so the
+    // ring's radius follows the axis (it changed without a word: an artist's test).
+    const char* unit = unitSymbol(state.document.scene().settings.unit);
+    // `done`: said after the click (the log), else before it (the tooltip).
+    const auto ringText = [&](const CircularAxisPlace& place, bool done) {
+      char text[200];
+      if (place.params.center == node->pattern.center)
+        std::snprintf(text, sizeof(text),
+                      "the axis already passes through it (the copies %.4g %s from it)",
+                      place.radiusAfter, unit);
+      else
+        std::snprintf(text, sizeof(text),
+                      done ? "the parts stayed where they were: the copies circle it %.4g %s from "
+                             "it (they were %.4g %s from the axis)"
+                           : "the parts stay where they are: the copies will circle it %.4g %s "
+                             "from it (they are %.4g %s from the axis now)",
+                      place.radiusAfter, unit, place.radiusBefore, unit);
+      return std::string(text);
+    };
+    if (ImGui::SmallButton("what it goes round")) {
+      const std::string said = around ? ringText(*around, true) : "";
       placeAxes([&](const NodePtr& n) {
         const std::optional<CircularAxisPlace> place =
             circularAxisThroughNeighbours(state.document.root(), n->id);
         return place ? place->params : n->pattern;
       });
+      if (around)
+        logInfo(state, "the axis of " + nodeLabel(*node) + " through the middle of " +
+                           around->around + ": " + said);
+    }
     ImGui::EndDisabled();
-    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-      ImGui::SetTooltip(
-          "%s", around
-                    ? ("The axis through the middle of " + around->around +
-                       " (what a cutter cuts; else the parts beside it): bolt holes round a flange")
-                          .c_str()
-                    : "Nothing beside the array to go round (it has no parent, or its neighbours "
-                      "show nothing)");
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);
+      ImGui::TextUnformatted(
+          around ? ("The axis through the middle of " + around->around +
+                    " (what a cutter cuts; else the parts beside it): " + ringText(*around, false))
+                       .c_str()
+                 : "Nothing beside the array to go round (it has no parent, or its neighbours "
+                   "show nothing)");
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
   } else if (pattern == Pattern::Mirror) {
     axisField(state, nodes, "across",
               "The mirror plane's normal: x mirrors left to right across the yz plane", p.axis);

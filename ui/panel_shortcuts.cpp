@@ -52,7 +52,9 @@ const ShortcutGroup kGroups[] = {
       {"drag from the palette onto a part",
        "onto that part (in the view: the part under the "
        "pointer; on the ground: onto the selection)"},
-      {"dropped on a surface", "an added part rests on it; a cutter is centred on the point"},
+      {"dropped on a surface",
+       "an added part rests on it (and stays on it when resized); a cutter is centred on the "
+       "point"},
       {"drag a row onto a row",
        "moves the part: a hole stays a hole, a solid takes no material away (its role changes "
        "where the place needs it); onto a modifier's or a pattern's row, a solid goes into it (it "

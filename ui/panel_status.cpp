@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -490,23 +491,36 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
           "sampled again. At rest it is evaluated on the scene's own lattice: what an export at\n"
           "this resolution, and the document reopened, show.");
   }
+  // The figures after the message, each whole or not at all: one cut at the bar's edge
+  // ("host upload, 2.7 M") read as a number (an artist's test). Once one does not fit, none
+  // after it is drawn.
+  bool room = true;
+  const auto figure = [&room](const char* format, ...) {
+    if (!room) return false;
+    char text[256];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(text, sizeof(text), format, args);
+    va_end(args);
+    ImGui::SameLine();
+    if (ImGui::CalcTextSize(text).x > ImGui::GetContentRegionAvail().x) return room = false;
+    ImGui::TextUnformatted(text);
+    return true;
+  };
   const PreviewResult* shown = state.preview.get();
   if (shown && shown->ok()) {
     const Grid& g = shown->stats.grid;
-    ImGui::SameLine();
-    ImGui::Text("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
-                unitSymbol(shown->scene->settings.unit));
-    ImGui::SameLine();
-    ImGui::Text("|  surfels %s (%s splats, %s, %s)", countText(shown->surfels).c_str(),
-                countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),
-                bytesText(double(state.uploadedBytes)).c_str());
-    ImGui::SameLine();
+    figure("|  grid %dx%dx%d  h %.3g %s", g.cells.x, g.cells.y, g.cells.z, g.h,
+           unitSymbol(shown->scene->settings.unit));
+    figure("|  surfels %s (%s splats, %s, %s)", countText(shown->surfels).c_str(),
+           countText(shown->splatCount()).c_str(), state.splatTransfer.c_str(),
+           bytesText(double(state.uploadedBytes)).c_str());
     const auto& skipped = shown->stats.skippedModifiers;
-    ImGui::Text("|  eval %.0f ms%s", shown->stats.seconds * 1000.0,
-                !shown->coarse    ? ""
-                : skipped.empty() ? " (coarse)"
-                                  : " (coarse, unmodified)");
-    if (ImGui::IsItemHovered()) {  // the stages on hover: the bar stays one short line
+    if (figure("|  eval %.0f ms%s", shown->stats.seconds * 1000.0,
+               !shown->coarse    ? ""
+               : skipped.empty() ? " (coarse)"
+                                 : " (coarse, unmodified)") &&
+        ImGui::IsItemHovered()) {  // the stages on hover: the bar stays one short line
       ImGui::BeginTooltip();
       if (shown->coarse && !skipped.empty()) {
         std::string names;
@@ -521,8 +535,7 @@ void drawStatusBar(EditorState& state, const PanelLayout& layout) {
       ImGui::EndTooltip();
     }
   }
-  ImGui::SameLine();
-  ImGui::Text("|  frame %.1f ms", state.frameMs);
+  figure("|  frame %.1f ms", state.frameMs);
   ImGui::End();
   ImGui::PopStyleVar();
 }

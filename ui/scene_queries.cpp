@@ -102,30 +102,42 @@ Bounds computeSceneBounds(const NodePtr& root) {
 }
 }  // namespace
 
-std::optional<double> topOfPartsUnder(const NodePtr& root, glm::dvec2 xy) {
-  // One walk down the tree carrying the parent's world matrix and whether the parts below take
-  // material away (a cutter's parity), as removesMaterial and parentWorldMatrix would find for
-  // each leaf from the root: linear in the nodes, on the UI thread at every palette click.
-  std::optional<double> top;
-  std::function<void(const NodePtr&, const glm::dmat4&, bool, int)> visit =
+namespace {
+
+// Calls visit(leaf, its world box) for every visible leaf that adds material (removesMaterial
+// false) and shows something. One walk down the tree carrying the parent's world matrix and
+// whether the parts below take material away (a cutter's parity), as removesMaterial and
+// parentWorldMatrix would find for each leaf from the root: linear in the nodes (it was
+// quadratic: each leaf looked up from the root again).
+void forEachAddingLeafBox(const NodePtr& root,
+                          const std::function<void(const NodePtr&, const Bounds&)>& visit) {
+  std::function<void(const NodePtr&, const glm::dmat4&, bool, int)> walk =
       [&](const NodePtr& node, const glm::dmat4& parent, bool removes, int depth) {
         if (!node || !node->visible || depth > 512) return;  // hidden: it and all below it
         if (!isOperation(node->kind)) {
           if (removes) return;
           const Bounds b = nodeBounds(node, root, parent);
-          if (b.empty() || xy.x < b.min.x || xy.x > b.max.x || xy.y < b.min.y || xy.y > b.max.y)
-            return;
-          top = top ? std::max(*top, b.max.z) : b.max.z;
+          if (!b.empty()) visit(node, b);
           return;
         }
         // A mirror that drops its original shows its children as their image.
         const glm::dmat4 below = parent * node->transform.matrix() *
                                  firstPlacement(patternOf(node->kind), node->pattern);
         for (size_t c = 0; c < node->children.size(); ++c)
-          visit(node->children[c], below,
-                removes != (childRole(*node, static_cast<int>(c)) == ChildRole::Cut), depth + 1);
+          walk(node->children[c], below,
+               removes != (childRole(*node, static_cast<int>(c)) == ChildRole::Cut), depth + 1);
       };
-  visit(root, glm::dmat4(1.0), false, 0);
+  walk(root, glm::dmat4(1.0), false, 0);
+}
+
+}  // namespace
+
+std::optional<double> topOfPartsUnder(const NodePtr& root, glm::dvec2 xy) {
+  std::optional<double> top;
+  forEachAddingLeafBox(root, [&](const NodePtr&, const Bounds& b) {
+    if (xy.x < b.min.x || xy.x > b.max.x || xy.y < b.min.y || xy.y > b.max.y) return;
+    top = top ? std::max(*top, b.max.z) : b.max.z;
+  });
   return top;
 }
 
@@ -228,20 +240,58 @@ double groundGridStep(const Bounds& scene, double emptySpan) {
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);
 }
 
-Transform keptOnTheGround(const NodePtr& before, const NodePtr& after, NodeId id, bool* moved) {
-  if (moved) *moved = false;
-  const NodePtr node = findNode(after, id);
-  if (!node) return Transform();
-  const Bounds was = selectionBounds(before, {id}), now = selectionBounds(after, {id});
-  if (was.empty() || now.empty()) return node->transform;
-  const double size = std::max(was.longestSide(), now.longestSide());
-  if (!(std::fabs(was.min.z) <= 1e-6 * size) || now.min.z == was.min.z) return node->transform;
-  // The world's z in the parent's frame: the part's translation moves along it.
+namespace {
+
+// The middle of the bottom of leaf `node`'s own box (its frame, its own transform left out):
+// the side a part placed on a surface turns towards it (its own -z).
+glm::dvec3 ownBottom(const NodePtr& node, const NodePtr& root) {
+  auto own = std::make_shared<Node>(*node);
+  own->transform = Transform();
+  const Bounds b = nodeBounds(own, root, glm::dmat4(1.0));
+  return b.empty() ? glm::dvec3(0.0) : glm::dvec3(b.center().x, b.center().y, b.min.z);
+}
+
+}  // namespace
+
+Transform keptResting(const NodePtr& before, const NodePtr& after, NodeId id, Rest* rest) {
+  if (rest) *rest = Rest();
+  const NodePtr node = findNode(after, id), was = findNode(before, id);
+  if (!node || !was) return Transform();
+  const Bounds wasBox = selectionBounds(before, {id}), nowBox = selectionBounds(after, {id});
+  if (wasBox.empty() || nowBox.empty()) return node->transform;
+  const double size = std::max(wasBox.longestSide(), nowBox.longestSide());
   const glm::dmat4 parent = parentWorldMatrix(after, id);
-  const glm::dvec3 up = glm::dvec3(glm::inverse(parent) * glm::dvec4(0.0, 0.0, -now.min.z, 0.0));
   Transform t = node->transform;
-  t.translate += up;
-  if (moved) *moved = true;
+  if (std::fabs(wasBox.min.z) <= 1e-6 * size) {  // on the ground
+    if (rest) rest->onGround = true;
+    if (nowBox.min.z == wasBox.min.z) return t;
+    // The world's z in the parent's frame: the part's translation moves along it.
+    t.translate += glm::dvec3(glm::inverse(parent) * glm::dvec4(0.0, 0.0, -nowBox.min.z, 0.0));
+    if (rest) rest->moved = true;
+    return t;
+  }
+  if (isOperation(node->kind) || removesMaterial(before, id)) return t;
+  // On another part: the bottom of its own box lies in the box of a visible part that adds
+  // material (a part dropped on a surface turned its own z to the surface's normal and set that
+  // bottom on it).
+  const glm::dvec3 bottomWas = glm::dvec3(parentWorldMatrix(before, id) * was->transform.matrix() *
+                                          glm::dvec4(ownBottom(was, before), 1.0));
+  const double tolerance = 1e-6 * size;
+  NodeId on = 0;
+  forEachAddingLeafBox(before, [&](const NodePtr& leaf, const Bounds& b) {
+    if (on || leaf->id == id || isInSubtree(before, leaf->id, id)) return;
+    for (int a = 0; a < 3; ++a)
+      if (bottomWas[a] < b.min[a] - tolerance || bottomWas[a] > b.max[a] + tolerance) return;
+    on = leaf->id;
+  });
+  if (!on) return t;
+  if (rest) rest->on = on;
+  const glm::dvec3 bottomNow =
+      glm::dvec3(parent * node->transform.matrix() * glm::dvec4(ownBottom(node, after), 1.0));
+  const glm::dvec3 back = bottomWas - bottomNow;
+  if (glm::length(back) <= 1e-12 * size) return t;
+  t.translate += glm::dvec3(glm::inverse(parent) * glm::dvec4(back, 0.0));
+  if (rest) rest->moved = true;
   return t;
 }
 
@@ -297,6 +347,19 @@ std::optional<CircularAxisPlace> circularAxisThroughNeighbours(const NodePtr& ro
   const int a = std::clamp(place.params.axis, 0, 2);
   for (int k = 0; k < 3; ++k)
     if (k != a) place.params.center[k] = box.center()[k];
+  // The parts' middle in the array's frame, and its distance from each axis.
+  Bounds parts;
+  for (const NodePtr& child : node->children)
+    parts.include(nodeBounds(child, root, glm::dmat4(1.0)));
+  if (!parts.empty()) {
+    const auto radius = [&](const glm::dvec3& centre) {
+      glm::dvec3 d = parts.center() - centre;
+      d[a] = 0.0;
+      return glm::length(d);
+    };
+    place.radiusBefore = radius(node->pattern.center);
+    place.radiusAfter = radius(place.params.center);
+  }
   place.around = nodeLabel(*shown.front());
   if (shown.size() > 1) place.around += " and " + std::to_string(shown.size() - 1) + " more";
   return place;

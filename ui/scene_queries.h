@@ -73,14 +73,21 @@ std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<Nod
 // the gizmo and the inspector's transform act on for the active part `id`.
 NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id);
 
-// A part resting on the ground (the bottom of its world bounds at z = 0, within a millionth of
-// its size) whose shape was changed from the tree `before` to `after` (a size, a radius typed
-// in the inspector) stays on it: its transform in `after`, moved along the world's z so that its
-// bottom is at 0 again; its transform in `after` as it is where it did not rest on the ground or
-// shows nothing. A box 10 high made 20 high sank 5 into the ground, made 4 floated 3 above it
-// (an artist's test). `moved` (when not null) says whether it moved.
-Transform keptOnTheGround(const NodePtr& before, const NodePtr& after, NodeId id,
-                          bool* moved = nullptr);
+// A part resting on something whose shape was changed from the tree `before` to `after` (a
+// size, a radius typed in the inspector) stays on it. On the ground (the bottom of its world
+// bounds at z = 0, within a millionth of its size): moved along the world's z so that its bottom
+// is at 0 again. On another part (a leaf that adds material, where the middle of the bottom of
+// its own box, the side a part dropped on a surface sets on it, lay in the box of a visible part
+// that adds material): moved so that that point stays where it was, the part growing from it.
+// Its transform in `after` as it is where it rested on nothing, takes material away or shows
+// nothing. A box 10 high made 20 high sank 5 into the ground, made 4 floated 3 above it; a 20 mm
+// block dropped on a plate and made 6 mm floated 7 mm above it (artists' tests).
+struct Rest {
+  bool moved = false;     // the transform returned differs from `after`'s
+  bool onGround = false;  // it rested on the ground
+  NodeId on = 0;          // else the part it rested on (0: none)
+};
+Transform keptResting(const NodePtr& before, const NodePtr& after, NodeId id, Rest* rest = nullptr);
 
 // Where a mirror's plane goes, placed from its parts (the inspector's "plane at" buttons): back
 // through the mirror's origin, through the middle of its parts, or at their low or high side
@@ -101,6 +108,10 @@ PatternParams mirrorPlaneAt(const NodePtr& root, NodeId id, MirrorPlaneAt where)
 struct CircularAxisPlace {
   PatternParams params;  // the array's parameters with the axis through their middle
   std::string around;    // "union 'body'", "box 'hub' and 2 more" (nodeLabel): for the tooltip
+  // How far the middle of the array's parts lies from its axis, before and after (scene units,
+  // the array's frame): the parts stay where they are, so the ring's radius changes with the axis
+  // (an artist moved the axis and the holes' pitch circle shrank without a word).
+  double radiusBefore = 0.0, radiusAfter = 0.0;
 };
 // The parameters of circular array `id` with its axis's point moved to the middle of its
 // neighbours' box, taken in the array's frame (the coordinate along its axis kept).

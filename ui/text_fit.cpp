@@ -1,5 +1,9 @@
 #include "ui/text_fit.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 namespace strata::ui {
@@ -25,6 +29,21 @@ std::string fitWithEllipsis(const std::string& text, float width,
   size_t cut = lo == 0 ? 0 : ends[lo - 1];
   while (cut > 0 && text[cut - 1] == ' ') --cut;
   return text.substr(0, cut) + kEllipsis;
+}
+
+std::string markedWhereRounded(const std::string& format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), format.c_str(), value);
+  // Noise of the numbers that placed it (a point picked on a surface carries the float
+  // precision of the surfel it hit: 18.0000005 after a drop on a top at 8) is no hidden digit:
+  // "18…" read as a fraction the field did not show (an artist's test).
+  const double shown = std::strtod(text, nullptr);
+  if (std::fabs(shown - value) <= 1e-6 * std::max(1.0, std::fabs(value))) return format;
+  const size_t percent = format.find('%');
+  const size_t conversion =
+      percent == std::string::npos ? std::string::npos : format.find_first_of("gfeGFE", percent);
+  if (conversion == std::string::npos) return format;
+  return format.substr(0, conversion + 1) + "\u2026" + format.substr(conversion + 1);
 }
 
 }  // namespace strata::ui

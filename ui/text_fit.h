@@ -14,4 +14,11 @@ namespace strata::ui {
 std::string fitWithEllipsis(const std::string& text, float width,
                             const std::function<float(const std::string&)>& measure);
 
+// The printf `format` of a number field (one %g, %f or %e conversion: "%.4g mm") for `value`,
+// with a mark ("\u2026") after the number where the field shows it rounded: a field showed 16
+// for 15.9694 and an artist took the hole to sit at exactly 16 mm (the whole number shows on
+// hover). Noise (a millionth of the value, or of 1 near zero: a picked point's float precision)
+// is not marked: "18…" for 18.0000005 after a drop read as a hidden fraction (an artist's test).
+std::string markedWhereRounded(const std::string& format, double value);
+
 }  // namespace strata::ui

@@ -25,8 +25,18 @@ struct Typed {
   double value = 0.0;
   int frame = 0;
   bool held = false;
+  std::string text;  // the field's text on the last frame seen
 };
 Typed gTyped;
+
+// The text of field `id` being typed into (Dear ImGui's input state), "" for another field.
+std::string typedText(ImGuiID id) {
+  const ImGuiInputTextState& field = ImGui::GetCurrentContext()->InputTextState;
+  if (field.ID != id) return "";
+  char text[128] = "";
+  ImTextStrToUtf8(text, int(sizeof(text)), field.TextW.Data, field.TextW.Data + field.CurLenW);
+  return text;
+}
 
 // The letters numberFieldCharacter dropped from the field being typed (ImGui id), and what the
 // last commit converted (takeUnitConversion).
@@ -163,9 +173,16 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
     // Typing starts (it did not type on the last frame): no letters of an earlier typing count.
     if (gTyped.id != id || gTyped.frame != ImGui::GetFrameCount() - 1) {
       if (gDropped.id == id) gDropped = {};
-      if (gTyped.id != id) gTyped = {id, double(*value), 0, false};
+      if (gTyped.id != id) gTyped = {id, double(*value), 0, false, typedText(id)};
     }
-    if (changed) gTyped.value = double(*value), gTyped.held = true;
+    // Dear ImGui applies the text to the value on the frames it is edited, and says `changed`
+    // only where the value then differs from the caller's, which the caller reads afresh each
+    // frame from the document: typing "15" over 15 passed through 1 (changed) and back to 15
+    // (unchanged), and leaving the field applied the 1 held (an artist's test). The value after
+    // every edit of the text is the one held.
+    const std::string text = typedText(id);
+    if (changed || text != gTyped.text) gTyped.value = double(*value), gTyped.held = true;
+    gTyped.text = text;
     // A deleted character may have been the number's or the unit's: the unit typed is what
     // follows the last deletion (the letters never reach the field's text).
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace)) ||

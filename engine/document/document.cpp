@@ -270,7 +270,7 @@ void Document::setPattern(NodeId id, const PatternParams& pattern) {
   if (node->pattern == pattern) return;
   NodePtr edited = editNode(root(), id, [&](Node& n) { n.pattern = pattern; });
   checkExpansion(edited, scene().settings.maxLeaves);
-  apply(patternChangeLabel(node->pattern, pattern), edited);
+  apply(patternChangeLabel(node->pattern, pattern, kind), edited);
 }
 
 void Document::setVisible(NodeId id, bool visible) {

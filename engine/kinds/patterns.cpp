@@ -25,17 +25,22 @@ bool fullTurn(double angle) {
 
 }  // namespace
 
-std::string patternChangeLabel(const PatternParams& before, const PatternParams& after) {
+std::string patternChangeLabel(const PatternParams& before, const PatternParams& after,
+                               Pattern pattern) {
   std::string label;
   int changes = 0;
   auto changed = [&](bool differs, const char* what) {
     if (differs) label = what, ++changes;
   };
+  // A mirror's axis and centre are its plane's; a circular array's centre is its axis's point.
+  const bool mirror = pattern == Pattern::Mirror;
   changed(before.counts != after.counts || before.count != after.count, "copies' count");
   changed(before.step != after.step, "copies' step");
   changed(before.angle != after.angle, "copies' angle");
-  changed(before.axis != after.axis, "copies' axis");
-  changed(before.center != after.center, "copies' centre");
+  changed(before.axis != after.axis, mirror ? "mirror plane's direction" : "copies' axis");
+  changed(before.center != after.center, mirror                         ? "mirror plane's position"
+                                         : pattern == Pattern::Circular ? "axis position"
+                                                                        : "copies' centre");
   changed(before.keepOriginal != after.keepOriginal, "keep the original");
   return changes == 1 ? label : "copies";
 }

@@ -52,7 +52,10 @@ struct PatternParams {
 
 // What changed from `before` to `after`, for people ("copies' count", "copies' step", "angle"):
 // an undo says which field it takes back. "copies" where several changed.
-std::string patternChangeLabel(const PatternParams& before, const PatternParams& after);
+// `pattern` names the fields as that kind reads them (a mirror's centre is its plane's position:
+// its undo said "copies' centre", the circular array's word: an artist's test).
+std::string patternChangeLabel(const PatternParams& before, const PatternParams& after,
+                               Pattern pattern = Pattern::None);
 
 // How many placements `pattern` makes (1 for Pattern::None); saturates at UINT64_MAX.
 uint64_t patternCopies(Pattern pattern, const PatternParams& params);

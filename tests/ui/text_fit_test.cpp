@@ -31,5 +31,20 @@ TEST(TextFit, CutsOnlyBetweenWholeCharacters) {
   EXPECT_EQ(fitWithEllipsis(name, 1000.0f, charWidth), name);
 }
 
+// A number field marks a value it shows rounded, not one whose only difference is rounding
+// noise (an artist read "18…" for a drop's 18.000000000000004 as a hidden fraction).
+TEST(TextFit, ARoundedNumberIsMarkedAndRoundingNoiseIsNot) {
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 15.9694), "%.4g\u2026 mm");
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 16.0), "%.4g mm");
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 18.000000000000004), "%.4g mm");
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 18.0000005), "%.4g mm");  // a float's precision
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 18.0002), "%.4g\u2026 mm");
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 0.1 + 0.2), "%.4g mm");
+  EXPECT_EQ(markedWhereRounded("%.4g", -9.6213), "%.4g\u2026");
+  EXPECT_EQ(markedWhereRounded("%.2f deg", 37.2134), "%.2f\u2026 deg");
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 1e-7), "%.4g mm");  // shown as it is: 1e-07
+  EXPECT_EQ(markedWhereRounded("%.4g mm", 12345.678), "%.4g\u2026 mm");
+}
+
 }  // namespace
 }  // namespace strata::ui

@@ -132,6 +132,24 @@ TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
   EXPECT_FALSE(lastCommitWasTyped());
 }
 
+// Typing the number a field already holds keeps it: "15" over 15 passed through 1 (a change) and
+// back to 15 (no change to the value the field reads afresh each frame), and leaving the field
+// applied the 1 (an artist's test: a hub retyped "to be sure" sank into its plate).
+TEST_F(TypedField, TypingTheNumberTheFieldHoldsKeepsIt) {
+  for (const char* same : {"15", "15.0", "150"}) {
+    SCOPED_TRACE(same);
+    stored = 15.0;
+    writes.clear();
+    frame(/*focus=*/true);
+    frame();
+    type(same);
+    press(kEnter);
+    EXPECT_EQ(stored, std::string(same) == "150" ? 150.0 : 15.0);
+    for (double w : writes) EXPECT_NE(w, 1.0) << "the first digit was applied";
+    frame();
+  }
+}
+
 // An artist typed "9,5" and got 95: Dear ImGui's number fields drop the comma. Typed through
 // numberFieldCharacter (as the editor feeds characters), the comma is the decimal point, and a
 // unit's letters, which the field drops, are reported instead of vanishing; a name field (no

@@ -375,7 +375,9 @@ TEST(SelectionBounds, APartRestingOnTheGroundStaysOnItWhenResized) {
     const NodePtr resized = editNode(root, 3, [&](Node& n) { n.params.size = size; });
     ASSERT_NE(selectionBounds(resized, {3}).min.z, 0.0) << "a change that keeps the bottom";
     bool moved = false;
-    const Transform t = keptOnTheGround(root, resized, 3, &moved);
+    Rest rest;
+    const Transform t = keptResting(root, resized, 3, &rest);
+    moved = rest.moved;
     EXPECT_TRUE(moved);
     const NodePtr kept = editNode(resized, 3, [&](Node& n) { n.transform = t; });
     EXPECT_NEAR(selectionBounds(kept, {3}).min.z, 0.0, 1e-9);
@@ -387,8 +389,73 @@ TEST(SelectionBounds, APartRestingOnTheGroundStaysOnItWhenResized) {
   const NodePtr lifted = editNode(root, 2, [](Node& n) { n.transform.translate.z += 1.0; });
   const NodePtr grown = editNode(lifted, 3, [](Node& n) { n.params.size.y = 9.0; });
   bool moved = true;
-  EXPECT_EQ(keptOnTheGround(lifted, grown, 3, &moved), findNode(grown, 3)->transform);
+  Rest rest;
+  EXPECT_EQ(keptResting(lifted, grown, 3, &rest), findNode(grown, 3)->transform);
+  moved = rest.moved;
   EXPECT_FALSE(moved);
+}
+
+// A part resting on another part stays on it when resized: a block on a plate made smaller
+// floated above it, a ball on a box made larger sank into it (an artist's test); on a slanted
+// face it grows from the face along its own z. A cutter, or a part resting on nothing, keeps
+// its transform.
+TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenResized) {
+  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
+  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);  // top at 8
+  auto block = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  block->params.size = glm::dvec3(20.0);
+  block->transform.translate = glm::dvec3(10.0, 5.0, 18.0);  // resting on the plate's top
+  auto ball = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 4));
+  ball->params.radius = 2.5;
+  ball->transform.translate = glm::dvec3(-30.0, 0.0, 8.0 + 2.5);
+  // A cube on a face turned 30 degrees about x: its own z along the face's normal.
+  auto tilted = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 5));
+  tilted->params.size = glm::dvec3(6.0);
+  tilted->transform.rotateDegrees = glm::dvec3(30.0, 0.0, 0.0);
+  const glm::dvec3 normal(0.0, -std::sin(glm::radians(30.0)), std::cos(glm::radians(30.0)));
+  tilted->transform.translate = glm::dvec3(35.0, 10.0, 8.0) + 3.0 * normal;  // bottom at the top
+  const NodePtr root = makeOperationNode(NodeKind::Union, 1, {plate, block, ball, tilted});
+  const auto bottomOf = [](const NodePtr& tree, NodeId id, double halfHeight) {
+    const NodePtr n = findNode(tree, id);
+    return glm::dvec3(n->transform.matrix() * glm::dvec4(0.0, 0.0, -halfHeight, 1.0));
+  };
+  struct Case {
+    NodeId id;
+    std::function<void(Node&)> resize;
+    double halfBefore, halfAfter;
+  } cases[] = {
+      {3, [](Node& n) { n.params.size = glm::dvec3(6.0); }, 10.0, 3.0},
+      {4, [](Node& n) { n.params.radius = 10.0; }, 2.5, 10.0},
+      {5, [](Node& n) { n.params.size = glm::dvec3(6.0, 6.0, 16.0); }, 3.0, 8.0},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.id);
+    const NodePtr resized = editNode(root, c.id, c.resize);
+    Rest rest;
+    const Transform t = keptResting(root, resized, c.id, &rest);
+    EXPECT_TRUE(rest.moved);
+    EXPECT_FALSE(rest.onGround);
+    EXPECT_EQ(rest.on, 2u);
+    const NodePtr kept = editNode(resized, c.id, [&](Node& n) { n.transform = t; });
+    const glm::dvec3 was = bottomOf(root, c.id, c.halfBefore),
+                     now = bottomOf(kept, c.id, c.halfAfter);
+    EXPECT_NEAR(glm::distance(was, now), 0.0, 1e-9);
+    EXPECT_EQ(findNode(kept, c.id)->transform.rotateDegrees,
+              findNode(root, c.id)->transform.rotateDegrees);
+  }
+  // Lifted off the plate: resting on nothing, as it is.
+  const NodePtr lifted = editNode(root, 3, [](Node& n) { n.transform.translate.z += 5.0; });
+  const NodePtr shrunk = editNode(lifted, 3, [](Node& n) { n.params.size = glm::dvec3(6.0); });
+  Rest rest;
+  EXPECT_EQ(keptResting(lifted, shrunk, 3, &rest), findNode(shrunk, 3)->transform);
+  EXPECT_FALSE(rest.moved);
+  EXPECT_EQ(rest.on, 0u);
+  // A cutter on the plate: centred where it was put.
+  const NodePtr cut = makeOperationNode(NodeKind::Difference, 1, {plate, block});
+  const NodePtr cutShrunk = editNode(cut, 3, [](Node& n) { n.params.size = glm::dvec3(6.0); });
+  EXPECT_EQ(keptResting(cut, cutShrunk, 3, &rest), findNode(cutShrunk, 3)->transform);
+  EXPECT_FALSE(rest.moved);
 }
 
 // Where a new part with nothing selected rests: on the top of the parts standing under the
@@ -513,6 +580,9 @@ TEST(SelectionBounds, ACircularArraysAxisGoesThroughWhatItGoesRound) {
   EXPECT_NEAR(through->params.center.y, 18.0, 1e-9);  // 20 - 2
   EXPECT_EQ(through->params.center.z, 7.0);           // along the axis: kept
   EXPECT_EQ(through->params.count, 6);
+  // The hole stays where it is: the ring's radius follows the axis, and is told.
+  EXPECT_NEAR(through->radiusBefore, std::hypot(25.0, 20.0), 1e-9);
+  EXPECT_NEAR(through->radiusAfter, std::hypot(25.0 - 9.0, 20.0 - 18.0), 1e-9);
   EXPECT_NE(through->around.find("box"), std::string::npos) << through->around;
   // The copies then lie round the plate's middle: their box is centred on it.
   const NodePtr placed = editNode(cut, 3, [&](Node& n) { n.pattern = through->params; });

@@ -309,6 +309,18 @@ TEST(PatternNodes, AnUndoSaysWhichFieldOfTheCopiesItTakesBack) {
   p.angle = 180.0;
   doc.setPattern(ring, p);
   EXPECT_EQ(doc.undoLabel(), "copies' angle");
+  // Each kind's words: a circular array's centre is its axis's, a mirror's its plane's.
+  p.center.x = 5.0;
+  doc.setPattern(ring, p);
+  EXPECT_EQ(doc.undoLabel(), "axis position");
+  const NodeId mirror = doc.addNode(NodeKind::Mirror);
+  PatternParams m = findNode(doc.root(), mirror)->pattern;
+  m.center.x = 3.0;
+  doc.setPattern(mirror, m);
+  EXPECT_EQ(doc.undoLabel(), "mirror plane's position");
+  m.axis = 1;
+  doc.setPattern(mirror, m);
+  EXPECT_EQ(doc.undoLabel(), "mirror plane's direction");
 }
 
 }  // namespace
