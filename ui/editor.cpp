@@ -721,10 +721,14 @@ void drawViewportHints(const EditorState& s, const ViewRect& rect, const Camera&
     const char* hint = text.c_str();
     const float wrap = std::max(120.0f, float(rect.width) * 0.8f);
     const ImVec2 size = ImGui::CalcTextSize(hint, nullptr, false, wrap);
-    draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(),
-                  ImVec2(float(rect.x + (rect.width - size.x) * 0.5),
-                         float(rect.y + rect.height * 0.5 - size.y * 0.5)),
-                  IM_COL32(200, 200, 205, 200), hint, nullptr, wrap);
+    const ImVec2 at(float(rect.x + (rect.width - size.x) * 0.5),
+                    float(rect.y + rect.height * 0.5 - size.y * 0.5));
+    // On a dark band, over the measurements' labels drawn before it (the text ran through a
+    // label, unreadable: an artist's test).
+    draw->AddRectFilled(ImVec2(at.x - 8, at.y - 5), ImVec2(at.x + size.x + 8, at.y + size.y + 5),
+                        IM_COL32(20, 22, 26, 215), 4.0f);
+    draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, IM_COL32(210, 210, 215, 235), hint,
+                  nullptr, wrap);
   }
   char corner[160];
   const char* axisView = camera.axisViewName();
