@@ -78,7 +78,8 @@ NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection,
 // bounds at z = 0, within a millionth of its size): moved along the world's z so that its bottom
 // is at 0 again. On another part (a leaf that adds material, where the middle of the bottom of
 // its own box, the side a part dropped on a surface sets on it, lay in the box of a visible part
-// that adds material): moved so that that point stays where it was, the part growing from it.
+// that adds material, within a ten-thousandth of the larger box's size): moved so that that
+// point stays where it was, the part growing from it.
 // Its transform in `after` as it is where it rested on nothing, takes material away or shows
 // nothing. A box 10 high made 20 high sank 5 into the ground, made 4 floated 3 above it; a 20 mm
 // block dropped on a plate and made 6 mm floated 7 mm above it (artists' tests).
@@ -116,6 +117,15 @@ struct CircularAxisPlace {
 // The parameters of circular array `id` with its axis's point moved to the middle of its
 // neighbours' box, taken in the array's frame (the coordinate along its axis kept).
 std::optional<CircularAxisPlace> circularAxisThroughNeighbours(const NodePtr& root, NodeId id);
+
+// A point picked on leaf `leaf`'s surface, whose normal there lies along an axis (within 0.05
+// degrees), moved along that axis onto the face of the leaf's world box on the normal's side
+// (the other side for a cutter, whose surface faces into the hole) where it lies within a
+// ten-thousandth of the box's size of it; `point` as it is otherwise. A pick reads the depth
+// buffer: a part dropped on a plate's top at z = 8 landed at 8.00002 and showed "18…" for its
+// centre, and resized it no longer rested on the plate (an artist's test).
+glm::dvec3 snappedToBoxFace(const NodePtr& root, NodeId leaf, const glm::dvec3& point,
+                            const glm::dvec3& normal);
 
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);

@@ -482,7 +482,9 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
   // (looking at or above the horizon) on the ground below the point the camera orbits.
   Placement placement;
   if (std::optional<PickHit> hit = pickAt(renderer, state, rect, mouse, pixelScale)) {
-    placement.point = hit->position;
+    placement.point = hit->normal ? snappedToBoxFace(state.document.root(), hit->leaf,
+                                                     hit->position, *hit->normal)
+                                  : hit->position;
     placement.normal = hit->normal;
     placement.part = dropTargetFor(state.document.root(), hit->leaf);
     return placement;

@@ -444,6 +444,15 @@ TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenResized) {
     EXPECT_EQ(findNode(kept, c.id)->transform.rotateDegrees,
               findNode(root, c.id)->transform.rotateDegrees);
   }
+  // Where a pick put it: a hair above the top (the depth buffer's precision), still resting.
+  {
+    const NodePtr hair = editNode(root, 3, [](Node& n) { n.transform.translate.z += 2.3e-5; });
+    const NodePtr resized = editNode(hair, 3, [](Node& n) { n.params.size = glm::dvec3(6.0); });
+    Rest rest;
+    keptResting(hair, resized, 3, &rest);
+    EXPECT_TRUE(rest.moved);
+    EXPECT_EQ(rest.on, 2u);
+  }
   // Lifted off the plate: resting on nothing, as it is.
   const NodePtr lifted = editNode(root, 3, [](Node& n) { n.transform.translate.z += 5.0; });
   const NodePtr shrunk = editNode(lifted, 3, [](Node& n) { n.params.size = glm::dvec3(6.0); });
@@ -456,6 +465,32 @@ TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenResized) {
   const NodePtr cutShrunk = editNode(cut, 3, [](Node& n) { n.params.size = glm::dvec3(6.0); });
   EXPECT_EQ(keptResting(cut, cutShrunk, 3, &rest), findNode(cutShrunk, 3)->transform);
   EXPECT_FALSE(rest.moved);
+}
+
+// A point picked on a flat face carries the depth buffer's precision: along an axis normal it
+// goes onto the face of the part's box (a cutter's face on the other side: its surface faces into
+// the hole); a slanted normal, or a point farther than a ten-thousandth of the box, stays.
+TEST(SelectionBounds, APointPickedOnAFlatFaceGoesOntoIt) {
+  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
+  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);  // top at 8
+  auto pocket = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  pocket->params.size = glm::dvec3(20.0, 20.0, 4.0);
+  pocket->transform.translate = glm::dvec3(20.0, 0.0, 8.0);  // its floor at 6
+  const NodePtr root = makeOperationNode(NodeKind::Difference, 1, {plate, pocket});
+  const glm::dvec3 up(0.0, 0.0, 1.0);
+  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.0000231}, up), glm::dvec3(-30.0, 5.0, 8.0));
+  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 7.9999812}, glm::dvec3(1e-5, 0.0, 1.0)),
+            glm::dvec3(-30.0, 5.0, 8.0));
+  // The pocket's floor: the cutter's bottom, facing up into the hole.
+  EXPECT_EQ(snappedToBoxFace(root, 3, {20.0, 0.0, 6.0000152}, up), glm::dvec3(20.0, 0.0, 6.0));
+  // Slanted, or too far: as picked.
+  const glm::dvec3 slant = glm::normalize(glm::dvec3(0.0, 0.1, 1.0));
+  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.0000231}, slant),
+            glm::dvec3(-30.0, 5.0, 8.0000231));
+  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.5}, up), glm::dvec3(-30.0, 5.0, 8.5));
+  EXPECT_EQ(snappedToBoxFace(root, 99, {-30.0, 5.0, 8.0000231}, up),
+            glm::dvec3(-30.0, 5.0, 8.0000231));  // no such part
 }
 
 // Where a new part with nothing selected rests: on the top of the parts standing under the
