@@ -173,7 +173,11 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
     // Typing starts (it did not type on the last frame): no letters of an earlier typing count.
     if (gTyped.id != id || gTyped.frame != ImGui::GetFrameCount() - 1) {
       if (gDropped.id == id) gDropped = {};
-      if (gTyped.id != id) gTyped = {id, double(*value), 0, false, typedText(id)};
+      if (gTyped.id != id) gTyped = {id, double(*value), 0, false, ""};
+      // A new typing: nothing held from an earlier one, and the text it opens with is no edit
+      // (a field opened and left untyped set every selected part to the primary's value).
+      gTyped.held = false;
+      gTyped.text = typedText(id);
     }
     // Dear ImGui applies the text to the value on the frames it is edited, and says `changed`
     // only where the value then differs from the caller's, which the caller reads afresh each

@@ -148,6 +148,17 @@ TEST_F(TypedField, TypingTheNumberTheFieldHoldsKeepsIt) {
     for (double w : writes) EXPECT_NE(w, 1.0) << "the first digit was applied";
     frame();
   }
+  // Opened and left untyped, after a typing into the same field and a fresh one alike: nothing
+  // is applied (a field shared by several parts would set them all to the primary's value).
+  for (int round = 0; round < 2; ++round) {
+    const size_t before = writes.size();
+    frame(/*focus=*/true);
+    frame();
+    frame();
+    press(kEnter);
+    EXPECT_EQ(writes.size(), before) << "round " << round;
+    frame();
+  }
 }
 
 // An artist typed "9,5" and got 95: Dear ImGui's number fields drop the comma. Typed through
