@@ -461,18 +461,20 @@ NodeId addPrimitiveAt(EditorState& state, NodeKind kind, const Placement& placem
       const auto at = [](double v) { return std::fabs(v) < 1e-9 ? 0.0 : v; };  // rounding dust
       // The contact point and the centre the inspector's move fields show (its translation in
       // its parent's frame): the status gave the point where the inspector showed the centre,
-      // and the two read as a disagreement (an artist's test).
+      // and the two read as a disagreement (an artist's test). The centre before the normal: a
+      // narrow bar's ellipsis took it (an artist's re-test).
       const NodePtr placed = findNode(state.document.root(), id);
       const glm::dvec3 centre = placed ? placed->transform.translate : placement.point;
       const bool worldFrame = parentWorldMatrix(state.document.root(), id) == glm::dmat4(1.0);
       char text[240];
       std::snprintf(text, sizeof(text),
-                    "placed touching the surface at (%.4g, %.4g, %.4g), its z turned to the "
-                    "surface's normal (%.2f, %.2f, %.2f); its centre at (%.4g, %.4g, %.4g)%s",
+                    "placed touching the surface at (%.4g, %.4g, %.4g), its centre at (%.4g, "
+                    "%.4g, %.4g)%s; its z turned to the surface's normal (%.2f, %.2f, %.2f)",
                     at(placement.point.x), at(placement.point.y), at(placement.point.z),
+                    at(centre.x), at(centre.y), at(centre.z),
+                    worldFrame ? "" : " in its parent's frame (as the inspector shows it)",
                     shown(placement.normal->x), shown(placement.normal->y),
-                    shown(placement.normal->z), at(centre.x), at(centre.y), at(centre.z),
-                    worldFrame ? "" : " in its parent's frame (as the inspector shows it)");
+                    shown(placement.normal->z));
       logInfo(state, text);
     }
     selectNode(state, id);
