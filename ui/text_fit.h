@@ -1,6 +1,7 @@
-// Text shortened to fit a width: the longest prefix of whole UTF-8 characters that, followed by
-// an ellipsis, fits. Plain strings and a measuring function (pixels; ImGui::CalcTextSize in the
-// panels), no ImGui here, so it is testable without a window.
+// How a panel's text marks what it leaves out: text shortened to fit a width (the longest prefix
+// of whole UTF-8 characters that, followed by an ellipsis, fits), and a number field's format
+// marked where the field shows its value rounded. Plain strings and a measuring function (pixels;
+// ImGui::CalcTextSize in the panels), no ImGui here, so it is testable without a window.
 #pragma once
 
 #include <functional>
