@@ -161,11 +161,10 @@ void refuseBelowMinimum(EditorState& state, const char* label, double minimum) {
                         ": the value is kept");
 }
 
-// Sets a part's shape parameters; a part resting on the ground or on another part stays on it
-// (keptResting), and the log says so once per edit.
-void setParamsKeptResting(EditorState& state, NodeId id, const PrimitiveParams& params) {
-  const NodePtr before = state.document.root();
-  state.document.setParams(id, params);
+// Part `id` changed in size from the tree `before` (its parameters or its scale): where it rested
+// on the ground or on another part it is moved back onto it (keptResting), and the log says so
+// once per edit (a drag of the field is one).
+void reseatResting(EditorState& state, const NodePtr& before, NodeId id) {
   Rest rest;
   const Transform t = keptResting(before, state.document.root(), id, &rest);
   if (!rest.moved) return;
@@ -185,6 +184,13 @@ void setParamsKeptResting(EditorState& state, NodeId id, const PrimitiveParams& 
   else
     logInfo(state, name + " rested on \"" + (on->name.empty() ? nodeLabel(*on) : on->name) +
                        "\" and stays on it (it grows from its base; its position moved)");
+}
+
+// Sets a part's shape parameters, the part kept where it rests (reseatResting).
+void setParamsKeptResting(EditorState& state, NodeId id, const PrimitiveParams& params) {
+  const NodePtr before = state.document.root();
+  state.document.setParams(id, params);
+  reseatResting(state, before, id);
 }
 
 // A positive length parameter.
@@ -499,6 +505,9 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
           if (state.uniformScale)  // the component changed sets the factor of all three
             for (int i = 0; i < 3; ++i)
               if (factor[i] != 1.0) factor = glm::dvec3(factor[i]);
+          // Scaled about its own origin (a box's middle), a part resting on the ground or on
+          // another part would sink into it or float off it: it is kept on it, as a size typed.
+          const NodePtr before = state.document.root();
           applyAll([&](Transform n) {
             const int c = edit.component;
             if (edit.setsAll && state.uniformScale && n.scale[c] != 0.0)
@@ -509,6 +518,12 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
               n.scale *= factor;
             return n;
           });
+          for (const NodePtr& n : nodes) {  // those applyAll scaled (not the nested ones)
+            const NodePtr was = findNode(before, n->id),
+                          now = findNode(state.document.root(), n->id);
+            if (was && now && was->transform.scale != now->transform.scale)
+              reseatResting(state, before, n->id);
+          }
         },
         "%.4g", mixedComponents(nodes, &Transform::scale), nullptr, "scales every one by as much");
     if (ImGui::SmallButton(nodes.size() > 1 ? "reset all" : "reset")) {

@@ -414,6 +414,17 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
   ImGui::PopID();
 }
 
+// A palette button `width` wide showing `label` whole or, where the panel is too narrow for it,
+// shortened with an ellipsis (it was cut mid-letter at 870 pixels: an artist's test); `id` keeps
+// it the same button either way. True when clicked. `*shortened` says whether it was.
+bool fittedButton(const std::string& label, const char* id, float width, bool* shortened) {
+  const float room = width - 2.0f * ImGui::GetStyle().FramePadding.x;
+  const std::string shown = fitWithEllipsis(
+      label, room, [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
+  *shortened = shown != label;
+  return ImGui::Button((shown + "##" + id).c_str(), ImVec2(width, 0));
+}
+
 // The last palette button as a drag source of `item`.
 void paletteDragSource(EditorState& state, int item, const char* label) {
   if (ImGui::BeginDragDropSource()) {
@@ -520,13 +531,17 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     if (column++ % 3) ImGui::SameLine();
     char label[64];
     std::snprintf(label, sizeof(label), "%s %s", kindGlyph(primitive.kind), primitive.label);
-    if (ImGui::Button(label, ImVec2(lastRow ? lastWidth : w, 0)))
+    bool shortened = false;
+    if (fittedButton(label, primitive.label, lastRow ? lastWidth : w, &shortened))
       addPrimitive(state, primitive.kind);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", primitive.summary);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s%s%s", shortened ? primitive.label : "", shortened ? "\n\n" : "",
+                        primitive.summary);
     paletteDragSource(state, int(primitive.kind), label);
   }
   const std::string importLabel = std::string(kindGlyph(NodeKind::Mesh)) + " Import mesh...";
-  if (ImGui::Button(importLabel.c_str(), ImVec2(-1, 0))) {
+  bool importShortened = false;
+  if (fittedButton(importLabel, "import", ImGui::GetContentRegionAvail().x, &importShortened)) {
     state.importPlacement.reset();
     state.dialog.open(DialogPurpose::ImportMesh, importFolder(state));
   }
@@ -535,7 +550,8 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     for (const MeshFormat& format : meshFormats())
       if (format.supports(MeshAccess::Read))
         formats += (formats.empty() ? "" : ", ") + std::string(format.label);
-    ImGui::SetTooltip("A closed mesh file (%s); asks its unit and up axis", formats.c_str());
+    ImGui::SetTooltip("%sA closed mesh file (%s); asks its unit and up axis",
+                      importShortened ? "Import mesh\n\n" : "", formats.c_str());
   }
   paletteDragSource(state, kImportMeshItem, importLabel.c_str());
   ImGui::Separator();
@@ -552,9 +568,10 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
   const std::vector<bool> rowStarts = operationRowStarts(ops, 3);
   for (size_t i = 0; i < ops.size(); ++i) {
     if (!rowStarts[i]) ImGui::SameLine();
-    char label[64];
-    std::snprintf(label, sizeof(label), "%s##op%zu", kindLabel(ops[i]), i);
-    if (ImGui::Button(label, ImVec2(w, 0))) {
+    char id[32];
+    std::snprintf(id, sizeof(id), "op%zu", i);
+    bool shortened = false;
+    if (fittedButton(kindLabel(ops[i]), id, w, &shortened)) {
       if (wraps)
         groupSelection(state, ops[i]);
       else
@@ -562,10 +579,11 @@ void drawPalette(EditorState& state, const PanelLayout& layout) {
     }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
-          wraps ? "%s\n\nPuts the selected parts in a new %s in the first one's place, each "
+          wraps ? "%s%s%s\n\nPuts the selected parts in a new %s in the first one's place, each "
                   "keeping what it does (add or cut).\nShift+click: an empty %s instead."
-                : "%s\n\nAdds an empty %s (then drop parts into it).%s",
-          nodeKindInfo(ops[i]).summary, kindLabel(ops[i]),
+                : "%s%s%s\n\nAdds an empty %s (then drop parts into it).%s",
+          shortened ? kindLabel(ops[i]) : "", shortened ? "\n\n" : "", nodeKindInfo(ops[i]).summary,
+          kindLabel(ops[i]),
           wraps                     ? kindLabel(ops[i])
           : state.selection.empty() ? "\nSelect parts first to apply it to them."
                                     : "");

@@ -273,6 +273,9 @@ Transform keptResting(const NodePtr& before, const NodePtr& after, NodeId id, Re
     return t;
   }
   if (isOperation(node->kind) || removesMaterial(before, id)) return t;
+  // Mirrored (a scale that changed sign): the bottom of its own box is now its top.
+  if (glm::any(glm::lessThanEqual(was->transform.scale * node->transform.scale, glm::dvec3(0.0))))
+    return t;
   // On another part: the bottom of its own box lies in the box of a visible part that adds
   // material (a part dropped on a surface turned its own z to the surface's normal and set that
   // bottom on it).

@@ -80,6 +80,8 @@ NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection,
 // its own box, the side a part dropped on a surface sets on it, lay in the box of a visible part
 // that adds material, within a ten-thousandth of the larger box's size): moved so that that
 // point stays where it was, the part growing from it.
+// A change of its shape parameters or of its own scale (about its origin, a box's middle) alike;
+// a part mirrored by the change (a scale that changed sign) is kept on the ground only.
 // Its transform in `after` as it is where it rested on nothing, takes material away or shows
 // nothing. A box 10 high made 20 high sank 5 into the ground, made 4 floated 3 above it; a 20 mm
 // block dropped on a plate and made 6 mm floated 7 mm above it (artists' tests).

@@ -467,6 +467,41 @@ TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenResized) {
   EXPECT_FALSE(rest.moved);
 }
 
+// The same by its scale fields (about its own origin, the block's middle): scaled by 0.3 the
+// 20 mm block on the plate floated 7 mm above it, by 2 it sank 10 into it (artist re-test 16);
+// kept on the plate both ways, its own bottom where it was. Mirrored by a negative scale it is
+// left where the scale put it (its own bottom is then its top).
+TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenScaled) {
+  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
+  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);  // top at 8
+  auto block = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  block->params.size = glm::dvec3(20.0);
+  block->transform.translate = glm::dvec3(10.0, 5.0, 18.0);  // resting on the plate's top
+  const NodePtr root = makeOperationNode(NodeKind::Union, 1, {plate, block});
+  for (const glm::dvec3 scale : {glm::dvec3(0.3), glm::dvec3(2.0), glm::dvec3(1.0, 1.0, 0.5)}) {
+    SCOPED_TRACE(scale.z);
+    const NodePtr scaled = editNode(root, 3, [&](Node& n) { n.transform.scale = scale; });
+    ASSERT_NE(selectionBounds(scaled, {3}).min.z, 8.0) << "a scale that keeps the bottom";
+    Rest rest;
+    const Transform t = keptResting(root, scaled, 3, &rest);
+    EXPECT_TRUE(rest.moved);
+    EXPECT_EQ(rest.on, 2u);
+    const NodePtr kept = editNode(scaled, 3, [&](Node& n) { n.transform = t; });
+    const Bounds box = selectionBounds(kept, {3});
+    EXPECT_NEAR(box.min.z, 8.0, 1e-9);
+    EXPECT_NEAR(box.max.z, 8.0 + 20.0 * scale.z, 1e-9);
+    EXPECT_NEAR(box.center().x, 10.0, 1e-9);
+    EXPECT_NEAR(box.center().y, 5.0, 1e-9);
+    EXPECT_EQ(t.scale, scale);
+  }
+  const NodePtr mirrored =
+      editNode(root, 3, [](Node& n) { n.transform.scale = glm::dvec3(1.0, 1.0, -0.5); });
+  Rest rest;
+  EXPECT_EQ(keptResting(root, mirrored, 3, &rest), findNode(mirrored, 3)->transform);
+  EXPECT_FALSE(rest.moved);
+}
+
 // A point picked on a flat face carries the depth buffer's precision: along an axis normal it
 // goes onto the face of the part's box (a cutter's face on the other side: its surface faces into
 // the hole); a slanted normal, or a point farther than a ten-thousandth of the box, stays.
