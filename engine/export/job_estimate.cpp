@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "engine/eval/evaluator.h"
 #include "engine/export/check_streamed.h"
@@ -142,23 +143,54 @@ int triangleProbeResolution(int jobCells) {
 // square). Fitting both to the surface law put that part's export at 1024 cells at 8 s where it
 // took 58 s; so the modifiers' time is taken out of both probes, the rest fitted as before, and
 // the whole probe's modifier time scaled by the nodes.
+// Each probe is timed as the middle of a few runs (probeTime); the last run is at the whole
+// probe resolution (the caller keeps what it measured).
 template <typename Probe>
 double timeFromProbes(const Grid& job, int tiles, double jobModifiedNodes, Probe&& probe) {
   const int resolution = probeResolutionFor(longestSide(job));
-  Stopwatch small;
-  const ProbeRun smallRun = probe(resolution / 2);
-  const double tSmall = small.seconds() - smallRun.modifySeconds;
-  Stopwatch whole;
-  const ProbeRun run = probe(resolution);
-  const double tProbe = whole.seconds() - run.modifySeconds;
+  ProbeRun smallRun, run;
+  const ProbeTime small = probeTime(
+      [&] {
+        smallRun = probe(resolution / 2);
+        return smallRun.modifySeconds;
+      },
+      kProbeRuns, kProbeRepeatSeconds);
+  const ProbeTime whole = probeTime(
+      [&] {
+        run = probe(resolution);
+        return run.modifySeconds;
+      },
+      kProbeRuns, kProbeRepeatSeconds);
   const double modify =
-      run.modifiedNodes > 0.0 ? run.modifySeconds * jobModifiedNodes / run.modifiedNodes : 0.0;
-  return fitSeconds(std::max(0.0, tSmall), scaleFrom(run.grid, smallRun.grid),
-                    std::max(0.0, tProbe), scaleFrom(run.grid, job), tiles) +
+      run.modifiedNodes > 0.0 ? whole.excludedSeconds * jobModifiedNodes / run.modifiedNodes : 0.0;
+  return fitSeconds(std::max(0.0, small.seconds), scaleFrom(run.grid, smallRun.grid),
+                    std::max(0.0, whole.seconds), scaleFrom(run.grid, job), tiles) +
          modify;
 }
 
 }  // namespace
+
+ProbeTime probeTime(const std::function<double()>& run, int maxRuns, double budgetSeconds) {
+  std::vector<double> rests, excluded;
+  Stopwatch spent;
+  while (int(rests.size()) < std::max(1, maxRuns)) {
+    Stopwatch clock;
+    excluded.push_back(run());
+    rests.push_back(clock.seconds() - excluded.back());
+    if (spent.seconds() >= budgetSeconds) break;
+  }
+  // The middle one (of an even count the lower middle: of two, the smaller).
+  const auto middle = [](std::vector<double> v) {
+    const auto m = v.begin() + std::ptrdiff_t((v.size() - 1) / 2);
+    std::nth_element(v.begin(), m, v.end());
+    return *m;
+  };
+  ProbeTime t;
+  t.seconds = middle(rests);
+  t.excludedSeconds = middle(excluded);
+  t.runs = int(rests.size());
+  return t;
+}
 
 JobEstimate estimateEvaluation(const Scene& scene, int resolution,
                                const std::shared_ptr<Backend>& backend, Progress& progress,

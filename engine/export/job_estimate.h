@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -59,6 +60,24 @@ struct JobEstimate {
   int probeComponents = -1;
   int probeCells = 0;
 };
+
+// A probe's time on a machine that other work shares: the middle of a few runs. One run's wall
+// clock carries whatever else ran meanwhile (the editor drawing, another program), and the fit
+// multiplies a probe's error by the job's surface ratio (64 for a probe at an eighth): on a loaded
+// 2-core machine one export of 8 to 15 s was estimated at 3 to 30 s (an artist's test). The middle
+// leaves out a run slowed by a passing load, and follows a load that lasts (which slows the job
+// as well; the least run would not). `run` runs the probe once and returns the seconds of its
+// time to leave out (its modifiers', timed apart); it is run at least once and again while fewer
+// than `maxRuns` runs took less than `budgetSeconds` in all, so only cheap probes, whose noise
+// weighs most, are repeated.
+struct ProbeTime {
+  double seconds = 0.0;          // the middle of the runs' times less their excluded seconds
+  double excludedSeconds = 0.0;  // the middle of the excluded seconds
+  int runs = 0;
+};
+ProbeTime probeTime(const std::function<double()>& run, int maxRuns, double budgetSeconds);
+constexpr int kProbeRuns = 3;
+constexpr double kProbeRepeatSeconds = 0.3;
 
 // "2 separate bodies at 1024 cells, where the estimate's probe at 128 cells made 1: ..." when an
 // export of `components` closed components at `jobCells` differs from its estimate's probe, ""

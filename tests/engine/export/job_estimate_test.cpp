@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+#include <vector>
+
 #include "engine/eval/cpu_backend.h"
 #include "engine/export/simplify_mesh.h"
 #include "engine/export/streamed_export.h"
@@ -13,6 +17,31 @@
 
 namespace strata {
 namespace {
+
+// A probe is timed as the middle of its runs: a run slowed by a passing load (one 1 s run among
+// runs of 10 ms; an artist saw an estimate ten times the job) is left out, and the seconds its
+// modifiers took (excluded) are the middle ones too. Runs are repeated only within the budget:
+// probes of 0.2 s with a budget of 0.3 s run twice, and the smaller counts.
+TEST(JobEstimate, AProbeIsTimedAsTheMiddleOfItsRuns) {
+  const auto sleeping = [](std::vector<double> seconds, std::vector<double> excluded) {
+    return [seconds, excluded, i = size_t(0)]() mutable {
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds.at(i)));
+      return excluded.at(i++);
+    };
+  };
+  const ProbeTime spiked = probeTime(sleeping({1.0, 0.01, 0.01}, {0.0, 0.0, 0.0}), 3, 10.0);
+  EXPECT_EQ(spiked.runs, 3);
+  EXPECT_GE(spiked.seconds, 0.01);
+  EXPECT_LT(spiked.seconds, 0.2) << "the slowed run counted (a mean would be 0.34)";
+  const ProbeTime modifiers = probeTime(sleeping({0.01, 0.01, 0.01}, {0.5, 0.002, 0.004}), 3, 10.0);
+  EXPECT_EQ(modifiers.excludedSeconds, 0.004);
+  const ProbeTime budget = probeTime(sleeping({0.2, 0.3, 0.2}, {0.0, 0.0, 0.0}), 3, 0.3);
+  EXPECT_EQ(budget.runs, 2);
+  EXPECT_GE(budget.seconds, 0.2);
+  EXPECT_LT(budget.seconds, 0.3) << "of two runs, the smaller";
+  const ProbeTime once = probeTime(sleeping({0.01}, {0.0}), 1, 10.0);
+  EXPECT_EQ(once.runs, 1);
+}
 
 // The scaffold of scaled copies: no modifier, so it is exported in tiles.
 TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
