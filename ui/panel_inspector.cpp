@@ -738,8 +738,17 @@ void patternFields(EditorState& state, const NodePtr& node, const NodeList& node
       });
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("The axis through the array's origin");
     ImGui::SameLine();
-    const std::optional<CircularAxisPlace> around =
-        circularAxisThroughNeighbours(state.document.root(), node->id);
+    // Kept between frames for the same tree and array (its neighbours' boxes: a mesh's vertices
+    // are gone through), as the selection's size is.
+    static std::weak_ptr<const Node> aroundRoot;
+    static NodeId aroundOf = 0;
+    static std::optional<CircularAxisPlace> aroundKept;
+    if (aroundRoot.lock() != state.document.root() || aroundOf != node->id) {
+      aroundKept = circularAxisThroughNeighbours(state.document.root(), node->id);
+      aroundRoot = state.document.root();
+      aroundOf = node->id;
+    }
+    const std::optional<CircularAxisPlace> around = aroundKept;
     ImGui::BeginDisabled(!around);
     // What the click will do to the ring, said before and after it: the parts stay, so the
     // ring's radius follows the axis (it changed without a word: an artist's test).
