@@ -434,6 +434,8 @@ int runEdit(const std::vector<std::string>& argv) {
     options.editResultWaitSeconds = args.number("--edit-wait", 8.0, 0.0, 1000.0) / 1000.0;
     options.width = args.integer("--width", 1600, 320, 8192);
     options.height = args.integer("--height", 1000, 240, 8192);
+    // A size asked for is kept (screenshots, measurements); the default fits the screen.
+    options.fitScreen = !args.has("--width") && !args.has("--height");
     const std::string screenshot = args.text("--screenshot", "");
     // A screenshot or a measurement is a batch run: it neither reads nor writes the user's
     // recovery file, recent files or panel sizes (a measurement's edit left a recovery file

@@ -162,7 +162,8 @@ struct Editor::Gl {
   Stopwatch frameClock;
 
   Gl(const EditorOptions& o)
-      : window(o.width, o.height, "Strata", o.visible), redraw(window.presentsParts()) {
+      : window(o.width, o.height, "Strata", o.visible, o.fitScreen),
+        redraw(window.presentsParts()) {
     renderer = std::make_unique<ViewportRenderer>();  // may throw: nothing else to undo yet
     renderer->setSplatPrimitive(o.splatPrimitive);
     IMGUI_CHECKVERSION();

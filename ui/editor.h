@@ -41,6 +41,7 @@ struct EditorOptions {
   PinHostMemory pinHostMemory;
   bool visible = true;  // false: an invisible window for off-screen rendering
   int width = 1600, height = 1000;
+  bool fitScreen = false;       // shrink the window to the screen's work area where it is larger
   std::string recentFilesPath;  // "" = none
   std::string layoutPath;       // the panel sizes remembered between runs; "" = the defaults
   // Crash recovery (engine/io/recovery_slots.h): this editor autosaves into a slot of its own in

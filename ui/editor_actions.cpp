@@ -1542,11 +1542,17 @@ void logExportEnd(EditorState& state) {
     logWarning(state, "export of " + s.path + " cancelled after the file was written: " +
                           exportCancelledAfterWriteText);
   } else if (s.cancelled) {
-    logInfo(state, "export of " + s.path + " cancelled; nothing was written");
+    logInfo(state, "export of " + s.path + " " + exportCancelledText(s));
   } else {
     logWarning(state,
                "export of " + s.path + (s.refused ? " not started: " : " failed: ") + s.error);
   }
+}
+
+std::string exportCancelledText(const ExportStatus& s) {
+  return s.cancelledKeptFile
+             ? "cancelled; nothing was written: the file that was there is as it was"
+             : "cancelled; nothing was written";
 }
 
 void startExport(EditorState& state, const std::string& path, int resolution, double simplifyCells,

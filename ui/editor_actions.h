@@ -185,6 +185,9 @@ void startExport(EditorState& state, const std::string& path, int resolution,
 // Export window alike.
 inline constexpr const char* exportCancelledAfterWriteText =
     "the new file is in place and whole, but was not checked (export again to check it)";
+// What a cancel before the write leaves, for the log and the Export window alike: "cancelled;
+// nothing was written", and where a file was there already, that it is as it was.
+std::string exportCancelledText(const ExportStatus& s);
 // Once the export has ended, says how in the log, once (written and checked, failed, cancelled):
 // the status bar showed "exporting ..." long after. Called every frame (the Export window).
 void logExportEnd(EditorState& state);

@@ -4,6 +4,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <mutex>
 
@@ -72,11 +73,20 @@ bool displayAvailable(std::string* why) {
   return true;
 }
 
-GlWindow::GlWindow(int width, int height, const std::string& title, bool visible) {
+GlWindow::GlWindow(int width, int height, const std::string& title, bool visible, bool fitScreen) {
   if (!displayNamed())
     throw Error("cannot open a window: no display (neither DISPLAY nor WAYLAND_DISPLAY is set)");
   std::string why;
   if (!acquireGlfw(&why)) throw Error("cannot open a window: " + why);
+  int workX = 0, workY = 0, workWidth = 0, workHeight = 0;
+  GLFWmonitor* monitor = fitScreen && visible ? glfwGetPrimaryMonitor() : nullptr;
+  if (monitor) glfwGetMonitorWorkarea(monitor, &workX, &workY, &workWidth, &workHeight);
+  const bool fits = workWidth <= 0 || workHeight <= 0 ||
+                    (width <= workWidth && height <= workHeight);  // unknown: as asked
+  if (!fits) {
+    width = std::min(width, workWidth);
+    height = std::min(height, workHeight);
+  }
   int samples = multisamples();
   bool software = false;
   for (int attempt = 0; attempt < 2; ++attempt) {
@@ -103,6 +113,14 @@ GlWindow::GlWindow(int width, int height, const std::string& title, bool visible
   const bool wanted = partial && *partial ? std::atoi(partial) != 0 : software;
   // Not on a multisampled window: the driver resolves its samples only at a swap.
   partial_ = wanted && samples == 0 && canPresentParts(window_);
+  if (!fits) {
+    // Its frame (a title bar) inside the work area as well; none without a window manager.
+    int left = 0, top = 0, right = 0, bottom = 0;
+    glfwGetWindowFrameSize(window_, &left, &top, &right, &bottom);
+    const int w = std::max(320, width - left - right), h = std::max(240, height - top - bottom);
+    if (w != width || h != height) glfwSetWindowSize(window_, w, h);
+    glfwSetWindowPos(window_, workX + left, workY + top);
+  }
   glfwSetWindowUserPointer(window_, this);
   glfwSetWindowRefreshCallback(window_, [](GLFWwindow* w) {
     static_cast<GlWindow*>(glfwGetWindowUserPointer(w))->exposed_ = true;

@@ -21,8 +21,11 @@ class GlWindow {
  public:
   // Opens a window of `width` x `height` screen coordinates; an invisible one for off-screen
   // rendering when `visible` is false. Multisampled (4 samples, or STRATA_MSAA; none on software
-  // renderers unless STRATA_MSAA asks). Throws strata::Error saying why it could not.
-  GlWindow(int width, int height, const std::string& title, bool visible);
+  // renderers unless STRATA_MSAA asks). With `fitScreen`, a visible window larger than the
+  // primary monitor's work area (its frame included) is shrunk to it and placed at its corner:
+  // the default 1600 x 1000 on a 1280 x 800 screen hid the inspector and the preview settings
+  // off the screen (an artist's test). Throws strata::Error saying why it could not.
+  GlWindow(int width, int height, const std::string& title, bool visible, bool fitScreen = false);
   ~GlWindow();
   GlWindow(const GlWindow&) = delete;
   GlWindow& operator=(const GlWindow&) = delete;

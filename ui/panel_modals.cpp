@@ -22,6 +22,7 @@
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/scene_queries.h"
+#include "ui/text_fit.h"
 #include "ui/typed_value.h"
 
 namespace strata::ui {
@@ -243,13 +244,24 @@ void exportWindow(EditorState& state) {
     ImGui::TextDisabled("resolution %d", s.resolution);
   if (s.running) {
     // The bar and Cancel right under the lines every export has, the estimate (of varying
-    // length) below them: Cancel stays where it was from one export to the next.
+    // length) below them: Cancel stays where it was from one export to the next, and Close
+    // takes its place once the export has ended.
     char overlay[96];
     std::snprintf(overlay, sizeof(overlay), "%s %.0f%%", s.stage.c_str(), s.fraction * 100.0);
     ImGui::ProgressBar(float(s.fraction), ImVec2(-1, 0), overlay);
     if (ImGui::Button("Cancel", ImVec2(120, 0))) state.exportJob->cancel();
+  } else if (ImGui::Button("Close", ImVec2(120, 0)) ||
+             (keyPressed(state, GLFW_KEY_ESCAPE) && !ImGui::IsAnyItemActive())) {
+    // Where Cancel was, above the report (of varying length): at its foot it moved from one
+    // export to the next, and a click meant for it selected a part behind (an artist's test).
+    // Esc closes the ended export's window, as it closes the dialogs.
+    open = false;
   }
-  if (!s.estimate.empty()) ImGui::TextWrapped("estimate: %s", s.estimate.c_str());
+  if (!s.estimate.empty())  // wrapped at spaces: ImGui's wrapping parted "1.3 GiB" at its point
+    for (const std::string& line :
+         wrapAtSpaces("estimate: " + s.estimate, ImGui::GetContentRegionAvail().x,
+                      [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; }))
+      ImGui::TextUnformatted(line.c_str());
   if (s.running) {
     // (The bar and Cancel above.)
   } else if (s.succeeded) {
@@ -302,7 +314,7 @@ void exportWindow(EditorState& state) {
     ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "cancelled after the file was written");
     ImGui::TextWrapped("%s", exportCancelledAfterWriteText);
   } else if (s.cancelled) {
-    ImGui::TextUnformatted("cancelled; nothing was written");
+    ImGui::TextWrapped("%s", exportCancelledText(s).c_str());
   } else {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), s.refused ? "not started" : "failed");
     ImGui::TextWrapped("%s", s.error.c_str());
@@ -317,10 +329,6 @@ void exportWindow(EditorState& state) {
     }
   }
   if (!s.notice.empty()) ImGui::TextWrapped("%s", s.notice.c_str());
-  // Esc closes the ended export's window, as it closes the dialogs.
-  if (!s.running && (ImGui::Button("Close", ImVec2(120, 0)) ||
-                     (keyPressed(state, GLFW_KEY_ESCAPE) && !ImGui::IsAnyItemActive())))
-    open = false;
   ImGui::End();
   if (!open) state.exportJob.reset();
 }

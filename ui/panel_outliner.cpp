@@ -383,6 +383,11 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
       ImGui::PopTextWrapPos();
       ImGui::EndTooltip();
     }
+    // The root: its whole name (cut in a narrow panel) and what it is.
+    if (ImGui::IsItemHovered() && !ImGui::GetDragDropPayload() && isRoot)
+      ImGui::SetTooltip("%s (%s): the scene's result, the one the view shows and export writes",
+                        node->name.empty() ? "(unnamed)" : node->name.c_str(),
+                        kindLabel(node->kind));
     contextMenu(state, node);
   }
   if (isOperation(node->kind) && !chained) {

@@ -373,20 +373,24 @@ std::optional<CircularAxisPlace> circularAxisThroughNeighbours(const NodePtr& ro
   return place;
 }
 
-glm::dvec3 snappedToBoxFace(const NodePtr& root, NodeId leaf, const glm::dvec3& point,
-                            const glm::dvec3& normal) {
+FaceSnap snappedToBoxFace(const NodePtr& root, NodeId leaf, const glm::dvec3& point,
+                          const glm::dvec3& normal) {
+  const FaceSnap asPicked{point, normal};
   const double length = glm::length(normal);
-  if (!(length > 0.0)) return point;
+  if (!(length > 0.0)) return asPicked;
   int axis = -1;
   for (int a = 0; a < 3; ++a)
-    if (std::fabs(normal[a]) / length > std::cos(glm::radians(0.05))) axis = a;
-  if (axis < 0 || !findNode(root, leaf)) return point;
+    if (std::fabs(normal[a]) / length > std::cos(glm::radians(2.0))) axis = a;
+  if (axis < 0 || !findNode(root, leaf)) return asPicked;
   const Bounds box = selectionBounds(root, {leaf});
-  if (box.empty()) return point;
+  if (box.empty()) return asPicked;
   const bool outward = (normal[axis] > 0.0) != removesMaterial(root, leaf);
   const double face = outward ? box.max[axis] : box.min[axis];
-  glm::dvec3 snapped = point;
-  if (std::fabs(point[axis] - face) <= 1e-4 * box.longestSide()) snapped[axis] = face;
+  if (!(std::fabs(point[axis] - face) <= 1e-4 * box.longestSide())) return asPicked;
+  FaceSnap snapped = asPicked;
+  snapped.point[axis] = face;
+  snapped.normal = glm::dvec3(0.0);
+  snapped.normal[axis] = normal[axis] > 0.0 ? 1.0 : -1.0;
   return snapped;
 }
 

@@ -120,14 +120,22 @@ struct CircularAxisPlace {
 // neighbours' box, taken in the array's frame (the coordinate along its axis kept).
 std::optional<CircularAxisPlace> circularAxisThroughNeighbours(const NodePtr& root, NodeId id);
 
-// A point picked on leaf `leaf`'s surface, whose normal there lies along an axis (within 0.05
+// A point picked on leaf `leaf`'s surface, whose normal there lies along an axis (within 2
 // degrees), moved along that axis onto the face of the leaf's world box on the normal's side
 // (the other side for a cutter, whose surface faces into the hole) where it lies within a
-// ten-thousandth of the box's size of it; `point` as it is otherwise. A pick reads the depth
-// buffer: a part dropped on a plate's top at z = 8 landed at 8.00002 and showed "18…" for its
-// centre, and resized it no longer rested on the plate (an artist's test).
-glm::dvec3 snappedToBoxFace(const NodePtr& root, NodeId leaf, const glm::dvec3& point,
-                            const glm::dvec3& normal);
+// ten-thousandth of the box's size of it, and the normal then turned onto the axis; `point` and
+// `normal` as they are otherwise. A pick reads the depth buffer: a part dropped on a plate's top
+// at z = 8 landed at 8.00002 and showed "18…" for its centre, and resized it no longer rested on
+// the plate; the normal, from the depths around the point, came out 0.5 degrees off the plate's
+// and a box dropped there stood tilted, its corners 0.2 mm in and out of the plate (artists'
+// tests). A face turned by less than 2 degrees from an axis meets its box's face along an edge
+// only: a point picked in it lies off the box's face and is left as picked.
+struct FaceSnap {
+  glm::dvec3 point;
+  glm::dvec3 normal;
+};
+FaceSnap snappedToBoxFace(const NodePtr& root, NodeId leaf, const glm::dvec3& point,
+                          const glm::dvec3& normal);
 
 // A round length near `approximate`: 1, 2 or 5 times a power of ten.
 double niceLength(double approximate);

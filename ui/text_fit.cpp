@@ -31,6 +31,30 @@ std::string fitWithEllipsis(const std::string& text, float width,
   return text.substr(0, cut) + kEllipsis;
 }
 
+std::vector<std::string> wrapAtSpaces(const std::string& text, float width,
+                                      const std::function<float(const std::string&)>& measure) {
+  std::vector<std::string> lines;
+  std::string line;
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t space = text.find(' ', at);
+    const size_t end = space == std::string::npos ? text.size() : space;
+    const std::string word = text.substr(at, end - at);
+    at = end + 1;
+    if (word.empty()) continue;  // runs of spaces
+    if (line.empty()) {
+      line = word;
+    } else if (measure(line + " " + word) <= width) {
+      line += " " + word;
+    } else {
+      lines.push_back(line);
+      line = word;
+    }
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
 std::string markedWhereRounded(const std::string& format, double value) {
   char text[64];
   std::snprintf(text, sizeof(text), format.c_str(), value);

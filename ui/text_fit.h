@@ -1,11 +1,13 @@
 // How a panel's text marks what it leaves out: text shortened to fit a width (the longest prefix
-// of whole UTF-8 characters that, followed by an ellipsis, fits), and a number field's format
+// of whole UTF-8 characters that, followed by an ellipsis, fits), text wrapped at spaces only,
+// and a number field's format
 // marked where the field shows its value rounded. Plain strings and a measuring function (pixels;
 // ImGui::CalcTextSize in the panels), no ImGui here, so it is testable without a window.
 #pragma once
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace strata::ui {
 
@@ -14,6 +16,13 @@ namespace strata::ui {
 // of a string in pixels and must not shrink when characters are appended.
 std::string fitWithEllipsis(const std::string& text, float width,
                             const std::function<float(const std::string&)>& measure);
+
+// `text` broken into lines no wider than `width` at spaces only (the spaces at a break dropped):
+// Dear ImGui's wrapping also breaks after a '.' or a ',', and an estimate of "1.3 GiB of memory"
+// ended a line with "1." and began the next with "3 GiB" (an artist's test). A word wider than
+// `width` alone is a line of its own. `measure` as for fitWithEllipsis.
+std::vector<std::string> wrapAtSpaces(const std::string& text, float width,
+                                      const std::function<float(const std::string&)>& measure);
 
 // The printf `format` of a number field (one %g, %f or %e conversion: "%.4g mm") for `value`,
 // with a mark ("\u2026") after the number where the field shows it rounded: a field showed 16

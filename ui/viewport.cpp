@@ -333,6 +333,25 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
             selectedHolder(state.document.root(), state.selection, primarySelection(state));
         guarded(state, [&] {
           state.document.setTransform(id, t);
+          // Scaled about its origin (a box's middle), a part resting on the ground or on
+          // another part sank into it or floated off it: kept on it from where the drag began,
+          // as a scale or size typed in the inspector (an artist's test).
+          if (state.gizmoMode == GizmoMode::Scale) {
+            Rest rest;
+            t = keptResting(dragStart_, state.document.root(), id, &rest);
+            if (rest.moved) state.document.setTransform(id, t);
+            if (rest.moved && !restSaid_) {
+              restSaid_ = true;
+              const NodePtr part = findNode(dragStart_, id);
+              const NodePtr on = rest.on ? findNode(dragStart_, rest.on) : nullptr;
+              const auto named = [](const NodePtr& n) {
+                return "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"";
+              };
+              logInfo(state, named(part) + " rested on " + (on ? named(on) : "the ground") +
+                                 " and stays on it as it is scaled" +
+                                 (on ? " (it grows from its base)" : ""));
+            }
+          }
           for (const auto& [follower, transform] :
                followingTransforms(dragStart_, state.selection, id, t, &sheared))
             state.document.setTransform(follower, transform);
@@ -427,6 +446,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       gizmo_.begin(hot_, view, mouse);
       dragStart_ = state.document.root();
       shearSaid_ = false;
+      restSaid_ = false;
       return;
     }
     clickPending_ = true;
@@ -482,10 +502,14 @@ Placement Viewport::placementAt(ViewportRenderer& renderer, const EditorState& s
   // (looking at or above the horizon) on the ground below the point the camera orbits.
   Placement placement;
   if (std::optional<PickHit> hit = pickAt(renderer, state, rect, mouse, pixelScale)) {
-    placement.point = hit->normal ? snappedToBoxFace(state.document.root(), hit->leaf,
-                                                     hit->position, *hit->normal)
-                                  : hit->position;
+    placement.point = hit->position;
     placement.normal = hit->normal;
+    if (hit->normal) {
+      const FaceSnap snap =
+          snappedToBoxFace(state.document.root(), hit->leaf, hit->position, *hit->normal);
+      placement.point = snap.point;
+      placement.normal = snap.normal;
+    }
     placement.part = dropTargetFor(state.document.root(), hit->leaf);
     return placement;
   }

@@ -130,6 +130,7 @@ class Viewport {
   bool pivotGroup_ = false;
   Transform pivotNow_;
   bool shearSaid_ = false;  // this drag has said a part could not follow it exactly
+  bool restSaid_ = false;   // this drag has said a scaled part stays where it rested
 
   // The selection box drawn each frame, worked out again only when the document or the
   // selection changes: a mesh leaf's bounds walk all its vertices (sceneBounds remembers its own).

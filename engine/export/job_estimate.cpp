@@ -199,7 +199,8 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
   e.grid = Evaluator::gridFor(scene, resolution);
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove)
-    return e;  // no bigger than the probe
+    return e;                                // no bigger than the probe
+  const uint64_t present = residentBytes();  // before the probes, which add their own
   EvalResult r;
   try {
     e.seconds = timeFromProbes(e.grid, 1, double(e.grid.nodeCount()), [&](int resolution) {
@@ -217,8 +218,7 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
   e.surfels = uint64_t(double(r.measure.surfels) * scale);
   // Every node's LDI is kept (the cache): the probe's cache, scaled, on top of what the
   // process holds now (LDIs on a device take none of the host's).
-  e.peakBytes = peakResidentBytes() +
-                (backend->keepsLdisOnHost() ? uint64_t(double(r.cacheBytes) * scale) : 0);
+  e.peakBytes = present + (backend->keepsLdisOnHost() ? uint64_t(double(r.cacheBytes) * scale) : 0);
   return e;
 }
 
@@ -240,7 +240,9 @@ JobEstimate estimateExport(const Scene& scene, const ContourOptions& options,
   e.tiles = tiling.count();
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
   if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
-  const uint64_t present = peakResidentBytes();  // before the probes, which add their own
+  // Held now, before the probes, which add their own (not the process's peak so far, which
+  // counts what an earlier job let go).
+  const uint64_t present = residentBytes();
   ContourReport report;
   size_t probeTriangles = 0;
   TriangleMesh lastProbe;

@@ -182,6 +182,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     result.cancelled = true;
     const std::optional<std::filesystem::file_time_type> after = stamp();
     result.cancelledAfterWrite = after && after != before;
+    result.cancelledKeptFile = before && after == before;
   } catch (...) {
     result.error = jobErrorText(std::current_exception(), "; export at a lower resolution");
   }
@@ -191,6 +192,7 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
     s.succeeded = result.succeeded;
     s.cancelled = result.cancelled;
     s.cancelledAfterWrite = result.cancelledAfterWrite;
+    s.cancelledKeptFile = result.cancelledKeptFile;
     s.error = result.error;
     s.refused = result.refused;
     s.check = result.check;

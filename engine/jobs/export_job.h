@@ -36,6 +36,9 @@ struct ExportStatus {
   // (the check after the write leaves it there: export_scene.h). The window said "nothing was
   // written" beside a complete 286 MiB file (an artist's test).
   bool cancelledAfterWrite = false;
+  // Cancelled before the write, over a file that was there: that file is as it was (the window
+  // said only "nothing was written", and an artist checked the old file's checksum to be sure).
+  bool cancelledKeptFile = false;
   // "start", "estimate", "evaluate", "contour" (the first tile's), "export", "merge",
   // "simplify", "write <format>", "check"
   std::string stage;

@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -14,6 +15,17 @@ uint64_t peakResidentBytes() {
   struct rusage usage {};
   if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
   return uint64_t(usage.ru_maxrss) * 1024u;  // Linux reports kilobytes
+}
+
+uint64_t residentBytes() {
+  // /proc/self/statm: size, resident, ... in pages.
+  FILE* f = std::fopen("/proc/self/statm", "r");
+  unsigned long long size = 0, resident = 0;
+  const bool read = f && std::fscanf(f, "%llu %llu", &size, &resident) == 2;
+  if (f) std::fclose(f);
+  const long page = sysconf(_SC_PAGESIZE);
+  if (!read || page <= 0) return peakResidentBytes();
+  return uint64_t(resident) * uint64_t(page);
 }
 
 namespace {

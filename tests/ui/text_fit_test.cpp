@@ -31,6 +31,32 @@ TEST(TextFit, CutsOnlyBetweenWholeCharacters) {
   EXPECT_EQ(fitWithEllipsis(name, 1000.0f, charWidth), name);
 }
 
+// An estimate wrapped at spaces only: "1.3 GiB" is never parted at its point, as ImGui's own
+// wrapping parted it (an artist's test); every line fits, and the words come back joined.
+TEST(TextFit, TextWrapsAtSpacesOnlyAndNeverInsideANumber) {
+  const std::string estimate =
+      "467 x 410 x 1024 cells, about 3.9 million triangles, 1.3 GiB of memory, a 186.9 MiB "
+      "file, 7 s";
+  for (float width = 100.0f; width <= 400.0f; width += 10.0f) {  // "triangles," is 100 wide
+    SCOPED_TRACE(width);
+    const std::vector<std::string> lines = wrapAtSpaces(estimate, width, charWidth);
+    std::string joined;
+    for (const std::string& line : lines) {
+      EXPECT_LE(charWidth(line), width) << line;
+      EXPECT_NE(line.front(), ' ');
+      EXPECT_NE(line.back(), ' ');
+      EXPECT_NE(line.back(), '.') << "a line ends inside a number";
+      joined += (joined.empty() ? "" : " ") + line;
+    }
+    EXPECT_EQ(joined, estimate);
+  }
+  EXPECT_EQ(wrapAtSpaces("1.3 GiB of memory", 90.0f, charWidth),
+            (std::vector<std::string>{"1.3 GiB", "of memory"}));
+  EXPECT_EQ(wrapAtSpaces("", 80.0f, charWidth), std::vector<std::string>{""});
+  EXPECT_EQ(wrapAtSpaces("a 1234567890 b", 50.0f, charWidth),
+            (std::vector<std::string>{"a", "1234567890", "b"}));  // wider than the line: alone
+}
+
 // A number field marks a value it shows rounded, not one whose only difference is rounding
 // noise (an artist read "18…" for a drop's 18.000000000000004 as a hidden fraction).
 TEST(TextFit, ARoundedNumberIsMarkedAndRoundingNoiseIsNot) {

@@ -502,9 +502,11 @@ TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenScaled) {
   EXPECT_FALSE(rest.moved);
 }
 
-// A point picked on a flat face carries the depth buffer's precision: along an axis normal it
-// goes onto the face of the part's box (a cutter's face on the other side: its surface faces into
-// the hole); a slanted normal, or a point farther than a ten-thousandth of the box, stays.
+// A point picked on a flat face carries the depth buffer's precision: along a normal within 2
+// degrees of an axis it goes onto the face of the part's box (a cutter's face on the other side:
+// its surface faces into the hole), and the normal onto the axis (a box dropped with the depths'
+// normal, 0.5 degrees off, stood tilted: an artist's test); a slanted normal, or a point farther
+// than a ten-thousandth of the box, stays as picked.
 TEST(SelectionBounds, APointPickedOnAFlatFaceGoesOntoIt) {
   auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
   plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
@@ -514,18 +516,31 @@ TEST(SelectionBounds, APointPickedOnAFlatFaceGoesOntoIt) {
   pocket->transform.translate = glm::dvec3(20.0, 0.0, 8.0);  // its floor at 6
   const NodePtr root = makeOperationNode(NodeKind::Difference, 1, {plate, pocket});
   const glm::dvec3 up(0.0, 0.0, 1.0);
-  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.0000231}, up), glm::dvec3(-30.0, 5.0, 8.0));
-  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 7.9999812}, glm::dvec3(1e-5, 0.0, 1.0)),
+  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.0000231}, up).point,
             glm::dvec3(-30.0, 5.0, 8.0));
+  // The depths' normal, half a degree off: point and normal onto the face.
+  const glm::dvec3 tilted(std::sin(glm::radians(0.53)), 0.0, std::cos(glm::radians(0.53)));
+  const FaceSnap onTop = snappedToBoxFace(root, 2, {-30.0, 5.0, 7.9999812}, tilted);
+  EXPECT_EQ(onTop.point, glm::dvec3(-30.0, 5.0, 8.0));
+  EXPECT_EQ(onTop.normal, up);
   // The pocket's floor: the cutter's bottom, facing up into the hole.
-  EXPECT_EQ(snappedToBoxFace(root, 3, {20.0, 0.0, 6.0000152}, up), glm::dvec3(20.0, 0.0, 6.0));
-  // Slanted, or too far: as picked.
+  const FaceSnap floor = snappedToBoxFace(root, 3, {20.0, 0.0, 6.0000152}, tilted);
+  EXPECT_EQ(floor.point, glm::dvec3(20.0, 0.0, 6.0));
+  EXPECT_EQ(floor.normal, up);
+  // The plate's side, seen from -x.
+  const FaceSnap side = snappedToBoxFace(root, 2, {-50.0000101, 5.0, 4.0}, {-1.0, 0.01, 0.0});
+  EXPECT_EQ(side.point, glm::dvec3(-50.0, 5.0, 4.0));
+  EXPECT_EQ(side.normal, glm::dvec3(-1.0, 0.0, 0.0));
+  // Slanted (5.7 degrees), or too far, or no such part: as picked.
   const glm::dvec3 slant = glm::normalize(glm::dvec3(0.0, 0.1, 1.0));
-  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.0000231}, slant),
+  const FaceSnap slanted = snappedToBoxFace(root, 2, {-30.0, 5.0, 8.0000231}, slant);
+  EXPECT_EQ(slanted.point, glm::dvec3(-30.0, 5.0, 8.0000231));
+  EXPECT_EQ(slanted.normal, slant);
+  const FaceSnap far = snappedToBoxFace(root, 2, {-30.0, 5.0, 8.5}, tilted);
+  EXPECT_EQ(far.point, glm::dvec3(-30.0, 5.0, 8.5));
+  EXPECT_EQ(far.normal, tilted) << "a normal off a face the point is not on stays as picked";
+  EXPECT_EQ(snappedToBoxFace(root, 99, {-30.0, 5.0, 8.0000231}, up).point,
             glm::dvec3(-30.0, 5.0, 8.0000231));
-  EXPECT_EQ(snappedToBoxFace(root, 2, {-30.0, 5.0, 8.5}, up), glm::dvec3(-30.0, 5.0, 8.5));
-  EXPECT_EQ(snappedToBoxFace(root, 99, {-30.0, 5.0, 8.0000231}, up),
-            glm::dvec3(-30.0, 5.0, 8.0000231));  // no such part
 }
 
 // Where a new part with nothing selected rests: on the top of the parts standing under the

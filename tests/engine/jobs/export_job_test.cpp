@@ -264,8 +264,9 @@ ExportStatus cancelledAt(const std::string& stage, const std::string& path) {
 }
 
 // Cancels the job while it is held at the first report of `stage`; expects it to end cancelled
-// with `folder` as it was.
+// with `folder` as it was, and to say that the file at `path` was kept where there was one.
 void cancelAt(const std::string& stage, const std::string& path, const std::string& folder) {
+  const bool earlier = std::filesystem::exists(path);
   const std::set<std::string> before = filesIn(folder);
   std::vector<std::string> contents;
   for (const auto& name : before) contents.push_back(contentOf(folder + "/" + name));
@@ -274,6 +275,7 @@ void cancelAt(const std::string& stage, const std::string& path, const std::stri
   EXPECT_TRUE(s.finished);
   EXPECT_TRUE(s.cancelled);
   EXPECT_FALSE(s.cancelledAfterWrite);
+  EXPECT_EQ(s.cancelledKeptFile, earlier);
   EXPECT_FALSE(s.succeeded);
   EXPECT_EQ(s.error, "");
 
@@ -283,8 +285,9 @@ void cancelAt(const std::string& stage, const std::string& path, const std::stri
   EXPECT_EQ(after, contents);
 }
 
-// (A cancel during the check, after the new file is in place, leaves that whole new file: see
-// ExportScene.CancelledDuringTheCheckLeavesTheWholeNewFile.)
+// Over an earlier file the job says that file was kept (the window said only "nothing was
+// written": an artist's test). (A cancel during the check, after the new file is in place, leaves
+// that whole new file: see ExportScene.CancelledDuringTheCheckLeavesTheWholeNewFile.)
 TEST(ExportJob, CancelledAtAnyStageLeavesNothingAndKeepsTheOldFile) {
   for (const std::string stage : {"evaluate", "export", "write"}) {
     for (const std::string ext : {"stl", "obj", "3mf"}) {
@@ -313,6 +316,7 @@ TEST(ExportJob, CancelledDuringTheCheckSaysTheFileWasWritten) {
     EXPECT_TRUE(s.finished);
     EXPECT_TRUE(s.cancelled);
     EXPECT_TRUE(s.cancelledAfterWrite);
+    EXPECT_FALSE(s.cancelledKeptFile);
     EXPECT_FALSE(s.succeeded);
     EXPECT_GT(readMeshFileRaw(path).triangles.size(), 100u) << "the new file, whole";
   }
