@@ -395,17 +395,28 @@ TEST(SelectionBounds, APartRestingOnTheGroundStaysOnItWhenResized) {
   EXPECT_FALSE(moved);
 }
 
+// A 100 x 60 x 8 box (id 2) standing on the ground, its top at z = 8.
+NodePtr groundPlate() {
+  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
+  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
+  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);
+  return plate;
+}
+
+// A 20 mm cube (id 3) resting on groundPlate's top, its middle at (10, 5, 18).
+NodePtr blockOnPlate() {
+  auto block = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
+  block->params.size = glm::dvec3(20.0);
+  block->transform.translate = glm::dvec3(10.0, 5.0, 18.0);
+  return block;
+}
+
 // A part resting on another part stays on it when resized: a block on a plate made smaller
 // floated above it, a ball on a box made larger sank into it (an artist's test); on a slanted
 // face it grows from the face along its own z. A cutter, or a part resting on nothing, keeps
 // its transform.
 TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenResized) {
-  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
-  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
-  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);  // top at 8
-  auto block = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
-  block->params.size = glm::dvec3(20.0);
-  block->transform.translate = glm::dvec3(10.0, 5.0, 18.0);  // resting on the plate's top
+  const NodePtr plate = groundPlate(), block = blockOnPlate();
   auto ball = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Sphere, 4));
   ball->params.radius = 2.5;
   ball->transform.translate = glm::dvec3(-30.0, 0.0, 8.0 + 2.5);
@@ -472,12 +483,7 @@ TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenResized) {
 // kept on the plate both ways, its own bottom where it was. Mirrored by a negative scale it is
 // left where the scale put it (its own bottom is then its top).
 TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenScaled) {
-  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
-  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
-  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);  // top at 8
-  auto block = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
-  block->params.size = glm::dvec3(20.0);
-  block->transform.translate = glm::dvec3(10.0, 5.0, 18.0);  // resting on the plate's top
+  const NodePtr plate = groundPlate(), block = blockOnPlate();
   const NodePtr root = makeOperationNode(NodeKind::Union, 1, {plate, block});
   for (const glm::dvec3 scale : {glm::dvec3(0.3), glm::dvec3(2.0), glm::dvec3(1.0, 1.0, 0.5)}) {
     SCOPED_TRACE(scale.z);
@@ -508,9 +514,7 @@ TEST(SelectionBounds, APartRestingOnAnotherPartStaysOnItWhenScaled) {
 // normal, 0.5 degrees off, stood tilted: an artist's test); a slanted normal, or a point farther
 // than a ten-thousandth of the box, stays as picked.
 TEST(SelectionBounds, APointPickedOnAFlatFaceGoesOntoIt) {
-  auto plate = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 2));
-  plate->params.size = glm::dvec3(100.0, 60.0, 8.0);
-  plate->transform.translate = glm::dvec3(0.0, 0.0, 4.0);  // top at 8
+  const NodePtr plate = groundPlate();
   auto pocket = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Box, 3));
   pocket->params.size = glm::dvec3(20.0, 20.0, 4.0);
   pocket->transform.translate = glm::dvec3(20.0, 0.0, 8.0);  // its floor at 6

@@ -21,6 +21,13 @@
 namespace strata {
 namespace {
 
+// A 2 x 2 x 1 box with a bowl cut into its top (a sphere's), at 160 cells.
+Scene boxWithBowl() {
+  return test::makeScene(
+      test::op(NodeKind::Difference, {test::box({2.0, 2.0, 1.0}), test::sphere(0.8, {0, 0, 0.5})}),
+      160);
+}
+
 // A probe is timed as the middle of its runs: a run slowed by a passing load (one 1 s run among
 // runs of 10 ms; an artist saw an estimate ten times the job) is left out, and the seconds its
 // modifiers took (excluded) are the middle ones too. Runs are repeated only within the budget:
@@ -76,9 +83,7 @@ TEST(JobEstimate, ExportEstimateIsWithinAFactorOfTwo) {
 // MiB held and let go between two estimates leave the second within 64 MiB of the first (the
 // probes' own memory is let go as well).
 TEST(JobEstimate, MemoryAnEarlierJobLetGoIsNotCounted) {
-  const Scene scene = test::makeScene(
-      test::op(NodeKind::Difference, {test::box({2.0, 2.0, 1.0}), test::sphere(0.8, {0, 0, 0.5})}),
-      160);
+  const Scene scene = boxWithBowl();
   auto backend = std::make_shared<CpuBackend>();
   Progress progress;
   ContourOptions options;
@@ -102,9 +107,7 @@ TEST(JobEstimate, MemoryAnEarlierJobLetGoIsNotCounted) {
 // 3.6 million in the dialog, for 3.69 million written: an artist's test): given the dialog's
 // count, the job's triangles, file and simplified triangles are its.
 TEST(JobEstimate, TheJobTakesTheDialogsCountOfItsTriangles) {
-  const Scene scene = test::makeScene(
-      test::op(NodeKind::Difference, {test::box({2.0, 2.0, 1.0}), test::sphere(0.8, {0, 0, 0.5})}),
-      160);
+  const Scene scene = boxWithBowl();
   auto backend = std::make_shared<CpuBackend>();
   Progress progress;
   ContourOptions options;
