@@ -498,9 +498,12 @@ void exportOptionsDialog(EditorState& state) {
   if (!current && settled) {
     retireEstimate(state);
     state.exportEstimate = std::make_unique<TriangleEstimateJob>(
-        state.document.snapshot(), resolution, cells, state.makeBackend);
+        state.document.snapshot(), *state.pendingExportPath, resolution, cells, state.makeBackend);
   }
   estimate = state.exportEstimate.get();
+  // Two lines, always (the counts, then the time and memory): Export and Cancel below must not
+  // move when the answer comes (a click aimed at one would land elsewhere).
+  const float estimateTop = ImGui::GetCursorPosY();
   if (estimate && estimate->done() && current) {
     const TriangleEstimate e = estimate->result();
     // The file's size with the triangles, before Export (it was told only once it ran).
@@ -515,9 +518,17 @@ void exportOptionsDialog(EditorState& state) {
                   countText(e.triangles).c_str(), file.c_str());
     else
       ImGui::Text("about %s triangles%s", countText(e.triangles).c_str(), file.c_str());
+    // Time and memory before Export (they were told only once it ran: an artist's test); a job
+    // too small to probe takes a second or so.
+    const JobEstimate job = estimate->jobEstimate();
+    if (estimate->error().empty() && job.probed)
+      ImGui::Text("about %s of memory, %s", bytesText(double(job.peakBytes)).c_str(),
+                  durationText(job.seconds).c_str());
   } else {
-    ImGui::TextDisabled("estimating the triangles...");
+    ImGui::TextDisabled("estimating the triangles, the time and the memory...");
   }
+  const float twoLines = 2.0f * ImGui::GetTextLineHeightWithSpacing();
+  if (ImGui::GetCursorPosY() < estimateTop + twoLines) ImGui::SetCursorPosY(estimateTop + twoLines);
   ImGui::Separator();
   // Not on the frame a typed value was set to the range's end (its note shows first), nor for a
   // scene no grid holds.

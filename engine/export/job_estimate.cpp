@@ -66,19 +66,6 @@ std::string countText(double n) {
   return text;
 }
 
-std::string durationText(double s) {
-  char text[64];
-  if (s < 60.0)
-    std::snprintf(text, sizeof(text), "%.0f s", std::max(1.0, s));
-  else if (s < 3600.0)
-    std::snprintf(text, sizeof(text), "%.0f min", s / 60.0);
-  else if (s < 86400.0 * 2)
-    std::snprintf(text, sizeof(text), "%.1f hours", s / 3600.0);
-  else
-    std::snprintf(text, sizeof(text), "%.0f days", s / 86400.0);
-  return text;
-}
-
 // Time of a job from two probes: a part that does not grow with the resolution (per input
 // triangle: transforms, projections; per node), paid once per tile, and a part that grows with
 // the surface. Fitted to the probes (one tile each) at x = 1 (kProbeResolution) and x = xSmall
@@ -432,6 +419,19 @@ std::string bytesText(double bytes) {
     ++u;
   }
   std::snprintf(text, sizeof(text), u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
+  return text;
+}
+
+std::string durationText(double s) {
+  char text[64];
+  if (s < 60.0)
+    std::snprintf(text, sizeof(text), "%.0f s", std::max(1.0, s));
+  else if (s < 3600.0)
+    std::snprintf(text, sizeof(text), "%.0f min", s / 60.0);
+  else if (s < 86400.0 * 2)
+    std::snprintf(text, sizeof(text), "%.1f hours", s / 3600.0);
+  else
+    std::snprintf(text, sizeof(text), "%.0f days", s / 86400.0);
   return text;
 }
 

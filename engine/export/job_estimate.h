@@ -155,6 +155,8 @@ uint64_t simplifiedAtResolution(uint64_t coarseCount, int coarseCells, uint64_t 
 
 // A size for the user: "13.2 GiB", "512 bytes".
 std::string bytesText(double bytes);
+// A duration for the user: "4 s" (at least 1), "3 min", "1.5 hours", "3 days".
+std::string durationText(double seconds);
 
 // One line for the user: "4096 x 3600 x 3080 cells, 1,024 tiles, about 52 million triangles,
 // 13 GiB of memory, a 2.6 GB file, 3 minutes".

@@ -1,6 +1,9 @@
-// The export dialog's triangle counts (estimateExportTriangles, job_estimate.h) computed on a
-// background thread for one choice of resolution and simplification, so that the dialog never
-// waits: it asks again when the choice changes and shows the newest finished answer.
+// The export dialog's triangle counts (estimateExportTriangles, job_estimate.h) and the export's
+// whole estimate from them (estimateExport: time and memory, for jobs above kProbeAbove cells)
+// computed on a background thread for one choice of file, resolution and simplification, so
+// that the dialog never waits: it asks again when the choice changes and shows the newest
+// finished answer. The time and memory were told only once the export ran, and a short one
+// ended before they could be read (an artist's test).
 //
 // Threads: constructed, polled and destroyed on one thread (the UI's); the work runs on its own
 // thread, at a lower priority, with a backend it makes there (a CUDA backend takes a moment to
@@ -20,10 +23,17 @@
 
 namespace strata {
 
+// The dialog's answer: the counts, and the export's estimate taking them as its triangles.
+struct DialogEstimate {
+  TriangleEstimate triangles;
+  JobEstimate job;
+};
+
 class TriangleEstimateJob {
  public:
-  TriangleEstimateJob(std::shared_ptr<const Scene> scene, int resolution, double simplifyCells,
-                      std::function<std::shared_ptr<Backend>()> makeBackend);
+  // `path`: the file the export would write (its format sets the file's bytes).
+  TriangleEstimateJob(std::shared_ptr<const Scene> scene, const std::string& path, int resolution,
+                      double simplifyCells, std::function<std::shared_ptr<Backend>()> makeBackend);
 
   void cancel() { job_.cancel(); }
   // The scene it counts (the document's snapshot when it began: the same pointer while the
@@ -32,8 +42,11 @@ class TriangleEstimateJob {
   int resolution() const { return resolution_; }
   double simplifyCells() const { return simplifyCells_; }
   bool done() const { return job_.done(); }
-  // Valid once done(): the estimate, or why there is none.
-  TriangleEstimate result() const { return job_.result(); }
+  // Valid once done(): the counts, or why there is none.
+  TriangleEstimate result() const { return job_.result().triangles; }
+  // Valid once done() without an error: the export's estimate (JobEstimate::probed false for a
+  // job of kProbeAbove cells or fewer: no time or memory).
+  JobEstimate jobEstimate() const { return job_.result().job; }
   std::string error() const { return job_.error(); }
   // The finished count of `scene` at `resolution` within `simplifyCells` (none otherwise): what
   // an export of that choice may take as its triangles (ExportGuard::counted).
@@ -49,7 +62,7 @@ class TriangleEstimateJob {
   std::shared_ptr<const Scene> scene_;
   int resolution_;
   double simplifyCells_;
-  BackgroundJob<TriangleEstimate> job_;
+  BackgroundJob<DialogEstimate> job_;
 };
 
 }  // namespace strata
