@@ -185,8 +185,8 @@ JobEstimate estimateEvaluation(const Scene& scene, int resolution,
   JobEstimate e;
   e.grid = Evaluator::gridFor(scene, resolution);
   const Grid probeGrid = Evaluator::gridFor(scene, kProbeResolution);
-  if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove)
-    return e;                                // no bigger than the probe
+  // No bigger than the probe: nothing to probe.
+  if (probeGrid.h <= e.grid.h * 1.5 || longestSide(e.grid) <= probeAbove) return e;
   const uint64_t present = residentBytes();  // before the probes, which add their own
   EvalResult r;
   try {
