@@ -28,6 +28,7 @@
 #include "ui/editor_actions.h"
 #include "ui/import_options.h"
 #include "ui/panels.h"
+#include "ui/resize_followers.h"
 #include "ui/scene_queries.h"
 #include "ui/text_fit.h"
 #include "ui/theme.h"
@@ -39,6 +40,11 @@ namespace {
 // The topic of a primitive's parameters' errors: they are often relations between two of them
 // (a rounded box's radius against its size), so that a later good value of either settles one.
 constexpr const char* kParamsTopic = "parameters";
+
+// The width of `text` in the current font (pixels), for fittedNumberFormat.
+float textWidth(const std::string& text) {
+  return ImGui::CalcTextSize(text.c_str()).x;
+}
 
 // The format of length fields: the number and the scene's unit ("%.4g mm"), set per frame.
 std::string gLengthFormat = "%.4g";
@@ -120,7 +126,10 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     ImGui::SetNextItemWidth(w);
     ImGui::PushStyleColor(ImGuiCol_Text, colors[i]);
     glm::dvec3 next = *value;
-    const std::string marked = markedWhereRounded(fieldFormat, next[i]);
+    // As many digits as the field has room for (fittedNumberFormat).
+    const float room =
+        w - 2 * ImGui::GetStyle().FramePadding.x - (mixed[i] ? ImGui::CalcTextSize("~").x : 0.0f);
+    const std::string marked = fittedNumberFormat(fieldFormat, next[i], room, textWidth);
     const std::string shown = mixed[i] ? std::string("~") + marked : marked;
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
                                      nullptr, shown.c_str());
@@ -136,7 +145,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
       // A field too narrow for the number shows it rounded (-26.5 for the gizmo's -26.480444:
       // an artist's test): the whole number on hover.
       char text[64];
-      ImFormatString(text, sizeof(text), fieldFormat.c_str(), next[i]);
+      ImFormatString(text, sizeof(text), marked.c_str(), next[i]);
       if (std::strtod(text, nullptr) != next[i]) {
         ImFormatString(text, sizeof(text), "%.10g", next[i]);
         ImGui::SetTooltip("%s%s%s (double-click to type)", text, unit.empty() ? "" : " ",
@@ -162,28 +171,49 @@ void refuseBelowMinimum(EditorState& state, const char* label, double minimum) {
 }
 
 // Part `id` changed in size from the tree `before` (its parameters or its scale): where it rested
-// on the ground or on another part it is moved back onto it (keptResting), and the log says so
-// once per edit (a drag of the field is one).
-void reseatResting(EditorState& state, const NodePtr& before, NodeId id) {
+// on the ground or on another part it is moved back onto it (keptResting), the parts resting on
+// it and the cutters through or into it follow (resizeFollowers; `sameEdit`: the other parts the
+// edit changed, left to it), and the log says so once per edit (a drag of the field is one).
+void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
+                   const std::vector<NodeId>& sameEdit = {}) {
   Rest rest;
   const Transform t = keptResting(before, state.document.root(), id, &rest);
-  if (!rest.moved) return;
-  state.document.setTransform(id, t);
-  // Once for a drag of the field, not every frame of it.
+  if (rest.moved) state.document.setTransform(id, t);
+  const ResizeFollowing following = resizeFollowers(before, state.document.root(), id, sameEdit);
+  const std::vector<ResizeFollower>& followers = following.followers;
+  for (const ResizeFollower& f : followers) state.document.setTransform(f.id, f.transform);
+  if (!rest.moved && followers.empty() && following.leftTurned.empty() && following.buried.empty())
+    return;
+  // Once for a drag of the field, not every frame of it; again where a part joins those that
+  // follow (a hole the plate grew past in a later frame of the drag).
   static NodeId saidOf = 0;
   static double saidAt = -1e9;
-  const bool said = saidOf == id && ImGui::GetTime() - saidAt < 2.0;
+  static std::vector<NodeId> saidFollowers;
+  const bool sameDrag = saidOf == id && ImGui::GetTime() - saidAt < 2.0;
+  if (!sameDrag) saidFollowers.clear();
+  bool joined = false;
+  for (const ResizeFollower& f : followers)
+    if (std::find(saidFollowers.begin(), saidFollowers.end(), f.id) == saidFollowers.end()) {
+      saidFollowers.push_back(f.id);
+      joined = true;
+    }
   saidOf = id;
   saidAt = ImGui::GetTime();
-  if (said) return;
-  const NodePtr node = findNode(state.document.root(), id);
-  const NodePtr on = findNode(state.document.root(), rest.on);
-  const std::string name = "\"" + (node->name.empty() ? nodeLabel(*node) : node->name) + "\"";
-  if (rest.onGround || !on)
-    logInfo(state, name + " rested on the ground and stays on it (its position along z moved)");
-  else
-    logInfo(state, name + " rested on \"" + (on->name.empty() ? nodeLabel(*on) : on->name) +
-                       "\" and stays on it (it grows from its base; its position moved)");
+  if (sameDrag && !joined) return;
+  const NodePtr root = state.document.root();
+  const auto named = [&](NodeId of) {
+    const NodePtr n = findNode(root, of);
+    return n ? "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"" : std::string("a part");
+  };
+  if (sameDrag) rest.moved = false;  // said at the edit's first frame
+  if (rest.moved && (rest.onGround || !rest.on))
+    logInfo(state,
+            named(id) + " rested on the ground and stays on it (its position along z moved)");
+  else if (rest.moved)
+    logInfo(state, named(id) + " rested on " + named(rest.on) +
+                       " and stays on it (it grows from its base; its position moved)");
+  for (const FollowMessage& m : resizeFollowingMessages(root, id, following))
+    (m.warning ? logWarning : logInfo)(state, m.text);
 }
 
 // Sets a part's shape parameters, the part kept where it rests (reseatResting).
@@ -205,7 +235,13 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
   double value = p.*field;
   bool changed = ImGui::DragScalar(
       (std::string("##") + label).c_str(), ImGuiDataType_Double, &value, float(speed), &minimum,
-      nullptr, ((mixed ? "~" : "") + markedWhereRounded(gLengthFormat, value)).c_str());
+      nullptr,
+      ((mixed ? "~" : "") +
+       fittedNumberFormat(gLengthFormat, value,
+                          ImGui::CalcItemWidth() - 2 * ImGui::GetStyle().FramePadding.x -
+                              (mixed ? ImGui::CalcTextSize("~").x : 0.0f),
+                          textWidth))
+          .c_str());
   changed = commitTypedValue(changed, &value, gLengthUnit);
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
@@ -518,11 +554,17 @@ void nodeTransform(EditorState& state, const NodePtr& node, const NodeList& node
               n.scale *= factor;
             return n;
           });
-          for (const NodePtr& n : nodes) {  // those applyAll scaled (not the nested ones)
+          std::vector<NodeId> scaled;  // those applyAll scaled (not the nested ones)
+          for (const NodePtr& n : nodes) {
+            const NodePtr was = findNode(before, n->id),
+                          now = findNode(state.document.root(), n->id);
+            if (was && now && was->transform.scale != now->transform.scale) scaled.push_back(n->id);
+          }
+          for (const NodePtr& n : nodes) {
             const NodePtr was = findNode(before, n->id),
                           now = findNode(state.document.root(), n->id);
             if (was && now && was->transform.scale != now->transform.scale)
-              reseatResting(state, before, n->id);
+              reseatResting(state, before, n->id, scaled);
           }
         },
         "%.4g", mixedComponents(nodes, &Transform::scale), nullptr, "scales every one by as much");

@@ -104,22 +104,18 @@ Bounds computeSceneBounds(const NodePtr& root) {
 }
 }  // namespace
 
-namespace {
-
-// Calls visit(leaf, its world box) for every visible leaf that adds material (removesMaterial
-// false) and shows something. One walk down the tree carrying the parent's world matrix and
-// whether the parts below take material away (a cutter's parity), as removesMaterial and
-// parentWorldMatrix would find for each leaf from the root: linear in the nodes (it was
-// quadratic: each leaf looked up from the root again).
-void forEachAddingLeafBox(const NodePtr& root,
-                          const std::function<void(const NodePtr&, const Bounds&)>& visit) {
+void forEachVisibleLeaf(const NodePtr& root,
+                        const std::function<void(const NodePtr&, const VisibleLeaf&)>& visit) {
+  // One walk down the tree carrying the parent's world matrix and whether the parts below take
+  // material away (a cutter's parity), as removesMaterial and parentWorldMatrix would find for
+  // each leaf from the root: linear in the nodes (it was quadratic: each leaf looked up from the
+  // root again).
   std::function<void(const NodePtr&, const glm::dmat4&, bool, int)> walk =
       [&](const NodePtr& node, const glm::dmat4& parent, bool removes, int depth) {
         if (!node || !node->visible || depth > 512) return;  // hidden: it and all below it
         if (!isOperation(node->kind)) {
-          if (removes) return;
           const Bounds b = nodeBounds(node, root, parent);
-          if (!b.empty()) visit(node, b);
+          if (!b.empty()) visit(node, VisibleLeaf{b, parent, removes});
           return;
         }
         // A mirror that drops its original shows its children as their image.
@@ -130,6 +126,17 @@ void forEachAddingLeafBox(const NodePtr& root,
                removes != (childRole(*node, static_cast<int>(c)) == ChildRole::Cut), depth + 1);
       };
   walk(root, glm::dmat4(1.0), false, 0);
+}
+
+namespace {
+
+// Calls visit(leaf, its world box) for every visible leaf that adds material (removesMaterial
+// false) and shows something (forEachVisibleLeaf).
+void forEachAddingLeafBox(const NodePtr& root,
+                          const std::function<void(const NodePtr&, const Bounds&)>& visit) {
+  forEachVisibleLeaf(root, [&](const NodePtr& leaf, const VisibleLeaf& at) {
+    if (!at.removes) visit(leaf, at.box);
+  });
 }
 
 }  // namespace
@@ -242,18 +249,12 @@ double groundGridStep(const Bounds& scene, double emptySpan) {
   return niceLength(std::max({size.x, size.y, size.z, 1e-9}) / 8.0);
 }
 
-namespace {
-
-// The middle of the bottom of leaf `node`'s own box (its frame, its own transform left out):
-// the side a part placed on a surface turns towards it (its own -z).
 glm::dvec3 ownBottom(const NodePtr& node, const NodePtr& root) {
   auto own = std::make_shared<Node>(*node);
   own->transform = Transform();
   const Bounds b = nodeBounds(own, root, glm::dmat4(1.0));
   return b.empty() ? glm::dvec3(0.0) : glm::dvec3(b.center().x, b.center().y, b.min.z);
 }
-
-}  // namespace
 
 Transform keptResting(const NodePtr& before, const NodePtr& after, NodeId id, Rest* rest) {
   if (rest) *rest = Rest();

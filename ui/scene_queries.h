@@ -4,6 +4,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -31,6 +32,19 @@ Bounds selectionBounds(const NodePtr& root, const std::vector<NodeId>& selection
 bool selectionBoundsTight(const NodePtr& root, const std::vector<NodeId>& selection);
 // World bounds of the whole visible scene; falls back to every leaf when the result is empty.
 Bounds sceneBounds(const NodePtr& root);
+
+// Calls visit(leaf, where it is) for every visible leaf (every node that is not an operation)
+// that shows something, in tree order: its world box, the world matrix of its parent (through
+// the patterns above it as they show it first, firstPlacement) and whether its material is taken
+// away (removesMaterial: an odd number of cutters on its path). Hidden nodes and all below them
+// are left out.
+struct VisibleLeaf {
+  Bounds box;
+  glm::dmat4 parentWorld{1.0};
+  bool removes = false;
+};
+void forEachVisibleLeaf(const NodePtr& root,
+                        const std::function<void(const NodePtr&, const VisibleLeaf&)>& visit);
 
 // The top of the parts standing under the point (x, y) of the ground: the highest top of the
 // boxes of the visible parts that add material (removesMaterial false) whose box holds the
@@ -72,6 +86,10 @@ std::vector<NodeId> outermostSelected(const NodePtr& root, const std::vector<Nod
 // The outermost selected node holding `id` (tree edges), or `id` itself where none does: what
 // the gizmo and the inspector's transform act on for the active part `id`.
 NodeId selectedHolder(const NodePtr& root, const std::vector<NodeId>& selection, NodeId id);
+
+// The middle of the bottom of leaf `node`'s own box, in its own frame (its own transform left
+// out): the side a part placed on a surface turns towards it (its own -z).
+glm::dvec3 ownBottom(const NodePtr& node, const NodePtr& root);
 
 // A part resting on something whose shape was changed from the tree `before` to `after` (a
 // size, a radius typed in the inspector) stays on it. On the ground (the bottom of its world

@@ -70,4 +70,47 @@ std::string markedWhereRounded(const std::string& format, double value) {
   return format.substr(0, conversion + 1) + "\u2026" + format.substr(conversion + 1);
 }
 
+std::string fittedNumberFormat(const std::string& format, double value, float room,
+                               const std::function<float(const std::string&)>& measure,
+                               int mostDigits) {
+  const std::string own = markedWhereRounded(format, value);
+  const size_t percent = format.find('%');
+  if (percent == std::string::npos) return own;
+  const size_t conversion = format.find_first_of("gfeGFE", percent);
+  if (conversion == std::string::npos) return own;
+  const char kind = format[conversion];
+  if (kind != 'g' && kind != 'G' && kind != 'f' && kind != 'F') return own;
+  // The format's own precision: "%.4g" 4, "%g" 6, "%.2f" 2.
+  const size_t dot = format.find('.', percent);
+  const int ownDigits =
+      dot != std::string::npos && dot < conversion ? std::atoi(format.c_str() + dot + 1) : 6;
+  const auto fitting = [&](int digits, bool* rounded) -> std::string {
+    const std::string wider = format.substr(0, percent) + "%." + std::to_string(digits) + kind +
+                              format.substr(conversion + 1);
+    const std::string marked = markedWhereRounded(wider, value);
+    char text[96];
+    std::snprintf(text, sizeof(text), marked.c_str(), value);
+    *rounded = marked != wider;
+    return measure(text) <= room ? marked : std::string();
+  };
+  bool rounded = false;
+  if (kind == 'g' || kind == 'G') {
+    // %g drops trailing zeros: the most digits that fit show no more than the value needs.
+    for (int digits = mostDigits; digits > ownDigits; --digits)
+      if (std::string f = fitting(digits, &rounded); !f.empty()) return f;
+    return own;
+  }
+  // %f pads with zeros: the fewest decimals that show the value whole, else the most that fit.
+  std::string widest;
+  for (int digits = ownDigits + 1; digits <= mostDigits; ++digits) {
+    if (own == format) break;  // shown whole already
+    std::string f = fitting(digits, &rounded);
+    if (f.empty()) break;
+    widest = f;
+    if (!rounded) return f;
+  }
+  return widest.empty() ? own : widest;
+  return own;
+}
+
 }  // namespace strata::ui

@@ -31,4 +31,13 @@ std::vector<std::string> wrapAtSpaces(const std::string& text, float width,
 // is not marked: "18…" for 18.0000005 after a drop read as a hidden fraction (an artist's test).
 std::string markedWhereRounded(const std::string& format, double value);
 
+// markedWhereRounded for the widest precision that fits the field: the format's %g or %f
+// conversion given up to `mostDigits` significant digits (%g) or decimals (%f), the most that
+// leave measure(the text) <= `room` (pixels), never fewer than the format's own. A field showed
+// "18…" for 17.9994565 where "17.99946" fitted (an artist's test); numbers no longer than the
+// format's own precision show as before.
+std::string fittedNumberFormat(const std::string& format, double value, float room,
+                               const std::function<float(const std::string&)>& measure,
+                               int mostDigits = 7);
+
 }  // namespace strata::ui

@@ -14,6 +14,7 @@
 #include "ui/import_options.h"
 #include "ui/measure_tool.h"
 #include "ui/panels.h"
+#include "ui/resize_followers.h"
 #include "ui/scene_queries.h"
 
 namespace strata::ui {
@@ -314,6 +315,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       state.cancelGizmoDrag = false;
       gizmo_.end();
       state.document.cancelInteraction();
+      dragFollowing_ = ResizeFollowing();
       return;
     }
     if (io.MouseDown[0] && placeGizmo(state)) {
@@ -351,6 +353,22 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
                                  " and stays on it as it is scaled" +
                                  (on ? " (it grows from its base)" : ""));
             }
+            // What rests on it and what cuts through or into it follow (resizeFollowers),
+            // from where the drag began; those that no longer need to go back there.
+            const ResizeFollowing following =
+                resizeFollowers(dragStart_, state.document.root(), id, state.selection);
+            std::vector<NodeId> followed;
+            for (const ResizeFollower& f : following.followers) {
+              state.document.setTransform(f.id, f.transform);
+              followed.push_back(f.id);
+            }
+            for (NodeId was : dragFollowers_)
+              if (std::find(followed.begin(), followed.end(), was) == followed.end())
+                if (const NodePtr at = findNode(dragStart_, was))
+                  state.document.setTransform(was, at->transform);
+            dragFollowers_ = followed;
+            dragFollowing_ = following;
+            dragResized_ = id;
           }
           for (const auto& [follower, transform] :
                followingTransforms(dragStart_, state.selection, id, t, &sheared))
@@ -372,6 +390,11 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     } else {
       gizmo_.end();
       state.document.endInteraction();
+      // What followed a part scaled, as the drag left it (said once, at its end).
+      for (const FollowMessage& m :
+           resizeFollowingMessages(state.document.root(), dragResized_, dragFollowing_))
+        (m.warning ? logWarning : logInfo)(state, m.text);
+      dragFollowing_ = ResizeFollowing();
     }
     return;
   }
@@ -447,6 +470,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       dragStart_ = state.document.root();
       shearSaid_ = false;
       restSaid_ = false;
+      dragFollowers_.clear();
+      dragFollowing_ = ResizeFollowing();
       return;
     }
     clickPending_ = true;

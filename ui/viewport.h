@@ -20,6 +20,7 @@
 #include "ui/editor_state.h"
 #include "ui/gizmo.h"
 #include "ui/pattern_guides.h"
+#include "ui/resize_followers.h"
 #include "ui/viewport_renderer.h"
 
 namespace strata::ui {
@@ -131,6 +132,12 @@ class Viewport {
   Transform pivotNow_;
   bool shearSaid_ = false;  // this drag has said a part could not follow it exactly
   bool restSaid_ = false;   // this drag has said a scaled part stays where it rested
+  // The parts a gizmo scale moved with the scaled part in its last frame (resizeFollowers): put
+  // back where the drag began when they no longer follow; what followed `dragResized_` in the
+  // last frame, said when the drag ends.
+  std::vector<NodeId> dragFollowers_;
+  ResizeFollowing dragFollowing_;
+  NodeId dragResized_ = 0;
 
   // The selection box drawn each frame, worked out again only when the document or the
   // selection changes: a mesh leaf's bounds walk all its vertices (sceneBounds remembers its own).

@@ -1,6 +1,8 @@
 // Names shortened with an ellipsis to fit the outliner's column (ui/text_fit.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "ui/text_fit.h"
 
 namespace strata::ui {
@@ -70,6 +72,30 @@ TEST(TextFit, ARoundedNumberIsMarkedAndRoundingNoiseIsNot) {
   EXPECT_EQ(markedWhereRounded("%.2f deg", 37.2134), "%.2f\u2026 deg");
   EXPECT_EQ(markedWhereRounded("%.4g mm", 1e-7), "%.4g mm");  // shown as it is: 1e-07
   EXPECT_EQ(markedWhereRounded("%.4g mm", 12345.678), "%.4g\u2026 mm");
+}
+
+// A field shows as many digits as its room allows, up to seven: "18…" for 17.9994565 in a field
+// where "17.99946" fits (an artist's test); fewer where the room is less, the format's own
+// where none more fit; %f with the fewest decimals that show the value whole.
+TEST(TextFit, ANumberFieldShowsTheDigitsItHasRoomFor) {
+  const auto sevenWide = [](const std::string& s) {  // 7 pixels a character (not a byte)
+    return 7.0f *
+           float(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+  };
+  // "17.99946": within a millionth of the value, no mark (markedWhereRounded's noise).
+  EXPECT_EQ(fittedNumberFormat("%.4g", 17.9994565, 70.0f, sevenWide), "%.7g");
+  EXPECT_EQ(fittedNumberFormat("%.4g mm", 17.9994565, 7.0f * 11, sevenWide), "%.7g mm");
+  EXPECT_EQ(fittedNumberFormat("%.4g", 17.9994565, 7.0f * 7, sevenWide), "%.5g\u2026");  // 17.999…
+  EXPECT_EQ(fittedNumberFormat("%.4g", 17.9994565, 7.0f * 3, sevenWide), "%.4g\u2026");
+  EXPECT_EQ(fittedNumberFormat("%.4g", 17.5, 70.0f, sevenWide), "%.7g");  // "17.5" as before
+  EXPECT_EQ(fittedNumberFormat("%.4g", 9.475, 70.0f, sevenWide), "%.7g");
+  EXPECT_EQ(fittedNumberFormat("%.2f deg", 37.2134, 200.0f, sevenWide), "%.4f deg");
+  EXPECT_EQ(fittedNumberFormat("%.2f deg", 37.2134, 7.0f * 11, sevenWide), "%.4f deg");
+  EXPECT_EQ(fittedNumberFormat("%.2f deg", 37.2134567, 7.0f * 11, sevenWide), "%.3f\u2026 deg");
+  EXPECT_EQ(fittedNumberFormat("%.2f deg", 37.2134, 7.0f * 10, sevenWide), "%.2f\u2026 deg");
+  EXPECT_EQ(fittedNumberFormat("%.2f deg", 90.0, 200.0f, sevenWide), "%.2f deg");
+  // 0.333333: within a millionth of 1 of a third, shown as whole.
+  EXPECT_EQ(fittedNumberFormat("%.2f deg", 1.0 / 3.0, 200.0f, sevenWide), "%.6f deg");
 }
 
 }  // namespace
