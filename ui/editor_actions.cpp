@@ -1578,9 +1578,13 @@ void startExport(EditorState& state, const std::string& path, int resolution, do
       ExportGuard guard;
       guard.insist = insist;
       // The dialog's count, where it was for this very choice: the export window says the same.
-      if (state.exportEstimate)
+      if (state.exportEstimate) {
         guard.counted =
             state.exportEstimate->countOf(state.document.snapshot(), resolution, simplifyCells);
+        // Its time and memory too, where it probed them: not probed again at Export.
+        guard.estimated = state.exportEstimate->estimateOf(state.document.snapshot(), path,
+                                                           resolution, simplifyCells);
+      }
       state.exportJob = std::make_unique<ExportJob>(state.document.snapshot(), path, options,
                                                     state.makeBackend(), nullptr, guard);
       state.exportEndLogged = false;

@@ -18,10 +18,10 @@
 #include "engine/eval/backend.h"
 #include "engine/io/recovery_slots.h"
 #include "engine/jobs/background_job.h"
+#include "engine/jobs/export_estimate_job.h"
 #include "engine/jobs/export_job.h"
 #include "engine/jobs/part_measure_job.h"
 #include "engine/jobs/preview_worker.h"
-#include "engine/jobs/triangle_estimate_job.h"
 #include "ui/file_dialog.h"
 #include "ui/gizmo.h"
 #include "ui/measure_tool.h"
@@ -219,10 +219,10 @@ struct EditorState {
   bool exportSimplify = false;
   float exportSimplifyCells = 0.25f;
   std::string exportSettingsPath;  // where those choices are kept between runs ("" = not kept)
-  std::unique_ptr<TriangleEstimateJob> exportEstimate;  // the dialog's triangle counts
+  std::unique_ptr<ExportEstimateJob> exportEstimate;  // the dialog's triangle counts
   // Estimates cancelled (the choice changed, the dialog closed) and not yet finished: dropped
   // once done(), so that the UI never joins a running one.
-  std::vector<std::unique_ptr<TriangleEstimateJob>> retiredEstimates;
+  std::vector<std::unique_ptr<ExportEstimateJob>> retiredEstimates;
   FileDialog dialog;
   std::optional<PendingReplace> pendingReplace;  // asking about unsaved changes
   bool askingQuitDuringExport = false;           // asking whether to cancel a running export

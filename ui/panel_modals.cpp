@@ -355,12 +355,12 @@ void retireEstimate(EditorState& state) {
   auto& retired = state.retiredEstimates;
   retired.erase(
       std::remove_if(retired.begin(), retired.end(),
-                     [](const std::unique_ptr<TriangleEstimateJob>& job) { return job->done(); }),
+                     [](const std::unique_ptr<ExportEstimateJob>& job) { return job->done(); }),
       retired.end());
 }
 
 // The export dialog: the export's own resolution and simplification, with the triangles they
-// will make (estimated on a background thread, triangle_estimate_job.h), then export or cancel.
+// will make (estimated on a background thread, export_estimate_job.h), then export or cancel.
 void exportOptionsDialog(EditorState& state) {
   const char* title = "Export: options###export options";
   if (state.pendingExportPath && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
@@ -482,7 +482,7 @@ void exportOptionsDialog(EditorState& state) {
   // The triangles, estimated off the UI thread for this choice; one for an older choice is
   // cancelled and retired (never joined here).
   const double cells = state.exportSimplify ? double(state.exportSimplifyCells) : 0.0;
-  TriangleEstimateJob* estimate = state.exportEstimate.get();
+  ExportEstimateJob* estimate = state.exportEstimate.get();
   const bool current =
       estimate && estimate->resolution() == resolution && estimate->simplifyCells() == cells;
   // Not while a field or slider is held and changing; once its value has stood for half a second
@@ -497,7 +497,7 @@ void exportOptionsDialog(EditorState& state) {
   const bool settled = !ImGui::IsAnyItemActive() || ImGui::GetTime() - seenSince > 0.5;
   if (!current && settled) {
     retireEstimate(state);
-    state.exportEstimate = std::make_unique<TriangleEstimateJob>(
+    state.exportEstimate = std::make_unique<ExportEstimateJob>(
         state.document.snapshot(), *state.pendingExportPath, resolution, cells, state.makeBackend);
   }
   estimate = state.exportEstimate.get();
@@ -675,7 +675,7 @@ void drawModals(EditorState& state) {
   auto& retired = state.retiredEstimates;  // those that have stopped go
   retired.erase(
       std::remove_if(retired.begin(), retired.end(),
-                     [](const std::unique_ptr<TriangleEstimateJob>& job) { return job->done(); }),
+                     [](const std::unique_ptr<ExportEstimateJob>& job) { return job->done(); }),
       retired.end());
   auto& measures = state.retiredPartMeasures;  // the same for the selection's measures
   measures.erase(

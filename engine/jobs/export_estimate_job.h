@@ -29,11 +29,11 @@ struct DialogEstimate {
   JobEstimate job;
 };
 
-class TriangleEstimateJob {
+class ExportEstimateJob {
  public:
   // `path`: the file the export would write (its format sets the file's bytes).
-  TriangleEstimateJob(std::shared_ptr<const Scene> scene, const std::string& path, int resolution,
-                      double simplifyCells, std::function<std::shared_ptr<Backend>()> makeBackend);
+  ExportEstimateJob(std::shared_ptr<const Scene> scene, const std::string& path, int resolution,
+                    double simplifyCells, std::function<std::shared_ptr<Backend>()> makeBackend);
 
   void cancel() { job_.cancel(); }
   // The scene it counts (the document's snapshot when it began: the same pointer while the
@@ -57,9 +57,18 @@ class TriangleEstimateJob {
       return std::nullopt;
     return result();
   }
+  // The finished estimate of the export of `scene` to `path` at `resolution` within
+  // `simplifyCells` (none otherwise, or where it probed nothing): what that export may take
+  // instead of probing again (ExportGuard::estimated). `path` must be of the format it was made
+  // for (the same extension, in any case): the format sets the file's bytes. The probes were
+  // made twice, a few tenths of a second each time, once for the dialog and again at Export.
+  std::optional<JobEstimate> estimateOf(const std::shared_ptr<const Scene>& scene,
+                                        const std::string& path, int resolution,
+                                        double simplifyCells) const;
 
  private:
   std::shared_ptr<const Scene> scene_;
+  std::string path_;
   int resolution_;
   double simplifyCells_;
   BackgroundJob<DialogEstimate> job_;

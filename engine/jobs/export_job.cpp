@@ -122,8 +122,10 @@ void ExportJob::run(std::shared_ptr<const Scene> scene, ExportOptions options,
       progress_->report("estimate", estimated);  // throws Cancelled once the job is cancelled
     });
     const JobEstimate estimate =
-        estimateExport(*scene, options, path, backend, probe, kProbeAbove, options.simplifyCells,
-                       guard.counted ? &*guard.counted : nullptr);
+        guard.estimated
+            ? *guard.estimated
+            : estimateExport(*scene, options, path, backend, probe, kProbeAbove,
+                             options.simplifyCells, guard.counted ? &*guard.counted : nullptr);
     const uint64_t memory = guard.memoryBytes ? guard.memoryBytes : availableMemoryBytes();
     const uint64_t disk = freeDiskBytesForFile(path);
     tiles_ = std::max(1, estimate.tiles);

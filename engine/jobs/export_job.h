@@ -83,6 +83,9 @@ struct ExportGuard {
   // The export dialog's triangle count for this scene and choice (estimateExport's `counted`):
   // the job's estimate says the same number.
   std::optional<TriangleEstimate> counted;
+  // The export dialog's whole estimate for this scene, choice and format (probed: time, memory,
+  // tiles; ExportEstimateJob::estimateOf): taken as the job's own instead of probing again.
+  std::optional<JobEstimate> estimated;
 };
 
 class ExportJob {

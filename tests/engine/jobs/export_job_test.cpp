@@ -354,6 +354,28 @@ TEST(ExportJob, FailuresNameTheFileAndLeaveNothing) {
   EXPECT_TRUE(filesIn(folder).empty());
 }
 
+// The export dialog's estimate, given, is the job's own: not probed again at Export (the dialog's
+// probes were made twice). One marked to write a pebibyte is refused with that figure.
+TEST(ExportJob, AnEstimateGivenIsTakenInsteadOfProbingAgain) {
+  const std::string folder = freshFolder("given");
+  const auto scene = boxMinusSphere(32);
+  const ContourOptions big{520, 256};  // above kProbeAbove: estimated first
+  Progress probe;
+  JobEstimate given =
+      estimateExport(*scene, big, folder + "/x.stl", std::make_shared<CpuBackend>(), probe);
+  ASSERT_TRUE(given.probed);
+  given.fileBytes = uint64_t(1) << 50;
+  ExportGuard guard;
+  guard.estimated = given;
+  ExportWatch watch;
+  ExportJob job(scene, folder + "/part.stl", big, std::make_shared<CpuBackend>(), watch.listener(),
+                guard);
+  ASSERT_TRUE(watch.waitUntilFinished());
+  const ExportStatus s = job.status();
+  EXPECT_TRUE(s.refused);
+  EXPECT_NE(s.error.find("writes a file of about 1.0 PiB"), std::string::npos) << s.error;
+}
+
 // A job whose estimate does not fit is refused before any work, saying why, with its estimate;
 // insisting exports it anyway.
 TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
@@ -364,7 +386,7 @@ TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
   {
     ExportWatch watch;
     ExportJob job(boxMinusSphere(32), path, big, std::make_shared<CpuBackend>(), watch.listener(),
-                  ExportGuard{false, uint64_t(1) << 20, std::nullopt});
+                  ExportGuard{false, uint64_t(1) << 20, std::nullopt, std::nullopt});
     ASSERT_TRUE(watch.waitUntilFinished());
     const ExportStatus s = job.status();
     EXPECT_TRUE(s.refused);
@@ -378,7 +400,7 @@ TEST(ExportJob, AJobThatCannotFitIsRefusedUnlessInsistedOn) {
   // to see it begin).
   ExportWatch watch("evaluate");
   ExportJob job(boxMinusSphere(32), path, big, std::make_shared<CpuBackend>(), watch.listener(),
-                ExportGuard{true, uint64_t(1) << 20, std::nullopt});
+                ExportGuard{true, uint64_t(1) << 20, std::nullopt, std::nullopt});
   ASSERT_TRUE(watch.waitUntilHeld());
   job.cancel();
   watch.release();
