@@ -123,6 +123,27 @@ void Camera::setOrtho(bool on, const Bounds& scene, double aspect) {
   if (whole) distance = std::max(distance, distanceToShow(scene, aspect));
 }
 
+void Camera::reshape(const Bounds& scene, double aspectBefore, double aspectNow) {
+  if (aspectBefore == aspectNow || !shows(scene, aspectBefore) || shows(scene, aspectNow)) return;
+  distance = std::max(distance, distanceToShow(scene, aspectNow));
+}
+
+void ViewReshape::apply(Camera& camera, const Bounds& scene, double aspectBefore,
+                        double aspectNow) {
+  const bool untouched =
+      active_ && camera.target == left_.target && camera.distance == left_.distance &&
+      camera.yawDegrees == left_.yawDegrees && camera.pitchDegrees == left_.pitchDegrees &&
+      camera.ortho == left_.ortho && camera.fovYDegrees == left_.fovYDegrees;
+  if (!untouched) {
+    distance_ = camera.distance;
+    aspect_ = aspectBefore;
+  }
+  active_ = true;
+  camera.distance = distance_;
+  camera.reshape(scene, aspect_, aspectNow);
+  left_ = camera;
+}
+
 void Camera::setAxisView(AxisView view) {
   switch (view) {
     case AxisView::Front:

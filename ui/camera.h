@@ -61,6 +61,12 @@ class Camera {
   // the distance grows as the new projection needs (an orthographic view framed close shows the
   // parts in front of the target larger once in perspective), never shrinks.
   void setOrtho(bool on, const Bounds& scene, double aspect);
+  // The view changed shape from width / height `aspectBefore` to `aspectNow` (the window
+  // resized, a panel's splitter dragged). Where the whole of `scene` was in view and no longer
+  // would be, the camera moves back along its line of sight (target and direction kept) until it
+  // is; otherwise nothing changes (a view zoomed in on a detail stays). A window made narrower
+  // cut the scene it had shown whole at its sides (an artist's test).
+  void reshape(const Bounds& scene, double aspectBefore, double aspectNow);
   void setAxisView(AxisView view);
   // "front", "top", ... while the camera looks exactly along an axis (setAxisView, or orbited
   // there), else "".
@@ -68,6 +74,21 @@ class Camera {
 
   // The ray through a pixel of a viewport of `size` pixels.
   Ray rayThrough(glm::dvec2 pixel, glm::dvec2 size) const;
+};
+
+// A view changing shape over several frames (a window dragged narrower, then wider): each step
+// is Camera::reshape from the shape and distance the artist left the camera at, so that the
+// distance it gave up for a narrower view comes back once the view has room again (framed,
+// narrowed and widened: framed as before). A camera moved between two steps starts anew.
+class ViewReshape {
+ public:
+  void apply(Camera& camera, const Bounds& scene, double aspectBefore, double aspectNow);
+
+ private:
+  bool active_ = false;
+  Camera left_;            // the camera as the last step left it
+  double distance_ = 0.0;  // the distance the artist left it at
+  double aspect_ = 0.0;    // and the view's shape then
 };
 
 }  // namespace strata::ui

@@ -265,8 +265,14 @@ void Viewport::toggleOrtho(const EditorState& state) {
   pendingOrthoToggle_ = sceneBounds(state.document.root());
 }
 
-void Viewport::framePending(const ViewRect& rect) {
+void Viewport::framePending(const ViewRect& rect, const EditorState& state) {
   const double aspect = rect.width / std::max(rect.height, 1.0);
+  // A view that changed shape keeps the whole scene in view where it showed it whole.
+  if (rect.width > 0.0 && rect.height > 0.0) {
+    if (lastAspect_ > 0.0 && aspect != lastAspect_ && !pendingFrame_)
+      reshape_.apply(camera, sceneBounds(state.document.root()), lastAspect_, aspect);
+    lastAspect_ = aspect;
+  }
   if (pendingOrthoToggle_) camera.setOrtho(!camera.ortho, *pendingOrthoToggle_, aspect);
   pendingOrthoToggle_.reset();
   if (!pendingFrame_) return;
@@ -295,7 +301,7 @@ void Viewport::handleKeys(EditorState& state) {
 }
 
 void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
-  framePending(rect);
+  framePending(rect, state);
   if (state.revealSelection) revealSelection(state, rect);
   ImGuiIO& io = ImGui::GetIO();
   const glm::dvec2 mouse(io.MousePos.x - rect.x, io.MousePos.y - rect.y);
@@ -514,7 +520,7 @@ ViewportFrame Viewport::makeFrame(const EditorState& state, const ViewRect& rect
 
 std::optional<PickHit> Viewport::pickAt(ViewportRenderer& renderer, const EditorState& state,
                                         const ViewRect& rect, glm::dvec2 mouse, double pixelScale) {
-  framePending(rect);
+  framePending(rect, state);
   const ViewportFrame frame = makeFrame(state, rect, 0, pixelScale);
   const int px = int(std::floor(mouse.x * pixelScale));
   const int py = frame.height - 1 - int(std::floor(mouse.y * pixelScale));
@@ -750,7 +756,7 @@ void Viewport::repaintPrepared(ViewportRenderer& renderer, const PixelRect& clip
 
 bool Viewport::prepare(ViewportRenderer& renderer, const EditorState& state, const ViewRect& rect,
                        int framebufferHeight, double pixelScale) {
-  framePending(rect);
+  framePending(rect, state);
   const ViewportFrame frame = makeFrame(state, rect, framebufferHeight, pixelScale);
   const ScreenMapping view = mapping(state, rect);
 

@@ -116,7 +116,10 @@ class Viewport {
   };
 
   // Framing waits for the viewport's shape, known in handleInput and draw.
-  void framePending(const ViewRect& rect);
+  // Also where the view changed shape since the last frame (Camera::reshape).
+  void framePending(const ViewRect& rect, const EditorState& state);
+  double lastAspect_ = 0.0;  // the view's width / height at the last frame; 0 before the first
+  ViewReshape reshape_;
   void handleKeys(EditorState& state);
 
   // The tree when a gizmo drag began: the other selected nodes follow the primary from it

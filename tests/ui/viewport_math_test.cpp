@@ -175,6 +175,61 @@ TEST(EditorMath, SwitchingProjectionKeepsAWholeSceneInView) {
   EXPECT_TRUE(cropped);
 }
 
+// A view made narrower keeps the scene it showed whole in view (a window resized cut it at the
+// sides: an artist's test), its target and direction kept; made wider, or zoomed in on a detail,
+// it is left as it is.
+TEST(EditorMath, AViewMadeNarrowerKeepsTheWholeSceneInView) {
+  Bounds b;
+  b.include(glm::dvec3(-70.0, -40.0, 0.0));
+  b.include(glm::dvec3(70.0, 40.0, 24.0));
+  for (const bool ortho : {false, true}) {
+    SCOPED_TRACE(ortho);
+    Camera c;
+    c.ortho = ortho;
+    c.frame(b, 1.6);
+    ASSERT_TRUE(c.shows(b, 1.6));
+    ASSERT_FALSE(c.shows(b, 0.8)) << "a narrower view that still shows it proves nothing";
+    const glm::dvec3 target = c.target;
+    const double yaw = c.yawDegrees, pitch = c.pitchDegrees;
+    c.reshape(b, 1.6, 0.8);
+    EXPECT_TRUE(c.shows(b, 0.8));
+    EXPECT_EQ(c.target, target);
+    EXPECT_EQ(c.yawDegrees, yaw);
+    EXPECT_EQ(c.pitchDegrees, pitch);
+    const double narrow = c.distance;
+    c.reshape(b, 0.8, 1.6);  // wider again: as it is
+    EXPECT_EQ(c.distance, narrow);
+    c.distance *= 0.2;  // a detail
+    ASSERT_FALSE(c.shows(b, 1.6));
+    c.reshape(b, 1.6, 0.8);
+    EXPECT_EQ(c.distance, 0.2 * narrow);
+  }
+}
+
+// Narrowed step by step, then widened back: framed as before; a camera moved in between keeps
+// what the artist made of it.
+TEST(EditorMath, AViewNarrowedThenWidenedIsFramedAsBefore) {
+  Bounds b;
+  b.include(glm::dvec3(-70.0, -40.0, 0.0));
+  b.include(glm::dvec3(70.0, 40.0, 24.0));
+  Camera c;
+  c.frame(b, 1.6);
+  const double framed = c.distance;
+  ViewReshape steps;
+  double aspect = 1.6;
+  for (const double next : {1.3, 1.0, 0.7, 1.0, 1.3, 1.6}) {
+    steps.apply(c, b, aspect, next);
+    aspect = next;
+    EXPECT_TRUE(c.shows(b, aspect)) << aspect;
+  }
+  EXPECT_EQ(c.distance, framed);
+  steps.apply(c, b, 1.6, 0.7);
+  c.yawDegrees += 30.0;  // orbited: where it is now is the artist's
+  const double orbited = c.distance;
+  steps.apply(c, b, 0.7, 1.6);
+  EXPECT_EQ(c.distance, orbited);
+}
+
 TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
   Camera c;
   c.setAxisView(AxisView::Front);
