@@ -263,6 +263,24 @@ Transform Gizmo::drag(const ScreenMapping& view, glm::dvec2 mouse, const GizmoSn
   return t;
 }
 
+bool Gizmo::screenBox(const ScreenMapping& view, ScreenBox* box) const {
+  std::vector<LineVertex> lines, triangles;
+  appendGeometry(view, -1, &lines, &triangles);
+  bool any = false;
+  for (const std::vector<LineVertex>* list : {&lines, &triangles})
+    for (const LineVertex& v : *list) {
+      glm::dvec2 p;
+      if (!view.toScreen(glm::dvec3(v.position[0], v.position[1], v.position[2]), &p)) continue;
+      box->lo = any ? glm::min(box->lo, p) : p;
+      box->hi = any ? glm::max(box->hi, p) : p;
+      any = true;
+    }
+  const double margin = 4.0;
+  box->lo -= margin;
+  box->hi += margin;
+  return any;
+}
+
 void Gizmo::appendGeometry(const ScreenMapping& view, int hot, std::vector<LineVertex>* lines,
                            std::vector<LineVertex>* triangles) const {
   const double length = handleLength(view);

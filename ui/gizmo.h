@@ -42,6 +42,14 @@ struct ScreenMapping {
   bool toScreen(const glm::dvec3& world, glm::dvec2* pixel) const;
 };
 
+// A box of screen pixels (y down, doubles): [lo, hi).
+struct ScreenBox {
+  glm::dvec2 lo{0.0}, hi{0.0};
+  bool overlaps(const ScreenBox& o) const {
+    return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y;
+  }
+};
+
 class Gizmo {
  public:
   // Places the gizmo on a node whose parent-to-world matrix is `parentWorld`, with `transform`.
@@ -60,6 +68,11 @@ class Gizmo {
   // Appends the gizmo's lines and filled handles, highlighting `hot` (-1: none).
   void appendGeometry(const ScreenMapping& view, int hot, std::vector<LineVertex>* lines,
                       std::vector<LineVertex>* triangles) const;
+
+  // The viewport pixels the gizmo covers: the box of its handles (or rings) on screen, a few
+  // pixels of margin added; false where none of it is in front of the camera. What other
+  // drawings keep clear of (a measurement's label covered a handle: an artist's test).
+  bool screenBox(const ScreenMapping& view, ScreenBox* box) const;
 
   GizmoMode mode = GizmoMode::Move;
 

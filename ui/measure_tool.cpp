@@ -72,15 +72,10 @@ void addMarker(const ScreenMapping& view, const glm::dvec3& p, std::vector<LineV
   }
 }
 
-// The boxes of the labels drawn so far this frame: a new label that would cover one moves down
-// below it (measurements whose middles fall together stay readable).
+// The boxes of the labels drawn so far this frame, and what they keep clear of: a new label that
+// would cover one moves off it (measurements whose middles fall together stay readable).
 struct LabelBoxes {
-  std::vector<std::pair<ImVec2, ImVec2>> taken;
-  bool overlaps(ImVec2 lo, ImVec2 hi) const {
-    for (const auto& [a, b] : taken)
-      if (lo.x < b.x && a.x < hi.x && lo.y < b.y && a.y < hi.y) return true;
-    return false;
-  }
+  std::vector<ScreenBox> taken;
 };
 
 // The on-screen segment (pixels) a label names, when it has one.
@@ -89,9 +84,8 @@ struct LabelledSegment {
 };
 
 // A label centred on `at` (screen pixels), or placed by labelCentre when it names `segment`:
-// moved whole into the view [viewLo, viewHi) where it would cross its edge (a measurement near
-// the edge read "12.4" for "12.45 mm"), and down past the labels already drawn; not drawn where
-// none of it would have been in the view.
+// moved into the view and off the labels already drawn and the gizmo (placedLabelBox); not drawn
+// where none of it would have been in the view.
 void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* boxes, ImVec2 viewLo,
            ImVec2 viewHi, const std::optional<LabelledSegment>& segment = std::nullopt) {
   const ImVec2 size = ImGui::CalcTextSize(text.c_str());
@@ -101,28 +95,49 @@ void label(ImDrawList* draw, ImVec2 at, const std::string& text, LabelBoxes* box
                            {size.x * 0.5 + 4.0, size.y * 0.5 + 2.0});
     at = ImVec2(float(centre.x), float(centre.y));
   }
-  ImVec2 lo(at.x - size.x * 0.5f - 4.0f, at.y - size.y * 0.5f - 2.0f);
-  ImVec2 hi(at.x + size.x * 0.5f + 4.0f, at.y + size.y * 0.5f + 2.0f);
-  auto shift = [&](float dx, float dy) {
-    lo.x += dx, hi.x += dx;
-    lo.y += dy, hi.y += dy;
-  };
-  auto intoView = [&] {
-    shift(std::max(viewLo.x - lo.x, 0.0f) - std::max(hi.x - viewHi.x, 0.0f),
-          std::max(viewLo.y - lo.y, 0.0f) - std::max(hi.y - viewHi.y, 0.0f));
-  };
-  if (hi.x <= viewLo.x || lo.x >= viewHi.x || hi.y <= viewLo.y || lo.y >= viewHi.y) return;
-  intoView();
-  for (int tries = 0; tries < 32 && boxes->overlaps(lo, hi); ++tries)
-    shift(0.0f, ImGui::GetTextLineHeight() * 0.5f);
-  intoView();
-  boxes->taken.push_back({lo, hi});
+  const ScreenBox wanted{{at.x - size.x * 0.5 - 4.0, at.y - size.y * 0.5 - 2.0},
+                         {at.x + size.x * 0.5 + 4.0, at.y + size.y * 0.5 + 2.0}};
+  if (wanted.hi.x <= viewLo.x || wanted.lo.x >= viewHi.x || wanted.hi.y <= viewLo.y ||
+      wanted.lo.y >= viewHi.y)
+    return;
+  const ScreenBox box = placedLabelBox(wanted, boxes->taken, {viewLo.x, viewLo.y},
+                                       {viewHi.x, viewHi.y}, ImGui::GetTextLineHeight() * 0.5);
+  boxes->taken.push_back(box);
+  const ImVec2 lo(float(box.lo.x), float(box.lo.y)), hi(float(box.hi.x), float(box.hi.y));
   draw->AddRectFilled(lo, hi, IM_COL32(20, 22, 26, 210), 3.0f);
   draw->AddRect(lo, hi, IM_COL32(255, 220, 64, 160), 3.0f);
   draw->AddText(ImVec2(lo.x + 4.0f, lo.y + 2.0f), IM_COL32(255, 236, 150, 255), text.c_str());
 }
 
 }  // namespace
+
+ScreenBox placedLabelBox(ScreenBox box, const std::vector<ScreenBox>& taken, glm::dvec2 viewLo,
+                         glm::dvec2 viewHi, double step) {
+  const auto intoView = [&](ScreenBox b) {
+    const glm::dvec2 shift =
+        glm::max(viewLo - b.lo, glm::dvec2(0.0)) - glm::max(b.hi - viewHi, glm::dvec2(0.0));
+    b.lo += shift;
+    b.hi += shift;
+    return b;
+  };
+  const auto clear = [&](const ScreenBox& b) {
+    for (const ScreenBox& t : taken)
+      if (b.overlaps(t)) return false;
+    return true;
+  };
+  box = intoView(box);
+  if (clear(box)) return box;
+  for (int k = 1; k <= 32; ++k)
+    for (const double direction : {1.0, -1.0}) {
+      ScreenBox moved = box;
+      moved.lo.y += direction * k * step;
+      moved.hi.y += direction * k * step;
+      // Only where it still lies whole in the view (one pushed back in would cover again).
+      if (moved.lo.y < viewLo.y || moved.hi.y > viewHi.y) continue;
+      if (clear(moved)) return moved;
+    }
+  return box;
+}
 
 glm::dvec2 measureLabelCentre(glm::dvec2 a, glm::dvec2 b, glm::dvec2 half) {
   const glm::dvec2 mid = 0.5 * (a + b);
@@ -267,7 +282,8 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
   }
 }
 
-void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0) {
+void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0,
+                       const std::vector<ScreenBox>& keepClear) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   // Within the view: a label beyond its edge showed through the translucent panels beside it.
   draw->PushClipRect(ImVec2(float(x0), float(y0)),
@@ -289,6 +305,8 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
     return s;
   };
   LabelBoxes boxes;
+  for (const ScreenBox& b : keepClear)  // in window pixels, as the labels
+    boxes.taken.push_back({b.lo + glm::dvec2(x0, y0), b.hi + glm::dvec2(x0, y0)});
   for (const Measurement& m : state.document.scene().measurements) {
     const MeasureValues v = measureValues(root, m);
     ImVec2 at;

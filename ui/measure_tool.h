@@ -71,7 +71,18 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
                         std::vector<LineVertex>* overlay);
 // Their labels, at the segments' midpoints and the angles' vertices, into ImGui's background
 // draw list of the frame; (x0, y0) is the view's top-left corner in window pixels.
-void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0);
+// `keepClear`: boxes of the view the labels stay off (the gizmo's, Gizmo::screenBox), in the
+// view's pixels.
+void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0,
+                       const std::vector<ScreenBox>& keepClear = {});
+
+// Where a label whose box is `box` goes in the view [viewLo, viewHi): moved whole into the view
+// (a label near its edge read "12.4" for "12.45 mm"), then to the nearest position `step` pixels
+// at a time down or up (down first, at most 32 steps each way) where it covers none of `taken`
+// (the labels drawn before it, the gizmo), still in the view; where there is none, where it was
+// moved into the view.
+ScreenBox placedLabelBox(ScreenBox box, const std::vector<ScreenBox>& taken, glm::dvec2 viewLo,
+                         glm::dvec2 viewHi, double step);
 
 // Where the label of the on-screen segment a-b goes, the label's half-size `half` (all pixels,
 // y down): on the segment's middle, or, where the label would cover an end's marker (a segment

@@ -698,7 +698,20 @@ void Viewport::drawAnnotations(const EditorState& state, const ViewRect& rect) {
     guides_ = patternGuides(state);
   }
   drawPatternGuides(guides_, mapping(state, rect), rect.x, rect.y);
-  drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y);
+  // The labels keep off the gizmo's handles (one covered a handle: an artist's test).
+  std::vector<ScreenBox> gizmoBox;
+  glm::dmat4 parentWorld;
+  Transform transform;
+  bool pivot = false;
+  if (!state.selection.empty() && !state.measure.active &&
+      gizmoPlacement(state, &parentWorld, &transform, &pivot)) {
+    Gizmo gizmo = gizmo_;
+    gizmo.mode = state.gizmoMode;
+    gizmo.place(parentWorld, transform);
+    ScreenBox box;
+    if (gizmo.screenBox(mapping(state, rect), &box)) gizmoBox.push_back(box);
+  }
+  drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y, gizmoBox);
 }
 
 bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) {

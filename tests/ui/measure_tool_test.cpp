@@ -178,6 +178,33 @@ TEST(MeasureTool, ClicksOnASectionCapSnapToItsEdges) {
   EXPECT_FALSE(w.capEdgeNear(48, 50, 10.0));  // a surface, not a cap: no side of a cap near
 }
 
+// A label over the gizmo's box moves to the nearest place off it, down first, up where down
+// would leave the view; one clear of it stays; one past the view's edge comes into it.
+TEST(MeasureLabel, ALabelMovesOffTheGizmoAndStaysInTheView) {
+  const glm::dvec2 viewLo(0, 0), viewHi(800, 600);
+  const ScreenBox gizmo{{350, 250}, {450, 350}};
+  const ScreenBox label{{360, 300}, {460, 330}};  // 7 steps down clear it, 10 up
+  const ScreenBox moved = placedLabelBox(label, {gizmo}, viewLo, viewHi, 8.0);
+  EXPECT_FALSE(moved.overlaps(gizmo));
+  EXPECT_EQ(moved.lo.x, label.lo.x);
+  EXPECT_GE(moved.lo.y, gizmo.hi.y);
+  EXPECT_LT(moved.lo.y, gizmo.hi.y + 8.0);  // the nearest step below it
+  // Near the view's foot: above the gizmo instead.
+  const ScreenBox low{{350, 480}, {450, 580}};
+  const ScreenBox up = placedLabelBox({{360, 540}, {460, 570}}, {low}, viewLo, viewHi, 8.0);
+  EXPECT_FALSE(up.overlaps(low));
+  EXPECT_LE(up.hi.y, low.lo.y);
+  EXPECT_GE(up.lo.y, viewLo.y);
+  // Clear of it: where it was.
+  const ScreenBox clear{{10, 10}, {110, 40}};
+  const ScreenBox kept = placedLabelBox(clear, {gizmo}, viewLo, viewHi, 8.0);
+  EXPECT_EQ(kept.lo, clear.lo);
+  // Past the right edge: moved in whole.
+  const ScreenBox in = placedLabelBox({{760, 10}, {860, 40}}, {}, viewLo, viewHi, 8.0);
+  EXPECT_EQ(in.hi.x, 800.0);
+  EXPECT_EQ(in.lo.x, 700.0);
+}
+
 // A label (100 x 36 pixels) on a segment longer than it sits on its middle; on a short one it
 // moves beside the segment: clear of the line through it and of both ends' markers, above it.
 TEST(MeasureLabel, AShortSegmentsLabelGoesBesideItsLine) {

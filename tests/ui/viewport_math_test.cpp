@@ -230,6 +230,36 @@ TEST(EditorMath, AViewNarrowedThenWidenedIsFramedAsBefore) {
   EXPECT_EQ(c.distance, orbited);
 }
 
+// The gizmo's box on screen holds every handle the mouse can take, in each mode: what the
+// measurement labels keep off (one covered a handle: an artist's test).
+TEST(EditorMath, TheGizmosScreenBoxHoldsItsHandles) {
+  Camera c;
+  c.yawDegrees = -50.0;
+  c.pitchDegrees = 30.0;
+  c.distance = 20.0;
+  const glm::dvec2 size(400, 400);
+  const ScreenMapping m = mappingOf(c, size);
+  for (const GizmoMode mode : {GizmoMode::Move, GizmoMode::Rotate, GizmoMode::Scale}) {
+    Gizmo g;
+    g.mode = mode;
+    g.place(glm::dmat4(1.0), Transform());
+    ScreenBox box;
+    ASSERT_TRUE(g.screenBox(m, &box));
+    EXPECT_GT(box.hi.x - box.lo.x, 20.0);
+    EXPECT_LT(box.hi.x - box.lo.x, 400.0);
+    int handles = 0;
+    for (double y = 0.0; y < size.y; y += 2.0)
+      for (double x = 0.0; x < size.x; x += 2.0)
+        if (g.hover(m, {x, y}) >= 0) {
+          ++handles;
+          EXPECT_TRUE(x >= box.lo.x - 8.0 && x <= box.hi.x + 8.0 && y >= box.lo.y - 8.0 &&
+                      y <= box.hi.y + 8.0)
+              << int(mode) << " " << x << " " << y;
+        }
+    EXPECT_GT(handles, 0) << int(mode);
+  }
+}
+
 TEST(EditorMath, GizmoMoveFollowsTheMouseAlongItsAxis) {
   Camera c;
   c.setAxisView(AxisView::Front);
