@@ -23,6 +23,7 @@
 #include "engine/util/error.h"
 #include "engine/util/timer.h"
 #include "ui/dialog_settings.h"
+#include "ui/edit_warnings.h"
 #include "ui/editor_actions.h"
 #include "ui/gl_window.h"
 #include "ui/input_queue.h"
@@ -851,6 +852,7 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   rect.height = std::max(1.0, double(vp->Size.y - layout.menuHeight - layout.statusHeight));
   gl_->viewport.handleInput(s, rect);
   gl_->viewport.keepCameraOutside(s);
+  warnLostContacts(s);
   if (s.requestAxisView >= 0) gl_->viewport.camera.setAxisView(AxisView(s.requestAxisView));
   if (s.requestToggleOrtho) gl_->viewport.toggleOrtho(s);
   s.requestAxisView = -1;

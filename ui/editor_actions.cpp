@@ -56,6 +56,7 @@ void replaceDocument(EditorState& state, Document document) {
   if (const std::string folder = documentFolder(state); !folder.empty())
     state.lastDocumentFolder = folder;
   state.document = std::move(document);
+  state.contactsRoot = nullptr;  // another document: nothing to compare with
   state.templateName.clear();
   state.selection.clear();
   state.preview.reset();
@@ -1259,6 +1260,7 @@ void undo(EditorState& state) {
     return;
   }
   restoreSelection(state);
+  state.historyRevision = state.document.revision();
   logInfo(state, "undone: " + label);
 }
 
@@ -1271,6 +1273,7 @@ void redo(EditorState& state) {
     return;
   }
   restoreSelection(state);
+  state.historyRevision = state.document.revision();
   logInfo(state, "redone: " + label);
 }
 

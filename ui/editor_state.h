@@ -96,6 +96,12 @@ struct KeyPress {
 
 struct EditorState {
   Document document;
+  // The tree as it last settled (no drag under way) and its revision: what warnLostContacts
+  // (edit_warnings.h) compares the next settled tree with; null after a document was opened or
+  // made new. historyRevision: the revision the last undo or redo left (not judged).
+  NodePtr contactsRoot;
+  uint64_t contactsRevision = ~uint64_t(0);
+  uint64_t historyRevision = ~uint64_t(0);
   std::vector<NodeId> selection;  // the primary (inspected, gizmo) node is the last
   // The selection last seen at each document revision (rememberSelection, once a frame): undo
   // and redo bring back the selection of the state they return to.
