@@ -36,12 +36,33 @@ std::vector<std::string> wrapAtSpaces(const std::string& text, float width,
   std::vector<std::string> lines;
   std::string line;
   size_t at = 0;
-  while (at < text.size()) {
+  // The next word from `at` on ("" at a run of spaces), `at` moved past it and its space.
+  const auto nextWord = [&] {
     const size_t space = text.find(' ', at);
     const size_t end = space == std::string::npos ? text.size() : space;
     const std::string word = text.substr(at, end - at);
     at = end + 1;
+    return word;
+  };
+  // A number and the word after it stay together ("844.2 MiB" was broken after "844.2").
+  const auto isNumber = [](const std::string& w) {
+    bool digit = false;
+    for (char c : w) {
+      if (c >= '0' && c <= '9')
+        digit = true;
+      else if (c != '.' && c != ',' && c != '-' && c != '+')
+        return false;
+    }
+    return digit;
+  };
+  while (at < text.size()) {
+    std::string word = nextWord();
     if (word.empty()) continue;  // runs of spaces
+    while (isNumber(word) && at < text.size()) {
+      const std::string unit = nextWord();
+      if (!unit.empty()) word += " " + unit;
+      if (!isNumber(unit)) break;
+    }
     if (line.empty()) {
       line = word;
     } else if (measure(line + " " + word) <= width) {

@@ -20,7 +20,8 @@ std::string fitWithEllipsis(const std::string& text, float width,
 // `text` broken into lines no wider than `width` at spaces only (the spaces at a break dropped):
 // Dear ImGui's wrapping also breaks after a '.' or a ',', and an estimate of "1.3 GiB of memory"
 // ended a line with "1." and began the next with "3 GiB" (an artist's test). A word wider than
-// `width` alone is a line of its own. `measure` as for fitWithEllipsis.
+// `width` alone is a line of its own. A number is never the last word of a line ("844.2" and
+// "MiB" apart): it stays with the word after it. `measure` as for fitWithEllipsis.
 std::vector<std::string> wrapAtSpaces(const std::string& text, float width,
                                       const std::function<float(const std::string&)>& measure);
 

@@ -39,7 +39,8 @@ TEST(TextFit, TextWrapsAtSpacesOnlyAndNeverInsideANumber) {
   const std::string estimate =
       "467 x 410 x 1024 cells, about 3.9 million triangles, 1.3 GiB of memory, a 186.9 MiB "
       "file, 7 s";
-  for (float width = 100.0f; width <= 400.0f; width += 10.0f) {  // "triangles," is 100 wide
+  // "1024 cells," (a number stays with its word) is 110 wide.
+  for (float width = 110.0f; width <= 400.0f; width += 10.0f) {
     SCOPED_TRACE(width);
     const std::vector<std::string> lines = wrapAtSpaces(estimate, width, charWidth);
     std::string joined;
@@ -48,6 +49,7 @@ TEST(TextFit, TextWrapsAtSpacesOnlyAndNeverInsideANumber) {
       EXPECT_NE(line.front(), ' ');
       EXPECT_NE(line.back(), ' ');
       EXPECT_NE(line.back(), '.') << "a line ends inside a number";
+      EXPECT_FALSE(line.back() >= '0' && line.back() <= '9') << "a number apart from its unit";
       joined += (joined.empty() ? "" : " ") + line;
     }
     EXPECT_EQ(joined, estimate);
@@ -55,8 +57,12 @@ TEST(TextFit, TextWrapsAtSpacesOnlyAndNeverInsideANumber) {
   EXPECT_EQ(wrapAtSpaces("1.3 GiB of memory", 90.0f, charWidth),
             (std::vector<std::string>{"1.3 GiB", "of memory"}));
   EXPECT_EQ(wrapAtSpaces("", 80.0f, charWidth), std::vector<std::string>{""});
+  EXPECT_EQ(wrapAtSpaces("a abcdefghij b", 50.0f, charWidth),
+            (std::vector<std::string>{"a", "abcdefghij", "b"}));  // wider than the line: alone
   EXPECT_EQ(wrapAtSpaces("a 1234567890 b", 50.0f, charWidth),
-            (std::vector<std::string>{"a", "1234567890", "b"}));  // wider than the line: alone
+            (std::vector<std::string>{"a", "1234567890 b"}));  // a number with its word
+  EXPECT_EQ(wrapAtSpaces("memory 844.2 MiB", 90.0f, charWidth),
+            (std::vector<std::string>{"memory", "844.2 MiB"}));
 }
 
 // A number field marks a value it shows rounded, not one whose only difference is rounding
