@@ -1,6 +1,7 @@
 #include "ui/resize_followers.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -11,25 +12,35 @@
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
 #include "engine/geometry/transform.h"
+#include "engine/kinds/patterns.h"
+#include "engine/util/error.h"
 #include "ui/scene_queries.h"
 
 namespace strata::ui {
 namespace {
 
-// A part whose box changed: the resized part (each face moved as far as it did) or a part that
-// moved whole (rigid: every face as far as its box).
+// A part whose box changed: the resized part or one that followed it (each face moved as far
+// as it did), or one that moved whole (rigid: every face as far as its box; what lies within it
+// moves along).
 struct Mover {
   NodeId id = 0;
   Bounds was, now;
   bool rigid = false;
 };
 
+double lowMotion(const Mover& m, int a) {
+  return m.now.min[a] - m.was.min[a];
+}
+double highMotion(const Mover& m, int a) {
+  return m.now.max[a] - m.was.max[a];
+}
+
 // How far the face of `m`'s box on `side` (0 low, 1 high) of world axis `axis` moved, as a world
-// vector: along the axis for the resized part, the whole motion for a part that moved.
+// vector: along the axis, or the whole motion for a part that moved whole.
 glm::dvec3 faceMotion(const Mover& m, int axis, int side) {
   if (m.rigid) return m.now.min - m.was.min;
   glm::dvec3 v(0.0);
-  v[axis] = side ? m.now.max[axis] - m.was.max[axis] : m.now.min[axis] - m.was.min[axis];
+  v[axis] = side ? highMotion(m, axis) : lowMotion(m, axis);
   return v;
 }
 
@@ -38,13 +49,32 @@ struct Leaf {
   VisibleLeaf at;
 };
 
+double toleranceOf(const Bounds& a, const Bounds& b) {
+  return 1e-4 * std::max(a.longestSide(), b.longestSide());
+}
+
+// Whether boxes `a` and `b` share more than `tolerance` along every axis.
+bool overlaps(const Bounds& a, const Bounds& b, double tolerance) {
+  for (int k = 0; k < 3; ++k)
+    if (std::min(a.max[k], b.max[k]) - std::max(a.min[k], b.min[k]) <= tolerance) return false;
+  return true;
+}
+
+// Whether `box` lies within `in` along at least one axis: a part built into `in`, not one `in`
+// is built into (the plate under a boss sunk into it holds the boss on every axis).
+bool withinAlongAnAxis(const Bounds& box, const Bounds& in, double tolerance) {
+  for (int k = 0; k < 3; ++k)
+    if (box.min[k] >= in.min[k] - tolerance && box.max[k] <= in.max[k] + tolerance) return true;
+  return false;
+}
+
 // Where leaf `leaf` rests on a face of `m`'s old box: that face's motion; none otherwise.
 bool restsOn(const Leaf& leaf, const Mover& m, const NodePtr& root, glm::dvec3* motion) {
   const glm::dmat4 world = leaf.at.parentWorld * leaf.node->transform.matrix();
   const glm::dvec3 bottom = glm::dvec3(world * glm::dvec4(ownBottom(leaf.node, root), 1.0));
   const glm::dvec3 down = glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
   if (glm::length(down) == 0.0) return false;
-  const double tolerance = 1e-4 * std::max(m.was.longestSide(), leaf.at.box.longestSide());
+  const double tolerance = toleranceOf(m.was, leaf.at.box);
   const double aligned = std::cos(glm::radians(2.0));
   for (int a = 0; a < 3; ++a) {
     bool within = true;
@@ -81,66 +111,163 @@ std::vector<NodeId> basesCutBy(const NodePtr& root, NodeId id) {
   return bases;
 }
 
-// The world motion of a cutter with box `box` so that it keeps its place against the movers it
-// acts on (resizeFollowers' rules), as a diagonal affine map; identity where nothing changes.
-struct CutterMotion {
+// The world motion of a part with box `box` built into (or cutting) the movers `movers`, as a
+// diagonal affine map of world points, along each axis from the first mover it overlaps that
+// places it there: passing both faces, its ends move with them; crossing one, it moves with it;
+// within the box, it stays (it moves whole with a part that moved whole).
+struct Motion {
   glm::dmat4 map{1.0};
-  bool lengthened = false;
+  bool stretched = false;
   bool moved = false;
 };
-CutterMotion cutterMotion(const Bounds& box, const std::vector<const Mover*>& movers) {
+Motion attachedMotion(const Bounds& box, const std::vector<const Mover*>& movers) {
   glm::dvec3 low = box.min, high = box.max, shift(0.0);
-  bool lengthen[3] = {false, false, false}, shifted[3] = {false, false, false};
+  bool ends[3] = {false, false, false}, shifted[3] = {false, false, false};
   for (const Mover* m : movers) {
-    const double tolerance = 1e-4 * std::max(m->was.longestSide(), box.longestSide());
-    bool overlaps = true;
-    for (int a = 0; a < 3; ++a)
-      overlaps =
-          overlaps &&
-          std::min(box.max[a], m->was.max[a]) - std::max(box.min[a], m->was.min[a]) > tolerance;
-    if (!overlaps) continue;
+    const double tolerance = toleranceOf(m->was, box);
+    if (!overlaps(box, m->was, tolerance)) continue;
     for (int a = 0; a < 3; ++a) {
+      if (ends[a] || shifted[a]) continue;  // the first part it belongs to places it
       const bool fromLow = box.min[a] <= m->was.min[a] + tolerance;
       const bool pastHigh = box.max[a] >= m->was.max[a] - tolerance;
-      if (fromLow && pastHigh) {  // through, face to face: still through where the box grew
-        if (m->now.min[a] < box.min[a] - tolerance) {
-          low[a] = std::min(low[a], m->now.min[a] - std::max(m->was.min[a] - box.min[a], 0.0));
-          lengthen[a] = true;
-        }
-        if (m->now.max[a] > box.max[a] + tolerance) {
-          high[a] = std::max(high[a], m->now.max[a] + std::max(box.max[a] - m->was.max[a], 0.0));
-          lengthen[a] = true;
-        }
+      if (fromLow && pastHigh) {
+        low[a] = box.min[a] + lowMotion(*m, a);
+        high[a] = box.max[a] + highMotion(*m, a);
+        ends[a] = true;
         continue;
       }
-      if (shifted[a]) continue;  // the first part it acts on places it
+      if (pastHigh)
+        shift[a] = highMotion(*m, a);
+      else if (fromLow)
+        shift[a] = lowMotion(*m, a);
+      else if (m->rigid)
+        shift[a] = lowMotion(*m, a);
+      else
+        continue;  // within the box: it stays (a later part may place it)
       shifted[a] = true;
-      const double wasSize = m->was.max[a] - m->was.min[a];
-      if (m->rigid)
-        shift[a] = m->now.min[a] - m->was.min[a];
-      else if (pastHigh)  // crosses the high face only
-        shift[a] = m->now.max[a] - m->was.max[a];
-      else if (fromLow)  // crosses the low face only
-        shift[a] = m->now.min[a] - m->was.min[a];
-      else if (wasSize > 0.0)  // inside: at the same fraction of the box
-        shift[a] = m->now.min[a] +
-                   (box.center()[a] - m->was.min[a]) / wasSize * (m->now.max[a] - m->now.min[a]) -
-                   box.center()[a];
     }
   }
-  CutterMotion out;
+  Motion out;
   for (int a = 0; a < 3; ++a) {
-    if (lengthen[a]) {
-      const double scale = (high[a] - low[a]) / (box.max[a] - box.min[a]);
+    if (ends[a]) {
+      const double length = box.max[a] - box.min[a];
+      const double scale = length > 0.0 ? (high[a] - low[a]) / length : 1.0;
       out.map[a][a] = scale;
       out.map[3][a] = low[a] - box.min[a] * scale;
-      out.lengthened = true;
-    } else if (shift[a] != 0.0) {
+      if (scale != 1.0)
+        out.stretched = true;
+      else if (out.map[3][a] != 0.0)
+        out.moved = true;
+    } else if (shifted[a] && shift[a] != 0.0) {
       out.map[3][a] = shift[a];
       out.moved = true;
     }
   }
   return out;
+}
+
+Bounds mapped(const glm::dmat4& map, const Bounds& b) {
+  Bounds out;
+  out.include(glm::dvec3(map * glm::dvec4(b.min, 1.0)));
+  out.include(glm::dvec3(map * glm::dvec4(b.max, 1.0)));
+  return out;
+}
+
+// The world matrices of the parent of leaf `id` for each copy the patterns above it make (tree
+// edges, at most 4096), the one forEachVisibleLeaf gives first.
+std::vector<glm::dmat4> copyParents(const NodePtr& root, NodeId id) {
+  std::vector<const Node*> path;
+  if (!pathToNode(root, id, &path)) return {};
+  std::vector<glm::dmat4> parents{glm::dmat4(1.0)};
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const Node& node = *path[i];
+    std::vector<glm::dmat4> placements{glm::dmat4(1.0)};
+    const Pattern pattern = patternOf(node.kind);
+    if (pattern != Pattern::None) {
+      try {
+        checkPattern(pattern, node.pattern, nodeLabel(node));
+        placements = patternPlacements(pattern, node.pattern);
+      } catch (const Error&) {
+        placements = {firstPlacement(pattern, node.pattern)};
+      }
+    }
+    std::vector<glm::dmat4> next;
+    for (const glm::dmat4& p : parents)
+      for (const glm::dmat4& place : placements)
+        if (next.size() < 4096) next.push_back(p * node.transform.matrix() * place);
+    parents = std::move(next);
+  }
+  return parents;
+}
+
+bool nearlyEqual(const glm::dmat4& a, const glm::dmat4& b) {
+  double largest = 1.0, difference = 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) {
+      largest = std::max({largest, std::fabs(a[c][r]), std::fabs(b[c][r])});
+      difference = std::max(difference, std::fabs(a[c][r] - b[c][r]));
+    }
+  return difference <= 1e-9 * largest;
+}
+
+// A stretch along one of the part's own axes moved from its scale into its parameters, where
+// it has a length along that axis (a box's size, a cylinder's, cone's or capsule's height along
+// its z): the inspector then shows the part's new size, not a scale (an artist's test).
+bool stretchIntoParams(const Node& node, const Transform& was, Transform* now,
+                       PrimitiveParams* params) {
+  int k = -1;
+  for (int c = 0; c < 3; ++c)
+    if (now->scale[c] != was.scale[c]) {
+      if (k >= 0) return false;
+      k = c;
+    }
+  if (k < 0 || was.scale[k] == 0.0) return false;
+  const double f = now->scale[k] / was.scale[k];
+  if (!(f > 0.0) || !std::isfinite(f)) return false;
+  PrimitiveParams p = node.params;
+  switch (node.kind) {
+    case NodeKind::Box:
+      p.size[k] *= f;
+      break;
+    case NodeKind::RoundedBox:
+      p.size[k] *= f;
+      if (2.0 * p.radius >= std::min({p.size.x, p.size.y, p.size.z})) return false;
+      break;
+    case NodeKind::Cylinder:
+    case NodeKind::Cone:
+      if (k != 2) return false;
+      p.height *= f;
+      break;
+    case NodeKind::Capsule: {  // its length is height + 2 radius
+      if (k != 2) return false;
+      const double height = f * (p.height + 2.0 * p.radius) - 2.0 * p.radius;
+      if (height < 0.0) return false;
+      p.height = height;
+      break;
+    }
+    default:
+      return false;
+  }
+  now->scale[k] = was.scale[k];
+  *params = p;
+  return true;
+}
+
+// Leaf `leaf` moved by the world map `map`: its transform (and parameters) for it, where every
+// copy of it follows the map alike and the map holds as a move, turn and scale of it.
+bool placedBy(const NodePtr& root, const Leaf& leaf, const glm::dmat4& map, ResizeFollower* out) {
+  const Transform& was = leaf.node->transform;
+  const glm::dmat4 parent = leaf.at.parentWorld;
+  bool exact = true;
+  Transform now = transformNear(glm::inverse(parent) * map * parent * was.matrix(), was, &exact);
+  if (!exact) return false;
+  for (const glm::dmat4& copy : copyParents(root, leaf.node->id))
+    if (!nearlyEqual(copy * now.matrix(), map * copy * was.matrix())) return false;
+  PrimitiveParams params;
+  if (stretchIntoParams(*leaf.node, was, &now, &params)) out->params = params;
+  out->id = leaf.node->id;
+  out->transform = now;
+  return true;
 }
 
 }  // namespace
@@ -151,7 +278,7 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
   std::vector<ResizeFollower>& out = following.followers;
   if (!findNode(before, id) || !findNode(after, id) || removesMaterial(before, id))
     return following;
-  Mover resized{id, selectionBounds(before, {id}), selectionBounds(after, {id}), false};
+  const Mover resized{id, selectionBounds(before, {id}), selectionBounds(after, {id}), false};
   if (resized.was.empty() || resized.now.empty()) return following;
   std::vector<Leaf> leaves;
   forEachVisibleLeaf(before, [&](const NodePtr& leaf, const VisibleLeaf& at) {
@@ -163,23 +290,45 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
     return settled.count(leaf) > 0 || isInSubtree(before, id, leaf);
   };
 
-  // The parts resting on the resized part, and on those, breadth first.
+  // Leaf `leaf` follows by the world map `map`: a follower and a mover in turn, or left alone.
   std::vector<Mover> movers{resized};
-  for (size_t i = 0; i < movers.size(); ++i)
+  const auto follow = [&](const Leaf& leaf, const Motion& motion) {
+    settled.insert(leaf.node->id);
+    ResizeFollower f;
+    if (!placedBy(before, leaf, motion.map, &f)) {
+      following.leftAlone.push_back(leaf.node->id);
+      return;
+    }
+    f.why = motion.stretched ? ResizeFollower::Why::Stretched : ResizeFollower::Why::Moved;
+    f.cuts = leaf.at.removes;
+    out.push_back(f);
+    if (!leaf.at.removes)
+      movers.push_back(
+          {leaf.node->id, leaf.at.box, mapped(motion.map, leaf.at.box), !motion.stretched});
+  };
+
+  // What rests on the resized part and what is built into it, then on and into those.
+  for (size_t i = 0; i < movers.size(); ++i) {
+    const Mover m = movers[i];  // `movers` grows below
     for (const Leaf& leaf : leaves) {
       glm::dvec3 motion;
-      if (leaf.at.removes || leftOut(leaf.node->id) || !restsOn(leaf, movers[i], before, &motion) ||
+      if (leaf.at.removes || leftOut(leaf.node->id) || !restsOn(leaf, m, before, &motion) ||
           glm::length(motion) == 0.0)
         continue;
-      settled.insert(leaf.node->id);
-      Transform t = leaf.node->transform;
-      t.translate += glm::dvec3(glm::inverse(leaf.at.parentWorld) * glm::dvec4(motion, 0.0));
-      out.push_back({leaf.node->id, t, ResizeFollower::Why::RestsOn});
-      Bounds moved = leaf.at.box;
-      moved.min += motion;
-      moved.max += motion;
-      movers.push_back({leaf.node->id, leaf.at.box, moved, true});
+      Motion moved;
+      moved.map = glm::translate(glm::dmat4(1.0), motion);
+      moved.moved = true;
+      follow(leaf, moved);
     }
+    for (const Leaf& leaf : leaves) {
+      const double tolerance = toleranceOf(m.was, leaf.at.box);
+      if (leaf.at.removes || leftOut(leaf.node->id) || !overlaps(leaf.at.box, m.was, tolerance) ||
+          !withinAlongAnAxis(leaf.at.box, m.was, tolerance))
+        continue;
+      const Motion motion = attachedMotion(leaf.at.box, {&m});
+      if (motion.stretched || motion.moved) follow(leaf, motion);
+    }
+  }
 
   // The cutters of the parts that changed.
   for (const Leaf& cutter : leaves) {
@@ -193,20 +342,8 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
           break;
         }
     if (actedOn.empty()) continue;
-    const CutterMotion motion = cutterMotion(cutter.at.box, actedOn);
-    if (!motion.lengthened && !motion.moved) continue;
-    const Transform& was = cutter.node->transform;
-    bool exact = true;
-    const Transform t = transformNear(
-        glm::inverse(cutter.at.parentWorld) * motion.map * cutter.at.parentWorld * was.matrix(),
-        was, &exact);
-    if (!exact) {
-      following.leftTurned.push_back(cutter.node->id);
-      continue;
-    }
-    out.push_back(
-        {cutter.node->id, t,
-         motion.lengthened ? ResizeFollower::Why::CutsThrough : ResizeFollower::Why::CutsInto});
+    const Motion motion = attachedMotion(cutter.at.box, actedOn);
+    if (motion.stretched || motion.moved) follow(cutter, motion);
   }
 
   // Parts left where they were that the part now covers.
@@ -230,30 +367,36 @@ std::vector<FollowMessage> resizeFollowingMessages(const NodePtr& root, NodeId i
     const NodePtr n = findNode(root, of);
     return n ? "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"" : std::string("a part");
   };
-  const std::pair<Why, const char*> clauses[] = {
-      {Why::RestsOn, "moved with it"},
-      {Why::CutsThrough, "lengthened to stay through it"},
-      {Why::CutsInto, "moved with its face"},
+  struct Clause {
+    Why why;
+    bool cuts;
+    const char* said;
+  };
+  const Clause clauses[] = {
+      {Why::Moved, false, "moved with it"},
+      {Why::Stretched, false, "resized with it"},
+      {Why::Stretched, true, "kept through it"},
+      {Why::Moved, true, "moved with its face"},
   };
   std::string text;
-  for (const auto& [why, said] : clauses) {
+  for (const Clause& clause : clauses) {
     std::vector<std::string> names;
     for (const ResizeFollower& f : following.followers)
-      if (f.why == why) names.push_back(named(f.id));
+      if (f.why == clause.why && f.cuts == clause.cuts) names.push_back(named(f.id));
     if (names.empty()) continue;
     std::string list;
     const size_t shown = names.size() > 3 ? 2 : names.size();
     for (size_t i = 0; i < shown; ++i)
       list += (i == 0 ? "" : i + 1 == shown && shown == names.size() ? " and " : ", ") + names[i];
     if (shown < names.size()) list += " and " + std::to_string(names.size() - shown) + " more";
-    text += (text.empty() ? "" : "; ") + list + " " + said;
+    text += (text.empty() ? "" : "; ") + list + " " + clause.said;
   }
   std::vector<FollowMessage> out;
   if (!text.empty()) out.push_back({false, named(id) + " changed size: " + text});
-  for (NodeId left : following.leftTurned)
-    out.push_back({true, named(left) + " cuts " + named(id) +
-                             " but is turned against the scene's axes: it was left as it was "
-                             "(check that it still goes through)"});
+  for (NodeId left : following.leftAlone)
+    out.push_back({true, named(left) + " would follow " + named(id) +
+                             " but was left as it was: it is turned against the scene's axes, "
+                             "or its copies would not all move alike (check it)"});
   for (NodeId under : following.buried)
     out.push_back({true, named(under) + " now lies inside " + named(id) +
                              " and no longer shows: it did not rest on it, so it stayed where it "

@@ -1,9 +1,11 @@
-// What else moves when a part's size changes: the parts resting on it and the cutters through or
-// into it. A base plate made thicker grew from the ground, burying the ribs that stood on it and
-// leaving its mounting holes blind, without a word (an artist's test). Plain engine types, no
-// GL; any thread (the trees are immutable).
+// What else changes when a part's size changes: the parts resting on it, the parts built into it
+// (a hub standing through a plate, a rounded edge along it) and the cutters through or into it.
+// A base plate made thicker grew from the ground, burying the ribs that stood on it and the hub
+// that stood through it, and leaving its mounting holes blind, without a word (artists' tests).
+// Plain engine types, no GL; any thread (the trees are immutable).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,50 +15,58 @@ namespace strata::ui {
 
 struct ResizeFollower {
   enum class Why {
-    RestsOn,      // rests on the resized part (or on a part that moved): moved with it
-    CutsThrough,  // went through it from face to face: lengthened to stay through
-    CutsInto,     // a pocket, a notch or a hole inside it: moved with its face (or the part)
+    Moved,      // moved as far as the face it rests on or lies in (or the part it belongs to)
+    Stretched,  // its ends moved with the faces it passes: lengthened or shortened with it
   };
   NodeId id = 0;
-  Transform transform;  // its transform in `after` (its parent's frame)
-  Why why = Why::RestsOn;
+  Transform transform;                    // its transform for `after` (its parent's frame)
+  std::optional<PrimitiveParams> params;  // its parameters where the stretch went into them
+  Why why = Why::Moved;
+  bool cuts = false;  // it takes material away (a hole, a pocket)
 };
 
 // Part `id` changed size from the tree `before` to `after` (a size or a radius typed, a scale;
 // `after` already keeps it where it rested, keptResting; nothing else changed between the two).
-// What follows it, each with its transform for `after` (its transform in `before` moved: a gizmo
-// drag asks from the tree where the drag began, every frame), in tree order:
-// - Parts resting on it: a visible leaf that adds material whose own bottom (the middle of the
-//   bottom of its own box, the side a part dropped on a surface sets on it) lay on a face of the
-//   part's world box (within a ten-thousandth of the larger box's size), its own -z pointing into
-//   that face (within 2 degrees): moved along the face's axis as far as the face moved. Parts
-//   resting on a part that moved move as far, and so on.
-// - Cutters of it and of the parts that moved (a visible leaf on the cut side of a difference
-//   whose base holds the part) whose box overlaps the part's box, along each world axis: where
-//   the cutter went through the box from face to face and the box now passes it, lengthened on
-//   that side by as much as it passed the face before (a hole through stays through; one that
-//   still passes is left); where it crossed one face only (a pocket, a notch), moved as far as
-//   that face; inside the box, moved to the same fraction of it. A part that moved takes the
-//   cutters in it along.
+// What follows it, each with its transform (and parameters) for `after`: its own in `before`
+// changed (a gizmo drag asks from the tree where the drag began, every frame). All in world
+// boxes, along each world axis, the "faces" being those of the part's world box:
+// - Resting: a visible leaf that adds material whose own bottom (the middle of the bottom of its
+//   own box, the side a part dropped on a surface sets on it) lay on a face (within a
+//   ten-thousandth of the larger box's size), its own -z pointing into it (within 2 degrees):
+//   moved as far as that face, along its axis.
+// - Built in: a visible leaf that adds material, overlaps the part's box and lies within it
+//   along at least one axis (the hub within the plate's length and width; a part whose box holds
+//   the part's on every axis, such as the plate a boss is sunk into, is not built into the boss):
+//   along each axis where it passes both faces, its ends move as far as the faces they pass (the
+//   hub still stands as far out of the plate's top); where it crosses one face, it moves as far
+//   as that face; within the box, it stays.
+// - Cutters: a visible leaf on the cut side of a difference whose base holds the part, overlapping
+//   its box: the same as a part built in (a hole through stays through, passing each face by as
+//   much as before; a pocket moves with its face).
+// A part that follows is followed in turn by what rests on it or is built into it, and by its
+// cutters (a cap on a pedestal on a plate made thicker; an o-ring around the pedestal; a hole
+// through the hub). A part that moved whole takes what lies in it along whole.
+// A lengthening goes into the part's parameters where its own axis lies along the world axis and
+// it has a length there (a box's size, a cylinder's height), else into its scale.
 // Nothing where `id` takes material away (a cutter resized) or shows nothing. Parts in
 // `excluded` (the rest of a selection changed by the same edit) and inside `id` are left out.
 struct ResizeFollowing {
   std::vector<ResizeFollower> followers;
-  // Cutters turned other than by quarter turns against the world, which a lengthening along a
-  // world axis would shear: left as they were.
-  std::vector<NodeId> leftTurned;
-  // Parts that add material, rest on nothing that moved and now lie inside the part's box
-  // (within a ten-thousandth of its size), where they did not before: a hub standing on the
-  // ground beside a plate made thicker than it is tall. Left as they are, for the log to say.
+  // Parts that would follow but cannot exactly: turned other than by quarter turns against the
+  // world (a stretch along a world axis would shear them), or copies of a pattern that would not
+  // all move alike. Left as they were.
+  std::vector<NodeId> leftAlone;
+  // Parts that add material, follow nothing and now lie inside the part's box (within a
+  // ten-thousandth of its size), where they did not before. Left as they are, for the log.
   std::vector<NodeId> buried;
 };
 ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, NodeId id,
                                 const std::vector<NodeId>& excluded = {});
 
 // What the log says of `following` for part `id` (names as in `root`), in order: "\"base
-// plate\" changed size: \"rib\" moved with it; \"mounting hole\" and \"slot\" lengthened to stay
-// through it; \"pocket\" moved with its face" (up to three names a clause, else two and "and N
-// more"), then a warning for each cutter left turned and each part buried. None when nothing
+// plate\" changed size: \"rib\" moved with it; \"hub\" resized with it; \"mounting hole\" and
+// \"slot\" kept through it" (up to three names a clause, else two and "and N
+// more"), then a warning for each part left alone and each part buried. None when nothing
 // followed.
 struct FollowMessage {
   bool warning = false;

@@ -366,12 +366,15 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
             std::vector<NodeId> followed;
             for (const ResizeFollower& f : following.followers) {
               state.document.setTransform(f.id, f.transform);
+              if (f.params) state.document.setParams(f.id, *f.params);
               followed.push_back(f.id);
             }
             for (NodeId was : dragFollowers_)
               if (std::find(followed.begin(), followed.end(), was) == followed.end())
-                if (const NodePtr at = findNode(dragStart_, was))
+                if (const NodePtr at = findNode(dragStart_, was)) {
                   state.document.setTransform(was, at->transform);
+                  if (isPrimitive(at->kind)) state.document.setParams(was, at->params);
+                }
             dragFollowers_ = followed;
             dragFollowing_ = following;
             dragResized_ = id;
