@@ -776,6 +776,8 @@ void Editor::drawFrame(std::vector<uint8_t>* capture, int* width, int* height) {
   // Said once the field is left (or another is typed into: Tab), for the field it was typed in.
   if (const std::string converted = takeUnitConversion(); !converted.empty())
     logInfo(s, "typed " + converted);
+  // A typing refused (two numbers apart, an expression that is no number): said.
+  if (const std::string refused = takeTypedRefusal(); !refused.empty()) logWarning(s, refused);
   if (takeUnitConverted()) g_notTyped.clear();  // the letters were a unit, and converted
   if (!g_notTyped.empty()) {
     if (numberFieldBeingTyped() != g_notTypedIn) {

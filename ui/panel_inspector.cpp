@@ -181,8 +181,11 @@ void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
   if (rest.moved) state.document.setTransform(id, t);
   const ResizeFollowing following = resizeFollowers(before, state.document.root(), id, sameEdit);
   const std::vector<ResizeFollower>& followers = following.followers;
-  for (const ResizeFollower& f : followers) state.document.setTransform(f.id, f.transform);
-  if (!rest.moved && followers.empty() && following.leftTurned.empty() && following.buried.empty())
+  for (const ResizeFollower& f : followers) {
+    state.document.setTransform(f.id, f.transform);
+    if (f.params) state.document.setParams(f.id, *f.params);
+  }
+  if (!rest.moved && followers.empty() && following.leftAlone.empty() && following.buried.empty())
     return;
   // Once for a drag of the field, not every frame of it; again where a part joins those that
   // follow (a hole the plate grew past in a later frame of the drag).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -45,10 +46,13 @@ struct Dropped {
   std::string letters;
   double since = 0.0;        // when the field's typing began (ImGui time): letters of one typing
   bool numberAfter = false;  // a digit or a point typed after the letters: no unit of the number
+  bool spaceAfterNumber = false;  // a space typed right after a digit or a point
+  bool twoNumbers = false;        // then a digit or a point: "15 5", which the field shows as 155
 };
 Dropped gDropped;
 std::string gConversion;
 bool gConverted = false;  // since takeUnitConverted
+std::string gRefusal;     // takeTypedRefusal
 
 // What letters typed with a number (spaces left out) make of it, in a field whose unit is
 // `lengthUnit` ("" for a field that is no length): the one rule both the hint under the field
@@ -100,6 +104,9 @@ std::optional<double> convertTypedUnit(ImGuiID id, double value, const std::stri
 
 std::string gHintShown;  // showDroppedLetters' line on the last frame it drew one (tests)
 
+// Draws `line` as a tooltip under the last item (the field being typed into).
+void hintBelowField(const char* line);
+
 // While field `id` (the last item) is being typed: the letters it dropped drawn after its text,
 // inside its frame and dimmed, so that "1cm" reads as typed (the field shows "1"), and under it
 // what they will do when the field is left. Nothing where it dropped none.
@@ -147,6 +154,13 @@ void showDroppedLetters(ImGuiID id, const std::string& lengthUnit) {
     std::snprintf(line, sizeof(line),
                   "\"%s\" is no unit (mm, cm, m, in, ft): leaving the field changes nothing",
                   letters.c_str());
+  hintBelowField(line);
+}
+
+void hintBelowField(const char* line) {
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
   gHintShown = line;
   // Below the field, within the window (it ran off the screen's edge beside the right panel's
   // fields: an artist's re-test).
@@ -191,7 +205,10 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
     // follows the last deletion (the letters never reach the field's text).
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace)) ||
         ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)))
-      if (gDropped.id == id) gDropped.letters.clear();
+      if (gDropped.id == id) {
+        gDropped.letters.clear();
+        gDropped.twoNumbers = gDropped.spaceAfterNumber = false;
+      }
     // Letters typed after a number equal to the value ("1cm" into 1 mm): due as a change, to be
     // converted when the field is left.
     if (!gTyped.held && gDropped.id == id && !gDropped.letters.empty())
@@ -204,6 +221,17 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
                                         ImGui::GetColorU32(ImGuiCol_CheckMark),
                                         ImGui::GetStyle().FrameRounding, 0, 2.0f);
     if constexpr (std::is_floating_point_v<T>) showDroppedLetters(id, lengthUnit);
+    if (typedIsExpression(text)) {  // what leaving the field will make of it
+      char line[160];
+      if (const std::optional<double> result = evaluateTypedExpression(text))
+        std::snprintf(line, sizeof(line), "%s = %.10g when the field is left", text.c_str(),
+                      *result);
+      else
+        std::snprintf(line, sizeof(line), "\"%s\" is no number yet", text.c_str());
+      if (gDropped.id != id || gDropped.letters.empty()) hintBelowField(line);
+    }
+    if (gDropped.id == id && gDropped.twoNumbers)
+      hintBelowField("a space between two numbers: leaving the field changes nothing");
     return false;
   }
   if (!gTyped.held || gTyped.id != id) return changed;
@@ -213,6 +241,30 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
   if (gTyped.frame != ImGui::GetFrameCount() - 1) return changed;
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false)) return false;
   if (!changed) *value = T(gTyped.value);
+  // Two numbers apart ("15 5": the field dropped the space and read 155) or an expression that
+  // is no number ("5*/2"): the field keeps its value, and says why (they were applied silently:
+  // an artist's test).
+  if (gDropped.id == id && gDropped.twoNumbers) {
+    gRefusal = "a space between two numbers (\"" + gTyped.text.substr(0, 40) +
+               "\" without it): the value is kept";
+    gDropped = {};
+    return false;
+  }
+  // An expression ("30+5", "40/2", "2*10"): its result. Dear ImGui reads the first number only
+  // (30, 40, 2) and applied it without a word (an artist's test).
+  if (typedIsExpression(gTyped.text)) {
+    const std::optional<double> result = evaluateTypedExpression(gTyped.text);
+    if (!result || (std::is_integral_v<T> && *result != std::round(*result))) {
+      gRefusal = "\"" + gTyped.text.substr(0, 40) + "\" is no " +
+                 (std::is_integral_v<T> ? "whole number" : "number") + ": the value is kept";
+      if (gDropped.id == id) gDropped = {};
+      return false;
+    }
+    *value = T(*result);
+    char said[160];
+    std::snprintf(said, sizeof(said), "%s = %.10g", gTyped.text.substr(0, 40).c_str(), *result);
+    gConversion = said;
+  }
   // Letters that make no sense of the number: the field keeps its value (a count or a resolution
   // as much as a length).
   const std::optional<double> converted = convertTypedUnit(id, double(*value), lengthUnit);
@@ -286,8 +338,20 @@ unsigned numberFieldCharacter(unsigned codepoint, std::string* dropped) {
   if (kept || codepoint == ' ') {
     // A number typed after the letters ("1 cm 2" became 12 cm): the letters are no unit of it.
     if (!gDropped.letters.empty() && codepoint != ' ') gDropped.numberAfter = true;
+    // A number typed after a space after a number ("15 5": the field drops the space).
+    const bool digit = (codepoint >= '0' && codepoint <= '9') || codepoint == '.';
+    if (codepoint == ' ') {
+      const std::string text = typedText(field);
+      const char last = text.empty() ? '\0' : text.back();
+      if ((last >= '0' && last <= '9') || last == '.') gDropped.spaceAfterNumber = true;
+    } else if (digit && gDropped.spaceAfterNumber && gDropped.letters.empty()) {
+      gDropped.twoNumbers = true;
+    } else if (!digit) {
+      gDropped.spaceAfterNumber = false;  // "5 *2", "5 e": no second number
+    }
     return codepoint;
   }
+  gDropped.spaceAfterNumber = false;  // a unit after the space
   // Kept for the field's commit, which converts a length unit (commitTypedValue).
   const size_t before = dropped->size();
   // As UTF-8, so that a micro sign or a degree sign is said too.
@@ -329,6 +393,70 @@ TypedUnit convertLengthTypedIntoInput(double* value, const std::string& lengthUn
   if (!converted) return TypedUnit::Refused;
   *value = *converted;
   return !gConversion.empty() && *value != before ? TypedUnit::Converted : TypedUnit::None;
+}
+
+bool typedIsExpression(const std::string& text) {
+  for (size_t i = 1; i < text.size(); ++i) {
+    const char c = text[i], before = text[i - 1];
+    if ((c == '+' || c == '-' || c == '*' || c == '/') &&
+        ((before >= '0' && before <= '9') || before == '.'))
+      return true;
+  }
+  return false;
+}
+
+std::optional<double> evaluateTypedExpression(const std::string& text) {
+  size_t at = 0;
+  const auto skip = [&] {
+    while (at < text.size() && text[at] == ' ') ++at;
+  };
+  // A number, or a sign before one.
+  const std::function<std::optional<double>()> factor = [&]() -> std::optional<double> {
+    skip();
+    if (at < text.size() && (text[at] == '+' || text[at] == '-')) {
+      const bool minus = text[at++] == '-';
+      const std::optional<double> v = factor();
+      if (!v) return std::nullopt;
+      return minus ? -*v : *v;
+    }
+    if (at >= text.size() || !((text[at] >= '0' && text[at] <= '9') || text[at] == '.'))
+      return std::nullopt;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str() + at, &end);
+    if (end == text.c_str() + at) return std::nullopt;
+    at = size_t(end - text.c_str());
+    return v;
+  };
+  const auto product = [&]() -> std::optional<double> {
+    std::optional<double> v = factor();
+    while (v) {
+      skip();
+      if (at >= text.size() || (text[at] != '*' && text[at] != '/')) break;
+      const bool times = text[at++] == '*';
+      const std::optional<double> w = factor();
+      if (!w) return std::nullopt;
+      v = times ? *v * *w : *v / *w;
+    }
+    return v;
+  };
+  std::optional<double> v = product();
+  while (v) {
+    skip();
+    if (at >= text.size() || (text[at] != '+' && text[at] != '-')) break;
+    const bool plus = text[at++] == '+';
+    const std::optional<double> w = product();
+    if (!w) return std::nullopt;
+    v = plus ? *v + *w : *v - *w;
+  }
+  skip();
+  if (!v || at != text.size() || !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
+std::string takeTypedRefusal() {
+  std::string said;
+  said.swap(gRefusal);
+  return said;
 }
 
 std::string droppedLettersHint() {

@@ -5,6 +5,7 @@
 // the widget, on the UI thread, with what it returned and the variable it edits.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace strata::ui {
@@ -42,6 +43,21 @@ std::string takeUnitConversion();
 // ("1.5 cm: 15 mm when the field is left"; "\"xyz\" is no unit: the number is kept"): by
 // commitTypedValue and convertLengthTypedIntoInput. The last such line drawn, once ("" for none).
 std::string droppedLettersHint();
+// An expression typed into a number field ("30+5", "40/2", "2*10", "-5*-2"): a binary + - * /
+// after a digit or a point (a leading sign, or an exponent's "1e-3", is none; "*2" alone is Dear
+// ImGui's own "times the value"). Dear ImGui reads only the first number of it (30, 40, 2) and
+// applied that without a word (an artist's test): the commit applies the expression's result
+// instead (said by takeUnitConversion: "30+5 = 35"), and refuses one that is no number ("5*/2")
+// or two numbers apart ("15 5", which the field shows as 155), keeping the value (said by
+// takeTypedRefusal). While typing, a line under the field says what leaving it will do.
+bool typedIsExpression(const std::string& text);
+// The value of `text`: numbers (strtod's, exponents too) joined by + - * / with the usual
+// precedence, signs before numbers, spaces between; none where it is malformed or not finite
+// (a division by zero).
+std::optional<double> evaluateTypedExpression(const std::string& text);
+// What the last commit refused and why ("a space between two numbers ...: the value is kept"),
+// once; "" for none. The inspector says it as a warning.
+std::string takeTypedRefusal();
 // Whether a commit converted a length unit since the last call (whoever took its text): the
 // letters the field dropped were that unit.
 bool takeUnitConverted();

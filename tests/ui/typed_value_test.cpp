@@ -254,6 +254,70 @@ TEST_F(TypedField, ALengthTypedWithAUnitIsConverted) {
   EXPECT_TRUE(takeUnitConverted()) << "its letters understood: not said as letters not typed";
 }
 
+// An artist typed "30+5" and got 30, "2*10" and got 2, "15 5" and got 155, without a word: an
+// expression gives its result (and says it), one that is no number or two numbers apart keep the
+// value (and say why); a leading sign, an exponent, a unit after an expression work as before.
+TEST_F(TypedField, AnExpressionGivesItsResultAndTwoNumbersApartAreRefused) {
+  lengthUnit = "mm";
+  std::string dropped;
+  const auto typeInto = [&](const char* text) {
+    frame(/*focus=*/true);
+    frame();
+    for (const char* c = text; *c; ++c) {
+      ImGui::GetIO().AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+      frame();
+    }
+    press(kEnter);
+  };
+  typeInto("30+5");
+  EXPECT_EQ(stored, 35.0);
+  EXPECT_EQ(takeUnitConversion(), "30+5 = 35");
+  typeInto("40/2");
+  EXPECT_EQ(stored, 20.0);
+  typeInto("2*10-4/8");
+  EXPECT_EQ(stored, 19.5);
+  typeInto("-5*-2");
+  EXPECT_EQ(stored, 10.0);
+  typeInto("1e-3");
+  EXPECT_EQ(stored, 0.001);
+  takeUnitConversion();
+  typeInto("1+1cm");  // the result in the unit typed
+  EXPECT_EQ(stored, 20.0);
+  takeUnitConversion();
+  EXPECT_EQ(takeTypedRefusal(), "");
+  stored = 7.0;
+  typeInto("15 5");
+  EXPECT_EQ(stored, 7.0);
+  EXPECT_NE(takeTypedRefusal().find("a space between two numbers"), std::string::npos);
+  typeInto("5*/2");
+  EXPECT_EQ(stored, 7.0);
+  EXPECT_EQ(takeTypedRefusal(), "\"5*/2\" is no number: the value is kept");
+  typeInto("5/0");
+  EXPECT_EQ(stored, 7.0);
+  EXPECT_NE(takeTypedRefusal(), "");
+  typeInto("5 mm");  // a space before a unit is no second number
+  EXPECT_EQ(stored, 5.0);
+  EXPECT_EQ(takeTypedRefusal(), "");
+  takeUnitConversion();
+}
+
+TEST(TypedExpression, NumbersJoinedByTheFourOperations) {
+  EXPECT_FALSE(typedIsExpression("-5"));
+  EXPECT_FALSE(typedIsExpression("1e-3"));
+  EXPECT_FALSE(typedIsExpression("*2"));  // Dear ImGui's own: times the value
+  EXPECT_TRUE(typedIsExpression("5-3"));
+  EXPECT_TRUE(typedIsExpression("2.*3"));
+  EXPECT_EQ(evaluateTypedExpression("1+2*3"), 7.0);
+  EXPECT_EQ(evaluateTypedExpression("8/4/2"), 1.0);
+  EXPECT_EQ(evaluateTypedExpression("10-2-3"), 5.0);
+  EXPECT_EQ(evaluateTypedExpression("-2*-3"), 6.0);
+  EXPECT_EQ(evaluateTypedExpression(" 1.5e2 + 1 "), 151.0);
+  EXPECT_FALSE(evaluateTypedExpression("1+"));
+  EXPECT_FALSE(evaluateTypedExpression("1**2"));
+  EXPECT_FALSE(evaluateTypedExpression("1/0"));
+  EXPECT_FALSE(evaluateTypedExpression(""));
+}
+
 // The letters of a unit never reach the field's text ("1cm" showed "1" until the field was left):
 // they are drawn after it while typing, with what leaving the field will make of them.
 TEST_F(TypedField, TheLettersTypedAreShownWithWhatTheyWillDo) {
