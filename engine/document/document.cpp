@@ -71,7 +71,8 @@ void Document::apply(const std::string& label, const NodePtr& newRoot) {
   Scene next = scene();
   next.root = newRoot;
   if (!next.measurements.empty())
-    next.measurements = pinPointsOfRemovedParts(root(), newRoot, next.measurements);
+    next.measurements = followResizedParts(
+        root(), newRoot, pinPointsOfRemovedParts(root(), newRoot, next.measurements));
   history_.record(state_, label);
   resolutionStepOpen_ = false;
   state_ = DocumentState{std::make_shared<const Scene>(std::move(next)), freshRevision()};

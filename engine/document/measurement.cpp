@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "engine/document/commands.h"
+#include "engine/kinds/primitives.h"
 
 namespace strata {
 
@@ -82,6 +83,29 @@ std::vector<Measurement> pinPointsOfRemovedParts(const NodePtr& before, const No
         p.local = pointInWorld(before, p);
         p.node = 0;
       }
+  return out;
+}
+
+std::vector<Measurement> followResizedParts(const NodePtr& before, const NodePtr& after,
+                                            const std::vector<Measurement>& measurements) {
+  std::vector<Measurement> out = measurements;
+  for (Measurement& m : out)
+    for (MeasurePoint& p : m.points) {
+      if (p.node == 0) continue;
+      const NodePtr was = findNode(before, p.node), now = findNode(after, p.node);
+      if (!was || !now || was->kind != now->kind || !isPrimitive(now->kind) ||
+          was->params == now->params)
+        continue;
+      const Bounds a = primitiveWorldBounds(was->kind, was->params, glm::dmat4(1.0));
+      const Bounds b = primitiveWorldBounds(now->kind, now->params, glm::dmat4(1.0));
+      if (a.empty() || b.empty()) continue;
+      for (int k = 0; k < 3; ++k) {
+        const double from = a.max[k] - a.min[k];
+        p.local[k] = from > 0.0
+                         ? b.min[k] + (p.local[k] - a.min[k]) * ((b.max[k] - b.min[k]) / from)
+                         : p.local[k] + (b.center()[k] - a.center()[k]);
+      }
+    }
   return out;
 }
 

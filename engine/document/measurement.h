@@ -54,4 +54,12 @@ MeasureValues measureValues(const NodePtr& root, const Measurement& measurement)
 std::vector<Measurement> pinPointsOfRemovedParts(const NodePtr& before, const NodePtr& after,
                                                  const std::vector<Measurement>& measurements);
 
+// The measurements of `before` with every point on a primitive whose parameters changed in
+// `after` (a size, a radius typed) moved with its surface: its position in the part's own box,
+// as a fraction along each axis, kept (a corner stays the corner). A point is kept in its part's
+// frame, which a size typed does not change: a plate made 100 long kept its 140 mm measurement
+// with its ends in the air, where a scale carried them along (an artist's test).
+std::vector<Measurement> followResizedParts(const NodePtr& before, const NodePtr& after,
+                                            const std::vector<Measurement>& measurements);
+
 }  // namespace strata

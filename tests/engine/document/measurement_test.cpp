@@ -109,6 +109,37 @@ TEST(Measurement, PointsFollowTheirPartsAndStayWhenAPartIsDeleted) {
   EXPECT_TRUE(doc.scene().measurements.empty());
 }
 
+// A size typed keeps a point where it lies on the part's surface: a plate 140 long made 100
+// kept its 140 mm measurement, its ends in the air (an artist's test); the corners now measure
+// 100. A cylinder's rim point stays on the rim as its radius grows; undo puts them back.
+TEST(Measurement, PointsStayOnTheSurfaceOfAPartWhoseSizeIsTyped) {
+  NodePtr plate = box(glm::dvec3(140.0, 80.0, 8.0), {0.0, 0.0, 4.0});
+  NodePtr hub = cylinder(28.0, 24.0, {0.0, 0.0, 12.0});
+  Document doc(makeScene(op(NodeKind::Union, {plate, hub}), 64));
+  doc.applyMeasurements("measure",
+                        {Measurement{{attachPoint(doc.root(), plate->id, {-70.0, -40.0, 8.0}),
+                                      attachPoint(doc.root(), plate->id, {70.0, -40.0, 8.0})}},
+                         Measurement{{attachPoint(doc.root(), hub->id, {28.0, 0.0, 24.0}),
+                                      attachPoint(doc.root(), plate->id, {70.0, 40.0, 0.0})}}});
+  PrimitiveParams shorter = plate->params;
+  shorter.size = glm::dvec3(100.0, 80.0, 8.0);
+  doc.setParams(plate->id, shorter);
+  MeasureValues v = measureValues(doc.root(), doc.scene().measurements[0]);
+  EXPECT_NEAR(v.distance, 100.0, 1e-9);
+  EXPECT_NEAR(v.a.x, -50.0, 1e-9);
+  EXPECT_NEAR(v.a.z, 8.0, 1e-9);
+  PrimitiveParams wider = hub->params;
+  wider.radius = 40.0;
+  doc.setParams(hub->id, wider);
+  v = measureValues(doc.root(), doc.scene().measurements[1]);
+  EXPECT_NEAR(v.a.x, 40.0, 1e-9);
+  EXPECT_NEAR(v.a.z, 24.0, 1e-9);
+  EXPECT_NEAR(v.b.x, 50.0, 1e-9);
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.undo());
+  EXPECT_NEAR(measureValues(doc.root(), doc.scene().measurements[0]).distance, 140.0, 1e-9);
+}
+
 TEST(Measurement, SceneFilesKeepThemInWorldCoordinates) {
   Transform t;
   t.translate = glm::dvec3(1.0, 2.0, 3.0);
