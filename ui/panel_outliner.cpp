@@ -104,15 +104,18 @@ void dragHint() {
 
 // A child's role in its parent, as a short word coloured by what its material does to the
 // result (`removes`: removesMaterial, roles.h): red where it is taken away, so that a part that
-// adds to a cutter does not look like one that adds material.
+// adds to a cutter does not look like one that adds material; such a part reads "cut".
 void roleBadge(ChildRole role, bool removes, float x) {
   const ImVec4 red(1.0f, 0.45f, 0.42f, 1.0f);
   ImVec4 colour = removes ? red : ImVec4(0.6f, 0.62f, 0.66f, 1.0f);
   const char* word = "base";
   switch (role) {
     case ChildRole::Add:
+      // Inside a cutter (a hole of a circular array that cuts): its material is taken away, and
+      // the word says so ("add" in red was read as adding material: an artist's test); the
+      // tooltip says it adds to the cutter.
       colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
-      word = "add";
+      word = removes ? "cut" : "add";
       break;
     case ChildRole::Cut:
       colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);

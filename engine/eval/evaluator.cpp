@@ -201,11 +201,15 @@ std::string smallerThanCellWarning(const Node& node, const Bounds& bounds, doubl
   if (extent >= h && thickness < 2.0 * h) {
     // Big enough to show, too thin to keep its shape: say by how much the resolution must grow
     // for it to be four cells thick.
+    // The factor whole from 10 on: "4.4e+02x" read as a formula (an artist's test).
+    const double factor = 4.0 * h / std::max(thickness, 1e-300);
+    char times[48];
+    std::snprintf(times, sizeof(times), factor >= 10.0 ? "%.0f" : "%.2g", factor);
     char text[280];
     std::snprintf(text, sizeof(text),
                   " is only %.2g cells thick (%.3g %s; a cell is %.3g %s): its shape is lost at "
-                  "this resolution; about %.2gx the resolution makes it 4 cells thick",
-                  thickness / h, thickness, unit, h, unit, 4.0 * h / std::max(thickness, 1e-300));
+                  "this resolution; about %s times the resolution makes it 4 cells thick",
+                  thickness / h, thickness, unit, h, unit, times);
     return nodeLabel(node) + text;
   }
   if (extent >= h) return "";
