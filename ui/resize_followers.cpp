@@ -360,6 +360,64 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
   return following;
 }
 
+bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params) {
+  if (!isPrimitive(start.kind)) return false;
+  glm::dvec3 f(1.0);
+  for (int k = 0; k < 3; ++k) {
+    if (start.transform.scale[k] == 0.0) return false;
+    f[k] = now->scale[k] / start.transform.scale[k];
+    if (!(f[k] > 0.0) || !std::isfinite(f[k])) return false;
+  }
+  const auto same = [](double a, double b) {
+    return std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(a));
+  };
+  PrimitiveParams p = start.params;
+  switch (start.kind) {
+    case NodeKind::Box:
+    case NodeKind::RoundedBox:
+      p.size *= f;
+      break;
+    case NodeKind::Cylinder:
+      if (!same(f.x, f.y)) return false;
+      p.radius *= f.x;
+      p.height *= f.z;
+      break;
+    case NodeKind::Cone:
+      if (!same(f.x, f.y)) return false;
+      p.radius *= f.x;
+      p.topRadius *= f.x;
+      p.height *= f.z;
+      break;
+    case NodeKind::Capsule: {  // its length is height + 2 radius
+      if (!same(f.x, f.y)) return false;
+      const double length = (p.height + 2.0 * p.radius) * f.z;
+      p.radius *= f.x;
+      p.height = length - 2.0 * p.radius;
+      if (p.height < 0.0) return false;
+      break;
+    }
+    case NodeKind::Sphere:
+      if (!same(f.x, f.y) || !same(f.y, f.z)) return false;
+      p.radius *= f.x;
+      break;
+    case NodeKind::Torus:
+      if (!same(f.x, f.y) || !same(f.y, f.z)) return false;
+      p.majorRadius *= f.x;
+      p.minorRadius *= f.x;
+      break;
+    default:
+      return false;
+  }
+  try {
+    validateParams(start.kind, p);
+  } catch (const Error&) {
+    return false;
+  }
+  now->scale = start.transform.scale;
+  *params = p;
+  return true;
+}
+
 std::vector<FollowMessage> resizeFollowingMessages(const NodePtr& root, NodeId id,
                                                    const ResizeFollowing& following) {
   using Why = ResizeFollower::Why;

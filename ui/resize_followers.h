@@ -63,6 +63,16 @@ struct ResizeFollowing {
 ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, NodeId id,
                                 const std::vector<NodeId>& excluded = {});
 
+// A primitive scaled (the gizmo's scale of one part) as a change of its size instead, where its
+// parameters can hold it: `now` (its transform, scaled from `start`'s) gets `start`'s scale
+// back and `params` the size that scale gave (a box's size; a cylinder's or cone's radius where
+// x and y scale alike, and height; a sphere's or torus's radii where all three do; a capsule's
+// radius and length). A rounded box's corners stayed round when its size was typed and turned
+// oval when the gizmo scaled it (an artist's test). False (nothing changed) where the scale
+// cannot be held so: a part turned by it (a mirroring), a circle made an ellipse, or a size its
+// parameters refuse (a rounded box thinner than twice its corners' radius).
+bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params);
+
 // What the log says of `following` for part `id` (names as in `root`), in order: "\"base
 // plate\" changed size: \"rib\" moved with it; \"hub\" resized with it; \"mounting hole\" and
 // \"slot\" kept through it" (up to three names a clause, else two and "and N

@@ -79,8 +79,9 @@ void appendSectionOutline(const EditorState& state, const ViewportFrame& frame,
 
 // Beside the cursor while a gizmo handle is dragged: how far it has moved, turned or scaled
 // from where the drag began, in the field's units, and the snap when it is on.
+// `intoSize`: a scale that went into the part's size (scaleIntoSize), its scale field unchanged.
 void drawDragReadout(const EditorState& state, const Gizmo& gizmo, const Transform& now,
-                     glm::dvec2 cursor) {
+                     glm::dvec2 cursor, bool intoSize = false) {
   const int k = gizmo.activeAxis();
   if (k < 0) return;
   const char* axis = k == 0 ? "x" : k == 1 ? "y" : "z";
@@ -99,9 +100,14 @@ void drawDragReadout(const EditorState& state, const Gizmo& gizmo, const Transfo
                     now.rotateDegrees[k], state.snap.enabled ? "  (snap 15\u00B0)" : "");
       break;
     case GizmoMode::Scale:
-      std::snprintf(text, sizeof(text), "scale %s \u00D7%.3g (now %.4g)%s", axis,
-                    from.scale[k] != 0.0 ? now.scale[k] / from.scale[k] : 1.0, now.scale[k],
-                    state.snap.enabled ? "  (snap 0.1)" : "");
+      if (intoSize)
+        std::snprintf(text, sizeof(text), "size %s \u00D7%.3g (its size fields)%s", axis,
+                      from.scale[k] != 0.0 ? now.scale[k] / from.scale[k] : 1.0,
+                      state.snap.enabled ? "  (snap 0.1)" : "");
+      else
+        std::snprintf(text, sizeof(text), "scale %s \u00D7%.3g (now %.4g)%s", axis,
+                      from.scale[k] != 0.0 ? now.scale[k] / from.scale[k] : 1.0, now.scale[k],
+                      state.snap.enabled ? "  (snap 0.1)" : "");
       break;
   }
   ImDrawList* draw = ImGui::GetForegroundDrawList();
@@ -326,6 +332,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     }
     if (io.MouseDown[0] && placeGizmo(state)) {
       Transform t = gizmo_.drag(view, mouse, state.snap);
+      const Transform dragged = t;  // as the gizmo moved it, for the readout
+      bool intoSize = false;
       std::vector<NodeId> sheared;  // parts the drag's motion would shear
       if (pivotGroup_) {
         // The pivot's motion, applied to every selected part from where the drag began.
@@ -345,6 +353,19 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
           // another part sank into it or floated off it: kept on it from where the drag began,
           // as a scale or size typed in the inspector (an artist's test).
           if (state.gizmoMode == GizmoMode::Scale) {
+            // One primitive scaled changes its size instead, where its parameters hold it (a
+            // rounded box's corners turned oval, and its size field kept the old size: an
+            // artist's test).
+            const NodePtr start = findNode(dragStart_, id);
+            PrimitiveParams sized;
+            if (start && independentSelectionCount(dragStart_, state.selection) == 1 &&
+                scaleIntoSize(*start, &t, &sized)) {
+              state.document.setTransform(id, t);
+              state.document.setParams(id, sized);
+              intoSize = true;
+            } else if (start && isPrimitive(start->kind)) {
+              state.document.setParams(id, start->params);  // as the drag began
+            }
             Rest rest;
             t = keptResting(dragStart_, state.document.root(), id, &rest);
             if (rest.moved) state.document.setTransform(id, t);
@@ -395,7 +416,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
                        "and scale (its turn may change too). Scale it alone, along its own axes, "
                        "for an exact stretch");
       }
-      drawDragReadout(state, gizmo_, t, glm::dvec2(io.MousePos.x, io.MousePos.y));
+      drawDragReadout(state, gizmo_, pivotGroup_ ? t : dragged,
+                      glm::dvec2(io.MousePos.x, io.MousePos.y), intoSize);
     } else {
       gizmo_.end();
       state.document.endInteraction();

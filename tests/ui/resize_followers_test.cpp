@@ -224,6 +224,44 @@ TEST(ResizeFollowers, APartThePlateNowCoversIsSaidToBeBuried) {
   EXPECT_NE(said[0].text.find("now lies inside"), std::string::npos) << said[0].text;
 }
 
+// The gizmo's scale of one primitive goes into its size where its parameters hold it: a rounded
+// box keeps round corners (they turned oval: an artist's test), a cylinder its circle; a scale
+// that would make an ellipse, mirror the part or squeeze a rounded box under its corners' radius
+// stays a scale.
+TEST(ScaleIntoSize, APrimitiveScaledByTheGizmoChangesItsSize) {
+  const NodePtr plate = scene("flange_patterns");
+  const NodePtr start = findNode(plate, 1);  // rounded box 140 x 80 x 8, radius 3.5
+  Transform now = start->transform;
+  now.scale = glm::dvec3(1.0, 1.0, 2.5);
+  PrimitiveParams sized;
+  ASSERT_TRUE(scaleIntoSize(*start, &now, &sized));
+  EXPECT_EQ(now.scale, glm::dvec3(1.0));
+  EXPECT_EQ(sized.size, glm::dvec3(140.0, 80.0, 20.0));
+  EXPECT_EQ(sized.radius, 3.5);
+  now.scale = glm::dvec3(1.0, 1.0, 0.5);  // 4 mm: under twice the corners' radius
+  EXPECT_FALSE(scaleIntoSize(*start, &now, &sized));
+  EXPECT_EQ(now.scale.z, 0.5);
+  now.scale = glm::dvec3(1.0, 1.0, -1.0);  // a mirroring
+  EXPECT_FALSE(scaleIntoSize(*start, &now, &sized));
+  const NodePtr hub = findNode(plate, 2);  // cylinder r 28, h 24
+  now = hub->transform;
+  now.scale = glm::dvec3(1.5, 1.5, 0.5);
+  ASSERT_TRUE(scaleIntoSize(*hub, &now, &sized));
+  EXPECT_EQ(sized.radius, 42.0);
+  EXPECT_EQ(sized.height, 12.0);
+  now.scale = glm::dvec3(1.5, 1.0, 1.0);  // an ellipse
+  EXPECT_FALSE(scaleIntoSize(*hub, &now, &sized));
+  // A capsule: its radius across, its whole length (height + 2 radius) along z.
+  auto capsule = std::make_shared<Node>(*makePrimitiveNode(NodeKind::Capsule, 50));
+  capsule->params.radius = 5.0;
+  capsule->params.height = 50.0;
+  now = capsule->transform;
+  now.scale = glm::dvec3(2.0, 2.0, 1.5);
+  ASSERT_TRUE(scaleIntoSize(*capsule, &now, &sized));
+  EXPECT_EQ(sized.radius, 10.0);
+  EXPECT_EQ(sized.height, 90.0 - 20.0);
+}
+
 // A gizmo drag asks from the tree where it began, every frame: the same followers, not counted
 // twice, whatever the tree the last frame left.
 TEST(ResizeFollowers, AskedFromTheStartOfADragTheyAreWhereOneStepPutsThem) {
