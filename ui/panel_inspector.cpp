@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -179,7 +180,11 @@ void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
   Rest rest;
   const Transform t = keptResting(before, state.document.root(), id, &rest);
   if (rest.moved) state.document.setTransform(id, t);
-  const ResizeFollowing following = resizeFollowers(before, state.document.root(), id, sameEdit);
+  // The rest of the selection changes by the same edit (a size typed for two plates): not
+  // followers of one another.
+  std::vector<NodeId> changedToo = sameEdit;
+  changedToo.insert(changedToo.end(), state.selection.begin(), state.selection.end());
+  const ResizeFollowing following = resizeFollowers(before, state.document.root(), id, changedToo);
   const std::vector<ResizeFollower>& followers = following.followers;
   for (const ResizeFollower& f : followers) {
     state.document.setTransform(f.id, f.transform);
@@ -189,18 +194,18 @@ void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
     return;
   // Once for a drag of the field, not every frame of it; again where a part joins those that
   // follow (a hole the plate grew past in a later frame of the drag).
-  static NodeId saidOf = 0;
+  // Kept per part: a drag of a field shared by several parts asks for each of them every frame.
+  static std::map<NodeId, std::vector<NodeId>> saidFollowersOf;
   static double saidAt = -1e9;
-  static std::vector<NodeId> saidFollowers;
-  const bool sameDrag = saidOf == id && ImGui::GetTime() - saidAt < 2.0;
-  if (!sameDrag) saidFollowers.clear();
+  if (ImGui::GetTime() - saidAt >= 2.0) saidFollowersOf.clear();
+  const bool sameDrag = saidFollowersOf.count(id) > 0;
+  std::vector<NodeId>& saidFollowers = saidFollowersOf[id];
   bool joined = false;
   for (const ResizeFollower& f : followers)
     if (std::find(saidFollowers.begin(), saidFollowers.end(), f.id) == saidFollowers.end()) {
       saidFollowers.push_back(f.id);
       joined = true;
     }
-  saidOf = id;
   saidAt = ImGui::GetTime();
   if (sameDrag && !joined) return;
   const NodePtr root = state.document.root();

@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "engine/document/commands.h"
 #include "engine/document/roles.h"
+#include "engine/eval/evaluator.h"
 #include "engine/geometry/transform.h"
 #include "engine/kinds/patterns.h"
 #include "engine/util/error.h"
@@ -66,6 +69,16 @@ bool withinAlongAnAxis(const Bounds& box, const Bounds& in, double tolerance) {
   for (int k = 0; k < 3; ++k)
     if (box.min[k] >= in.min[k] - tolerance && box.max[k] <= in.max[k] + tolerance) return true;
   return false;
+}
+
+// Whether `box` reaches past both ends of `in` along two axes or more: `in` is built into it
+// (a hub through a plate, the plate reaching past the hub along x and y), not the other way:
+// the plate grew with the hub's radius (a review).
+bool holdsAlongTwoAxes(const Bounds& box, const Bounds& in, double tolerance) {
+  int axes = 0;
+  for (int k = 0; k < 3; ++k)
+    axes += box.min[k] < in.min[k] - tolerance && box.max[k] > in.max[k] + tolerance ? 1 : 0;
+  return axes >= 2;
 }
 
 // Where leaf `leaf` rests on a face of `m`'s old box: that face's motion; none otherwise.
@@ -253,16 +266,22 @@ bool stretchIntoParams(const Node& node, const Transform& was, Transform* now,
   return true;
 }
 
-// Leaf `leaf` moved by the world map `map`: its transform (and parameters) for it, where every
-// copy of it follows the map alike and the map holds as a move, turn and scale of it.
-bool placedBy(const NodePtr& root, const Leaf& leaf, const glm::dmat4& map, ResizeFollower* out) {
+// Leaf `leaf` moved by the world map `map`: its transform (and parameters) for it, where the map
+// holds as a move, turn and scale of it and every copy of it (a pattern's) moves as
+// `copyMotion` says a copy with that box should: a mirrored rib moves the other way, which the
+// leaf's own change gives it.
+bool placedBy(const NodePtr& root, const Leaf& leaf, const glm::dmat4& map,
+              const std::function<glm::dmat4(const Bounds&)>& copyMotion, ResizeFollower* out) {
   const Transform& was = leaf.node->transform;
   const glm::dmat4 parent = leaf.at.parentWorld;
   bool exact = true;
   Transform now = transformNear(glm::inverse(parent) * map * parent * was.matrix(), was, &exact);
   if (!exact) return false;
-  for (const glm::dmat4& copy : copyParents(root, leaf.node->id))
-    if (!nearlyEqual(copy * now.matrix(), map * copy * was.matrix())) return false;
+  for (const glm::dmat4& copy : copyParents(root, leaf.node->id)) {
+    if (nearlyEqual(copy, parent)) continue;  // the leaf itself
+    const glm::dmat4 wanted = copyMotion(nodeBounds(leaf.node, root, copy));
+    if (!nearlyEqual(copy * now.matrix(), wanted * copy * was.matrix())) return false;
+  }
   PrimitiveParams params;
   if (stretchIntoParams(*leaf.node, was, &now, &params)) out->params = params;
   out->id = leaf.node->id;
@@ -286,16 +305,31 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
   });
   std::unordered_set<NodeId> settled(excluded.begin(), excluded.end());
   settled.insert(id);
+  // Once a call, not a walk from the root per leaf and mover (a drag asks every frame).
+  std::unordered_set<NodeId> underResized;
+  for (NodeId n : treeOrder(findNode(before, id))) underResized.insert(n);
   const auto leftOut = [&](NodeId leaf) {
-    return settled.count(leaf) > 0 || isInSubtree(before, id, leaf);
+    return settled.count(leaf) > 0 || underResized.count(leaf) > 0;
+  };
+  // The ids under each base a cutter acts on, built when first asked.
+  std::unordered_map<NodeId, std::unordered_set<NodeId>> underBase;
+  const auto holds = [&](NodeId base, NodeId part) {
+    auto it = underBase.find(base);
+    if (it == underBase.end()) {
+      std::unordered_set<NodeId> ids;
+      for (NodeId n : treeOrder(findNode(before, base))) ids.insert(n);
+      it = underBase.emplace(base, std::move(ids)).first;
+    }
+    return it->second.count(part) > 0;
   };
 
   // Leaf `leaf` follows by the world map `map`: a follower and a mover in turn, or left alone.
   std::vector<Mover> movers{resized};
-  const auto follow = [&](const Leaf& leaf, const Motion& motion) {
+  const auto follow = [&](const Leaf& leaf, const Motion& motion,
+                          const std::function<glm::dmat4(const Bounds&)>& copyMotion) {
     settled.insert(leaf.node->id);
     ResizeFollower f;
-    if (!placedBy(before, leaf, motion.map, &f)) {
+    if (!placedBy(before, leaf, motion.map, copyMotion, &f)) {
       following.leftAlone.push_back(leaf.node->id);
       return;
     }
@@ -318,15 +352,17 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
       Motion moved;
       moved.map = glm::translate(glm::dmat4(1.0), motion);
       moved.moved = true;
-      follow(leaf, moved);
+      follow(leaf, moved, [&](const Bounds&) { return moved.map; });  // every copy alike
     }
     for (const Leaf& leaf : leaves) {
       const double tolerance = toleranceOf(m.was, leaf.at.box);
       if (leaf.at.removes || leftOut(leaf.node->id) || !overlaps(leaf.at.box, m.was, tolerance) ||
-          !withinAlongAnAxis(leaf.at.box, m.was, tolerance))
+          !withinAlongAnAxis(leaf.at.box, m.was, tolerance) ||
+          (!m.rigid && holdsAlongTwoAxes(leaf.at.box, m.was, tolerance)))
         continue;
       const Motion motion = attachedMotion(leaf.at.box, {&m});
-      if (motion.stretched || motion.moved) follow(leaf, motion);
+      if (motion.stretched || motion.moved)
+        follow(leaf, motion, [&](const Bounds& copy) { return attachedMotion(copy, {&m}).map; });
     }
   }
 
@@ -337,13 +373,14 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
     std::vector<const Mover*> actedOn;
     for (const Mover& m : movers)
       for (NodeId base : bases)
-        if (isInSubtree(before, base, m.id)) {
+        if (holds(base, m.id)) {
           actedOn.push_back(&m);
           break;
         }
     if (actedOn.empty()) continue;
     const Motion motion = attachedMotion(cutter.at.box, actedOn);
-    if (motion.stretched || motion.moved) follow(cutter, motion);
+    if (motion.stretched || motion.moved)
+      follow(cutter, motion, [&](const Bounds& copy) { return attachedMotion(copy, actedOn).map; });
   }
 
   // Parts left where they were that the part now covers.

@@ -35,8 +35,9 @@ struct ResizeFollower {
 //   ten-thousandth of the larger box's size), its own -z pointing into it (within 2 degrees):
 //   moved as far as that face, along its axis.
 // - Built in: a visible leaf that adds material, overlaps the part's box and lies within it
-//   along at least one axis (the hub within the plate's length and width; a part whose box holds
-//   the part's on every axis, such as the plate a boss is sunk into, is not built into the boss):
+//   along at least one axis, and reaches past both ends of it along one axis at most (the hub,
+//   within the plate's length and width, past it along z; not the plate when the hub is resized:
+//   it reaches past the hub along x and y; not the plate a boss is sunk into):
 //   along each axis where it passes both faces, its ends move as far as the faces they pass (the
 //   hub still stands as far out of the plate's top); where it crosses one face, it moves as far
 //   as that face; within the box, it stays.
@@ -53,8 +54,9 @@ struct ResizeFollower {
 struct ResizeFollowing {
   std::vector<ResizeFollower> followers;
   // Parts that would follow but cannot exactly: turned other than by quarter turns against the
-  // world (a stretch along a world axis would shear them), or copies of a pattern that would not
-  // all move alike. Left as they were.
+  // world (a stretch along a world axis would shear them), or in a pattern whose copies, each
+  // following these rules from its own box, would not all be moved so by one change of the part.
+  // Left as they were.
   std::vector<NodeId> leftAlone;
   // Parts that add material, follow nothing and now lie inside the part's box (within a
   // ten-thousandth of its size), where they did not before. Left as they are, for the log.

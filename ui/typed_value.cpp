@@ -199,6 +199,10 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
     // (unchanged), and leaving the field applied the 1 held (an artist's test). The value after
     // every edit of the text is the one held.
     const std::string text = typedText(id);
+    // Text replaced or cut short (Ctrl+A and a new number): a space between numbers typed before
+    // is gone with it.
+    if (text.size() < gTyped.text.size() && gDropped.id == id)
+      gDropped.twoNumbers = gDropped.spaceAfterNumber = false;
     if (changed || text != gTyped.text) gTyped.value = double(*value), gTyped.held = true;
     gTyped.text = text;
     // A deleted character may have been the number's or the unit's: the unit typed is what
@@ -254,9 +258,10 @@ bool commit(bool changed, T* value, const std::string& lengthUnit = "") {
   // (30, 40, 2) and applied it without a word (an artist's test).
   if (typedIsExpression(gTyped.text)) {
     const std::optional<double> result = evaluateTypedExpression(gTyped.text);
-    if (!result || (std::is_integral_v<T> && *result != std::round(*result))) {
+    const bool whole = std::is_integral_v<T>;
+    if (!result || (whole && (*result != std::round(*result) || std::fabs(*result) > 2e9))) {
       gRefusal = "\"" + gTyped.text.substr(0, 40) + "\" is no " +
-                 (std::is_integral_v<T> ? "whole number" : "number") + ": the value is kept";
+                 (whole ? "whole number" : "number") + ": the value is kept";
       if (gDropped.id == id) gDropped = {};
       return false;
     }

@@ -301,9 +301,12 @@ void Viewport::handleKeys(EditorState& state) {
   if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, 0)) camera.setAxisView(AxisView::Top);
   if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7, ctrl)) camera.setAxisView(AxisView::Bottom);
   if (pressed(GLFW_KEY_5, GLFW_KEY_KP_5, 0)) toggleOrtho(state);
-  if (keyPressed(state, GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
-  if (keyPressed(state, GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
-  if (keyPressed(state, GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
+  // Not during a drag: a scale left half way as a move kept its resized parts (a review).
+  if (!gizmo_.dragging()) {
+    if (keyPressed(state, GLFW_KEY_W)) state.gizmoMode = GizmoMode::Move;
+    if (keyPressed(state, GLFW_KEY_E)) state.gizmoMode = GizmoMode::Rotate;
+    if (keyPressed(state, GLFW_KEY_R)) state.gizmoMode = GizmoMode::Scale;
+  }
 }
 
 void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
@@ -387,7 +390,12 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
             std::vector<NodeId> followed;
             for (const ResizeFollower& f : following.followers) {
               state.document.setTransform(f.id, f.transform);
-              if (f.params) state.document.setParams(f.id, *f.params);
+              // Its parameters as this frame has them, from where the drag began: a stretch
+              // one frame put into them and the next into the scale counted twice (a review).
+              if (f.params)
+                state.document.setParams(f.id, *f.params);
+              else if (const NodePtr at = findNode(dragStart_, f.id); at && isPrimitive(at->kind))
+                state.document.setParams(f.id, at->params);
               followed.push_back(f.id);
             }
             for (NodeId was : dragFollowers_)

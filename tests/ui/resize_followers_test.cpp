@@ -207,6 +207,17 @@ TEST(ResizeFollowers, WhatDoesNotBelongIsLeftAndWhatCannotFollowIsSaid) {
   const NodePtr sunk = op(NodeKind::Union, {box({100.0, 60.0, 8.0}, {0.0, 0.0, 4.0}), boss});
   const NodePtr taller = editNode(sunk, boss->id, [](Node& n) { n.params.height = 12.0; });
   EXPECT_TRUE(resizeFollowers(sunk, taller, boss->id).followers.empty());
+  // The flange's hub made wider (radius 28 to 32): the plate it stands through reaches past it
+  // along x and y and stays as it is (it grew with the hub's radius: a review).
+  const NodePtr flangeRoot = scene("flange_patterns");
+  const NodePtr wider = editNode(flangeRoot, 2, [](Node& n) { n.params.radius = 32.0; });
+  const ResizeFollowing hub = resizeFollowers(flangeRoot, wider, 2);
+  EXPECT_FALSE(find(hub.followers, 1));
+  EXPECT_TRUE(hub.leftAlone.empty());
+  // The ribs, which reach into the hub's wall, move out with it, the mirrored one the other way
+  // (each copy as its own box says: the leaf's change gives the image its mirror image).
+  ASSERT_TRUE(find(hub.followers, 3));
+  EXPECT_NEAR(selectionBounds(followed(wider, hub.followers), {3}).min.x, 30.0, 1e-9);
 }
 
 // A part that follows nothing and that the plate made thicker now covers is said to be buried.

@@ -295,6 +295,20 @@ TEST_F(TypedField, AnExpressionGivesItsResultAndTwoNumbersApartAreRefused) {
   typeInto("5/0");
   EXPECT_EQ(stored, 7.0);
   EXPECT_NE(takeTypedRefusal(), "");
+  // Two numbers apart, then all of it replaced (Ctrl+A) by one number: that number.
+  frame(/*focus=*/true);
+  frame();
+  for (const char* c = "15 5"; *c; ++c) {
+    ImGui::GetIO().AddInputCharacter(numberFieldCharacter(static_cast<unsigned>(*c), &dropped));
+    frame();
+  }
+  press(kBackspace);
+  press(kBackspace);
+  ImGui::GetIO().AddInputCharacter(numberFieldCharacter('2', &dropped));
+  frame();
+  press(kEnter);
+  EXPECT_EQ(stored, 12.0);
+  EXPECT_EQ(takeTypedRefusal(), "");
   typeInto("5 mm");  // a space before a unit is no second number
   EXPECT_EQ(stored, 5.0);
   EXPECT_EQ(takeTypedRefusal(), "");
