@@ -122,16 +122,15 @@ std::string fittedNumberFormat(const std::string& format, double value, float ro
     return own;
   }
   // %f pads with zeros: the fewest decimals that show the value whole, else the most that fit.
+  if (own == format) return own;  // shown whole already
   std::string widest;
   for (int digits = ownDigits + 1; digits <= mostDigits; ++digits) {
-    if (own == format) break;  // shown whole already
     std::string f = fitting(digits, &rounded);
     if (f.empty()) break;
     widest = f;
     if (!rounded) return f;
   }
   return widest.empty() ? own : widest;
-  return own;
 }
 
 }  // namespace strata::ui

@@ -416,19 +416,22 @@ std::optional<double> evaluateTypedExpression(const std::string& text) {
     while (at < text.size() && text[at] == ' ') ++at;
   };
   // A number, or a sign before one.
-  const std::function<std::optional<double>()> factor = [&]() -> std::optional<double> {
-    skip();
-    if (at < text.size() && (text[at] == '+' || text[at] == '-')) {
-      const bool minus = text[at++] == '-';
-      const std::optional<double> v = factor();
-      if (!v) return std::nullopt;
-      return minus ? -*v : *v;
-    }
+  // Only what a number field keeps (strtod alone would also read "0x10" and "inf").
+  for (char c : text)
+    if (!((c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-' ||
+          c == '*' || c == '/' || c == ' '))
+      return std::nullopt;
+  // Signs counted in a loop, not by recursion (any text, however many signs, stays bounded).
+  const auto factor = [&]() -> std::optional<double> {
+    bool minus = false;
+    for (skip(); at < text.size() && (text[at] == '+' || text[at] == '-'); skip())
+      minus = minus != (text[at++] == '-');
     if (at >= text.size() || !((text[at] >= '0' && text[at] <= '9') || text[at] == '.'))
       return std::nullopt;
     char* end = nullptr;
-    const double v = std::strtod(text.c_str() + at, &end);
+    const double magnitude = std::strtod(text.c_str() + at, &end);
     if (end == text.c_str() + at) return std::nullopt;
+    const double v = minus ? -magnitude : magnitude;
     at = size_t(end - text.c_str());
     return v;
   };

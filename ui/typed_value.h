@@ -52,8 +52,8 @@ std::string droppedLettersHint();
 // takeTypedRefusal). While typing, a line under the field says what leaving it will do.
 bool typedIsExpression(const std::string& text);
 // The value of `text`: numbers (strtod's, exponents too) joined by + - * / with the usual
-// precedence, signs before numbers, spaces between; none where it is malformed or not finite
-// (a division by zero).
+// precedence, signs before numbers (any number of them), spaces between; none where it is
+// malformed, holds another character ("0x10") or is not finite (a division by zero).
 std::optional<double> evaluateTypedExpression(const std::string& text);
 // What the last commit refused and why ("a space between two numbers ...: the value is kept"),
 // once; "" for none. The inspector says it as a warning.

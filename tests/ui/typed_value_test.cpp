@@ -330,6 +330,12 @@ TEST(TypedExpression, NumbersJoinedByTheFourOperations) {
   EXPECT_FALSE(evaluateTypedExpression("1**2"));
   EXPECT_FALSE(evaluateTypedExpression("1/0"));
   EXPECT_FALSE(evaluateTypedExpression(""));
+  // Hostile text: a hundred thousand signs are counted, not recursed into; hex and words refused.
+  EXPECT_EQ(evaluateTypedExpression(std::string(100000, '-') + "5"), 5.0);
+  EXPECT_EQ(evaluateTypedExpression("2*" + std::string(99999, '-') + "3"), -6.0);
+  EXPECT_FALSE(evaluateTypedExpression("0x10"));
+  EXPECT_FALSE(evaluateTypedExpression("inf"));
+  EXPECT_FALSE(evaluateTypedExpression("1e999"));
 }
 
 // The letters of a unit never reach the field's text ("1cm" showed "1" until the field was left):
