@@ -1458,8 +1458,16 @@ std::string saveAsSuggestion(const EditorState& state) {
 std::string dialogFolder(const EditorState& state) {
   const std::string own = documentFolder(state);
   if (!own.empty()) return own;
-  // Untitled: the folder of the document it replaced (File > New after working on a file),
+  // Untitled: the folder of the last scene saved or opened, in this run or an earlier one (the
+  // recent files; a bundled example's copy, opened from the program's scenes/, is none of them:
+  // an artist's Save opened there, not where they had last saved),
   std::error_code missing;
+  for (const std::string& recent : state.recentFiles) {
+    const std::filesystem::path folder = std::filesystem::path(recent).parent_path();
+    if (!folder.empty() && std::filesystem::is_directory(folder, missing))
+      return folder.string() + "/";
+  }
+  // else the folder of the document it replaced (File > New after working on a file),
   if (!state.lastDocumentFolder.empty() &&
       std::filesystem::is_directory(state.lastDocumentFolder, missing))
     return state.lastDocumentFolder;

@@ -30,6 +30,7 @@
 #include "ui/import_options.h"
 #include "ui/panels.h"
 #include "ui/resize_followers.h"
+#include "ui/resize_gesture.h"
 #include "ui/scene_queries.h"
 #include "ui/text_fit.h"
 #include "ui/theme.h"
@@ -78,7 +79,8 @@ struct VecEdit {
 bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double speed,
               const std::function<void(const glm::dvec3&, VecEdit)>& apply, const char* format,
               const glm::bvec3& mixed = glm::bvec3(false), const char* topic = nullptr,
-              const char* mixedDrag = "moves every one by as much") {
+              const char* mixedDrag = "moves every one by as much",
+              const double* dragMinimum = nullptr) {
   const ImVec4 colors[3] = {
       {0.93f, 0.35f, 0.35f, 1.0f}, {0.5f, 0.82f, 0.35f, 1.0f}, {0.38f, 0.6f, 1.0f, 1.0f}};
   ImGui::PushID(label);
@@ -132,8 +134,10 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
         w - 2 * ImGui::GetStyle().FramePadding.x - (mixed[i] ? ImGui::CalcTextSize("~").x : 0.0f);
     const std::string marked = fittedNumberFormat(fieldFormat, next[i], room, textWidth);
     const std::string shown = mixed[i] ? std::string("~") + marked : marked;
-    bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed), nullptr,
-                                     nullptr, shown.c_str());
+    // A drag stops at `dragMinimum` (a size dragged to nothing), where a number typed under it
+    // is refused by `apply`, saying so: a drag past it warned every frame (an artist's test).
+    bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed),
+                                     dragMinimum, nullptr, shown.c_str());
     changed = commitTypedValue(changed, &next[i], sceneUnitMetres(unit) > 0.0 ? unit : "");
     const VecEdit edit{i, changed && mixed[i] && lastCommitWasTyped()};
     ImGui::PopStyleColor();  // the tooltips below in the usual colour
@@ -171,49 +175,46 @@ void refuseBelowMinimum(EditorState& state, const char* label, double minimum) {
                         ": the value is kept");
 }
 
-// Part `id` changed in size from the tree `before` (its parameters or its scale): where it rested
-// on the ground or on another part it is moved back onto it (keptResting), the parts resting on
-// it and the cutters through or into it follow (resizeFollowers; `sameEdit`: the other parts the
-// edit changed, left to it), and the log says so once per edit (a drag of the field is one).
+// Part `id` changed in size (its parameters or its scale) from the tree `before`: where it rested
+// on the ground or on another part it is moved back onto it, the parts resting on it and the
+// cutters through or into it follow (followResize; `sameEdit`: the other parts the edit changed,
+// left to it), all worked out from where the gesture began (a drag of the field, or a value
+// typed: the document's open interaction), and the log says so once per gesture.
 void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
                    const std::vector<NodeId>& sameEdit = {}) {
-  Rest rest;
-  const Transform t = keptResting(before, state.document.root(), id, &rest);
-  if (rest.moved) state.document.setTransform(id, t);
+  // One gesture while the document's interaction is open; an edit outside one is its own.
+  static ResizeGesture gesture;
+  if (const NodePtr start = state.document.interactionStart())
+    gesture.begin(start, state.document.interactionsBegun());
+  else
+    gesture = ResizeGesture(before);
   // The rest of the selection changes by the same edit (a size typed for two plates): not
   // followers of one another.
   std::vector<NodeId> changedToo = sameEdit;
   changedToo.insert(changedToo.end(), state.selection.begin(), state.selection.end());
-  const ResizeFollowing following = resizeFollowers(before, state.document.root(), id, changedToo);
-  const std::vector<ResizeFollower>& followers = following.followers;
-  for (const ResizeFollower& f : followers) {
-    state.document.setTransform(f.id, f.transform);
-    if (f.params) state.document.setParams(f.id, *f.params);
-  }
-  if (!rest.moved && followers.empty() && following.leftAlone.empty() && following.buried.empty())
+  ResizeStep step = followResize(state.document, gesture, id, changedToo);
+  const ResizeFollowing& following = step.following;
+  Rest& rest = step.rest;
+  if (!rest.moved && following.followers.empty() && following.leftAlone.empty() &&
+      following.buried.empty())
     return;
-  // Once for a drag of the field, not every frame of it; again where a part joins those that
-  // follow (a hole the plate grew past in a later frame of the drag).
-  // Kept per part: a drag of a field shared by several parts asks for each of them every frame.
-  static std::map<NodeId, std::vector<NodeId>> saidFollowersOf;
-  static double saidAt = -1e9;
-  if (ImGui::GetTime() - saidAt >= 2.0) saidFollowersOf.clear();
-  const bool sameDrag = saidFollowersOf.count(id) > 0;
-  std::vector<NodeId>& saidFollowers = saidFollowersOf[id];
+  // Once a gesture, not every frame of it; again where a part joins those that follow (a hole
+  // the plate grew past in a later frame of the drag).
+  const bool sameDrag = gesture.said.count(id) > 0;
+  std::vector<NodeId>& saidFollowers = gesture.said[id];
   bool joined = false;
-  for (const ResizeFollower& f : followers)
+  for (const ResizeFollower& f : following.followers)
     if (std::find(saidFollowers.begin(), saidFollowers.end(), f.id) == saidFollowers.end()) {
       saidFollowers.push_back(f.id);
       joined = true;
     }
-  saidAt = ImGui::GetTime();
   if (sameDrag && !joined) return;
   const NodePtr root = state.document.root();
   const auto named = [&](NodeId of) {
     const NodePtr n = findNode(root, of);
     return n ? "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"" : std::string("a part");
   };
-  if (sameDrag) rest.moved = false;  // said at the edit's first frame
+  if (sameDrag) rest.moved = false;  // said at the gesture's first frame
   if (rest.moved && (rest.onGround || !rest.on))
     logInfo(state,
             named(id) + " rested on the ground and stays on it (its position along z moved)");
@@ -222,6 +223,29 @@ void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
                        " and stays on it (it grows from its base; its position moved)");
   for (const FollowMessage& m : resizeFollowingMessages(root, id, following))
     (m.warning ? logWarning : logInfo)(state, m.text);
+}
+
+// The parameters part `n` gets from `set` changing its parameter `param`: its other parameters as
+// the gesture began (a drag of the field, or a value typed), where a relation the change broke is
+// fitted (fitPrimitiveRelations: a thinner rounded box gets a smaller corner radius, and gets its
+// radius back as it thickens again in the same drag), said once a gesture and part.
+PrimitiveParams changedParams(EditorState& state, const Node& n, const PrimitiveParam& param,
+                              const std::function<void(PrimitiveParams&)>& set) {
+  const NodePtr start = state.document.interactionStart();
+  const NodePtr was = start ? findNode(start, n.id) : nullptr;
+  PrimitiveParams q = was && was->kind == n.kind ? was->params : n.params;
+  set(q);
+  const std::vector<FittedParam> fitted = fitPrimitiveRelations(n.kind, &q, param.key);
+  static std::pair<uint64_t, std::vector<NodeId>> said;  // per gesture: the parts said
+  const bool interacting = state.document.interacting();
+  const uint64_t gesture = interacting ? state.document.interactionsBegun() : 0;
+  if (said.first != gesture || !interacting) said = {gesture, {}};
+  if (!fitted.empty() &&
+      std::find(said.second.begin(), said.second.end(), n.id) == said.second.end()) {
+    said.second.push_back(n.id);
+    logInfo(state, fittedParamsMessage(n, fitted, param.label, gLengthUnit, !lastCommitWasTyped()));
+  }
+  return q;
 }
 
 // Sets a part's shape parameters, the part kept where it rests (reseatResting).
@@ -233,7 +257,9 @@ void setParamsKeptResting(EditorState& state, NodeId id, const PrimitiveParams& 
 
 // A positive length parameter.
 void lengthField(EditorState& state, const NodePtr& node, const std::vector<NodePtr>& nodes,
-                 const char* label, double PrimitiveParams::*field, double speed, double minimum) {
+                 const PrimitiveParam& param, double speed, double minimum) {
+  const char* label = param.label;
+  double PrimitiveParams::*field = param.scalar;
   PrimitiveParams p = node->params;
   bool mixed = false;
   for (const NodePtr& n : nodes) mixed = mixed || n->params.*field != p.*field;
@@ -257,11 +283,10 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
       state, changed,
       [&] {
         if (value < minimum) return refuseBelowMinimum(state, label, minimum);
-        for (const NodePtr& n : nodes) {
-          PrimitiveParams q = n->params;
-          q.*field = value;
-          setParamsKeptResting(state, n->id, q);
-        }
+        for (const NodePtr& n : nodes)
+          setParamsKeptResting(
+              state, n->id,
+              changedParams(state, *n, param, [&](PrimitiveParams& q) { q.*field = value; }));
       },
       kParamsTopic);
 }
@@ -276,7 +301,7 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
   const PrimitiveParams p = node->params;
   for (const PrimitiveParam& param : info->params) {
     const double minimum = param.minimum == ParamMinimum::Positive ? 1e-6 : 0.0;
-    if (param.scalar) lengthField(state, node, nodes, param.label, param.scalar, speed, minimum);
+    if (param.scalar) lengthField(state, node, nodes, param, speed, minimum);
     if (param.vector) {
       glm::dvec3 value = p.*param.vector;
       dragVec3(
@@ -284,13 +309,13 @@ void primitiveParams(EditorState& state, const NodePtr& node, const std::vector<
           [&](const glm::dvec3& v, VecEdit) {
             if (glm::any(glm::lessThan(v, glm::dvec3(minimum))))
               return refuseBelowMinimum(state, param.label, minimum);
-            for (const NodePtr& n : nodes) {
-              PrimitiveParams q = n->params;
-              q.*param.vector = v;
-              setParamsKeptResting(state, n->id, q);
-            }
+            for (const NodePtr& n : nodes)
+              setParamsKeptResting(state, n->id,
+                                   changedParams(state, *n, param,
+                                                 [&](PrimitiveParams& q) { q.*param.vector = v; }));
           },
-          gLengthFormat.c_str(), glm::bvec3(false), kParamsTopic);
+          gLengthFormat.c_str(), glm::bvec3(false), kParamsTopic, "moves every one by as much",
+          &minimum);
     }
   }
   if (info->usesSegments) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <unordered_map>
 #include <unordered_set>
@@ -397,7 +398,9 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
   return following;
 }
 
-bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params) {
+bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params,
+                   std::vector<FittedParam>* fitted) {
+  if (fitted) fitted->clear();
   if (!isPrimitive(start.kind)) return false;
   glm::dvec3 f(1.0);
   for (int k = 0; k < 3; ++k) {
@@ -409,10 +412,12 @@ bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params) {
     return std::fabs(a - b) <= 1e-12 * std::max(1.0, std::fabs(a));
   };
   PrimitiveParams p = start.params;
+  std::vector<FittedParam> fitParams;
   switch (start.kind) {
     case NodeKind::Box:
     case NodeKind::RoundedBox:
       p.size *= f;
+      fitParams = fitPrimitiveRelations(start.kind, &p, "size");
       break;
     case NodeKind::Cylinder:
       if (!same(f.x, f.y)) return false;
@@ -441,6 +446,7 @@ bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params) {
       if (!same(f.x, f.y) || !same(f.y, f.z)) return false;
       p.majorRadius *= f.x;
       p.minorRadius *= f.x;
+      fitParams = fitPrimitiveRelations(start.kind, &p, "majorRadius");
       break;
     default:
       return false;
@@ -452,7 +458,25 @@ bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params) {
   }
   now->scale = start.transform.scale;
   *params = p;
+  if (fitted) *fitted = fitParams;
   return true;
+}
+
+std::string fittedParamsMessage(const Node& n, const std::vector<FittedParam>& fitted,
+                                const std::string& changed, const std::string& unit,
+                                bool dragging) {
+  std::string made;
+  for (const FittedParam& f : fitted) {
+    char number[32];
+    std::snprintf(number, sizeof(number), "%.4g", f.value);  // as fitted: 4 digits
+    made += (made.empty() ? "" : ", ") + std::string(f.label) + " made " +
+            (dragging ? std::string("smaller") : number + (unit.empty() ? "" : " " + unit));
+  }
+  const PrimitiveInfo* info = primitiveInfo(n.kind);
+  return "\"" + (n.name.empty() ? nodeLabel(n) : n.name) + "\": " + made + " to fit the " +
+         changed + (dragging ? " as it is dragged" : "") + " (" + (info ? info->label : "part") +
+         (dragging ? "; it comes back as the " + changed + " does" : std::string()) +
+         "; undo gives the old one back)";
 }
 
 std::vector<FollowMessage> resizeFollowingMessages(const NodePtr& root, NodeId id,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/document/node.h"
+#include "engine/kinds/primitives.h"
 
 namespace strata::ui {
 
@@ -70,10 +71,22 @@ ResizeFollowing resizeFollowers(const NodePtr& before, const NodePtr& after, Nod
 // back and `params` the size that scale gave (a box's size; a cylinder's or cone's radius where
 // x and y scale alike, and height; a sphere's or torus's radii where all three do; a capsule's
 // radius and length). A rounded box's corners stayed round when its size was typed and turned
-// oval when the gizmo scaled it (an artist's test). False (nothing changed) where the scale
-// cannot be held so: a part turned by it (a mirroring), a circle made an ellipse, or a size its
-// parameters refuse (a rounded box thinner than twice its corners' radius).
-bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params);
+// oval when the gizmo scaled it (an artist's test). A relation the new size breaks is fitted as
+// the inspector fits it (fitPrimitiveRelations: a rounded box made thinner than twice its
+// corners' radius gets a smaller radius), what was fitted in `fitted` (when given). False
+// (nothing changed) where the scale cannot be held so: a part turned by it (a mirroring), a
+// circle made an ellipse, or a size its parameters refuse.
+bool scaleIntoSize(const Node& start, Transform* now, PrimitiveParams* params,
+                   std::vector<FittedParam>* fitted = nullptr);
+
+// What the log says of parameters fitted to a change of part `n`'s `changed` (a parameter's label,
+// "size"), lengths in `unit` ("mm", or "" for none): "\"base plate\": corner radius made 1.999 mm
+// to fit the size (rounded box; undo gives the old one back)". `dragging`: said at the first
+// frame of a drag that fitted it, whose value the drag goes on changing: "made smaller ... as
+// the size is dragged (... it comes back as the size does ...)".
+std::string fittedParamsMessage(const Node& n, const std::vector<FittedParam>& fitted,
+                                const std::string& changed, const std::string& unit,
+                                bool dragging = false);
 
 // What the log says of `following` for part `id` (names as in `root`), in order: "\"base
 // plate\" changed size: \"rib\" moved with it; \"hub\" resized with it; \"mounting hole\" and

@@ -330,7 +330,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       state.cancelGizmoDrag = false;
       gizmo_.end();
       state.document.cancelInteraction();
-      dragFollowing_ = ResizeFollowing();
+      dragGesture_ = ResizeGesture();
+      dragFitted_.clear();
       return;
     }
     if (io.MouseDown[0] && placeGizmo(state)) {
@@ -362,16 +363,20 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
             const NodePtr start = findNode(dragStart_, id);
             PrimitiveParams sized;
             if (start && independentSelectionCount(dragStart_, state.selection) == 1 &&
-                scaleIntoSize(*start, &t, &sized)) {
+                scaleIntoSize(*start, &t, &sized, &dragFitted_)) {
               state.document.setTransform(id, t);
               state.document.setParams(id, sized);
               intoSize = true;
-            } else if (start && isPrimitive(start->kind)) {
-              state.document.setParams(id, start->params);  // as the drag began
+            } else {
+              dragFitted_.clear();
+              if (start && isPrimitive(start->kind))
+                state.document.setParams(id, start->params);  // as the drag began
             }
-            Rest rest;
-            t = keptResting(dragStart_, state.document.root(), id, &rest);
-            if (rest.moved) state.document.setTransform(id, t);
+            // Kept where it rested, and what rests on it and what cuts through or into it
+            // follow, from where the drag began (followResize).
+            const ResizeStep step = followResize(state.document, dragGesture_, id, state.selection);
+            const Rest& rest = step.rest;
+            t = findNode(state.document.root(), id)->transform;
             if (rest.moved && !restSaid_) {
               restSaid_ = true;
               const NodePtr part = findNode(dragStart_, id);
@@ -383,29 +388,6 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
                                  " and stays on it as it is scaled" +
                                  (on ? " (it grows from its base)" : ""));
             }
-            // What rests on it and what cuts through or into it follow (resizeFollowers),
-            // from where the drag began; those that no longer need to go back there.
-            const ResizeFollowing following =
-                resizeFollowers(dragStart_, state.document.root(), id, state.selection);
-            std::vector<NodeId> followed;
-            for (const ResizeFollower& f : following.followers) {
-              state.document.setTransform(f.id, f.transform);
-              // Its parameters as this frame has them, from where the drag began: a stretch
-              // one frame put into them and the next into the scale counted twice (a review).
-              if (f.params)
-                state.document.setParams(f.id, *f.params);
-              else if (const NodePtr at = findNode(dragStart_, f.id); at && isPrimitive(at->kind))
-                state.document.setParams(f.id, at->params);
-              followed.push_back(f.id);
-            }
-            for (NodeId was : dragFollowers_)
-              if (std::find(followed.begin(), followed.end(), was) == followed.end())
-                if (const NodePtr at = findNode(dragStart_, was)) {
-                  state.document.setTransform(was, at->transform);
-                  if (isPrimitive(at->kind)) state.document.setParams(was, at->params);
-                }
-            dragFollowers_ = followed;
-            dragFollowing_ = following;
             dragResized_ = id;
           }
           for (const auto& [follower, transform] :
@@ -430,10 +412,18 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       gizmo_.end();
       state.document.endInteraction();
       // What followed a part scaled, as the drag left it (said once, at its end).
-      for (const FollowMessage& m :
-           resizeFollowingMessages(state.document.root(), dragResized_, dragFollowing_))
-        (m.warning ? logWarning : logInfo)(state, m.text);
-      dragFollowing_ = ResizeFollowing();
+      // A relation the size fitted (a corner radius made smaller), as the drag left it.
+      if (!dragFitted_.empty())
+        if (const NodePtr part = findNode(state.document.root(), dragResized_))
+          logInfo(state, fittedParamsMessage(*part, dragFitted_, "size",
+                                             unitSymbol(state.document.scene().settings.unit)));
+      dragFitted_.clear();
+      if (const auto it = dragGesture_.following.find(dragResized_);
+          it != dragGesture_.following.end())
+        for (const FollowMessage& m :
+             resizeFollowingMessages(state.document.root(), dragResized_, it->second))
+          (m.warning ? logWarning : logInfo)(state, m.text);
+      dragGesture_ = ResizeGesture();
     }
     return;
   }
@@ -509,8 +499,9 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
       dragStart_ = state.document.root();
       shearSaid_ = false;
       restSaid_ = false;
-      dragFollowers_.clear();
-      dragFollowing_ = ResizeFollowing();
+      dragGesture_ = ResizeGesture();
+      dragGesture_.begin(dragStart_, state.document.interactionsBegun());
+      dragFitted_.clear();
       return;
     }
     clickPending_ = true;

@@ -20,7 +20,7 @@
 #include "ui/editor_state.h"
 #include "ui/gizmo.h"
 #include "ui/pattern_guides.h"
-#include "ui/resize_followers.h"
+#include "ui/resize_gesture.h"
 #include "ui/viewport_renderer.h"
 
 namespace strata::ui {
@@ -135,11 +135,10 @@ class Viewport {
   Transform pivotNow_;
   bool shearSaid_ = false;  // this drag has said a part could not follow it exactly
   bool restSaid_ = false;   // this drag has said a scaled part stays where it rested
-  // The parts a gizmo scale moved with the scaled part in its last frame (resizeFollowers): put
-  // back where the drag began when they no longer follow; what followed `dragResized_` in the
-  // last frame, said when the drag ends.
-  std::vector<NodeId> dragFollowers_;
-  ResizeFollowing dragFollowing_;
+  // What a gizmo scale moved with the scaled part `dragResized_`, from where the drag began
+  // (followResize): what followed it in the last frame is said when the drag ends.
+  ResizeGesture dragGesture_;
+  std::vector<FittedParam> dragFitted_;  // what the last frame's size fitted (scaleIntoSize)
   NodeId dragResized_ = 0;
 
   // The selection box drawn each frame, worked out again only when the document or the

@@ -117,6 +117,14 @@ class Document {
   // step for it.
   void cancelInteraction();
   bool interacting() const { return history_.interacting(); }
+  // The tree where the open interaction began (before its first edit), or null when none is
+  // open or it has changed nothing yet: a drag's every frame can be worked out from it.
+  // interactionsBegun() tells one interaction from the next.
+  uint64_t interactionsBegun() const { return history_.interactionsBegun(); }
+  NodePtr interactionStart() const {
+    const DocumentState* start = history_.interactionStart();
+    return start ? start->scene->root : nullptr;
+  }
 
   // --- files (read and written by engine/io/document_files.h) ---------------------------------
   // The document now belongs to `path` and is clean (it was just written there).

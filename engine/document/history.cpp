@@ -43,7 +43,10 @@ DocumentState History::redo(const DocumentState& current) {
 }
 
 void History::beginInteraction() {
-  if (depth_++ == 0) recordedInInteraction_ = false;
+  if (depth_++ == 0) {
+    recordedInInteraction_ = false;
+    ++interactionsBegun_;
+  }
 }
 
 void History::endInteraction() {

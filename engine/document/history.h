@@ -55,6 +55,15 @@ class History {
   // come back (a drag cancelled with Escape emptied redo: an artist's test).
   std::optional<DocumentState> cancelInteraction();
   bool interacting() const { return depth_ > 0; }
+  // The state before the open interaction's first edit (where a drag began), or null when no
+  // interaction is open or it has recorded no edit yet. Valid until the next call that changes
+  // the history.
+  // Interactions begun so far (outermost ones): tells one drag from the next that began from the
+  // same state (a drag, an undo, and a drag again).
+  uint64_t interactionsBegun() const { return interactionsBegun_; }
+  const DocumentState* interactionStart() const {
+    return depth_ > 0 && recordedInInteraction_ && !undo_.empty() ? &undo_.back().state : nullptr;
+  }
 
   void clear();
   size_t undoSteps() const { return undo_.size(); }
@@ -69,6 +78,7 @@ class History {
   std::vector<Step> redo_;
   size_t limit_;
   int depth_ = 0;
+  uint64_t interactionsBegun_ = 0;
   bool recordedInInteraction_ = false;
   // What the open interaction's first edit dropped: the redo steps, and the oldest undo step
   // where the limit was reached. Given back by cancelInteraction, forgotten when it ends.

@@ -180,6 +180,20 @@ TriangleMesh torusMesh(const PrimitiveParams& p, int segments) {
   return mesh;
 }
 
+// The largest number below `bound` (> 0) written with 4 significant digits: a fitted parameter
+// strictly within a strict relation, shown as kept.
+double largestBelow(double bound) {
+  const double unit = std::pow(10.0, std::floor(std::log10(bound)) - 3.0);
+  const auto fourDigits = [](double v) {  // 1.999 rather than 1.9990000000000001
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.4g", v);
+    return std::strtod(text, nullptr);
+  };
+  double v = fourDigits(std::floor(bound / unit) * unit);
+  if (v >= bound) v = fourDigits(v - unit);
+  return v;
+}
+
 ParamProblem torusRelations(const PrimitiveParams& p) {
   if (p.minorRadius < p.majorRadius) return {};
   return {"minorRadius (" + shortNumber(p.minorRadius) + ") must be smaller than majorRadius (" +
@@ -238,6 +252,12 @@ TriangleMesh roundedBoxMesh(const PrimitiveParams& p, int segments) {
   return mesh.take();
 }
 
+bool torusFit(PrimitiveParams& p, const std::string& changed) {
+  if (changed != "majorRadius" || p.minorRadius < p.majorRadius) return false;
+  p.minorRadius = largestBelow(p.majorRadius);
+  return p.minorRadius > 0.0;
+}
+
 ParamProblem coneRelations(const PrimitiveParams& p) {
   if (p.radius > 0.0 || p.topRadius > 0.0) return {};
   return {"radius and top radius are both 0: one end of a cone needs a size",
@@ -251,6 +271,13 @@ ParamProblem roundedBoxRelations(const PrimitiveParams& p) {
               shortNumber(0.5 * smallest) + ", half the smallest size (" + shortNumber(smallest) +
               "): it rounds every edge",
           {"radius", "size"}};
+}
+
+bool roundedBoxFit(PrimitiveParams& p, const std::string& changed) {
+  const double smallest = std::min({p.size.x, p.size.y, p.size.z});
+  if (changed != "size" || 2.0 * p.radius < smallest) return false;
+  p.radius = largestBelow(0.5 * smallest);
+  return p.radius > 0.0;
 }
 
 // ---- the table ---------------------------------------------------------------------------
@@ -306,6 +333,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
        return hullOf({{}, p.size * 0.5});
      },
      nullptr,
+     nullptr,
      boxMesh},
     {NodeKind::Sphere,
      "sphere",
@@ -321,6 +349,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
        return hullOf({{}, {}, 0.0, p.radius});
      },
      nullptr,
+     nullptr,
      sphereMesh},
     {NodeKind::Cylinder,
      "cylinder",
@@ -335,6 +364,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      [](const PrimitiveParams& p) {
        return hullOf({{}, {0, 0, p.height / 2}, p.radius});
      },
+     nullptr,
      nullptr,
      cylinderMesh},
     {NodeKind::Cone,
@@ -354,6 +384,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
                      {{0, 0, p.height / 2}, {}, p.topRadius});
      },
      coneRelations,
+     nullptr,
      coneMesh},
     {NodeKind::Torus,
      "torus",
@@ -370,6 +401,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
        return hullOf({{}, {}, p.majorRadius, p.minorRadius});
      },
      torusRelations,
+     torusFit,
      torusMesh},
     {NodeKind::Capsule,
      "capsule",
@@ -384,6 +416,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
      [](const PrimitiveParams& p) {
        return hullOf({{}, {0, 0, p.height / 2}, 0.0, p.radius});
      },
+     nullptr,
      nullptr,
      capsuleMesh},
     {NodeKind::RoundedBox,
@@ -400,6 +433,7 @@ const std::vector<PrimitiveInfo> kPrimitives = {
        return hullOf({{}, glm::max(p.size * 0.5 - p.radius, glm::dvec3(0.0)), 0.0, p.radius});
      },
      roundedBoxRelations,
+     roundedBoxFit,
      roundedBoxMesh},
 };
 
@@ -448,6 +482,22 @@ void validatePrimitiveParams(NodeKind kind, const PrimitiveParams& p) {
   }
   if (p.segments != 0 && (p.segments < 3 || p.segments > kMaxSegments))
     throw Error("segments must be 0 (automatic) or from 3 to " + std::to_string(kMaxSegments));
+}
+
+std::vector<FittedParam> fitPrimitiveRelations(NodeKind kind, PrimitiveParams* params,
+                                               const std::string& changedKey) {
+  const PrimitiveInfo* info = primitiveInfo(kind);
+  if (!info || !info->relations || !info->fitRelations) return {};
+  if (info->relations(*params).message.empty()) return {};
+  PrimitiveParams fitted = *params;
+  if (!info->fitRelations(fitted, changedKey) || !info->relations(fitted).message.empty())
+    return {};
+  std::vector<FittedParam> changed;
+  for (const PrimitiveParam& param : info->params)
+    if (param.scalar && fitted.*param.scalar != params->*param.scalar)
+      changed.push_back({param.label, fitted.*param.scalar});
+  *params = fitted;
+  return changed;
 }
 
 TriangleMesh tessellatePrimitive(NodeKind kind, const PrimitiveParams& p, int segments) {

@@ -86,6 +86,10 @@ struct PrimitiveInfo {
   PrimitiveHull (*hull)(const PrimitiveParams&);
   // Constraints between parameters (each alone in range); nullptr or "" message: none failed.
   ParamProblem (*relations)(const PrimitiveParams&);
+  // Where the artist's change of the parameter `changedKey` broke a relation: the relation's
+  // other parameters brought within it (fitPrimitiveRelations). False where it cannot (the
+  // change is then refused). nullptr: no relation can be fitted.
+  bool (*fitRelations)(PrimitiveParams&, const std::string& changedKey);
   // The mesh, for parameters that passed validation, with `segments` >= 3 around.
   TriangleMesh (*tessellate)(const PrimitiveParams&, int segments);
 };
@@ -98,6 +102,21 @@ const PrimitiveInfo* primitiveInfo(NodeKind kind);
 // Checks every parameter of `kind` (ranges, relations, segments). Throws strata::Error
 // "<label> must be ..." for the first that fails, or when `kind` is not a primitive.
 void validatePrimitiveParams(NodeKind kind, const PrimitiveParams& params);
+
+// Where `params` (valid parameters of `kind` with `changedKey` just changed by the artist) break
+// a relation, the relation's other parameters made to fit, as near to what they were as the
+// relation allows, at 4 significant digits (what a length field shows, so that the number shown
+// is the number kept): a rounded box made thinner than twice its corners' radius gets a smaller
+// radius, a torus's major radius made smaller than its minor one a smaller minor radius (both
+// were refused: an artist's test). The parameter changed is never touched. Returns the
+// parameters changed with their new values: none where the relations held, or where no fit
+// exists (a cone's two radii both 0), left to validatePrimitiveParams to refuse.
+struct FittedParam {
+  const char* label;  // for people: "corner radius"
+  double value;
+};
+std::vector<FittedParam> fitPrimitiveRelations(NodeKind kind, PrimitiveParams* params,
+                                               const std::string& changedKey);
 
 // The primitive's mesh in object coordinates with `segments` segments around (at least 3 are
 // used). Validates first (throws strata::Error for a non-primitive kind or invalid parameters).

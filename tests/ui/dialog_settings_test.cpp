@@ -183,6 +183,12 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
   untitled.lastExportPath = folder + "/out/ball.ply";
   EXPECT_EQ(exportSuggestion(untitled), folder + "/out/part.stl");
   EXPECT_EQ(dialogFolder(untitled), folder + "/out/");
+  // The folder of the scene saved or opened last (the recent files, kept between runs) comes
+  // before the export's: an artist's Save of an example's copy opened in the program's scenes/.
+  std::filesystem::create_directories(folder + "/work");
+  untitled.recentFiles = {folder + "/gone/old.strata.json", folder + "/work/last.strata.json"};
+  EXPECT_EQ(dialogFolder(untitled), folder + "/work/");  // a folder that has gone is passed by
+  EXPECT_EQ(saveAsSuggestion(untitled), folder + "/work/untitled.strata.json");
   // File > New after working on a file: that file's folder (Save As opened in $HOME).
   newDocument(state);
   EXPECT_EQ(dialogFolder(state), folder + "/");

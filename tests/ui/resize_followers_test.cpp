@@ -237,8 +237,8 @@ TEST(ResizeFollowers, APartThePlateNowCoversIsSaidToBeBuried) {
 
 // The gizmo's scale of one primitive goes into its size where its parameters hold it: a rounded
 // box keeps round corners (they turned oval: an artist's test), a cylinder its circle; a scale
-// that would make an ellipse, mirror the part or squeeze a rounded box under its corners' radius
-// stays a scale.
+// that would make an ellipse or mirror the part stays a scale; one that squeezes a rounded box
+// under its corners' radius makes the radius fit.
 TEST(ScaleIntoSize, APrimitiveScaledByTheGizmoChangesItsSize) {
   const NodePtr plate = scene("flange_patterns");
   const NodePtr start = findNode(plate, 1);  // rounded box 140 x 80 x 8, radius 3.5
@@ -249,9 +249,19 @@ TEST(ScaleIntoSize, APrimitiveScaledByTheGizmoChangesItsSize) {
   EXPECT_EQ(now.scale, glm::dvec3(1.0));
   EXPECT_EQ(sized.size, glm::dvec3(140.0, 80.0, 20.0));
   EXPECT_EQ(sized.radius, 3.5);
-  now.scale = glm::dvec3(1.0, 1.0, 0.5);  // 4 mm: under twice the corners' radius
-  EXPECT_FALSE(scaleIntoSize(*start, &now, &sized));
-  EXPECT_EQ(now.scale.z, 0.5);
+  // 4 mm: under twice the corners' radius, which is made to fit (as the inspector does).
+  now.scale = glm::dvec3(1.0, 1.0, 0.5);
+  std::vector<FittedParam> fitted;
+  ASSERT_TRUE(scaleIntoSize(*start, &now, &sized, &fitted));
+  EXPECT_EQ(now.scale.z, 1.0);
+  EXPECT_EQ(sized.size.z, 4.0);
+  EXPECT_EQ(sized.radius, 1.999);
+  ASSERT_EQ(fitted.size(), 1u);
+  EXPECT_STREQ(fitted[0].label, "corner radius");
+  now.scale = glm::dvec3(1.0, 1.0, 2.0);  // nothing to fit
+  ASSERT_TRUE(scaleIntoSize(*start, &now, &sized, &fitted));
+  EXPECT_EQ(sized.radius, 3.5);
+  EXPECT_TRUE(fitted.empty());
   now.scale = glm::dvec3(1.0, 1.0, -1.0);  // a mirroring
   EXPECT_FALSE(scaleIntoSize(*start, &now, &sized));
   const NodePtr hub = findNode(plate, 2);  // cylinder r 28, h 24

@@ -49,6 +49,34 @@ TEST(History, AnInteractionIsOneStep) {
   EXPECT_EQ(h.undoSteps(), 2u);
 }
 
+// A drag's frames are worked out from where it began: the state before its first edit, known
+// while it is open; each interaction begun has a number of its own, so a drag, an undo and a
+// drag again from the same state are told apart.
+TEST(History, AnOpenInteractionKnowsWhereItBegan) {
+  History h;
+  EXPECT_EQ(h.interactionStart(), nullptr);
+  h.beginInteraction();
+  const uint64_t first = h.interactionsBegun();
+  EXPECT_EQ(h.interactionStart(), nullptr);  // nothing edited yet
+  h.record(state(4), "drag");
+  h.record(state(5), "drag");
+  ASSERT_NE(h.interactionStart(), nullptr);
+  EXPECT_EQ(h.interactionStart()->revision, 4u);
+  h.beginInteraction();  // nested: the same interaction
+  EXPECT_EQ(h.interactionsBegun(), first);
+  h.endInteraction();
+  EXPECT_EQ(h.interactionStart()->revision, 4u);
+  h.endInteraction();
+  EXPECT_EQ(h.interactionStart(), nullptr);
+  h.beginInteraction();
+  EXPECT_EQ(h.interactionsBegun(), first + 1);
+  h.endInteraction();
+  History none(0);  // no steps kept: nothing to begin from
+  none.beginInteraction();
+  none.record(state(1), "drag");
+  EXPECT_EQ(none.interactionStart(), nullptr);
+}
+
 TEST(History, KeepsAtMostTheLimit) {
   History h(3);
   for (uint64_t i = 0; i < 10; ++i) h.record(state(i), "step");

@@ -193,3 +193,52 @@ TEST(NodeKinds, LabelsAreForPeople) {
 
 }  // namespace
 }  // namespace strata
+
+namespace strata {
+namespace {
+
+// A change that breaks a relation has the relation's other parameters fitted, to the 4 digits a
+// field shows and strictly within it: a rounded box made 4 thick with corners of 3.5 gets 1.999;
+// a torus's major radius made 2 under a minor radius of 3 gets a minor radius of 1.999. The
+// parameter changed is never touched; a change of the other one, or a cone with both radii 0,
+// has no fit and stays refused.
+TEST(FitPrimitiveRelations, TheOtherParameterOfABrokenRelationIsMadeToFit) {
+  PrimitiveParams box;
+  box.size = glm::dvec3(140.0, 80.0, 4.0);
+  box.radius = 3.5;
+  std::vector<FittedParam> fitted = fitPrimitiveRelations(NodeKind::RoundedBox, &box, "size");
+  ASSERT_EQ(fitted.size(), 1u);
+  EXPECT_STREQ(fitted[0].label, "corner radius");
+  EXPECT_EQ(box.radius, 1.999);
+  EXPECT_EQ(fitted[0].value, 1.999);
+  EXPECT_EQ(box.size.z, 4.0);
+  EXPECT_NO_THROW(validatePrimitiveParams(NodeKind::RoundedBox, box));
+  box.size.z = 0.0123;  // any scale: 4 digits below half
+  fitPrimitiveRelations(NodeKind::RoundedBox, &box, "size");
+  EXPECT_EQ(box.radius, 0.006149);
+  EXPECT_NO_THROW(validatePrimitiveParams(NodeKind::RoundedBox, box));
+  box.size.z = 8.0;  // holds: nothing changed
+  EXPECT_TRUE(fitPrimitiveRelations(NodeKind::RoundedBox, &box, "size").empty());
+  box.radius = 5.0;  // the radius typed too large: refused, not the box shrunk
+  EXPECT_TRUE(fitPrimitiveRelations(NodeKind::RoundedBox, &box, "radius").empty());
+  EXPECT_EQ(box.size.z, 8.0);
+  EXPECT_THROW(validatePrimitiveParams(NodeKind::RoundedBox, box), Error);
+
+  PrimitiveParams torus;
+  torus.majorRadius = 2.0;
+  torus.minorRadius = 3.0;
+  fitted = fitPrimitiveRelations(NodeKind::Torus, &torus, "majorRadius");
+  ASSERT_EQ(fitted.size(), 1u);
+  EXPECT_EQ(torus.minorRadius, 1.999);
+  EXPECT_EQ(torus.majorRadius, 2.0);
+  torus.minorRadius = 3.0;
+  EXPECT_TRUE(fitPrimitiveRelations(NodeKind::Torus, &torus, "minorRadius").empty());
+
+  PrimitiveParams cone;
+  cone.radius = 0.0;
+  cone.topRadius = 0.0;
+  EXPECT_TRUE(fitPrimitiveRelations(NodeKind::Cone, &cone, "radius").empty());
+}
+
+}  // namespace
+}  // namespace strata
