@@ -118,6 +118,14 @@ std::vector<glm::dvec3> Gizmo::ring(int k, const ScreenMapping& view) const {
   return points;
 }
 
+bool Gizmo::ringBackSegment(const ScreenMapping& view, const glm::dvec3& p,
+                            const glm::dvec3& q) const {
+  const glm::dvec3 towardViewer =
+      view.ortho ? -view.forward : safeNormalize(view.eye - origin_, -view.forward);
+  const double hair = 1e-3 * ringRadius(view);
+  return glm::dot(0.5 * (p + q) - origin_, towardViewer) < -hair;
+}
+
 int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
   glm::dvec2 o;
   if (!view.toScreen(origin_, &o)) return -1;
@@ -129,13 +137,14 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
       auto points = ring(k, view);
       glm::dvec2 prev;
       bool havePrev = false;
-      for (const auto& p : points) {
+      for (size_t i = 0; i < points.size(); ++i) {
         glm::dvec2 s;
-        if (!view.toScreen(p, &s)) {
+        if (!view.toScreen(points[i], &s)) {
           havePrev = false;
           continue;
         }
-        if (havePrev) d = std::min(d, segmentDistance(mouse, prev, s));
+        if (havePrev && !ringBackSegment(view, points[i - 1], points[i]))
+          d = std::min(d, segmentDistance(mouse, prev, s));
         prev = s;
         havePrev = true;
       }
@@ -293,9 +302,13 @@ void Gizmo::appendGeometry(const ScreenMapping& view, int hot, std::vector<LineV
     if (mode == GizmoMode::Rotate) {
       auto points = ring(k, view);
       for (size_t i = 0; i + 1 < points.size(); ++i) {
+        const bool back = ringBackSegment(view, points[i], points[i + 1]);
         glm::dvec3 tangent = points[i + 1] - points[i];
-        glm::dvec3 side = safeNormalize(glm::cross(tangent, toViewer), axis) * upp * 1.5;
-        appendQuad(triangles, points[i], points[i + 1], side, color);
+        glm::dvec3 side =
+            safeNormalize(glm::cross(tangent, toViewer), axis) * upp * (back ? 0.75 : 1.5);
+        glm::vec4 shade = color;
+        if (back) shade.a *= 0.3f;  // faint: seen, not picked (hover)
+        appendQuad(triangles, points[i], points[i + 1], side, shade);
       }
       continue;
     }

@@ -54,7 +54,9 @@ class Gizmo {
  public:
   // Places the gizmo on a node whose parent-to-world matrix is `parentWorld`, with `transform`.
   void place(const glm::dmat4& parentWorld, const Transform& transform);
-  // The handle under the mouse: 0, 1, 2 for x, y, z, or -1.
+  // The handle under the mouse: 0, 1, 2 for x, y, z, or -1. A ring is picked on its front half
+  // only (the half nearer the viewer, drawn bright; its back half is drawn faint): a ring's back
+  // half crossed the others' front halves, and an artist aiming for the z ring got the y ring.
   int hover(const ScreenMapping& view, glm::dvec2 mouse) const;
   void begin(int axis, const ScreenMapping& view, glm::dvec2 mouse);
   bool dragging() const { return axis_ >= 0; }
@@ -84,6 +86,9 @@ class Gizmo {
   void ringBasis(int k, glm::dvec3* a, glm::dvec3* b) const;
   double ringRadius(const ScreenMapping& view) const;  // scene units
   std::vector<glm::dvec3> ring(int k, const ScreenMapping& view) const;
+  // Whether the ring's segment from `p` to `q` (points of ring()) lies on its back half, away
+  // from the viewer (beyond a hair of the radius: a ring facing the viewer has none).
+  bool ringBackSegment(const ScreenMapping& view, const glm::dvec3& p, const glm::dvec3& q) const;
   // While dragging a ring: how far it turned (degrees, about its axis, right-handed) from the
   // grab at startMouse_ to `mouse`; `o` is the gizmo's centre on screen. The ring follows the
   // cursor where it faces the viewer; seen nearly edge-on, moving along its tangent at the

@@ -105,31 +105,35 @@ void dragHint() {
 // A child's role in its parent, as a short word coloured by what its material does to the
 // result (`removes`: removesMaterial, roles.h): red where it is taken away, so that a part that
 // adds to a cutter does not look like one that adds material; such a part reads "cut".
-void roleBadge(ChildRole role, bool removes, float x) {
+// The badge's word ("" for the root, which has none) and colour.
+const char* roleBadgeWord(ChildRole role, bool removes, ImVec4* colour) {
   const ImVec4 red(1.0f, 0.45f, 0.42f, 1.0f);
-  ImVec4 colour = removes ? red : ImVec4(0.6f, 0.62f, 0.66f, 1.0f);
-  const char* word = "base";
+  *colour = removes ? red : ImVec4(0.6f, 0.62f, 0.66f, 1.0f);
   switch (role) {
     case ChildRole::Add:
       // Inside a cutter (a hole of a circular array that cuts): its material is taken away, and
       // the word says so ("add" in red was read as adding material: an artist's test); the
       // tooltip says it adds to the cutter.
-      colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
-      word = removes ? "cut" : "add";
-      break;
+      *colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
+      return removes ? "cut" : "add";
     case ChildRole::Cut:
-      colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
-      word = "cut";
-      break;
+      *colour = removes ? red : ImVec4(0.5f, 0.85f, 0.55f, 1.0f);
+      return "cut";
     case ChildRole::Intersect:
-      colour = ImVec4(0.75f, 0.6f, 1.0f, 1.0f);
-      word = "intersect";
-      break;
+      *colour = ImVec4(0.75f, 0.6f, 1.0f, 1.0f);
+      return "intersect";
     case ChildRole::Root:
-      return;
+      return "";
     default:
-      break;
+      return "base";
   }
+}
+
+// Drawn ending at `x` (window coordinates), on the row's line.
+void roleBadge(ChildRole role, bool removes, float x) {
+  ImVec4 colour;
+  const char* word = roleBadgeWord(role, removes, &colour);
+  if (!*word) return;
   ImGui::SameLine(x - ImGui::CalcTextSize(word).x);
   ImGui::TextColored(colour, "%s", word);
 }
@@ -275,10 +279,15 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
     ImGui::SameLine();
     renameField(state, node);
   } else {
-    // The name (and the operation's kind) end where the role badge's column begins; the full
-    // name is in the row's tooltip.
-    const float badgeColumn = ImGui::CalcTextSize("intersect").x + ImGui::GetFrameHeight() +
-                              2.0f * ImGui::GetStyle().ItemSpacing.x;
+    // The name (and the operation's kind) end where this row's role badge begins, right-aligned
+    // before the eye (the root has none); the full name is in the row's tooltip. The room of
+    // the widest badge, kept on every row, cut "bolt circle" to "bol\u2026" with the room of
+    // "intersect" empty beside it (an artist's test).
+    ImVec4 unused;
+    const char* badge = roleBadgeWord(role, removes, &unused);
+    const float badgeColumn =
+        (*badge ? ImGui::CalcTextSize(badge).x + ImGui::GetStyle().ItemSpacing.x : 0.0f) +
+        ImGui::GetFrameHeight() + ImGui::GetStyle().ItemSpacing.x;
     clipRight = ImGui::GetWindowPos().x + right - badgeColumn;
     ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
     // A mesh whose file could not be read when the scene opened: amber, marked, and said why on

@@ -343,6 +343,28 @@ TEST(EditorMath, GizmoRingFollowsTheCursor) {
   // Where the edge-on x ring (a vertical line) crosses the y ring (a circle facing the viewer),
   // the y ring is taken: it is the one a drag there can turn.
   EXPECT_EQ(g.hover(f, centre + glm::dvec2(0.0, -76.5)), 1);
+
+  // Seen at a slant, a ring is picked on its front half only: its back half (faint) crossed the
+  // other rings' front halves and took drags aimed at them (an artist's test). The z ring's
+  // point farthest from the viewer and its nearest one, on screen.
+  glm::dvec3 back(0.0), front3(0.0);
+  for (int i = 0; i < 360; ++i) {
+    const double t = i * M_PI / 180.0;
+    const glm::dvec3 p(std::cos(t), std::sin(t), 0.0);
+    if (glm::dot(p, m.forward) > glm::dot(back, m.forward)) back = p;
+    if (glm::dot(p, m.forward) < glm::dot(front3, m.forward)) front3 = p;
+  }
+  // Ortho: screen offsets scale with world ones; the ring's radius is 76.5 pixels (above).
+  glm::dvec2 c0, sideways;
+  ASSERT_TRUE(m.toScreen(glm::dvec3(0.0), &c0));
+  ASSERT_TRUE(m.toScreen(glm::normalize(glm::cross(m.forward, glm::dvec3(0, 0, 1))), &sideways));
+  const double ringRadius = 76.5 / glm::length(sideways - c0);
+  glm::dvec2 backOnScreen, frontOnScreen;
+  ASSERT_TRUE(m.toScreen(back * ringRadius, &backOnScreen));
+  ASSERT_TRUE(m.toScreen(front3 * ringRadius, &frontOnScreen));
+  ASSERT_GT(glm::length(backOnScreen - c0), 20.0) << "the view must show the ring at a slant";
+  EXPECT_EQ(g.hover(m, frontOnScreen), 2);
+  EXPECT_EQ(g.hover(m, backOnScreen), -1);
   EXPECT_EQ(g.hover(f, centre + glm::dvec2(0.0, -40.0)), 0);  // the x ring alone
 }
 
