@@ -282,8 +282,9 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
   }
 }
 
-void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0,
-                       const std::vector<ScreenBox>& keepClear) {
+std::vector<ScreenBox> drawMeasureLabels(const EditorState& state, const ScreenMapping& view,
+                                         double x0, double y0,
+                                         const std::vector<ScreenBox>& keepClear) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   // Within the view: a label beyond its edge showed through the translucent panels beside it.
   draw->PushClipRect(ImVec2(float(x0), float(y0)),
@@ -326,6 +327,10 @@ void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, doub
     }
   }
   draw->PopClipRect();
+  std::vector<ScreenBox> taken;
+  for (const ScreenBox& b : boxes.taken)
+    taken.push_back({b.lo - glm::dvec2(x0, y0), b.hi - glm::dvec2(x0, y0)});
+  return taken;
 }
 
 }  // namespace strata::ui

@@ -73,8 +73,11 @@ void appendMeasureLines(const EditorState& state, const ScreenMapping& view,
 // draw list of the frame; (x0, y0) is the view's top-left corner in window pixels.
 // `keepClear`: boxes of the view the labels stay off (the gizmo's, Gizmo::screenBox), in the
 // view's pixels.
-void drawMeasureLabels(const EditorState& state, const ScreenMapping& view, double x0, double y0,
-                       const std::vector<ScreenBox>& keepClear = {});
+// Returns `keepClear` with the boxes of the labels drawn added (view pixels), for what is drawn
+// after them (the gizmo drag's readout).
+std::vector<ScreenBox> drawMeasureLabels(const EditorState& state, const ScreenMapping& view,
+                                         double x0, double y0,
+                                         const std::vector<ScreenBox>& keepClear = {});
 
 // Where a label whose box is `box` goes in the view [viewLo, viewHi): moved whole into the view
 // (a label near its edge read "12.4" for "12.45 mm"), then to the nearest position `step` pixels

@@ -1,5 +1,7 @@
 #include "ui/pattern_guides.h"
 
+#include "ui/measure_tool.h"
+
 #include <imgui.h>
 
 #include <glm/geometric.hpp>
@@ -70,7 +72,7 @@ std::vector<PatternGuide> patternGuides(const EditorState& state) {
 }
 
 void drawPatternGuides(const std::vector<PatternGuide>& guides, const ScreenMapping& view,
-                       double x0, double y0) {
+                       double x0, double y0, std::vector<ScreenBox>* taken) {
   if (guides.empty()) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   draw->PushClipRect(ImVec2(float(x0), float(y0)),
@@ -105,8 +107,15 @@ void drawPatternGuides(const std::vector<PatternGuide>& guides, const ScreenMapp
       }
       if (!screen(g.point + g.u, &at)) continue;
     }
+    // Off the gizmo and the names drawn before it (view pixels), within the view.
+    const ImVec2 size = ImGui::CalcTextSize(g.label.c_str());
+    const glm::dvec2 wantedLo(at.x - x0 + 4.0, at.y - y0 - size.y);
+    const ScreenBox box =
+        placedLabelBox({wantedLo - 1.0, wantedLo + glm::dvec2(size.x, size.y) + 1.0}, *taken,
+                       {0.0, 0.0}, view.size, ImGui::GetTextLineHeight() * 0.5);
+    taken->push_back(box);
     // A dark outline under the text: readable over light parts as over the background.
-    const ImVec2 text(at.x + 4.0f, at.y - ImGui::GetTextLineHeight());
+    const ImVec2 text(float(x0 + box.lo.x + 1.0), float(y0 + box.lo.y + 1.0));
     for (const ImVec2 d : {ImVec2(1, 1), ImVec2(-1, 1), ImVec2(1, -1), ImVec2(-1, -1)})
       draw->AddText(ImVec2(text.x + d.x, text.y + d.y), IM_COL32(20, 22, 26, 220), g.label.c_str());
     draw->AddText(text, line, g.label.c_str());

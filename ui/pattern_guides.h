@@ -32,7 +32,9 @@ struct PatternGuide {
 std::vector<PatternGuide> patternGuides(const EditorState& state);
 
 // Draws `guides` (patternGuides) over the view, whose top-left corner is at window pixel (x0, y0).
+// Each name is placed off the boxes in `*taken` (view pixels: the gizmo's; an axis's name covered
+// the gizmo's arrow head: an artist's test), and its own box is added to them.
 void drawPatternGuides(const std::vector<PatternGuide>& guides, const ScreenMapping& view,
-                       double x0, double y0);
+                       double x0, double y0, std::vector<ScreenBox>* taken);
 
 }  // namespace strata::ui

@@ -80,8 +80,11 @@ void appendSectionOutline(const EditorState& state, const ViewportFrame& frame,
 // Beside the cursor while a gizmo handle is dragged: how far it has moved, turned or scaled
 // from where the drag began, in the field's units, and the snap when it is on.
 // `intoSize`: a scale that went into the part's size (scaleIntoSize), its scale field unchanged.
+// Beside the cursor, moved off `taken` (the labels drawn last frame, view pixels; it sat on a
+// measurement's label: an artist's test) within the view `rect`.
 void drawDragReadout(const EditorState& state, const Gizmo& gizmo, const Transform& now,
-                     glm::dvec2 cursor, bool intoSize = false) {
+                     glm::dvec2 cursor, const ViewRect& rect, const std::vector<ScreenBox>& taken,
+                     bool intoSize = false) {
   const int k = gizmo.activeAxis();
   if (k < 0) return;
   const char* axis = k == 0 ? "x" : k == 1 ? "y" : "z";
@@ -111,8 +114,13 @@ void drawDragReadout(const EditorState& state, const Gizmo& gizmo, const Transfo
       break;
   }
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  const ImVec2 at(float(cursor.x + 18.0), float(cursor.y + 14.0));
   const ImVec2 size = ImGui::CalcTextSize(text);
+  const glm::dvec2 corner(rect.x, rect.y);
+  const glm::dvec2 wanted = cursor - corner + glm::dvec2(18.0, 14.0);
+  const ScreenBox box = placedLabelBox(
+      {wanted - glm::dvec2(4.0, 2.0), wanted + glm::dvec2(size.x + 4.0, size.y + 2.0)}, taken,
+      {0.0, 0.0}, {rect.width, rect.height}, ImGui::GetTextLineHeight() * 0.5);
+  const ImVec2 at(float(corner.x + box.lo.x + 4.0), float(corner.y + box.lo.y + 2.0));
   draw->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2),
                       IM_COL32(20, 22, 26, 210), 3.0f);
   draw->AddText(at, IM_COL32(240, 240, 240, 255), text);
@@ -407,7 +415,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
                        "for an exact stretch");
       }
       drawDragReadout(state, gizmo_, pivotGroup_ ? t : dragged,
-                      glm::dvec2(io.MousePos.x, io.MousePos.y), intoSize);
+                      glm::dvec2(io.MousePos.x, io.MousePos.y), rect, labelBoxes_, intoSize);
     } else {
       gizmo_.end();
       state.document.endInteraction();
@@ -721,8 +729,8 @@ void Viewport::drawAnnotations(const EditorState& state, const ViewRect& rect) {
     guidesOf_ = state.selection;
     guides_ = patternGuides(state);
   }
-  drawPatternGuides(guides_, mapping(state, rect), rect.x, rect.y);
-  // The labels keep off the gizmo's handles (one covered a handle: an artist's test).
+  // The labels keep off the gizmo's handles (one covered a handle: an artist's test) and off
+  // one another; the gizmo drag's readout (drawn next frame) off the labels.
   std::vector<ScreenBox> gizmoBox;
   glm::dmat4 parentWorld;
   Transform transform;
@@ -735,7 +743,11 @@ void Viewport::drawAnnotations(const EditorState& state, const ViewRect& rect) {
     ScreenBox box;
     if (gizmo.screenBox(mapping(state, rect), &box)) gizmoBox.push_back(box);
   }
-  drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y, gizmoBox);
+  const size_t gizmoBoxes = gizmoBox.size();
+  drawPatternGuides(guides_, mapping(state, rect), rect.x, rect.y, &gizmoBox);
+  labelBoxes_ = drawMeasureLabels(state, mapping(state, rect), rect.x, rect.y, gizmoBox);
+  // The readout stays beside the cursor, on the gizmo: off the labels only.
+  labelBoxes_.erase(labelBoxes_.begin(), labelBoxes_.begin() + long(gizmoBoxes));
 }
 
 bool sectionPlane(const EditorState& state, glm::dvec3* normal, double* offset) {

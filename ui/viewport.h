@@ -138,6 +138,9 @@ class Viewport {
   // What a gizmo scale moved with the scaled part `dragResized_`, from where the drag began
   // (followResize): what followed it in the last frame is said when the drag ends.
   ResizeGesture dragGesture_;
+  // The boxes of the labels drawAnnotations drew last (view pixels): the drag readout keeps off
+  // them.
+  std::vector<ScreenBox> labelBoxes_;
   std::vector<FittedParam> dragFitted_;  // what the last frame's size fitted (scaleIntoSize)
   NodeId dragResized_ = 0;
 

@@ -181,6 +181,23 @@ int draftResolutionFor(int full, int coarse, int measuredResolution, double meas
   return coarsest;
 }
 
+int dragResolutionFor(int full, int coarse, const std::map<int, double>& dragSeconds,
+                      double predictedFullSeconds, double budgetSeconds) {
+  if (dragSeconds.empty())
+    return draftResolutionFor(full, coarse, full, predictedFullSeconds, budgetSeconds);
+  const auto [finestResolution, finestSeconds] = *dragSeconds.rbegin();
+  const int coarsest = std::min(full, coarse);
+  for (const int divisor : {1, 2, 4}) {
+    const int r = full / divisor;
+    if (r <= coarsest) break;
+    const auto own = dragSeconds.find(r);
+    const double scale = double(r) / finestResolution;
+    const double seconds = own != dragSeconds.end() ? own->second : finestSeconds * scale * scale;
+    if (seconds < budgetSeconds) return r;
+  }
+  return coarsest;
+}
+
 void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress& progress) {
   const int full = request.resolution;
   // What a pass at `full` would cost: the larger of what the last pass that computed every node
@@ -193,9 +210,11 @@ void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress
       predicted = std::max(predicted, seconds * std::pow(double(full) / resolution, 2.0));
   const int coarse = draftResolutionFor(full, coarse_, full, predicted, quickPassSeconds_);
   if (request.interactive) {
-    evaluatePass(evaluator, request, coarse, coarse < full, progress);
+    const int drag = dragResolutionFor(full, coarse_, dragSeconds_, predicted, quickPassSeconds_);
+    evaluatePass(evaluator, request, drag, drag < full, progress);
     return;
   }
+  dragSeconds_.clear();  // the next drag measures its own part
   // A coarse pass first, unless the coarse result of this very snapshot is already shown (the
   // hand just stopped) or there is nothing coarser. A request that arrives meanwhile cancels
   // `progress`, and with it the refinement.
@@ -245,6 +264,10 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
     lastFullSeconds_ = passSeconds;
     lastFullResolution_ = resolution;
   }
+  // A drag's pass that found parts in the cache: what the next frames of a drag cost there (a
+  // first pass at a resolution, computing every part, says nothing of them).
+  if (measured && request.interactive && result->stats.reused > 0)
+    dragSeconds_[resolution] = passSeconds;
   if (measured && result->stats.reused == 0 && result->stats.computed > 0) {
     wholeSeconds_ = passSeconds;
     wholeResolution_ = resolution;

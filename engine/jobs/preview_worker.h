@@ -7,9 +7,10 @@
 //     finish (each draft shows, the next takes the newest position). Requests replaced before
 //     the worker took them are never evaluated.
 //   - An interactive request (the user is dragging) is evaluated only at a draft resolution
-//     (draftResolutionFor: the finest of requested, requested/2, requested/4 that the last full
-//     pass and the last pass that computed every node predict under quickPassSeconds, never
-//     under coarseResolution; on a GPU a drag is often evaluated in full); the request made when
+//     (dragResolutionFor: the finest of requested, requested/2, requested/4 that the drag's own
+//     passes so far, or before its first, the last full pass and the last pass that computed
+//     every node predict under quickPassSeconds, never under coarseResolution; on a GPU a drag
+//     is often evaluated in full); the request made when
 //     the hand stops refines it. A calm request for a new scene shows the draft result first, then
 //     the full one, unless the last full pass took less than quickPassSeconds (then the full one
 //     comes at once). A calm request whose full result the cache holds whole (an edit that changed
@@ -122,6 +123,17 @@ struct PreviewStatus {
 // keep their lattice (and the cache its LDIs) from one drag to the next.
 int draftResolutionFor(int full, int coarse, int measuredResolution, double measuredSeconds,
                        double budgetSeconds);
+
+// The resolution of a drag's pass when `full` is asked for. Where passes of drags were measured
+// (`dragSeconds`: resolution -> seconds of the last drag pass there that reused cached parts),
+// the finest of full, full/2 and full/4 (never under min(full, coarse)) whose own measured time,
+// or else the time scaled from the finest one measured, is under `budgetSeconds`: a drag costs
+// what its part and the operations above it cost, not what a pass of every part did (a plate
+// dragged at 256 cells was drafted at 96 cells, blocky, all the way on this 2-core machine: an
+// artist's test). Nothing measured: draftResolutionFor from `predictedFullSeconds` (the cost at
+// `full`, or < 0 for none).
+int dragResolutionFor(int full, int coarse, const std::map<int, double>& dragSeconds,
+                      double predictedFullSeconds, double budgetSeconds);
 
 // The resolution a preview is evaluated at when `requested` is asked for. The preview evaluates
 // the whole grid at once (no tiles): a resolution typed far past the slider must neither take
@@ -293,6 +305,9 @@ class PreviewWorker {
   int lastFullResolution_ = 0;     // worker thread only: of that pass
   double wholeSeconds_ = -1.0;     // worker thread only: the last pass that computed every node
   int wholeResolution_ = 0;        // worker thread only: of that pass
+  // Worker thread only: the last drag pass at each resolution that reused cached parts (its
+  // seconds), since the last calm request (dragResolutionFor).
+  std::map<int, double> dragSeconds_;
   // Worker thread only: the last grid of each resolution evaluated, which the next follows
   // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
   std::map<int, Grid> lastGrids_;

@@ -351,6 +351,23 @@ TEST(PreviewResolution, DraftsAsFineAsTheLastFullPassPredictsWithinTheBudget) {
   EXPECT_EQ(draftResolutionFor(64, 96, 512, 100.0, 0.05), 64);    // at most the full one
 }
 
+// A drag is drafted from what its own passes cost once they are measured: a part dragged costs
+// less than a pass of every part (a plate dragged at 256 cells stayed at 96 all the way: an
+// artist's test). Measured at a resolution, that time; else scaled from the finest measured.
+TEST(PreviewResolution, ADragIsDraftedFromWhatItsOwnPassesCost) {
+  // Nothing measured yet: as the last full pass predicts (2 s at 256: 96).
+  EXPECT_EQ(dragResolutionFor(256, 96, {}, 2.0, 0.05), 96);
+  // Its passes at 96 took 8 ms: 128 (14 ms) and 256 (57 ms, over) predicted, 128 taken.
+  EXPECT_EQ(dragResolutionFor(256, 96, {{96, 0.008}}, 2.0, 0.05), 128);
+  // At 96 5 ms: 256 predicted 36 ms, drafted in full.
+  EXPECT_EQ(dragResolutionFor(256, 96, {{96, 0.005}}, 2.0, 0.05), 256);
+  // Measured at 256 itself and slow there: 128, whose own time holds.
+  EXPECT_EQ(dragResolutionFor(256, 96, {{96, 0.005}, {128, 0.02}, {256, 0.09}}, 2.0, 0.05), 128);
+  // Too slow even at 128: the coarsest.
+  EXPECT_EQ(dragResolutionFor(256, 96, {{128, 0.07}}, 2.0, 0.05), 96);
+  EXPECT_EQ(dragResolutionFor(64, 96, {{64, 1.0}}, 2.0, 0.05), 64);  // at most the full one
+}
+
 // After a quick full pass, a calm edit skips the coarse pass: its full result comes at once
 // (a coarse one first would only delay the edit on the screen by a frame).
 TEST(PreviewWorker, AfterAQuickFullPassACalmEditGoesStraightToTheFullResult) {
