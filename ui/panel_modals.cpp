@@ -234,7 +234,10 @@ void exportWindow(EditorState& state) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y * 0.25f),
                           ImGuiCond_Appearing, ImVec2(0.5f, 0.0f));
-  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  // One width from its first frame to its last, its lines wrapped in it: sized by its content,
+  // its first frame of a report was narrow, cut at "1 compo" (an artist's test).
+  const float width = ImGui::GetFontSize() * 40.0f;
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, FLT_MAX));
   ImGui::Begin("Export", s.running ? nullptr : &open, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::TextWrapped("%s", s.path.c_str());
   if (s.simplifyCells > 0.0)
@@ -272,8 +275,8 @@ void exportWindow(EditorState& state) {
                        : c.watertight() ? "written, but the check FAILED"
                                         : "written, but NOT watertight");
     if (!s.fileDifference.empty()) ImGui::TextWrapped("%s", s.fileDifference.c_str());
-    ImGui::Text("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles, c.vertices,
-                c.components, c.genus);
+    ImGui::TextWrapped("%zu triangles, %zu vertices, %d component(s), genus %d", c.triangles,
+                       c.vertices, c.components, c.genus);
     // Several bodies: what joins them said plainly (a sphere resting on a box was two bodies in
     // the file, "watertight", and nothing said why: an artist's test).
     if (passed && c.components > 1) {
@@ -306,10 +309,10 @@ void exportWindow(EditorState& state) {
           r.trianglesBefore, 100.0 * double(r.trianglesAfter) / double(r.trianglesBefore),
           r.measured.bound(), unit,
           s.simplifyCells * r.measured.bound() / std::max(r.tolerance, 1e-300));
-    ImGui::Text("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
-                c.nonManifoldEdges, c.misorientedEdges);
-    ImGui::Text("volume %.6g %s^3, area %.6g %s^2, %.2f s", c.volume, unit, c.area, unit,
-                s.seconds);
+    ImGui::TextWrapped("boundary edges %zu, non-manifold %zu, misoriented %zu", c.boundaryEdges,
+                       c.nonManifoldEdges, c.misorientedEdges);
+    ImGui::TextWrapped("volume %.6g %s^3, area %.6g %s^2, %.2f s", c.volume, unit, c.area, unit,
+                       s.seconds);
   } else if (s.cancelledAfterWrite) {
     ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "cancelled after the file was written");
     ImGui::TextWrapped("%s", exportCancelledAfterWriteText);
