@@ -122,8 +122,10 @@ bool Gizmo::ringBackSegment(const ScreenMapping& view, const glm::dvec3& p,
                             const glm::dvec3& q) const {
   const glm::dvec3 towardViewer =
       view.ortho ? -view.forward : safeNormalize(view.eye - origin_, -view.forward);
-  const double hair = 1e-3 * ringRadius(view);
-  return glm::dot(0.5 * (p + q) - origin_, towardViewer) < -hair;
+  // Beyond a sixth of the radius: a ring nearly facing the viewer (tilted under about 10
+  // degrees, as a perspective view turns one off the screen's middle) stays whole.
+  const double margin = ringRadius(view) / 6.0;
+  return glm::dot(0.5 * (p + q) - origin_, towardViewer) < -margin;
 }
 
 int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {

@@ -87,7 +87,8 @@ class Gizmo {
   double ringRadius(const ScreenMapping& view) const;  // scene units
   std::vector<glm::dvec3> ring(int k, const ScreenMapping& view) const;
   // Whether the ring's segment from `p` to `q` (points of ring()) lies on its back half, away
-  // from the viewer (beyond a hair of the radius: a ring facing the viewer has none).
+  // from the viewer by more than a sixth of its radius (a ring facing the viewer, or nearly, has
+  // none).
   bool ringBackSegment(const ScreenMapping& view, const glm::dvec3& p, const glm::dvec3& q) const;
   // While dragging a ring: how far it turned (degrees, about its axis, right-handed) from the
   // grab at startMouse_ to `mouse`; `o` is the gizmo's centre on screen. The ring follows the

@@ -291,7 +291,7 @@ std::vector<ScreenBox> drawMeasureLabels(const EditorState& state, const ScreenM
                      ImVec2(float(x0 + view.size.x), float(y0 + view.size.y)), true);
   const NodePtr& root = state.document.root();
   // Below the view's two lines of text at its top (its name and the tool's hint).
-  const ImVec2 viewLo{float(x0), float(y0 + 26.0 + ImGui::GetTextLineHeightWithSpacing())};
+  const ImVec2 viewLo{float(x0), float(y0 + kViewTextTop + ImGui::GetTextLineHeightWithSpacing())};
   const ImVec2 viewHi{float(x0 + view.size.x), float(y0 + view.size.y)};
   auto screen = [&](const glm::dvec3& p, ImVec2* out) {
     glm::dvec2 px;

@@ -79,6 +79,10 @@ std::vector<ScreenBox> drawMeasureLabels(const EditorState& state, const ScreenM
                                          double x0, double y0,
                                          const std::vector<ScreenBox>& keepClear = {});
 
+// The view's first line of text (its name and tool) ends this far below its top (pixels); the
+// tool's hint takes the line below it. Labels drawn over the view stay under both.
+constexpr double kViewTextTop = 26.0;
+
 // Where a label whose box is `box` goes in the view [viewLo, viewHi): moved whole into the view
 // (a label near its edge read "12.4" for "12.45 mm"), then to the nearest position `step` pixels
 // at a time down or up (down first, at most 32 steps each way) where it covers none of `taken`

@@ -240,8 +240,18 @@ PrimitiveParams changedParams(EditorState& state, const Node& n, const Primitive
   const bool interacting = state.document.interacting();
   const uint64_t gesture = interacting ? state.document.interactionsBegun() : 0;
   if (said.first != gesture || !interacting) said = {gesture, {}};
+  // Said where the change will be taken: a change refused for another reason (a size of 0)
+  // fits nothing.
+  const auto valid = [&] {
+    try {
+      validatePrimitiveParams(n.kind, q);
+      return true;
+    } catch (const Error&) {
+      return false;
+    }
+  };
   if (!fitted.empty() &&
-      std::find(said.second.begin(), said.second.end(), n.id) == said.second.end()) {
+      std::find(said.second.begin(), said.second.end(), n.id) == said.second.end() && valid()) {
     said.second.push_back(n.id);
     logInfo(state, fittedParamsMessage(n, fitted, param.label, gLengthUnit, !lastCommitWasTyped()));
   }

@@ -112,7 +112,8 @@ void drawPatternGuides(const std::vector<PatternGuide>& guides, const ScreenMapp
     const glm::dvec2 wantedLo(at.x - x0 + 4.0, at.y - y0 - size.y);
     const ScreenBox box =
         placedLabelBox({wantedLo - 1.0, wantedLo + glm::dvec2(size.x, size.y) + 1.0}, *taken,
-                       {0.0, 0.0}, view.size, ImGui::GetTextLineHeight() * 0.5);
+                       {0.0, kViewTextTop + ImGui::GetTextLineHeightWithSpacing()}, view.size,
+                       ImGui::GetTextLineHeight() * 0.5);
     taken->push_back(box);
     // A dark outline under the text: readable over light parts as over the background.
     const ImVec2 text(float(x0 + box.lo.x + 1.0), float(y0 + box.lo.y + 1.0));

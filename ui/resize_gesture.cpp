@@ -32,11 +32,21 @@ ResizeStep followResize(Document& document, ResizeGesture& gesture, NodeId id,
   }
   const auto earlier = gesture.following.find(id);
   step.firstFrame = earlier == gesture.following.end();
+  // Whether another part the gesture resizes has `part` among its followers (this frame's, or
+  // the last one's where it comes later in this frame): that one places it.
+  const auto followsAnother = [&](NodeId part) {
+    for (const auto& [other, following] : gesture.following)
+      if (other != id)
+        for (const ResizeFollower& f : following.followers)
+          if (f.id == part) return true;
+    return false;
+  };
   if (!step.firstFrame) {
     const std::vector<ResizeFollower>& now = step.following.followers;
     for (const ResizeFollower& was : earlier->second.followers)
       if (std::none_of(now.begin(), now.end(),
-                       [&](const ResizeFollower& f) { return f.id == was.id; }))
+                       [&](const ResizeFollower& f) { return f.id == was.id; }) &&
+          !followsAnother(was.id))
         if (const NodePtr at = findNode(start, was.id)) {
           document.setTransform(was.id, at->transform);
           if (isPrimitive(at->kind)) document.setParams(was.id, at->params);

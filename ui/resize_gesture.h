@@ -49,7 +49,8 @@ struct ResizeStep {
 // follows it (resizeFollowers from `gesture.start`; `excluded`: the other parts the same edit
 // changed) its transform and its parameters (those the stretch went into, else its own in
 // `start`), and puts back as they were in `start` the parts that followed `id` in an earlier
-// frame and no longer do. Throws what Document's setters throw (strata::Error).
+// frame and no longer do (unless another part the gesture resizes has them among its followers:
+// a selection of two plates). Throws what Document's setters throw (strata::Error).
 ResizeStep followResize(Document& document, ResizeGesture& gesture, NodeId id,
                         const std::vector<NodeId>& excluded);
 

@@ -45,7 +45,10 @@ DocumentState History::redo(const DocumentState& current) {
 void History::beginInteraction() {
   if (depth_++ == 0) {
     recordedInInteraction_ = false;
-    ++interactionsBegun_;
+    // Numbered across the process, not per history: a document opened anew starts a history
+    // whose first drag must not take the number of the last one's (UI thread only).
+    static uint64_t begun = 0;
+    interactionsBegun_ = ++begun;
   }
 }
 

@@ -58,8 +58,9 @@ class History {
   // The state before the open interaction's first edit (where a drag began), or null when no
   // interaction is open or it has recorded no edit yet. Valid until the next call that changes
   // the history.
-  // Interactions begun so far (outermost ones): tells one drag from the next that began from the
-  // same state (a drag, an undo, and a drag again).
+  // The number of the last interaction begun (outermost ones; numbered across all histories of
+  // the process, 0 before the first): tells one drag from the next that began from the same
+  // state (a drag, an undo, and a drag again), in this document or another.
   uint64_t interactionsBegun() const { return interactionsBegun_; }
   const DocumentState* interactionStart() const {
     return depth_ > 0 && recordedInInteraction_ && !undo_.empty() ? &undo_.back().state : nullptr;

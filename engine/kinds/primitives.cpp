@@ -183,7 +183,8 @@ TriangleMesh torusMesh(const PrimitiveParams& p, int segments) {
 // The largest number below `bound` (> 0) written with 4 significant digits: a fitted parameter
 // strictly within a strict relation, shown as kept.
 double largestBelow(double bound) {
-  const double unit = std::pow(10.0, std::floor(std::log10(bound)) - 3.0);
+  // The digits of the largest number below it: 9.999 under 10, not 9.99 (10's own digits).
+  const double unit = std::pow(10.0, std::floor(std::log10(std::nextafter(bound, 0.0))) - 3.0);
   const auto fourDigits = [](double v) {  // 1.999 rather than 1.9990000000000001
     char text[32];
     std::snprintf(text, sizeof(text), "%.4g", v);

@@ -192,6 +192,10 @@ TEST(ExportSettings, TheNextExportIsOfferedTheLastOnesPlace) {
   // File > New after working on a file: that file's folder (Save As opened in $HOME).
   newDocument(state);
   EXPECT_EQ(dialogFolder(state), folder + "/");
+  // The scene saved or opened last, kept between runs, before the document replaced.
+  state.recentFiles = {folder + "/work/last.strata.json"};
+  EXPECT_EQ(dialogFolder(state), folder + "/work/");
+  state.recentFiles.clear();
   // Nothing written yet: the user's home, not the folder the editor was started in (an artist's
   // Save As opened in the program's own folder).
   const char* home = std::getenv("HOME");

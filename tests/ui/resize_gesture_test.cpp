@@ -35,10 +35,13 @@ void expectSameParts(const NodePtr& a, const NodePtr& b, double tolerance) {
 
 // The plate's thickness dragged through `thicknesses`, one frame each, as the inspector does:
 // from where the drag began (`fromStart`), or each frame from the last frame's tree.
-void drag(Document& doc, NodeId plate, const std::vector<double>& thicknesses, bool fromStart) {
-  ResizeGesture gesture;
+void drag(Document& doc, NodeId plate, const std::vector<double>& thicknesses, bool fromStart,
+          ResizeGesture* kept = nullptr) {
+  ResizeGesture own;
+  ResizeGesture& gesture = kept ? *kept : own;
   doc.beginInteraction();
-  for (const double z : thicknesses) {
+  for (size_t frame = 0; frame < thicknesses.size(); ++frame) {
+    const double z = thicknesses[frame];
     const NodePtr before = doc.root();
     PrimitiveParams p = findNode(before, plate)->params;
     p.size.z = z;
@@ -47,7 +50,12 @@ void drag(Document& doc, NodeId plate, const std::vector<double>& thicknesses, b
       gesture.begin(doc.interactionStart(), doc.interactionsBegun());
     else
       gesture = ResizeGesture(before);
-    followResize(doc, gesture, plate, {plate});
+    const ResizeStep step = followResize(doc, gesture, plate, {plate});
+    // The first frame of each drag is its first, the others are not (kept: the caller's
+    // gesture, as the inspector keeps one across drags).
+    if (fromStart) {
+      EXPECT_EQ(step.firstFrame, frame == 0) << frame;
+    }
   }
   doc.endInteraction();
 }
@@ -88,12 +96,16 @@ TEST(ResizeGesture, TheFlangesPlateDraggedThereAndBackEndsAsItBegan) {
   const NodeId plate = 1;
   std::vector<double> z = thereAndBack(8.0, 20.0, 6);
   z.insert(z.begin() + 6, 20.0);  // a frame that changes nothing
-  drag(doc, plate, std::vector<double>(z.begin(), z.begin() + 6), true);
+  // One gesture object kept across the drags, as the inspector keeps it: a drag, an undo and a
+  // drag again from the same tree is a new gesture (its own first frame, nothing put back
+  // from the last one's).
+  ResizeGesture kept;
+  drag(doc, plate, std::vector<double>(z.begin(), z.begin() + 6), true, &kept);
   // At 20 mm: the ribs (3) on the top, the hub (2) 16 mm out of it.
   EXPECT_NEAR(selectionBounds(doc.root(), {3}).min.z, 20.0, 1e-9);
   EXPECT_NEAR(selectionBounds(doc.root(), {2}).max.z, 36.0, 1e-9);
   doc.undo();
-  drag(doc, plate, z, true);
+  drag(doc, plate, z, true, &kept);
   expectSameParts(scene.root, doc.root(), 1e-9);
 }
 

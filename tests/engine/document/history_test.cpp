@@ -71,6 +71,10 @@ TEST(History, AnOpenInteractionKnowsWhereItBegan) {
   h.beginInteraction();
   EXPECT_EQ(h.interactionsBegun(), first + 1);
   h.endInteraction();
+  History other;  // another document's: its drags have numbers of their own
+  other.beginInteraction();
+  EXPECT_GT(other.interactionsBegun(), first + 1);
+  other.endInteraction();
   History none(0);  // no steps kept: nothing to begin from
   none.beginInteraction();
   none.record(state(1), "drag");

@@ -217,6 +217,11 @@ TEST(FitPrimitiveRelations, TheOtherParameterOfABrokenRelationIsMadeToFit) {
   fitPrimitiveRelations(NodeKind::RoundedBox, &box, "size");
   EXPECT_EQ(box.radius, 0.006149);
   EXPECT_NO_THROW(validatePrimitiveParams(NodeKind::RoundedBox, box));
+  box.size.z = 20.0;  // a power of ten for the bound: 9.999, four digits still
+  box.radius = 12.0;
+  fitPrimitiveRelations(NodeKind::RoundedBox, &box, "size");
+  EXPECT_EQ(box.radius, 9.999);
+  box.radius = 3.5;
   box.size.z = 8.0;  // holds: nothing changed
   EXPECT_TRUE(fitPrimitiveRelations(NodeKind::RoundedBox, &box, "size").empty());
   box.radius = 5.0;  // the radius typed too large: refused, not the box shrunk
