@@ -477,10 +477,19 @@ bool Editor::requestPreviewIfNeeded() {
   // A field held while a number is typed into it (ImGui's text input of a drag or slider) is
   // not a drag: the value shown is the one that stays until Enter, so it refines in full.
   const bool typing = ImGui::GetIO().WantTextInput;
-  const bool interactive =
-      (s.document.interacting() && !typing) || gl_->viewport.gizmoDragging() || dragHeld_;
-  const int wanted = s.document.scene().settings.resolution;
   const uint64_t revision = s.document.revision();
+  // A hand resting mid-drag (the button held, nothing changed for a moment) is calm: its scene
+  // refines in full, and the drag's next motion is a draft again (the preview stayed at its
+  // draft's 128 cells while the button was held: an artist's test).
+  if (revision != restRevision_) {
+    restRevision_ = revision;
+    revisionChangedAt_ = glfwGetTime();
+  }
+  const bool resting = glfwGetTime() - revisionChangedAt_ >= kDragRestSeconds;
+  const bool interactive =
+      ((s.document.interacting() && !typing) || gl_->viewport.gizmoDragging() || dragHeld_) &&
+      !resting;
+  const int wanted = s.document.scene().settings.resolution;
   // The cap depends on what a full (not coarse) result cost. It is worked out when the wanted
   // resolution changes, and once more when the first full result arrives if there was none
   // before; never on every result, which would chase its own tail (each new cap a new pass).
@@ -952,6 +961,11 @@ bool Editor::frame() {
   const bool requested = requestPreviewIfNeeded();
   const bool working =
       state_->worker.busy || (state_->exportJob && state_->exportJob->status().running);
+  // Work just ended (an export's report, a result): frames keep coming a moment, so that the
+  // windows sized by their content reach their size at once (an export's report was drawn cut
+  // for its first half second: an artist's test).
+  if (wasWorking_ && !working) activeUntil_ = state_->now + 0.5;
+  wasWorking_ = working;
   if (requested && !input && options_.editResultWaitSeconds > 0.0) {
     // An edit just went to the engine and nothing else moves: a frame drawn now would show the
     // old result. This one is built while the engine works and waits for the new result just

@@ -205,7 +205,13 @@ class Editor {
   double stagingMs_ = 0.0;
   double uploadBytesPerMs_ = 0.0;  // host upload rate seen (0: not measured yet)
   double lastAutosave_ = 0.0;
-  double activeUntil_ = 0.0;      // draw without waiting for events until then (seconds)
+  double activeUntil_ = 0.0;  // draw without waiting for events until then (seconds)
+  bool wasWorking_ = false;   // the engine or an export worked at the last frame (frame())
+  // The document's revision and when it last changed (glfwGetTime seconds): a drag whose scene
+  // has not changed for kDragRestSeconds is sent as a calm request (requestPreviewIfNeeded).
+  uint64_t restRevision_ = ~uint64_t(0);
+  double revisionChangedAt_ = 0.0;
+  static constexpr double kDragRestSeconds = 0.3;
   double lastWaitSeconds_ = 0.0;  // frame()'s wait for events (lastWaitSeconds)
   uint64_t autosavedRevision_ = 0;
   uint64_t seenRevision_ = 0;  // the document's revision when autosave() last looked

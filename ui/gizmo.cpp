@@ -133,6 +133,10 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
   if (!view.toScreen(origin_, &o)) return -1;
   int best = -1;
   double bestScore = 1e300;
+  // A ring's back half, where no front half is near: a click there took the ring's faint half
+  // for empty space and deselected the part (an artist's test).
+  int nearestBack = -1;
+  double nearestBackDistance = kPickPixels;
   for (int k = 0; k < 3; ++k) {
     double d = 1e300;
     if (mode == GizmoMode::Rotate) {
@@ -147,6 +151,10 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
         }
         if (havePrev && !ringBackSegment(view, points[i - 1], points[i]))
           d = std::min(d, segmentDistance(mouse, prev, s));
+        else if (havePrev && segmentDistance(mouse, prev, s) < nearestBackDistance) {
+          nearestBackDistance = segmentDistance(mouse, prev, s);
+          nearestBack = k;
+        }
         prev = s;
         havePrev = true;
       }
@@ -168,7 +176,7 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
       best = k;
     }
   }
-  return best;
+  return best >= 0 ? best : nearestBack;
 }
 
 double Gizmo::ringTurnDegrees(const ScreenMapping& view, glm::dvec2 o, glm::dvec2 mouse) const {

@@ -55,8 +55,9 @@ class Gizmo {
   // Places the gizmo on a node whose parent-to-world matrix is `parentWorld`, with `transform`.
   void place(const glm::dmat4& parentWorld, const Transform& transform);
   // The handle under the mouse: 0, 1, 2 for x, y, z, or -1. A ring is picked on its front half
-  // only (the half nearer the viewer, drawn bright; its back half is drawn faint): a ring's back
-  // half crossed the others' front halves, and an artist aiming for the z ring got the y ring.
+  // (the half nearer the viewer, drawn bright; its back half is drawn faint) before any back
+  // half: a ring's back half crossed the others' front halves, and an artist aiming for the z
+  // ring got the y ring. Its back half is picked where no front half is near.
   int hover(const ScreenMapping& view, glm::dvec2 mouse) const;
   void begin(int axis, const ScreenMapping& view, glm::dvec2 mouse);
   bool dragging() const { return axis_ >= 0; }

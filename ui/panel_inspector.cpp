@@ -138,6 +138,7 @@ bool dragVec3(EditorState& state, const char* label, glm::dvec3* value, double s
     // is refused by `apply`, saying so: a drag past it warned every frame (an artist's test).
     bool changed = ImGui::DragScalar("##c", ImGuiDataType_Double, &next[i], float(speed),
                                      dragMinimum, nullptr, shown.c_str());
+    changed = dragFromItsStart(changed, (*value)[i], &next[i], speed, dragMinimum);
     changed = commitTypedValue(changed, &next[i], sceneUnitMetres(unit) > 0.0 ? unit : "");
     const VecEdit edit{i, changed && mixed[i] && lastCommitWasTyped()};
     ImGui::PopStyleColor();  // the tooltips below in the usual colour
@@ -229,8 +230,14 @@ void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
 // the gesture began (a drag of the field, or a value typed), where a relation the change broke is
 // fitted (fitPrimitiveRelations: a thinner rounded box gets a smaller corner radius, and gets its
 // radius back as it thickens again in the same drag), said once a gesture and part.
+// What changedParams fitted, said by setParamsKeptResting once the change is set, after what
+// followed it: said first, the status bar showed the followers' line and the fit went unseen (an
+// artist's test).
+std::string gFitToSay;
+
 PrimitiveParams changedParams(EditorState& state, const Node& n, const PrimitiveParam& param,
                               const std::function<void(PrimitiveParams&)>& set) {
+  gFitToSay.clear();
   const NodePtr start = state.document.interactionStart();
   const NodePtr was = start ? findNode(start, n.id) : nullptr;
   PrimitiveParams q = was && was->kind == n.kind ? was->params : n.params;
@@ -253,7 +260,7 @@ PrimitiveParams changedParams(EditorState& state, const Node& n, const Primitive
   if (!fitted.empty() &&
       std::find(said.second.begin(), said.second.end(), n.id) == said.second.end() && valid()) {
     said.second.push_back(n.id);
-    logInfo(state, fittedParamsMessage(n, fitted, param.label, gLengthUnit, !lastCommitWasTyped()));
+    gFitToSay = fittedParamsMessage(n, fitted, param.label, gLengthUnit, !lastCommitWasTyped());
   }
   return q;
 }
@@ -263,6 +270,8 @@ void setParamsKeptResting(EditorState& state, NodeId id, const PrimitiveParams& 
   const NodePtr before = state.document.root();
   state.document.setParams(id, params);
   reseatResting(state, before, id);
+  if (!gFitToSay.empty()) logInfo(state, gFitToSay);
+  gFitToSay.clear();
 }
 
 // A positive length parameter.
@@ -286,6 +295,7 @@ void lengthField(EditorState& state, const NodePtr& node, const std::vector<Node
                               (mixed ? ImGui::CalcTextSize("~").x : 0.0f),
                           textWidth))
           .c_str());
+  changed = dragFromItsStart(changed, p.*field, &value, speed, &minimum);
   changed = commitTypedValue(changed, &value, gLengthUnit);
   if (mixed && ImGui::IsItemHovered())
     ImGui::SetTooltip("differs across the selection; a change sets every one to the same value");
@@ -366,13 +376,20 @@ void nodeRole(EditorState& state, const Node& node, size_t selected) {
     return;
   }
   const PlaceMode current = modeKeepingRole(role);
+  // A part that adds to a cutter (a bolt hole in the circular array that cuts) takes material
+  // away: its role reads so, as its row's word in the tree does ("cut" in the tree beside
+  // "adds" here: an artist's test).
+  const bool addsToACutter =
+      role == ChildRole::Add && removesMaterial(state.document.root(), node.id);
+  const std::string shown = addsToACutter ? "adds to a cutter (cuts)" : roleWord(role);
   ImGui::SetNextItemWidth(-1);
-  if (!ImGui::BeginCombo("##role", roleWord(role))) {
+  if (!ImGui::BeginCombo("##role", shown.c_str())) {
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
-          "What it does in %s; pick another role here (or drag the row with\n"
+          "What it does in %s%s; pick another role here (or drag the row with\n"
           "Ctrl: cut, Shift: intersect, Alt: add)",
-          parent->name.empty() ? "its parent" : parent->name.c_str());
+          parent->name.empty() ? "its parent" : parent->name.c_str(),
+          addsToACutter ? ", which cuts: its material is taken away" : "");
     return;
   }
   for (PlaceMode mode : {PlaceMode::Add, PlaceMode::Cut, PlaceMode::Intersect}) {

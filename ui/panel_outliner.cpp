@@ -273,6 +273,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
 
   bool open;
   float clipRight = 1e9f;
+  bool kindShown = isOperation(node->kind) && !chained;  // the kind word after the name
   if (state.renaming == node->id) {
     open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s",
                              kindGlyph(node->kind));
@@ -302,15 +303,21 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
     const std::string suffix = missing ? " (missing)" : node->meshOpen ? " (open)" : "";
     const float textStart = ImGui::GetCursorScreenPos().x + ImGui::GetFontSize() +
                             2.0f * ImGui::GetStyle().FramePadding.x;
-    const float kindRoom =
+    // The operation's kind word after the name where both fit; where the name would be cut, the
+    // name has the room (its glyph and the inspector say the kind): in a narrow panel "bolt
+    // circle" read "\u2026" beside a whole "circular array" (an artist's test).
+    const std::string& shownName = node->name.empty() ? std::string("(unnamed)") : node->name;
+    const float nameRoomAlone =
+        clipRight - textStart - ImGui::CalcTextSize((prefix + suffix).c_str()).x;
+    float kindRoom =
         isOperation(node->kind) && !chained
             ? ImGui::CalcTextSize(kindLabel(node->kind)).x + ImGui::GetStyle().ItemSpacing.x
             : 0.0f;
-    const float nameRoom =
-        clipRight - textStart - kindRoom - ImGui::CalcTextSize((prefix + suffix).c_str()).x;
-    const std::string name =
-        fitWithEllipsis(node->name.empty() ? "(unnamed)" : node->name, nameRoom,
-                        [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
+    if (ImGui::CalcTextSize(shownName.c_str()).x > nameRoomAlone - kindRoom) kindRoom = 0.0f;
+    kindShown = kindRoom > 0.0f;
+    const float nameRoom = nameRoomAlone - kindRoom;
+    const std::string name = fitWithEllipsis(
+        shownName, nameRoom, [](const std::string& s) { return ImGui::CalcTextSize(s.c_str()).x; });
     open = ImGui::TreeNodeEx("##node", flags | ImGuiTreeNodeFlags_AllowItemOverlap, "%s",
                              (prefix + name + suffix).c_str());
     if (missing) ImGui::PopStyleColor();
@@ -402,7 +409,7 @@ void nodeRow(EditorState& state, const NodePtr& node, ChildRole role, bool remov
                         kindLabel(node->kind));
     contextMenu(state, node);
   }
-  if (isOperation(node->kind) && !chained) {
+  if (kindShown) {
     ImGui::SameLine();
     ImGui::PushClipRect(ImVec2(ImGui::GetWindowPos().x, -1e9f), ImVec2(clipRight, 1e9f), true);
     ImGui::TextColored(kindColor(node->kind), "%s", kindLabel(node->kind));

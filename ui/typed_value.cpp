@@ -498,4 +498,36 @@ AmountDrag amountDrag(double amount, bool signedAmount, double dragSign, double 
   return d;
 }
 
+namespace {
+ImGuiID gDragItem = 0;    // the field a drag pressed last
+double gDragStart = 0.0;  // its value at the press
+}  // namespace
+
+bool dragFromItsStart(bool changed, double before, double* value, double speed,
+                      const double* minimum) {
+  const ImGuiID id = ImGui::GetItemID();
+  if (ImGui::IsItemActivated()) {
+    gDragItem = id;
+    gDragStart = before;
+  }
+  if (!changed || gDragItem != id || !ImGui::IsItemActive() || !ImGui::IsMouseDown(0) ||
+      ImGui::TempInputIsActive(id))
+    return changed;
+  const ImGuiIO& io = ImGui::GetIO();
+  double step = speed;
+  if (io.KeyAlt) step *= 0.01;
+  if (io.KeyShift) step *= 10.0;
+  if (!(step > 0.0) || !std::isfinite(step)) return changed;
+  double v = gDragStart + double(ImGui::GetMouseDragDelta(0, 0.0f).x) * step;
+  // A tenth of the step's leading digit, written back as it reads (0.1 + 0.2 is 0.3).
+  const double grain = std::pow(10.0, std::floor(std::log10(step)) - 1.0);
+  v = std::round(v / grain) * grain;
+  char text[40];
+  std::snprintf(text, sizeof(text), "%.12g", v);
+  v = std::strtod(text, nullptr);
+  if (minimum && v < *minimum) v = *minimum;
+  *value = v;
+  return true;
+}
+
 }  // namespace strata::ui

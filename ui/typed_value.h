@@ -23,6 +23,16 @@ namespace strata::ui {
 // keeps its value. Degrees typed into a field that is no length are taken as the number.
 bool commitTypedValue(bool changed, double* value, const std::string& lengthUnit = "");
 bool commitTypedValue(bool changed, int* value);
+// A mouse drag of a number field (DragScalar) made absolute: the value at the press plus the
+// mouse's travel since then times `speed` (ten times with Shift, a hundredth with Alt, as Dear
+// ImGui), kept at or above `*minimum` where given, rounded to a tenth of `speed` (times those
+// factors). Dear ImGui adds each frame's motion to the value it clamped and rounded the frame
+// before, so a drag out past the minimum and back did not come back (a plate's thickness went
+// 8 -> 0.000001 -> 33.6 mm, and a drag of 20 pixels out and back 8 -> 2.96 -> 8.56: an artist's
+// test). Call right after the DragScalar, before commitTypedValue, with `before` the value it
+// was given; returns `changed`. A typed number (the mouse up) is left as it is. UI thread.
+bool dragFromItsStart(bool changed, double before, double* value, double speed,
+                      const double* minimum = nullptr);
 // Whether the last commitTypedValue call applied a number typed into the field (true) rather
 // than a drag's value or nothing (false): a field shared by several parts sets every one to a
 // typed number, where a drag moves each by as much. UI thread.

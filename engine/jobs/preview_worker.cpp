@@ -210,11 +210,16 @@ void PreviewWorker::serve(Evaluator& evaluator, const Request& request, Progress
       predicted = std::max(predicted, seconds * std::pow(double(full) / resolution, 2.0));
   const int coarse = draftResolutionFor(full, coarse_, full, predicted, quickPassSeconds_);
   if (request.interactive) {
-    const int drag = dragResolutionFor(full, coarse_, dragSeconds_, predicted, quickPassSeconds_);
+    std::map<int, double> trusted;
+    const auto now = std::chrono::steady_clock::now();
+    for (const auto& [resolution, cost] : dragCosts_)
+      if (cost.seconds < quickPassSeconds_ ||
+          std::chrono::duration<double>(now - cost.at).count() < kDragVerdictSeconds)
+        trusted[resolution] = cost.seconds;
+    const int drag = dragResolutionFor(full, coarse_, trusted, predicted, quickPassSeconds_);
     evaluatePass(evaluator, request, drag, drag < full, progress);
     return;
   }
-  dragSeconds_.clear();  // the next drag measures its own part
   // A coarse pass first, unless the coarse result of this very snapshot is already shown (the
   // hand just stopped) or there is nothing coarser. A request that arrives meanwhile cancels
   // `progress`, and with it the refinement.
@@ -267,7 +272,7 @@ bool PreviewWorker::evaluatePass(Evaluator& evaluator, const Request& request, i
   // A drag's pass that found parts in the cache: what the next frames of a drag cost there (a
   // first pass at a resolution, computing every part, says nothing of them).
   if (measured && request.interactive && result->stats.reused > 0)
-    dragSeconds_[resolution] = passSeconds;
+    dragCosts_[resolution] = DragCost{passSeconds, std::chrono::steady_clock::now()};
   if (measured && result->stats.reused == 0 && result->stats.computed > 0) {
     wholeSeconds_ = passSeconds;
     wholeResolution_ = resolution;

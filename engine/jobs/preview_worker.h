@@ -306,8 +306,16 @@ class PreviewWorker {
   double wholeSeconds_ = -1.0;     // worker thread only: the last pass that computed every node
   int wholeResolution_ = 0;        // worker thread only: of that pass
   // Worker thread only: the last drag pass at each resolution that reused cached parts (its
-  // seconds), since the last calm request (dragResolutionFor).
-  std::map<int, double> dragSeconds_;
+  // seconds, and when it ended), for dragResolutionFor. Kept across drags and the calm requests
+  // between them (a hand resting mid-drag refines in full); a verdict of "too slow" is trusted
+  // for kDragVerdictSeconds, then that resolution is tried again (a busy moment of a 2-core
+  // machine kept a drag coarse to its end: a review).
+  struct DragCost {
+    double seconds = 0.0;
+    std::chrono::steady_clock::time_point at;
+  };
+  std::map<int, DragCost> dragCosts_;
+  static constexpr double kDragVerdictSeconds = 2.0;
   // Worker thread only: the last grid of each resolution evaluated, which the next follows
   // (Evaluator::previewGridFor) so that the cache keeps what an edit left alone.
   std::map<int, Grid> lastGrids_;

@@ -53,9 +53,15 @@ class TypedField : public ::testing::Test {
     if (focus) ImGui::SetKeyboardFocusHere();
     double value = stored;
     // The field of the part selected (none once the tree's row was clicked).
+    const double before = value;
     if (!rowClicked &&
-        commitTypedValue(ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f), &value,
-                         lengthUnit))
+        commitTypedValue(
+            absoluteDrag ? dragFromItsStart(ImGui::DragScalar("##v", ImGuiDataType_Double, &value,
+                                                              1.0f, dragMinimum, nullptr),
+                                            before, &value, 1.0, dragMinimum)
+                         : ImGui::DragScalar("##v", ImGuiDataType_Double, &value, 1.0f, dragMinimum,
+                                             nullptr),
+            &value, lengthUnit))
       stored = value, writes.push_back(value), typedWrites.push_back(lastCommitWasTyped());
     // A second field after it, which Tab moves to.
     double other = storedOther;
@@ -63,13 +69,13 @@ class TypedField : public ::testing::Test {
       storedOther = other, otherWrites.push_back(other);
     // A slider whose double-click opens its text field (as the Preview panel's resolution).
     double slid = storedSlider;
-    const double before = slid;
+    const double sliderBefore = slid;
     const double lo = 0.0, hi = 100.0;
     if (commitTypedValue(ImGui::SliderScalar("##s", ImGuiDataType_Double, &slid, &lo, &hi), &slid))
       storedSlider = slid;
     sliderMin = ImGui::GetItemRectMin();
     double beforePress = 0.0;
-    if (doubleClickOpensTyping(before, &beforePress)) storedSlider = beforePress;
+    if (doubleClickOpensTyping(sliderBefore, &beforePress)) storedSlider = beforePress;
     ImGui::End();
     // A tree after the fields, as the editor draws its outliner after the inspector: a click on
     // its row selects another part, whose fields are not the ones typed into.
@@ -95,7 +101,9 @@ class TypedField : public ::testing::Test {
   }
 
   bool rowClicked = false;
-  std::string lengthUnit;  // the first field's, when it is a length ("" otherwise)
+  bool absoluteDrag = false;            // the first field's drag through dragFromItsStart
+  const double* dragMinimum = nullptr;  // the first field's drag minimum
+  std::string lengthUnit;               // the first field's, when it is a length ("" otherwise)
   double storedSlider = 50.0;
   ImVec2 sliderMin{};
   double stored = 7.0, storedOther = 1.0;
@@ -130,6 +138,41 @@ TEST_F(TypedField, ANumberIsAppliedOnceWhenEnterIsPressed) {
   ASSERT_GT(writes.size(), 1u) << "the drag wrote";
   EXPECT_FALSE(typedWrites.back());
   EXPECT_FALSE(lastCommitWasTyped());
+}
+
+// A drag out past the field's minimum and back to where it was pressed gives the value it had:
+// Dear ImGui adds each frame's motion to the value it clamped, so it did not come back (a
+// plate's thickness 8 -> 0.000001 -> 33.6 mm: an artist's test). Plain Dear ImGui beside it.
+TEST_F(TypedField, ADragOutPastTheMinimumAndBackGivesTheValueItHad) {
+  const double zero = 0.0;
+  dragMinimum = &zero;
+  ImGuiIO& io = ImGui::GetIO();
+  const auto dragOutAndBack = [&] {
+    stored = 7.0;
+    io.MousePos = ImVec2(40, 30);
+    frame();
+    io.MouseDown[0] = true;
+    frame();
+    double lowest = stored;
+    for (int k = 0; k < 12; ++k) {  // 120 pixels left: past 0 at 1 a pixel
+      io.MousePos.x -= 10;
+      frame();
+      lowest = std::min(lowest, stored);
+    }
+    EXPECT_EQ(lowest, 0.0) << "kept at the minimum";
+    for (int k = 0; k < 12; ++k) {
+      io.MousePos.x += 10;
+      frame();
+    }
+    io.MouseDown[0] = false;
+    frame();
+    return stored;
+  };
+  absoluteDrag = true;
+  EXPECT_EQ(dragOutAndBack(), 7.0);
+  EXPECT_FALSE(lastCommitWasTyped());
+  absoluteDrag = false;
+  EXPECT_GT(dragOutAndBack(), 7.0) << "plain Dear ImGui came back: the test shows nothing";
 }
 
 // Typing the number a field already holds keeps it: "15" over 15 passed through 1 (a change) and

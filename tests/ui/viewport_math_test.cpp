@@ -364,7 +364,23 @@ TEST(EditorMath, GizmoRingFollowsTheCursor) {
   ASSERT_TRUE(m.toScreen(front3 * ringRadius, &frontOnScreen));
   ASSERT_GT(glm::length(backOnScreen - c0), 20.0) << "the view must show the ring at a slant";
   EXPECT_EQ(g.hover(m, frontOnScreen), 2);
-  EXPECT_EQ(g.hover(m, backOnScreen), -1);
+  // Its back half where no other ring's front is near: still the ring (not a click through).
+  EXPECT_EQ(g.hover(m, backOnScreen), 2);
+  // Where the z ring's back half crosses the y ring's front half, the y ring is taken.
+  bool crossingSeen = false;
+  for (int i = 0; i < 360 && !crossingSeen; ++i) {
+    const double t = i * M_PI / 180.0;
+    const glm::dvec3 p(std::cos(t), std::sin(t), 0.0);
+    if (glm::dot(p, m.forward) < 0.3) continue;  // the z ring's far part only
+    glm::dvec2 onScreen;
+    ASSERT_TRUE(m.toScreen(p * ringRadius, &onScreen));
+    const int picked = g.hover(m, onScreen);
+    if (picked != 2) {
+      EXPECT_NE(picked, -1);
+      crossingSeen = true;
+    }
+  }
+  EXPECT_TRUE(crossingSeen) << "no point of the z ring's back half lies near another ring";
   EXPECT_EQ(g.hover(f, centre + glm::dvec2(0.0, -40.0)), 0);  // the x ring alone
 }
 
