@@ -223,9 +223,19 @@ double Gizmo::ringTurnDegrees(const ScreenMapping& view, glm::dvec2 o, glm::dvec
       }
       const glm::dvec2 tangent = A * glm::dvec2(-std::sin(grabbed), std::cos(grabbed));
       const double pixelsPerRadian = glm::length(tangent);
-      if (pixelsPerRadian > 0.05 * major)
-        return glm::dot(mouse - startMouse_, tangent) / (pixelsPerRadian * pixelsPerRadian) *
-               180.0 / kPi;
+      if (pixelsPerRadian > 0.05 * major) {
+        // Across the line too, whichever way the drag went first: dragged across, an edge-on
+        // ring turned 0 degrees, and most people drag across first (an artist's test). Across
+        // is the tangent turned a quarter clockwise on screen (y down): right of the way along.
+        const glm::dvec2 moved = mouse - startMouse_;
+        const glm::dvec2 across(-tangent.y, tangent.x);
+        const double alongPixels = glm::dot(moved, tangent) / pixelsPerRadian,
+                     acrossPixels = glm::dot(moved, across) / pixelsPerRadian;
+        if (edgeOnWay_ == 0 && glm::length(moved) >= 4.0)
+          edgeOnWay_ = std::fabs(acrossPixels) > std::fabs(alongPixels) ? 2 : 1;
+        const double pixels = edgeOnWay_ == 2 ? acrossPixels : alongPixels;
+        return pixels / pixelsPerRadian * 180.0 / kPi;
+      }
     }
   }
   // Grabbed where the ring runs towards the viewer: the cursor's angle about the centre.
@@ -242,6 +252,7 @@ void Gizmo::begin(int axis, const ScreenMapping&, glm::dvec2 mouse) {
   axis_ = axis;
   start_ = transform_;
   startMouse_ = mouse;
+  edgeOnWay_ = 0;
 }
 
 Transform Gizmo::drag(const ScreenMapping& view, glm::dvec2 mouse, const GizmoSnap& snap) const {

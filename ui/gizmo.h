@@ -94,7 +94,8 @@ class Gizmo {
   // While dragging a ring: how far it turned (degrees, about its axis, right-handed) from the
   // grab at startMouse_ to `mouse`; `o` is the gizmo's centre on screen. The ring follows the
   // cursor where it faces the viewer; seen nearly edge-on, moving along its tangent at the
-  // point grabbed turns it by the arc moved on screen.
+  // point grabbed turns it by the arc moved on screen, and so does moving across it (the
+  // tangent turned a quarter clockwise on screen), whichever the drag went first.
   double ringTurnDegrees(const ScreenMapping& view, glm::dvec2 o, glm::dvec2 mouse) const;
 
   glm::dmat4 parentWorld_{1.0};
@@ -103,6 +104,9 @@ class Gizmo {
   int axis_ = -1;
   Transform start_;
   glm::dvec2 startMouse_{0.0};
+  // A ring seen edge-on turns with the cursor along its line or across it, whichever the drag
+  // went first (0: not yet; 1: along; 2: across), kept for the drag (ringTurnDegrees).
+  mutable int edgeOnWay_ = 0;
 };
 
 }  // namespace strata::ui

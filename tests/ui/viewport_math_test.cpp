@@ -340,6 +340,22 @@ TEST(EditorMath, GizmoRingFollowsTheCursor) {
   EXPECT_NEAR(g.drag(f, centre + glm::dvec2(10.0, 0.0), GizmoSnap()).rotateDegrees.z,
               10.0 / 76.5 * 180.0 / M_PI, 1e-6);
   g.end();
+  // Dragged across its line first (down the screen): it turns as far, the way across is the
+  // way along turned a quarter clockwise; a turn of 0 before (an artist's test). The way the
+  // drag went first is kept: moved along afterwards, it still follows the way across.
+  const double tenPixels = 10.0 / 76.5 * 180.0 / M_PI;
+  g.begin(2, f, centre);
+  EXPECT_NEAR(g.drag(f, centre + glm::dvec2(0.0, 10.0), GizmoSnap()).rotateDegrees.z, tenPixels,
+              1e-6);
+  EXPECT_NEAR(g.drag(f, centre + glm::dvec2(30.0, 10.0), GizmoSnap()).rotateDegrees.z, tenPixels,
+              1e-6);
+  g.end();
+  g.begin(2, f, centre);  // along first: the way across is not taken
+  EXPECT_NEAR(g.drag(f, centre + glm::dvec2(10.0, 0.0), GizmoSnap()).rotateDegrees.z, tenPixels,
+              1e-6);
+  EXPECT_NEAR(g.drag(f, centre + glm::dvec2(10.0, 40.0), GizmoSnap()).rotateDegrees.z, tenPixels,
+              1e-6);
+  g.end();
   // Where the edge-on x ring (a vertical line) crosses the y ring (a circle facing the viewer),
   // the y ring is taken: it is the one a drag there can turn.
   EXPECT_EQ(g.hover(f, centre + glm::dvec2(0.0, -76.5)), 1);
