@@ -45,7 +45,7 @@ bool reaches(const NodePtr& root, const NodePtr& a, const NodePtr& b) {
 }
 
 std::string named(const Node& n) {
-  return "\"" + (n.name.empty() ? nodeLabel(n) : n.name) + "\"";
+  return quotedName(n);
 }
 
 // The common box of the visible children of `op` in `root` (empty where there is none).

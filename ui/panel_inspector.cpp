@@ -213,7 +213,7 @@ void reseatResting(EditorState& state, const NodePtr& before, NodeId id,
   const NodePtr root = state.document.root();
   const auto named = [&](NodeId of) {
     const NodePtr n = findNode(root, of);
-    return n ? "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"" : std::string("a part");
+    return n ? quotedName(*n) : std::string("a part");
   };
   if (sameDrag) rest.moved = false;  // said at the gesture's first frame
   if (rest.moved && (rest.onGround || !rest.on))

@@ -56,7 +56,7 @@ std::vector<PatternGuide> patternGuides(const EditorState& state) {
     PatternGuide g;
     g.node = id;
     g.point = glm::dvec3(world * glm::dvec4(node->pattern.center, 1.0));
-    const std::string name = "\"" + (node->name.empty() ? nodeLabel(*node) : node->name) + "\"";
+    const std::string name = quotedName(*node);
     if (patternOf(node->kind) == Pattern::Mirror) {
       g.plane = true;
       g.u = direction((a + 1) % 3) * reach;

@@ -473,8 +473,8 @@ std::string fittedParamsMessage(const Node& n, const std::vector<FittedParam>& f
             (dragging ? std::string("smaller") : number + (unit.empty() ? "" : " " + unit));
   }
   const PrimitiveInfo* info = primitiveInfo(n.kind);
-  return "\"" + (n.name.empty() ? nodeLabel(n) : n.name) + "\": " + made + " to fit the " +
-         changed + (dragging ? " as it is dragged" : "") + " (" + (info ? info->label : "part") +
+  return quotedName(n) + ": " + made + " to fit the " + changed +
+         (dragging ? " as it is dragged" : "") + " (" + (info ? info->label : "part") +
          (dragging ? "; it comes back as the " + changed + " does" : std::string()) +
          "; undo gives the old one back)";
 }
@@ -484,7 +484,7 @@ std::vector<FollowMessage> resizeFollowingMessages(const NodePtr& root, NodeId i
   using Why = ResizeFollower::Why;
   const auto named = [&](NodeId of) {
     const NodePtr n = findNode(root, of);
-    return n ? "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"" : std::string("a part");
+    return n ? quotedName(*n) : std::string("a part");
   };
   struct Clause {
     Why why;

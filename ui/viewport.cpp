@@ -389,9 +389,7 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
               restSaid_ = true;
               const NodePtr part = findNode(dragStart_, id);
               const NodePtr on = rest.on ? findNode(dragStart_, rest.on) : nullptr;
-              const auto named = [](const NodePtr& n) {
-                return "\"" + (n->name.empty() ? nodeLabel(*n) : n->name) + "\"";
-              };
+              const auto named = [](const NodePtr& n) { return quotedName(*n); };
               logInfo(state, named(part) + " rested on " + (on ? named(on) : "the ground") +
                                  " and stays on it as it is scaled" +
                                  (on ? " (it grows from its base)" : ""));

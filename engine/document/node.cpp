@@ -12,6 +12,10 @@ std::string nodeLabel(const Node& node) {
   return kind + " '" + node.name + "'";
 }
 
+std::string quotedName(const Node& node) {
+  return "\"" + (node.name.empty() ? nodeLabel(node) : node.name) + "\"";
+}
+
 int treeDepth(const NodePtr& root) {
   return measureExpansion(root).depth;
 }

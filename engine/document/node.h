@@ -77,6 +77,9 @@ inline bool meshMissing(const Node& node) {
 // A node as messages name it: its kind as people read it and its name ("rounded box 'rim'"), or its
 // kind and id where it has no name ("offset #1"), never an empty "offset ''".
 std::string nodeLabel(const Node& node);
+// A node as the editor's log names it: its name in quotes ("\"hub\""), or its label in quotes
+// where it has none ("\"offset #1\"").
+std::string quotedName(const Node& node);
 
 // Depth of the tree (a leaf alone has depth 1), following instances.
 int treeDepth(const NodePtr& root);
