@@ -149,11 +149,14 @@ int Gizmo::hover(const ScreenMapping& view, glm::dvec2 mouse) const {
           havePrev = false;
           continue;
         }
-        if (havePrev && !ringBackSegment(view, points[i - 1], points[i]))
-          d = std::min(d, segmentDistance(mouse, prev, s));
-        else if (havePrev && segmentDistance(mouse, prev, s) < nearestBackDistance) {
-          nearestBackDistance = segmentDistance(mouse, prev, s);
-          nearestBack = k;
+        if (havePrev) {
+          const double distance = segmentDistance(mouse, prev, s);
+          if (!ringBackSegment(view, points[i - 1], points[i]))
+            d = std::min(d, distance);
+          else if (distance < nearestBackDistance) {
+            nearestBackDistance = distance;
+            nearestBack = k;
+          }
         }
         prev = s;
         havePrev = true;

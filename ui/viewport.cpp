@@ -389,8 +389,8 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
               restSaid_ = true;
               const NodePtr part = findNode(dragStart_, id);
               const NodePtr on = rest.on ? findNode(dragStart_, rest.on) : nullptr;
-              const auto named = [](const NodePtr& n) { return quotedName(*n); };
-              logInfo(state, named(part) + " rested on " + (on ? named(on) : "the ground") +
+              logInfo(state, quotedName(*part) + " rested on " +
+                                 (on ? quotedName(*on) : "the ground") +
                                  " and stays on it as it is scaled" +
                                  (on ? " (it grows from its base)" : ""));
             }
@@ -417,18 +417,19 @@ void Viewport::handleInput(EditorState& state, const ViewRect& rect) {
     } else {
       gizmo_.end();
       state.document.endInteraction();
-      // What followed a part scaled, as the drag left it (said once, at its end).
-      // A relation the size fitted (a corner radius made smaller), as the drag left it.
-      if (!dragFitted_.empty())
-        if (const NodePtr part = findNode(state.document.root(), dragResized_))
-          logInfo(state, fittedParamsMessage(*part, dragFitted_, "size",
-                                             unitSymbol(state.document.scene().settings.unit)));
-      dragFitted_.clear();
+      // What followed a part scaled, as the drag left it (said once, at its end), then a
+      // relation its size fitted (a corner radius made smaller): last, so that the status bar
+      // shows it (as the inspector says it).
       if (const auto it = dragGesture_.following.find(dragResized_);
           it != dragGesture_.following.end())
         for (const FollowMessage& m :
              resizeFollowingMessages(state.document.root(), dragResized_, it->second))
           (m.warning ? logWarning : logInfo)(state, m.text);
+      if (!dragFitted_.empty())
+        if (const NodePtr part = findNode(state.document.root(), dragResized_))
+          logInfo(state, fittedParamsMessage(*part, dragFitted_, "size",
+                                             unitSymbol(state.document.scene().settings.unit)));
+      dragFitted_.clear();
       dragGesture_ = ResizeGesture();
     }
     return;
